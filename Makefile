@@ -1,0 +1,88 @@
+# offbench - build, test, run.  See README.md.
+#   make            build ./offbench
+#   make test       build and run every test; last line "N passed, N failed"
+#   make run        the default job on the embedded data, into out/run
+#   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
+#   make deps       check for (and, as root with apt-get, install) what the build needs
+
+CC      ?= gcc
+SAN     ?= 0
+OPT     ?= -O2
+CFLAGS_COMMON = -std=c11 -g -Wall -Wextra -Wshadow -fopenmp -D_POSIX_C_SOURCE=200809L
+ifeq ($(SAN),1)
+  BUILD   := build-san
+  OPT     := -O1
+  SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+  BIN     := $(BUILD)/offbench
+else
+  BUILD   := build
+  SANFLAGS :=
+  BIN     := offbench
+endif
+CFLAGS  += $(CFLAGS_COMMON) $(OPT) $(SANFLAGS)
+LDFLAGS += -fopenmp $(SANFLAGS)
+LDLIBS  += -lm
+
+LIB_SRC  := $(sort $(wildcard methods/*.c) $(filter-out host/main.c,$(wildcard host/*.c)))
+LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o
+TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_BIN := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
+TEST_SH  := $(sort $(wildcard tests/e2e_*.sh))
+DATASETS := $(sort $(wildcard datasets/*.curves))
+
+.PHONY: all test run deps clean bench FORCE
+all: $(BIN)
+
+$(BUILD)/.deps-ok: scripts/deps.sh
+	@sh scripts/deps.sh
+	@mkdir -p $(BUILD) && touch $@
+
+deps:
+	@sh scripts/deps.sh
+
+# Build facts recorded in meta.json; rewritten only when they change.
+$(BUILD)/buildinfo.h: FORCE
+	@mkdir -p $(BUILD)
+	@{ echo "#define OB_GIT_COMMIT \"$$(git rev-parse --verify -q HEAD 2>/dev/null || echo unknown)\""; \
+	   echo "#define OB_GIT_DIRTY $$(if git diff --quiet HEAD -- 2>/dev/null; then echo 0; else echo 1; fi)"; \
+	   echo "#define OB_CFLAGS \"$(strip $(CFLAGS))\""; } > $@.tmp
+	@cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+
+$(BUILD)/embedded_data.c: $(DATASETS) scripts/embed_data.sh
+	@mkdir -p $(BUILD)
+	sh scripts/embed_data.sh $(DATASETS) > $@
+
+$(BUILD)/%.o: %.c $(BUILD)/.deps-ok
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -MMD -MP -I$(BUILD) -c $< -o $@
+
+$(BUILD)/embedded_data.o: $(BUILD)/embedded_data.c
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/host/output.o: $(BUILD)/buildinfo.h
+
+$(BUILD)/libob.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BIN): $(BUILD)/host/main.o $(BUILD)/libob.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -I. -o $@ $< $(BUILD)/libob.a $(LDFLAGS) $(LDLIBS)
+
+test: $(BIN) $(TEST_BIN)
+	@OFFBENCH=$(abspath $(BIN)) sh tests/run_all.sh $(TEST_BIN) $(TEST_SH)
+
+run: $(BIN)
+	./$(BIN) run --out out/run
+	@echo "wrote out/run/results.csv and out/run/meta.json"
+
+bench: $(BIN)
+	./$(BIN) bench --out out/bench
+
+clean:
+	rm -rf build build-san offbench out
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,42 @@
+#!/bin/sh
+# Checks for what offbench needs to build and run, and installs what is missing
+# when it can (root with apt-get, Debian package names); otherwise it says
+# exactly what to install.  Run by `make` once (stamp in build/.deps-ok) and by
+# `make deps` on demand.
+#
+#   required to build:     a C11 compiler with OpenMP (gcc), make
+#   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
+set -u
+
+missing=""
+have_header() { printf '#include <%s>\nint main(void){return 0;}\n' "$1" | ${CC:-cc} -x c -fsyntax-only - >/dev/null 2>&1; }
+have_pkg() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
+
+command -v ${CC:-cc} >/dev/null 2>&1 || { echo "deps: no C compiler: install gcc (Debian: apt-get install gcc make)" >&2; exit 1; }
+printf '#include <omp.h>\nint main(void){return omp_get_max_threads() < 1;}\n' | ${CC:-cc} -fopenmp -x c - -o /tmp/ob_omp_probe.$$ >/dev/null 2>&1 \
+    || { echo "deps: the C compiler lacks OpenMP (-fopenmp): install gcc with libgomp" >&2; rm -f /tmp/ob_omp_probe.$$; exit 1; }
+rm -f /tmp/ob_omp_probe.$$
+
+have_header CL/cl.h || missing="$missing opencl-headers"
+if command -v dpkg-query >/dev/null 2>&1; then
+    have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
+    have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
+fi
+
+[ -z "$missing" ] && exit 0
+
+if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "deps: installing:$missing"
+    export DEBIAN_FRONTEND=noninteractive
+    if ! apt-get install -y --no-install-recommends $missing >/tmp/offbench-deps.log 2>&1; then
+        apt-get update >>/tmp/offbench-deps.log 2>&1
+        apt-get install -y --no-install-recommends $missing >>/tmp/offbench-deps.log 2>&1 \
+            || { echo "deps: apt-get install$missing failed; see /tmp/offbench-deps.log" >&2; exit 1; }
+    fi
+    echo "deps: installed:$missing"
+else
+    echo "deps: missing:$missing" >&2
+    echo "deps: install them with: sudo apt-get install$missing" >&2
+    echo "deps: (the OpenCL backend needs them; the CPU path builds without)" >&2
+fi
+exit 0
