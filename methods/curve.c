@@ -1,0 +1,355 @@
+/*
+ * curve.c - construction, evaluation, subdivision and degree elevation of
+ * homogeneous Bézier segments.  See curve.h for the conventions.
+ */
+#include "curve.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bernstein.h"
+
+void ob_bez_set(ob_bez *b, int i, double x, double y, double w)
+{
+    b->h[i][0] = w * x;
+    b->h[i][1] = w * y;
+    b->h[i][2] = w;
+    if (w != 1.0)
+        b->rational = 1;
+}
+
+void ob_bez_from_points(ob_bez *b, int deg, const double (*xy)[2])
+{
+    memset(b, 0, sizeof *b);
+    b->deg = deg;
+    for (int i = 0; i <= deg; i++)
+        ob_bez_set(b, i, xy[i][0], xy[i][1], 1.0);
+}
+
+void ob_bez_ctrl(const ob_bez *b, int i, double p[2])
+{
+    p[0] = b->h[i][0] / b->h[i][2];
+    p[1] = b->h[i][1] / b->h[i][2];
+}
+
+double ob_bez_weight(const ob_bez *b, int i) { return b->h[i][2]; }
+
+/* Homogeneous value and first two homogeneous derivatives at t, from one
+ * de Casteljau pass: the last three levels give H, H' and H''. */
+static void eval_homog(const ob_bez *b, double t, double H[3][3])
+{
+    const int n = b->deg;
+    double q[OB_MAX_DEG + 1][3];
+    double s = 1.0 - t;
+    memcpy(q, b->h, (size_t)(n + 1) * sizeof q[0]);
+    double lv2[3][3] = {{0}}, lv1[2][3] = {{0}};
+    for (int r = n; r >= 1; r--) {
+        if (r == 2)
+            memcpy(lv2, q, sizeof lv2);
+        if (r == 1)
+            memcpy(lv1, q, sizeof lv1);
+        for (int i = 0; i < r; i++)
+            for (int k = 0; k < 3; k++)
+                q[i][k] = s * q[i][k] + t * q[i + 1][k];
+    }
+    for (int k = 0; k < 3; k++) {
+        H[0][k] = q[0][k];
+        H[1][k] = n >= 1 ? n * (lv1[1][k] - lv1[0][k]) : 0.0;
+        H[2][k] = n >= 2 ? n * (n - 1) * (lv2[2][k] - 2.0 * lv2[1][k] + lv2[0][k]) : 0.0;
+    }
+    if (n == 1) {  /* lv1 was the control polygon itself */
+        for (int k = 0; k < 3; k++)
+            H[1][k] = b->h[1][k] - b->h[0][k];
+    }
+}
+
+void ob_bez_eval(const ob_bez *b, double t, int nder, double out[][2])
+{
+    double H[3][3];
+    eval_homog(b, t, H);
+    const double w = H[0][2], w1 = H[1][2], w2 = H[2][2];
+    double P[2] = {H[0][0] / w, H[0][1] / w};
+    out[0][0] = P[0];
+    out[0][1] = P[1];
+    if (nder < 1)
+        return;
+    double P1[2];
+    for (int k = 0; k < 2; k++)
+        P1[k] = (H[1][k] - w1 * P[k]) / w;
+    out[1][0] = P1[0];
+    out[1][1] = P1[1];
+    if (nder < 2)
+        return;
+    for (int k = 0; k < 2; k++)
+        out[2][k] = (H[2][k] - 2.0 * w1 * P1[k] - w2 * P[k]) / w;
+}
+
+void ob_bez_point(const ob_bez *b, double t, double p[2])
+{
+    double o[1][2];
+    ob_bez_eval(b, t, 0, o);
+    p[0] = o[0][0];
+    p[1] = o[0][1];
+}
+
+void ob_curve_free(ob_curve *c)
+{
+    if (!c)
+        return;
+    free(c->source);
+    free(c->family);
+    free(c->seg);
+    free(c->d);
+    memset(c, 0, sizeof *c);
+}
+
+long ob_count_ctrl_points(const int *degs, int k)
+{
+    long n = 1;
+    for (int i = 0; i < k; i++)
+        n += degs[i];
+    return k > 0 ? n : 0;
+}
+
+/* ---- subdivision and degree ------------------------------------------- */
+
+void ob_bez_split(const ob_bez *b, double t, ob_bez *left, ob_bez *right)
+{
+    const int n = b->deg;
+    double q[OB_MAX_DEG + 1][3];
+    memcpy(q, b->h, (size_t)(n + 1) * sizeof q[0]);
+    ob_bez L = {.deg = n, .rational = b->rational}, R = L;
+    const double s = 1.0 - t;
+    memcpy(L.h[0], q[0], sizeof q[0]);
+    memcpy(R.h[n], q[n], sizeof q[0]);
+    for (int lev = 1; lev <= n; lev++) {
+        for (int i = 0; i <= n - lev; i++)
+            for (int k = 0; k < 3; k++)
+                q[i][k] = s * q[i][k] + t * q[i + 1][k];
+        memcpy(L.h[lev], q[0], sizeof q[0]);
+        memcpy(R.h[n - lev], q[n - lev], sizeof q[0]);
+    }
+    if (left)
+        *left = L;
+    if (right)
+        *right = R;
+}
+
+void ob_bez_subsegment(const ob_bez *src, double a, double b, ob_bez *out)
+{
+    ob_bez tmp;
+    if (b < 1.0) {
+        ob_bez_split(src, b, &tmp, NULL);
+    } else {
+        tmp = *src;
+        b = 1.0;
+    }
+    if (a > 0.0)
+        ob_bez_split(&tmp, a / b, NULL, out);
+    else
+        *out = tmp;
+}
+
+int ob_bez_elevate(const ob_bez *b, int to, ob_bez *out)
+{
+    if (to > OB_MAX_DEG || to < b->deg)
+        return -1;
+    ob_bez r = {.deg = to, .rational = b->rational};
+    double a[OB_MAX_DEG + 1], c[OB_MAX_DEG + 1];
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i <= b->deg; i++)
+            a[i] = b->h[i][k];
+        ob_bern_elevate(a, b->deg, to, c);
+        for (int i = 0; i <= to; i++)
+            r.h[i][k] = c[i];
+    }
+    *out = r;
+    return 0;
+}
+
+/* ---- differential geometry -------------------------------------------- */
+
+/* Size of the control polygon, the scale for "vanishing" tests. */
+static double ctrl_scale(const ob_bez *b)
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int i = 0; i <= b->deg; i++) {
+        double p[2];
+        ob_bez_ctrl(b, i, p);
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fmin(lo[k], p[k]);
+            hi[k] = fmax(hi[k], p[k]);
+        }
+    }
+    return fmax(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+/* Tangent direction (not normalized) at t, with the one-sided limit where C'
+ * vanishes: C'(t+h) ~ h C''(t), so +C'' below t = 1 and -C'' at t = 1. */
+static int tangent_dir(const ob_bez *b, double t, double v[2])
+{
+    double o[3][2];
+    ob_bez_eval(b, t, 2, o);
+    const double eps = 1e-12 * (ctrl_scale(b) + 1e-300) * (b->deg > 0 ? b->deg : 1);
+    if (hypot(o[1][0], o[1][1]) > eps) {
+        v[0] = o[1][0];
+        v[1] = o[1][1];
+        return 0;
+    }
+    if (hypot(o[2][0], o[2][1]) > eps) {
+        double sg = t >= 1.0 ? -1.0 : 1.0;
+        v[0] = sg * o[2][0];
+        v[1] = sg * o[2][1];
+        return 0;
+    }
+    /* higher-order degeneracy: look just inside the segment */
+    double h = t >= 1.0 ? -1e-6 : 1e-6;
+    ob_bez_eval(b, t + h, 1, o);
+    if (hypot(o[1][0], o[1][1]) > 0) {
+        v[0] = o[1][0];
+        v[1] = o[1][1];
+        return 0;
+    }
+    v[0] = v[1] = 0.0;
+    return -1;
+}
+
+int ob_bez_normal(const ob_bez *b, double t, double n[2])
+{
+    double v[2];
+    if (tangent_dir(b, t, v) != 0) {
+        n[0] = n[1] = 0.0;
+        return -1;
+    }
+    double len = hypot(v[0], v[1]);
+    n[0] = -v[1] / len;
+    n[1] = v[0] / len;
+    return 0;
+}
+
+double ob_bez_curvature(const ob_bez *b, double t)
+{
+    double o[3][2];
+    ob_bez_eval(b, t, 2, o);
+    double sp = hypot(o[1][0], o[1][1]);
+    if (sp == 0.0)
+        return 0.0;
+    return (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);
+}
+
+void ob_bez_offset_point(const ob_bez *b, double t, double d, double p[2])
+{
+    double c[2], n[2];
+    ob_bez_point(b, t, c);
+    ob_bez_normal(b, t, n);
+    p[0] = c[0] + d * n[0];
+    p[1] = c[1] + d * n[1];
+}
+
+/* ---- shape analysis --------------------------------------------------- */
+
+int ob_bez_inflections(const ob_bez *b, double *ts, int max)
+{
+    const int n = b->deg;
+    if (n < 2)
+        return 0;
+    /* hodographs of the homogeneous coordinates */
+    double d1[3][OB_MAX_DEG], d2[3][OB_MAX_DEG], h0[3][OB_MAX_DEG + 1];
+    double m1 = 0, m2 = 0, m0 = 0;
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i <= n; i++) {
+            h0[k][i] = b->h[i][k];
+            m0 = fmax(m0, fabs(h0[k][i]));
+        }
+        for (int i = 0; i < n; i++) {
+            d1[k][i] = n * (b->h[i + 1][k] - b->h[i][k]);
+            m1 = fmax(m1, fabs(d1[k][i]));
+        }
+        for (int i = 0; i < n - 1; i++) {
+            d2[k][i] = n * (n - 1) * (b->h[i + 2][k] - 2 * b->h[i + 1][k] + b->h[i][k]);
+            m2 = fmax(m2, fabs(d2[k][i]));
+        }
+    }
+    /* cross = P' x P'' componentwise, degree 2n-3 */
+    const int dc = 2 * n - 3;
+    double cr[3][2 * OB_MAX_DEG], t1[2 * OB_MAX_DEG], t2[2 * OB_MAX_DEG];
+    static const int ax[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    for (int k = 0; k < 3; k++) {
+        ob_bern_mul(d1[ax[k][0]], n - 1, d2[ax[k][1]], n - 2, t1);
+        ob_bern_mul(d1[ax[k][1]], n - 1, d2[ax[k][0]], n - 2, t2);
+        for (int i = 0; i <= dc; i++)
+            cr[k][i] = t1[i] - t2[i];
+    }
+    double det[3 * OB_MAX_DEG + 1];
+    int dd;
+    double mag;
+    if (!b->rational) {
+        dd = dc;  /* P = (x, y, 1), P' and P'' have w = 0: det = x'y'' - y'x'' */
+        memcpy(det, cr[2], (size_t)(dd + 1) * sizeof *det);
+        mag = m1 * m2;
+    } else {
+        dd = 3 * n - 3;
+        for (int i = 0; i <= dd; i++)
+            det[i] = 0.0;
+        for (int k = 0; k < 3; k++) {
+            ob_bern_mul(h0[k], n, cr[k], dc, t1);
+            for (int i = 0; i <= dd; i++)
+                det[i] += t1[i];
+        }
+        mag = m0 * m1 * m2;
+    }
+    /* round-off on a straight or nearly straight piece must not create roots */
+    int nonzero = 0;
+    for (int i = 0; i <= dd; i++) {
+        if (fabs(det[i]) < 1e-13 * mag)
+            det[i] = 0.0;
+        nonzero |= det[i] != 0.0;
+    }
+    if (!nonzero)
+        return 0;
+    return ob_bern_roots(det, dd, ts, max);
+}
+
+static double tangent_angle(const ob_bez *b, double t)
+{
+    double v[2];
+    if (tangent_dir(b, t, v) != 0)
+        return 0.0;
+    return atan2(v[1], v[0]);
+}
+
+/* Turning of the tangent over [t0,t1], summed over `samples` steps. */
+static double turn_between(const ob_bez *b, double t0, double t1, int samples)
+{
+    double prev = tangent_angle(b, t0), total = 0.0;
+    for (int i = 1; i <= samples; i++) {
+        double a = tangent_angle(b, t0 + (t1 - t0) * i / samples);
+        double da = a - prev;
+        while (da > OB_PI)
+            da -= 2 * OB_PI;
+        while (da < -OB_PI)
+            da += 2 * OB_PI;
+        total += da;
+        prev = a;
+    }
+    return total;
+}
+
+double ob_bez_turn(const ob_bez *b, int samples)
+{
+    return fabs(turn_between(b, 0.0, 1.0, samples > 0 ? samples : 64));
+}
+
+double ob_bez_turn_param(const ob_bez *b, double angle)
+{
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 60; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (fabs(turn_between(b, 0.0, mid, 64)) < angle)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
