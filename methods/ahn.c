@@ -1,0 +1,122 @@
+/*
+ * ahn.c - Ahn 2023, "G2/C1 Hermite interpolation of offset curves of
+ * parametric regular curves", AIMS Press (seed 002).
+ *
+ * The unit normal N is approximated by N^a(t) = N(0) + int_0^t C'(u) alpha(u) du
+ * with alpha a cubic in Bernstein form (eq. 3.1).  Since (N^a)' is parallel to C',
+ * C + d N^a is the convolution of C and d N^a: a polynomial of degree n+3 for a
+ * polynomial C of degree n (section 3.2).
+ *   alpha_0, alpha_3: Hermite curvature conditions (eq. 3.8).  Ahn's N is the
+ *     clockwise rotation of the tangent, for which N' = kappa C'; ours is the
+ *     left normal, for which N' = -kappa C', hence alpha_{0,3} = -kappa(0), -kappa(1).
+ *   alpha_1, alpha_2: N^a(1) = N(1), a 2x2 system solved by Cramer (eq. 3.2-3.4),
+ *     regular when the piece is convex and its normal turns by less than pi
+ *     (Proposition 3.1); the driver guarantees that (OB_CAP_CONVEX, max_turn).
+ * Result: C1 and G2 Hermite interpolation of the offset at both ends, exact
+ * on circular arcs.
+ */
+#include "method.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "bernstein.h"
+
+static int ahn_degree(int n, int rational_in)
+{
+    (void)rational_in;
+    return n + 3;
+}
+
+static ob_status ahn_fit(const ob_bez *base, double d, void *work, ob_fit *out,
+                         char *msg, size_t msglen)
+{
+    (void)work;
+    const int n = base->deg;
+    if (base->rational) {
+        ob_method_msg(msg, msglen, "rational input is not supported (polynomial method)");
+        return OB_SKIP;
+    }
+    if (n + 3 > OB_MAX_DEG) {
+        ob_method_msg(msg, msglen, "output degree %d exceeds %d", n + 3, OB_MAX_DEG);
+        return OB_SKIP;
+    }
+    double b[OB_MAX_DEG + 1][2], db[OB_MAX_DEG][2];
+    for (int j = 0; j <= n; j++)
+        ob_bez_ctrl(base, j, b[j]);
+    for (int j = 0; j < n; j++) {
+        db[j][0] = b[j + 1][0] - b[j][0];
+        db[j][1] = b[j + 1][1] - b[j][1];
+    }
+    double e0[2][2], e1[2][2], N0[2], N1[2];
+    ob_bez_eval(base, 0.0, 1, e0);
+    ob_bez_eval(base, 1.0, 1, e1);
+    if (hypot(e0[1][0], e0[1][1]) == 0.0 || hypot(e1[1][0], e1[1][1]) == 0.0) {
+        ob_method_msg(msg, msglen, "C' vanishes at an end of the piece (cusp)");
+        return OB_FAIL;
+    }
+    ob_bez_normal(base, 0.0, N0);
+    ob_bez_normal(base, 1.0, N1);
+    double alpha[4];
+    alpha[0] = -ob_bez_curvature(base, 0.0);
+    alpha[3] = -ob_bez_curvature(base, 1.0);
+
+    /* w_i = int_0^1 C'(t) B_i^3(t) dt = n/(n+3) sum_j C(n-1,j) C(3,i)/C(n+2,i+j) db_j */
+    double w[4][2];
+    for (int i = 0; i < 4; i++) {
+        w[i][0] = w[i][1] = 0.0;
+        for (int j = 0; j < n; j++) {
+            double c = n * ob_binom(n - 1, j) * ob_binom(3, i) / ob_binom(n + 2, i + j) / (n + 3);
+            w[i][0] += c * db[j][0];
+            w[i][1] += c * db[j][1];
+        }
+    }
+    double v[2] = {N1[0] - N0[0] - alpha[0] * w[0][0] - alpha[3] * w[3][0],
+                   N1[1] - N0[1] - alpha[0] * w[0][1] - alpha[3] * w[3][1]};
+    double det = w[1][0] * w[2][1] - w[1][1] * w[2][0];
+    double scale = hypot(w[1][0], w[1][1]) * hypot(w[2][0], w[2][1]);
+    if (!(fabs(det) > 1e-14 * scale)) {
+        ob_method_msg(msg, msglen, "singular system for alpha_1, alpha_2 (v1 x v2 = %g)", det);
+        return OB_FAIL;
+    }
+    alpha[1] = (v[0] * w[2][1] - v[1] * w[2][0]) / det;
+    alpha[2] = (w[1][0] * v[1] - w[1][1] * v[0]) / det;
+
+    /* C' alpha in Bernstein form of degree n+2, then integrate to degree n+3 */
+    const int m = n + 3;
+    double Na[OB_MAX_DEG + 1][2];
+    Na[0][0] = N0[0];
+    Na[0][1] = N0[1];
+    for (int k = 0; k <= n + 2; k++) {
+        double c[2] = {0.0, 0.0};
+        for (int i = 0; i < 4; i++) {
+            int j = k - i;
+            if (j < 0 || j > n - 1)
+                continue;
+            double f = n * alpha[i] * ob_binom(n - 1, j) * ob_binom(3, i) / ob_binom(n + 2, k);
+            c[0] += f * db[j][0];
+            c[1] += f * db[j][1];
+        }
+        Na[k + 1][0] = Na[k][0] + c[0] / m;
+        Na[k + 1][1] = Na[k][1] + c[1] / m;
+    }
+    ob_bez up;
+    ob_bez_elevate(base, m, &up);
+    for (int k = 0; k <= m; k++) {
+        up.h[k][0] += d * Na[k][0];
+        up.h[k][1] += d * Na[k][1];
+    }
+    ob_fit_single(out, &up);
+    return OB_OK;
+}
+
+const ob_method ob_method_ahn = {
+    .name = "ahn",
+    .citation = "Ahn 2023, G2/C1 Hermite interpolation of offset curves (AIMS Press)",
+    .continuity = "C1/G2",
+    .caps = OB_CAP_POLY_OUT | OB_CAP_CONVEX | OB_CAP_SAME_PARAM,
+    .max_turn = OB_PI,
+    .out_degree = ahn_degree,
+    .work_size = 0,
+    .fit = ahn_fit,
+};
