@@ -1,0 +1,458 @@
+/*
+ * driver.c - adaptive subdivision, level by level over all jobs.  See driver.h.
+ */
+#include "driver.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy"};
+
+const char *ob_split_name(ob_split s) { return (s >= 0 && s < OB_SPLIT_COUNT) ? split_names[s] : "?"; }
+
+int ob_split_parse(const char *name, ob_split *s)
+{
+    for (int i = 0; i < OB_SPLIT_COUNT; i++)
+        if (strcmp(name, split_names[i]) == 0) {
+            *s = (ob_split)i;
+            return 0;
+        }
+    return -1;
+}
+
+void ob_driver_defaults(ob_driver_opts *o)
+{
+    o->samples = OB_DEFAULT_SAMPLES;
+    o->max_depth = 40;
+    o->max_segments = 20000;
+    o->inflections = 1;
+    o->chunk = 2048;
+}
+
+/* greedy bisection stops when the bracket on the end parameter is this narrow */
+static const double GREEDY_EPS = 1e-4;
+/* maxerr split keeps this fraction of the piece on either side */
+static const double MAXERR_MARGIN = 0.05;
+
+/* One pending piece of one job. */
+typedef struct {
+    int job, seg, depth;
+    double a, b;        /* the piece fitted now: base parameters of segment seg */
+    double end;         /* greedy: end of the stretch being covered */
+    double lo, hi;      /* greedy: longest passing / shortest failing end so far */
+    double pass_err;    /* greedy: results of the candidate [a, lo] */
+    int pass_degsum, pass_maxdeg, pass_n;
+    int final;          /* greedy: accept this fit whatever its error */
+} item;
+
+typedef struct {
+    item *v;
+    size_t n, cap;
+} itemvec;
+
+static int push(itemvec *q, const item *it)
+{
+    if (q->n == q->cap) {
+        size_t nc = q->cap ? 2 * q->cap : 256;
+        item *nv = realloc(q->v, nc * sizeof *nv);
+        if (!nv)
+            return -1;
+        q->v = nv;
+        q->cap = nc;
+    }
+    q->v[q->n++] = *it;
+    return 0;
+}
+
+/* Per-job bookkeeping the caller does not see. */
+typedef struct {
+    long degsum;
+    long pending;   /* items of this job still queued */
+    int dead;       /* failed or skipped: drop its remaining items */
+} jstate;
+
+static double now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e9 + ts.tv_nsec;
+}
+
+static void job_end(ob_job *j, jstate *s, ob_status st, const char *msg)
+{
+    if (j->status == OB_OK || (j->status == OB_LIMIT && st != OB_LIMIT)) {
+        j->status = st;
+        snprintf(j->message, sizeof j->message, "%s", msg);
+    }
+    if (st == OB_FAIL || st == OB_SKIP)
+        s->dead = 1;
+}
+
+/* Inputs a method or metric cannot take: the job is skipped before any work. */
+static int check_applicable(ob_job *j, jstate *s)
+{
+    const ob_method *m = j->method;
+    char msg[160];
+    for (int i = 0; i < j->curve->nseg; i++) {
+        const ob_bez *b = &j->curve->seg[i];
+        if (b->rational && !(m->caps & OB_CAP_RATIONAL_IN)) {
+            job_end(j, s, OB_SKIP, "rational input is not supported by this method");
+            return 0;
+        }
+        int od = m->out_degree(b->deg, b->rational);
+        if (od > OB_MAX_DEG) {
+            snprintf(msg, sizeof msg, "output degree %d exceeds the limit %d", od, OB_MAX_DEG);
+            job_end(j, s, OB_SKIP, msg);
+            return 0;
+        }
+    }
+    if (ob_metric_same_param(j->metric) && !(m->caps & OB_CAP_SAME_PARAM)) {
+        snprintf(msg, sizeof msg, "metric %s needs an approximation in the base's parameter",
+                 ob_metric_name(j->metric));
+        job_end(j, s, OB_SKIP, msg);
+        return 0;
+    }
+    return 1;
+}
+
+/* Initial pieces of one job: inflections, then the method's turning limit. */
+static int plan_job(const ob_job *j, int jobidx, const ob_driver_opts *o, itemvec *out)
+{
+    const ob_method *m = j->method;
+    int convex = o->inflections || (m->caps & OB_CAP_CONVEX);
+    for (int s = 0; s < j->curve->nseg; s++) {
+        const ob_bez *b = &j->curve->seg[s];
+        double cuts[2 * OB_MAX_DEG * 3 + 2];
+        int nc = 0;
+        cuts[nc++] = 0.0;
+        if (convex)
+            nc += ob_bez_inflections(b, cuts + 1, 3 * OB_MAX_DEG);
+        cuts[nc++] = 1.0;
+        for (int i = 0; i + 1 < nc; i++) {
+            double a = cuts[i], e = cuts[i + 1];
+            if (e - a < 1e-12)
+                continue;
+            int k = 1;
+            ob_bez sub;
+            double turn = 0.0;
+            if (m->max_turn > 0) {
+                ob_bez_subsegment(b, a, e, &sub);
+                turn = ob_bez_turn(&sub, 128);
+                if (turn >= m->max_turn)
+                    k = (int)floor(turn / m->max_turn) + 1;
+            }
+            double prev = a;
+            for (int p = 1; p <= k; p++) {
+                double next = p == k ? e : a + (e - a) * ob_bez_turn_param(&sub, turn * p / k);
+                item it = {.job = jobidx, .seg = s, .depth = 0, .a = prev, .b = next,
+                           .end = next, .lo = prev, .hi = next};
+                if (push(out, &it))
+                    return -1;
+                prev = next;
+            }
+        }
+    }
+    return 0;
+}
+
+/* Accept a finished segment (pieces with their degrees and error). */
+static void accept(ob_job *j, jstate *s, int npieces, int degsum, int maxdeg, double err)
+{
+    j->segments += npieces;
+    s->degsum += degsum;
+    if (maxdeg > j->out_degree)
+        j->out_degree = maxdeg;
+    if (!(err <= j->max_err))
+        j->max_err = err;
+}
+
+/* Results of fitting and measuring one item. */
+typedef struct {
+    ob_status st;
+    int degsum, maxdeg, n;
+    double err, t;          /* t: base parameter of the largest error */
+    char msg[160];
+} itemres;
+
+/* Fit one item; returns the thread time spent in the method. */
+static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit, itemres *r)
+{
+    const ob_job *j = &jobs[it->job];
+    ob_bez sub;
+    ob_bez_subsegment(&j->curve->seg[it->seg], it->a, it->b, &sub);
+    r->msg[0] = '\0';
+    r->err = 0.0;
+    r->t = 0.5 * (it->a + it->b);
+    r->degsum = r->maxdeg = 0;
+    double t0 = now_ns();
+    r->st = j->method->fit(&sub, j->d, work, fit, r->msg, sizeof r->msg);
+    double t1 = now_ns();
+    r->n = r->st == OB_OK ? fit->n : 0;
+    if (r->st == OB_OK && (fit->n < 1 || fit->n > OB_MAX_PIECES)) {
+        r->st = OB_FAIL;
+        snprintf(r->msg, sizeof r->msg, "method returned %d pieces", fit->n);
+    }
+    return t1 - t0;
+}
+
+/* Measure every piece of a fit; the error is the largest over the pieces. */
+static void measure_item(const ob_job *jobs, const item *it, const ob_driver_opts *o,
+                         const ob_fit *fit, itemres *r, double *eval_ns)
+{
+    const ob_job *j = &jobs[it->job];
+    double t0 = now_ns();
+    r->err = 0.0;
+    ob_bez sub;
+    ob_bez_subsegment(&j->curve->seg[it->seg], it->a, it->b, &sub);
+    for (int p = 0; p < fit->n; p++) {
+        ob_bez piece;
+        double pa = fit->t[p], pb = fit->t[p + 1];
+        ob_bez_subsegment(&sub, pa, pb, &piece);
+        ob_errval e;
+        if (ob_measure(j->metric, &piece, &fit->seg[p], j->d, o->samples, &e) != 0) {
+            r->st = OB_FAIL;
+            snprintf(r->msg, sizeof r->msg, "metric %s cannot measure a degree-%d approximation",
+                     ob_metric_name(j->metric), fit->seg[p].deg);
+            break;
+        }
+        r->degsum += fit->seg[p].deg;
+        if (fit->seg[p].deg > r->maxdeg)
+            r->maxdeg = fit->seg[p].deg;
+        if (!(e.err <= r->err)) {
+            r->err = e.err;
+            r->t = it->a + (it->b - it->a) * (pa + (pb - pa) * e.t);
+        }
+    }
+    *eval_ns = now_ns() - t0;
+}
+
+/* Decide what becomes of one measured item; children go to `next`. */
+static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
+                  const ob_driver_opts *o, itemvec *next)
+{
+    ob_job *j = &jobs[it->job];
+    jstate *s = &js[it->job];
+    char msg[160];
+    s->pending--;
+    if (s->dead)
+        return 0;
+    if (r->st != OB_OK) {
+        snprintf(msg, sizeof msg, "%.100s at t in [%.6g, %.6g] of segment %d", r->msg[0] ? r->msg : "fit failed",
+                 it->a, it->b, it->seg);
+        job_end(j, s, r->st, msg);
+        return 0;
+    }
+    const int pass = r->err <= j->tol;
+    const int full = j->segments + s->pending + 1 >= o->max_segments;
+
+    if (j->split != OB_SPLIT_GREEDY) {
+        if (pass) {
+            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            return 0;
+        }
+        if (it->depth >= o->max_depth || full) {
+            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            if (full)
+                snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
+            else
+                snprintf(msg, sizeof msg, "depth limit %d reached at t in [%.6g, %.6g] of segment %d (error %.3g)",
+                         o->max_depth, it->a, it->b, it->seg, r->err);
+            job_end(j, s, OB_LIMIT, msg);
+            return 0;
+        }
+        double cut = 0.5 * (it->a + it->b);
+        if (j->split == OB_SPLIT_MAXERR) {
+            double w = it->b - it->a;
+            cut = fmin(it->b - MAXERR_MARGIN * w, fmax(it->a + MAXERR_MARGIN * w, r->t));
+        }
+        item l = *it, rr = *it;
+        l.b = cut;
+        rr.a = cut;
+        l.depth = rr.depth = it->depth + 1;
+        l.end = l.hi = l.b;
+        l.lo = l.a;
+        rr.end = rr.hi = rr.b;
+        rr.lo = rr.a;
+        s->pending += 2;
+        return push(next, &l) || push(next, &rr) ? -1 : 0;
+    }
+
+    /* greedy: bisection on the end of the prefix [a, b] */
+    item g = *it;
+    if (it->final) {
+        accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+        if (!pass) {
+            snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
+            job_end(j, s, OB_LIMIT, msg);
+        }
+        return 0;
+    }
+    if (pass) {
+        if (it->b >= it->end) {
+            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            return 0;
+        }
+        g.lo = it->b;
+        g.pass_err = r->err;
+        g.pass_degsum = r->degsum;
+        g.pass_maxdeg = r->maxdeg;
+        g.pass_n = r->n;
+    } else {
+        g.hi = it->b;
+    }
+    if (g.hi - g.lo <= GREEDY_EPS) {
+        if (g.lo > g.a) {
+            accept(j, s, g.pass_n, g.pass_degsum, g.pass_maxdeg, g.pass_err);
+            g.a = g.lo;
+        } else {
+            /* not even a sliver passes: keep it as it is and go on */
+            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            snprintf(msg, sizeof msg, "no prefix longer than %g passes at t = %.6g of segment %d (error %.3g)",
+                     GREEDY_EPS, it->a, it->seg, r->err);
+            job_end(j, s, OB_LIMIT, msg);
+            g.a = it->b;
+        }
+        if (g.a >= g.end)
+            return 0;
+        g.lo = g.a;
+        g.hi = g.b = g.end;
+        /* out of segments: the rest is fitted once and kept whatever its error */
+        g.final = j->segments + 1 >= o->max_segments;
+    } else {
+        g.b = 0.5 * (g.lo + g.hi);
+    }
+    s->pending++;
+    return push(next, &g);
+}
+
+int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
+{
+    ob_driver_opts o;
+    if (opts)
+        o = *opts;
+    else
+        ob_driver_defaults(&o);
+    if (o.chunk < 1)
+        o.chunk = 1;
+    int rc = 0;
+    jstate *js = calloc(njobs ? njobs : 1, sizeof *js);
+    itemvec cur = {0}, next = {0};
+    itemvec *plans = calloc(njobs ? njobs : 1, sizeof *plans);
+    const int nthreads = omp_get_max_threads();
+    size_t wsize = 1;
+    for (size_t i = 0; i < njobs; i++)
+        if (jobs[i].method->work_size > wsize)
+            wsize = jobs[i].method->work_size;
+    char *work = malloc(wsize * (size_t)nthreads);
+    ob_fit *fits = malloc((size_t)o.chunk * sizeof *fits);
+    itemres *res = malloc((size_t)o.chunk * sizeof *res);
+    double *fit_ns = malloc((size_t)o.chunk * sizeof *fit_ns);
+    double *eval_ns = malloc((size_t)o.chunk * sizeof *eval_ns);
+    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns) {
+        rc = -1;
+        goto out;
+    }
+
+    for (size_t i = 0; i < njobs; i++) {
+        ob_job *j = &jobs[i];
+        j->status = OB_OK;
+        j->ctrl_points = 0;
+        j->segments = 0;
+        j->out_degree = 0;
+        j->max_err = 0.0;
+        j->fit_ns = j->eval_ns = 0.0;
+        j->message[0] = '\0';
+    }
+    int plan_fail = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : plan_fail)
+    for (long i = 0; i < (long)njobs; i++) {
+        if (!check_applicable(&jobs[i], &js[i]))
+            continue;
+        plan_fail |= plan_job(&jobs[i], (int)i, &o, &plans[i]) != 0;
+    }
+    if (plan_fail) {
+        rc = -1;
+        goto out;
+    }
+    for (size_t i = 0; i < njobs; i++) {
+        for (size_t k = 0; k < plans[i].n; k++)
+            if (push(&cur, &plans[i].v[k])) {
+                rc = -1;
+                goto out;
+            }
+        js[i].pending = (long)plans[i].n;
+        free(plans[i].v);
+        plans[i].v = NULL;
+    }
+
+    while (cur.n > 0) {
+        next.n = 0;
+        for (size_t start = 0; start < cur.n; start += (size_t)o.chunk) {
+            const long cnt = (long)((cur.n - start) < (size_t)o.chunk ? cur.n - start : (size_t)o.chunk);
+            const item *its = cur.v + start;
+            /* fit every pending piece */
+#pragma omp parallel for schedule(dynamic, 4)
+            for (long i = 0; i < cnt; i++) {
+                void *w = work + wsize * (size_t)omp_get_thread_num();
+                if (js[its[i].job].dead) {
+                    res[i].st = OB_SKIP;
+                    fit_ns[i] = 0.0;
+                    continue;
+                }
+                fit_ns[i] = fit_item(jobs, &its[i], w, &fits[i], &res[i]);
+            }
+            /* measure every fit: one batch */
+#pragma omp parallel for schedule(dynamic, 4)
+            for (long i = 0; i < cnt; i++) {
+                eval_ns[i] = 0.0;
+                if (res[i].st == OB_OK)
+                    measure_item(jobs, &its[i], &o, &fits[i], &res[i], &eval_ns[i]);
+            }
+            /* decide, in job order */
+            for (long i = 0; i < cnt; i++) {
+                jobs[its[i].job].fit_ns += fit_ns[i];
+                jobs[its[i].job].eval_ns += eval_ns[i];
+                if (decide(jobs, js, &its[i], &res[i], &o, &next)) {
+                    rc = -1;
+                    goto out;
+                }
+            }
+        }
+        itemvec tmp = cur;
+        cur = next;
+        next = tmp;
+    }
+
+out:
+    for (size_t i = 0; i < njobs; i++) {
+        ob_job *j = &jobs[i];
+        if (rc != 0 && js && (js[i].pending > 0 || !js[i].dead) && j->status == OB_OK) {
+            j->status = OB_FAIL;
+            snprintf(j->message, sizeof j->message, "out of memory");
+        }
+        if (j->status == OB_OK || j->status == OB_LIMIT)
+            j->ctrl_points = j->segments > 0 ? 1 + (js ? js[i].degsum : 0) : 0;
+        else {
+            j->ctrl_points = 0;
+            j->segments = 0;
+            j->out_degree = 0;
+            j->max_err = NAN;
+        }
+        if (plans)
+            free(plans[i].v);
+    }
+    free(plans);
+    free(cur.v);
+    free(next.v);
+    free(js);
+    free(work);
+    free(fits);
+    free(res);
+    free(fit_ns);
+    free(eval_ns);
+    return rc;
+}

@@ -1,0 +1,74 @@
+/*
+ * driver.h - adaptive subdivision shared by all methods.
+ *
+ * A job is (curve, d, method, metric, split, tol).  The driver first cuts each
+ * base segment into pieces at inflections (and, for methods with max_turn, where
+ * the tangent has turned by max_turn), then works level by level over all
+ * pending pieces of all jobs at once: fit every piece (OpenMP threads), measure
+ * every fit (one batch: the place where the OpenCL kernel plugs in), then split
+ * the pieces whose error exceeds tol.
+ *
+ * Split rules:
+ *   mid     at the parametric midpoint;
+ *   maxerr  at the parameter of the largest error (Liu-Wang, Step 5), kept
+ *           within [5 %, 95 %] of the piece so no sliver is made;
+ *   greedy  the longest prefix that passes, by bisection on its end parameter
+ *           (to 1e-4 of the base parameter), then the rest likewise: the
+ *           fewest segments the method can reach.
+ * A piece narrower than 2^-max_depth, or a job past max_segments, is accepted
+ * as it is and the job ends with status `limit` (its max_err then exceeds tol).
+ *
+ * Counting: k segments of degrees m_i joined end to end count 1 + sum m_i
+ * control points (shared end points once), as the papers count.
+ */
+#ifndef OB_DRIVER_H
+#define OB_DRIVER_H
+
+#include <stddef.h>
+
+#include "method.h"
+#include "metric.h"
+
+typedef enum { OB_SPLIT_MID = 0, OB_SPLIT_MAXERR, OB_SPLIT_GREEDY, OB_SPLIT_COUNT } ob_split;
+const char *ob_split_name(ob_split s);
+int ob_split_parse(const char *name, ob_split *s);
+
+typedef struct {
+    /* inputs */
+    const ob_curve *curve;
+    double d;
+    const ob_method *method;
+    ob_metric metric;
+    ob_split split;
+    double tol;
+    /* outputs */
+    ob_status status;
+    long ctrl_points;
+    int segments;
+    int out_degree;      /* largest degree among the output segments */
+    double max_err;      /* largest measured error over the accepted segments */
+    double fit_ns;       /* thread time spent in the method's fit */
+    double eval_ns;      /* thread time spent measuring */
+    char message[160];
+} ob_job;
+
+typedef struct {
+    int samples;        /* per segment, for the sampled metrics */
+    int max_depth;      /* pieces are not split below 2^-max_depth */
+    int max_segments;   /* per job */
+    int inflections;    /* 1: split at inflections first (forced for OB_CAP_CONVEX) */
+    int chunk;          /* pieces per fit/measure batch (bounds memory) */
+} ob_driver_opts;
+
+void ob_driver_defaults(ob_driver_opts *o);
+
+/* Purpose: run every job to completion, filling its outputs.
+ * Inputs:  jobs with their input fields set; opts (NULL for defaults).
+ * Returns: 0, or -1 if memory ran out (jobs not finished get status fail and
+ *          the message "out of memory").  Per-job problems never fail the run:
+ *          they end that job with status fail / skip / limit and a message.
+ * Deterministic: outputs other than the timings do not depend on the number of
+ * threads. */
+int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts);
+
+#endif
