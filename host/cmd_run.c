@@ -1,0 +1,205 @@
+/*
+ * cmd_run.c - `./offbench run`: load curves, plan the jobs (curve x d x method
+ * x tol, in that nesting), run the driver, write results.csv and meta.json.
+ */
+#include <errno.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "commands.h"
+#include "curvefile.h"
+#include "datadir.h"
+#include "diag.h"
+#include "options.h"
+#include "output.h"
+
+int ob_mkdir_p(const char *dir)
+{
+    char buf[4096];
+    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    for (char *p = buf + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+            return -1;
+        *p = '/';
+    }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+        return -1;
+    return 0;
+}
+
+/* Writes DIR/NAME through a temporary file and a rename, so a reader never
+ * sees a half-written file. */
+static int write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx)
+{
+    char path[4200], tmp[4210];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) {
+        ob_error("%s: cannot write: %s", tmp, strerror(errno));
+        return -1;
+    }
+    int rc = writer(f, ctx);
+    if (fclose(f) != 0 || rc != 0) {
+        ob_error("%s: write failed", tmp);
+        remove(tmp);
+        return -1;
+    }
+    if (rename(tmp, path) != 0) {
+        ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+typedef struct {
+    const ob_job *jobs;
+    size_t njobs;
+    const ob_run_opts *o;
+    const char *data;
+    double wall;
+} run_out;
+
+static int write_results_cb(FILE *f, void *ctx)
+{
+    run_out *r = ctx;
+    return ob_write_results(f, r->jobs, r->njobs);
+}
+
+static int write_meta_cb(FILE *f, void *ctx)
+{
+    run_out *r = ctx;
+    return ob_write_meta(f, r->o, r->data, r->njobs, r->wall);
+}
+
+static int load_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
+{
+    char err[1024];
+    int rc;
+    if (o->curves_file) {
+        snprintf(where, wlen, "%s", o->curves_file);
+        rc = ob_curves_load_file(o->curves_file, set, err, sizeof err);
+    } else {
+        rc = ob_load_default_curves(set, where, wlen, err, sizeof err);
+    }
+    if (rc != 0) {
+        ob_error("%s", err);
+        return -1;
+    }
+    for (int i = 0; i < o->ncurve_ids; i++)
+        if (ob_curveset_find(set, o->curve_ids[i]) < 0) {
+            ob_error("--curve: no curve '%s' in %s (see './offbench list curves')", o->curve_ids[i], where);
+            return -1;
+        }
+    return 0;
+}
+
+static int selected(const ob_run_opts *o, const char *id)
+{
+    if (!o->curve_ids)
+        return 1;
+    for (int i = 0; i < o->ncurve_ids; i++)
+        if (strcmp(o->curve_ids[i], id) == 0)
+            return 1;
+    return 0;
+}
+
+static ob_job *plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *njobs)
+{
+    size_t n = 0;
+    for (int c = 0; c < set->n; c++)
+        if (selected(o, set->v[c].id))
+            n += (size_t)set->v[c].nd * (size_t)o->nmethods * (size_t)o->ntols;
+    ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
+    if (!jobs)
+        return NULL;
+    size_t k = 0;
+    for (int c = 0; c < set->n; c++) {
+        if (!selected(o, set->v[c].id))
+            continue;
+        for (int di = 0; di < set->v[c].nd; di++)
+            for (int m = 0; m < o->nmethods; m++)
+                for (int t = 0; t < o->ntols; t++) {
+                    ob_job *j = &jobs[k++];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = o->methods[m];
+                    j->metric = o->metric;
+                    j->split = o->split;
+                    j->tol = o->tols[t];
+                }
+    }
+    *njobs = n;
+    return jobs;
+}
+
+int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
+{
+    ob_run_opts o;
+    ob_curveset set = {0};
+    ob_job *jobs = NULL;
+    int status = 2;
+    if (ob_run_opts_parse(argc, argv, &o) != 0)
+        goto done;
+    o.argc = full_argc;
+    o.argv = full_argv;
+    if (o.backend == OB_BACKEND_OPENCL) {
+        ob_error("--backend opencl: this build has no OpenCL backend yet; use --backend cpu or auto");
+        goto done;
+    }
+    char where[4096];
+    if (load_curves(&o, &set, where, sizeof where) != 0)
+        goto done;
+    if (o.threads > 0)
+        omp_set_num_threads(o.threads);
+    size_t njobs = 0;
+    jobs = plan_jobs(&o, &set, &njobs);
+    if (!jobs) {
+        ob_error("out of memory planning the jobs");
+        status = 1;
+        goto done;
+    }
+    if (njobs == 0) {
+        ob_error("no jobs: the selected curves have no offsets");
+        goto done;
+    }
+    if (ob_mkdir_p(o.out_dir) != 0) {
+        ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
+        status = 1;
+        goto done;
+    }
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    int drc = ob_driver_run(jobs, njobs, &o.driver);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+    run_out r = {jobs, njobs, &o, where, wall};
+    status = 0;
+    if (write_atomically(o.out_dir, "results.csv", write_results_cb, &r) != 0 ||
+        write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) != 0)
+        status = 1;
+    if (drc != 0) {
+        ob_error("ran out of memory; unfinished jobs are marked fail");
+        status = 1;
+    }
+    size_t cnt[4] = {0};
+    for (size_t i = 0; i < njobs; i++)
+        cnt[jobs[i].status]++;
+    fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads): ok %zu, limit %zu, fail %zu, skip %zu; wrote %s/results.csv\n",
+            njobs, wall, omp_get_max_threads(), cnt[OB_OK], cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], o.out_dir);
+done:
+    free(jobs);
+    ob_curveset_free(&set);
+    ob_run_opts_free(&o);
+    return status;
+}

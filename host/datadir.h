@@ -1,0 +1,18 @@
+/*
+ * datadir.h - where the default curves come from.
+ *
+ * In order: the directory in $OFFBENCH_DATA; ./datasets; datasets/ beside the
+ * executable; else the copies of the datasets/ curve files compiled into the program
+ * (so `./offbench run` works from anywhere).
+ */
+#ifndef OB_DATADIR_H
+#define OB_DATADIR_H
+
+#include <stddef.h>
+#include "curvefile.h"
+
+/* Purpose: load the default curve set.  *where gets a description of the
+ * source ("DIR" or "embedded copy of datasets/").  Errors as ob_curves_load_dir. */
+int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, char *err, size_t errlen);
+
+#endif

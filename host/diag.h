@@ -1,0 +1,18 @@
+/*
+ * diag.h - the one funnel every user-facing error goes through.
+ *
+ * ob_error() formats a message and hands it to the current handler (by default:
+ * "offbench: MESSAGE" on stderr).  It never aborts: callers return a status.
+ * Tests install a handler to capture messages.
+ */
+#ifndef OB_DIAG_H
+#define OB_DIAG_H
+
+typedef void (*ob_error_handler)(const char *message);
+
+/* Install a handler (NULL restores the default); returns the previous one. */
+ob_error_handler ob_set_error_handler(ob_error_handler h);
+
+void ob_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+#endif

@@ -1,0 +1,38 @@
+/*
+ * main.c - ./offbench: dispatch to the subcommands.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "diag.h"
+
+static const char usage[] =
+    "usage:\n"
+    "  ./offbench run    [--curves FILE] [--curve ID,...] [--methods LIST|all]\n"
+    "                    [--tols 1e-1,1e-2,...] [--metric bound|radial|normal|hausdorff]\n"
+    "                    [--split mid|maxerr|greedy] [--backend auto|opencl|cpu] [--threads N]\n"
+    "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
+    "                    [--out DIR]\n"
+    "  ./offbench list   methods|curves|devices\n"
+    "See README.md for what each option means.\n";
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(usage, stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "run") == 0)
+        return ob_cmd_run(argc - 1, argv + 1, argc, argv);
+    if (strcmp(cmd, "list") == 0)
+        return ob_cmd_list(argc - 1, argv + 1);
+    if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    ob_error("unknown command '%s'", cmd);
+    fputs(usage, stderr);
+    return 2;
+}

@@ -1,0 +1,241 @@
+/*
+ * options.c - parsing of the `run` options.  Every error names the option.
+ */
+#include "options.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diag.h"
+#include "numfmt.h"
+
+static int parse_int(const char *opt, const char *s, long lo, long hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (!*s || *end || errno || v < lo || v > hi) {
+        ob_error("%s: expected a whole number from %ld to %ld, got '%s'", opt, lo, hi, s);
+        return -1;
+    }
+    *out = (int)v;
+    return 0;
+}
+
+/* Splits a comma list into a NULL-terminated strdup'd array. */
+static char **split_list(const char *s, int *n)
+{
+    int cap = 1;
+    for (const char *p = s; *p; p++)
+        cap += *p == ',';
+    char **v = calloc((size_t)cap + 1, sizeof *v);
+    if (!v)
+        return NULL;
+    *n = 0;
+    const char *p = s;
+    for (;;) {
+        const char *q = strchr(p, ',');
+        size_t len = q ? (size_t)(q - p) : strlen(p);
+        v[*n] = malloc(len + 1);
+        if (!v[*n])
+            break;
+        memcpy(v[*n], p, len);
+        v[*n][len] = '\0';
+        (*n)++;
+        if (!q)
+            break;
+        p = q + 1;
+    }
+    return v;
+}
+
+static void free_list(char **v, int n)
+{
+    if (!v)
+        return;
+    for (int i = 0; i < n; i++)
+        free(v[i]);
+    free(v);
+}
+
+static int parse_methods(const char *s, ob_run_opts *o)
+{
+    free(o->methods);
+    o->methods = NULL;
+    o->nmethods = 0;
+    int total = ob_method_count();
+    if (strcmp(s, "all") == 0) {
+        o->methods = malloc((size_t)total * sizeof *o->methods);
+        if (!o->methods)
+            return -1;
+        for (int i = 0; i < total; i++)
+            o->methods[o->nmethods++] = ob_methods[i];
+        return 0;
+    }
+    int n = 0;
+    char **names = split_list(s, &n);
+    if (!names)
+        return -1;
+    o->methods = malloc((size_t)(n > 0 ? n : 1) * sizeof *o->methods);
+    int rc = o->methods ? 0 : -1;
+    for (int i = 0; i < n && rc == 0; i++) {
+        const ob_method *m = ob_method_find(names[i]);
+        if (!m) {
+            ob_error("--methods: unknown method '%s' (see './offbench list methods')", names[i]);
+            rc = -1;
+            break;
+        }
+        for (int k = 0; k < o->nmethods; k++)
+            if (o->methods[k] == m) {
+                ob_error("--methods: '%s' is listed twice", names[i]);
+                rc = -1;
+            }
+        if (rc == 0)
+            o->methods[o->nmethods++] = m;
+    }
+    if (rc == 0 && o->nmethods == 0) {
+        ob_error("--methods: empty list");
+        rc = -1;
+    }
+    free_list(names, n);
+    return rc;
+}
+
+static int parse_tols(const char *s, ob_run_opts *o)
+{
+    int n = 0;
+    char **v = split_list(s, &n);
+    if (!v)
+        return -1;
+    int rc = 0;
+    if (n > OB_MAX_TOLS) {
+        ob_error("--tols: at most %d tolerances", OB_MAX_TOLS);
+        rc = -1;
+    }
+    o->ntols = 0;
+    for (int i = 0; i < n && rc == 0; i++) {
+        double t;
+        if (ob_parse_double(v[i], &t) || !(t > 0) || t > 1e6) {
+            ob_error("--tols: '%s' is not a tolerance (a number > 0 and <= 1e6)", v[i]);
+            rc = -1;
+            break;
+        }
+        o->tols[o->ntols++] = t;
+    }
+    free_list(v, n);
+    return rc;
+}
+
+int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->metric = OB_METRIC_HAUSDORFF;
+    o->split = OB_SPLIT_MID;
+    o->backend = OB_BACKEND_AUTO;
+    o->out_dir = "out";
+    o->argc = argc;
+    o->argv = argv;
+    ob_driver_defaults(&o->driver);
+    static const double default_tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
+    for (int i = 0; i < 5; i++)
+        o->tols[i] = default_tols[i];
+    o->ntols = 5;
+    if (parse_methods("all", o))
+        return -1;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            ob_error("run: see README.md or './offbench help' for the options");
+            return -1;
+        }
+        if (!v) {
+            ob_error("%s: missing value", a);
+            return -1;
+        }
+        if (strcmp(a, "--curves") == 0) {
+            o->curves_file = v;
+        } else if (strcmp(a, "--curve") == 0) {
+            free_list(o->curve_ids, o->ncurve_ids);
+            o->curve_ids = split_list(v, &o->ncurve_ids);
+            if (!o->curve_ids)
+                return -1;
+        } else if (strcmp(a, "--random") == 0) {
+            ob_error("--random: random test families are not implemented in this version");
+            return -1;
+        } else if (strcmp(a, "--methods") == 0) {
+            if (parse_methods(v, o))
+                return -1;
+        } else if (strcmp(a, "--tols") == 0) {
+            if (parse_tols(v, o))
+                return -1;
+        } else if (strcmp(a, "--metric") == 0) {
+            if (ob_metric_parse(v, &o->metric)) {
+                ob_error("--metric: unknown metric '%s' (bound, radial, normal, hausdorff)", v);
+                return -1;
+            }
+        } else if (strcmp(a, "--split") == 0) {
+            if (ob_split_parse(v, &o->split)) {
+                ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy)", v);
+                return -1;
+            }
+        } else if (strcmp(a, "--backend") == 0) {
+            if (strcmp(v, "auto") == 0)
+                o->backend = OB_BACKEND_AUTO;
+            else if (strcmp(v, "cpu") == 0)
+                o->backend = OB_BACKEND_CPU;
+            else if (strcmp(v, "opencl") == 0)
+                o->backend = OB_BACKEND_OPENCL;
+            else {
+                ob_error("--backend: unknown backend '%s' (auto, opencl, cpu)", v);
+                return -1;
+            }
+        } else if (strcmp(a, "--threads") == 0) {
+            if (parse_int(a, v, 1, 1024, &o->threads))
+                return -1;
+        } else if (strcmp(a, "--out") == 0) {
+            if (!*v) {
+                ob_error("--out: empty directory name");
+                return -1;
+            }
+            o->out_dir = v;
+        } else if (strcmp(a, "--samples") == 0) {
+            if (parse_int(a, v, OB_MIN_SAMPLES, OB_MAX_SAMPLES, &o->driver.samples))
+                return -1;
+        } else if (strcmp(a, "--max-depth") == 0) {
+            if (parse_int(a, v, 1, 60, &o->driver.max_depth))
+                return -1;
+        } else if (strcmp(a, "--max-segments") == 0) {
+            if (parse_int(a, v, 1, 10000000, &o->driver.max_segments))
+                return -1;
+        } else if (strcmp(a, "--inflections") == 0) {
+            if (strcmp(v, "yes") == 0)
+                o->driver.inflections = 1;
+            else if (strcmp(v, "no") == 0)
+                o->driver.inflections = 0;
+            else {
+                ob_error("--inflections: expected yes or no, got '%s'", v);
+                return -1;
+            }
+        } else {
+            ob_error("run: unknown option '%s'", a);
+            return -1;
+        }
+        i += takes;
+    }
+    return 0;
+}
+
+void ob_run_opts_free(ob_run_opts *o)
+{
+    if (!o)
+        return;
+    free_list(o->curve_ids, o->ncurve_ids);
+    free(o->methods);
+    o->curve_ids = NULL;
+    o->methods = NULL;
+}

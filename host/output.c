@@ -1,0 +1,100 @@
+/*
+ * output.c - results.csv and meta.json writers.  Rows are written in job
+ * order, so a results.csv is identical (timing columns aside) for any thread
+ * count.
+ */
+#include "output.h"
+
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+#include <time.h>
+
+#include "buildinfo.h"
+#include "numfmt.h"
+
+const char OB_RESULTS_HEADER[] =
+    "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message";
+
+void ob_csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s == '\r' || *s == '\n' ? ' ' : *s, f);
+    }
+    fputc('"', f);
+}
+
+int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs)
+{
+    fprintf(f, "%s\n", OB_RESULTS_HEADER);
+    char d[40], tol[40], err[40];
+    for (size_t i = 0; i < njobs; i++) {
+        const ob_job *j = &jobs[i];
+        ob_fmt_double(d, sizeof d, j->d);
+        ob_fmt_double(tol, sizeof tol, j->tol);
+        if (isnan(j->max_err))
+            err[0] = '\0';
+        else
+            ob_fmt_double(err, sizeof err, j->max_err);
+        ob_csv_field(f, j->curve->id);
+        fprintf(f, ",%s,%s,%s,%s,%s,%ld,%d,%d,%s,%s,%.0f,%.0f,", d, j->method->name,
+                ob_metric_name(j->metric), ob_split_name(j->split), tol, j->ctrl_points,
+                j->segments, j->out_degree, err, ob_status_name(j->status), j->fit_ns, j->eval_ns);
+        ob_csv_field(f, j->message);
+        fputc('\n', f);
+    }
+    return ferror(f) ? -1 : 0;
+}
+
+void ob_json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            fprintf(f, "\\%c", *p);
+        else if (*p < 0x20)
+            fprintf(f, "\\u%04x", *p);
+        else
+            fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
+                  double wall_seconds)
+{
+    char ts[64];
+    time_t now = time(NULL);
+    struct tm tmv;
+    gmtime_r(&now, &tmv);
+    strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%SZ", &tmv);
+    fprintf(f, "{\n  \"program\": \"offbench\",\n  \"git_commit\": ");
+    ob_json_string(f, OB_GIT_COMMIT);
+    fprintf(f, ",\n  \"git_dirty\": %s,\n  \"compiler\": ", OB_GIT_DIRTY ? "true" : "false");
+    ob_json_string(f, "gcc " __VERSION__);
+    fprintf(f, ",\n  \"cflags\": ");
+    ob_json_string(f, OB_CFLAGS);
+    fprintf(f, ",\n  \"backend\": \"cpu\",\n  \"opencl\": null,\n");
+    fprintf(f, "  \"omp_threads\": %d,\n", omp_get_max_threads());
+    fprintf(f, "  \"seed\": null,\n");
+    fprintf(f, "  \"samples_per_segment\": %d,\n", o->driver.samples);
+    fprintf(f, "  \"max_depth\": %d,\n  \"max_segments\": %d,\n  \"inflection_split\": %s,\n",
+            o->driver.max_depth, o->driver.max_segments, o->driver.inflections ? "true" : "false");
+    fprintf(f, "  \"data\": ");
+    ob_json_string(f, data_source);
+    fprintf(f, ",\n  \"jobs\": %zu,\n  \"wall_seconds\": %.3f,\n  \"argv\": [", njobs, wall_seconds);
+    for (int i = 0; i < o->argc; i++) {
+        if (i)
+            fputs(", ", f);
+        ob_json_string(f, o->argv[i]);
+    }
+    fprintf(f, "],\n  \"timestamp\": \"%s\"\n}\n", ts);
+    return ferror(f) ? -1 : 0;
+}

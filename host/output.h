@@ -1,0 +1,29 @@
+/*
+ * output.h - results.csv and meta.json of a run.
+ */
+#ifndef OB_OUTPUT_H
+#define OB_OUTPUT_H
+
+#include <stdio.h>
+
+#include "../methods/driver.h"
+#include "options.h"
+
+/* The results.csv header line (no newline), columns in contract order. */
+extern const char OB_RESULTS_HEADER[];
+
+/* Purpose: write one row per job, in job order, to f.  Returns 0 or -1 on a
+ * write error. */
+int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs);
+
+/* Purpose: write meta.json: what makes two runs comparable (build, backend,
+ * threads, samples, limits, argv, time).  Returns 0 or -1. */
+int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
+                  double wall_seconds);
+
+/* Writes s as a CSV field (quoted when it holds a comma, quote or newline). */
+void ob_csv_field(FILE *f, const char *s);
+/* Writes s as a JSON string literal. */
+void ob_json_string(FILE *f, const char *s);
+
+#endif
