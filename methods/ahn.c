@@ -28,6 +28,37 @@ static int ahn_degree(int n, int rational_in)
     return n + 3;
 }
 
+/* Solve v1 a1 + v2 a2 = v (eq. 3.2-3.4).  Regular case: Cramer's rule.  When v1
+ * and v2 are parallel (a straight piece, where C' keeps one direction) the system
+ * is singular but consistent when v is parallel to them too; then take the
+ * minimum-norm solution, which for a straight piece is a1 = a2 = 0 and gives the
+ * exact offset.  Returns -1 if the system is singular and inconsistent. */
+static int solve_alpha12(const double v1[2], const double v2[2], const double v[2], double *a1, double *a2)
+{
+    const double det = v1[0] * v2[1] - v1[1] * v2[0];
+    const double n1 = sqrt(v1[0] * v1[0] + v1[1] * v1[1]), n2 = sqrt(v2[0] * v2[0] + v2[1] * v2[1]);
+    if (fabs(det) > 1e-12 * n1 * n2) {
+        *a1 = (v[0] * v2[1] - v[1] * v2[0]) / det;
+        *a2 = (v1[0] * v[1] - v1[1] * v[0]) / det;
+        return 0;
+    }
+    /* rank <= 1: project on the common direction e of v1 and v2 */
+    const double *big = n1 >= n2 ? v1 : v2, nb = n1 >= n2 ? n1 : n2;
+    const double nv = sqrt(v[0] * v[0] + v[1] * v[1]);
+    if (nb == 0.0) {
+        *a1 = *a2 = 0.0;
+        return nv <= 1e-12 ? 0 : -1;
+    }
+    const double e[2] = {big[0] / nb, big[1] / nb};
+    const double p1 = v1[0] * e[0] + v1[1] * e[1], p2 = v2[0] * e[0] + v2[1] * e[1];
+    const double pv = v[0] * e[0] + v[1] * e[1];
+    *a1 = pv * p1 / (p1 * p1 + p2 * p2);
+    *a2 = pv * p2 / (p1 * p1 + p2 * p2);
+    /* consistency: the residual must vanish (v is a difference of unit normals) */
+    const double r[2] = {v[0] - *a1 * v1[0] - *a2 * v2[0], v[1] - *a1 * v1[1] - *a2 * v2[1]};
+    return sqrt(r[0] * r[0] + r[1] * r[1]) <= 1e-10 * (1.0 + nv) ? 0 : -1;
+}
+
 static ob_status ahn_fit(const ob_bez *base, double d, void *work, ob_fit *out,
                          char *msg, size_t msglen)
 {
@@ -51,7 +82,7 @@ static ob_status ahn_fit(const ob_bez *base, double d, void *work, ob_fit *out,
     double e0[2][2], e1[2][2], N0[2], N1[2];
     ob_bez_eval(base, 0.0, 1, e0);
     ob_bez_eval(base, 1.0, 1, e1);
-    if (hypot(e0[1][0], e0[1][1]) == 0.0 || hypot(e1[1][0], e1[1][1]) == 0.0) {
+    if ((e0[1][0] == 0.0 && e0[1][1] == 0.0) || (e1[1][0] == 0.0 && e1[1][1] == 0.0)) {
         ob_method_msg(msg, msglen, "C' vanishes at an end of the piece (cusp)");
         return OB_FAIL;
     }
@@ -73,14 +104,11 @@ static ob_status ahn_fit(const ob_bez *base, double d, void *work, ob_fit *out,
     }
     double v[2] = {N1[0] - N0[0] - alpha[0] * w[0][0] - alpha[3] * w[3][0],
                    N1[1] - N0[1] - alpha[0] * w[0][1] - alpha[3] * w[3][1]};
-    double det = w[1][0] * w[2][1] - w[1][1] * w[2][0];
-    double scale = hypot(w[1][0], w[1][1]) * hypot(w[2][0], w[2][1]);
-    if (!(fabs(det) > 1e-14 * scale)) {
-        ob_method_msg(msg, msglen, "singular system for alpha_1, alpha_2 (v1 x v2 = %g)", det);
+    if (solve_alpha12(w[1], w[2], v, &alpha[1], &alpha[2]) != 0) {
+        ob_method_msg(msg, msglen, "singular, inconsistent system for alpha_1, alpha_2 "
+                      "(v1 x v2 = %g): the piece is not convex", w[1][0] * w[2][1] - w[1][1] * w[2][0]);
         return OB_FAIL;
     }
-    alpha[1] = (v[0] * w[2][1] - v[1] * w[2][0]) / det;
-    alpha[2] = (w[1][0] * v[1] - w[1][1] * v[0]) / det;
 
     /* C' alpha in Bernstein form of degree n+2, then integrate to degree n+3 */
     const int m = n + 3;
