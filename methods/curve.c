@@ -170,34 +170,22 @@ int ob_bez_elevate(const ob_bez *b, int to, ob_bez *out)
 
 /* ---- differential geometry -------------------------------------------- */
 
-/* Size of the control polygon, the scale for "vanishing" tests. */
-static double ctrl_scale(const ob_bez *b)
-{
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (int i = 0; i <= b->deg; i++) {
-        double p[2];
-        ob_bez_ctrl(b, i, p);
-        for (int k = 0; k < 2; k++) {
-            lo[k] = fmin(lo[k], p[k]);
-            hi[k] = fmax(hi[k], p[k]);
-        }
-    }
-    return fmax(hi[0] - lo[0], hi[1] - lo[1]);
-}
-
 /* Tangent direction (not normalized) at t, with the one-sided limit where C'
- * vanishes: C'(t+h) ~ h C''(t), so +C'' below t = 1 and -C'' at t = 1. */
+ * vanishes: C'(t+h) ~ h C''(t), so +C'' below t = 1 and -C'' at t = 1.
+ * "Vanishes" compares |C'| with |C''|: both scale alike with the curve, so the
+ * test does not depend on its size or position. */
 static int tangent_dir(const ob_bez *b, double t, double v[2])
 {
     double o[3][2];
     ob_bez_eval(b, t, 2, o);
-    const double eps = 1e-12 * (ctrl_scale(b) + 1e-300) * (b->deg > 0 ? b->deg : 1);
-    if (hypot(o[1][0], o[1][1]) > eps) {
+    const double s1 = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
+    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
+    if (s1 > 1e-12 * s2 && s1 > 0) {
         v[0] = o[1][0];
         v[1] = o[1][1];
         return 0;
     }
-    if (hypot(o[2][0], o[2][1]) > eps) {
+    if (s2 > 0) {
         double sg = t >= 1.0 ? -1.0 : 1.0;
         v[0] = sg * o[2][0];
         v[1] = sg * o[2][1];
@@ -206,7 +194,7 @@ static int tangent_dir(const ob_bez *b, double t, double v[2])
     /* higher-order degeneracy: look just inside the segment */
     double h = t >= 1.0 ? -1e-6 : 1e-6;
     ob_bez_eval(b, t + h, 1, o);
-    if (hypot(o[1][0], o[1][1]) > 0) {
+    if (o[1][0] != 0.0 || o[1][1] != 0.0) {
         v[0] = o[1][0];
         v[1] = o[1][1];
         return 0;
@@ -222,7 +210,7 @@ int ob_bez_normal(const ob_bez *b, double t, double n[2])
         n[0] = n[1] = 0.0;
         return -1;
     }
-    double len = hypot(v[0], v[1]);
+    double len = sqrt(v[0] * v[0] + v[1] * v[1]);
     n[0] = -v[1] / len;
     n[1] = v[0] / len;
     return 0;
@@ -232,7 +220,7 @@ double ob_bez_curvature(const ob_bez *b, double t)
 {
     double o[3][2];
     ob_bez_eval(b, t, 2, o);
-    double sp = hypot(o[1][0], o[1][1]);
+    double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     if (sp == 0.0)
         return 0.0;
     return (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);

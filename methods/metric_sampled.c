@@ -25,14 +25,33 @@ static void pc_eval(const pcurve *c, double t, double P[2], double dP[2])
         return;
     }
     double N[2];
-    ob_bez_normal(c->b, t, N);
-    double sp = hypot(o[1][0], o[1][1]);
-    double kappa = sp > 0 ? (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp) : 0.0;
-    double f = 1.0 - c->d * kappa;  /* O' = C' (1 - d kappa) since N' = -kappa C' */
+    const double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
+    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
+    double kappa = 0.0;
+    if (sp > 1e-12 * s2 && sp > 0) {  /* regular point: normal from C' at hand */
+        N[0] = -o[1][1] / sp;
+        N[1] = o[1][0] / sp;
+        kappa = (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);
+    } else {
+        ob_bez_normal(c->b, t, N);  /* the one-sided limit at a cusp */
+    }
+    const double f = 1.0 - c->d * kappa;  /* O' = C' (1 - d kappa) since N' = -kappa C' */
     P[0] = o[0][0] + c->d * N[0];
     P[1] = o[0][1] + c->d * N[1];
     dP[0] = f * o[1][0];
     dP[1] = f * o[1][1];
+}
+
+static double dist(const double a[2], const double b[2])
+{
+    const double x = a[0] - b[0], y = a[1] - b[1];
+    return sqrt(x * x + y * y);
+}
+
+static double dist2(const double a[2], const double b[2])
+{
+    const double x = a[0] - b[0], y = a[1] - b[1];
+    return x * x + y * y;
 }
 
 static double sample_t(int k, int S) { return (double)k / (S - 1); }
@@ -104,7 +123,7 @@ static double radial_err(const void *vc, double t)
     double p[2], q[2];
     ob_bez_point(c->base, t, p);
     ob_bez_point(c->approx, t, q);
-    return fabs(hypot(q[0] - p[0], q[1] - p[1]) - c->ad);
+    return fabs(dist(q, p) - c->ad);
 }
 
 int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
@@ -186,7 +205,7 @@ static double normal_err(const void *vc, double t)
             /* A never meets this normal line: report the point mismatch */
             double q[2], O[2] = {P[0] + c->d * N[0], P[1] + c->d * N[1]};
             ob_bez_point(c->approx, t, q);
-            return hypot(q[0] - O[0], q[1] - O[1]);
+            return dist(q, O);
         }
         u = ub;
     }
@@ -211,7 +230,7 @@ static double project(const pcurve *c, const double Q[2], double t0, double lo, 
 {
     double t = t0, P[2], dP[2];
     pc_eval(c, t, P, dP);
-    double best = hypot(Q[0] - P[0], Q[1] - P[1]), tb = t;
+    double best = dist(Q, P), tb = t;
     for (int it = 0; it < 8; it++) {
         double dd = dP[0] * dP[0] + dP[1] * dP[1];
         if (dd == 0.0)
@@ -222,9 +241,9 @@ static double project(const pcurve *c, const double Q[2], double t0, double lo, 
             break;
         t = tn;
         pc_eval(c, t, P, dP);
-        double dist = hypot(Q[0] - P[0], Q[1] - P[1]);
-        if (dist < best) {
-            best = dist;
+        double e = dist(Q, P);
+        if (e < best) {
+            best = e;
             tb = t;
         }
         if (fabs(step) < 1e-15)
@@ -241,14 +260,15 @@ typedef struct {
     int from_is_offset;   /* report base parameters: of `from` or of the foot */
 } hside;
 
-/* Nearest sample of `to` to Q: coarse global scan, then local descent. */
+/* Nearest sample of `to` to Q: coarse global scan, then local descent
+ * (squared distances: only their order matters). */
 static int nearest_sample(const hside *h, const double Q[2])
 {
     const int S = h->S, stride = 4;
     int jb = 0;
     double db = INFINITY;
     for (int j = 0; j < S; j += stride) {
-        double e = hypot(Q[0] - h->tp[j][0], Q[1] - h->tp[j][1]);
+        double e = dist2(Q, h->tp[j]);
         if (e < db)
             db = e, jb = j;
     }
@@ -258,7 +278,7 @@ static int nearest_sample(const hside *h, const double Q[2])
             int j = jb + s;
             if (j < 0 || j >= S)
                 continue;
-            double e = hypot(Q[0] - h->tp[j][0], Q[1] - h->tp[j][1]);
+            double e = dist2(Q, h->tp[j]);
             if (e < db)
                 db = e, jb = j, moved = 1;
         }
