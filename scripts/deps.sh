@@ -31,7 +31,8 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     if ! apt-get install -y --no-install-recommends $missing >/tmp/offbench-deps.log 2>&1; then
         apt-get update >>/tmp/offbench-deps.log 2>&1
         apt-get install -y --no-install-recommends $missing >>/tmp/offbench-deps.log 2>&1 \
-            || { echo "deps: apt-get install$missing failed; see /tmp/offbench-deps.log" >&2; exit 1; }
+            || { echo "deps: apt-get install$missing failed (see /tmp/offbench-deps.log);" \
+                      "the CPU path builds without them" >&2; exit 0; }
     fi
     echo "deps: installed:$missing"
 else

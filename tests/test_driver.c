@@ -1,0 +1,266 @@
+/*
+ * test_driver.c - the adaptive subdivision driver: counting, split rules,
+ * limits, statuses, pre-splitting, and independence from the thread count and
+ * the batch size.  Includes the published protocol checks that the driver is
+ * responsible for (Liu-Wang Table 1 Til/Cob, Ahn Table 1).
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "methods/driver.h"
+#include "tests/check.h"
+
+static ob_curve make_curve(const char *id, int deg, const double (*xy)[2], double d)
+{
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "%s", id);
+    c.nseg = 1;
+    c.seg = calloc(1, sizeof *c.seg);
+    ob_bez_from_points(c.seg, deg, xy);
+    c.nd = 1;
+    c.d = malloc(sizeof *c.d);
+    c.d[0] = d;
+    return c;
+}
+
+static const double ex1[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
+
+static void run_one(ob_job *j, const ob_curve *c, const char *method, ob_metric metric, ob_split split,
+                    double tol, const ob_driver_opts *o)
+{
+    memset(j, 0, sizeof *j);
+    j->curve = c;
+    j->d = c->d[0];
+    j->method = ob_method_find(method);
+    j->metric = metric;
+    j->split = split;
+    j->tol = tol;
+    ob_driver_run(j, 1, o);
+}
+
+/* Liu-Wang Table 1 (Til, Cob) and Ahn Table 1: the protocols of METHODS.md. */
+static void test_published_protocols(void)
+{
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    const double tols[5] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
+    const long til[5] = {10, 31, 97, 322, 886}, cob[5] = {10, 31, 94, 316, 865}, ahn[5] = {13, 19, 31, 43, 61};
+    for (int sign = -1; sign <= 1; sign += 2) {
+        c.d[0] = sign;
+        for (int i = 0; i < 5; i++) {
+            ob_job j;
+            run_one(&j, &c, "tiller", OB_METRIC_BOUND, OB_SPLIT_MID, tols[i], NULL);
+            CHECK(j.ctrl_points == til[i] && j.status == OB_OK, "tiller d=%d tol=%g: %ld", sign, tols[i], j.ctrl_points);
+            run_one(&j, &c, "cobb", OB_METRIC_BOUND, OB_SPLIT_MID, tols[i], NULL);
+            CHECK(j.ctrl_points == cob[i] && j.status == OB_OK, "cobb d=%d tol=%g: %ld", sign, tols[i], j.ctrl_points);
+            run_one(&j, &c, "ahn", OB_METRIC_RADIAL, OB_SPLIT_MID, tols[i], NULL);
+            CHECK(j.ctrl_points == ahn[i] && j.status == OB_OK, "ahn d=%d tol=%g: %ld", sign, tols[i], j.ctrl_points);
+        }
+    }
+    ob_curve_free(&c);
+}
+
+/* Every ok job meets its tolerance; counting is 1 + sum of degrees. */
+static void test_counting_and_tolerance(void)
+{
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    for (int m = 0; ob_methods[m]; m++)
+        for (int metric = 0; metric < OB_METRIC_COUNT; metric++)
+            for (int split = 0; split < OB_SPLIT_COUNT; split++) {
+                ob_job j;
+                run_one(&j, &c, ob_methods[m]->name, (ob_metric)metric, (ob_split)split, 1e-3, NULL);
+                if (j.status == OB_SKIP)
+                    continue;
+                CHECK(j.status == OB_OK, "%s/%s/%s: status %s (%s)", ob_methods[m]->name,
+                      ob_metric_name(metric), ob_split_name(split), ob_status_name(j.status), j.message);
+                CHECK(j.max_err <= 1e-3, "%s/%s/%s: max_err %g", ob_methods[m]->name,
+                      ob_metric_name(metric), ob_split_name(split), j.max_err);
+                int deg = ob_methods[m]->out_degree(3, 0);
+                CHECK(j.out_degree == deg, "%s out_degree %d", ob_methods[m]->name, j.out_degree);
+                CHECK(j.ctrl_points == 1 + (long)j.segments * deg, "%s: %ld ctrl for %d segments",
+                      ob_methods[m]->name, j.ctrl_points, j.segments);
+            }
+    ob_curve_free(&c);
+}
+
+/* The greedy split reaches no more segments than the midpoint split. */
+static void test_greedy_not_worse(void)
+{
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    const double tols[3] = {1e-2, 1e-3, 1e-4};
+    for (int m = 0; ob_methods[m]; m++)
+        for (int i = 0; i < 3; i++) {
+            ob_job a, b;
+            run_one(&a, &c, ob_methods[m]->name, OB_METRIC_HAUSDORFF, OB_SPLIT_MID, tols[i], NULL);
+            run_one(&b, &c, ob_methods[m]->name, OB_METRIC_HAUSDORFF, OB_SPLIT_GREEDY, tols[i], NULL);
+            CHECK(b.status == OB_OK && b.segments <= a.segments, "%s tol %g: greedy %d vs mid %d",
+                  ob_methods[m]->name, tols[i], b.segments, a.segments);
+        }
+    ob_curve_free(&c);
+}
+
+/* Depth and segment limits end a job with status limit, a message, and a
+ * complete (if too coarse) approximation. */
+static void test_limits(void)
+{
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    o.max_segments = 5;
+    for (int split = 0; split < OB_SPLIT_COUNT; split++) {
+        ob_job j;
+        run_one(&j, &c, "tiller", OB_METRIC_RADIAL, (ob_split)split, 1e-7, &o);
+        CHECK(j.status == OB_LIMIT, "%s: status %s", ob_split_name(split), ob_status_name(j.status));
+        CHECK(strstr(j.message, "limit") != NULL, "%s: message '%s'", ob_split_name(split), j.message);
+        CHECK(j.segments >= 1 && j.segments <= o.max_segments + 1, "%s: %d segments", ob_split_name(split), j.segments);
+        CHECK(j.max_err > 1e-7 && isfinite(j.max_err), "%s: max_err %g", ob_split_name(split), j.max_err);
+    }
+    ob_driver_defaults(&o);
+    o.max_depth = 2;
+    ob_job j;
+    run_one(&j, &c, "cobb", OB_METRIC_BOUND, OB_SPLIT_MID, 1e-6, &o);
+    CHECK(j.status == OB_LIMIT && j.segments == 4, "depth 2: %s, %d segments", ob_status_name(j.status), j.segments);
+    CHECK(strstr(j.message, "depth limit") != NULL, "message '%s'", j.message);
+    ob_curve_free(&c);
+}
+
+/* Pieces are cut at inflections, and for ahn where the tangent turns by pi. */
+static void test_presplit(void)
+{
+    const double s_curve[4][2] = {{0, 0}, {1, 1}, {2, -1}, {3, 0}};
+    ob_curve c = make_curve("s", 3, s_curve, 0.1);
+    ob_job j;
+    run_one(&j, &c, "cobb", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, NULL);
+    CHECK(j.segments == 2, "S curve, huge tol: %d segments (inflection split)", j.segments);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    o.inflections = 0;
+    run_one(&j, &c, "cobb", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, &o);
+    CHECK(j.segments == 1, "S curve, no inflection split: %d segments", j.segments);
+    run_one(&j, &c, "ahn", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, &o);
+    CHECK(j.segments == 2, "ahn needs convex pieces whatever the option: %d segments", j.segments);
+    ob_curve_free(&c);
+
+    /* a convex cubic whose tangent turns by more than pi */
+    const double wide[4][2] = {{0, 0}, {4, 3}, {-4, 3}, {0, 0.5}};
+    ob_curve w = make_curve("wide", 3, wide, 0.05);
+    CHECK(ob_bez_inflections(&w.seg[0], (double[8]){0}, 8) == 0, "test curve is convex");
+    CHECK(ob_bez_turn(&w.seg[0], 512) > OB_PI, "test curve turns by %g > pi", ob_bez_turn(&w.seg[0], 512));
+    run_one(&j, &w, "ahn", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, NULL);
+    CHECK(j.status == OB_OK && j.segments == 2, "ahn on a curve turning > pi: %s, %d segments",
+          ob_status_name(j.status), j.segments);
+    run_one(&j, &w, "cobb", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, NULL);
+    CHECK(j.segments == 1, "cobb has no turning limit: %d segments", j.segments);
+    ob_curve_free(&w);
+}
+
+/* Methods that fail, produce garbage, or cannot take the input. */
+static ob_status fail_fit(const ob_bez *b, double d, void *w, ob_fit *out, char *msg, size_t len)
+{
+    (void)b, (void)d, (void)w, (void)out;
+    snprintf(msg, len, "singular test system");
+    return OB_FAIL;
+}
+static ob_status nan_fit(const ob_bez *b, double d, void *w, ob_fit *out, char *msg, size_t len)
+{
+    (void)d, (void)w, (void)msg, (void)len;
+    ob_fit_single(out, b);
+    out->seg[0].h[1][0] = NAN;
+    return OB_OK;
+}
+static int same_degree(int n, int r) { (void)r; return n; }
+
+static void test_failures_are_contained(void)
+{
+    const ob_method failing = {.name = "failing", .citation = "test", .continuity = "G0",
+                               .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = same_degree, .fit = fail_fit};
+    const ob_method garbage = {.name = "garbage", .citation = "test", .continuity = "G0",
+                               .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = same_degree, .fit = nan_fit};
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_job jobs[3];
+    memset(jobs, 0, sizeof jobs);
+    const ob_method *ms[3] = {&failing, &garbage, ob_method_find("tiller")};
+    for (int i = 0; i < 3; i++) {
+        jobs[i].curve = &c;
+        jobs[i].d = 1.0;
+        jobs[i].method = ms[i];
+        jobs[i].metric = OB_METRIC_HAUSDORFF;
+        jobs[i].split = OB_SPLIT_MID;
+        jobs[i].tol = 1e-3;
+    }
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    o.max_segments = 64;
+    CHECK(ob_driver_run(jobs, 3, &o) == 0, "run completes");
+    CHECK(jobs[0].status == OB_FAIL && strstr(jobs[0].message, "singular test system"), "fail: %s '%s'",
+          ob_status_name(jobs[0].status), jobs[0].message);
+    CHECK(jobs[0].ctrl_points == 0 && isnan(jobs[0].max_err), "fail row has no counts");
+    CHECK(jobs[1].status == OB_LIMIT && jobs[1].segments <= o.max_segments + 1, "NaN output: %s, %d segments",
+          ob_status_name(jobs[1].status), jobs[1].segments);
+    CHECK(isinf(jobs[1].max_err), "NaN output measures as +inf, got %g", jobs[1].max_err);
+    CHECK(jobs[2].status == OB_OK && jobs[2].max_err <= 1e-3, "a good job beside them is unaffected");
+
+    /* rational input to a polynomial-only method: skip with a reason */
+    ob_curve r = make_curve("arc", 2, (const double[3][2]){{1, 0}, {1, 1}, {0, 1}}, 0.5);
+    ob_bez_set(&r.seg[0], 1, 1, 1, sqrt(0.5));
+    ob_job j;
+    run_one(&j, &r, "ahn", OB_METRIC_HAUSDORFF, OB_SPLIT_MID, 1e-3, NULL);
+    CHECK(j.status == OB_SKIP && strstr(j.message, "rational"), "ahn on rational: %s '%s'",
+          ob_status_name(j.status), j.message);
+    run_one(&j, &r, "tiller", OB_METRIC_HAUSDORFF, OB_SPLIT_MID, 1e-3, NULL);
+    CHECK(j.status == OB_OK, "tiller takes rational input: %s '%s'", ob_status_name(j.status), j.message);
+    ob_curve_free(&r);
+    ob_curve_free(&c);
+}
+
+/* Same results for any thread count and batch size (timings aside). */
+static void test_determinism(void)
+{
+    const double q5[6][2] = {{3, -1}, {4, 2}, {4.5, 2}, {5.5, 1.5}, {6.5, 0}, {7, -1}};
+    ob_curve c[2] = {make_curve("ex1", 3, ex1, 1.0), make_curve("q5", 5, q5, 0.5)};
+    enum { NJ = 2 * 3 * 3 * 2 };
+    ob_job ref[NJ], got[NJ];
+    int n = 0;
+    for (int ci = 0; ci < 2; ci++)
+        for (int m = 0; ob_methods[m]; m++)
+            for (int split = 0; split < OB_SPLIT_COUNT; split++)
+                for (int t = 0; t < 2; t++) {
+                    memset(&ref[n], 0, sizeof ref[n]);
+                    ref[n].curve = &c[ci];
+                    ref[n].d = c[ci].d[0];
+                    ref[n].method = ob_methods[m];
+                    ref[n].metric = OB_METRIC_HAUSDORFF;
+                    ref[n].split = (ob_split)split;
+                    ref[n].tol = t ? 1e-4 : 1e-2;
+                    n++;
+                }
+    memcpy(got, ref, sizeof ref);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    omp_set_num_threads(1);
+    ob_driver_run(ref, (size_t)n, &o);
+    omp_set_num_threads(2);
+    o.chunk = 7;
+    ob_driver_run(got, (size_t)n, &o);
+    int same = 1;
+    for (int i = 0; i < n; i++)
+        same &= ref[i].ctrl_points == got[i].ctrl_points && ref[i].segments == got[i].segments &&
+                memcmp(&ref[i].max_err, &got[i].max_err, sizeof(double)) == 0 && ref[i].status == got[i].status;
+    CHECK(same, "1 thread / batch 2048 vs 2 threads / batch 7 give identical results");
+    ob_curve_free(&c[0]);
+    ob_curve_free(&c[1]);
+}
+
+int main(void)
+{
+    test_published_protocols();
+    test_counting_and_tolerance();
+    test_greedy_not_worse();
+    test_limits();
+    test_presplit();
+    test_failures_are_contained();
+    test_determinism();
+    return check_done();
+}
