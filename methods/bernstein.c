@@ -86,71 +86,94 @@ static int sign_changes(const double *a, int n)
     return c;
 }
 
-/* Bisection of the polynomial (original coefficients) on [lo,hi] where the
- * end values have opposite signs; runs until the interval stops shrinking. */
-static double bisect(const double *a, int n, double lo, double hi)
+/* Bisection on the local representation c (degree n) of the polynomial over
+ * [lo,hi], whose end values are exactly c[0] and c[n]: the sign change that
+ * isolated the root is the one bisected, whatever the round-off elsewhere. */
+static double bisect_local(const double *c, int n, double lo, double hi)
 {
-    double flo = ob_bern_eval(a, n, lo);
+    double a = 0.0, b = 1.0, fa = c[0];
     for (int it = 0; it < 200; it++) {
-        double mid = 0.5 * (lo + hi);
-        if (mid <= lo || mid >= hi)
+        double m = 0.5 * (a + b);
+        if (m <= a || m >= b)
             break;
-        double fm = ob_bern_eval(a, n, mid);
-        if (fm == 0.0)
-            return mid;
-        if ((fm > 0) == (flo > 0)) {
-            lo = mid;
-            flo = fm;
+        double fm = ob_bern_eval(c, n, m);
+        if (fm == 0.0) {
+            a = b = m;
+            break;
+        }
+        if ((fm > 0) == (fa > 0)) {
+            a = m;
+            fa = fm;
         } else {
-            hi = mid;
+            b = m;
         }
     }
-    return 0.5 * (lo + hi);
+    return lo + (hi - lo) * 0.5 * (a + b);
+}
+
+/* Sign of the first non-zero coefficient walking from index i by step. */
+static int sign_from(const double *c, int n, int i, int step)
+{
+    for (; i >= 0 && i <= n; i += step)
+        if (c[i] != 0.0)
+            return c[i] > 0 ? 1 : -1;
+    return 0;
 }
 
 /* Isolate on [lo,hi] using the coefficients c of the restriction. */
-static void isolate(const double *orig, int n, const double *c, double lo, double hi,
-                    int depth, double *roots, int *nr, int max)
+static void isolate(const double *c, int n, double lo, double hi, int depth, double *roots, int *nr, int max)
 {
     if (*nr >= max)
         return;
     int v = sign_changes(c, n);
     if (v == 0)
         return;
-    if (v == 1 && (c[0] > 0) != (c[n] > 0) && c[0] != 0 && c[n] != 0) {
-        roots[(*nr)++] = bisect(orig, n, lo, hi);
+    if (v == 1 && c[0] != 0 && c[n] != 0) {
+        roots[(*nr)++] = bisect_local(c, n, lo, hi);
         return;
     }
     if (depth > 60 || hi - lo < 1e-15) {
-        /* a cluster or multiple root: report it once if the ends differ in sign */
-        double flo = ob_bern_eval(orig, n, lo), fhi = ob_bern_eval(orig, n, hi);
-        if ((flo > 0) != (fhi > 0) && flo != 0 && fhi != 0)
+        /* a cluster below resolution: a root if the ends differ in sign */
+        int s0 = sign_from(c, n, 0, 1), s1 = sign_from(c, n, n, -1);
+        if (s0 && s1 && s0 != s1)
             roots[(*nr)++] = 0.5 * (lo + hi);
         return;
     }
     double l[OB_BERN_MAX + 1], r[OB_BERN_MAX + 1];
     split_half(c, n, l, r);
     double mid = 0.5 * (lo + hi);
-    isolate(orig, n, l, lo, mid, depth + 1, roots, nr, max);
-    /* a root exactly at the split point: the left half ends at zero */
-    if (l[n] == 0.0 && mid > 0 && mid < 1 && *nr < max) {
-        double fa = ob_bern_eval(orig, n, mid - 1e-9), fb = ob_bern_eval(orig, n, mid + 1e-9);
-        if ((fa > 0) != (fb > 0))
+    isolate(l, n, lo, mid, depth + 1, roots, nr, max);
+    /* a root exactly at the split point: the halves' coefficients next to it
+     * tell whether the sign changes there (a double root does not) */
+    if (l[n] == 0.0 && *nr < max) {
+        int sl = sign_from(l, n, n, -1), sr = sign_from(r, n, 0, 1);
+        if (sl && sr && sl != sr)
             roots[(*nr)++] = mid;
     }
-    isolate(orig, n, r, mid, hi, depth + 1, roots, nr, max);
+    isolate(r, n, mid, hi, depth + 1, roots, nr, max);
 }
+
+/* Round-off splits a double root into two nearby simple roots (or none): a
+ * cluster of roots closer than this is one crossing if odd, none if even. */
+static const double CLUSTER = 1e-7;
 
 int ob_bern_roots(const double *a, int n, double *roots, int max)
 {
-    if (n < 1 || n > OB_BERN_MAX)
+    if (n < 1 || n > OB_BERN_MAX || max < 1)
         return 0;
+    double tmp[OB_BERN_MAX + 1];
     int nr = 0;
-    isolate(a, n, a, 0.0, 1.0, 0, roots, &nr, max);
-    /* drop roots at the ends: only the open interval counts */
+    isolate(a, n, 0.0, 1.0, 0, tmp, &nr, max < OB_BERN_MAX ? max : OB_BERN_MAX);
     int k = 0;
-    for (int i = 0; i < nr; i++)
-        if (roots[i] > 1e-12 && roots[i] < 1.0 - 1e-12)
-            roots[k++] = roots[i];
+    for (int i = 0; i < nr;) {
+        int j = i + 1;
+        while (j < nr && tmp[j] - tmp[j - 1] < CLUSTER)
+            j++;
+        double root = tmp[i + (j - i) / 2];
+        /* only the open interval counts */
+        if ((j - i) % 2 == 1 && root > 1e-12 && root < 1.0 - 1e-12)
+            roots[k++] = root;
+        i = j;
+    }
     return k;
 }
