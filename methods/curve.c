@@ -170,22 +170,45 @@ int ob_bez_elevate(const ob_bez *b, int to, ob_bez *out)
 
 /* ---- differential geometry -------------------------------------------- */
 
+/* Extent of the control polygon, and a floor below which an extent is
+ * round-off relative to the size of the coordinates. */
+static void ctrl_extent(const ob_bez *b, double *extent, double *floor_)
+{
+    double p0[2], p[2], e = 0.0, mag = 0.0;
+    ob_bez_ctrl(b, 0, p0);
+    for (int i = 0; i <= b->deg; i++) {
+        ob_bez_ctrl(b, i, p);
+        e = fmax(e, fmax(fabs(p[0] - p0[0]), fabs(p[1] - p0[1])));
+        mag = fmax(mag, fmax(fabs(p[0]), fabs(p[1])));
+    }
+    *extent = e;
+    *floor_ = 1e-13 * mag;
+}
+
 /* Tangent direction (not normalized) at t, with the one-sided limit where C'
  * vanishes: C'(t+h) ~ h C''(t), so +C'' below t = 1 and -C'' at t = 1.
- * "Vanishes" compares |C'| with |C''|: both scale alike with the curve, so the
- * test does not depend on its size or position. */
+ * "Vanishes" compares |C'| with |C''| (both scale alike with the curve) and
+ * with the extent of the control polygon (for derivatives that are round-off
+ * on a point-like segment).  Returns -1 for a point-like segment. */
 static int tangent_dir(const ob_bez *b, double t, double v[2])
 {
+    double ext, fl;
+    ctrl_extent(b, &ext, &fl);
+    if (ext <= fl) {
+        v[0] = v[1] = 0.0;
+        return -1;
+    }
+    const double tiny = 1e-12 * ext;
     double o[3][2];
     ob_bez_eval(b, t, 2, o);
     const double s1 = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
-    if (s1 > 1e-12 * s2 && s1 > 0) {
+    if (s1 > 1e-12 * s2 && s1 > tiny) {
         v[0] = o[1][0];
         v[1] = o[1][1];
         return 0;
     }
-    if (s2 > 0) {
+    if (s2 > tiny) {
         double sg = t >= 1.0 ? -1.0 : 1.0;
         v[0] = sg * o[2][0];
         v[1] = sg * o[2][1];
@@ -194,7 +217,7 @@ static int tangent_dir(const ob_bez *b, double t, double v[2])
     /* higher-order degeneracy: look just inside the segment */
     double h = t >= 1.0 ? -1e-6 : 1e-6;
     ob_bez_eval(b, t + h, 1, o);
-    if (o[1][0] != 0.0 || o[1][1] != 0.0) {
+    if (sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]) > tiny) {
         v[0] = o[1][0];
         v[1] = o[1][1];
         return 0;
