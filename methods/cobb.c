@@ -8,12 +8,6 @@
  */
 #include "method.h"
 
-static int cobb_degree(int n, int rational_in)
-{
-    (void)rational_in;
-    return n;
-}
-
 static ob_status cobb_fit(const ob_bez *base, double d, void *work, ob_fit *out,
                           char *msg, size_t msglen)
 {
@@ -39,7 +33,7 @@ const ob_method ob_method_cobb = {
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
-    .out_degree = cobb_degree,
+    .out_degree = ob_degree_same,
     .work_size = 0,
     .fit = cobb_fit,
 };

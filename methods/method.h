@@ -65,6 +65,8 @@ int ob_method_count(void);
 
 /* Helpers shared by method files. */
 void ob_fit_single(ob_fit *out, const ob_bez *seg);
+/* out_degree for methods whose output has the input's degree. */
+int ob_degree_same(int n, int rational_in);
 int ob_method_msg(char *msg, size_t msglen, const char *fmt, ...);
 
 #endif

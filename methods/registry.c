@@ -43,6 +43,12 @@ const char *ob_status_name(ob_status s)
     return "?";
 }
 
+int ob_degree_same(int n, int rational_in)
+{
+    (void)rational_in;
+    return n;
+}
+
 void ob_fit_single(ob_fit *out, const ob_bez *seg)
 {
     out->n = 1;
