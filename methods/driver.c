@@ -33,7 +33,8 @@ void ob_driver_defaults(ob_driver_opts *o)
     o->chunk = 2048;
 }
 
-/* greedy bisection stops when the bracket on the end parameter is this narrow */
+/* greedy bisection stops when the bracket on the end parameter is this
+ * fraction of the stretch still to cover */
 static const double GREEDY_EPS = 1e-4;
 /* maxerr split keeps this fraction of the piece on either side */
 static const double MAXERR_MARGIN = 0.05;
@@ -304,15 +305,15 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     } else {
         g.hi = it->b;
     }
-    if (g.hi - g.lo <= GREEDY_EPS) {
+    if (g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
         if (g.lo > g.a) {
             accept(j, s, g.pass_n, g.pass_degsum, g.pass_maxdeg, g.pass_err);
             g.a = g.lo;
         } else {
             /* not even a sliver passes: keep it as it is and go on */
             accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
-            snprintf(msg, sizeof msg, "no prefix longer than %g passes at t = %.6g of segment %d (error %.3g)",
-                     GREEDY_EPS, it->a, it->seg, r->err);
+            snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
+                     it->b - it->a, it->a, it->seg, r->err);
             job_end(j, s, OB_LIMIT, msg);
             g.a = it->b;
         }

@@ -13,7 +13,7 @@
  *   maxerr  at the parameter of the largest error (Liu-Wang, Step 5), kept
  *           within [5 %, 95 %] of the piece so no sliver is made;
  *   greedy  the longest prefix that passes, by bisection on its end parameter
- *           (to 1e-4 of the base parameter), then the rest likewise: the
+ *           (to 1e-4 of the stretch still to cover), then the rest likewise: the
  *           fewest segments the method can reach.
  * A piece narrower than 2^-max_depth, or a job past max_segments, is accepted
  * as it is and the job ends with status `limit` (its max_err then exceeds tol).
