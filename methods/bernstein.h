@@ -30,6 +30,9 @@ void ob_bern_elevate(const double *a, int m, int r, double *c);
 /* Purpose: roots of a (degree n) in the open interval (0,1) where the sign
  * changes, ascending.  Method: recursive de Casteljau subdivision guided by
  * the variation-diminishing property, then bisection to full precision.
+ * Resolution: round-off splits a double root into two close simple roots, so
+ * roots closer than 1e-7 form a cluster that counts as one sign change if odd
+ * and none if even (two true crossings closer than 1e-7 are dropped).
  * Returns the number of roots written (<= max). */
 int ob_bern_roots(const double *a, int n, double *roots, int max);
 

@@ -284,7 +284,7 @@ int ob_bez_inflections(const ob_bez *b, double *ts, int max)
     }
     /* cross = P' x P'' componentwise, degree 2n-3 */
     const int dc = 2 * n - 3;
-    double cr[3][2 * OB_MAX_DEG], t1[2 * OB_MAX_DEG], t2[2 * OB_MAX_DEG];
+    double cr[3][2 * OB_MAX_DEG], t1[OB_BERN_MAX + 1], t2[OB_BERN_MAX + 1];
     static const int ax[3][2] = {{1, 2}, {2, 0}, {0, 1}};
     for (int k = 0; k < 3; k++) {
         ob_bern_mul(d1[ax[k][0]], n - 1, d2[ax[k][1]], n - 2, t1);

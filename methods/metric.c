@@ -28,13 +28,14 @@ int ob_metric_same_param(ob_metric m)
     return m == OB_METRIC_BOUND || m == OB_METRIC_RADIAL;
 }
 
+int ob_clamp_samples(int samples)
+{
+    return samples < OB_MIN_SAMPLES ? OB_MIN_SAMPLES : samples > OB_MAX_SAMPLES ? OB_MAX_SAMPLES : samples;
+}
+
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out)
 {
-    if (samples < OB_MIN_SAMPLES)
-        samples = OB_MIN_SAMPLES;
-    if (samples > OB_MAX_SAMPLES)
-        samples = OB_MAX_SAMPLES;
     switch (m) {
     case OB_METRIC_BOUND: return ob_metric_bound(base, approx, d, out);
     case OB_METRIC_RADIAL: return ob_metric_radial(base, approx, d, samples, out);

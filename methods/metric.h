@@ -53,7 +53,10 @@ typedef struct {
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out);
 
-/* The individual metrics (same contract). */
+/* The sample count actually used: S clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES]. */
+int ob_clamp_samples(int samples);
+
+/* The individual metrics (same contract, S clamped likewise). */
 int ob_metric_bound(const ob_bez *base, const ob_bez *approx, double d, ob_errval *out);
 int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);

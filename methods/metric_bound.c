@@ -74,6 +74,11 @@ int ob_metric_bound(const ob_bez *base, const ob_bez *approx, double d, ob_errva
     int kmin = 0, kmax = 0;
     for (int k = 0; k <= deg; k++) {
         double r = num[k] / den[k];
+        if (isnan(r)) {  /* a NaN coefficient: nothing is bounded */
+            out->err = INFINITY;
+            out->t = (double)k / deg;
+            return 0;
+        }
         if (r < dmin) {
             dmin = r;
             kmin = k;
