@@ -15,31 +15,46 @@ typedef struct {
     double d;     /* 0: the segment itself; else its d-offset */
 } pcurve;
 
-static void pc_eval(const pcurve *c, double t, double P[2], double dP[2])
+/* Point P, derivative dP and, when K is not NULL, the curvature vector
+ * K = kappa N (signed curvature times unit left normal) of the curve at t.
+ * For the exact offset: O' = C' (1 - d kappa) since N' = -kappa C', and
+ * kappa_O N_O = kappa / (1 - d kappa) N (the tangent flips where 1 - d kappa < 0). */
+static void pc_eval_k(const pcurve *c, double t, double P[2], double dP[2], double K[2])
 {
     double o[3][2];
-    ob_bez_eval(c->b, t, c->d != 0.0 ? 2 : 1, o);
+    ob_bez_eval(c->b, t, (c->d != 0.0 || K) ? 2 : 1, o);
+    const double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
+    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
+    const int regular = sp > 1e-12 * s2 && sp > 0;
+    const double kappa = regular ? (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp) : 0.0;
+    double N[2] = {0.0, 0.0};
+    if (regular) {
+        N[0] = -o[1][1] / sp;
+        N[1] = o[1][0] / sp;
+    } else if (c->d != 0.0) {
+        ob_bez_normal(c->b, t, N);  /* the one-sided limit at a cusp */
+    }
     if (c->d == 0.0) {
         P[0] = o[0][0], P[1] = o[0][1];
         dP[0] = o[1][0], dP[1] = o[1][1];
+        if (K)
+            K[0] = kappa * N[0], K[1] = kappa * N[1];
         return;
     }
-    double N[2];
-    const double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
-    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
-    double kappa = 0.0;
-    if (sp > 1e-12 * s2 && sp > 0) {  /* regular point: normal from C' at hand */
-        N[0] = -o[1][1] / sp;
-        N[1] = o[1][0] / sp;
-        kappa = (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);
-    } else {
-        ob_bez_normal(c->b, t, N);  /* the one-sided limit at a cusp */
-    }
-    const double f = 1.0 - c->d * kappa;  /* O' = C' (1 - d kappa) since N' = -kappa C' */
+    const double f = 1.0 - c->d * kappa;
     P[0] = o[0][0] + c->d * N[0];
     P[1] = o[0][1] + c->d * N[1];
     dP[0] = f * o[1][0];
     dP[1] = f * o[1][1];
+    if (K) {
+        const double ko = f != 0.0 ? kappa / f : 0.0;
+        K[0] = ko * N[0], K[1] = ko * N[1];
+    }
+}
+
+static void pc_eval(const pcurve *c, double t, double P[2], double dP[2])
+{
+    pc_eval_k(c, t, P, dP, NULL);
 }
 
 static double dist(const double a[2], const double b[2])
@@ -129,7 +144,7 @@ static double radial_err(const void *vc, double t)
 int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
     radial_ctx c = {base, approx, fabs(d)};
-    sample_and_refine(radial_err, &c, S, out);
+    sample_and_refine(radial_err, &c, ob_clamp_samples(S), out);
     return 0;
 }
 
@@ -217,6 +232,7 @@ static double normal_err(const void *vc, double t)
 
 int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
+    S = ob_clamp_samples(S);
     normal_ctx c = {base, approx, d, S};
     sample_and_refine(normal_err, &c, S, out);
     return 0;
@@ -224,30 +240,68 @@ int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, 
 
 /* ---- hausdorff ------------------------------------------------------------ */
 
-/* Distance from Q to the curve c near parameter t0, by Gauss-Newton
- * projection within [lo,hi]; *tp gets the foot parameter. */
+/* Distance from Q to the curve c near parameter t0, within [lo,hi]; *tp gets
+ * the foot parameter.  Newton on f(t) = (P - Q).P', whose derivative near the
+ * foot is |P'|^2 (1 - K.(Q - P)) with K the curvature vector: quadratic
+ * convergence even where the distance is comparable to the radius of
+ * curvature.  It has settled when a step is below 1e-8 of the bracket (the
+ * distance is then exact to far below that, being quadratic in the parameter
+ * error) or stops shrinking (round-off in (P - Q).P' is the floor).  Beyond the
+ * centre of curvature (1 - K.(Q - P) small or negative) Newton is not safe;
+ * there, and wherever it has not settled after 20 steps, golden-section search
+ * on the bracket takes over. */
 static double project(const pcurve *c, const double Q[2], double t0, double lo, double hi, double *tp)
 {
-    double t = t0, P[2], dP[2];
-    pc_eval(c, t, P, dP);
+    double t = t0, P[2], dP[2], K[2];
+    pc_eval_k(c, t, P, dP, K);
     double best = dist(Q, P), tb = t;
-    for (int it = 0; it < 8; it++) {
-        double dd = dP[0] * dP[0] + dP[1] * dP[1];
-        if (dd == 0.0)
+    int settled = 0;
+    double prev = INFINITY;
+    for (int it = 0; it < 20 && !settled; it++) {
+        const double dd = dP[0] * dP[0] + dP[1] * dP[1];
+        const double r[2] = {Q[0] - P[0], Q[1] - P[1]};
+        const double den = 1.0 - (K[0] * r[0] + K[1] * r[1]);
+        if (dd == 0.0 || !(den > 0.2))
             break;
-        double step = ((Q[0] - P[0]) * dP[0] + (Q[1] - P[1]) * dP[1]) / dd;
-        double tn = fmin(hi, fmax(lo, t + step));
+        const double step = (r[0] * dP[0] + r[1] * dP[1]) / (dd * den);
+        const double tn = fmin(hi, fmax(lo, t + step));
+        settled = fabs(tn - t) <= 1e-8 * (hi - lo) || fabs(step) >= prev;
+        prev = fabs(step);
         if (tn == t)
             break;
         t = tn;
-        pc_eval(c, t, P, dP);
-        double e = dist(Q, P);
+        pc_eval_k(c, t, P, dP, K);
+        const double e = dist(Q, P);
         if (e < best) {
             best = e;
             tb = t;
         }
-        if (fabs(step) < 1e-15)
-            break;
+    }
+    if (!settled) {
+        const double g = 0.6180339887498949;
+        double a = lo, b = hi, x1 = b - g * (b - a), x2 = a + g * (b - a);
+        pc_eval(c, x1, P, dP);
+        double f1 = dist(Q, P);
+        pc_eval(c, x2, P, dP);
+        double f2 = dist(Q, P);
+        for (int it = 0; it < 60 && b - a > 1e-14; it++) {
+            if (f1 < f2) {
+                b = x2, x2 = x1, f2 = f1;
+                x1 = b - g * (b - a);
+                pc_eval(c, x1, P, dP);
+                f1 = dist(Q, P);
+            } else {
+                a = x1, x1 = x2, f1 = f2;
+                x2 = a + g * (b - a);
+                pc_eval(c, x2, P, dP);
+                f2 = dist(Q, P);
+            }
+        }
+        double fm = f1 < f2 ? f1 : f2, xm = f1 < f2 ? x1 : x2;
+        if (fm < best) {
+            best = fm;
+            tb = xm;
+        }
     }
     *tp = tb;
     return best;
@@ -315,6 +369,7 @@ static void one_side(const hside *h, ob_errval *out)
 
 int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
+    S = ob_clamp_samples(S);
     double O[OB_MAX_SAMPLES][2], A[OB_MAX_SAMPLES][2], dummy[2];
     pcurve off = {base, d}, app = {approx, 0.0};
     for (int k = 0; k < S; k++) {
