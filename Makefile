@@ -68,7 +68,7 @@ $(BUILD)/libob.a: $(LIB_OBJ)
 $(BIN): $(BUILD)/host/main.o $(BUILD)/libob.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -I. -o $@ $< $(BUILD)/libob.a $(LDFLAGS) $(LDLIBS)
 

@@ -15,59 +15,13 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "methods/bernstein.h"
 #include "methods/curve.h"
 #include "tests/check.h"
+#include "tests/testlib.h"
 
-/* ---- independent helpers -------------------------------------------------- */
-
-static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
-static double urand(void)  /* xorshift64*, uniform in [0,1) */
-{
-    rng ^= rng >> 12;
-    rng ^= rng << 25;
-    rng ^= rng >> 27;
-    return (double)((rng * 2685821657736338717ULL) >> 11) * 0x1.0p-53;
-}
-static double urange(double a, double b) { return a + (b - a) * urand(); }
-
-static double PT[100][100];  /* Pascal's triangle by additions (exact to n = 56) */
-static void pascal_init(void)
-{
-    for (int n = 0; n < 100; n++) {
-        PT[n][0] = PT[n][n] = 1.0;
-        for (int k = 1; k < n; k++)
-            PT[n][k] = PT[n - 1][k - 1] + PT[n - 1][k];
-    }
-}
-static double C(int n, int k) { return (n < 0 || k < 0 || k > n) ? 0.0 : PT[n][k]; }
-
-/* B_i^n(t) by powers, valid for any real t. */
-static double bern(int n, int i, double t)
-{
-    if (n < 0 || i < 0 || i > n)
-        return 0.0;
-    double r = C(n, i);
-    for (int j = 0; j < i; j++)
-        r *= t;
-    for (int j = 0; j < n - i; j++)
-        r *= 1.0 - t;
-    return r;
-}
-
-/* k-th derivative (k = 0..2) of B_i^n. */
-static double dbern(int n, int i, int k, double t)
-{
-    if (k == 0)
-        return bern(n, i, t);
-    if (k == 1)
-        return n * (bern(n - 1, i - 1, t) - bern(n - 1, i, t));
-    return n * (n - 1.0) * (bern(n - 2, i - 2, t) - 2.0 * bern(n - 2, i - 1, t) + bern(n - 2, i, t));
-}
+/* ---- independent helpers (the shared ones are in testlib.h) ---------------- */
 
 static double bsum(const double *a, int n, double t)
 {
@@ -77,57 +31,19 @@ static double bsum(const double *a, int n, double t)
     return s;
 }
 
-/* Reference point and derivatives: homogeneous sums, then the quotient rule
- * x' = (X'W - XW')/W^2, x'' = (X''W^2 - 2X'W'W - XW''W + 2XW'^2)/W^3. */
-static void ref_eval(const ob_bez *b, double t, double o[3][2])
-{
-    double H[3][3] = {{0}};
-    for (int k = 0; k < 3; k++)
-        for (int i = 0; i <= b->deg; i++) {
-            double bk = dbern(b->deg, i, k, t);
-            for (int c = 0; c < 3; c++)
-                H[k][c] += b->h[i][c] * bk;
-        }
-    const double W = H[0][2], W1 = H[1][2], W2 = H[2][2];
-    for (int c = 0; c < 2; c++) {
-        const double X = H[0][c], X1 = H[1][c], X2 = H[2][c];
-        o[0][c] = X / W;
-        o[1][c] = (X1 * W - X * W1) / (W * W);
-        o[2][c] = (X2 * W * W - 2.0 * X1 * W1 * W - X * W2 * W + 2.0 * X * W1 * W1) / (W * W * W);
-    }
-}
-
-static void ref_point(const ob_bez *b, double t, double p[2])
-{
-    double o[3][2];
-    ref_eval(b, t, o);
-    p[0] = o[0][0];
-    p[1] = o[0][1];
-}
-
 static double ref_cross(const ob_bez *b, double t)  /* x'y'' - y'x'' */
 {
     double o[3][2];
-    ref_eval(b, t, o);
+    ref_eval(b, t, 2, o);
     return o[1][0] * o[2][1] - o[1][1] * o[2][0];
 }
 
 static double ref_curvature(const ob_bez *b, double t)
 {
     double o[3][2];
-    ref_eval(b, t, o);
+    ref_eval(b, t, 2, o);
     double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     return (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);
-}
-
-static ob_bez make(int deg, const double (*xy)[2], const double *w)
-{
-    ob_bez b;
-    memset(&b, 0, sizeof b);
-    b.deg = deg;
-    for (int i = 0; i <= deg; i++)
-        ob_bez_set(&b, i, xy[i][0], xy[i][1], w ? w[i] : 1.0);
-    return b;
 }
 
 static ob_bez random_bez(int deg, int rational)
@@ -141,19 +57,6 @@ static ob_bez random_bez(int deg, int rational)
     return make(deg, (const double (*)[2])xy, w);
 }
 
-static ob_bez quarter_circle(double r, int clockwise)
-{
-    const double s2 = sqrt(2.0) / 2.0;
-    double xy[3][2] = {{r, 0}, {r, r}, {0, r}}, w[3] = {1, s2, 1};
-    if (clockwise) {
-        double rev[3][2] = {{0, r}, {r, r}, {r, 0}};
-        return make(2, (const double (*)[2])rev, w);
-    }
-    return make(2, (const double (*)[2])xy, w);
-}
-
-static double dist2d(const double a[2], const double b[2]) { return hypot(a[0] - b[0], a[1] - b[1]); }
-
 /* Power-basis coefficients p[0..n] to Bernstein coefficients of degree n:
  * b_k = sum_{i<=k} C(k,i)/C(n,i) p_i. */
 static void power_to_bern(const double *p, int n, double *b)
@@ -161,7 +64,7 @@ static void power_to_bern(const double *p, int n, double *b)
     for (int k = 0; k <= n; k++) {
         double s = 0.0;
         for (int i = 0; i <= k; i++)
-            s += C(k, i) / C(n, i) * p[i];
+            s += binom(k, i) / binom(n, i) * p[i];
         b[k] = s;
     }
 }
@@ -177,26 +80,6 @@ static int poly_from_roots(const double *r, int nr, double *p)
         p[0] = -r[i] * p[0];
     }
     return nr;
-}
-
-/* Runs fn in a child process: its exit status, or 128 + signal if it died. */
-static int in_child(int (*fn)(void))
-{
-    fflush(stdout);
-    fflush(stderr);
-    pid_t pid = fork();
-    if (pid < 0)
-        return -1;
-    if (pid == 0)
-        _exit(fn());
-    int st = 0;
-    if (waitpid(pid, &st, 0) != pid)
-        return -1;
-    if (WIFEXITED(st))
-        return WEXITSTATUS(st);
-    if (WIFSIGNALED(st))
-        return 128 + WTERMSIG(st);
-    return -1;
 }
 
 /* Reference inflections: sign changes of x'y''-y'x'' from the reference
@@ -239,7 +122,7 @@ static void test_eval(void)
                 for (int j = 0; j < nt; j++) {
                     double t = ts[j], o[3][2], r[3][2];
                     ob_bez_eval(&b, t, 2, o);
-                    ref_eval(&b, t, r);
+                    ref_eval(&b, t, 2, r);
                     for (int k = 0; k < 3; k++) {
                         double mag = 1.0 + hypot(r[k][0], r[k][1]);
                         double e = hypot(o[k][0] - r[k][0], o[k][1] - r[k][1]) / mag;
@@ -396,7 +279,7 @@ static void test_normal(void)
             for (int k = 0; k <= 20; k++) {
                 double t = k / 20.0, n[2], o[3][2];
                 int rc = ob_bez_normal(&b, t, n);
-                ref_eval(&b, t, o);
+                ref_eval(&b, t, 2, o);
                 double sp = hypot(o[1][0], o[1][1]);
                 double r[2] = {-o[1][1] / sp, o[1][0] / sp};
                 worst = fmax(worst, rc == 0 ? dist2d(n, r) : INFINITY);
@@ -706,7 +589,7 @@ static void test_inflections(void)
 static double tangent_angle_ref(const ob_bez *b, double t)
 {
     double o[3][2];
-    ref_eval(b, t, o);
+    ref_eval(b, t, 2, o);
     return atan2(o[1][1], o[1][0]);
 }
 
@@ -743,7 +626,7 @@ static void test_bernstein(void)
     int bad = 0;
     for (int n = 0; n <= 40; n++)
         for (int k = -1; k <= n + 1; k++)
-            if (ob_binom(n, k) != C(n, k))
+            if (ob_binom(n, k) != binom(n, k))
                 bad++;
     CHECK(bad == 0, "ob_binom differs from Pascal's triangle in %d entries (n <= 40)", bad);
     CHECK(ob_binom(0, 0) == 1 && ob_binom(5, 2) == 10 && ob_binom(10, 5) == 252 && ob_binom(4, 5) == 0 &&
@@ -898,8 +781,8 @@ static void test_bernstein(void)
                 double s = 0.0;
                 for (int j = 0; j <= 1; j++)
                     if (k - j >= 0 && k - j <= i)
-                        s += C(i, k - j) * C(1, j) * bc[k - j] * f[j];
-                tmp[k] = s / C(i + 1, k);
+                        s += binom(i, k - j) * binom(1, j) * bc[k - j] * f[j];
+                tmp[k] = s / binom(i + 1, k);
             }
             memcpy(bc, tmp, (size_t)(i + 2) * sizeof *bc);
         }
@@ -937,7 +820,7 @@ static void test_count(void)
 
 int main(void)
 {
-    pascal_init();
+    testlib_seed(0x9E3779B97F4A7C15ULL);
     test_eval();
     test_split();
     test_elevate();

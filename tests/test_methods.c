@@ -28,6 +28,7 @@
 #include "methods/curve.h"
 #include "methods/method.h"
 #include "methods/metric.h"
+#include "testlib.h"
 
 static const double DS[] = {0.3, -0.3, 1.0, -1.0};
 enum { ND = sizeof DS / sizeof DS[0], MAXC = 8, MSGLEN = 128, GUARD = 64 };
@@ -46,7 +47,6 @@ static double lcg(void)  /* uniform in [0,1) */
 }
 
 static double cross(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
-static double dist(const double a[2], const double b[2]) { return hypot(a[0] - b[0], a[1] - b[1]); }
 
 static double max_abs_curvature(const ob_bez *b)
 {
@@ -60,13 +60,6 @@ static int is_convex(const ob_bez *b)
 {
     double ts[OB_MAX_DEG * 3];
     return ob_bez_inflections(b, ts, OB_MAX_DEG * 3) == 0 && ob_bez_turn(b, 256) < OB_PI;
-}
-
-static void reverse(const ob_bez *b, ob_bez *r)
-{
-    *r = *b;
-    for (int i = 0; i <= b->deg; i++)
-        memcpy(r->h[i], b->h[b->deg - i], sizeof r->h[i]);
 }
 
 /* Fit with guard bytes around the output, after the scratch space and after
@@ -211,16 +204,6 @@ static void make_curves(void)
     }
 }
 
-/* Rational quadratic quarter circle of radius r, centre 0, counterclockwise. */
-static void quarter_circle(double r, ob_bez *b)
-{
-    memset(b, 0, sizeof *b);
-    b->deg = 2;
-    ob_bez_set(b, 0, r, 0, 1);
-    ob_bez_set(b, 1, r, r, sqrt(2.0) / 2);
-    ob_bez_set(b, 2, 0, r, 1);
-}
-
 /* ---- 1 + 5: contract checks for every method ----------------------------- */
 
 static void check_structure(const ob_method *m, const char *cn, const ob_bez *C, double d,
@@ -253,11 +236,11 @@ static void check_structure(const ob_method *m, const char *cn, const ob_bez *C,
         double o[2], a[2];
         ob_bez_offset_point(C, 0.0, d, o);
         ob_bez_point(&f->seg[0], 0.0, a);
-        CHECK(dist(o, a) < 1e-12, "%s/%s/%g: start %.17g,%.17g vs offset %.17g,%.17g", m->name,
+        CHECK(dist2d(o, a) < 1e-12, "%s/%s/%g: start %.17g,%.17g vs offset %.17g,%.17g", m->name,
               cn, d, a[0], a[1], o[0], o[1]);
         ob_bez_offset_point(C, 1.0, d, o);
         ob_bez_point(&f->seg[f->n - 1], 1.0, a);
-        CHECK(dist(o, a) < 1e-12, "%s/%s/%g: end %.17g,%.17g vs offset %.17g,%.17g", m->name, cn,
+        CHECK(dist2d(o, a) < 1e-12, "%s/%s/%g: end %.17g,%.17g vs offset %.17g,%.17g", m->name, cn,
               d, a[0], a[1], o[0], o[1]);
     }
 }
@@ -298,8 +281,7 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
     }
 
     /* symmetry: the reversed curve offset by -d is the same point set */
-    ob_bez Cr;
-    reverse(C, &Cr);
+    ob_bez Cr = reversed(C);
     ob_status sr = run_fit(m, &Cr, -d, &f2, msg);
     CHECK(sr == OB_OK, "%s/%s/%g: reversed: %s (%s)", m->name, cn, d, ob_status_name(sr), msg);
     if (sr == OB_OK && f2.n >= 1 && f2.n <= OB_MAX_PIECES) {
@@ -390,7 +372,7 @@ static void check_cobb_points(const ob_method *m, const char *cn, const ob_bez *
         ob_bez_ctrl(C, j, P);
         ob_bez_normal(C, (double)j / C->deg, N);
         ob_bez_ctrl(&f.seg[0], j, q);
-        CHECK(dist(q, (double[2]){P[0] + d * N[0], P[1] + d * N[1]}) <= 1e-14,
+        CHECK(dist2d(q, (double[2]){P[0] + d * N[0], P[1] + d * N[1]}) <= 1e-14,
               "cobb %s %g: P_%d not moved by d N(j/n)", cn, d, j);
         CHECK(ob_bez_weight(&f.seg[0], j) == ob_bez_weight(C, j), "cobb %s %g: weight %d changed",
               cn, d, j);
@@ -406,8 +388,7 @@ static void test_cobb(void)
     for (int c = 0; c < ncurves; c++)
         for (int k = 0; k < ND; k++)
             check_cobb_points(m, cname[c], &curves[c], DS[k]);
-    ob_bez qc;
-    quarter_circle(1.0, &qc);
+    ob_bez qc = quarter_circle(1.0, 0);
     CHECK(qc.rational, "quarter circle is rational");
     for (int k = 0; k < 2; k++)
         check_cobb_points(m, "quarter circle", &qc, DS[k]);
@@ -438,9 +419,9 @@ static void check_ahn_hermite(const ob_method *m, const char *cn, const ob_bez *
         ob_bez_eval(C, t, 2, c);
         ob_bez_offset_point(C, t, d, o);
         double kap = ob_bez_curvature(C, t), g = 1.0 - d * kap;
-        CHECK(dist(a[0], o) < 1e-12, "ahn %s %g: A(%d) vs C + d N: %g", cn, d, i, dist(a[0], o));
+        CHECK(dist2d(a[0], o) < 1e-12, "ahn %s %g: A(%d) vs C + d N: %g", cn, d, i, dist2d(a[0], o));
         double dO[2] = {c[1][0] * g, c[1][1] * g};
-        CHECK(dist(a[1], dO) <= 1e-9 * hypot(dO[0], dO[1]), "ahn %s %g: A'(%d) %.17g,%.17g vs "
+        CHECK(dist2d(a[1], dO) <= 1e-9 * hypot(dO[0], dO[1]), "ahn %s %g: A'(%d) %.17g,%.17g vs "
               "O' %.17g,%.17g", cn, d, i, a[1][0], a[1][1], dO[0], dO[1]);
         double ka = ob_bez_curvature(A, t), ko = kap / g;
         CHECK(fabs(ka - ko) <= 1e-8 * fabs(ko), "ahn %s %g: curvature at %d: %.17g vs offset "
@@ -459,7 +440,7 @@ static void check_ahn_hermite(const ob_method *m, const char *cn, const ob_bez *
         double N[2], v[2];
         ob_bez_normal(C, i, N);
         ob_bez_point(&Na, i, v);
-        CHECK(dist(v, N) < 1e-12, "ahn %s %g: N^a(%d) = %.17g,%.17g vs N %.17g,%.17g", cn, d, i,
+        CHECK(dist2d(v, N) < 1e-12, "ahn %s %g: N^a(%d) = %.17g,%.17g vs N %.17g,%.17g", cn, d, i,
               v[0], v[1], N[0], N[1]);
     }
     int parallel = 1;
@@ -503,8 +484,7 @@ static void test_ahn(void)
 
     static ob_fit f;
     char msg[MSGLEN];
-    ob_bez qc;
-    quarter_circle(1.0, &qc);
+    ob_bez qc = quarter_circle(1.0, 0);
     ob_status st = run_fit(m, &qc, 0.3, &f, msg);
     CHECK(st == OB_SKIP && msg[0], "ahn: rational input gives %s (%s)", ob_status_name(st), msg);
 
@@ -551,8 +531,7 @@ int main(void)
 {
     make_curves();
     CHECK(ob_methods[0] != NULL, "at least one method registered");
-    ob_bez qc;
-    quarter_circle(2.5, &qc);
+    ob_bez qc = quarter_circle(2.5, 0);
     for (int i = 0; ob_methods[i]; i++) {
         const ob_method *m = ob_methods[i];
         CHECK(m->name && m->name[0] && m->fit && m->out_degree, "method %d incomplete", i);

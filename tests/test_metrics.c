@@ -17,107 +17,23 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "methods/curve.h"
 #include "methods/metric.h"
 #include "tests/check.h"
+#include "tests/testlib.h"
 
-/* ---- independent helpers -------------------------------------------------- */
-
-static unsigned long long rng = 0x2545F4914F6CDD1DULL;
-static double urand(void)  /* xorshift64*, uniform in [0,1) */
-{
-    rng ^= rng >> 12;
-    rng ^= rng << 25;
-    rng ^= rng >> 27;
-    return (double)((rng * 2685821657736338717ULL) >> 11) * 0x1.0p-53;
-}
-static double urange(double a, double b) { return a + (b - a) * urand(); }
-
-static double binom(int n, int k)  /* small n only: exact by Pascal's rule */
-{
-    static double T[40][40];
-    static int init;
-    if (!init) {
-        for (int i = 0; i < 40; i++) {
-            T[i][0] = T[i][i] = 1.0;
-            for (int j = 1; j < i; j++)
-                T[i][j] = T[i - 1][j - 1] + T[i - 1][j];
-        }
-        init = 1;
-    }
-    return (n < 0 || k < 0 || k > n) ? 0.0 : T[n][k];
-}
-
-static double bern(int n, int i, double t)
-{
-    if (n < 0 || i < 0 || i > n)
-        return 0.0;
-    double r = binom(n, i);
-    for (int j = 0; j < i; j++)
-        r *= t;
-    for (int j = 0; j < n - i; j++)
-        r *= 1.0 - t;
-    return r;
-}
-
-/* Point and first derivative by direct homogeneous sums + quotient rule. */
-static void ref_eval(const ob_bez *b, double t, double P[2], double D[2])
-{
-    const int n = b->deg;
-    double H[3] = {0, 0, 0}, H1[3] = {0, 0, 0};
-    for (int i = 0; i <= n; i++) {
-        double b0 = bern(n, i, t), b1 = n * (bern(n - 1, i - 1, t) - bern(n - 1, i, t));
-        for (int c = 0; c < 3; c++) {
-            H[c] += b->h[i][c] * b0;
-            H1[c] += b->h[i][c] * b1;
-        }
-    }
-    for (int c = 0; c < 2; c++) {
-        P[c] = H[c] / H[2];
-        if (D)
-            D[c] = (H1[c] * H[2] - H[c] * H1[2]) / (H[2] * H[2]);
-    }
-}
-
-static void ref_point(const ob_bez *b, double t, double P[2]) { ref_eval(b, t, P, NULL); }
+/* ---- independent helpers (the shared ones are in testlib.h) ---------------- */
 
 /* Exact offset point C(t) + d N(t), N = (-y', x')/|C'|. */
 static void ref_offset(const ob_bez *b, double t, double d, double O[2])
 {
-    double P[2], D[2];
-    ref_eval(b, t, P, D);
+    double o[2][2];
+    ref_eval(b, t, 1, o);
+    const double *P = o[0], *D = o[1];
     double sp = hypot(D[0], D[1]);
     O[0] = P[0] - d * D[1] / sp;
     O[1] = P[1] + d * D[0] / sp;
-}
-
-static ob_bez make(int deg, const double (*xy)[2], const double *w)
-{
-    ob_bez b;
-    memset(&b, 0, sizeof b);
-    b.deg = deg;
-    for (int i = 0; i <= deg; i++)
-        ob_bez_set(&b, i, xy[i][0], xy[i][1], w ? w[i] : 1.0);
-    return b;
-}
-
-static ob_bez quarter_circle(double r)
-{
-    const double s2 = sqrt(2.0) / 2.0;
-    double xy[3][2] = {{r, 0}, {r, r}, {0, r}}, w[3] = {1, s2, 1};
-    return make(2, (const double (*)[2])xy, w);
-}
-
-static ob_bez reversed(const ob_bez *b)
-{
-    ob_bez r = *b;
-    for (int i = 0; i <= b->deg; i++)
-        memcpy(r.h[i], b->h[b->deg - i], sizeof r.h[i]);
-    return r;
 }
 
 /* Bernstein product written here (binomial formula). */
@@ -217,26 +133,6 @@ static ob_bez rough_offset(const ob_bez *base, double d, int m, double noise, in
     return a;
 }
 
-/* Runs fn in a child process: its exit status, or 128 + signal if it died. */
-static int in_child(int (*fn)(void))
-{
-    fflush(stdout);
-    fflush(stderr);
-    pid_t pid = fork();
-    if (pid < 0)
-        return -1;
-    if (pid == 0)
-        _exit(fn());
-    int st = 0;
-    if (waitpid(pid, &st, 0) != pid)
-        return -1;
-    if (WIFEXITED(st))
-        return WEXITSTATUS(st);
-    if (WIFSIGNALED(st))
-        return 128 + WTERMSIG(st);
-    return -1;
-}
-
 static double measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d, int S, double *t)
 {
     ob_errval e = {NAN, NAN};
@@ -251,8 +147,9 @@ static double measure(ob_metric m, const ob_bez *base, const ob_bez *approx, dou
  * [-0.25, 1.25] and bisection; the one nearest to t counts. */
 static double ref_normal_err(const ob_bez *base, const ob_bez *approx, double d, double t)
 {
-    double P[2], D[2], q[2];
-    ref_eval(base, t, P, D);
+    double o[2][2], q[2];
+    ref_eval(base, t, 1, o);
+    const double *P = o[0], *D = o[1];
     double sp = hypot(D[0], D[1]), N[2] = {-D[1] / sp, D[0] / sp};
     const int M = 3000;
     double best = INFINITY, ub = NAN, u0 = -0.25, g0;
@@ -455,7 +352,7 @@ static void test_straight(void)
 
 static void test_circle(void)
 {
-    ob_bez c = quarter_circle(1.0);
+    ob_bez c = quarter_circle(1.0, 0);
     static const double ds[2] = {0.5, -0.5};
     for (int i = 0; i < 2; i++) {
         const double d = ds[i];
@@ -468,14 +365,14 @@ static void test_circle(void)
             worst = fmax(worst, fabs(hypot(O[0], O[1]) - (1 - d)));
         }
         CHECK(worst < 1e-15, "test setup: offset of the quarter circle has radius 1 - d (off by %g)", worst);
-        ob_bez a = quarter_circle(1 - d);
+        ob_bez a = quarter_circle(1 - d, 0);
         for (int m = 0; m < OB_METRIC_COUNT; m++) {
             double t, e = measure((ob_metric)m, &c, &a, d, 256, &t);
             CHECK(e < 1e-12, "quarter circle, exact offset (radius %g) at d = %g: %s = %.3g", 1 - d, d,
                   ob_metric_name(m), e);
         }
         /* the wrong side (radius 1 + d) is off by 2|d| in every metric */
-        ob_bez wrong = quarter_circle(1 + d);
+        ob_bez wrong = quarter_circle(1 + d, 0);
         for (int m = 0; m < OB_METRIC_COUNT; m++) {
             double e = measure((ob_metric)m, &c, &wrong, d, 256, NULL);
             double expect = m <= OB_METRIC_RADIAL ? 0.0 : 2 * fabs(d);
@@ -750,6 +647,7 @@ static void test_measure(void)
 
 int main(void)
 {
+    testlib_seed(0x2545F4914F6CDD1DULL);
     test_straight();
     test_circle();
     test_bound_dominates();
