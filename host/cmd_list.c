@@ -38,6 +38,12 @@ static int list_methods(void)
         printf("%-12s %-10s %-8s %-9s %-8s %s%s\n", m->name, out, deg,
                (m->caps & OB_CAP_RATIONAL_IN) ? "input ok" : "no",
                m->continuity, m->citation, (m->caps & OB_CAP_CONVEX) ? " [convex pieces]" : "");
+        for (int k = 0; k < m->nparams; k++) {
+            char num[40];
+            ob_fmt_double(num, sizeof num, m->params[k].def);
+            printf("%-12s   --param %s.%s=%s (default): %s\n", "", m->name, m->params[k].name, num,
+                   m->params[k].doc);
+        }
     }
     return 0;
 }

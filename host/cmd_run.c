@@ -134,6 +134,7 @@ static ob_job *plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *n
                     j->curve = &set->v[c];
                     j->d = set->v[c].d[di];
                     j->method = o->methods[m];
+                    j->params = o->params + ob_method_index(o->methods[m]) * OB_MAX_PARAMS;
                     j->metric = o->metric;
                     j->split = o->split;
                     j->tol = o->tols[t];

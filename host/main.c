@@ -13,6 +13,7 @@ static const char usage[] =
     "                    [--tols 1e-1,1e-2,...] [--metric bound|radial|normal|hausdorff]\n"
     "                    [--split mid|maxerr|greedy] [--backend auto|opencl|cpu] [--threads N]\n"
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
+    "                    [--param METHOD.NAME=VALUE]\n"
     "                    [--out DIR]\n"
     "  ./offbench list   methods|curves|devices\n"
     "See README.md for what each option means.\n";

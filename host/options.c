@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,6 +129,36 @@ static int parse_tols(const char *s, ob_run_opts *o)
     return rc;
 }
 
+/* --param METHOD.NAME=VALUE */
+static int parse_param(const char *s, ob_run_opts *o)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", s);
+    char *dot = strchr(buf, '.'), *eq = strchr(buf, '=');
+    if (!dot || !eq || eq < dot) {
+        ob_error("--param: expected METHOD.NAME=VALUE, got '%s'", s);
+        return -1;
+    }
+    *dot = *eq = '\0';
+    const ob_method *m = ob_method_find(buf);
+    if (!m) {
+        ob_error("--param: unknown method '%s'", buf);
+        return -1;
+    }
+    int k = ob_param_find(m, dot + 1);
+    if (k < 0) {
+        ob_error("--param: method '%s' has no parameter '%s' (see './offbench list methods')", buf, dot + 1);
+        return -1;
+    }
+    double v;
+    if (ob_parse_double(eq + 1, &v)) {
+        ob_error("--param: '%s' is not a number", eq + 1);
+        return -1;
+    }
+    o->params[ob_method_index(m) * OB_MAX_PARAMS + k] = v;
+    return 0;
+}
+
 int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
 {
     memset(o, 0, sizeof *o);
@@ -144,6 +175,12 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
     o->ntols = 5;
     if (parse_methods("all", o))
         return -1;
+    const int nm = ob_method_count();
+    o->params = malloc((size_t)nm * OB_MAX_PARAMS * sizeof *o->params);
+    if (!o->params)
+        return -1;
+    for (int i = 0; i < nm; i++)
+        ob_param_defaults(ob_methods[i], o->params + i * OB_MAX_PARAMS);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -169,6 +206,9 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             return -1;
         } else if (strcmp(a, "--methods") == 0) {
             if (parse_methods(v, o))
+                return -1;
+        } else if (strcmp(a, "--param") == 0) {
+            if (parse_param(v, o))
                 return -1;
         } else if (strcmp(a, "--tols") == 0) {
             if (parse_tols(v, o))
@@ -236,6 +276,8 @@ void ob_run_opts_free(ob_run_opts *o)
         return;
     free_list(o->curve_ids, o->ncurve_ids);
     free(o->methods);
+    free(o->params);
     o->curve_ids = NULL;
     o->methods = NULL;
+    o->params = NULL;
 }

@@ -21,6 +21,8 @@ typedef struct {
     ob_metric metric;
     ob_split split;
     ob_backend backend;
+    double *params;              /* method parameters: OB_MAX_PARAMS values per
+                                    registered method, by registry index (owned) */
     int threads;                 /* 0: OpenMP's default */
     const char *out_dir;
     ob_driver_opts driver;

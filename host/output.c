@@ -87,6 +87,19 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     fprintf(f, "  \"samples_per_segment\": %d,\n", o->driver.samples);
     fprintf(f, "  \"max_depth\": %d,\n  \"max_segments\": %d,\n  \"inflection_split\": %s,\n",
             o->driver.max_depth, o->driver.max_segments, o->driver.inflections ? "true" : "false");
+    fprintf(f, "  \"method_params\": {");
+    int first = 1;
+    for (int m = 0; ob_methods[m]; m++)
+        for (int k = 0; k < ob_methods[m]->nparams; k++) {
+            char key[128], num[40];
+            snprintf(key, sizeof key, "%s.%s", ob_methods[m]->name, ob_methods[m]->params[k].name);
+            ob_fmt_double(num, sizeof num, o->params[m * OB_MAX_PARAMS + k]);
+            fprintf(f, "%s", first ? "" : ", ");
+            ob_json_string(f, key);
+            fprintf(f, ": %s", num);
+            first = 0;
+        }
+    fprintf(f, "},\n");
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n  \"wall_seconds\": %.3f,\n  \"argv\": [", njobs, wall_seconds);

@@ -189,8 +189,14 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
     r->err = 0.0;
     r->t = 0.5 * (it->a + it->b);
     r->degsum = r->maxdeg = 0;
+    double defaults[OB_MAX_PARAMS];
+    const double *par = j->params;
+    if (!par) {
+        ob_param_defaults(j->method, defaults);
+        par = defaults;
+    }
     double t0 = now_ns();
-    r->st = j->method->fit(&sub, j->d, work, fit, r->msg, sizeof r->msg);
+    r->st = j->method->fit(&sub, j->d, par, work, fit, r->msg, sizeof r->msg);
     double t1 = now_ns();
     r->n = r->st == OB_OK ? fit->n : 0;
     if (r->st == OB_OK && (fit->n < 1 || fit->n > OB_MAX_PIECES)) {

@@ -38,6 +38,7 @@ typedef struct {
     const ob_curve *curve;
     double d;
     const ob_method *method;
+    const double *params;  /* method parameter values, NULL for the defaults */
     ob_metric metric;
     ob_split split;
     double tol;

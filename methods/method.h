@@ -31,6 +31,16 @@ typedef struct {
     ob_bez seg[OB_MAX_PIECES];
 } ob_fit;
 
+/* A parameter of a method: a choice the paper leaves open.  `def` is the
+ * paper's reading; `./offbench run --param METHOD.NAME=VALUE` overrides it. */
+typedef struct {
+    const char *name;
+    double def;
+    const char *doc;   /* what the values mean, and where the default comes from */
+} ob_param;
+
+enum { OB_MAX_PARAMS = 8 };
+
 /* Capability flags. */
 enum {
     OB_CAP_POLY_OUT     = 1u << 0,  /* output is polynomial for polynomial input */
@@ -50,11 +60,14 @@ typedef struct ob_method {
     /* degree of the output for an input of degree n (rational_in: weights != 1) */
     int (*out_degree)(int n, int rational_in);
     size_t work_size;       /* bytes of scratch per fit call */
+    const ob_param *params; /* NULL, or nparams (<= OB_MAX_PARAMS) entries */
+    int nparams;
     /* Purpose: approximate the d-offset of `base` over its whole [0,1].
+     * Inputs:  par: the nparams parameter values (defaults unless overridden).
      * Returns OB_OK, OB_FAIL (singular system, no convergence; reason in msg)
      * or OB_SKIP (not applicable to this input; reason in msg). */
-    ob_status (*fit)(const ob_bez *base, double d, void *work, ob_fit *out,
-                     char *msg, size_t msglen);
+    ob_status (*fit)(const ob_bez *base, double d, const double *par, void *work,
+                     ob_fit *out, char *msg, size_t msglen);
 } ob_method;
 
 /* ---- registry (methods/registry.c) ------------------------------------ */
@@ -62,6 +75,12 @@ typedef struct ob_method {
 extern const ob_method *const ob_methods[];   /* NULL-terminated */
 const ob_method *ob_method_find(const char *name);
 int ob_method_count(void);
+/* Position of m in ob_methods, or -1. */
+int ob_method_index(const ob_method *m);
+/* Index of the parameter called name, or -1. */
+int ob_param_find(const ob_method *m, const char *name);
+/* The method's default parameter values, into par[OB_MAX_PARAMS]. */
+void ob_param_defaults(const ob_method *m, double *par);
 
 /* Helpers shared by method files. */
 void ob_fit_single(ob_fit *out, const ob_bez *seg);

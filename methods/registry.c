@@ -24,6 +24,28 @@ const ob_method *ob_method_find(const char *name)
     return NULL;
 }
 
+int ob_method_index(const ob_method *m)
+{
+    for (int i = 0; ob_methods[i]; i++)
+        if (ob_methods[i] == m)
+            return i;
+    return -1;
+}
+
+int ob_param_find(const ob_method *m, const char *name)
+{
+    for (int i = 0; i < m->nparams; i++)
+        if (strcmp(m->params[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+void ob_param_defaults(const ob_method *m, double *par)
+{
+    for (int i = 0; i < OB_MAX_PARAMS; i++)
+        par[i] = i < m->nparams ? m->params[i].def : 0.0;
+}
+
 int ob_method_count(void)
 {
     int n = 0;

@@ -87,6 +87,9 @@ expect2 "--samples" --samples 3
 expect2 "missing value" --tols
 expect2 "unknown option" --frobnicate 1
 expect2 "--backend" --backend gpu
+expect2 "--param" --param tiller.nosuch=1
+expect2 "--param" --param nosuch.x=1
+expect2 "--param" --param tiller
 $OB frobnicate >/dev/null 2>&1
 check '[ $? -eq 2 ]' "unknown command exits 2"
 $OB list nothing >/dev/null 2>&1

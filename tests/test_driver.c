@@ -157,15 +157,15 @@ static void test_presplit(void)
 }
 
 /* Methods that fail, produce garbage, or cannot take the input. */
-static ob_status fail_fit(const ob_bez *b, double d, void *w, ob_fit *out, char *msg, size_t len)
+static ob_status fail_fit(const ob_bez *b, double d, const double *p, void *w, ob_fit *out, char *msg, size_t len)
 {
-    (void)b, (void)d, (void)w, (void)out;
+    (void)b, (void)d, (void)p, (void)w, (void)out;
     snprintf(msg, len, "singular test system");
     return OB_FAIL;
 }
-static ob_status nan_fit(const ob_bez *b, double d, void *w, ob_fit *out, char *msg, size_t len)
+static ob_status nan_fit(const ob_bez *b, double d, const double *p, void *w, ob_fit *out, char *msg, size_t len)
 {
-    (void)d, (void)w, (void)msg, (void)len;
+    (void)d, (void)p, (void)w, (void)msg, (void)len;
     ob_fit_single(out, b);
     out->seg[0].h[1][0] = NAN;
     return OB_OK;

@@ -93,7 +93,9 @@ static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fi
     memset(mbuf, 0xA5, sizeof mbuf);
     mbuf[0] = '\0';
     ob_bez copy = *base;
-    ob_status st = m->fit(base, d, work, &g->fit, mbuf, MSGLEN);
+    double par[OB_MAX_PARAMS];
+    ob_param_defaults(m, par);
+    ob_status st = m->fit(base, d, par, work, &g->fit, mbuf, MSGLEN);
     CHECK(guard_ok(g->pre, GUARD) && guard_ok(g->post, GUARD), "%s: wrote outside ob_fit", m->name);
     CHECK(guard_ok(work + m->work_size, GUARD), "%s: wrote past work_size %zu", m->name, m->work_size);
     CHECK(guard_ok((unsigned char *)mbuf + MSGLEN, GUARD) && memchr(mbuf, 0, MSGLEN),
