@@ -59,10 +59,11 @@ static int solve_alpha12(const double v1[2], const double v2[2], const double v[
     return sqrt(r[0] * r[0] + r[1] * r[1]) <= 1e-10 * (1.0 + nv) ? 0 : -1;
 }
 
-static ob_status ahn_fit(const ob_bez *base, double d, const double *par, void *work, ob_fit *out,
+static ob_status ahn_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
                          char *msg, size_t msglen)
 {
-    (void)par, (void)work;
+    (void)work;
+    const double d = a->d;
     const int n = base->deg;
     if (base->rational) {
         ob_method_msg(msg, msglen, "rational input is not supported (polynomial method)");

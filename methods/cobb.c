@@ -8,10 +8,11 @@
  */
 #include "method.h"
 
-static ob_status cobb_fit(const ob_bez *base, double d, const double *par, void *work, ob_fit *out,
+static ob_status cobb_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
                           char *msg, size_t msglen)
 {
-    (void)par, (void)work;
+    (void)work;
+    const double d = a->d;
     const int n = base->deg;
     ob_bez r = *base;
     for (int j = 0; j <= n; j++) {

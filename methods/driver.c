@@ -30,7 +30,7 @@ void ob_driver_defaults(ob_driver_opts *o)
     o->max_depth = 40;
     o->max_segments = 20000;
     o->inflections = 1;
-    o->chunk = 2048;
+    o->chunk = 512;
 }
 
 /* greedy bisection stops when the bracket on the end parameter is this
@@ -46,7 +46,7 @@ typedef struct {
     double end;         /* greedy: end of the stretch being covered */
     double lo, hi;      /* greedy: longest passing / shortest failing end so far */
     double pass_err;    /* greedy: results of the candidate [a, lo] */
-    int pass_degsum, pass_maxdeg, pass_n;
+    int pass_ctrl_add, pass_maxdeg, pass_n;
     int final;          /* greedy: accept this fit whatever its error */
 } item;
 
@@ -71,7 +71,8 @@ static int push(itemvec *q, const item *it)
 
 /* Per-job bookkeeping the caller does not see. */
 typedef struct {
-    long degsum;
+    long ctrl_add;  /* sum over accepted fits of the control points each adds
+                       beyond the shared start point */
     long pending;   /* items of this job still queued */
     int dead;       /* failed or skipped: drop its remaining items */
 } jstate;
@@ -161,10 +162,10 @@ static int plan_job(const ob_job *j, int jobidx, const ob_driver_opts *o, itemve
 }
 
 /* Accept a finished segment (pieces with their degrees and error). */
-static void accept(ob_job *j, jstate *s, int npieces, int degsum, int maxdeg, double err)
+static void accept(ob_job *j, jstate *s, int npieces, int ctrl_add, int maxdeg, double err)
 {
     j->segments += npieces;
-    s->degsum += degsum;
+    s->ctrl_add += ctrl_add;
     if (maxdeg > j->out_degree)
         j->out_degree = maxdeg;
     if (!(err <= j->max_err))
@@ -174,7 +175,7 @@ static void accept(ob_job *j, jstate *s, int npieces, int degsum, int maxdeg, do
 /* Results of fitting and measuring one item. */
 typedef struct {
     ob_status st;
-    int degsum, maxdeg, n;
+    int ctrl_add, maxdeg, n;
     double err, t;          /* t: base parameter of the largest error */
     char msg[160];
 } itemres;
@@ -188,7 +189,7 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
     r->msg[0] = '\0';
     r->err = 0.0;
     r->t = 0.5 * (it->a + it->b);
-    r->degsum = r->maxdeg = 0;
+    r->ctrl_add = r->maxdeg = 0;
     double defaults[OB_MAX_PARAMS];
     const double *par = j->params;
     if (!par) {
@@ -196,9 +197,12 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
         par = defaults;
     }
     double t0 = now_ns();
-    r->st = j->method->fit(&sub, j->d, par, work, fit, r->msg, sizeof r->msg);
+    const ob_fit_args args = {j->d, j->tol, par};
+    r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
     double t1 = now_ns();
     r->n = r->st == OB_OK ? fit->n : 0;
+    if (r->st == OB_RETRY_SMALLER)
+        r->err = INFINITY;
     if (r->st == OB_OK && (fit->n < 1 || fit->n > OB_MAX_PIECES)) {
         r->st = OB_FAIL;
         snprintf(r->msg, sizeof r->msg, "method returned %d pieces", fit->n);
@@ -226,7 +230,7 @@ static void measure_item(const ob_job *jobs, const item *it, const ob_driver_opt
                      ob_metric_name(j->metric), fit->seg[p].deg);
             break;
         }
-        r->degsum += fit->seg[p].deg;
+        r->ctrl_add += fit->seg[p].deg;  /* 1 + sum deg when the pieces are the output */
         if (fit->seg[p].deg > r->maxdeg)
             r->maxdeg = fit->seg[p].deg;
         if (!(e.err <= r->err)) {
@@ -234,6 +238,8 @@ static void measure_item(const ob_job *jobs, const item *it, const ob_driver_opt
             r->t = it->a + (it->b - it->a) * (pa + (pb - pa) * e.t);
         }
     }
+    if (fit->ctrl_points > 0)  /* the method's own representation, e.g. a B-spline */
+        r->ctrl_add = (int)(fit->ctrl_points - 1);
     *eval_ns = now_ns() - t0;
 }
 
@@ -247,22 +253,33 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     s->pending--;
     if (s->dead)
         return 0;
-    if (r->st != OB_OK) {
+    if (r->st != OB_OK && r->st != OB_RETRY_SMALLER) {
         snprintf(msg, sizeof msg, "%.100s at t in [%.6g, %.6g] of segment %d", r->msg[0] ? r->msg : "fit failed",
                  it->a, it->b, it->seg);
         job_end(j, s, r->st, msg);
         return 0;
     }
-    const int pass = r->err <= j->tol;
+    /* a method that asks for a smaller piece is treated as too large an error;
+     * if no smaller piece may be made, there is nothing to accept */
+    const int retry = r->st == OB_RETRY_SMALLER;
+    if (retry) {
+        snprintf(msg, sizeof msg, "%.60s; pieces that small are past the limits, at t in [%.6g, %.6g] of segment %d",
+                 r->msg[0] ? r->msg : "the method needs a smaller piece", it->a, it->b, it->seg);
+    }
+    const int pass = !retry && r->err <= j->tol;
     const int full = j->segments + s->pending + 1 >= o->max_segments;
 
     if (j->split != OB_SPLIT_GREEDY) {
         if (pass) {
-            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;
         }
         if (it->depth >= o->max_depth || full) {
-            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            if (retry) {
+                job_end(j, s, OB_FAIL, msg);
+                return 0;
+            }
+            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             if (full)
                 snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
             else
@@ -272,7 +289,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             return 0;
         }
         double cut = 0.5 * (it->a + it->b);
-        if (j->split == OB_SPLIT_MAXERR) {
+        if (j->split == OB_SPLIT_MAXERR && !retry) {
             double w = it->b - it->a;
             cut = fmin(it->b - MAXERR_MARGIN * w, fmax(it->a + MAXERR_MARGIN * w, r->t));
         }
@@ -291,7 +308,11 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     /* greedy: bisection on the end of the prefix [a, b] */
     item g = *it;
     if (it->final) {
-        accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+        if (retry) {
+            job_end(j, s, OB_FAIL, msg);
+            return 0;
+        }
+        accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
         if (!pass) {
             snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
             job_end(j, s, OB_LIMIT, msg);
@@ -300,12 +321,12 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     }
     if (pass) {
         if (it->b >= it->end) {
-            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;
         }
         g.lo = it->b;
         g.pass_err = r->err;
-        g.pass_degsum = r->degsum;
+        g.pass_ctrl_add = r->ctrl_add;
         g.pass_maxdeg = r->maxdeg;
         g.pass_n = r->n;
     } else {
@@ -313,11 +334,14 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     }
     if (g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
         if (g.lo > g.a) {
-            accept(j, s, g.pass_n, g.pass_degsum, g.pass_maxdeg, g.pass_err);
+            accept(j, s, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err);
             g.a = g.lo;
+        } else if (retry) {
+            job_end(j, s, OB_FAIL, msg);
+            return 0;
         } else {
             /* not even a sliver passes: keep it as it is and go on */
-            accept(j, s, r->n, r->degsum, r->maxdeg, r->err);
+            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
                      it->b - it->a, it->a, it->seg, r->err);
             job_end(j, s, OB_LIMIT, msg);
@@ -442,7 +466,7 @@ out:
             snprintf(j->message, sizeof j->message, "out of memory");
         }
         if (j->status == OB_OK || j->status == OB_LIMIT)
-            j->ctrl_points = j->segments > 0 ? 1 + (js ? js[i].degsum : 0) : 0;
+            j->ctrl_points = j->segments > 0 ? 1 + (js ? js[i].ctrl_add : 0) : 0;
         else {
             j->ctrl_points = 0;
             j->segments = 0;

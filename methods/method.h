@@ -17,19 +17,37 @@
 #include <stddef.h>
 #include "curve.h"
 
-/* Job and fit status, in the spelling of the CSV `status` column. */
-typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP } ob_status;
+/* Job and fit status.  The first four are the CSV `status` column.  A fit
+ * may also return OB_RETRY_SMALLER: its output for this piece does not fit in
+ * an ob_fit (e.g. more pieces than OB_MAX_PIECES); the driver then splits the
+ * piece as if its error were too large. */
+typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_RETRY_SMALLER } ob_status;
 const char *ob_status_name(ob_status s);
 
-enum { OB_MAX_PIECES = 8 };
+enum { OB_MAX_PIECES = 16 };
 
 /* The result of one fit: n pieces; piece i approximates the offset of the base
- * segment over base parameters [t[i], t[i+1]] (t[0] = 0, t[n] = 1). */
+ * segment over base parameters [t[i], t[i+1]] (t[0] = 0, t[n] = 1).  The
+ * pieces are what the metrics measure.  ctrl_points: 0 when the output is the
+ * pieces themselves (they count 1 + sum of degrees); otherwise the number of
+ * control points of the method's own representation of the same curve, e.g. a
+ * B-spline whose Bézier pieces these are (DESIGN: B-splines count their
+ * control points). */
 typedef struct {
     int n;
+    long ctrl_points;
     double t[OB_MAX_PIECES + 1];
     ob_bez seg[OB_MAX_PIECES];
 } ob_fit;
+
+/* What a fit is asked to do, besides the segment itself. */
+typedef struct {
+    double d;            /* signed offset distance (d > 0: left of travel) */
+    double tol;          /* the job's tolerance; for methods whose own
+                            construction has an accuracy (Lee's circle
+                            approximation, SISL's tolerance) */
+    const double *par;   /* the method's nparams parameter values */
+} ob_fit_args;
 
 /* A parameter of a method: a choice the paper leaves open.  `def` is the
  * paper's reading; `./offbench run --param METHOD.NAME=VALUE` overrides it. */
@@ -63,11 +81,12 @@ typedef struct ob_method {
     const ob_param *params; /* NULL, or nparams (<= OB_MAX_PARAMS) entries */
     int nparams;
     /* Purpose: approximate the d-offset of `base` over its whole [0,1].
-     * Inputs:  par: the nparams parameter values (defaults unless overridden).
-     * Returns OB_OK, OB_FAIL (singular system, no convergence; reason in msg)
-     * or OB_SKIP (not applicable to this input; reason in msg). */
-    ob_status (*fit)(const ob_bez *base, double d, const double *par, void *work,
-                     ob_fit *out, char *msg, size_t msglen);
+     * Inputs:  a: distance, tolerance and parameter values.
+     * Returns OB_OK, OB_FAIL (singular system, no convergence; reason in msg),
+     * OB_SKIP (not applicable to this input; reason in msg) or
+     * OB_RETRY_SMALLER (see ob_status). */
+    ob_status (*fit)(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                     char *msg, size_t msglen);
 } ob_method;
 
 /* ---- registry (methods/registry.c) ------------------------------------ */

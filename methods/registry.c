@@ -61,6 +61,7 @@ const char *ob_status_name(ob_status s)
     case OB_LIMIT: return "limit";
     case OB_FAIL: return "fail";
     case OB_SKIP: return "skip";
+    case OB_RETRY_SMALLER: return "retry-smaller";
     }
     return "?";
 }
@@ -74,6 +75,7 @@ int ob_degree_same(int n, int rational_in)
 void ob_fit_single(ob_fit *out, const ob_bez *seg)
 {
     out->n = 1;
+    out->ctrl_points = 0;
     out->t[0] = 0.0;
     out->t[1] = 1.0;
     out->seg[0] = *seg;

@@ -11,10 +11,11 @@
 
 #include <math.h>
 
-static ob_status tiller_fit(const ob_bez *base, double d, const double *par, void *work, ob_fit *out,
+static ob_status tiller_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
                             char *msg, size_t msglen)
 {
-    (void)par, (void)work;
+    (void)work;
+    const double d = a->d;
     const int n = base->deg;
     double P[OB_MAX_DEG + 1][2], u[OB_MAX_DEG][2], nrm[OB_MAX_DEG][2];
     for (int i = 0; i <= n; i++)

@@ -157,15 +157,15 @@ static void test_presplit(void)
 }
 
 /* Methods that fail, produce garbage, or cannot take the input. */
-static ob_status fail_fit(const ob_bez *b, double d, const double *p, void *w, ob_fit *out, char *msg, size_t len)
+static ob_status fail_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
-    (void)b, (void)d, (void)p, (void)w, (void)out;
+    (void)b, (void)a, (void)w, (void)out;
     snprintf(msg, len, "singular test system");
     return OB_FAIL;
 }
-static ob_status nan_fit(const ob_bez *b, double d, const double *p, void *w, ob_fit *out, char *msg, size_t len)
+static ob_status nan_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
-    (void)d, (void)p, (void)w, (void)msg, (void)len;
+    (void)a, (void)w, (void)msg, (void)len;
     ob_fit_single(out, b);
     out->seg[0].h[1][0] = NAN;
     return OB_OK;
@@ -215,6 +215,67 @@ static void test_failures_are_contained(void)
     ob_curve_free(&c);
 }
 
+/* A method that asks for smaller pieces (its output would not fit) gets them;
+ * one whose representation has its own control-point count is counted so. */
+static ob_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+{
+    (void)w;
+    double p0[2], p1[2];
+    ob_bez_ctrl(b, 0, p0);
+    ob_bez_ctrl(b, b->deg, p1);
+    if (hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1.0) {
+        snprintf(msg, len, "chord longer than 1");
+        return OB_RETRY_SMALLER;
+    }
+    ob_bez t = *b;
+    for (int i = 0; i <= t.deg; i++) {  /* Cobb's displacement, to have a real approximation */
+        double P[2], N[2];
+        ob_bez_ctrl(b, i, P);
+        ob_bez_normal(b, (double)i / t.deg, N);
+        ob_bez_set(&t, i, P[0] + a->d * N[0], P[1] + a->d * N[1], 1.0);
+    }
+    ob_fit_single(out, &t);
+    out->ctrl_points = (long)a->par[0];
+    return OB_OK;
+}
+
+static void test_retry_and_counts(void)
+{
+    static const ob_param pp[1] = {{"count", 0.0, "control points claimed per fit (0: from the degrees)"}};
+    const ob_method picky = {.name = "picky", .citation = "test", .continuity = "G0",
+                             .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = ob_degree_same,
+                             .fit = picky_fit, .params = pp, .nparams = 1};
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    double par[OB_MAX_PARAMS] = {0};
+    ob_job j;
+    memset(&j, 0, sizeof j);
+    j.curve = &c;
+    j.d = 1.0;
+    j.method = &picky;
+    j.params = par;
+    j.metric = OB_METRIC_RADIAL;
+    j.split = OB_SPLIT_MID;
+    j.tol = 1e3;
+    ob_driver_run(&j, 1, NULL);
+    CHECK(j.status == OB_OK && j.segments >= 4, "pieces with chords over 1 are split: %s, %d segments",
+          ob_status_name(j.status), j.segments);
+    CHECK(j.ctrl_points == 1 + 3L * j.segments, "counted from degrees: %ld", j.ctrl_points);
+    par[0] = 7;
+    int k = j.segments;
+    ob_driver_run(&j, 1, NULL);
+    CHECK(j.ctrl_points == 1 + 6L * k, "own representation of 7 points per fit: %ld for %d fits", j.ctrl_points, k);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    o.max_depth = 1;
+    ob_driver_run(&j, 1, &o);
+    CHECK(j.status == OB_FAIL && strstr(j.message, "chord longer than 1"), "retry past the depth limit fails: %s '%s'",
+          ob_status_name(j.status), j.message);
+    j.split = OB_SPLIT_GREEDY;
+    ob_driver_run(&j, 1, NULL);
+    CHECK(j.status == OB_OK && j.segments >= 4, "greedy with retries: %s, %d", ob_status_name(j.status), j.segments);
+    ob_curve_free(&c);
+}
+
 /* Same results for any thread count and batch size (timings aside). */
 static void test_determinism(void)
 {
@@ -261,6 +322,7 @@ int main(void)
     test_limits();
     test_presplit();
     test_failures_are_contained();
+    test_retry_and_counts();
     test_determinism();
     return check_done();
 }

@@ -95,7 +95,8 @@ static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fi
     ob_bez copy = *base;
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
-    ob_status st = m->fit(base, d, par, work, &g->fit, mbuf, MSGLEN);
+    const ob_fit_args args = {d, 1e-3, par};
+    ob_status st = m->fit(base, &args, work, &g->fit, mbuf, MSGLEN);
     CHECK(guard_ok(g->pre, GUARD) && guard_ok(g->post, GUARD), "%s: wrote outside ob_fit", m->name);
     CHECK(guard_ok(work + m->work_size, GUARD), "%s: wrote past work_size %zu", m->name, m->work_size);
     CHECK(guard_ok((unsigned char *)mbuf + MSGLEN, GUARD) && memchr(mbuf, 0, MSGLEN),
