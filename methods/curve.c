@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bernstein.h"
+#include "../kernels/metric_core.h"
 
 void ob_bez_set(ob_bez *b, int i, double x, double y, double w)
 {
@@ -35,54 +36,9 @@ void ob_bez_ctrl(const ob_bez *b, int i, double p[2])
 
 double ob_bez_weight(const ob_bez *b, int i) { return b->h[i][2]; }
 
-/* Homogeneous value and first two homogeneous derivatives at t, from one
- * de Casteljau pass: the last three levels give H, H' and H''. */
-static void eval_homog(const ob_bez *b, double t, double H[3][3])
-{
-    const int n = b->deg;
-    double q[OB_MAX_DEG + 1][3];
-    double s = 1.0 - t;
-    memcpy(q, b->h, (size_t)(n + 1) * sizeof q[0]);
-    double lv2[3][3] = {{0}}, lv1[2][3] = {{0}};
-    for (int r = n; r >= 1; r--) {
-        if (r == 2)
-            memcpy(lv2, q, sizeof lv2);
-        if (r == 1)
-            memcpy(lv1, q, sizeof lv1);
-        for (int i = 0; i < r; i++)
-            for (int k = 0; k < 3; k++)
-                q[i][k] = s * q[i][k] + t * q[i + 1][k];
-    }
-    for (int k = 0; k < 3; k++) {
-        H[0][k] = q[0][k];
-        H[1][k] = n >= 1 ? n * (lv1[1][k] - lv1[0][k]) : 0.0;
-        H[2][k] = n >= 2 ? n * (n - 1) * (lv2[2][k] - 2.0 * lv2[1][k] + lv2[0][k]) : 0.0;
-    }
-    if (n == 1) {  /* lv1 was the control polygon itself */
-        for (int k = 0; k < 3; k++)
-            H[1][k] = b->h[1][k] - b->h[0][k];
-    }
-}
-
 void ob_bez_eval(const ob_bez *b, double t, int nder, double out[][2])
 {
-    double H[3][3];
-    eval_homog(b, t, H);
-    const double w = H[0][2], w1 = H[1][2], w2 = H[2][2];
-    double P[2] = {H[0][0] / w, H[0][1] / w};
-    out[0][0] = P[0];
-    out[0][1] = P[1];
-    if (nder < 1)
-        return;
-    double P1[2];
-    for (int k = 0; k < 2; k++)
-        P1[k] = (H[1][k] - w1 * P[k]) / w;
-    out[1][0] = P1[0];
-    out[1][1] = P1[1];
-    if (nder < 2)
-        return;
-    for (int k = 0; k < 2; k++)
-        out[2][k] = (H[2][k] - 2.0 * w1 * P1[k] - w2 * P[k]) / w;
+    obc_eval(&b->h[0][0], b->deg, t, nder, out);
 }
 
 void ob_bez_point(const ob_bez *b, double t, double p[2])
@@ -170,73 +126,16 @@ int ob_bez_elevate(const ob_bez *b, int to, ob_bez *out)
 
 /* ---- differential geometry -------------------------------------------- */
 
-/* Extent of the control polygon, and a floor below which an extent is
- * round-off relative to the size of the coordinates. */
-static void ctrl_extent(const ob_bez *b, double *extent, double *floor_)
-{
-    double p0[2], p[2], e = 0.0, mag = 0.0;
-    ob_bez_ctrl(b, 0, p0);
-    for (int i = 0; i <= b->deg; i++) {
-        ob_bez_ctrl(b, i, p);
-        e = fmax(e, fmax(fabs(p[0] - p0[0]), fabs(p[1] - p0[1])));
-        mag = fmax(mag, fmax(fabs(p[0]), fabs(p[1])));
-    }
-    *extent = e;
-    *floor_ = 1e-13 * mag;
-}
-
-/* Tangent direction (not normalized) at t, with the one-sided limit where C'
- * vanishes: C'(t+h) ~ h C''(t), so +C'' below t = 1 and -C'' at t = 1.
- * "Vanishes" compares |C'| with |C''| (both scale alike with the curve) and
- * with the extent of the control polygon (for derivatives that are round-off
- * on a point-like segment).  Returns -1 for a point-like segment. */
+/* The tangent direction and normal, with their one-sided limits at cusps and
+ * -1 on point-like segments, are the metric core's (kernels/metric_core.h). */
 static int tangent_dir(const ob_bez *b, double t, double v[2])
 {
-    double ext, fl;
-    ctrl_extent(b, &ext, &fl);
-    if (ext <= fl) {
-        v[0] = v[1] = 0.0;
-        return -1;
-    }
-    const double tiny = 1e-12 * ext;
-    double o[3][2];
-    ob_bez_eval(b, t, 2, o);
-    const double s1 = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
-    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
-    if (s1 > 1e-12 * s2 && s1 > tiny) {
-        v[0] = o[1][0];
-        v[1] = o[1][1];
-        return 0;
-    }
-    if (s2 > tiny) {
-        double sg = t >= 1.0 ? -1.0 : 1.0;
-        v[0] = sg * o[2][0];
-        v[1] = sg * o[2][1];
-        return 0;
-    }
-    /* higher-order degeneracy: look just inside the segment */
-    double h = t >= 1.0 ? -1e-6 : 1e-6;
-    ob_bez_eval(b, t + h, 1, o);
-    if (sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]) > tiny) {
-        v[0] = o[1][0];
-        v[1] = o[1][1];
-        return 0;
-    }
-    v[0] = v[1] = 0.0;
-    return -1;
+    return obc_tangent(&b->h[0][0], b->deg, t, v);
 }
 
 int ob_bez_normal(const ob_bez *b, double t, double n[2])
 {
-    double v[2];
-    if (tangent_dir(b, t, v) != 0) {
-        n[0] = n[1] = 0.0;
-        return -1;
-    }
-    double len = sqrt(v[0] * v[0] + v[1] * v[1]);
-    n[0] = -v[1] / len;
-    n[1] = v[0] / len;
-    return 0;
+    return obc_normal(&b->h[0][0], b->deg, t, n);
 }
 
 double ob_bez_curvature(const ob_bez *b, double t)

@@ -25,6 +25,7 @@
 
 #include "curve.h"
 
+/* The sampled metrics' codes are shared with kernels/metric_core.h. */
 typedef enum {
     OB_METRIC_BOUND = 0,
     OB_METRIC_RADIAL,

@@ -1,0 +1,544 @@
+/*
+ * metric_core.h - the sampled error metrics, written once for both the CPU
+ * reference (compiled as C11 by methods/metric_sampled.c) and the OpenCL
+ * kernel (the host prepends this text to kernels/measure.cl).  One source of
+ * the formulas means the two backends cannot drift apart; the tests check
+ * that they agree.
+ *
+ * A curve is a homogeneous Bézier segment given as a flat array of (w x, w y, w)
+ * triples and its degree.  Metrics (see methods/metric.h for definitions):
+ *   radial     | |A(t) - C(t)| - |d| |
+ *   normal     |s - d| where C(t) + s N(t) meets A (Newton from u = t, else the
+ *              sign change of the cross product nearest to t)
+ *   hausdorff  two-sided distance between A and the exact offset O = C + d N:
+ *              nearest sample (coarse global scan + local descent), then
+ *              Newton projection with the target's curvature vector, golden
+ *              section where Newton cannot settle.
+ * Each samples S parameters t_k = k/(S-1), takes the largest error and refines
+ * it by golden-section search between its neighbours.
+ *
+ * Written in the common subset of C11 and OpenCL C 1.2: no function pointers,
+ * no recursion, no library calls beyond sqrt/fabs/fmin/fmax/isnan/isinf.
+ */
+#ifndef OB_METRIC_CORE_H
+#define OB_METRIC_CORE_H
+
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+/* no fused multiply-add: the same rounding as the C reference */
+#pragma OPENCL FP_CONTRACT OFF
+#define OBC_G __global
+#define OBC_FN
+#define OBC_INF ((double)INFINITY)
+#else
+#include <math.h>
+#define OBC_G
+#define OBC_FN static inline
+#define OBC_INF ((double)INFINITY)
+#endif
+
+#define OBC_MAX_DEG 32           /* = OB_MAX_DEG */
+
+/* metric codes: = ob_metric in methods/metric.h */
+#define OBC_RADIAL 1
+#define OBC_NORMAL 2
+#define OBC_HAUSDORFF 3
+
+/* internal error kinds for sample-and-refine */
+#define OBC_K_RADIAL 0
+#define OBC_K_NORMAL 1
+#define OBC_K_H_APPROX 2         /* from points of A to the offset O */
+#define OBC_K_H_OFFSET 3         /* from points of O to A */
+
+/* ---- curves ---------------------------------------------------------- */
+
+/* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
+ * homogeneous points; derivatives from its last three levels; quotient rule. */
+OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2])
+{
+    double q[OBC_MAX_DEG + 1][3];
+    double lv2[3][3], lv1[2][3];
+    const double s = 1.0 - t;
+    for (int i = 0; i <= n; i++)
+        for (int k = 0; k < 3; k++)
+            q[i][k] = h[3 * i + k];
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            lv2[i][k] = 0.0;
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 3; k++)
+            lv1[i][k] = 0.0;
+    for (int r = n; r >= 1; r--) {
+        if (r == 2)
+            for (int i = 0; i < 3; i++)
+                for (int k = 0; k < 3; k++)
+                    lv2[i][k] = q[i][k];
+        if (r == 1)
+            for (int i = 0; i < 2; i++)
+                for (int k = 0; k < 3; k++)
+                    lv1[i][k] = q[i][k];
+        for (int i = 0; i < r; i++)
+            for (int k = 0; k < 3; k++)
+                q[i][k] = s * q[i][k] + t * q[i + 1][k];
+    }
+    double H[3][3];
+    for (int k = 0; k < 3; k++) {
+        H[0][k] = q[0][k];
+        H[1][k] = n >= 1 ? n * (lv1[1][k] - lv1[0][k]) : 0.0;
+        H[2][k] = n >= 2 ? n * (n - 1) * (lv2[2][k] - 2.0 * lv2[1][k] + lv2[0][k]) : 0.0;
+    }
+    const double w = H[0][2], w1 = H[1][2], w2 = H[2][2];
+    const double P0 = H[0][0] / w, P1 = H[0][1] / w;
+    out[0][0] = P0;
+    out[0][1] = P1;
+    if (nder < 1)
+        return;
+    const double D0 = (H[1][0] - w1 * P0) / w, D1 = (H[1][1] - w1 * P1) / w;
+    out[1][0] = D0;
+    out[1][1] = D1;
+    if (nder < 2)
+        return;
+    out[2][0] = (H[2][0] - 2.0 * w1 * D0 - w2 * P0) / w;
+    out[2][1] = (H[2][1] - 2.0 * w1 * D1 - w2 * P1) / w;
+}
+
+OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2])
+{
+    double o[3][2];
+    obc_eval(h, n, t, 0, o);
+    p[0] = o[0][0];
+    p[1] = o[0][1];
+}
+
+/* Tangent direction at t (not normalized), with the one-sided limit where C'
+ * vanishes (C'(t+h) ~ h C'', so +C'' below t = 1, -C'' at 1).  "Vanishes" is
+ * judged against |C''| (scale-free) and against the control polygon's extent
+ * (round-off on a point-like segment).  Returns -1 for a point-like segment. */
+OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2])
+{
+    const double x0 = h[0] / h[2], y0 = h[1] / h[2];
+    double ext = 0.0, mag = 0.0;
+    for (int i = 0; i <= n; i++) {
+        const double x = h[3 * i] / h[3 * i + 2], y = h[3 * i + 1] / h[3 * i + 2];
+        ext = fmax(ext, fmax(fabs(x - x0), fabs(y - y0)));
+        mag = fmax(mag, fmax(fabs(x), fabs(y)));
+    }
+    v[0] = v[1] = 0.0;
+    if (ext <= 1e-13 * mag)
+        return -1;
+    const double tiny = 1e-12 * ext;
+    double o[3][2];
+    obc_eval(h, n, t, 2, o);
+    const double s1 = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
+    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
+    if (s1 > 1e-12 * s2 && s1 > tiny) {
+        v[0] = o[1][0];
+        v[1] = o[1][1];
+        return 0;
+    }
+    if (s2 > tiny) {
+        const double sg = t >= 1.0 ? -1.0 : 1.0;
+        v[0] = sg * o[2][0];
+        v[1] = sg * o[2][1];
+        return 0;
+    }
+    const double dh = t >= 1.0 ? -1e-6 : 1e-6;
+    obc_eval(h, n, t + dh, 1, o);
+    if (sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]) > tiny) {
+        v[0] = o[1][0];
+        v[1] = o[1][1];
+        return 0;
+    }
+    return -1;
+}
+
+/* Unit left normal (-y', x')/|C'|; (0,0) and -1 for a point-like segment. */
+OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2])
+{
+    double v[2];
+    if (obc_tangent(h, n, t, v) != 0) {
+        N[0] = N[1] = 0.0;
+        return -1;
+    }
+    const double len = sqrt(v[0] * v[0] + v[1] * v[1]);
+    N[0] = -v[1] / len;
+    N[1] = v[0] / len;
+    return 0;
+}
+
+/* Point P, derivative dP and curvature vector K = kappa N of the curve (d = 0)
+ * or of its exact d-offset at t.  For the offset: O' = C' (1 - d kappa), since
+ * N' = -kappa C', and kappa_O N_O = kappa / (1 - d kappa) N. */
+OBC_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double P[2], double dP[2],
+                        double K[2])
+{
+    double o[3][2];
+    obc_eval(h, n, t, 2, o);
+    const double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
+    const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
+    const int regular = sp > 1e-12 * s2 && sp > 0;
+    const double kappa = regular ? (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp) : 0.0;
+    double N[2];
+    N[0] = N[1] = 0.0;
+    if (regular) {
+        N[0] = -o[1][1] / sp;
+        N[1] = o[1][0] / sp;
+    } else if (d != 0.0) {
+        obc_normal(h, n, t, N); /* the one-sided limit at a cusp */
+    }
+    if (d == 0.0) {
+        P[0] = o[0][0];
+        P[1] = o[0][1];
+        dP[0] = o[1][0];
+        dP[1] = o[1][1];
+        K[0] = kappa * N[0];
+        K[1] = kappa * N[1];
+        return;
+    }
+    const double f = 1.0 - d * kappa;
+    P[0] = o[0][0] + d * N[0];
+    P[1] = o[0][1] + d * N[1];
+    dP[0] = f * o[1][0];
+    dP[1] = f * o[1][1];
+    const double ko = f != 0.0 ? kappa / f : 0.0;
+    K[0] = ko * N[0];
+    K[1] = ko * N[1];
+}
+
+OBC_FN double obc_dist(const double a[2], const double b[2])
+{
+    const double x = a[0] - b[0], y = a[1] - b[1];
+    return sqrt(x * x + y * y);
+}
+
+OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
+
+/* ---- the error at one parameter -------------------------------------- */
+
+/* Everything an error evaluation needs, passed by value (no pointers to
+ * structs across OpenCL address spaces). */
+#define OBC_ARGS const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d, int S, \
+                 const OBC_G double *tgt
+#define OBC_PASS hb, nb, ha, na, d, S, tgt
+
+OBC_FN double obc_radial_err(OBC_ARGS, double t)
+{
+    (void)S, (void)tgt;
+    double p[2], q[2];
+    obc_point(hb, nb, t, p);
+    obc_point(ha, na, t, q);
+    return fabs(obc_dist(q, p) - fabs(d));
+}
+
+/* g(u) = (A(u) - P) x N: zero where A meets the normal line through P. */
+OBC_FN double obc_normal_g(const OBC_G double *ha, int na, double u, const double P[2], const double N[2],
+                           double *dg)
+{
+    double o[3][2];
+    obc_eval(ha, na, u, 1, o);
+    const double r0 = o[0][0] - P[0], r1 = o[0][1] - P[1];
+    *dg = o[1][0] * N[1] - o[1][1] * N[0];
+    return r0 * N[1] - r1 * N[0];
+}
+
+OBC_FN double obc_normal_err(OBC_ARGS, double t)
+{
+    (void)tgt;
+    double P[2], N[2], dg = 0.0;
+    obc_point(hb, nb, t, P);
+    obc_normal(hb, nb, t, N);
+    /* Newton from u = t: the approximations are parameterized close to the base */
+    double u = t, g;
+    int ok = 0;
+    for (int it = 0; it < 30; it++) {
+        g = obc_normal_g(ha, na, u, P, N, &dg);
+        if (dg == 0.0)
+            break;
+        const double du = g / dg;
+        u -= du;
+        if (u < -0.5 || u > 1.5 || isnan(u) || isinf(u))
+            break;
+        if (fabs(du) < 1e-15) {
+            ok = 1;
+            break;
+        }
+    }
+    if (!(ok && !(u < -0.5 || u > 1.5))) {
+        /* the sign change of g nearest to t on the extended parameter range,
+         * refined by bisection (the polynomial is extrapolated past [0,1]) */
+        const int M = 2 * S;
+        double best = OBC_INF, ub = -1e300;
+        double u0 = -0.25, g0 = obc_normal_g(ha, na, u0, P, N, &dg);
+        for (int j = 1; j <= M; j++) {
+            const double u1 = -0.25 + 1.5 * j / M;
+            const double g1 = obc_normal_g(ha, na, u1, P, N, &dg);
+            if ((g0 <= 0) != (g1 <= 0)) {
+                double lo = u0, hi = u1, glo = g0;
+                for (int it = 0; it < 100 && hi - lo > 1e-15; it++) {
+                    const double mid = 0.5 * (lo + hi);
+                    const double gm = obc_normal_g(ha, na, mid, P, N, &dg);
+                    if ((gm <= 0) == (glo <= 0)) {
+                        lo = mid;
+                        glo = gm;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                const double r = 0.5 * (lo + hi);
+                if (fabs(r - t) < best) {
+                    best = fabs(r - t);
+                    ub = r;
+                }
+            }
+            u0 = u1;
+            g0 = g1;
+        }
+        if (ub == -1e300) {
+            /* A never meets this normal line: report the point mismatch */
+            double q[2], O[2];
+            O[0] = P[0] + d * N[0];
+            O[1] = P[1] + d * N[1];
+            obc_point(ha, na, t, q);
+            return obc_dist(q, O);
+        }
+        u = ub;
+    }
+    double q[2];
+    obc_point(ha, na, u, q);
+    const double s = (q[0] - P[0]) * N[0] + (q[1] - P[1]) * N[1];
+    return fabs(s - d);
+}
+
+/* Distance from Q to the target curve (hc, nc, dc: a segment, or its offset
+ * when dc != 0) near t0 within [lo,hi]; *tp gets the foot parameter.  Newton on
+ * f(t) = (P - Q).P', whose derivative near the foot is |P'|^2 (1 - K.(Q - P)):
+ * quadratic convergence even where the distance is comparable to the radius
+ * of curvature.  Settled when a step is below 1e-8 of the bracket (the
+ * distance is then exact far below that, being quadratic in the parameter
+ * error) or stops shrinking (round-off in (P - Q).P' is the floor).  Beyond
+ * the centre of curvature (1 - K.(Q - P) small or negative) Newton is not
+ * safe; there, and wherever it has not settled in 20 steps, golden-section
+ * search on the bracket takes over. */
+OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const double Q[2], double t0, double lo,
+                          double hi, double *tp)
+{
+    double t = t0, P[2], dP[2], K[2];
+    obc_pc_eval(hc, nc, dc, t, P, dP, K);
+    double best = obc_dist(Q, P), tb = t, prev = OBC_INF;
+    int settled = 0;
+    for (int it = 0; it < 20 && !settled; it++) {
+        const double dd = dP[0] * dP[0] + dP[1] * dP[1];
+        const double r0 = Q[0] - P[0], r1 = Q[1] - P[1];
+        const double den = 1.0 - (K[0] * r0 + K[1] * r1);
+        if (dd == 0.0 || !(den > 0.2))
+            break;
+        const double step = (r0 * dP[0] + r1 * dP[1]) / (dd * den);
+        const double tn = fmin(hi, fmax(lo, t + step));
+        settled = fabs(tn - t) <= 1e-8 * (hi - lo) || fabs(step) >= prev;
+        prev = fabs(step);
+        if (tn == t)
+            break;
+        t = tn;
+        obc_pc_eval(hc, nc, dc, t, P, dP, K);
+        const double e = obc_dist(Q, P);
+        if (e < best) {
+            best = e;
+            tb = t;
+        }
+    }
+    if (!settled) {
+        const double g = 0.6180339887498949;
+        double a = lo, b = hi, x1 = b - g * (b - a), x2 = a + g * (b - a);
+        obc_pc_eval(hc, nc, dc, x1, P, dP, K);
+        double f1 = obc_dist(Q, P);
+        obc_pc_eval(hc, nc, dc, x2, P, dP, K);
+        double f2 = obc_dist(Q, P);
+        for (int it = 0; it < 60 && b - a > 1e-14; it++) {
+            if (f1 < f2) {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = b - g * (b - a);
+                obc_pc_eval(hc, nc, dc, x1, P, dP, K);
+                f1 = obc_dist(Q, P);
+            } else {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = a + g * (b - a);
+                obc_pc_eval(hc, nc, dc, x2, P, dP, K);
+                f2 = obc_dist(Q, P);
+            }
+        }
+        const double fm = f1 < f2 ? f1 : f2, xm = f1 < f2 ? x1 : x2;
+        if (fm < best) {
+            best = fm;
+            tb = xm;
+        }
+    }
+    *tp = tb;
+    return best;
+}
+
+/* Hausdorff, one side: distance from the query curve's point at u to the
+ * target curve, whose S samples are tgt[2k], tgt[2k+1].  kind OBC_K_H_APPROX:
+ * query A, target O; OBC_K_H_OFFSET: query O, target A.  *tfoot: the foot. */
+OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, double *tfoot)
+{
+    const int to_offset = kind == OBC_K_H_APPROX;
+    double Q[2], dQ[2], K[2];
+    if (to_offset)
+        obc_pc_eval(ha, na, 0.0, u, Q, dQ, K);
+    else
+        obc_pc_eval(hb, nb, d, u, Q, dQ, K);
+    /* nearest sample: coarse global scan, then local descent (squared distances) */
+    int jb = 0;
+    double db = OBC_INF;
+    for (int j = 0; j < S; j += 4) {
+        const double x = Q[0] - tgt[2 * j], y = Q[1] - tgt[2 * j + 1], e = x * x + y * y;
+        if (e < db) {
+            db = e;
+            jb = j;
+        }
+    }
+    for (;;) {
+        int moved = 0;
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+            const int j = jb + sgn;
+            if (j < 0 || j >= S)
+                continue;
+            const double x = Q[0] - tgt[2 * j], y = Q[1] - tgt[2 * j + 1], e = x * x + y * y;
+            if (e < db) {
+                db = e;
+                jb = j;
+                moved = 1;
+            }
+        }
+        if (!moved)
+            break;
+    }
+    const double lo = obc_sample_t(jb > 0 ? jb - 1 : 0, S);
+    const double hi = obc_sample_t(jb < S - 1 ? jb + 1 : S - 1, S);
+    if (to_offset)
+        return obc_project(hb, nb, d, Q, obc_sample_t(jb, S), lo, hi, tfoot);
+    return obc_project(ha, na, 0.0, Q, obc_sample_t(jb, S), lo, hi, tfoot);
+}
+
+OBC_FN double obc_err_at(int kind, OBC_ARGS, double t)
+{
+    double tf;
+    switch (kind) {
+    case OBC_K_RADIAL: return obc_radial_err(OBC_PASS, t);
+    case OBC_K_NORMAL: return obc_normal_err(OBC_PASS, t);
+    default: return obc_side_dist(kind, OBC_PASS, t, &tf);
+    }
+}
+
+/* Golden-section maximization of the error on [a,b]. */
+OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, double *targ)
+{
+    const double g = 0.6180339887498949;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = obc_err_at(kind, OBC_PASS, x1), f2 = obc_err_at(kind, OBC_PASS, x2);
+    for (int it = 0; it < 40 && b - a > 1e-13; it++) {
+        if (f1 > f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - g * (b - a);
+            f1 = obc_err_at(kind, OBC_PASS, x1);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + g * (b - a);
+            f2 = obc_err_at(kind, OBC_PASS, x2);
+        }
+    }
+    if (f1 > f2) {
+        *targ = x1;
+        return f1;
+    }
+    *targ = x2;
+    return f2;
+}
+
+/* Sample S parameters, take the largest error, refine it between the
+ * neighbours.  A NaN or infinite sample ends the scan as the worst. */
+OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
+{
+    double best = -1.0;
+    int kb = 0;
+    for (int k = 0; k < S; k++) {
+        const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S));
+        if (!(e <= best)) {
+            best = e;
+            kb = k;
+        }
+        if (isnan(e) || isinf(e))
+            break;
+    }
+    *err = best;
+    *targ = obc_sample_t(kb, S);
+    if (isnan(best) || isinf(best)) {
+        *err = OBC_INF;
+        return;
+    }
+    const double a = obc_sample_t(kb > 0 ? kb - 1 : 0, S), b = obc_sample_t(kb < S - 1 ? kb + 1 : S - 1, S);
+    double tr;
+    const double er = obc_golden_max(kind, OBC_PASS, a, b, &tr);
+    if (er > best) {
+        *err = er;
+        *targ = tr;
+    }
+}
+
+/* ---- one whole measurement ------------------------------------------- */
+
+/* Purpose: the error of approximation (ha, na) against the exact d-offset of
+ * base (hb, nb) under a sampled metric, and the base parameter of its maximum.
+ * scratch: 4 S doubles (hausdorff: samples of O and of A).  S >= 2. */
+OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
+                        int S, OBC_G double *scratch, double *err, double *t)
+{
+    if (metric == OBC_RADIAL) {
+        obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, err, t);
+        return;
+    }
+    if (metric == OBC_NORMAL) {
+        obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, err, t);
+        return;
+    }
+    if (metric != OBC_HAUSDORFF) {
+        *err = OBC_INF;
+        *t = 0.0;
+        return;
+    }
+    OBC_G double *O = scratch, *A = scratch + 2 * S;
+    for (int k = 0; k < S; k++) {
+        double P[2], dP[2], K[2];
+        obc_pc_eval(hb, nb, d, obc_sample_t(k, S), P, dP, K);
+        O[2 * k] = P[0];
+        O[2 * k + 1] = P[1];
+        obc_pc_eval(ha, na, 0.0, obc_sample_t(k, S), P, dP, K);
+        A[2 * k] = P[0];
+        A[2 * k + 1] = P[1];
+    }
+    double e1, t1, e2, t2, tf;
+    /* from A to O: the maximum's parameter is A's; report its foot on O */
+    obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, &e1, &t1);
+    if (!(isnan(e1) || isinf(e1))) {
+        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, t1, &tf);
+        t1 = tf;
+    }
+    obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, &e2, &t2);
+    if (e1 >= e2) {
+        *err = e1;
+        *t = t1;
+    } else {
+        *err = e2;
+        *t = t2;
+    }
+}
+
+#endif
