@@ -26,6 +26,7 @@ int ob_split_parse(const char *name, ob_split *s)
 
 void ob_driver_defaults(ob_driver_opts *o)
 {
+    memset(o, 0, sizeof *o);  /* no batch backend: the CPU measures */
     o->samples = OB_DEFAULT_SAMPLES;
     o->max_depth = 40;
     o->max_segments = 20000;
@@ -210,37 +211,130 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
     return t1 - t0;
 }
 
-/* Measure every piece of a fit; the error is the largest over the pieces. */
-static void measure_item(const ob_job *jobs, const item *it, const ob_driver_opts *o,
-                         const ob_fit *fit, itemres *r, double *eval_ns)
+/* The measurements of one batch: every piece of every fitted item. */
+typedef struct {
+    ob_bez *base;          /* base sub-piece of each record */
+    ob_measure_rec *rec;
+    ob_errval *out;
+    double *ns;
+    int *first;            /* first record of each item (nitems + 1 entries) */
+    int *sampled;          /* indices of the records a batch backend takes */
+    ob_measure_rec *srec;
+    ob_errval *sout;
+} batch;
+
+static int batch_alloc(batch *b, int chunk)
 {
-    const ob_job *j = &jobs[it->job];
-    double t0 = now_ns();
-    r->err = 0.0;
-    ob_bez sub;
-    ob_bez_subsegment(&j->curve->seg[it->seg], it->a, it->b, &sub);
-    for (int p = 0; p < fit->n; p++) {
-        ob_bez piece;
-        double pa = fit->t[p], pb = fit->t[p + 1];
-        ob_bez_subsegment(&sub, pa, pb, &piece);
-        ob_errval e;
-        if (ob_measure(j->metric, &piece, &fit->seg[p], j->d, o->samples, &e) != 0) {
-            r->st = OB_FAIL;
-            snprintf(r->msg, sizeof r->msg, "metric %s cannot measure a degree-%d approximation",
-                     ob_metric_name(j->metric), fit->seg[p].deg);
-            break;
-        }
-        r->ctrl_add += fit->seg[p].deg;  /* 1 + sum deg when the pieces are the output */
-        if (fit->seg[p].deg > r->maxdeg)
-            r->maxdeg = fit->seg[p].deg;
-        if (!(e.err <= r->err)) {
-            r->err = e.err;
-            r->t = it->a + (it->b - it->a) * (pa + (pb - pa) * e.t);
+    const size_t n = (size_t)chunk * OB_MAX_PIECES;
+    b->base = malloc(n * sizeof *b->base);
+    b->rec = malloc(n * sizeof *b->rec);
+    b->out = malloc(n * sizeof *b->out);
+    b->ns = malloc(n * sizeof *b->ns);
+    b->first = malloc(((size_t)chunk + 1) * sizeof *b->first);
+    b->sampled = malloc(n * sizeof *b->sampled);
+    b->srec = malloc(n * sizeof *b->srec);
+    b->sout = malloc(n * sizeof *b->sout);
+    return b->base && b->rec && b->out && b->ns && b->first && b->sampled && b->srec && b->sout ? 0 : -1;
+}
+
+static void batch_free(batch *b)
+{
+    free(b->base);
+    free(b->rec);
+    free(b->out);
+    free(b->ns);
+    free(b->first);
+    free(b->sampled);
+    free(b->srec);
+    free(b->sout);
+}
+
+/* Measure all pieces of all fitted items of a chunk: one batch. */
+static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, itemres *res,
+                          double *eval_ns, const ob_driver_opts *o, batch *B)
+{
+    int n = 0;
+    for (long i = 0; i < cnt; i++) {
+        B->first[i] = n;
+        if (res[i].st == OB_OK)
+            n += fits[i].n;
+    }
+    B->first[cnt] = n;
+    /* the records: base sub-pieces cut in parallel */
+#pragma omp parallel for schedule(dynamic, 8)
+    for (long i = 0; i < cnt; i++) {
+        if (res[i].st != OB_OK)
+            continue;
+        const ob_job *j = &jobs[its[i].job];
+        ob_bez sub;
+        ob_bez_subsegment(&j->curve->seg[its[i].seg], its[i].a, its[i].b, &sub);
+        for (int p = 0; p < fits[i].n; p++) {
+            const int r = B->first[i] + p;
+            ob_bez_subsegment(&sub, fits[i].t[p], fits[i].t[p + 1], &B->base[r]);
+            B->rec[r] = (ob_measure_rec){&B->base[r], &fits[i].seg[p], j->d, j->metric};
         }
     }
-    if (fit->ctrl_points > 0)  /* the method's own representation, e.g. a B-spline */
-        r->ctrl_add = (int)(fit->ctrl_points - 1);
-    *eval_ns = now_ns() - t0;
+    /* sampled records to the backend in one call, the rest on the CPU */
+    int ns = 0;
+    if (o->batch)
+        for (int r = 0; r < n; r++)
+            if (B->rec[r].metric != OB_METRIC_BOUND)
+                B->sampled[ns++] = r;
+    int backend_ok = 0;
+    if (ns > 0) {
+        for (int k = 0; k < ns; k++)
+            B->srec[k] = B->rec[B->sampled[k]];
+        const double t0 = now_ns();
+        backend_ok = o->batch(o->batch_ctx, B->srec, ns, o->samples, B->sout) == 0;
+        const double share = (now_ns() - t0) / ns;
+        if (backend_ok) {
+            for (int k = 0; k < ns; k++) {
+                B->out[B->sampled[k]] = B->sout[k];
+                B->ns[B->sampled[k]] = share;
+            }
+        } else if (o->batch_fallbacks) {
+            (*o->batch_fallbacks)++;
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int r = 0; r < n; r++) {
+        if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
+            continue;
+        const double t0 = now_ns();
+        if (ob_measure(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, o->samples, &B->out[r]))
+            B->out[r].err = NAN;  /* cannot be measured: reported below */
+        B->ns[r] = now_ns() - t0;
+    }
+    /* per item: the largest error over its pieces, at a base parameter */
+    for (long i = 0; i < cnt; i++) {
+        itemres *r = &res[i];
+        eval_ns[i] = 0.0;
+        if (r->st != OB_OK)
+            continue;
+        const item *it = &its[i];
+        const ob_fit *fit = &fits[i];
+        r->err = 0.0;
+        for (int p = 0; p < fit->n; p++) {
+            const ob_errval e = B->out[B->first[i] + p];
+            const double pa = fit->t[p], pb = fit->t[p + 1];
+            eval_ns[i] += B->ns[B->first[i] + p];
+            if (isnan(e.err)) {
+                r->st = OB_FAIL;
+                snprintf(r->msg, sizeof r->msg, "metric %s cannot measure a degree-%d approximation",
+                         ob_metric_name(jobs[it->job].metric), fit->seg[p].deg);
+                break;
+            }
+            r->ctrl_add += fit->seg[p].deg;  /* 1 + sum deg when the pieces are the output */
+            if (fit->seg[p].deg > r->maxdeg)
+                r->maxdeg = fit->seg[p].deg;
+            if (!(e.err <= r->err)) {
+                r->err = e.err;
+                r->t = it->a + (it->b - it->a) * (pa + (pb - pa) * e.t);
+            }
+        }
+        if (fit->ctrl_points > 0)  /* the method's own representation, e.g. a B-spline */
+            r->ctrl_add = (int)(fit->ctrl_points - 1);
+    }
 }
 
 /* Decide what becomes of one measured item; children go to `next`. */
@@ -370,6 +464,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
     if (o.chunk < 1)
         o.chunk = 1;
     int rc = 0;
+    batch B = {0};
     jstate *js = calloc(njobs ? njobs : 1, sizeof *js);
     itemvec cur = {0}, next = {0};
     itemvec *plans = calloc(njobs ? njobs : 1, sizeof *plans);
@@ -383,7 +478,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
     itemres *res = malloc((size_t)o.chunk * sizeof *res);
     double *fit_ns = malloc((size_t)o.chunk * sizeof *fit_ns);
     double *eval_ns = malloc((size_t)o.chunk * sizeof *eval_ns);
-    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns) {
+    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns || batch_alloc(&B, o.chunk)) {
         rc = -1;
         goto out;
     }
@@ -437,12 +532,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
                 fit_ns[i] = fit_item(jobs, &its[i], w, &fits[i], &res[i]);
             }
             /* measure every fit: one batch */
-#pragma omp parallel for schedule(dynamic, 4)
-            for (long i = 0; i < cnt; i++) {
-                eval_ns[i] = 0.0;
-                if (res[i].st == OB_OK)
-                    measure_item(jobs, &its[i], &o, &fits[i], &res[i], &eval_ns[i]);
-            }
+            measure_chunk(jobs, its, cnt, fits, res, eval_ns, &o, &B);
             /* decide, in job order */
             for (long i = 0; i < cnt; i++) {
                 jobs[its[i].job].fit_ns += fit_ns[i];
@@ -485,5 +575,6 @@ out:
     free(res);
     free(fit_ns);
     free(eval_ns);
+    batch_free(&B);
     return rc;
 }

@@ -53,12 +53,28 @@ typedef struct {
     char message[160];
 } ob_job;
 
+/* One measurement of a batch: an approximating piece against its base piece. */
+typedef struct {
+    const ob_bez *base;
+    const ob_bez *approx;
+    double d;
+    ob_metric metric;   /* radial, normal or hausdorff (bound is always on the CPU) */
+} ob_measure_rec;
+
+/* A backend that measures a whole batch at once (the OpenCL kernel): fills
+ * out[0..n-1] exactly as ob_measure would.  Returns 0, or -1 if it could not,
+ * and then the driver measures that batch on the CPU instead. */
+typedef int (*ob_batch_fn)(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
+
 typedef struct {
     int samples;        /* per segment, for the sampled metrics */
     int max_depth;      /* pieces are not split below 2^-max_depth */
     int max_segments;   /* per job */
     int inflections;    /* 1: split at inflections first (forced for OB_CAP_CONVEX) */
     int chunk;          /* pieces per fit/measure batch (bounds memory) */
+    ob_batch_fn batch;  /* NULL: measure on the CPU with OpenMP */
+    void *batch_ctx;
+    long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */
 } ob_driver_opts;
 
 void ob_driver_defaults(ob_driver_opts *o);
@@ -69,7 +85,8 @@ void ob_driver_defaults(ob_driver_opts *o);
  *          the message "out of memory").  Per-job problems never fail the run:
  *          they end that job with status fail / skip / limit and a message.
  * Deterministic: outputs other than the timings do not depend on the number of
- * threads. */
+ * threads.  eval_ns: on the CPU the thread time of each measurement; with a
+ * batch backend the batch's wall time shared equally among its records. */
 int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts);
 
 #endif
