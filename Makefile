@@ -21,14 +21,15 @@ else
 endif
 CFLAGS  += $(CFLAGS_COMMON) $(OPT) $(SANFLAGS)
 LDFLAGS += -fopenmp $(SANFLAGS)
-LDLIBS  += -lm
+LDLIBS  += -lsisl -lm -ldl
 
 LIB_SRC  := $(sort $(wildcard methods/*.c) $(filter-out host/main.c,$(wildcard host/*.c)))
-LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o
+LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 TEST_BIN := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 TEST_SH  := $(sort $(wildcard tests/e2e_*.sh))
 DATASETS := $(sort $(wildcard datasets/*.curves))
+KERNELS  := kernels/metric_core.h kernels/measure.cl
 
 .PHONY: all test run deps clean bench FORCE
 all: $(BIN)
@@ -50,13 +51,17 @@ $(BUILD)/buildinfo.h: FORCE
 
 $(BUILD)/embedded_data.c: $(DATASETS) scripts/embed_data.sh
 	@mkdir -p $(BUILD)
-	sh scripts/embed_data.sh $(DATASETS) > $@
+	sh scripts/embed_data.sh ob_embedded_files $(DATASETS) > $@
+
+$(BUILD)/embedded_kernels.c: $(KERNELS) scripts/embed_data.sh
+	@mkdir -p $(BUILD)
+	sh scripts/embed_data.sh ob_embedded_kernels $(KERNELS) > $@
 
 $(BUILD)/%.o: %.c $(BUILD)/.deps-ok
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -MMD -MP -I$(BUILD) -c $< -o $@
 
-$(BUILD)/embedded_data.o: $(BUILD)/embedded_data.c
+$(BUILD)/embedded_%.o: $(BUILD)/embedded_%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
 $(BUILD)/host/output.o: $(BUILD)/buildinfo.h

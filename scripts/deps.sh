@@ -6,6 +6,7 @@
 #
 #   required to build:     a C11 compiler with OpenMP (gcc), make
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
+#   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
 set -u
 
 missing=""
@@ -18,6 +19,7 @@ printf '#include <omp.h>\nint main(void){return omp_get_max_threads() < 1;}\n' |
 rm -f /tmp/ob_omp_probe.$$
 
 have_header CL/cl.h || missing="$missing opencl-headers"
+have_header sisl.h || missing="$missing libsisl-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
@@ -32,10 +34,17 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
         apt-get update >>/tmp/offbench-deps.log 2>&1
         apt-get install -y --no-install-recommends $missing >>/tmp/offbench-deps.log 2>&1 \
             || { echo "deps: apt-get install$missing failed (see /tmp/offbench-deps.log);" \
-                      "the CPU path builds without them" >&2; exit 0; }
+                      "the CPU path builds without them" >&2
+              have_header sisl.h || { echo "deps: libsisl-dev is required (the build links -lsisl)" >&2; exit 1; }
+              exit 0; }
     fi
     echo "deps: installed:$missing"
 else
+    case "$missing" in *libsisl-dev*)
+        echo "deps: missing: libsisl-dev (SINTEF SISL, required: the build links -lsisl)" >&2
+        echo "deps: install it with: sudo apt-get install libsisl-dev" >&2
+        exit 1 ;;
+    esac
     echo "deps: missing:$missing" >&2
     echo "deps: install them with: sudo apt-get install$missing" >&2
     echo "deps: (the OpenCL backend needs them; the CPU path builds without)" >&2
