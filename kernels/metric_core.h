@@ -265,7 +265,9 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
     }
     if (!(ok && !(u < -0.5 || u > 1.5))) {
         /* the sign change of g nearest to t on the extended parameter range,
-         * refined by bisection (the polynomial is extrapolated past [0,1]) */
+         * refined by bisection (the polynomial is extrapolated past [0,1]);
+         * a rational A also changes sign through a pole, where |g| grows
+         * instead of vanishing: such a crossing is not an intersection */
         const int M = 2 * S;
         double best = OBC_INF, ub = -1e300;
         double u0 = -0.25, g0 = obc_normal_g(ha, na, u0, P, N, &dg);
@@ -285,7 +287,8 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
                     }
                 }
                 const double r = 0.5 * (lo + hi);
-                if (fabs(r - t) < best) {
+                const double gr = fabs(obc_normal_g(ha, na, r, P, N, &dg));
+                if (gr <= 1e-6 * fmax(fabs(g0), fabs(g1)) && fabs(r - t) < best) {
                     best = fabs(r - t);
                     ub = r;
                 }

@@ -66,6 +66,12 @@ enum {
     OB_CAP_RATIONAL_IN  = 1u << 2,  /* accepts rational input segments */
     OB_CAP_CONVEX       = 1u << 3,  /* needs pieces without inflections */
     OB_CAP_SAME_PARAM   = 1u << 4,  /* output shares the base's parameter (bound/radial metrics apply) */
+    OB_CAP_ORIENTED     = 1u << 5,  /* the result depends on the parameter's direction (e.g. a
+                                       normalization at t = 0): the reversed curve gets another
+                                       approximation */
+    OB_CAP_TOL_DRIVEN   = 1u << 6,  /* the accuracy comes from the job's tolerance through the
+                                       method's own construction (Lee's circle, SISL), not only
+                                       from the piece's size: halving need not reduce the error */
 };
 
 typedef struct ob_method {

@@ -1,0 +1,219 @@
+/*
+ * sisl.c - SINTEF's SISL library (Debian libsisl-dev, 4.6) as a baseline:
+ * s1360 "create a curve approximating the offset of a B-spline curve within
+ * a tolerance".  It is what many C users would call instead of a method from
+ * the literature; offbench measures its true error with its own metrics and
+ * does not trust SISL's tolerance.
+ *
+ * What is done, and every reading taken:
+ *  - The base segment (degree n, polynomial or rational) becomes a SISL curve
+ *    by newCurve(n+1 vertices, order n+1, clamped knots 0^(n+1) 1^(n+1),
+ *    ikind 1 with Euclidean (x, y) or ikind 2 with homogeneous (w x, w y, w)
+ *    vertices, dimension 2, icopy 1 = SISL copies the arrays).
+ *  - s1360(curve, d, tol, enorm, max_step, 2, &offset, &status) with the job's
+ *    tolerance (ob_fit_args.tol).  enorm only matters in 3D.
+ *  - Orientation: in 2D SISL offsets a positive distance towards (-y', x'),
+ *    the left normal, which is ours (checked in tests/test_sisl.c), so d is
+ *    passed unchanged.
+ *  - The result is a polynomial cubic B-spline (order 4, ikind 1) for every
+ *    input seen, rational input included: s1360 samples the exact offset
+ *    (points and tangent directions at parameters of the base, SISL choosing
+ *    the steps) and joins them by cubic Hermite segments: interior knots of
+ *    multiplicity 3, tangent directions matched at the knots but not their
+ *    lengths, so G1 (not C1) there and at the ends.  Its domain is the
+ *    base's [0,1] and its knots are BASE parameters: at each knot u the
+ *    result passes through C(u) + d N(u) (to round-off, tested).  So the
+ *    breakpoints t[] of the pieces are exactly the knots.  Inside a span,
+ *    though, SISL's tangent lengths are not those of C + d N in the base
+ *    parameter (only the directions are matched), so the result is NOT
+ *    parameterized like the base: at tol 1e-3 on liu2002_ex1 (d = 1),
+ *    |A(t) - O(t)| reaches 0.0085 where the hausdorff error is 0.0023.
+ *    Hence no OB_CAP_SAME_PARAM: bound/radial jobs are skipped by the
+ *    driver; hausdorff and normal apply.
+ *  - Output pieces: one Bezier cubic per non-empty knot span, extracted by
+ *    blossoming (de Boor's algorithm with the span's end knots as arguments),
+ *    in fixed-size local arrays.  ctrl_points = the B-spline's own number of
+ *    control points (DESIGN: B-spline outputs count their control points).
+ *    More spans than OB_MAX_PIECES: OB_RETRY_SMALLER (the driver splits the
+ *    piece and SISL starts again on each half).
+ *  - SISL's tolerance is not a bound under our metrics (tests/test_sisl.c
+ *    prints the measurement): on liu2002_ex1 the hausdorff error of its
+ *    whole-curve result reaches 18x the tolerance at the cusps of the d = 1
+ *    offset and about 3x on the smooth d = -1 offset (in the last span), so
+ *    the driver's splitting, not SISL's tolerance, decides the counts.
+ *  - Capabilities: OB_CAP_TOL_DRIVEN (the number of spans follows the
+ *    tolerance, so a half piece gets about as large an error as the whole);
+ *    OB_CAP_ORIENTED (s1360 marches from the start of the parameter, so the
+ *    reversed curve gets other Hermite points and another error).
+ *  - s1360's status < 0: OB_FAIL with that status in msg (e.g. -184 for a
+ *    tolerance <= 0).  A result that is not a polynomial cubic B-spline on
+ *    [0,1] would break the readings above: OB_FAIL saying so.
+ *
+ * Allocation: newCurve/s1360/freeCurve allocate inside the library (malloc);
+ * the no-allocation rule is for our own code in the timed path, which here
+ * uses only stack arrays.  Every SISL curve is freed with freeCurve on every
+ * path.
+ *
+ * Thread safety: the driver calls fit() from several OpenMP threads at once.
+ * The objects of libsisl.a that s1360 can reach (its call closure, found with
+ * nm: construct, destruct, s1219-s1221, s1227, s1307, s1311, s1325, s1359,
+ * s1360-s1362, s6*, sh1992, sh6*, tstcyclknt) have empty .data and .bss: no
+ * static mutable state (the library's only statics are in s1613bez and sh1762,
+ * which s1360 does not reach), and they call only malloc/free and libm.  So no
+ * lock is taken around s1360.  tests/test_sisl.c also compares fits made on
+ * several threads at once with serial ones.
+ *
+ * Printing: SISL reports every error through s6err, which writes three lines
+ * to stderr.  Methods never print, and the status is returned anyway, so this
+ * file defines s6err as a no-op; with the static libsisl.a the linker then
+ * takes ours and leaves SISL's out (SISL's error codes still reach the
+ * caller through s1360's status).
+ *
+ * Parameter: max_step, s1360's "maximal step length" amax; 0 (the default)
+ * leaves the step to SISL (its manual: the longest side of the curve's
+ * bounding box).  The installed headers carry no documentation; measured on
+ * liu2002_ex1 (d 1, tol 1e-3): amax 0, 1, 3, 10 give 49 vertices, 0.5 gives
+ * 43, 0.1 gives 85, 1e-4 gives 7375 (so amax <= tol is not ignored).
+ */
+#include "method.h"
+
+#include <math.h>
+#include <sisl.h>
+
+/* SISL's error reporter (sislP.h: void s6err(char *, int, int)), silenced. */
+void s6err(char *routine, int status, int position);
+void s6err(char *routine, int status, int position)
+{
+    (void)routine;
+    (void)status;
+    (void)position;
+}
+
+enum { SISL_OUT_DEG = 3 };
+
+static int sisl_degree(int n, int rational_in)
+{
+    (void)n;
+    (void)rational_in;
+    return SISL_OUT_DEG;
+}
+
+static const ob_param sisl_params[] = {
+    {"max_step", 0.0,
+     "s1360's maximal step length amax; 0 (default) = SISL's own choice, which its manual "
+     "gives as the longest side of the curve's bounding box"},
+};
+
+/* Bezier segment of span [et[j], et[j+1]] of a non-rational B-spline of degree
+ * p (coefficients ecoef, 2 per vertex): control point k is the blossom with
+ * p-k arguments a = et[j] and k arguments b = et[j+1] (de Boor). */
+static void span_bezier(const double *et, const double *ecoef, int p, int j, ob_bez *out)
+{
+    const double a = et[j], b = et[j + 1];
+    out->deg = p;
+    out->rational = 0;
+    for (int k = 0; k <= p; k++) {
+        double q[OB_MAX_DEG + 1][2];
+        for (int i = 0; i <= p; i++) {
+            q[i][0] = ecoef[2 * (j - p + i)];
+            q[i][1] = ecoef[2 * (j - p + i) + 1];
+        }
+        for (int r = 1; r <= p; r++) {
+            const double x = r <= p - k ? a : b;
+            for (int i = p; i >= r; i--) {
+                const int idx = j - p + i;
+                const double alpha = (x - et[idx]) / (et[idx + p + 1 - r] - et[idx]);
+                q[i][0] = (1.0 - alpha) * q[i - 1][0] + alpha * q[i][0];
+                q[i][1] = (1.0 - alpha) * q[i - 1][1] + alpha * q[i][1];
+            }
+        }
+        out->h[k][0] = q[p][0];
+        out->h[k][1] = q[p][1];
+        out->h[k][2] = 1.0;
+    }
+}
+
+static ob_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                          char *msg, size_t msglen)
+{
+    (void)work;
+    const int n = base->deg;
+    double knots[2 * (OB_MAX_DEG + 1)], coef[3 * (OB_MAX_DEG + 1)];
+    for (int i = 0; i <= n; i++) {
+        knots[i] = 0.0;
+        knots[n + 1 + i] = 1.0;
+    }
+    const int dim = base->rational ? 3 : 2;
+    for (int i = 0; i <= n; i++)
+        for (int c = 0; c < dim; c++)
+            coef[dim * i + c] = base->h[i][c];  /* polynomial: w = 1, h = (x, y) */
+    SISLCurve *pc = newCurve(n + 1, n + 1, knots, coef, base->rational ? 2 : 1, 2, 1);
+    if (!pc) {
+        ob_method_msg(msg, msglen, "SISL newCurve failed (out of memory)");
+        return OB_FAIL;
+    }
+    double enorm[3] = {0.0, 0.0, 1.0};
+    SISLCurve *rc = NULL;
+    int stat = 0;
+    s1360(pc, a->d, a->tol, enorm, a->par[0], 2, &rc, &stat);
+    freeCurve(pc);
+    if (stat < 0 || !rc) {
+        ob_method_msg(msg, msglen, "SISL s1360 failed with status %d", stat);
+        if (rc)
+            freeCurve(rc);
+        return OB_FAIL;
+    }
+
+    ob_status st = OB_OK;
+    const int p = rc->ik - 1, nv = rc->in;
+    const double *et = rc->et;
+    if (p != SISL_OUT_DEG || rc->idim != 2 || rc->ikind != 1 || nv < rc->ik) {
+        ob_method_msg(msg, msglen, "SISL s1360 returned order %d, kind %d, dimension %d, %d "
+                      "vertices: not a polynomial cubic B-spline", rc->ik, rc->ikind, rc->idim, nv);
+        st = OB_FAIL;
+        goto done;
+    }
+    const double lo = et[p], hi = et[nv];
+    if (!(fabs(lo) <= 1e-12 && fabs(hi - 1.0) <= 1e-12)) {
+        ob_method_msg(msg, msglen, "SISL s1360 returned the domain [%.17g, %.17g], not the "
+                      "base's [0, 1]", lo, hi);
+        st = OB_FAIL;
+        goto done;
+    }
+    int spans = 0;
+    for (int j = p; j < nv; j++)
+        spans += et[j] < et[j + 1];
+    if (spans > OB_MAX_PIECES) {
+        ob_method_msg(msg, msglen, "SISL's offset has %d spans, more than %d pieces", spans,
+                      OB_MAX_PIECES);
+        st = OB_RETRY_SMALLER;
+        goto done;
+    }
+    out->n = 0;
+    out->ctrl_points = nv;
+    out->t[0] = 0.0;
+    for (int j = p; j < nv; j++) {
+        if (!(et[j] < et[j + 1]))
+            continue;
+        span_bezier(et, rc->ecoef, p, j, &out->seg[out->n]);
+        out->n++;
+        out->t[out->n] = out->n == spans ? 1.0 : et[j + 1];
+    }
+
+done:
+    freeCurve(rc);
+    return st;
+}
+
+const ob_method ob_method_sisl = {
+    .name = "sisl",
+    .citation = "SINTEF SISL 4.6, s1360 (offset of a B-spline curve within a tolerance)",
+    .continuity = "G1",
+    .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_ORIENTED | OB_CAP_TOL_DRIVEN,
+    .max_turn = 0.0,
+    .out_degree = sisl_degree,
+    .work_size = 0,
+    .params = sisl_params,
+    .nparams = 1,
+    .fit = sisl_fit,
+};

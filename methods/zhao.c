@@ -1,0 +1,361 @@
+/*
+ * zhao.c - Zhao & Zhou 2017, "A Novel Method of Offset Approximation along the
+ * Normal Direction with High Precision" (MDPI, 2017; seed 000), sections 2-3:
+ * polynomial ("zhao") or rational ("zhao-rational") approximation R(A,t)
+ * of degree n of the offset C_r(t) = C(t) + r N(t) whose error along the
+ * normal, e(t) = (R(t) - C_r(t)) . N(t), is driven towards equioscillation.
+ *
+ * Equation (2): at each node t_i, R(t_i) = C(t_i) + (r +- e) N(t_i), split into
+ *   [R(t_i) - C(t_i)] x N(t_i) = 0            (direction)
+ *   [R(t_i) - C(t_i)] . N(t_i) = r +- e       (magnitude),
+ * multiplied through by the denominator q(t) = 1 + b_1 t + ... + b_n t^n so
+ * that both are linear in the coefficients once e is fixed (the paper's
+ * matrices A, Abar).  Unknowns: 2n+2 numerator coefficients, plus n
+ * denominator coefficients for the rational form (3n+2), plus e.  Two
+ * equations per node, so the paper's count of nodes is k = (3n+2)/2 (n even)
+ * or (3n+3)/2 (n odd), i.e. k = floor((3n+3)/2); for the polynomial form the
+ * same count gives k = floor((2n+3)/2) = n+1 (2n+2 equations: square in the
+ * coefficients once e is fixed, one short of the 2n+3 unknowns with e).
+ *
+ * Readings taken (parameters where the paper leaves a choice):
+ *  - The accelerated algorithm of section 3 (fixed t_i; e = the average
+ *    |error| at the t_i; the value at t_i replaced by C_r(t_i) + sigma_i e N,
+ *    sigma_i the sign of the current error there; first solve with e = 0).
+ *    It is the loop of Press et al.'s program ratlsq (Numerical Recipes 3rd
+ *    ed. section 5.13, pp. 247-250, the paper's [17]), which the paper says
+ *    it follows for the initial t_i.  With exactly k nodes the accelerated
+ *    loop is void (the fit interpolates its targets, so the error at the
+ *    nodes, hence e, stays 0), so ratlsq's sampling is taken as well: NPFAC = 8
+ *    nodes per coefficient count, i.e. npt = 8k.  This matches the paper's
+ *    "96 sample points" for the septic (n = 7, k = 12) and "less than
+ *    4(3n+3)" sample points.  The 2 npt equations exceed the unknowns, so
+ *    they are solved in the least-squares sense (ratlsq uses an SVD; here a
+ *    Givens QR, which detects rank deficiency: then OB_FAIL).
+ *  - The nodes are ratlsq's: t_j = sin^2(pi/2 j/(npt-1)), j = 0..npt-1 (the
+ *    second half computed as 1 - sin^2(...) of the mirrored index, as in
+ *    ratlsq), i.e. the Chebyshev-Gauss-Lobatto points (extrema of
+ *    T_{npt-1}, both ends included) mapped to [0,1].
+ *  - ratlsq weights each equation by the |error| of the previous solve at its
+ *    node (the paper's steps do not mention weights): parameter `weighted`,
+ *    default 1 (the program the paper follows); both equations of a node get
+ *    its weight.  Unweighted, the later iterates rarely beat the first on our
+ *    test curves (the paper reports an improvement, 0.0428 to 0.0363);
+ *    weighted, they do on most rational fits.
+ *  - Iterations: the paper says "iterate to convergence" and shows the 1st,
+ *    2nd (septic) and 4th (quintic) iterates; ratlsq runs MAXIT = 5 and keeps
+ *    the iterate with the smallest maximum error at the nodes.  Default 5,
+ *    best kept.  Iteration 1 is the plain least-squares fit (e = 0).  The loop
+ *    stops early when the fit is exact to round-off.
+ *  - The paper's solutions must have 1 + b_1 t + ... + b_n t^n != 0 on [0,1];
+ *    the linearized least squares (eq. 2 multiplied by the denominator) does
+ *    not ensure it, and on gentle curves it often returns a denominator with
+ *    a root in [0,1] (a near pole-zero pair).  Such an iterate is never
+ *    returned, but, as in ratlsq, its errors at the nodes still drive the next
+ *    iterate.  No valid iterate at all: OB_RETRY_SMALLER, so the driver splits
+ *    the piece (parameter on_pole = 0: OB_FAIL instead).  A singular system: OB_FAIL
+ *    on the first solve, end of the loop on later ones (best valid kept).
+ *  - The normalization q(0) = 1 makes the least-squares solution, hence the
+ *    rational result, depend on the direction of the parameter (the reversed
+ *    curve gives a different curve); the polynomial result does not.
+ *  - Degree: the base's (parameter `degree`, 0 = the base's; "our method can
+ *    approximate the offset with an arbitrary degree").
+ * Implementation: the unknowns are the Bernstein coefficients of numerator and
+ * denominator, an exact linear change of variables of the paper's power
+ * coefficients with the same normalization (the denominator's first Bernstein
+ * coefficient is q(0) = 1 = the power form's constant term), so the least-
+ * squares solution is the same curve; the output needs no basis conversion
+ * and is the homogeneous Bézier (P_i, beta_i).  Coordinates are taken relative
+ * to the centroid of the base's control points (the equations are translation
+ * invariant; this only avoids cancellation).  A rational iterate is valid when
+ * its denominator is proved positive on [0,1] (its Bernstein coefficients,
+ * refined by subdivision until all are positive); its weights may still be
+ * negative.
+ * The fit is in the base's parameter: R(t_i) lies on the normal line at C(t_i),
+ * so the radial and bound metrics apply (OB_CAP_SAME_PARAM).
+ */
+#include "method.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "givens_ls.h"
+
+enum { ZP_ITER, ZP_NPFAC, ZP_WEIGHT, ZP_DEGREE, ZP_POLE, ZP_COUNT };
+
+enum {
+    ZHAO_MAX_NPFAC = 16,
+    ZHAO_MAX_K = (3 * OB_MAX_DEG + 3) / 2,
+    ZHAO_MAX_NODES = ZHAO_MAX_NPFAC * ZHAO_MAX_K,
+    ZHAO_MAX_UNK = 3 * OB_MAX_DEG + 2,
+    ZHAO_MAX_ITER = 100,
+};
+
+typedef struct {
+    double t[ZHAO_MAX_NODES];
+    double c[ZHAO_MAX_NODES][2];   /* C(t_j) relative to the origin v */
+    double nn[ZHAO_MAX_NODES][2];  /* N(t_j) */
+    double e[ZHAO_MAX_NODES];      /* error along the normal at t_j */
+    double gls[ZHAO_MAX_UNK * (ZHAO_MAX_UNK + 1) + ZHAO_MAX_UNK];
+    double x[ZHAO_MAX_UNK], best[ZHAO_MAX_UNK], row[ZHAO_MAX_UNK + 1];
+} zhao_work;
+
+static const ob_param zhao_params[ZP_COUNT] = {
+    {"iterations", 5,
+     "solves of eq. (2) in the accelerated algorithm (the first with e = 0); the iterate with the "
+     "smallest maximum error at the nodes is kept. Default 5 = MAXIT of Press et al.'s ratlsq, "
+     "the program the paper follows (the paper: 'iterate to convergence'; it shows iterations 1, 2, 4)"},
+    {"npfac", 8,
+     "node multiplier: npt = npfac * k nodes, k = floor((3n+3)/2) (rational) or n+1 "
+     "(polynomial). Default 8 = NPFAC of ratlsq; gives the paper's 96 sample points for its septic; "
+     "1..16; 1 = exactly k nodes (the fit then interpolates its targets where the system is square, "
+     "so e stays 0)"},
+    {"weighted", 1,
+     "1: weight the equations of each node by the |error| there from the previous solve, as "
+     "ratlsq does (default: the program the paper follows); 0: unweighted (the paper's steps as "
+     "written do not mention weights)"},
+    {"degree", 0,
+     "output degree; 0 = the base's degree (the paper's examples; 'an arbitrary degree' is allowed)"},
+    {"on_pole", 1,
+     "no iterate with a denominator positive on [0,1] (zhao-rational): 1 = ask the driver to split "
+     "the piece (OB_RETRY_SMALLER, as if the error were too large; default: the paper requires a "
+     "pole-free solution and says nothing of what to do without one, and a smaller piece usually "
+     "has one), 0 = fail"},
+};
+
+/* Bernstein basis values B_i^n(t), i = 0..n, by the de Casteljau triangle. */
+static void bern_values(int n, double t, double *B)
+{
+    const double s = 1.0 - t;
+    B[0] = 1.0;
+    for (int k = 1; k <= n; k++) {
+        B[k] = t * B[k - 1];
+        for (int j = k - 1; j >= 1; j--)
+            B[j] = s * B[j] + t * B[j - 1];
+        B[0] *= s;
+    }
+}
+
+/* 1 if the Bernstein polynomial b (degree n, b[0] > 0) is positive on [0,1]:
+ * all coefficients positive, else subdivide; an end value <= 0, or no proof
+ * after 40 halvings (a near-double root), counts as not positive. */
+static int bern_positive(const double *b, int n, int depth)
+{
+    int all = 1;
+    for (int i = 0; i <= n; i++)
+        all &= b[i] > 0.0;
+    if (all)
+        return 1;
+    if (!(b[0] > 0.0) || !(b[n] > 0.0) || depth >= 40)
+        return 0;
+    double l[OB_MAX_DEG + 1], r[OB_MAX_DEG + 1], w[OB_MAX_DEG + 1];
+    memcpy(w, b, (size_t)(n + 1) * sizeof *w);
+    for (int k = 0; k <= n; k++) {
+        l[k] = w[0];
+        r[n - k] = w[n - k];
+        for (int i = 0; i < n - k; i++)
+            w[i] = 0.5 * (w[i] + w[i + 1]);
+    }
+    return bern_positive(l, n, depth + 1) && bern_positive(r, n, depth + 1);
+}
+
+/* The unknowns x = (px_0..px_n, py_0..py_n, beta_1..beta_n) (the betas only
+ * when rational) as Bernstein coefficients: P_i and beta_i (beta_0 = 1). */
+static void unpack(const double *x, int n, int rational, int i, double P[2], double *beta)
+{
+    P[0] = x[i];
+    P[1] = x[n + 1 + i];
+    *beta = (!rational || i == 0) ? 1.0 : x[2 * n + 1 + i];
+}
+
+static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                              char *msg, size_t msglen, int rational)
+{
+    zhao_work *W = work;
+    const double r = a->d;
+    const double pd = a->par[ZP_DEGREE], pi = a->par[ZP_ITER], pf = a->par[ZP_NPFAC];
+    const int n = pd >= 0.5 ? (int)lround(pd) : base->deg;
+    const int iters = (int)lround(pi), npfac = (int)lround(pf);
+    const int weighted = a->par[ZP_WEIGHT] != 0.0;
+    if (!(pd < OB_MAX_DEG + 0.5) || n < 1 || n > OB_MAX_DEG) {
+        ob_method_msg(msg, msglen, "output degree %g out of range 1..%d", n < 1 ? pd : (double)n,
+                      OB_MAX_DEG);
+        return OB_SKIP;
+    }
+    if (!(pi >= 0.5 && pi <= ZHAO_MAX_ITER) || !(pf >= 0.5 && pf <= ZHAO_MAX_NPFAC)) {
+        ob_method_msg(msg, msglen, "parameters out of range: iterations 1..%d, npfac 1..%d",
+                      ZHAO_MAX_ITER, ZHAO_MAX_NPFAC);
+        return OB_SKIP;
+    }
+    const int k = rational ? (3 * n + 3) / 2 : n + 1;
+    const int npt = npfac * k;
+    const int nunk = 2 * (n + 1) + (rational ? n : 0);
+
+    /* origin: centroid of the control points; scale for the exactness test */
+    double v[2] = {0.0, 0.0}, lo[2], hi[2];
+    for (int i = 0; i <= base->deg; i++) {
+        double p[2];
+        ob_bez_ctrl(base, i, p);
+        v[0] += p[0] / (base->deg + 1);
+        v[1] += p[1] / (base->deg + 1);
+        for (int c = 0; c < 2; c++) {
+            lo[c] = i ? fmin(lo[c], p[c]) : p[c];
+            hi[c] = i ? fmax(hi[c], p[c]) : p[c];
+        }
+    }
+    const double scale = fabs(r) + fmax(hi[0] - lo[0], hi[1] - lo[1]);
+
+    /* ratlsq's nodes: Chebyshev-Gauss-Lobatto points on [0,1] */
+    for (int j = 0; j < npt; j++) {
+        double t;
+        if (2 * j < npt - 1) {
+            const double s = sin(0.5 * OB_PI * j / (npt - 1));
+            t = s * s;
+        } else {
+            const double s = sin(0.5 * OB_PI * (npt - 1 - j) / (npt - 1));
+            t = 1.0 - s * s;
+        }
+        double o[1][2];
+        W->t[j] = t;
+        ob_bez_eval(base, t, 0, o);
+        W->c[j][0] = o[0][0] - v[0];
+        W->c[j][1] = o[0][1] - v[1];
+        if (ob_bez_normal(base, t, W->nn[j]) != 0) {
+            ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", t);
+            return OB_FAIL;
+        }
+        W->e[j] = 0.0;
+    }
+
+    double e = 0.0, bestdev = INFINITY;
+    for (int it = 1; it <= iters; it++) {
+        ob_gls g;
+        int valid = 1;
+        ob_gls_init(&g, nunk, W->gls);
+        for (int j = 0; j < npt; j++) {
+            double B[OB_MAX_DEG + 1];
+            bern_values(n, W->t[j], B);
+            const double nx = W->nn[j][0], ny = W->nn[j][1];
+            const double cxn = W->c[j][0] * ny - W->c[j][1] * nx;
+            const double sig = it == 1 ? 0.0 : (W->e[j] >= 0.0 ? 1.0 : -1.0);
+            const double cdn = W->c[j][0] * nx + W->c[j][1] * ny + r + sig * e;
+            const double w = (it > 1 && weighted) ? fabs(W->e[j]) : 1.0;
+            const double q0 = rational ? B[0] : 1.0;
+            /* direction: P x N - (q - 1) (C x N) = C x N  (times B_0 for rational) */
+            double *row = W->row;
+            for (int i = 0; i <= n; i++) {
+                row[i] = B[i] * ny;
+                row[n + 1 + i] = -B[i] * nx;
+                if (rational && i > 0)
+                    row[2 * n + 1 + i] = -B[i] * cxn;
+            }
+            ob_gls_add(&g, row, q0 * cxn, w);
+            /* magnitude: P . N - (q - 1) (C . N + r + sigma e) = C . N + r + sigma e */
+            for (int i = 0; i <= n; i++) {
+                row[i] = B[i] * nx;
+                row[n + 1 + i] = B[i] * ny;
+                if (rational && i > 0)
+                    row[2 * n + 1 + i] = -B[i] * cdn;
+            }
+            ob_gls_add(&g, row, q0 * cdn, w);
+        }
+        if (ob_gls_solve(&g, W->x, 1e-13) != 0) {
+            if (it == 1) {
+                ob_method_msg(msg, msglen, "singular least-squares system for eq. (2) (%d nodes, "
+                              "%d unknowns)", npt, nunk);
+                return OB_FAIL;
+            }
+            break;
+        }
+        if (rational) {
+            double beta[OB_MAX_DEG + 1];
+            beta[0] = 1.0;
+            for (int i = 1; i <= n; i++)
+                beta[i] = W->x[2 * n + 1 + i];
+            valid = bern_positive(beta, n, 0);
+        }
+        /* the error along the normal at the nodes */
+        double dev = 0.0, sum = 0.0;
+        for (int j = 0; j < npt; j++) {
+            double B[OB_MAX_DEG + 1], P[2] = {0.0, 0.0}, q = 0.0;
+            bern_values(n, W->t[j], B);
+            for (int i = 0; i <= n; i++) {
+                double Pi[2], bi;
+                unpack(W->x, n, rational, i, Pi, &bi);
+                P[0] += B[i] * Pi[0];
+                P[1] += B[i] * Pi[1];
+                q += B[i] * bi;
+            }
+            const double ej = (P[0] / q - W->c[j][0]) * W->nn[j][0] +
+                              (P[1] / q - W->c[j][1]) * W->nn[j][1] - r;
+            W->e[j] = ej;
+            dev = fmax(dev, fabs(ej));
+            sum += fabs(ej);
+        }
+        if (!isfinite(dev))
+            break;
+        if (valid && dev < bestdev) {
+            bestdev = dev;
+            memcpy(W->best, W->x, (size_t)nunk * sizeof *W->x);
+        }
+        e = sum / npt;
+        if (dev <= 1e-14 * scale)
+            break;
+    }
+
+    if (!(bestdev < INFINITY)) {
+        ob_method_msg(msg, msglen, "no iterate with a denominator positive on [0,1] (%d iterations)", iters);
+        return a->par[ZP_POLE] != 0.0 ? OB_RETRY_SMALLER : OB_FAIL;
+    }
+    ob_bez res;
+    memset(&res, 0, sizeof res);
+    res.deg = n;
+    for (int i = 0; i <= n; i++) {
+        double P[2], bi;
+        unpack(W->best, n, rational, i, P, &bi);
+        res.h[i][0] = P[0] + bi * v[0];
+        res.h[i][1] = P[1] + bi * v[1];
+        res.h[i][2] = bi;
+        if (bi != 1.0)
+            res.rational = 1;
+    }
+    ob_fit_single(out, &res);
+    return OB_OK;
+}
+
+static ob_status zhao_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                          char *msg, size_t msglen)
+{
+    return zhao_fit_any(base, a, work, out, msg, msglen, 0);
+}
+
+static ob_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                   char *msg, size_t msglen)
+{
+    return zhao_fit_any(base, a, work, out, msg, msglen, 1);
+}
+
+const ob_method ob_method_zhao = {
+    .name = "zhao",
+    .citation = "Zhao & Zhou 2017, A novel method of offset approximation along the normal direction (MDPI), polynomial",
+    .continuity = "G0",
+    .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
+    .max_turn = 0.0,
+    .out_degree = ob_degree_same,
+    .work_size = sizeof(zhao_work),
+    .params = zhao_params,
+    .nparams = ZP_COUNT,
+    .fit = zhao_fit,
+};
+
+const ob_method ob_method_zhao_rational = {
+    .name = "zhao-rational",
+    .citation = "Zhao & Zhou 2017, A novel method of offset approximation along the normal direction (MDPI), rational",
+    .continuity = "G0",
+    .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_ORIENTED,
+    .max_turn = 0.0,
+    .out_degree = ob_degree_same,
+    .work_size = sizeof(zhao_work),
+    .params = zhao_params,
+    .nparams = ZP_COUNT,
+    .fit = zhao_rational_fit,
+};
