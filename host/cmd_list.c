@@ -1,15 +1,19 @@
 /*
  * cmd_list.c - `./offbench list methods|curves|devices`.
  */
+#include <inttypes.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "../methods/method.h"
+#include "clrt.h"
 #include "commands.h"
 #include "curvefile.h"
 #include "datadir.h"
 #include "diag.h"
 #include "numfmt.h"
+#include "random.h"
 
 /* The output degree as a formula in the input degree n (the methods' degree
  * functions are linear in n: recover a*n + b from two evaluations). */
@@ -48,18 +52,58 @@ static int list_methods(void)
     return 0;
 }
 
+static void print_curve_header(const char *where)
+{
+    printf("# curves from %s\n", where);
+    printf("%-20s %-10s %-4s %-6s %-9s %-14s %s\n", "id", "family", "segs", "degree", "rational", "offsets", "source");
+}
+
+static void print_curve(const ob_curve *c)
+{
+    char offs[256] = "", num[40];
+    for (int k = 0; k < c->nd; k++) {
+        ob_fmt_double(num, sizeof num, c->d[k]);
+        if (strlen(offs) + strlen(num) + 2 < sizeof offs) {
+            if (k)
+                strcat(offs, " ");
+            strcat(offs, num);
+        }
+    }
+    int rat = 0;
+    for (int s = 0; s < c->nseg; s++)
+        rat |= c->seg[s].rational;
+    printf("%-20s %-10s %-4d %-6d %-9s %-14s %s\n", c->id, c->family ? c->family : "", c->nseg,
+           c->nseg ? c->seg[0].deg : 0, rat ? "yes" : "no", offs, c->source ? c->source : "");
+}
+
+/* list curves [--curves FILE] [--random N[:SEED]]: as `run` loads them (the
+ * file first); the random curves are generated one at a time, not stored. */
 static int list_curves(int argc, char **argv)
 {
     ob_curveset set = {0};
-    char err[1024], where[4096];
-    int rc;
-    if (argc >= 4 && strcmp(argv[2], "--curves") == 0) {
-        snprintf(where, sizeof where, "%s", argv[3]);
-        rc = ob_curves_load_file(argv[3], &set, err, sizeof err);
-    } else if (argc > 2) {
-        ob_error("list curves: unknown option '%s' (use --curves FILE)", argv[2]);
-        return 2;
-    } else {
+    char err[1024], where[4096] = "";
+    const char *file = NULL;
+    long rn = 0;
+    uint64_t seed = 1;
+    int rc = 0;
+    for (int i = 2; i < argc; i += 2) {
+        if (strcmp(argv[i], "--curves") != 0 && strcmp(argv[i], "--random") != 0) {
+            ob_error("list curves: unknown option '%s' (use --curves FILE, --random N[:SEED])", argv[i]);
+            return 2;
+        }
+        if (i + 1 >= argc) {
+            ob_error("%s: missing value", argv[i]);
+            return 2;
+        }
+        if (strcmp(argv[i], "--curves") == 0)
+            file = argv[i + 1];
+        else if (ob_random_parse(argv[i], argv[i + 1], &rn, &seed))
+            return 2;
+    }
+    if (file) {
+        snprintf(where, sizeof where, "%s", file);
+        rc = ob_curves_load_file(file, &set, err, sizeof err);
+    } else if (rn == 0) {
         rc = ob_load_default_curves(&set, where, sizeof where, err, sizeof err);
     }
     if (rc != 0) {
@@ -67,27 +111,40 @@ static int list_curves(int argc, char **argv)
         ob_curveset_free(&set);
         return 2;
     }
-    printf("# curves from %s\n", where);
-    printf("%-20s %-10s %-4s %-6s %-9s %-14s %s\n", "id", "family", "segs", "degree", "rational", "offsets", "source");
-    for (int i = 0; i < set.n; i++) {
-        const ob_curve *c = &set.v[i];
-        char offs[256] = "", num[40];
-        for (int k = 0; k < c->nd; k++) {
-            ob_fmt_double(num, sizeof num, c->d[k]);
-            if (strlen(offs) + strlen(num) + 2 < sizeof offs) {
-                if (k)
-                    strcat(offs, " ");
-                strcat(offs, num);
+    if (rn > 0) {
+        size_t k = strlen(where);
+        snprintf(where + k, sizeof where - k, "%srandom %ld:%" PRIu64, k ? " + " : "", rn, seed);
+        /* a random id must not repeat one from the file */
+        char id[64];
+        for (int i = 0; i < set.n; i++) {
+            const char *p = set.v[i].id;
+            char pre[32];
+            int plen = snprintf(pre, sizeof pre, "rnd%" PRIu64 "_", seed);
+            if (strncmp(p, pre, (size_t)plen) != 0)
+                continue;
+            long idx = strtol(p + plen, NULL, 10);
+            ob_random_id(seed, idx, id, sizeof id);
+            if (idx >= 0 && idx < rn && strcmp(id, p) == 0) {
+                ob_error("--random: curve id '%s' is also defined at %s:%d", p, set.v[i].file, set.v[i].line);
+                ob_curveset_free(&set);
+                return 2;
             }
         }
-        int rat = 0;
-        for (int s = 0; s < c->nseg; s++)
-            rat |= c->seg[s].rational;
-        printf("%-20s %-10s %-4d %-6d %-9s %-14s %s\n", c->id, c->family ? c->family : "", c->nseg,
-               c->nseg ? c->seg[0].deg : 0, rat ? "yes" : "no", offs, c->source ? c->source : "");
     }
+    print_curve_header(where);
+    for (int i = 0; i < set.n; i++)
+        print_curve(&set.v[i]);
     ob_curveset_free(&set);
-    return 0;
+    for (long i = 0; i < rn; i++) {
+        ob_curve c;
+        if (ob_random_curve(seed, i, &c) != 0) {
+            ob_error("--random: out of memory");
+            return 1;
+        }
+        print_curve(&c);
+        ob_curve_free(&c);
+    }
+    return fflush(stdout) == 0 ? 0 : 1;
 }
 
 int ob_cmd_list(int argc, char **argv)
@@ -101,8 +158,8 @@ int ob_cmd_list(int argc, char **argv)
     if (strcmp(argv[1], "curves") == 0)
         return list_curves(argc, argv);
     if (strcmp(argv[1], "devices") == 0) {
-        printf("# this build measures on the CPU only; the OpenCL backend is not built in yet\n");
-        printf("cpu\tOpenMP, %s\n", "host C reference");
+        ob_cl_list_devices(stdout);
+        printf("# --backend cpu: the C reference path with OpenMP (always available)\n");
         return 0;
     }
     ob_error("list: unknown subject '%s' (methods, curves, devices)", argv[1]);

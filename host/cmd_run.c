@@ -3,6 +3,7 @@
  * x tol, in that nesting), run the driver, write results.csv and meta.json.
  */
 #include <errno.h>
+#include <inttypes.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,12 +11,15 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "clrt.h"
 #include "commands.h"
 #include "curvefile.h"
 #include "datadir.h"
 #include "diag.h"
 #include "options.h"
 #include "output.h"
+#include "progress.h"
+#include "random.h"
 
 int ob_mkdir_p(const char *dir)
 {
@@ -82,15 +86,25 @@ static int write_meta_cb(FILE *f, void *ctx)
     return ob_write_meta(f, r->o, r->data, r->njobs, r->wall);
 }
 
+/* Loads the curves of a run: --curves FILE, then the --random curves; the
+ * default set when neither is given.  `where` names them for messages and
+ * meta.json. */
 static int load_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
 {
     char err[1024];
-    int rc;
+    int rc = 0;
+    where[0] = '\0';
     if (o->curves_file) {
         snprintf(where, wlen, "%s", o->curves_file);
         rc = ob_curves_load_file(o->curves_file, set, err, sizeof err);
-    } else {
+    } else if (o->random_n == 0) {
         rc = ob_load_default_curves(set, where, wlen, err, sizeof err);
+    }
+    if (rc == 0 && o->random_n > 0) {
+        size_t k = strlen(where);
+        snprintf(where + k, wlen - k, "%srandom %ld:%" PRIu64, k ? " + " : "", o->random_n, o->random_seed);
+        /* with --curve, only the selected random curves are generated */
+        rc = ob_random_append(set, o->random_seed, o->random_n, o->curve_ids, o->ncurve_ids, err, sizeof err);
     }
     if (rc != 0) {
         ob_error("%s", err);
@@ -144,20 +158,50 @@ static ob_job *plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *n
     return jobs;
 }
 
+/* --backend: opencl must work (exit 2 with the reason otherwise), auto uses it
+ * when it works and says why not in meta.json, cpu never tries.  The kernel
+ * is built here, once, before any timed work. */
+static int open_backend(ob_run_opts *o, ob_cl **cl)
+{
+    ob_backend_info *b = &o->binfo;
+    if (o->backend == OB_BACKEND_CPU) {
+        snprintf(b->why_cpu, sizeof b->why_cpu, "--backend cpu");
+        return 0;
+    }
+    char err[8192];
+    if (ob_cl_open(o->device, cl, err, sizeof err) != 0) {
+        if (o->backend == OB_BACKEND_OPENCL || o->device) {
+            ob_error("--backend opencl: %s", err);
+            return -1;
+        }
+        snprintf(b->why_cpu, sizeof b->why_cpu, "%.500s", err);
+        return 0;
+    }
+    b->opencl = 1;
+    snprintf(b->platform, sizeof b->platform, "%s", ob_cl_platform(*cl));
+    snprintf(b->device, sizeof b->device, "%s", ob_cl_device(*cl));
+    snprintf(b->driver, sizeof b->driver, "%s", ob_cl_driver(*cl));
+    snprintf(b->kernels, sizeof b->kernels, "%s", ob_cl_source(*cl));
+    b->build_seconds = ob_cl_build_seconds(*cl);
+    o->driver.batch = ob_cl_measure_batch;
+    o->driver.batch_ctx = *cl;
+    o->driver.batch_fallbacks = &b->fallbacks;
+    fprintf(stderr, "offbench: OpenCL %s / %s, kernels from %s built in %.2f s\n", b->platform, b->device,
+            b->kernels, b->build_seconds);
+    return 0;
+}
+
 int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
 {
     ob_run_opts o;
     ob_curveset set = {0};
     ob_job *jobs = NULL;
+    ob_cl *cl = NULL;
     int status = 2;
     if (ob_run_opts_parse(argc, argv, &o) != 0)
         goto done;
     o.argc = full_argc;
     o.argv = full_argv;
-    if (o.backend == OB_BACKEND_OPENCL) {
-        ob_error("--backend opencl: this build has no OpenCL backend yet; use --backend cpu or auto");
-        goto done;
-    }
     char where[4096];
     if (load_curves(&o, &set, where, sizeof where) != 0)
         goto done;
@@ -179,10 +223,17 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         status = 1;
         goto done;
     }
+    if (open_backend(&o, &cl) != 0)
+        goto done;
+    ob_progress bar;
+    ob_progress_init(&bar);
+    o.driver.progress = ob_progress_cb;
+    o.driver.progress_ctx = &bar;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     int drc = ob_driver_run(jobs, njobs, &o.driver);
     clock_gettime(CLOCK_MONOTONIC, &t1);
+    ob_progress_end(&bar);
     double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
     run_out r = {jobs, njobs, &o, where, wall};
     status = 0;
@@ -199,6 +250,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads): ok %zu, limit %zu, fail %zu, skip %zu; wrote %s/results.csv\n",
             njobs, wall, omp_get_max_threads(), cnt[OB_OK], cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], o.out_dir);
 done:
+    ob_cl_close(cl);
     free(jobs);
     ob_curveset_free(&set);
     ob_run_opts_free(&o);

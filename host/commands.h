@@ -8,6 +8,7 @@
 
 int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv);
 int ob_cmd_list(int argc, char **argv);
+int ob_cmd_bench(int argc, char **argv);
 
 /* Creates dir and its parents (mode 0777 & umask); 0 or -1 (errno set). */
 int ob_mkdir_p(const char *dir);

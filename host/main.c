@@ -11,11 +11,13 @@ static const char usage[] =
     "usage:\n"
     "  ./offbench run    [--curves FILE] [--curve ID,...] [--methods LIST|all]\n"
     "                    [--tols 1e-1,1e-2,...] [--metric bound|radial|normal|hausdorff]\n"
-    "                    [--split mid|maxerr|greedy] [--backend auto|opencl|cpu] [--threads N]\n"
+    "                    [--split mid|maxerr|greedy] [--backend auto|opencl|cpu] [--device NAME]\n"
+    "                    [--threads N]\n"
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"
     "                    [--out DIR]\n"
     "  ./offbench list   methods|curves|devices\n"
+    "  ./offbench bench  [--out DIR] [--quick]\n"
     "See README.md for what each option means.\n";
 
 int main(int argc, char **argv)
@@ -29,6 +31,8 @@ int main(int argc, char **argv)
         return ob_cmd_run(argc - 1, argv + 1, argc, argv);
     if (strcmp(cmd, "list") == 0)
         return ob_cmd_list(argc - 1, argv + 1);
+    if (strcmp(cmd, "bench") == 0)
+        return ob_cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
         fputs(usage, stdout);
         return 0;

@@ -11,6 +11,7 @@
 
 #include "diag.h"
 #include "numfmt.h"
+#include "random.h"
 
 static int parse_int(const char *opt, const char *s, long lo, long hi, int *out)
 {
@@ -202,8 +203,8 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             if (!o->curve_ids)
                 return -1;
         } else if (strcmp(a, "--random") == 0) {
-            ob_error("--random: random test families are not implemented in this version");
-            return -1;
+            if (ob_random_parse(a, v, &o->random_n, &o->random_seed))
+                return -1;
         } else if (strcmp(a, "--methods") == 0) {
             if (parse_methods(v, o))
                 return -1;
@@ -234,6 +235,8 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
                 ob_error("--backend: unknown backend '%s' (auto, opencl, cpu)", v);
                 return -1;
             }
+        } else if (strcmp(a, "--device") == 0) {
+            o->device = v;
         } else if (strcmp(a, "--threads") == 0) {
             if (parse_int(a, v, 1, 1024, &o->threads))
                 return -1;

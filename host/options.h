@@ -4,16 +4,30 @@
 #ifndef OB_OPTIONS_H
 #define OB_OPTIONS_H
 
+#include <stdint.h>
+
 #include "../methods/driver.h"
 
 enum { OB_MAX_TOLS = 64 };
 
 typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backend;
 
+/* What measured the run, for meta.json (filled by the run command). */
 typedef struct {
-    const char *curves_file;     /* --curves FILE, or NULL: every curve file under datasets/ */
+    int opencl;                  /* 0: the CPU reference path */
+    char platform[256], device[256], driver[128], kernels[512];
+    double build_seconds;
+    long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
+    char why_cpu[512];           /* with auto: why OpenCL was not used */
+} ob_backend_info;
+
+typedef struct {
+    const char *curves_file;     /* --curves FILE, or NULL: every curve file under
+                                    datasets/ (none with --random) */
     char **curve_ids;            /* --curve ID,... (owned), NULL: all */
     int ncurve_ids;
+    long random_n;               /* --random N[:SEED]: N curves (0: none) ... */
+    uint64_t random_seed;        /* ... of this seed (random.h) */
     const ob_method **methods;   /* --methods (owned array) */
     int nmethods;
     double tols[OB_MAX_TOLS];
@@ -21,11 +35,13 @@ typedef struct {
     ob_metric metric;
     ob_split split;
     ob_backend backend;
+    const char *device;          /* --device NAME-SUBSTRING, or NULL */
     double *params;              /* method parameters: OB_MAX_PARAMS values per
                                     registered method, by registry index (owned) */
     int threads;                 /* 0: OpenMP's default */
     const char *out_dir;
     ob_driver_opts driver;
+    ob_backend_info binfo;       /* for meta.json */
     int argc;                    /* for meta.json */
     char **argv;
 } ob_run_opts;

@@ -5,6 +5,7 @@
  */
 #include "output.h"
 
+#include <inttypes.h>
 #include <math.h>
 #include <omp.h>
 #include <string.h>
@@ -14,7 +15,7 @@
 #include "numfmt.h"
 
 const char OB_RESULTS_HEADER[] =
-    "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message";
+    "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family";
 
 void ob_csv_field(FILE *f, const char *s)
 {
@@ -48,6 +49,8 @@ int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs)
                 ob_metric_name(j->metric), ob_split_name(j->split), tol, j->ctrl_points,
                 j->segments, j->out_degree, err, ob_status_name(j->status), j->fit_ns, j->eval_ns);
         ob_csv_field(f, j->message);
+        fputc(',', f);
+        ob_csv_field(f, j->curve->family ? j->curve->family : "");
         fputc('\n', f);
     }
     return ferror(f) ? -1 : 0;
@@ -81,9 +84,28 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     ob_json_string(f, "gcc " __VERSION__);
     fprintf(f, ",\n  \"cflags\": ");
     ob_json_string(f, OB_CFLAGS);
-    fprintf(f, ",\n  \"backend\": \"cpu\",\n  \"opencl\": null,\n");
+    const ob_backend_info *b = &o->binfo;
+    fprintf(f, ",\n  \"backend\": \"%s\",\n  \"opencl\": ", b->opencl ? "opencl" : "cpu");
+    if (b->opencl) {
+        fprintf(f, "{\"platform\": ");
+        ob_json_string(f, b->platform);
+        fprintf(f, ", \"device\": ");
+        ob_json_string(f, b->device);
+        fprintf(f, ", \"driver\": ");
+        ob_json_string(f, b->driver);
+        fprintf(f, ", \"kernels\": ");
+        ob_json_string(f, b->kernels);
+        fprintf(f, ", \"build_seconds\": %.3f, \"cpu_fallback_batches\": %ld},\n", b->build_seconds, b->fallbacks);
+    } else {
+        fprintf(f, "null,\n  \"cpu_because\": ");
+        ob_json_string(f, b->why_cpu);
+        fprintf(f, ",\n");
+    }
     fprintf(f, "  \"omp_threads\": %d,\n", omp_get_max_threads());
-    fprintf(f, "  \"seed\": null,\n");
+    if (o->random_n > 0)
+        fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"random_curves\": %ld,\n", o->random_seed, o->random_n);
+    else
+        fprintf(f, "  \"seed\": null,\n");
     fprintf(f, "  \"samples_per_segment\": %d,\n", o->driver.samples);
     fprintf(f, "  \"max_depth\": %d,\n  \"max_segments\": %d,\n  \"inflection_split\": %s,\n",
             o->driver.max_depth, o->driver.max_segments, o->driver.inflections ? "true" : "false");

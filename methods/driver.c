@@ -76,6 +76,7 @@ typedef struct {
                        beyond the shared start point */
     long pending;   /* items of this job still queued */
     int dead;       /* failed or skipped: drop its remaining items */
+    int finished;   /* counted as done for progress */
 } jstate;
 
 static double now_ns(void)
@@ -504,7 +505,12 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
         rc = -1;
         goto out;
     }
+    size_t done = 0;
     for (size_t i = 0; i < njobs; i++) {
+        if (plans[i].n == 0) {  /* skipped before any work */
+            js[i].finished = 1;
+            done++;
+        }
         for (size_t k = 0; k < plans[i].n; k++)
             if (push(&cur, &plans[i].v[k])) {
                 rc = -1;
@@ -541,7 +547,14 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
                     rc = -1;
                     goto out;
                 }
+                jstate *s = &js[its[i].job];
+                if (!s->finished && (s->pending == 0 || s->dead)) {
+                    s->finished = 1;
+                    done++;
+                }
             }
+            if (o.progress)
+                o.progress(o.progress_ctx, done, njobs);
         }
         itemvec tmp = cur;
         cur = next;

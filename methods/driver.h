@@ -75,6 +75,10 @@ typedef struct {
     ob_batch_fn batch;  /* NULL: measure on the CPU with OpenMP */
     void *batch_ctx;
     long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */
+    /* if not NULL: called from the calling thread after every batch with the
+     * number of finished jobs */
+    void (*progress)(void *ctx, size_t done, size_t total);
+    void *progress_ctx;
 } ob_driver_opts;
 
 void ob_driver_defaults(ob_driver_opts *o);

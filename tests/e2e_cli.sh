@@ -31,7 +31,7 @@ check '[ "$got" = "13 19 31 43 61 13 19 31 43 61 " ]' "Ahn Table 1 'Our method':
 
 # --- the CSV contract ---
 hdr=$(head -n 1 "$T/a/results.csv")
-check '[ "$hdr" = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message" ]' "header: $hdr"
+check '[ "$hdr" = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family" ]' "header: $hdr"
 check '[ "$(col "$T/a/results.csv" tol | cut -d" " -f1-5)" = "0.1 0.01 0.001 0.0001 1e-05" ]' "tolerances printed exactly"
 for k in git_commit compiler cflags omp_threads samples_per_segment argv timestamp; do
     check 'grep -q "\"$k\"" "$T/a/meta.json"' "meta.json has $k"
@@ -39,23 +39,71 @@ done
 check 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/a/meta.json" 2>/dev/null || ! command -v python3 >/dev/null' "meta.json is valid JSON"
 
 # --- default job, every status valid, identical for 1 and 2 threads ---
-$OB run --tols 1e-1,1e-3 --threads 1 --out "$T/t1" 2>/dev/null
+# (a fixed set of methods of every kind keeps the run time independent of how
+# many methods are registered; the nesting is curve x d x method x tol)
+DM=tiller,cobb,ahn,liu,zhao
+$OB run --methods $DM --tols 1e-1,1e-3 --threads 1 --out "$T/t1" 2>/dev/null
 r1=$?
-$OB run --tols 1e-1,1e-3 --threads 2 --out "$T/t2" 2>/dev/null
+$OB run --methods $DM --tols 1e-1,1e-3 --threads 2 --out "$T/t2" 2>/dev/null
 check '[ $r1 -eq 0 ] && [ $? -eq 0 ]' "default runs exit 0"
-cut -d, -f1-11,14 "$T/t1/results.csv" > "$T/t1.cut"
-cut -d, -f1-11,14 "$T/t2/results.csv" > "$T/t2.cut"
+cut -d, -f1-11,14- "$T/t1/results.csv" > "$T/t1.cut"
+cut -d, -f1-11,14- "$T/t2/results.csv" > "$T/t2.cut"
 check 'cmp -s "$T/t1.cut" "$T/t2.cut"' "--threads 1 and 2 give identical results apart from timings"
 n=$(($(wc -l < "$T/t1/results.csv") - 1))
-check '[ $n -eq $((5 * 3 * 2)) ]' "default run: 5 offsets x 3 methods x 2 tols = 30 rows, got $n"
+pairs=$(awk -F, 'NR>1{print $1","$2}' "$T/t1/results.csv" | sort -u | wc -l)
+check '[ $pairs -ge 5 ] && [ $n -eq $((pairs * 5 * 2)) ]' "default run: $pairs (curve, d) pairs x 5 methods x 2 tols, got $n rows"
+per=$(awk -F, 'NR>1{print $1","$2}' "$T/t1/results.csv" | uniq -c | awk '{print $1}' | sort -u)
+check '[ "$per" = "10" ]' "each (curve, d) has its 10 rows together: '$per'"
 check '[ -z "$(col "$T/t1/results.csv" status | tr " " "\n" | grep -vE "^(ok|limit|fail|skip)$")" ]' "status values"
+
+check '[ "$(col "$T/a/results.csv" family | tr " " "\n" | sort -u)" = "published" ]' "liu2002_ex1 has family 'published'"
+check 'grep -q "\"seed\": null" "$T/t1/meta.json"' "meta.json: seed null without --random"
+
+# --- random test families ---
+# (fields 12 and 13 are fit_ns and eval_ns; a quoted message may hold commas,
+# but only after them.  --max-segments bounds the time should a method grind
+# on a nearly degenerate curve: that shows as `limit`, not as a slow test.)
+$OB run --random 24:3 --tols 1e-1,1e-2 --max-segments 2000 --threads 1 --out "$T/r1" 2>/dev/null
+r1=$?
+$OB run --random 24:3 --tols 1e-1,1e-2 --max-segments 2000 --threads 2 --out "$T/r2" 2>/dev/null
+check '[ $r1 -eq 0 ] && [ $? -eq 0 ]' "--random 24:3 runs exit 0"
+cut -d, -f1-11,14- "$T/r1/results.csv" > "$T/r1.cut"
+cut -d, -f1-11,14- "$T/r2/results.csv" > "$T/r2.cut"
+check '[ -s "$T/r1.cut" ] && cmp -s "$T/r1.cut" "$T/r2.cut"' "--random 24:3: --threads 1 and 2 give identical results apart from timings"
+check '[ -z "$(col "$T/r1/results.csv" status | tr " " "\n" | grep -vE "^(ok|limit|fail|skip)$")" ]' "--random 24:3: status values"
+check '[ "$(col "$T/r1/results.csv" curve | tr " " "\n" | sort -u | wc -l)" -eq 24 ]' "--random 24:3: 24 curves in results.csv"
+check '[ "$(awk -F, "NR>1{print \$1}" "$T/r1/results.csv" | sort -u | head -n 1)" = "rnd3_000000" ]' "random ids: rnd3_000000 ..."
+fams=$(awk -F, 'NR>1{print $NF}' "$T/r1/results.csv" | sort -u | tr '\n' ' ')
+check '[ "$fams" = "cubic degenerate inflection loop quintic rational septic tight " ]' "every family in the family column: '$fams'"
+check 'grep -q "\"seed\": 3," "$T/r1/meta.json"' "meta.json records the seed"
+check 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/r1/meta.json" 2>/dev/null || ! command -v python3 >/dev/null' "meta.json with a seed is valid JSON"
+
+$OB list curves --random 16:7 > "$T/lr16.txt"
+check '[ $? -eq 0 ] && [ $(grep -c "^rnd7_" "$T/lr16.txt") -eq 16 ]' "list curves --random 16:7 lists 16 curves"
+check 'grep -qE "^rnd7_000006 +loop +1 +3 " "$T/lr16.txt"' "list shows id, family, segments, degree"
+$OB list curves --random 100:7 | grep "^rnd7_" | head -n 16 > "$T/lr100.txt"
+check 'grep "^rnd7_" "$T/lr16.txt" | cmp -s - "$T/lr100.txt"' "curve i of --random 100:7 is curve i of --random 16:7"
+$OB list curves --random 16 | grep -q "^rnd1_000015 "
+check '[ $? -eq 0 ]' "the default seed is 1"
+
+# with --curves both are loaded (the file first); --curve picks among them
+$OB run --curves datasets/published.curves --random 8:2 --curve rnd2_000005,liu2002_ex1 \
+    --methods cobb --tols 1e-1 --out "$T/rc" 2>/dev/null
+check '[ $? -eq 0 ]' "--curves with --random and --curve runs"
+got=$(awk -F, 'NR>1 && !s[$1]++ {printf "%s:%s ", $1, $NF}' "$T/rc/results.csv")
+check '[ "$got" = "liu2002_ex1:published rnd2_000005:tight " ]' "file curves first, then the selected random one: '$got'"
+$OB run --random 8:2 --curve rnd2_000008 --out "$T/rx" >/dev/null 2>"$T/rx.err"
+check '[ $? -eq 2 ] && grep -q -- "--curve" "$T/rx.err"' "--curve naming a random curve past N exits 2"
 
 # the embedded data: a copy of the program with no datasets/ in reach
 cp "$OB" "$T/offbench-copy"
 (cd "$T" && unset OFFBENCH_DATA && ./offbench-copy list curves > "$T/lc.txt" 2>&1)
 check 'grep -q "^# curves from embedded" "$T/lc.txt"' "away from the tree the embedded curves are used: $(head -n 1 "$T/lc.txt")"
 (cd "$T" && unset OFFBENCH_DATA && ./offbench-copy run --methods cobb --tols 1e-1 --out emb >/dev/null 2>&1)
-check '[ $(($(wc -l < "$T/emb/results.csv") - 1)) -eq 5 ]' "a run on the embedded curves writes 5 rows"
+$OB run --methods cobb --tols 1e-1 --out "$T/tree" >/dev/null 2>&1
+cut -d, -f1-11 "$T/emb/results.csv" > "$T/emb.cut"
+cut -d, -f1-11 "$T/tree/results.csv" > "$T/tree.cut"
+check '[ -s "$T/emb.cut" ] && cmp -s "$T/emb.cut" "$T/tree.cut"' "the embedded curves give the same rows as datasets/"
 for id in liu2002_ex1 liu2002_ex2 zhao2017_septic zhao2017_quintic; do
     check 'grep -q "^$id " "$T/lc.txt"' "curve $id is listed"
 done
@@ -90,6 +138,9 @@ expect2 "--backend" --backend gpu
 expect2 "--param" --param tiller.nosuch=1
 expect2 "--param" --param nosuch.x=1
 expect2 "--param" --param tiller
+for spec in 0 abc 5: 5:x -3 10000001 1:2:3; do expect2 "--random" --random "$spec"; done
+$OB list curves --random 0 >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--random" "$T/e.txt"' "list curves --random 0 exits 2 naming the option"
 $OB frobnicate >/dev/null 2>&1
 check '[ $? -eq 2 ]' "unknown command exits 2"
 $OB list nothing >/dev/null 2>&1
