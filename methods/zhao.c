@@ -52,8 +52,12 @@
  *    a root in [0,1] (a near pole-zero pair).  Such an iterate is never
  *    returned, but, as in ratlsq, its errors at the nodes still drive the next
  *    iterate.  No valid iterate at all: OB_RETRY_SMALLER, so the driver splits
- *    the piece (parameter on_pole = 0: OB_FAIL instead).  A singular system: OB_FAIL
- *    on the first solve, end of the loop on later ones (best valid kept).
+ *    the piece (parameter on_pole = 0: OB_FAIL instead).  A singular rational
+ *    system on the first solve (the denominator undetermined: on small pieces
+ *    the offset is nearly polynomial): the polynomial member of the family
+ *    (denominator 1), which the paper counts as the degenerate rational case.
+ *    A singular polynomial system: OB_FAIL on the first solve; on later solves
+ *    the loop ends (best valid iterate kept).
  *  - The normalization q(0) = 1 makes the least-squares solution, hence the
  *    rational result, depend on the direction of the parameter (the reversed
  *    curve gives a different curve); the polynomial result does not.
@@ -259,6 +263,13 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
             ob_gls_add(&g, row, q0 * cdn, w);
         }
         if (ob_gls_solve(&g, W->x, 1e-13) != 0) {
+            if (it == 1 && rational) {
+                /* the denominator is not determined: on a small piece the
+                 * offset is nearly polynomial and the beta columns become
+                 * dependent on the others.  The paper counts a polynomial as
+                 * the degenerate rational case (denominator 1): fit that. */
+                return zhao_fit_any(base, a, work, out, msg, msglen, 0);
+            }
             if (it == 1) {
                 ob_method_msg(msg, msglen, "singular least-squares system for eq. (2) (%d nodes, "
                               "%d unknowns)", npt, nunk);
