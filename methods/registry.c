@@ -9,6 +9,7 @@
 
 extern const ob_method ob_method_tiller, ob_method_cobb, ob_method_coquillart, ob_method_elber,
     ob_method_interp, ob_method_kim2018, ob_method_ahn;
+extern const ob_method ob_method_exact, ob_method_lee;
 extern const ob_method ob_method_zhao, ob_method_zhao_rational, ob_method_hoschek;
 extern const ob_method ob_method_liu, ob_method_chebyshev, ob_method_lstsq;
 extern const ob_method ob_method_sisl;
@@ -24,9 +25,11 @@ const ob_method *const ob_methods[] = {
     &ob_method_lstsq,
     &ob_method_kim2018,
     &ob_method_ahn,
+    &ob_method_lee,
     &ob_method_zhao,
     &ob_method_zhao_rational,
     &ob_method_hoschek,
+    &ob_method_exact,
     &ob_method_sisl,
     NULL,
 };

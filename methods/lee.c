@@ -1,0 +1,464 @@
+/*
+ * lee.c - Lee, Kim & Elber 1996, "Planar curve offset based on circle
+ * approximation", Computer-Aided Design 28(8):617-630 ("M2" in Ahn 2023,
+ * Tables 1-2; "Lee's" in Zhao & Zhou 2017, Table 1).
+ *
+ * The offset C + d N is the convolution of C with the circle of radius |d|.
+ * The circle is replaced by quadratic (polynomial) Bézier arcs Q within the
+ * tolerance, and each part of C is convolved with the arc that covers its
+ * normal directions: for the arc Q(s) = q0 (1-s)^2 + 2 q1 s (1-s) + q2 s^2 the
+ * point with tangent parallel to C'(t) solves (1-s) a + s b = 0 with
+ * a = (q1-q0) x C'(t), b = (q2-q1) x C'(t), i.e. s(t) = a / (a - b), and the
+ * approximation is
+ *     A(t) = C(t) + Q(s(t)) = [C (a-b)^2 + q0 b^2 - 2 q1 a b + q2 a^2] / (a-b)^2.
+ * For a polynomial C of degree n, a and b have degree n-1 and A is a rational
+ * Bézier of degree 3n-2 (7 for a cubic: Ahn's Table 1 counts 7k+1).  For a
+ * rational C = P/w the direction of C' is P'w - Pw' (degree 2n-2) and
+ * A = [P (a-b)^2 + w (q0 b^2 - 2 q1 a b + q2 a^2)] / [w (a-b)^2], degree 5n-4.
+ * A shares C's parameter t, and |A(t) - C(t)| = |Q(s(t))|, so the offset error
+ * (radial) is at most the circle approximation error.
+ *
+ * Pieces: the fit splits its base piece at the parameters where d N(t)
+ * crosses an arc boundary (roots of C'(t) . u_j for the boundary direction
+ * u_j, kept where d N points along +u_j) and writes one rational piece per
+ * part, with its t breakpoints; more than OB_MAX_PIECES parts give
+ * OB_RETRY_SMALLER.  The error does not depend on the size of the base piece,
+ * only on the circle approximation, which depends on the tolerance.
+ *
+ * Readings (the paper itself is not among the sources here; see the params):
+ *  - arcs of the circle: the quadratic that interpolates the circle at the
+ *    arc's ends with the intersection of the end tangents as middle control
+ *    point (Ahn 2023 describes Lee's quadratics as interpolating the normal
+ *    field); its radius grows from r at the ends to r (1 + e) at the middle,
+ *    e = (1 - cos h)^2 / (2 cos h) for the half angle h;
+ *  - the whole circle is cut into the fewest equal arcs whose error r e is at
+ *    most tol_frac * tol, the first boundary at angle `start` (0: the x axis);
+ *  - tol_frac = 1: the circle error is the offset error (our choice);
+ *  - clip = 0: a part is convolved with its whole arc, also where the piece
+ *    ends inside the arc.  Then the piece's end point is C + Q(s) with Q(s)
+ *    the arc point whose tangent is parallel to C', which is off the offset's
+ *    end C + d N along the tangent by up to about 0.19 |d| h^3, while the
+ *    radial error is |d| h^4/8: the radial and bound metrics (the papers'
+ *    measures) see the circle error, the per-piece hausdorff metric sees the
+ *    end shift, which no subdivision removes (the driver ends at its limits).
+ *    clip = 1 uses the sub-arc that the part's normals cover instead, so
+ *    every piece interpolates the offset at its ends: same breakpoints, error
+ *    at most the circle error under every metric (regular offsets).
+ */
+#include "method.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "bernstein.h"
+
+enum { P_FRAC, P_ARC, P_ARCS_ON, P_START, P_CLIP, NPARAM };
+
+static const ob_param lee_params[NPARAM] = {
+    {"tol_frac", 1.0,
+     "the circle approximation error is at most tol_frac * tol (the job's tolerance); "
+     "1 is our choice (no fraction is given in the sources here): the offset error is "
+     "then at most tol"},
+    {"arc", 0.0,
+     "0: each arc is the quadratic Bezier interpolating the circle at its ends, middle "
+     "control point at the tangent intersection (error r(1-cos h)^2/(2 cos h), h the half "
+     "angle; the natural reading, Ahn 2023 calls Lee's quadratics interpolating); 1: that "
+     "quadratic scaled about the centre by 2/(2+e) so the radial error equioscillates "
+     "(error r e/(2+e), the best radial approximation in this family)"},
+    {"arcs_on", 0.0,
+     "0: the whole circle is cut once into the fewest equal arcs meeting the tolerance, "
+     "independent of the curve (our reading of approximating the circle); 1: each piece's "
+     "own range of normal directions is cut into the fewest equal arcs, from its lowest "
+     "normal angle (the arcs then differ between driver pieces; their ends interpolate the "
+     "offset where the normal turns one way)"},
+    {"start", 0.0,
+     "arcs_on=0: angle in radians of the first arc boundary, for the offset vector d N "
+     "(0 = the positive x direction; our choice)"},
+    {"clip", 0.0,
+     "arcs_on=0: 0: each part is convolved with its whole arc of the circle approximation "
+     "(the circle approximated once: the reading of METHODS.md, default); 1: with the interpolating quadratic of the sub-arc that the part's normals "
+     "cover, so every piece interpolates the offset at its ends (with 0 a piece end inside an "
+     "arc is off the offset's end by O(h^3) along the tangent, which the per-piece hausdorff "
+     "metric sees and no subdivision removes)"},
+};
+
+static int lee_degree(int n, int rational_in)
+{
+    return rational_in ? 5 * n - 4 : 3 * n - 2;
+}
+
+static double cross2(const double u[2], const double v[2]) { return u[0] * v[1] - u[1] * v[0]; }
+
+/* The relative radial error e of the interpolating quadratic for half angle h
+ * (0 < h < pi/2), and of the scaled ("best") one. */
+static double arc_error(double h, int best)
+{
+    const double s = sin(0.5 * h), omc = 2.0 * s * s, c = cos(h);  /* omc = 1 - cos h */
+    const double e = omc * omc / (2.0 * c);
+    return best ? e / (2.0 + e) : e;
+}
+
+/* The largest half angle h with arc_error(h) <= eps (relative to r). */
+static double max_half_angle(double eps, int best)
+{
+    if (best) {
+        if (eps >= 1.0)
+            return OB_PI / 3.0;
+        eps = 2.0 * eps / (1.0 - eps);  /* e/(2+e) <= eps  <=>  e <= 2 eps/(1-eps) */
+    }
+    /* (1-c)^2 = 2 eps c:  1 - c = sqrt(eps^2 + 2 eps) - eps = 2 eps/(sqrt(eps^2+2eps) + eps) */
+    const double omc = 2.0 * eps / (sqrt(eps * eps + 2.0 * eps) + eps);
+    double h = 2.0 * asin(sqrt(fmin(1.0, 0.5 * omc)));
+    return fmin(h, OB_PI / 3.0);
+}
+
+/* Fewest equal arcs with half angle total/(2m) meeting eps; total in (0, 2 pi]. */
+static long arc_count(double total, double eps, int best, long mmin)
+{
+    const double h = max_half_angle(eps, best);
+    double est = ceil(0.5 * total / h);
+    if (!(est < 2e6))
+        return -1;
+    long m = (long)est;
+    if (m < mmin)
+        m = mmin;
+    while (arc_error(0.5 * total / m, best) > eps && m < 2000000)
+        m++;
+    while (m > mmin && 0.5 * total / (m - 1) <= OB_PI / 3.0 &&
+           arc_error(0.5 * total / (m - 1), best) <= eps)
+        m--;
+    return m < 2000000 ? m : -1;
+}
+
+/* Direction of C' (any positive multiple) in Bernstein form; returns its degree.
+ * Polynomial: n (P_{k+1} - P_k), degree n-1.  Rational: P'w - Pw', degree
+ * 2n-2, by the exact formula sum_{i<j} (j-i) C(n,i) C(n,j)/C(2n-2,i+j-1)
+ * (P_j w_i - P_i w_j) B_{i+j-1}^{2n-2} (homogeneous P, no cancellation). */
+static int hodograph(const ob_bez *b, double (*H)[2])
+{
+    const int n = b->deg;
+    if (!b->rational) {
+        for (int k = 0; k < n; k++) {
+            H[k][0] = n * (b->h[k + 1][0] - b->h[k][0]);
+            H[k][1] = n * (b->h[k + 1][1] - b->h[k][1]);
+        }
+        return n - 1;
+    }
+    const int m = 2 * n - 2;
+    for (int k = 0; k <= m; k++)
+        H[k][0] = H[k][1] = 0.0;
+    for (int i = 0; i <= n; i++)
+        for (int j = i + 1; j <= n; j++) {
+            const int k = i + j - 1;
+            const double f = (j - i) * ob_binom(n, i) * ob_binom(n, j) / ob_binom(m, k);
+            for (int c = 0; c < 2; c++)
+                H[k][c] += f * (b->h[j][c] * b->h[i][2] - b->h[i][c] * b->h[j][2]);
+        }
+    return m;
+}
+
+static void hod_eval(const double (*H)[2], int m, double t, double v[2])
+{
+    double x[OB_BERN_MAX + 1], y[OB_BERN_MAX + 1];
+    for (int k = 0; k <= m; k++) {
+        x[k] = H[k][0];
+        y[k] = H[k][1];
+    }
+    v[0] = ob_bern_eval(x, m, t);
+    v[1] = ob_bern_eval(y, m, t);
+}
+
+/* Angle of the offset vector sign(d) (-y', x') at t. */
+static double offset_angle(const double (*H)[2], int m, double t, double sd)
+{
+    double v[2];
+    hod_eval(H, m, t, v);
+    return atan2(sd * v[0], -sd * v[1]);
+}
+
+/* A(t) = C(t) + Q(s(t)) for the arc q[0..2] (see the header).  Returns 0, or -1
+ * if a - b vanishes on [0,1] (the normal leaves the arc's range). */
+static int convolve(const ob_bez *b, const double q[3][2], ob_bez *out)
+{
+    double H[2 * OB_MAX_DEG + 1][2];
+    const int n = b->deg, mh = hodograph(b, H), m2 = 2 * mh, deg = n + m2;
+    double A[OB_BERN_MAX + 1], B[OB_BERN_MAX + 1], C[OB_BERN_MAX + 1];
+    const double e0[2] = {q[1][0] - q[0][0], q[1][1] - q[0][1]};
+    const double e1[2] = {q[2][0] - q[1][0], q[2][1] - q[1][1]};
+    for (int k = 0; k <= mh; k++) {
+        A[k] = cross2(e0, H[k]);
+        B[k] = cross2(e1, H[k]);
+        C[k] = A[k] - B[k];
+    }
+    double roots[4];
+    const double c0 = ob_bern_eval(C, mh, 0.0), c1 = ob_bern_eval(C, mh, 1.0);
+    if (!(c0 * c1 > 0.0) || ob_bern_roots(C, mh, roots, 4) > 0)
+        return -1;
+    double CC[OB_BERN_MAX + 1], AA[OB_BERN_MAX + 1], AB[OB_BERN_MAX + 1], BB[OB_BERN_MAX + 1];
+    ob_bern_mul(C, mh, C, mh, CC);
+    ob_bern_mul(A, mh, A, mh, AA);
+    ob_bern_mul(A, mh, B, mh, AB);
+    ob_bern_mul(B, mh, B, mh, BB);
+    double num[2][OB_BERN_MAX + 1];
+    for (int k = 0; k <= m2; k++)
+        for (int c = 0; c < 2; c++)
+            num[c][k] = q[0][c] * BB[k] - 2.0 * q[1][c] * AB[k] + q[2][c] * AA[k];
+    double X[3][OB_BERN_MAX + 1], tmp[OB_BERN_MAX + 1], P[OB_MAX_DEG + 1];
+    for (int c = 0; c < 2; c++) {
+        for (int i = 0; i <= n; i++)
+            P[i] = b->h[i][c];
+        ob_bern_mul(P, n, CC, m2, X[c]);
+        if (b->rational) {
+            for (int i = 0; i <= n; i++)
+                P[i] = b->h[i][2];
+            ob_bern_mul(P, n, num[c], m2, tmp);
+        } else {
+            ob_bern_elevate(num[c], m2, deg, tmp);
+        }
+        for (int k = 0; k <= deg; k++)
+            X[c][k] += tmp[k];
+    }
+    if (b->rational) {
+        for (int i = 0; i <= n; i++)
+            P[i] = b->h[i][2];
+        ob_bern_mul(P, n, CC, m2, X[2]);
+    } else {
+        ob_bern_elevate(CC, m2, deg, X[2]);
+    }
+    double big = 0.0;
+    for (int k = 0; k <= deg; k++)
+        big = fmax(big, fabs(X[2][k]));
+    if (!(big > 0.0) || !isfinite(big))
+        return -1;
+    memset(out, 0, sizeof *out);
+    out->deg = deg;
+    out->rational = 1;
+    for (int k = 0; k <= deg; k++)
+        for (int c = 0; c < 3; c++)
+            out->h[k][c] = X[c][k] / big;
+    return 0;
+}
+
+/* A translate C + v of b, written with degree deg (a zero-angle arc). */
+static void translate(const ob_bez *b, const double v[2], int deg, ob_bez *out)
+{
+    ob_bez_elevate(b, deg, out);
+    for (int k = 0; k <= deg; k++) {
+        out->h[k][0] += out->h[k][2] * v[0];
+        out->h[k][1] += out->h[k][2] * v[1];
+    }
+    out->rational = 1;
+}
+
+/* Lowest and highest unwrapped offset angle over [0,1], relative to t = 0:
+ * samples plus the inflections (where the angle turns back). */
+static void angle_range(const ob_bez *b, const double (*H)[2], int mh, double sd, double *lo,
+                        double *hi)
+{
+    enum { NS = 256 };
+    double ts[NS + 1 + 64];
+    int nt = 0;
+    for (int k = 0; k <= NS; k++)
+        ts[nt++] = (double)k / NS;
+    double inf[64];
+    int ni = ob_bez_inflections(b, inf, 64);
+    for (int i = 0; i < ni; i++) {  /* insert in order */
+        int p = nt++;
+        while (p > 0 && ts[p - 1] > inf[i]) {
+            ts[p] = ts[p - 1];
+            p--;
+        }
+        ts[p] = inf[i];
+    }
+    double prev = offset_angle(H, mh, 0.0, sd), acc = 0.0;
+    *lo = *hi = 0.0;
+    for (int i = 1; i < nt; i++) {
+        double a = offset_angle(H, mh, ts[i], sd), da = a - prev;
+        da -= 2.0 * OB_PI * floor((da + OB_PI) / (2.0 * OB_PI));
+        acc += da;
+        prev = a;
+        *lo = fmin(*lo, acc);
+        *hi = fmax(*hi, acc);
+    }
+}
+
+enum { MAXCROSS = 4 * OB_MAX_PIECES };
+
+static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                         char *msg, size_t msglen)
+{
+    (void)work;
+    const double d = a->d, r = fabs(d), sd = d > 0 ? 1.0 : -1.0;
+    const int n = base->deg, outdeg = lee_degree(n, base->rational);
+    const double frac = a->par[P_FRAC], start = a->par[P_START];
+    const int best = a->par[P_ARC] != 0.0, on_piece = a->par[P_ARCS_ON] != 0.0;
+    const int clip = !on_piece && a->par[P_CLIP] != 0.0;
+    if (!(r > 0.0) || !isfinite(d)) {
+        ob_method_msg(msg, msglen, "offset distance d = %g: no circle to approximate", d);
+        return OB_SKIP;
+    }
+    if (n < 1 || outdeg > OB_MAX_DEG || outdeg > OB_BERN_MAX) {
+        ob_method_msg(msg, msglen, "output degree %d for input degree %d exceeds %d", outdeg, n,
+                      OB_MAX_DEG);
+        return OB_SKIP;
+    }
+    if (!(a->tol > 0.0) || !(frac > 0.0) || !isfinite(start)) {
+        ob_method_msg(msg, msglen, "needs tol > 0 and tol_frac > 0 (tol %g, tol_frac %g)",
+                      a->tol, frac);
+        return OB_FAIL;
+    }
+    const double eps = frac * a->tol / r;
+    double H[2 * OB_MAX_DEG + 1][2];
+    const int mh = hodograph(base, H);
+
+    /* the arcs: boundaries psi0 + j delta, j = jlo..jhi-1 are tested */
+    long m, jlo, jhi;
+    double psi0, delta, width = 2.0 * OB_PI;
+    if (!on_piece) {
+        m = arc_count(2.0 * OB_PI, eps, best, 3);
+        psi0 = start;
+        jlo = 0;
+        jhi = m;
+    } else {
+        double lo, hi;
+        angle_range(base, (const double (*)[2])H, mh, sd, &lo, &hi);
+        width = hi - lo;
+        if (width >= 2.0 * OB_PI - 1e-9) {
+            ob_method_msg(msg, msglen, "the normal turns by %.3g >= 2 pi in this piece", width);
+            return OB_RETRY_SMALLER;
+        }
+        psi0 = offset_angle((const double (*)[2])H, mh, 0.0, sd) + lo;
+        if (width < 1e-12) {  /* straight: a zero-angle arc, the exact translate */
+            const double v[2] = {r * cos(psi0), r * sin(psi0)};
+            ob_bez t;
+            translate(base, v, outdeg, &t);
+            ob_fit_single(out, &t);
+            return OB_OK;
+        }
+        m = arc_count(width, eps, best, 1);
+        jlo = 1;
+        jhi = m;
+    }
+    if (m < 1) {
+        ob_method_msg(msg, msglen, "tolerance %g too small for |d| = %g (2e6 arcs or more)",
+                      a->tol, r);
+        return OB_FAIL;
+    }
+    delta = width / (double)m;
+
+    /* where d N crosses an arc boundary */
+    double cut[MAXCROSS + 2];
+    int nc = 0;
+    for (long j = jlo; j < jhi; j++) {
+        const double ang = psi0 + (double)j * delta, u[2] = {cos(ang), sin(ang)};
+        double p[2 * OB_MAX_DEG + 1];
+        int pos = 0, neg = 0;
+        for (int k = 0; k <= mh; k++) {
+            p[k] = H[k][0] * u[0] + H[k][1] * u[1];
+            pos |= p[k] > 0.0;
+            neg |= p[k] < 0.0;
+        }
+        if (!(pos && neg))
+            continue;
+        double rt[2 * OB_MAX_DEG + 1];
+        int nr = ob_bern_roots(p, mh, rt, 2 * OB_MAX_DEG + 1);
+        for (int i = 0; i < nr; i++) {
+            if (rt[i] < 1e-9 || rt[i] > 1.0 - 1e-9)
+                continue;
+            double v[2];
+            hod_eval((const double (*)[2])H, mh, rt[i], v);
+            if (sd * (v[0] * u[1] - v[1] * u[0]) <= 0.0)  /* d N = sd (-v_y, v_x)/|v| along -u */
+                continue;
+            if (nc == MAXCROSS) {
+                ob_method_msg(msg, msglen, "the normal crosses more than %d arc boundaries "
+                              "(%ld arcs)", MAXCROSS, m);
+                return OB_RETRY_SMALLER;
+            }
+            int q = nc++;  /* insertion, ascending */
+            while (q > 0 && cut[q - 1] > rt[i]) {
+                cut[q] = cut[q - 1];
+                q--;
+            }
+            cut[q] = rt[i];
+        }
+    }
+    /* breakpoints 0 = t_0 < ... < t_k = 1, dropping near duplicates */
+    double tb[MAXCROSS + 2];
+    int nt = 0;
+    tb[nt++] = 0.0;
+    for (int i = 0; i < nc; i++)
+        if (cut[i] - tb[nt - 1] > 1e-12 && 1.0 - cut[i] > 1e-12)
+            tb[nt++] = cut[i];
+    tb[nt++] = 1.0;
+    const int np = nt - 1;
+    if (np > OB_MAX_PIECES) {
+        ob_method_msg(msg, msglen, "%d arcs of the circle meet this piece (at most %d pieces)",
+                      np, OB_MAX_PIECES);
+        return OB_RETRY_SMALLER;
+    }
+
+    const double lam = best ? 2.0 / (2.0 + arc_error(0.5 * delta, 0)) : 1.0;
+    const double rr = lam * r, rm = rr / cos(0.5 * delta);
+    out->n = np;
+    out->ctrl_points = 0;
+    for (int i = 0; i <= np; i++)
+        out->t[i] = tb[i];
+    for (int i = 0; i < np; i++) {
+        const double tm = 0.5 * (tb[i] + tb[i + 1]);
+        double x = offset_angle((const double (*)[2])H, mh, tm, sd) - psi0;
+        x -= 2.0 * OB_PI * floor(x / (2.0 * OB_PI));   /* [0, 2 pi) */
+        if (on_piece && x > 0.5 * (width + 2.0 * OB_PI))
+            x -= 2.0 * OB_PI;                           /* just below the range */
+        long j = (long)floor(x / delta);
+        if (j < 0)
+            j = 0;
+        if (j > m - 1)
+            j = m - 1;
+        double a0 = psi0 + (double)j * delta, a1 = a0 + delta, rmid = rm;
+        ob_bez sub;
+        if (np == 1)
+            sub = *base;
+        else
+            ob_bez_subsegment(base, tb[i], tb[i + 1], &sub);
+        if (clip) {  /* the part of the arc that the part's normals cover */
+            double Hs[2 * OB_MAX_DEG + 1][2], lo, hi;
+            const int ms = hodograph(&sub, Hs);
+            angle_range(&sub, (const double (*)[2])Hs, ms, sd, &lo, &hi);
+            double x0 = offset_angle((const double (*)[2])Hs, ms, 0.0, sd) - a0;
+            x0 -= 2.0 * OB_PI * floor((x0 + OB_PI) / (2.0 * OB_PI));  /* [-pi, pi) */
+            const double b0 = fmax(0.0, x0 + lo), b1 = fmin(delta, x0 + hi);
+            if (!(b1 - b0 > 1e-12)) {  /* a zero-angle arc: the translate */
+                const double am = a0 + 0.5 * (b0 + b1), v[2] = {rr * cos(am), rr * sin(am)};
+                translate(&sub, v, outdeg, &out->seg[i]);
+                continue;
+            }
+            a1 = a0 + b1;
+            a0 += b0;
+            rmid = rr / cos(0.5 * (a1 - a0));
+        }
+        const double am = 0.5 * (a0 + a1);
+        const double q[3][2] = {{rr * cos(a0), rr * sin(a0)},
+                                {rmid * cos(am), rmid * sin(am)},
+                                {rr * cos(a1), rr * sin(a1)}};
+        if (convolve(&sub, q, &out->seg[i]) != 0) {
+            ob_method_msg(msg, msglen, "the normal leaves arc %ld within t in [%.6g, %.6g] "
+                          "(a cusp?)", j, tb[i], tb[i + 1]);
+            return OB_RETRY_SMALLER;
+        }
+    }
+    return OB_OK;
+}
+
+const ob_method ob_method_lee = {
+    .name = "lee",
+    .citation = "Lee, Kim & Elber 1996, Planar curve offset based on circle approximation, "
+                "CAD 28(8):617-630",
+    .continuity = "G1",
+    .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_TOL_DRIVEN,
+    .max_turn = 0.0,
+    .out_degree = lee_degree,
+    .work_size = 0,
+    .params = lee_params,
+    .nparams = NPARAM,
+    .fit = lee_fit,
+};
