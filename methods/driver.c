@@ -39,6 +39,14 @@ void ob_driver_defaults(ob_driver_opts *o)
 static const double GREEDY_EPS = 1e-4;
 /* maxerr split keeps this fraction of the piece on either side */
 static const double MAXERR_MARGIN = 0.05;
+/* A piece whose error has not dropped below STALL_RATIO of its parent's over
+ * STALL_LEVELS successive splits cannot reach the tolerance by subdivision
+ * (an error floor of the method, e.g. Lee's circle approximation under the
+ * Hausdorff metric); it is accepted and the job ends with status limit.
+ * Convergent methods gain a factor 4 to 16 per split, so this never fires for
+ * them; slowly converging pieces (a factor 2) are not taken for stalled. */
+static const double STALL_RATIO = 0.9;
+enum { STALL_LEVELS = 4 };
 
 /* One pending piece of one job. */
 typedef struct {
@@ -49,6 +57,8 @@ typedef struct {
     double pass_err;    /* greedy: results of the candidate [a, lo] */
     int pass_ctrl_add, pass_maxdeg, pass_n;
     int final;          /* greedy: accept this fit whatever its error */
+    double parent_err;  /* mid/maxerr: the error of the piece this one was split from */
+    int stall;          /* successive splits without a real drop of the error */
 } item;
 
 typedef struct {
@@ -77,6 +87,7 @@ typedef struct {
     long pending;   /* items of this job still queued */
     int dead;       /* failed or skipped: drop its remaining items */
     int finished;   /* counted as done for progress */
+    int floored;    /* a piece hit an error floor: keep the rest as they are */
 } jstate;
 
 static double now_ns(void)
@@ -153,7 +164,7 @@ static int plan_job(const ob_job *j, int jobidx, const ob_driver_opts *o, itemve
             for (int p = 1; p <= k; p++) {
                 double next = p == k ? e : a + (e - a) * ob_bez_turn_param(&sub, turn * p / k);
                 item it = {.job = jobidx, .seg = s, .depth = 0, .a = prev, .b = next,
-                           .end = next, .lo = prev, .hi = next};
+                           .end = next, .lo = prev, .hi = next, .parent_err = INFINITY};
                 if (push(out, &it))
                     return -1;
                 prev = next;
@@ -261,8 +272,9 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
             n += fits[i].n;
     }
     B->first[cnt] = n;
-    /* the records: base sub-pieces cut in parallel */
-#pragma omp parallel for schedule(dynamic, 8)
+    /* the records: base sub-pieces cut in parallel (a level of one item, as
+     * greedy bisection often makes, runs without waking the other threads) */
+#pragma omp parallel for schedule(dynamic, 8) if (cnt > 1)
     for (long i = 0; i < cnt; i++) {
         if (res[i].st != OB_OK)
             continue;
@@ -297,7 +309,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
             (*o->batch_fallbacks)++;
         }
     }
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 4) if (n > 1)
     for (int r = 0; r < n; r++) {
         if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
             continue;
@@ -369,6 +381,20 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;
         }
+        const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
+        if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
+            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            return 0;
+        }
+        if (stall >= STALL_LEVELS && !(it->depth >= o->max_depth || full)) {
+            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            snprintf(msg, sizeof msg, "error stalls at %.3g > tol under subdivision at t in [%.6g, %.6g] "
+                     "of segment %d (%d splits without a 10%% drop); the rest kept as it was", r->err, it->a,
+                     it->b, it->seg, STALL_LEVELS);
+            job_end(j, s, OB_LIMIT, msg);
+            s->floored = 1;
+            return 0;
+        }
         if (it->depth >= o->max_depth || full) {
             if (retry) {
                 job_end(j, s, OB_FAIL, msg);
@@ -392,6 +418,8 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
         l.b = cut;
         rr.a = cut;
         l.depth = rr.depth = it->depth + 1;
+        l.parent_err = rr.parent_err = retry ? INFINITY : r->err;
+        l.stall = rr.stall = stall;
         l.end = l.hi = l.b;
         l.lo = l.a;
         rr.end = rr.hi = rr.b;
@@ -435,19 +463,22 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             job_end(j, s, OB_FAIL, msg);
             return 0;
         } else {
-            /* not even a sliver passes: keep it as it is and go on */
+            /* not even a sliver passes: an error floor subdivision cannot get
+             * under; keep the sliver, fit the rest of the stretch once and keep
+             * it too, and end the job with status limit */
             accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
                      it->b - it->a, it->a, it->seg, r->err);
             job_end(j, s, OB_LIMIT, msg);
             g.a = it->b;
+            g.final = 1;
         }
         if (g.a >= g.end)
             return 0;
         g.lo = g.a;
         g.hi = g.b = g.end;
         /* out of segments: the rest is fitted once and kept whatever its error */
-        g.final = j->segments + 1 >= o->max_segments;
+        g.final = g.final || j->segments + 1 >= o->max_segments;
     } else {
         g.b = 0.5 * (g.lo + g.hi);
     }
@@ -527,7 +558,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
             const long cnt = (long)((cur.n - start) < (size_t)o.chunk ? cur.n - start : (size_t)o.chunk);
             const item *its = cur.v + start;
             /* fit every pending piece */
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 4) if (cnt > 1)
             for (long i = 0; i < cnt; i++) {
                 void *w = work + wsize * (size_t)omp_get_thread_num();
                 if (js[its[i].job].dead) {

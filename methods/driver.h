@@ -15,8 +15,12 @@
  *   greedy  the longest prefix that passes, by bisection on its end parameter
  *           (to 1e-4 of the stretch still to cover), then the rest likewise: the
  *           fewest segments the method can reach.
- * A piece narrower than 2^-max_depth, or a job past max_segments, is accepted
- * as it is and the job ends with status `limit` (its max_err then exceeds tol).
+ * A piece narrower than 2^-max_depth, or a job past max_segments, or a piece
+ * whose error stops falling under subdivision (below 90 % of its parent's over
+ * 4 successive splits: an error floor of the method), is accepted as it is and
+ * the job ends with status `limit` (its max_err then exceeds tol); after an
+ * error floor the job's other pending pieces are kept as they are (the job
+ * cannot reach tol); greedy ends likewise when not even a sliver passes.
  *
  * Counting: k segments of degrees m_i joined end to end count 1 + sum m_i
  * control points (shared end points once), as the papers count.
