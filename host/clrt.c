@@ -460,8 +460,15 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     CL_CHECK(cl.clSetKernelArg(c->k, 1, sizeof(int), &S));
     for (cl_uint k = 0; k < sizeof args / sizeof *args; k++)
         CL_CHECK(cl.clSetKernelArg(c->k, 2 + k, sizeof(cl_mem), &args[k]));
-    const size_t global = (size_t)n;
-    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, NULL, 0, NULL, NULL));
+    /* A hausdorff or normal record is heavy (thousands of evaluations): one
+     * per work-group, so the device spreads them over all its compute units (a
+     * NULL local size let PoCL put a whole batch in one group, on one thread).
+     * A radial record is light: groups of 32 amortize the group overhead. */
+    int light = 1;
+    for (int i = 0; i < n && light; i++)
+        light = recs[i].metric == OB_METRIC_RADIAL;
+    const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
+    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->err, CL_FALSE, 0, nd, c->h_err, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->tpar, CL_FALSE, 0, nd, c->h_tpar, 0, NULL, NULL));
     CL_CHECK(cl.clFinish(c->q));

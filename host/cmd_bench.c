@@ -7,10 +7,18 @@
  * Measurements:
  *   fma_peak         a dependency-free multiply-add loop: the machine's peak
  *                    double-precision rate, 1 thread and all threads
+ *   fma_vector       the same with the widest vector FMA the CPU has (AVX-512
+ *                    or AVX2): the machine's peak
  *   samples/<metric> a fixed batch of records (random convex cubics and their
  *                    Cobb approximations at d = +-0.1), S samples each, measured
  *                    by the CPU path with 1 and N threads and by the OpenCL
  *                    kernel (after a warm-up launch, build time reported apart)
+ *   gflops/<metric>  the same as double-precision operations per second: the
+ *                    curve evaluations the metric makes (counted on the CPU
+ *                    pass; the kernel runs the same code) times their operation
+ *                    count 4.5 n(n+1) + 30 (de Casteljau on homogeneous points,
+ *                    derivatives, quotient rule).  A lower bound: the rest of
+ *                    the metric's arithmetic is not counted.
  *   run              a whole run (published curves, tiller/cobb/ahn, hausdorff,
  *                    4 tolerances) with 1 and N threads: jobs per second
  */
@@ -22,6 +30,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "../kernels/metric_core.h"
 #include "../methods/driver.h"
 #include "clrt.h"
 #include "commands.h"
@@ -58,6 +67,68 @@ static double fma_loop(long iters)
         for (int k = 0; k < 8; k++)
             x[k] = a * x[k] + c;
     return x[0] + x[1] + x[2] + x[3] + x[4] + x[5] + x[6] + x[7];
+}
+
+/* The same with 8 independent vector accumulators of the widest FMA unit. */
+typedef double v8d __attribute__((vector_size(64)));
+typedef double v4d __attribute__((vector_size(32)));
+
+/* fp-contract=fast: -std=c11 turns contraction off, and this loop must be FMAs */
+__attribute__((target("avx512f,fma"), optimize("fp-contract=fast"))) static double fma_avx512(long iters)
+{
+    v8d x[8], a = {0}, c = {0};
+    for (int k = 0; k < 8; k++)
+        for (int l = 0; l < 8; l++) {
+            x[k][l] = 1.0 + 0.01 * (8 * k + l);
+            a[l] = 0.999999;
+            c[l] = 1e-7;
+        }
+    for (long i = 0; i < iters; i++)
+        for (int k = 0; k < 8; k++)
+            x[k] = a * x[k] + c;
+    double s = 0;
+    for (int k = 0; k < 8; k++)
+        for (int l = 0; l < 8; l++)
+            s += x[k][l];
+    return s;
+}
+
+__attribute__((target("avx2,fma"), optimize("fp-contract=fast"))) static double fma_avx2(long iters)
+{
+    v4d x[10], a = {0.999999, 0.999999, 0.999999, 0.999999}, c = {1e-7, 1e-7, 1e-7, 1e-7};
+    for (int k = 0; k < 10; k++)
+        for (int l = 0; l < 4; l++)
+            x[k][l] = 1.0 + 0.01 * (4 * k + l);
+    for (long i = 0; i < iters; i++)
+        for (int k = 0; k < 10; k++)
+            x[k] = a * x[k] + c;
+    double s = 0;
+    for (int k = 0; k < 10; k++)
+        for (int l = 0; l < 4; l++)
+            s += x[k][l];
+    return s;
+}
+
+/* Peak of the widest vector FMA: flops, or 0 if the CPU has none. */
+static double fma_vector_peak(int threads, double *seconds, const char **isa)
+{
+    const long iters = 20000000;
+    double per = 0.0, sink = 0.0;
+    *isa = "none";
+    __builtin_cpu_init();
+    int w = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma") ? 512
+            : __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? 256 : 0;
+    if (!w)
+        return 0.0;
+    *isa = w == 512 ? "avx512" : "avx2";
+    per = w == 512 ? 2.0 * 64 * iters : 2.0 * 40 * iters;
+    double t0 = now_s();
+#pragma omp parallel num_threads(threads) reduction(+ : sink)
+    sink += w == 512 ? fma_avx512(iters) : fma_avx2(iters);
+    *seconds = now_s() - t0;
+    if (sink == 42.0)
+        fputs("", stderr);
+    return per * threads;
 }
 
 static double fma_peak(int threads, double *seconds)
@@ -190,8 +261,14 @@ int ob_cmd_bench(int argc, char **argv)
         peak[k] = fl / secs;
         row(&b, "fma_peak", "cpu", th, fl, secs, "flop/s");
     }
-    printf("FMA peak: %.2f GFLOP/s on 1 thread, %.2f on %d (x%.2f)\n", peak[0] / 1e9, peak[1] / 1e9, N,
-           peak[1] / peak[0]);
+    printf("FMA peak, scalar code as the CPU path is built: %.2f GFLOP/s on 1 thread, %.2f on %d (x%.2f)\n",
+           peak[0] / 1e9, peak[1] / 1e9, N, peak[1] / peak[0]);
+    const char *isa;
+    double vfl = fma_vector_peak(N, &secs, &isa), vpeak = vfl > 0 ? vfl / secs : 0.0;
+    if (vfl > 0) {
+        row(&b, "fma_vector", isa, N, vfl, secs, "flop/s");
+        printf("FMA peak, %s vector: %.2f GFLOP/s on %d threads: the machine's peak\n", isa, vpeak / 1e9, N);
+    }
 
     /* OpenCL */
     ob_cl *cl = NULL;
@@ -221,9 +298,11 @@ int ob_cmd_bench(int argc, char **argv)
         snprintf(what, sizeof what, "samples/%s", ob_metric_name(m));
         make_batch(R, base, approx, recs, m);
         cpu_batch(recs, 8, S, o1, 1);  /* warm-up */
+        obc_eval_count = 0;
         double t0 = now_s();
         cpu_batch(recs, R, S, o1, 1);
         double c1 = now_s() - t0;
+        const double flops = (double)obc_eval_count * (4.5 * 3 * 4 + 30);  /* cubics */
         t0 = now_s();
         cpu_batch(recs, R, S, o1, N);
         double cN = now_s() - t0;
@@ -231,6 +310,10 @@ int ob_cmd_bench(int argc, char **argv)
         row(&b, what, "cpu", N, (double)R * S, cN, "samples/s");
         printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", what, R * S / c1, R * S / cN, N,
                c1 / cN);
+        char gw[64];
+        snprintf(gw, sizeof gw, "gflops/%s", ob_metric_name(m));
+        row(&b, gw, "cpu", N, flops, cN, "flop/s");
+        double gbest = flops / cN;
         if (cl) {
             ob_cl_measure_batch(cl, recs, 8, S, o2);  /* warm-up: buffers, first launch */
             t0 = now_s();
@@ -243,9 +326,14 @@ int ob_cmd_bench(int argc, char **argv)
                     worst = fmax(worst, fabs(o1[i].err - o2[i].err) / fmax(fabs(o1[i].err), 1e-300));
                 printf("; OpenCL %9.0f (x%.2f vs CPU on %d threads; max rel. difference %.1e)", R * S / g, cN / g, N,
                        worst);
+                row(&b, gw, "opencl", 0, flops, g, "flop/s");
+                gbest = fmax(gbest, flops / g);
             }
         }
-        printf("\n");
+        printf("\n%-18s >= %.2f GFLOP/s at best (curve evaluations only), %.1f%% of the scalar peak%s",
+               "", gbest / 1e9, 100.0 * gbest / peak[1], vpeak > 0 ? "" : "\n");
+        if (vpeak > 0)
+            printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
     }
 
     /* whole runs, 1 vs N threads, on the CPU path */

@@ -30,11 +30,15 @@
 #define OBC_G __global
 #define OBC_FN
 #define OBC_INF ((double)INFINITY)
+#define OBC_COUNT_EVAL()
 #else
 #include <math.h>
 #define OBC_G
 #define OBC_FN static inline
 #define OBC_INF ((double)INFINITY)
+/* curve evaluations made by this thread: the benchmark's operation count */
+extern _Thread_local long obc_eval_count;
+#define OBC_COUNT_EVAL() (obc_eval_count++)
 #endif
 
 #define OBC_MAX_DEG 32           /* = OB_MAX_DEG */
@@ -59,6 +63,7 @@ OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double ou
     double q[OBC_MAX_DEG + 1][3];
     double lv2[3][3], lv1[2][3];
     const double s = 1.0 - t;
+    OBC_COUNT_EVAL();
     for (int i = 0; i <= n; i++)
         for (int k = 0; k < 3; k++)
             q[i][k] = h[3 * i + k];

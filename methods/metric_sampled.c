@@ -7,6 +7,8 @@
 
 #include "../kernels/metric_core.h"
 
+_Thread_local long obc_eval_count;
+
 /* Hausdorff keeps S samples of the offset and of the approximation. */
 static int measure_core(int code, const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
