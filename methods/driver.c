@@ -47,6 +47,11 @@ static const double MAXERR_MARGIN = 0.05;
  * them; slowly converging pieces (a factor 2) are not taken for stalled. */
 static const double STALL_RATIO = 0.9;
 enum { STALL_LEVELS = 4 };
+/* A method asks for a smaller piece when its output would not fit (too many
+ * arcs, spans or a pole); a few halvings cure that.  A piece still asking
+ * after this many halvings below its initial size never will: the job fails
+ * (instead of halving down to the segment limit). */
+enum { RETRY_LEVELS = 12 };
 
 /* One pending piece of one job. */
 typedef struct {
@@ -382,6 +387,12 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             return 0;
         }
         const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
+        if (retry && it->depth >= RETRY_LEVELS) {
+            snprintf(msg, sizeof msg, "%.60s, still after %d halvings, at t in [%.6g, %.6g] of segment %d",
+                     r->msg[0] ? r->msg : "the method needs a smaller piece", RETRY_LEVELS, it->a, it->b, it->seg);
+            job_end(j, s, OB_FAIL, msg);
+            return 0;
+        }
         if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
             accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;

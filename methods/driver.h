@@ -21,6 +21,8 @@
  * the job ends with status `limit` (its max_err then exceeds tol); after an
  * error floor the job's other pending pieces are kept as they are (the job
  * cannot reach tol); greedy ends likewise when not even a sliver passes.
+ * A method that still asks for a smaller piece (OB_RETRY_SMALLER) 12 halvings
+ * below the initial piece ends the job with status fail.
  *
  * Counting: k segments of degrees m_i joined end to end count 1 + sum m_i
  * control points (shared end points once), as the papers count.
