@@ -21,6 +21,9 @@
  *                    the metric's arithmetic is not counted.
  *   run              a whole run (published curves, tiller/cobb/ahn, hausdorff,
  *                    4 tolerances) with 1 and N threads: jobs per second
+ *   random_run       all methods at 5 tolerances on a fixed random set (--random
+ *                    24:1; 1000 curves would not fit the bench's time), CPU
+ *                    and OpenCL: jobs per second
  */
 #include <errno.h>
 #include <math.h>
@@ -37,6 +40,7 @@
 #include "curvefile.h"
 #include "datadir.h"
 #include "diag.h"
+#include "random.h"
 
 static double now_s(void)
 {
@@ -190,6 +194,38 @@ static void cpu_batch(const ob_measure_rec *recs, int n, int S, ob_errval *out, 
 }
 
 /* ---- whole runs --------------------------------------------------------- */
+
+/* Every method at 5 tolerances on the curves of set, hausdorff, mid split. */
+static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njobs)
+{
+    static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
+    const int nm = ob_method_count();
+    size_t n = 0;
+    for (int c = 0; c < set->n; c++)
+        n += (size_t)set->v[c].nd * nm * 5;
+    ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
+    if (!jobs)
+        return -1.0;
+    size_t k = 0;
+    for (int c = 0; c < set->n; c++)
+        for (int di = 0; di < set->v[c].nd; di++)
+            for (int m = 0; m < nm; m++)
+                for (int t = 0; t < 5; t++) {
+                    ob_job *j = &jobs[k++];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = ob_methods[m];
+                    j->metric = OB_METRIC_HAUSDORFF;
+                    j->split = OB_SPLIT_MID;
+                    j->tol = tols[t];
+                }
+    double t0 = now_s();
+    ob_driver_run(jobs, n, o);
+    double dt = now_s() - t0;
+    free(jobs);
+    *njobs = n;
+    return dt;
+}
 
 static double whole_run(int threads, const ob_curveset *set, ob_driver_opts *o, size_t *njobs)
 {
@@ -357,6 +393,28 @@ int ob_cmd_bench(int argc, char **argv)
         }
     }
     ob_curveset_free(&set);
+
+    /* all methods on a fixed random set */
+    ob_curveset rset = {0};
+    if (ob_random_append(&rset, 1, quick ? 8 : 24, NULL, 0, cerr, sizeof cerr) == 0) {
+        ob_driver_opts o;
+        ob_driver_defaults(&o);
+        omp_set_num_threads(N);
+        size_t nj = 0;
+        double c = random_run(&rset, &o, &nj);
+        row(&b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
+        printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
+               rset.n, ob_method_count(), nj, nj / c);
+        if (cl) {
+            o.batch = ob_cl_measure_batch;
+            o.batch_ctx = cl;
+            double g = random_run(&rset, &o, &nj);
+            row(&b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
+            printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);
+        }
+        printf("\n");
+    }
+    ob_curveset_free(&rset);
     ob_cl_close(cl);
     free(base);
     free(approx);

@@ -19,6 +19,18 @@ double ob_binom(int n, int k)
     return r;
 }
 
+void ob_bern_basis(int n, double t, double *B)
+{
+    const double s = 1.0 - t;
+    B[0] = 1.0;
+    for (int k = 1; k <= n; k++) {
+        B[k] = t * B[k - 1];
+        for (int j = k - 1; j >= 1; j--)
+            B[j] = s * B[j] + t * B[j - 1];
+        B[0] *= s;
+    }
+}
+
 double ob_bern_eval(const double *a, int n, double t)
 {
     if (n < 0 || n > OB_BERN_MAX)

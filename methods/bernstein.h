@@ -15,6 +15,9 @@ enum { OB_BERN_MAX = 128 };
  * rounded to a few ulps beyond). */
 double ob_binom(int n, int k);
 
+/* The basis values B_i^n(t), i = 0..n, into B[0..n] (de Casteljau triangle). */
+void ob_bern_basis(int n, double t, double *B);
+
 /* Value at t by de Casteljau (stable for t in [0,1]). */
 double ob_bern_eval(const double *a, int n, double t);
 

@@ -40,6 +40,8 @@
  */
 #include "method.h"
 
+#include "bernstein.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -73,19 +75,6 @@ static const ob_param hoschek_params[HP_COUNT] = {
      "directions (G1 ends, needs degree >= 3)"},
     {"degree", 0, "output degree; 0 = the base's degree"},
 };
-
-/* Bernstein basis values B_i^n(t), i = 0..n, by the de Casteljau triangle. */
-static void bern_values(int n, double t, double *B)
-{
-    const double s = 1.0 - t;
-    B[0] = 1.0;
-    for (int k = 1; k <= n; k++) {
-        B[k] = t * B[k - 1];
-        for (int j = k - 1; j >= 1; j--)
-            B[j] = s * B[j] + t * B[j - 1];
-        B[0] *= s;
-    }
-}
 
 static double dist2(const double a[2], const double b[2])
 {
@@ -204,7 +193,7 @@ static ob_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *wor
         ob_gls_init(&g, nunk, W->gls);
         for (int j = 1; j < M - 1; j++) {
             double B[OB_MAX_DEG + 1];
-            bern_values(m, W->u[j], B);
+            ob_bern_basis(m, W->u[j], B);
             for (int c = 0; c < 2; c++) {
                 double *row = W->row, rhs = W->q[j][c] - B[0] * Q0[c] - B[m] * Q1[c];
                 memset(row, 0, (size_t)nunk * sizeof *row);

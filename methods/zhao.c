@@ -79,6 +79,8 @@
  */
 #include "method.h"
 
+#include "bernstein.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -125,19 +127,6 @@ static const ob_param zhao_params[ZP_COUNT] = {
      "pole-free solution and says nothing of what to do without one, and a smaller piece usually "
      "has one), 0 = fail"},
 };
-
-/* Bernstein basis values B_i^n(t), i = 0..n, by the de Casteljau triangle. */
-static void bern_values(int n, double t, double *B)
-{
-    const double s = 1.0 - t;
-    B[0] = 1.0;
-    for (int k = 1; k <= n; k++) {
-        B[k] = t * B[k - 1];
-        for (int j = k - 1; j >= 1; j--)
-            B[j] = s * B[j] + t * B[j - 1];
-        B[0] *= s;
-    }
-}
 
 /* 1 if the Bernstein polynomial b (degree n, b[0] > 0) is positive on [0,1]:
  * all coefficients positive, else subdivide; an end value <= 0, or no proof
@@ -237,7 +226,7 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
         ob_gls_init(&g, nunk, W->gls);
         for (int j = 0; j < npt; j++) {
             double B[OB_MAX_DEG + 1];
-            bern_values(n, W->t[j], B);
+            ob_bern_basis(n, W->t[j], B);
             const double nx = W->nn[j][0], ny = W->nn[j][1];
             const double cxn = W->c[j][0] * ny - W->c[j][1] * nx;
             const double sig = it == 1 ? 0.0 : (W->e[j] >= 0.0 ? 1.0 : -1.0);
@@ -288,7 +277,7 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
         double dev = 0.0, sum = 0.0;
         for (int j = 0; j < npt; j++) {
             double B[OB_MAX_DEG + 1], P[2] = {0.0, 0.0}, q = 0.0;
-            bern_values(n, W->t[j], B);
+            ob_bern_basis(n, W->t[j], B);
             for (int i = 0; i <= n; i++) {
                 double Pi[2], bi;
                 unpack(W->x, n, rational, i, Pi, &bi);
