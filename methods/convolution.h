@@ -15,6 +15,7 @@
 #define OB_CONVOLUTION_H
 
 #include "curve.h"
+#include "method.h"
 
 /* Purpose: the moments w_i = int_0^1 C'(t) B_i^p(t) dt, i = 0..p, of a
  *          polynomial segment C of degree n >= 1:
@@ -39,5 +40,13 @@ int ob_conv_solve2(const double v1[2], const double v2[2], const double v[2], do
  * Returns: 0, or -1 if n + p > OB_MAX_DEG or n < 1 (out untouched). */
 int ob_conv_offset(const ob_bez *base, const double *alpha, int p, const double N0[2], double d,
                    ob_bez *out);
+
+/* Purpose: the preconditions shared by the normal-field convolution methods
+ *          (ahn, kim2018) and the end normals N(0), N(1).
+ * Returns: OB_OK; OB_SKIP for rational input or an output degree out_deg
+ *          past OB_MAX_DEG; OB_FAIL where C' vanishes at an end (a cusp); the
+ *          reason in msg. */
+ob_status ob_conv_prepare(const ob_bez *base, int out_deg, double N0[2], double N1[2], char *msg,
+                          size_t msglen);
 
 #endif

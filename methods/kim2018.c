@@ -42,24 +42,10 @@ static ob_status kim2018_fit(const ob_bez *base, const ob_fit_args *a, void *wor
     (void)work;
     const double d = a->d;
     const int n = base->deg;
-    if (base->rational) {
-        ob_method_msg(msg, msglen, "rational input is not supported (polynomial method)");
-        return OB_SKIP;
-    }
-    if (n < 1 || n + 1 > OB_MAX_DEG) {
-        ob_method_msg(msg, msglen, "degree %d: output degree %d outside 2..%d", n, n + 1,
-                      OB_MAX_DEG);
-        return OB_SKIP;
-    }
-    double e0[2][2], e1[2][2], N0[2], N1[2];
-    ob_bez_eval(base, 0.0, 1, e0);
-    ob_bez_eval(base, 1.0, 1, e1);
-    if ((e0[1][0] == 0.0 && e0[1][1] == 0.0) || (e1[1][0] == 0.0 && e1[1][1] == 0.0)) {
-        ob_method_msg(msg, msglen, "C' vanishes at an end of the piece (cusp)");
-        return OB_FAIL;
-    }
-    ob_bez_normal(base, 0.0, N0);
-    ob_bez_normal(base, 1.0, N1);
+    double N0[2], N1[2];
+    const ob_status pre = ob_conv_prepare(base, n + 1, N0, N1, msg, msglen);
+    if (pre != OB_OK)
+        return pre;
     double w[2][2], alpha[2];
     ob_conv_moments(base, 1, w);
     const double v[2] = {N1[0] - N0[0], N1[1] - N0[1]};
