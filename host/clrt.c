@@ -423,7 +423,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     for (int i = 0; i < n; i++) {
         nctrl += 3 * (size_t)(recs[i].base->deg + 1) + 3 * (size_t)(recs[i].approx->deg + 1);
         if (recs[i].metric == OB_METRIC_HAUSDORFF)
-            nscr += 4 * (size_t)S;
+            nscr += ob_metric_scratch(S);
     }
     if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2)
         return -1;
@@ -444,7 +444,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
         pc += 3 * (size_t)(a->deg + 1);
         c->h_soff[i] = (int)ps;
         if (recs[i].metric == OB_METRIC_HAUSDORFF)
-            ps += 4 * (size_t)S;
+            ps += ob_metric_scratch(S);
     }
     const size_t ni = (size_t)n * sizeof(int), nd = (size_t)n * sizeof(double);
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->metric, CL_FALSE, 0, ni, c->h_metric, 0, NULL, NULL));

@@ -223,12 +223,19 @@ OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
 /* Everything an error evaluation needs, passed by value (no pointers to
  * structs across OpenCL address spaces). */
 #define OBC_ARGS const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d, int S, \
-                 const OBC_G double *tgt
-#define OBC_PASS hb, nb, ha, na, d, S, tgt
+                 const OBC_G double *tgt, const OBC_G double *qry
+#define OBC_PASS hb, nb, ha, na, d, S, tgt, qry
+
+/* Hausdorff sample tables: per sample k, OBC_REC doubles at [OBC_REC k]:
+ * point, derivative and curvature vector (obc_pc_eval) of the offset O or
+ * of the approximation A at t_k.  Kept so that a query at a sample point and
+ * the first Newton step of its projection cost no curve evaluation. */
+#define OBC_REC 6
+#define OBC_SCRATCH_PER_SAMPLE (2 * OBC_REC)
 
 OBC_FN double obc_radial_err(OBC_ARGS, double t)
 {
-    (void)S, (void)tgt;
+    (void)S, (void)tgt, (void)qry;
     double p[2], q[2];
     obc_point(hb, nb, t, p);
     obc_point(ha, na, t, q);
@@ -248,7 +255,7 @@ OBC_FN double obc_normal_g(const OBC_G double *ha, int na, double u, const doubl
 
 OBC_FN double obc_normal_err(OBC_ARGS, double t)
 {
-    (void)tgt;
+    (void)tgt, (void)qry;
     double P[2], N[2], dg = 0.0;
     obc_point(hb, nb, t, P);
     obc_normal(hb, nb, t, N);
@@ -321,19 +328,34 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
  * when dc != 0) near t0 within [lo,hi]; *tp gets the foot parameter.  Newton on
  * f(t) = (P - Q).P', whose derivative near the foot is |P'|^2 (1 - K.(Q - P)):
  * quadratic convergence even where the distance is comparable to the radius
- * of curvature.  Settled when a step is below 1e-8 of the bracket (the
+ * of curvature.  start: P, P', K at t0 if known (else NULL).
+ * cut: the caller only needs distances above cut.  The result never exceeds
+ * the distance to any point tried, so once that is <= cut it is returned at
+ * once: an upper bound that the caller's comparison treats exactly like the
+ * settled distance (branch and bound; pass a negative cut for the exact
+ * distance).  Settled when a step is below 1e-8 of the bracket (the
  * distance is then exact far below that, being quadratic in the parameter
  * error) or stops shrinking (round-off in (P - Q).P' is the floor).  Beyond
  * the centre of curvature (1 - K.(Q - P) small or negative) Newton is not
  * safe; there, and wherever it has not settled in 20 steps, golden-section
  * search on the bracket takes over. */
 OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const double Q[2], double t0, double lo,
-                          double hi, double *tp)
+                          double hi, const OBC_G double *start, double cut, double *tp)
 {
     double t = t0, P[2], dP[2], K[2];
-    obc_pc_eval(hc, nc, dc, t, P, dP, K);
+    if (start) {
+        P[0] = start[0], P[1] = start[1];
+        dP[0] = start[2], dP[1] = start[3];
+        K[0] = start[4], K[1] = start[5];
+    } else {
+        obc_pc_eval(hc, nc, dc, t, P, dP, K);
+    }
     double best = obc_dist(Q, P), tb = t, prev = OBC_INF;
     int settled = 0;
+    if (best <= cut) {
+        *tp = tb;
+        return best;
+    }
     for (int it = 0; it < 20 && !settled; it++) {
         const double dd = dP[0] * dP[0] + dP[1] * dP[1];
         const double r0 = Q[0] - P[0], r1 = Q[1] - P[1];
@@ -353,8 +375,10 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
             best = e;
             tb = t;
         }
+        if (best <= cut)
+            break;
     }
-    if (!settled) {
+    if (!settled && !(best <= cut)) {
         const double g = 0.6180339887498949;
         double a = lo, b = hi, x1 = b - g * (b - a), x2 = a + g * (b - a);
         obc_pc_eval(hc, nc, dc, x1, P, dP, K);
@@ -389,21 +413,27 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
 }
 
 /* Hausdorff, one side: distance from the query curve's point at u to the
- * target curve, whose S samples are tgt[2k], tgt[2k+1].  kind OBC_K_H_APPROX:
- * query A, target O; OBC_K_H_OFFSET: query O, target A.  *tfoot: the foot. */
-OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, double *tfoot)
+ * target curve, whose sample table is tgt.  kind OBC_K_H_APPROX: query A,
+ * target O; OBC_K_H_OFFSET: query O, target A.  k >= 0: u is sample k and the
+ * query point is read from the query table qry.  cut: as in obc_project.
+ * *tfoot: the foot. */
+OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, double *tfoot)
 {
     const int to_offset = kind == OBC_K_H_APPROX;
     double Q[2], dQ[2], K[2];
-    if (to_offset)
+    if (k >= 0) {
+        Q[0] = qry[OBC_REC * k];
+        Q[1] = qry[OBC_REC * k + 1];
+    } else if (to_offset) {
         obc_pc_eval(ha, na, 0.0, u, Q, dQ, K);
-    else
+    } else {
         obc_pc_eval(hb, nb, d, u, Q, dQ, K);
+    }
     /* nearest sample: coarse global scan, then local descent (squared distances) */
     int jb = 0;
     double db = OBC_INF;
     for (int j = 0; j < S; j += 4) {
-        const double x = Q[0] - tgt[2 * j], y = Q[1] - tgt[2 * j + 1], e = x * x + y * y;
+        const double x = Q[0] - tgt[OBC_REC * j], y = Q[1] - tgt[OBC_REC * j + 1], e = x * x + y * y;
         if (e < db) {
             db = e;
             jb = j;
@@ -415,7 +445,7 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, double *tfoot)
             const int j = jb + sgn;
             if (j < 0 || j >= S)
                 continue;
-            const double x = Q[0] - tgt[2 * j], y = Q[1] - tgt[2 * j + 1], e = x * x + y * y;
+            const double x = Q[0] - tgt[OBC_REC * j], y = Q[1] - tgt[OBC_REC * j + 1], e = x * x + y * y;
             if (e < db) {
                 db = e;
                 jb = j;
@@ -428,17 +458,19 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, double *tfoot)
     const double lo = obc_sample_t(jb > 0 ? jb - 1 : 0, S);
     const double hi = obc_sample_t(jb < S - 1 ? jb + 1 : S - 1, S);
     if (to_offset)
-        return obc_project(hb, nb, d, Q, obc_sample_t(jb, S), lo, hi, tfoot);
-    return obc_project(ha, na, 0.0, Q, obc_sample_t(jb, S), lo, hi, tfoot);
+        return obc_project(hb, nb, d, Q, obc_sample_t(jb, S), lo, hi, tgt + OBC_REC * jb, cut, tfoot);
+    return obc_project(ha, na, 0.0, Q, obc_sample_t(jb, S), lo, hi, tgt + OBC_REC * jb, cut, tfoot);
 }
 
-OBC_FN double obc_err_at(int kind, OBC_ARGS, double t)
+/* The error at t; k >= 0 when t is sample k (Hausdorff reuses its tables);
+ * Hausdorff may return any value <= cut when the error is <= cut. */
+OBC_FN double obc_err_at(int kind, OBC_ARGS, double t, int k, double cut)
 {
     double tf;
     switch (kind) {
     case OBC_K_RADIAL: return obc_radial_err(OBC_PASS, t);
     case OBC_K_NORMAL: return obc_normal_err(OBC_PASS, t);
-    default: return obc_side_dist(kind, OBC_PASS, t, &tf);
+    default: return obc_side_dist(kind, OBC_PASS, t, k, cut, &tf);
     }
 }
 
@@ -447,20 +479,20 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, double *tar
 {
     const double g = 0.6180339887498949;
     double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = obc_err_at(kind, OBC_PASS, x1), f2 = obc_err_at(kind, OBC_PASS, x2);
+    double f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0), f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0);
     for (int it = 0; it < 40 && b - a > 1e-13; it++) {
         if (f1 > f2) {
             b = x2;
             x2 = x1;
             f2 = f1;
             x1 = b - g * (b - a);
-            f1 = obc_err_at(kind, OBC_PASS, x1);
+            f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0);
         } else {
             a = x1;
             x1 = x2;
             f1 = f2;
             x2 = a + g * (b - a);
-            f2 = obc_err_at(kind, OBC_PASS, x2);
+            f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0);
         }
     }
     if (f1 > f2) {
@@ -472,13 +504,15 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, double *tar
 }
 
 /* Sample S parameters, take the largest error, refine it between the
- * neighbours.  A NaN or infinite sample ends the scan as the worst. */
+ * neighbours.  A NaN or infinite sample ends the scan as the worst.  Each
+ * sample is asked only for errors above the running maximum (the cut), which
+ * lets the Hausdorff projection stop early without changing the result. */
 OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 {
     double best = -1.0;
     int kb = 0;
     for (int k = 0; k < S; k++) {
-        const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S));
+        const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best);
         if (!(e <= best)) {
             best = e;
             kb = k;
@@ -505,16 +539,17 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 
 /* Purpose: the error of approximation (ha, na) against the exact d-offset of
  * base (hb, nb) under a sampled metric, and the base parameter of its maximum.
- * scratch: 4 S doubles (hausdorff: samples of O and of A).  S >= 2. */
+ * scratch: OBC_SCRATCH_PER_SAMPLE S doubles (hausdorff: the sample tables of
+ * O and of A).  S >= 2. */
 OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
                         int S, OBC_G double *scratch, double *err, double *t)
 {
     if (metric == OBC_RADIAL) {
-        obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, err, t);
+        obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, scratch, err, t);
         return;
     }
     if (metric == OBC_NORMAL) {
-        obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, err, t);
+        obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, scratch, err, t);
         return;
     }
     if (metric != OBC_HAUSDORFF) {
@@ -522,24 +557,26 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
         *t = 0.0;
         return;
     }
-    OBC_G double *O = scratch, *A = scratch + 2 * S;
+    OBC_G double *O = scratch, *A = scratch + OBC_REC * S;
     for (int k = 0; k < S; k++) {
         double P[2], dP[2], K[2];
         obc_pc_eval(hb, nb, d, obc_sample_t(k, S), P, dP, K);
-        O[2 * k] = P[0];
-        O[2 * k + 1] = P[1];
+        O[OBC_REC * k] = P[0], O[OBC_REC * k + 1] = P[1];
+        O[OBC_REC * k + 2] = dP[0], O[OBC_REC * k + 3] = dP[1];
+        O[OBC_REC * k + 4] = K[0], O[OBC_REC * k + 5] = K[1];
         obc_pc_eval(ha, na, 0.0, obc_sample_t(k, S), P, dP, K);
-        A[2 * k] = P[0];
-        A[2 * k + 1] = P[1];
+        A[OBC_REC * k] = P[0], A[OBC_REC * k + 1] = P[1];
+        A[OBC_REC * k + 2] = dP[0], A[OBC_REC * k + 3] = dP[1];
+        A[OBC_REC * k + 4] = K[0], A[OBC_REC * k + 5] = K[1];
     }
     double e1, t1, e2, t2, tf;
     /* from A to O: the maximum's parameter is A's; report its foot on O */
-    obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, &e1, &t1);
+    obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, &e1, &t1);
     if (!(isnan(e1) || isinf(e1))) {
-        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, t1, &tf);
+        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, t1, -1, -1.0, &tf);
         t1 = tf;
     }
-    obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, &e2, &t2);
+    obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, &e2, &t2);
     if (e1 >= e2) {
         *err = e1;
         *t = t1;

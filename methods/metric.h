@@ -50,12 +50,17 @@ typedef struct {
 /* Purpose: error of `approx` against the exact d-offset of `base`.
  * Inputs:  samples S (ignored by bound), clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES].
  * Returns: 0; -1 if the metric cannot be applied (bound with a degree past
- *          OB_BERN_MAX), with out->err = +inf. */
+ *          OB_BERN_MAX; no memory for the sample tables past S = 512), with
+ *          out->err = +inf. */
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out);
 
 /* The sample count actually used: S clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES]. */
 int ob_clamp_samples(int samples);
+
+/* Doubles of working space one sampled measurement needs at S samples (the
+ * OpenCL host sizes its scratch buffer with it). */
+size_t ob_metric_scratch(int samples);
 
 /* The individual metrics (same contract, S clamped likewise). */
 int ob_metric_bound(const ob_bez *base, const ob_bez *approx, double d, ob_errval *out);

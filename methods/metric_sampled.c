@@ -7,14 +7,30 @@
 
 #include "../kernels/metric_core.h"
 
+#include <stdlib.h>
+
 _Thread_local long obc_eval_count;
 
-/* Hausdorff keeps S samples of the offset and of the approximation. */
+size_t ob_metric_scratch(int S) { return (size_t)OBC_SCRATCH_PER_SAMPLE * (size_t)ob_clamp_samples(S); }
+
+/* Hausdorff keeps sample tables of the offset and of the approximation: on
+ * the stack up to the default S, on the heap past it (at most 384 KiB). */
+enum { STACK_SAMPLES = 512 };
+
 static int measure_core(int code, const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
-    double scratch[4 * OB_MAX_SAMPLES];
-    obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, ob_clamp_samples(S),
-                scratch, &out->err, &out->t);
+    double local[OBC_SCRATCH_PER_SAMPLE * STACK_SAMPLES];
+    S = ob_clamp_samples(S);
+    double *scratch = local;
+    if (S > STACK_SAMPLES && !(scratch = malloc(ob_metric_scratch(S) * sizeof *scratch))) {
+        out->err = (double)INFINITY;
+        out->t = 0.0;
+        return -1;
+    }
+    obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, S, scratch, &out->err,
+                &out->t);
+    if (scratch != local)
+        free(scratch);
     return 0;
 }
 
