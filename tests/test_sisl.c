@@ -33,7 +33,9 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "host/random.h"
 #include "methods/bspline.h"
+#include "methods/driver.h"
 #include "methods/curve.h"
 #include "methods/method.h"
 #include "methods/metric.h"
@@ -551,8 +553,9 @@ static void test_status(void)
     }
 
     /* max_step reaches s1360: it changes SISL's step and so the count */
-    CHECK(M->nparams == 1 && strcmp(M->params[0].name, "max_step") == 0 && M->params[0].def == 0.0,
-          "max_step parameter");
+    CHECK(M->nparams == 2 && strcmp(M->params[0].name, "max_step") == 0 && M->params[0].def == 0.0 &&
+              strcmp(M->params[1].name, "timeout") == 0 && M->params[1].def > 0.0,
+          "max_step and timeout parameters");
     int stat = 0;
     SISLCurve *rc = sisl_direct(&C, 1.0, 1e-2, 0.5, &stat);
     st = fit(&C, 1.0, 1e-2, 0.5, &f, msg);
@@ -635,8 +638,52 @@ static void test_threads(void)
     CHECK(same, "fits on 4 threads at once differ from serial fits");
 }
 
+/* s1360 loops without end on a degenerate random cubic cut down to a piece
+ * 7e-7 long (--random 500:7, curve 223, d 0.1077, tol 1e-2, found by a
+ * 20 GB run that never ended).  The fit must come back failed, with the
+ * reason, within its timeout, and the next fit must work again (a new SISL
+ * process). */
+static void test_runaway(void)
+{
+    ob_curveset set = {0};
+    char err[256];
+    char *ids[] = {"rnd7_000223"};
+    CHECK(ob_random_append(&set, 7, 500, ids, 1, err, sizeof err) == 0 && set.n == 1, "random curve 223: %s",
+          err);
+    if (set.n != 1)
+        return;
+    const ob_method *sm = ob_method_find("sisl");
+    double par[OB_MAX_PARAMS];
+    ob_param_defaults(sm, par);
+    par[1] = 0.5; /* timeout, seconds */
+    ob_job j;
+    memset(&j, 0, sizeof j);
+    j.curve = &set.v[0];
+    j.d = 0.1077;
+    j.method = sm;
+    j.params = par;
+    j.metric = OB_METRIC_HAUSDORFF;
+    j.split = OB_SPLIT_MID;
+    j.tol = 1e-2;
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    CHECK(ob_driver_run(&j, 1, &o) == 0, "driver run");
+    CHECK(j.status == OB_FAIL && strstr(j.message, "did not finish in 0.5 s"),
+          "runaway s1360 is stopped: status %s, '%s'", ob_status_name(j.status), j.message);
+    /* the same thread's next fit gets a fresh SISL process */
+    ob_curve *lc = &set.v[0];
+    ob_bez seg = lc->seg[0];
+    ob_fit f;
+    char msg[160] = "";
+    ob_fit_args a = {0.1077, 1e-1, par};
+    ob_status st = sm->fit(&seg, &a, NULL, &f, msg, sizeof msg);
+    CHECK(st == OB_OK && f.n >= 1, "fit after a killed server: %s %s", ob_status_name(st), msg);
+    ob_curveset_free(&set);
+}
+
 int main(void)
 {
+    test_runaway();
     test_structure();
     test_lines();
     test_rational();
