@@ -24,12 +24,14 @@ LDFLAGS += -fopenmp $(SANFLAGS)
 LDLIBS  += -lsisl -lm -ldl
 
 LIB_SRC  := $(sort $(wildcard methods/*.c) $(filter-out host/main.c,$(wildcard host/*.c)))
-LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o
+LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o \
+            $(BUILD)/embedded_published.o
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 TEST_BIN := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 TEST_SH  := $(sort $(wildcard tests/e2e_*.sh))
 DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
+PUBLISHED := results/published/published_tables.csv
 
 .PHONY: all test run deps clean bench FORCE
 all: $(BIN)
@@ -52,6 +54,10 @@ $(BUILD)/buildinfo.h: FORCE
 $(BUILD)/embedded_data.c: $(DATASETS) scripts/embed_data.sh
 	@mkdir -p $(BUILD)
 	sh scripts/embed_data.sh ob_embedded_files $(DATASETS) > $@
+
+$(BUILD)/embedded_published.c: $(PUBLISHED) scripts/embed_data.sh
+	@mkdir -p $(BUILD)
+	sh scripts/embed_data.sh ob_embedded_published $(PUBLISHED) > $@
 
 $(BUILD)/embedded_kernels.c: $(KERNELS) scripts/embed_data.sh
 	@mkdir -p $(BUILD)

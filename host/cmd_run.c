@@ -43,7 +43,7 @@ int ob_mkdir_p(const char *dir)
 
 /* Writes DIR/NAME through a temporary file and a rename, so a reader never
  * sees a half-written file. */
-static int write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx)
+int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx)
 {
     char path[4200], tmp[4210];
     snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -161,7 +161,7 @@ static ob_job *plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *n
 /* --backend: opencl must work (exit 2 with the reason otherwise), auto uses it
  * when it works and says why not in meta.json, cpu never tries.  The kernel
  * is built here, once, before any timed work. */
-static int open_backend(ob_run_opts *o, ob_cl **cl)
+int ob_open_backend(ob_run_opts *o, ob_cl **cl)
 {
     ob_backend_info *b = &o->binfo;
     if (o->backend == OB_BACKEND_CPU) {
@@ -223,7 +223,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         status = 1;
         goto done;
     }
-    if (open_backend(&o, &cl) != 0)
+    if (ob_open_backend(&o, &cl) != 0)
         goto done;
     ob_progress bar;
     ob_progress_init(&bar);
@@ -237,8 +237,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
     run_out r = {jobs, njobs, &o, where, wall};
     status = 0;
-    if (write_atomically(o.out_dir, "results.csv", write_results_cb, &r) != 0 ||
-        write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) != 0)
+    if (ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) != 0 ||
+        ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) != 0)
         status = 1;
     if (drc != 0) {
         ob_error("ran out of memory; unfinished jobs are marked fail");

@@ -6,11 +6,28 @@
 #ifndef OB_COMMANDS_H
 #define OB_COMMANDS_H
 
+#include <stdio.h>
+
+#include "clrt.h"
+#include "options.h"
+
 int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv);
 int ob_cmd_list(int argc, char **argv);
 int ob_cmd_bench(int argc, char **argv);
 
+int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv);
+
 /* Creates dir and its parents (mode 0777 & umask); 0 or -1 (errno set). */
 int ob_mkdir_p(const char *dir);
+
+/* Writes DIR/NAME through NAME.tmp and a rename (a reader never sees half a
+ * file); writer returns 0 or -1.  Returns 0, or -1 after ob_error(). */
+int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx);
+
+/* Opens the backend o->backend asks for (the kernel built once, here) and
+ * plugs it into o->driver; fills o->binfo.  auto falls back to the CPU and
+ * says why in binfo.why_cpu.  Returns 0, or -1 after ob_error() when opencl
+ * was required and is not available. */
+int ob_open_backend(ob_run_opts *o, ob_cl **cl);
 
 #endif

@@ -16,6 +16,7 @@ static const char usage[] =
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"
     "                    [--out DIR]\n"
+    "  ./offbench tables [--out DIR] [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n"
     "  ./offbench list   methods|curves|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
     "See README.md for what each option means.\n";
@@ -31,6 +32,8 @@ int main(int argc, char **argv)
         return ob_cmd_run(argc - 1, argv + 1, argc, argv);
     if (strcmp(cmd, "list") == 0)
         return ob_cmd_list(argc - 1, argv + 1);
+    if (strcmp(cmd, "tables") == 0)
+        return ob_cmd_tables(argc - 1, argv + 1, argc, argv);
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {

@@ -146,6 +146,29 @@ check '[ $? -eq 2 ]' "unknown command exits 2"
 $OB list nothing >/dev/null 2>&1
 check '[ $? -eq 2 ]' "list of an unknown subject exits 2"
 
+# --- tables: the published cells under the paper protocol ---
+$OB tables --table liu2002:1,ahn2023:1,ahn2023:3-left,zhao2017:1 --protocols paper --out "$T/tab" 2>"$T/tab.err"
+check '[ $? -eq 0 ] && [ -s "$T/tab/tables.csv" ] && [ -s "$T/tab/tables.md" ] && [ -s "$T/tab/zhao_sweep.csv" ]' \
+    "tables writes tables.csv, tables.md and zhao_sweep.csv"
+hdr=$(head -n 1 "$T/tab/tables.csv")
+check '[ "${hdr#source,table,curve,d,tol,method,label,protocol,published,ours,ratio,status}" != "$hdr" ]' "tables.csv header: $hdr"
+tab() { awk -F, -v l="$1" -v s="$2" 'NR>1 && $1==s && $7==l {printf "%s:%s ", $10, $12}' "$T/tab/tables.csv"; }
+check '[ "$(tab Til liu2002)" = "10:match 31:match 97:match 322:match 886:match " ]' "Til under paper: $(tab Til liu2002)"
+check '[ "$(tab Cob liu2002)" = "10:match 31:match 94:match 316:match 865:match " ]' "Cob under paper: $(tab Cob liu2002)"
+got=$(awk -F, 'NR>1 && $1=="ahn2023" && $2=="1" && $6=="ahn" {printf "%s:%s ", $10, $12}' "$T/tab/tables.csv")
+check '[ "$got" = "13:match 19:match 31:match 43:match 61:match " ]' "Ahn 'Our method' under paper: $got"
+check '[ "$(awk -F, '"'"'NR>1 && $6=="cl" && $12!="no-method"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 0 ]' "CL is no-method"
+check '[ "$(awk -F, '"'"'NR>1 && $2=="3-left" && $6=="ahn" && $12=="no-data"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 5 ]' "the S is no-data"
+check '[ "$(grep -c "" "$T/tab/tables.csv")" -eq $((1 + 35 + 35 + 25 + 9)) ]' "one row per published cell"
+check 'grep -q "^## Liu & Wang 2002" "$T/tab/tables.md" && grep -q "Per column, match / close / differs" "$T/tab/tables.md"' "tables.md lays out the tables"
+$OB tables --table nosuch:1 --out "$T/tab2" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--table" "$T/e.txt"' "tables --table of an unknown table exits 2"
+$OB tables --protocols fast --out "$T/tab2" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--protocols" "$T/e.txt"' "tables --protocols of an unknown protocol exits 2"
+printf 'source,table,curve,d,tol,method,label,value,unit\nliu2002,1,liu2002_ex1,1,1e-1,tiller,Til,"10,ctrl_points\n' > "$T/badpub.csv"
+OFFBENCH_PUBLISHED="$T/badpub.csv" $OB tables --out "$T/tab3" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "badpub.csv:2: unterminated quote" "$T/e.txt"' "a malformed published file names file and line"
+
 # an unwritable output directory is a run-time failure (1), after a message
 if [ "$(id -u)" != 0 ]; then
     mkdir "$T/ro" && chmod 500 "$T/ro"
