@@ -2,6 +2,7 @@
 #   make            build ./offbench
 #   make test       build and run every test; last line "N passed, N failed"
 #   make run        the default job on the embedded data, into out/run
+#   make tables     reproduce the published tables into results/, plots, README
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 
@@ -33,7 +34,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv
 
-.PHONY: all test run deps clean bench FORCE
+.PHONY: all test run deps clean bench tables FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -89,6 +90,13 @@ test: $(BIN) $(TEST_BIN)
 run: $(BIN)
 	./$(BIN) run --out out/run
 	@echo "wrote out/run/results.csv and out/run/meta.json"
+
+# The published tables, cell by cell, their plots, and the README section
+# generated from them (needs Debian's python3-matplotlib for the plots).
+tables: $(BIN)
+	./$(BIN) tables --out results/tables
+	/usr/bin/python3 scripts/plot_tables.py results/tables/tables.csv results/plots
+	/usr/bin/python3 scripts/readme_tables.py results/tables/tables.md README.md
 
 bench: $(BIN)
 	./$(BIN) bench --out out/bench
