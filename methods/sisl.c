@@ -139,33 +139,20 @@ typedef struct {
     double *et, *ecoef;     /* in + ik knots, idim * in coefficients (malloc) */
 } sisl_result;
 
-static int write_all(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            return -1;
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-/* Reads exactly n bytes (the server side, no deadline); -1 at EOF or error. */
-static int read_all(int fd, void *buf, size_t n)
+/* Moves exactly n bytes to (writing) or from fd, retrying short transfers
+ * and interruptions; -1 at EOF or on an error.  No deadline: the server side,
+ * and the fit's request (a pipe with room for it). */
+static int xfer_all(int fd, void *buf, size_t n, int writing)
 {
     char *p = buf;
     while (n > 0) {
-        ssize_t r = read(fd, p, n);
-        if (r < 0 && errno == EINTR)
+        ssize_t k = writing ? write(fd, p, n) : read(fd, p, n);
+        if (k < 0 && errno == EINTR)
             continue;
-        if (r <= 0)
+        if (k <= 0)
             return -1;
-        p += r;
-        n -= (size_t)r;
+        p += k;
+        n -= (size_t)k;
     }
     return 0;
 }
@@ -185,7 +172,7 @@ static void server_loop(int in, int out)
     setrlimit(RLIMIT_DATA, &rl);
 #endif
     sisl_request q;
-    while (read_all(in, &q, sizeof q) == 0) {
+    while (xfer_all(in, &q, sizeof q, 0) == 0) {
         double knots[2 * (OB_MAX_DEG + 1)];
         for (int i = 0; i <= q.n; i++) {
             knots[i] = 0.0;
@@ -202,10 +189,10 @@ static void server_loop(int in, int out)
         if (rc && rc->in > 0 && rc->ik > 0 && rc->idim > 0) {
             hdr[1] = rc->ik, hdr[2] = rc->in, hdr[3] = rc->idim, hdr[4] = rc->ikind;
         }
-        int ok = write_all(out, hdr, sizeof hdr) == 0;
+        int ok = xfer_all(out, hdr, sizeof hdr, 1) == 0;
         if (ok && hdr[1])
-            ok = write_all(out, rc->et, (size_t)(rc->in + rc->ik) * sizeof(double)) == 0 &&
-                 write_all(out, rc->ecoef, (size_t)rc->in * (size_t)rc->idim * sizeof(double)) == 0;
+            ok = xfer_all(out, rc->et, (size_t)(rc->in + rc->ik) * sizeof(double), 1) == 0 &&
+                 xfer_all(out, rc->ecoef, (size_t)rc->in * (size_t)rc->idim * sizeof(double), 1) == 0;
         if (pc)
             freeCurve(pc);
         if (rc)
@@ -323,7 +310,8 @@ static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, 
     memset(&ign, 0, sizeof ign);
     ign.sa_handler = SIG_IGN;
     sigaction(SIGPIPE, &ign, &old);
-    int wrc = write_all(srv.to, q, sizeof *q);
+    sisl_request copy = *q;
+    int wrc = xfer_all(srv.to, &copy, sizeof copy, 1);
     sigaction(SIGPIPE, &old, NULL);
     const double deadline = now_s() + timeout;
     int hdr[5];
