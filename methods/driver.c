@@ -93,6 +93,7 @@ typedef struct {
     int dead;       /* failed or skipped: drop its remaining items */
     int finished;   /* counted as done for progress */
     int floored;    /* a piece hit an error floor: keep the rest as they are */
+    ob_span_log *spans; /* NULL, or where accepted pieces go */
 } jstate;
 
 static double now_ns(void)
@@ -179,9 +180,37 @@ static int plan_job(const ob_job *j, int jobidx, const ob_driver_opts *o, itemve
     return 0;
 }
 
-/* Accept a finished segment (pieces with their degrees and error). */
-static void accept(ob_job *j, jstate *s, int npieces, int ctrl_add, int maxdeg, double err)
+static void log_span(ob_span_log *L, int seg, double a, double b)
 {
+    if (!L)
+        return;
+    if (L->n == L->cap) {
+        int nc = L->cap ? 2 * L->cap : 16;
+        ob_span *nv = realloc(L->v, (size_t)nc * sizeof *nv);
+        if (!nv) {
+            L->oom = 1;
+            return;
+        }
+        L->v = nv;
+        L->cap = nc;
+    }
+    L->v[L->n++] = (ob_span){seg, a, b};
+}
+
+static int span_cmp(const void *x, const void *y)
+{
+    const ob_span *p = x, *q = y;
+    if (p->seg != q->seg)
+        return p->seg < q->seg ? -1 : 1;
+    return p->a < q->a ? -1 : p->a > q->a;
+}
+
+/* Accept a finished segment (pieces with their degrees and error) covering
+ * [a, b] of base segment seg. */
+static void accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg,
+                   double err)
+{
+    log_span(s->spans, seg, a, b);
     j->segments += npieces;
     s->ctrl_add += ctrl_add;
     if (maxdeg > j->out_degree)
@@ -383,7 +412,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
 
     if (j->split != OB_SPLIT_GREEDY) {
         if (pass) {
-            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;
         }
         const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
@@ -394,11 +423,11 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             return 0;
         }
         if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
-            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;
         }
         if (stall >= STALL_LEVELS && !(it->depth >= o->max_depth || full)) {
-            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
             snprintf(msg, sizeof msg, "error stalls at %.3g > tol under subdivision at t in [%.6g, %.6g] "
                      "of segment %d (%d splits without a 10%% drop); the rest kept as it was", r->err, it->a,
                      it->b, it->seg, STALL_LEVELS);
@@ -411,7 +440,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
                 job_end(j, s, OB_FAIL, msg);
                 return 0;
             }
-            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
             if (full)
                 snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
             else
@@ -446,7 +475,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             job_end(j, s, OB_FAIL, msg);
             return 0;
         }
-        accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+        accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
         if (!pass) {
             snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
             job_end(j, s, OB_LIMIT, msg);
@@ -455,7 +484,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     }
     if (pass) {
         if (it->b >= it->end) {
-            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
             return 0;
         }
         g.lo = it->b;
@@ -468,7 +497,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     }
     if (g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
         if (g.lo > g.a) {
-            accept(j, s, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err);
+            accept(j, s, it->seg, it->a, g.lo, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err);
             g.a = g.lo;
         } else if (retry) {
             job_end(j, s, OB_FAIL, msg);
@@ -477,7 +506,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             /* not even a sliver passes: an error floor subdivision cannot get
              * under; keep the sliver, fit the rest of the stretch once and keep
              * it too, and end the job with status limit */
-            accept(j, s, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
             snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
                      it->b - it->a, it->a, it->seg, r->err);
             job_end(j, s, OB_LIMIT, msg);
@@ -535,6 +564,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
         j->max_err = 0.0;
         j->fit_ns = j->eval_ns = 0.0;
         j->message[0] = '\0';
+        js[i].spans = o.spans ? &o.spans[i] : NULL;
     }
     int plan_fail = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : plan_fail)
@@ -620,6 +650,8 @@ out:
         }
         if (plans)
             free(plans[i].v);
+        if (o.spans && o.spans[i].n > 1)
+            qsort(o.spans[i].v, (size_t)o.spans[i].n, sizeof *o.spans[i].v, span_cmp);
     }
     free(plans);
     free(cur.v);

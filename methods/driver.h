@@ -72,6 +72,20 @@ typedef struct {
  * and then the driver measures that batch on the CPU instead. */
 typedef int (*ob_batch_fn)(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
 
+/* One accepted piece of a job: base parameters [a, b] of base segment seg. */
+typedef struct {
+    int seg;
+    double a, b;
+} ob_span;
+
+/* The accepted pieces of one job, in curve order (seg, then a) when the run
+ * ends.  Free v with free(). */
+typedef struct {
+    ob_span *v;
+    int n, cap;
+    int oom;            /* a span could not be stored: the log is incomplete */
+} ob_span_log;
+
 typedef struct {
     int samples;        /* per segment, for the sampled metrics */
     int max_depth;      /* pieces are not split below 2^-max_depth */
@@ -85,6 +99,10 @@ typedef struct {
      * number of finished jobs */
     void (*progress)(void *ctx, size_t done, size_t total);
     void *progress_ctx;
+    /* if not NULL: njobs logs, zeroed by the caller; spans[i] receives the
+     * accepted pieces of job i (draw and trace refit them to show the
+     * approximation: fits are deterministic) */
+    ob_span_log *spans;
 } ob_driver_opts;
 
 void ob_driver_defaults(ob_driver_opts *o);

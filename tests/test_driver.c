@@ -332,8 +332,64 @@ static void test_determinism(void)
     ob_curve_free(&c[1]);
 }
 
+/* The span log: the accepted pieces tile [0, 1] of the base, and refitting
+ * them with the method reproduces the job's segment and control-point counts
+ * (what draw and trace rely on). */
+static void test_span_log(void)
+{
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    const ob_driver_opts fast = fast_opts();
+    for (int m = 0; driver_methods[m]; m++)
+        for (int sp = 0; sp < OB_SPLIT_COUNT; sp++) {
+            ob_job j;
+            memset(&j, 0, sizeof j);
+            j.curve = &c;
+            j.d = 1.0;
+            j.method = ob_method_find(driver_methods[m]);
+            j.metric = OB_METRIC_HAUSDORFF;
+            j.split = (ob_split)sp;
+            j.tol = 1e-3;
+            ob_span_log log = {0};
+            ob_driver_opts o = fast;
+            o.spans = &log;
+            ob_driver_run(&j, 1, &o);
+            const char *name = driver_methods[m], *spn = ob_split_name((ob_split)sp);
+            CHECK(j.status == OB_OK && log.n > 0 && !log.oom, "%s/%s: spans logged (%d)", name, spn, log.n);
+            int tiled = log.n > 0 && log.v[0].a == 0.0 && log.v[log.n - 1].b == 1.0;
+            for (int i = 1; i < log.n; i++)
+                tiled = tiled && log.v[i].a == log.v[i - 1].b && log.v[i].seg == 0;
+            CHECK(tiled, "%s/%s: spans tile [0, 1] in order", name, spn);
+            long ctrl = 1;
+            int pieces = 0;
+            double par[OB_MAX_PARAMS];
+            ob_param_defaults(j.method, par);
+            void *work = malloc(j.method->work_size ? j.method->work_size : 1);
+            for (int i = 0; i < log.n; i++) {
+                ob_bez sub;
+                ob_fit fit;
+                char msg[160];
+                ob_bez_subsegment(&c.seg[0], log.v[i].a, log.v[i].b, &sub);
+                const ob_fit_args args = {j.d, j.tol, par};
+                if (j.method->fit(&sub, &args, work, &fit, msg, sizeof msg) != OB_OK)
+                    break;
+                pieces += fit.n;
+                if (fit.ctrl_points > 0)
+                    ctrl += fit.ctrl_points - 1;
+                else
+                    for (int p = 0; p < fit.n; p++)
+                        ctrl += fit.seg[p].deg;
+            }
+            free(work);
+            CHECK(pieces == j.segments && ctrl == j.ctrl_points, "%s/%s: refit gives %d pieces, %ld points (job %d, %ld)",
+                  name, spn, pieces, ctrl, j.segments, j.ctrl_points);
+            free(log.v);
+        }
+    ob_curve_free(&c);
+}
+
 int main(void)
 {
+    test_span_log();
     test_published_protocols();
     test_counting_and_tolerance();
     test_greedy_not_worse();
