@@ -86,10 +86,7 @@ static int write_meta_cb(FILE *f, void *ctx)
     return ob_write_meta(f, r->o, r->data, r->njobs, r->wall);
 }
 
-/* Loads the curves of a run: --curves FILE, then the --random curves; the
- * default set when neither is given.  `where` names them for messages and
- * meta.json. */
-static int load_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
+int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
 {
     char err[1024];
     int rc = 0;
@@ -203,7 +200,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     o.argc = full_argc;
     o.argv = full_argv;
     char where[4096];
-    if (load_curves(&o, &set, where, sizeof where) != 0)
+    if (ob_load_run_curves(&o, &set, where, sizeof where) != 0)
         goto done;
     if (o.threads > 0)
         omp_set_num_threads(o.threads);

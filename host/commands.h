@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "clrt.h"
+#include "curvefile.h"
 #include "options.h"
 
 int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv);
@@ -23,6 +24,12 @@ int ob_mkdir_p(const char *dir);
 /* Writes DIR/NAME through NAME.tmp and a rename (a reader never sees half a
  * file); writer returns 0 or -1.  Returns 0, or -1 after ob_error(). */
 int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx);
+
+/* Loads the curves a run's options select: --curves FILE, then the --random
+ * curves; the default set (datasets/ or the embedded copy) when neither is
+ * given; checks that every --curve ID exists.  `where` names the source for
+ * messages and meta.json.  Returns 0, or -1 after ob_error(). */
+int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen);
 
 /* Opens the backend o->backend asks for (the kernel built once, here) and
  * plugs it into o->driver; fills o->binfo.  auto falls back to the CPU and
