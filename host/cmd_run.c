@@ -4,6 +4,7 @@
  */
 #include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +39,13 @@ int ob_mkdir_p(const char *dir)
     }
     if (mkdir(buf, 0777) != 0 && errno != EEXIST)
         return -1;
+    struct stat st;
+    if (stat(buf, &st) != 0)
+        return -1;
+    if (!S_ISDIR(st.st_mode)) {  /* EEXIST from a file of that name */
+        errno = ENOTDIR;
+        return -1;
+    }
     return 0;
 }
 
@@ -72,7 +80,14 @@ typedef struct {
     const ob_run_opts *o;
     const char *data;
     double wall;
+    const double *rep_fit, *rep_eval;  /* --reps: reps x njobs timings */
 } run_out;
+
+static int write_samples_cb(FILE *f, void *ctx)
+{
+    run_out *r = ctx;
+    return ob_write_samples(f, r->jobs, r->njobs, r->o->reps, r->rep_fit, r->rep_eval);
+}
 
 static int write_results_cb(FILE *f, void *ctx)
 {
@@ -155,6 +170,104 @@ static ob_job *plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *n
     return jobs;
 }
 
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Median of v[0], v[stride], ... (n values); sorts a copy in tmp. */
+static double median_strided(const double *v, size_t stride, int n, double *tmp)
+{
+    for (int r = 0; r < n; r++)
+        tmp[r] = v[(size_t)r * stride];
+    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
+    return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+}
+
+static int same_result(const ob_job *a, const ob_job *b)
+{
+    return a->status == b->status && a->ctrl_points == b->ctrl_points && a->segments == b->segments &&
+           a->out_degree == b->out_degree &&
+           (a->max_err == b->max_err || (isnan(a->max_err) && isnan(b->max_err)));
+}
+
+/* One driver run with its progress bar; returns the driver's status and the
+ * wall time in *wall. */
+static int run_once(ob_job *jobs, size_t njobs, ob_run_opts *o, const char *what, double *wall)
+{
+    ob_progress bar;
+    ob_progress_init(&bar);
+    if (what)
+        fprintf(stderr, "offbench: %s\n", what);
+    o->driver.progress = ob_progress_cb;
+    o->driver.progress_ctx = &bar;
+    double t0 = now_s();
+    int rc = ob_driver_run(jobs, njobs, &o->driver);
+    *wall = now_s() - t0;
+    ob_progress_end(&bar);
+    o->driver.progress = NULL;
+    o->driver.progress_ctx = NULL;
+    return rc;
+}
+
+/* --reps N: the first run is the warm-up (its results are the run's); then N
+ * timed runs, whose per-job timings go to fit/eval (N x njobs, rep-major) and
+ * whose medians replace the jobs' timing columns.  A timed run whose results
+ * differ from the warm-up's is nondeterminism: counted in o->rep_mismatches
+ * and said on stderr; the warm-up's results are kept.  *wall becomes the
+ * median wall time of the timed runs.  Returns 0, or -1 (out of memory). */
+static int run_reps(ob_job *jobs, size_t njobs, ob_run_opts *o, double *fit, double *eval, double *wall)
+{
+    const int reps = o->reps;
+    ob_job *ref = malloc(njobs * sizeof *ref);
+    double *walls = malloc((size_t)reps * sizeof *walls), *tmp = malloc((size_t)reps * sizeof *tmp);
+    int rc = 0;
+    if (!ref || !walls || !tmp) {
+        rc = -1;
+        goto out;
+    }
+    memcpy(ref, jobs, njobs * sizeof *ref);
+    for (int r = 0; r < reps && rc == 0; r++) {
+        char what[64];
+        snprintf(what, sizeof what, "timed repetition %d of %d", r + 1, reps);
+        rc = run_once(jobs, njobs, o, what, &walls[r]);
+        for (size_t i = 0; i < njobs; i++) {
+            fit[(size_t)r * njobs + i] = jobs[i].fit_ns;
+            eval[(size_t)r * njobs + i] = jobs[i].eval_ns;
+            if (!same_result(&jobs[i], &ref[i])) {
+                if (o->rep_mismatches++ < 5)
+                    fprintf(stderr, "offbench: warning: repetition %d of %s d=%g %s tol=%g differs from the "
+                            "warm-up (%s, %ld points vs %s, %ld): nondeterministic\n", r + 1, jobs[i].curve->id,
+                            jobs[i].d, jobs[i].method->name, jobs[i].tol, ob_status_name(jobs[i].status),
+                            jobs[i].ctrl_points, ob_status_name(ref[i].status), ref[i].ctrl_points);
+            }
+        }
+    }
+    memcpy(jobs, ref, njobs * sizeof *ref);
+    if (rc == 0) {
+        for (size_t i = 0; i < njobs; i++) {
+            jobs[i].fit_ns = median_strided(fit + i, njobs, reps, tmp);
+            jobs[i].eval_ns = median_strided(eval + i, njobs, reps, tmp);
+        }
+        *wall = median_strided(walls, 1, reps, tmp);
+    }
+    if (o->rep_mismatches > 0)
+        fprintf(stderr, "offbench: warning: %ld job results differed between repetitions\n", o->rep_mismatches);
+out:
+    free(ref);
+    free(walls);
+    free(tmp);
+    return rc;
+}
+
 /* --backend: opencl must work (exit 2 with the reason otherwise), auto uses it
  * when it works and says why not in meta.json, cpu never tries.  The kernel
  * is built here, once, before any timed work. */
@@ -194,6 +307,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     ob_curveset set = {0};
     ob_job *jobs = NULL;
     ob_cl *cl = NULL;
+    double *rep_fit = NULL, *rep_eval = NULL;
     int status = 2;
     if (ob_run_opts_parse(argc, argv, &o) != 0)
         goto done;
@@ -222,21 +336,19 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     }
     if (ob_open_backend(&o, &cl) != 0)
         goto done;
-    ob_progress bar;
-    ob_progress_init(&bar);
-    o.driver.progress = ob_progress_cb;
-    o.driver.progress_ctx = &bar;
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    int drc = ob_driver_run(jobs, njobs, &o.driver);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    ob_progress_end(&bar);
-    double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
-    run_out r = {jobs, njobs, &o, where, wall};
-    status = 0;
-    if (ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) != 0 ||
-        ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) != 0)
-        status = 1;
+    double wall = 0.0;
+    int drc = run_once(jobs, njobs, &o, o.reps > 0 ? "warm-up run" : NULL, &wall);
+    if (drc == 0 && o.reps > 0) {
+        rep_fit = malloc((size_t)o.reps * njobs * sizeof *rep_fit);
+        rep_eval = malloc((size_t)o.reps * njobs * sizeof *rep_eval);
+        drc = !rep_fit || !rep_eval ? -1 : run_reps(jobs, njobs, &o, rep_fit, rep_eval, &wall);
+    }
+    run_out r = {jobs, njobs, &o, where, wall, rep_fit, rep_eval};
+    const int written =
+        ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) == 0 &&
+        (o.reps == 0 || drc != 0 || ob_write_atomically(o.out_dir, "samples.csv", write_samples_cb, &r) == 0) &&
+        ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) == 0;
+    status = written ? 0 : 1;
     if (drc != 0) {
         ob_error("ran out of memory; unfinished jobs are marked fail");
         status = 1;
@@ -244,10 +356,13 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     size_t cnt[4] = {0};
     for (size_t i = 0; i < njobs; i++)
         cnt[jobs[i].status]++;
-    fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads): ok %zu, limit %zu, fail %zu, skip %zu; wrote %s/results.csv\n",
-            njobs, wall, omp_get_max_threads(), cnt[OB_OK], cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], o.out_dir);
+    fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu; %s %s/results.csv\n",
+            njobs, wall, omp_get_max_threads(), o.reps > 0 ? ", median of the timed repetitions" : "", cnt[OB_OK],
+            cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], written ? "wrote" : "could not write", o.out_dir);
 done:
     ob_cl_close(cl);
+    free(rep_fit);
+    free(rep_eval);
     free(jobs);
     ob_curveset_free(&set);
     ob_run_opts_free(&o);

@@ -240,6 +240,9 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
         } else if (strcmp(a, "--threads") == 0) {
             if (parse_int(a, v, 1, 1024, &o->threads))
                 return -1;
+        } else if (strcmp(a, "--reps") == 0) {
+            if (parse_int(a, v, 1, 1000, &o->reps))
+                return -1;
         } else if (strcmp(a, "--out") == 0) {
             if (!*v) {
                 ob_error("--out: empty directory name");

@@ -39,6 +39,10 @@ typedef struct {
     double *params;              /* method parameters: OB_MAX_PARAMS values per
                                     registered method, by registry index (owned) */
     int threads;                 /* 0: OpenMP's default */
+    int reps;                    /* --reps N: timed repetitions after a warm-up
+                                    run (samples.csv); 0: one run, no samples */
+    long rep_mismatches;         /* for meta.json: job results that differed
+                                    between repetitions (nondeterminism) */
     const char *out_dir;
     ob_driver_opts driver;
     ob_backend_info binfo;       /* for meta.json */

@@ -56,6 +56,25 @@ int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs)
     return ferror(f) ? -1 : 0;
 }
 
+const char OB_SAMPLES_HEADER[] = "curve,d,method,metric,split,tol,rep,fit_ns,eval_ns";
+
+int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const double *fit, const double *eval)
+{
+    fprintf(f, "%s\n", OB_SAMPLES_HEADER);
+    char d[40], tol[40];
+    for (size_t i = 0; i < njobs; i++) {
+        const ob_job *j = &jobs[i];
+        ob_fmt_double(d, sizeof d, j->d);
+        ob_fmt_double(tol, sizeof tol, j->tol);
+        for (int r = 0; r < reps; r++) {
+            ob_csv_field(f, j->curve->id);
+            fprintf(f, ",%s,%s,%s,%s,%s,%d,%.0f,%.0f\n", d, j->method->name, ob_metric_name(j->metric),
+                    ob_split_name(j->split), tol, r + 1, fit[(size_t)r * njobs + i], eval[(size_t)r * njobs + i]);
+        }
+    }
+    return ferror(f) ? -1 : 0;
+}
+
 void ob_json_string(FILE *f, const char *s)
 {
     fputc('"', f);
@@ -121,7 +140,16 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
             fprintf(f, ": %s", num);
             first = 0;
         }
+    fprintf(f, "},\n  \"method_versions\": {");
+    for (int m = 0; ob_methods[m]; m++) {
+        fprintf(f, "%s", m ? ", " : "");
+        ob_json_string(f, ob_methods[m]->name);
+        fprintf(f, ": %d", ob_methods[m]->version);
+    }
     fprintf(f, "},\n");
+    /* timings are medians over reps timed runs after a warm-up (1: one run) */
+    fprintf(f, "  \"reps\": %d,\n  \"warmup\": %s,\n  \"rep_mismatches\": %ld,\n", o->reps > 0 ? o->reps : 1,
+            o->reps > 0 ? "true" : "false", o->rep_mismatches);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n  \"wall_seconds\": %.3f,\n  \"argv\": [", njobs, wall_seconds);

@@ -16,6 +16,15 @@ extern const char OB_RESULTS_HEADER[];
  * write error. */
 int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs);
 
+/* The samples.csv header line (no newline). */
+extern const char OB_SAMPLES_HEADER[];
+
+/* Purpose: write samples.csv of a run with --reps: one row per job and
+ * repetition (job-major, rep = 1..reps), the key columns of results.csv and
+ * that repetition's fit_ns and eval_ns, taken from fit[r * njobs + i] and
+ * eval[r * njobs + i].  Returns 0 or -1 on a write error. */
+int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const double *fit, const double *eval);
+
 /* Purpose: write meta.json: what makes two runs comparable (build, backend,
  * threads, samples, limits, argv, time).  Returns 0 or -1. */
 int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,

@@ -63,6 +63,7 @@ static ob_status ahn_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
 
 const ob_method ob_method_ahn = {
     .name = "ahn",
+    .version = 1,
     .citation = "Ahn 2023, G2/C1 Hermite interpolation of offset curves (AIMS Press)",
     .continuity = "C1/G2",
     .caps = OB_CAP_POLY_OUT | OB_CAP_CONVEX | OB_CAP_SAME_PARAM,

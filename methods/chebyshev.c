@@ -33,6 +33,7 @@ static ob_status chebyshev_fit(const ob_bez *base, const ob_fit_args *a, void *w
 
 const ob_method ob_method_chebyshev = {
     .name = "chebyshev",
+    .version = 1,
     .citation = "Liu & Wang 2002, J. Software (in Chinese) (\"Che\": Chebyshev, end-constrained)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

@@ -30,6 +30,7 @@ static ob_status cobb_fit(const ob_bez *base, const ob_fit_args *a, void *work, 
 
 const ob_method ob_method_cobb = {
     .name = "cobb",
+    .version = 1,
     .citation = "Cobb 1984, PhD thesis, Univ. of Utah (Greville form of Elber-Lee-Kim 1997)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

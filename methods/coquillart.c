@@ -150,6 +150,7 @@ static ob_status coquillart_fit(const ob_bez *base, const ob_fit_args *a, void *
 
 const ob_method ob_method_coquillart = {
     .name = "coquillart",
+    .version = 1,
     .citation = "Coquillart 1987, CAD 19(6):305-309 (as described by Liu & Wang 2002)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

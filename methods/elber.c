@@ -319,6 +319,7 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
 
 const ob_method ob_method_elber = {
     .name = "elber",
+    .version = 1,
     .citation = "Elber & Cohen 1992, Math. Methods in CAGD II, 229-237 (as described by Liu & Wang 2002)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

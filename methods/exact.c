@@ -296,6 +296,7 @@ static ob_status exact_fit(const ob_bez *base, const ob_fit_args *a, void *work,
 
 const ob_method ob_method_exact = {
     .name = "exact",
+    .version = 1,
     .citation = "San Segundo & Sendra, Algorithms for offset curves and surfaces (ICM 2006): "
                 "rational offsets of circular arcs and PH curves",
     .continuity = "exact",

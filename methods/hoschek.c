@@ -252,6 +252,7 @@ static ob_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *wor
 
 const ob_method ob_method_hoschek = {
     .name = "hoschek",
+    .version = 1,
     .citation = "Hoschek 1988, Spline approximation of offset curves (CAGD 5:33-40)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN,

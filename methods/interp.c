@@ -117,6 +117,7 @@ static ob_status interp_fit(const ob_bez *base, const ob_fit_args *a, void *work
 
 const ob_method ob_method_interp = {
     .name = "interp",
+    .version = 1,
     .citation = "Klass 1983 (CAD 15(5)) / Pham 1988 (CAD 20(8)): interpolation of offset points",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

@@ -66,6 +66,7 @@ static ob_status kim2018_fit(const ob_bez *base, const ob_fit_args *a, void *wor
 
 const ob_method ob_method_kim2018 = {
     .name = "kim2018",
+    .version = 1,
     .citation = "Kim, Lee & Ahn 2018, Comp. Appl. Math. 37:2053-2064 (as described by Ahn 2023)",
     .continuity = "G1",
     .caps = OB_CAP_POLY_OUT | OB_CAP_CONVEX | OB_CAP_SAME_PARAM,

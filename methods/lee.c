@@ -451,6 +451,7 @@ static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
 
 const ob_method ob_method_lee = {
     .name = "lee",
+    .version = 1,
     .citation = "Lee, Kim & Elber 1996, Planar curve offset based on circle approximation, "
                 "CAD 28(8):617-630",
     .continuity = "G1",

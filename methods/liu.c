@@ -44,6 +44,7 @@ static ob_status liu_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
 
 const ob_method ob_method_liu = {
     .name = "liu",
+    .version = 1,
     .citation = "Liu & Wang 2002, J. Software (in Chinese) (Legendre, end-constrained)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

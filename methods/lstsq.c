@@ -36,6 +36,7 @@ static ob_status lstsq_fit(const ob_bez *base, const ob_fit_args *a, void *work,
 
 const ob_method ob_method_lstsq = {
     .name = "lstsq",
+    .version = 1,
     .citation = "Liu & Wang 2002, J. Software (in Chinese) (\"Lst\": sampled least squares, end-constrained)",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

@@ -77,6 +77,10 @@ enum {
 typedef struct ob_method {
     const char *name;       /* CLI and CSV name */
     const char *citation;   /* short reference */
+    /* Bumped whenever the method's output changes on purpose (a fix, another
+     * reading of the paper), so that runs of different versions are not
+     * compared for regressions (meta.json method_versions; compare exit 3). */
+    int version;
     const char *continuity; /* of the approximation at segment joints, e.g. "G0", "C1/G2" */
     unsigned caps;
     /* >0: the driver splits pieces so the tangent turns by less than this (rad) */

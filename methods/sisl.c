@@ -447,6 +447,7 @@ done:
 
 const ob_method ob_method_sisl = {
     .name = "sisl",
+    .version = 1,
     .citation = "SINTEF SISL 4.6, s1360 (offset of a B-spline curve within a tolerance)",
     .continuity = "G1",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_ORIENTED | OB_CAP_TOL_DRIVEN,

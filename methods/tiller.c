@@ -73,6 +73,7 @@ static ob_status tiller_fit(const ob_bez *base, const ob_fit_args *a, void *work
 
 const ob_method ob_method_tiller = {
     .name = "tiller",
+    .version = 1,
     .citation = "Tiller & Hanson 1984, IEEE CG&A 4(9):36-46",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,

@@ -336,6 +336,7 @@ static ob_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a, voi
 
 const ob_method ob_method_zhao = {
     .name = "zhao",
+    .version = 1,
     .citation = "Zhao & Zhou 2017, A novel method of offset approximation along the normal direction (MDPI), polynomial",
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
@@ -349,6 +350,7 @@ const ob_method ob_method_zhao = {
 
 const ob_method ob_method_zhao_rational = {
     .name = "zhao-rational",
+    .version = 1,
     .citation = "Zhao & Zhou 2017, A novel method of offset approximation along the normal direction (MDPI), rational",
     .continuity = "G0",
     .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_ORIENTED,

@@ -110,6 +110,23 @@ done
 $OB list methods > "$T/lm.txt"
 for m in tiller cobb ahn; do check 'grep -q "^$m " "$T/lm.txt"' "method $m is listed"; done
 
+# --- --reps: a warm-up, N timed runs, samples.csv, medians in results.csv ---
+$OB run --curve liu2002_ex1 --methods tiller,ahn --tols 1e-1,1e-3 --reps 3 --out "$T/reps" 2>/dev/null
+check '[ $? -eq 0 ] && [ -f "$T/reps/samples.csv" ]' "--reps 3 writes samples.csv"
+check '[ "$(head -n 1 "$T/reps/samples.csv")" = "curve,d,method,metric,split,tol,rep,fit_ns,eval_ns" ]' "samples.csv header"
+njobs=$(($(wc -l < "$T/reps/results.csv") - 1))
+check '[ $(($(wc -l < "$T/reps/samples.csv") - 1)) -eq $((3 * njobs)) ] && [ $njobs -eq 8 ]' "samples.csv: 3 rows per job"
+# the timing columns are the medians of the repetitions (of 3: sum - min - max)
+med=$(awk -F, 'function m3(x,y,z){ return x+y+z-(x<y?(x<z?x:z):(y<z?y:z))-(x>y?(x>z?x:z):(y>z?y:z)) }
+     NR>1{k=$1","$2","$3","$4","$5","$6; n[k]++; f[k,n[k]]=$8; e[k,n[k]]=$9; if(n[k]==1) ks[++nk]=k}
+     END{for(i=1;i<=nk;i++){k=ks[i]; print k","m3(f[k,1],f[k,2],f[k,3])","m3(e[k,1],e[k,2],e[k,3])}}' "$T/reps/samples.csv")
+got=$(awk -F, 'NR>1{print $1","$2","$3","$4","$5","$6","$12","$13}' "$T/reps/results.csv")
+check '[ -n "$med" ] && [ "$med" = "$got" ]' "results.csv timings are the per-job medians of samples.csv"
+$OB run --curve liu2002_ex1 --methods tiller,ahn --tols 1e-1,1e-3 --out "$T/noreps" 2>/dev/null
+check '[ "$(cut -d, -f1-11 "$T/reps/results.csv")" = "$(cut -d, -f1-11 "$T/noreps/results.csv")" ]' "--reps gives the same results as one run"
+check 'grep -q "\"reps\": 3" "$T/reps/meta.json" && grep -q "\"method_versions\": {\"tiller\": 1" "$T/reps/meta.json"' "meta.json: reps and method_versions"
+check 'grep -q "\"rep_mismatches\": 0" "$T/reps/meta.json"' "repetitions agree with the warm-up"
+
 # --- bad input: exit 2 and a message naming the file and line or the option ---
 printf 'curve ok\n  bezier 2\n  point 0 0\n  point 1 oops\n  point 2 0\n  offset 1\nend\n' > "$T/bad.curves"
 $OB run --curves "$T/bad.curves" --out "$T/c" 2>"$T/bad.err"
@@ -130,6 +147,8 @@ expect2 "--tols" --tols 1e-2,-1
 expect2 "--tols" --tols 1e-2,abc
 expect2 "--tols" --tols nan
 expect2 "--threads" --threads 0
+expect2 "--reps" --reps 0
+expect2 "--reps" --reps x
 expect2 "--curve" --curve no_such_curve
 expect2 "--samples" --samples 3
 expect2 "missing value" --tols

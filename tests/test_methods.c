@@ -544,6 +544,7 @@ int main(void)
     for (int i = 0; ob_methods[i]; i++) {
         const ob_method *m = ob_methods[i];
         CHECK(m->name && m->name[0] && m->fit && m->out_degree, "method %d incomplete", i);
+        CHECK(m->version >= 1, "%s: has a version (meta.json method_versions), got %d", m->name, m->version);
         CHECK(ob_method_find(m->name) == m, "%s: found by name", m->name);
         for (int c = 0; c < ncurves; c++)
             for (int k = 0; k < ND; k++)
