@@ -89,6 +89,31 @@ void ob_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+/* The CPU model (first "model name" of /proc/cpuinfo), or "unknown": timings
+ * of runs on different CPUs are not compared. */
+static void cpu_model(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10) != 0)
+            continue;
+        const char *p = strchr(line, ':');
+        if (!p)
+            break;
+        p++;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        snprintf(buf, len, "%s", p);
+        buf[strcspn(buf, "\r\n")] = '\0';
+        break;
+    }
+    fclose(f);
+}
+
 int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
                   double wall_seconds)
 {
@@ -120,7 +145,11 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
         ob_json_string(f, b->why_cpu);
         fprintf(f, ",\n");
     }
-    fprintf(f, "  \"omp_threads\": %d,\n", omp_get_max_threads());
+    char cpu[256];
+    cpu_model(cpu, sizeof cpu);
+    fprintf(f, "  \"cpu_model\": ");
+    ob_json_string(f, cpu);
+    fprintf(f, ",\n  \"omp_threads\": %d,\n", omp_get_max_threads());
     if (o->random_n > 0)
         fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"random_curves\": %ld,\n", o->random_seed, o->random_n);
     else
