@@ -164,6 +164,12 @@ typedef struct {
     double coef[3 * (OB_MAX_DEG + 1)];
 } sisl_request;
 
+#if !defined(__SANITIZE_ADDRESS__)
+#define SERVER_MEMORY_NOTE "1 GiB of data, without crashing"
+#else
+#define SERVER_MEMORY_NOTE "its memory, without crashing"
+#endif
+
 /* The server: answer requests until the parent goes away; never returns. */
 static void server_loop(int in, int out)
 {
@@ -339,11 +345,12 @@ static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, 
     free(r->et), free(r->ecoef);
     r->et = r->ecoef = NULL;
     server_stop(SIGKILL);
-    if (rc > 0)
-        ob_method_msg(msg, msglen, "SISL s1360 did not finish in %g s (killed; it loops on some inputs)",
-                      timeout);
-    else
-        ob_method_msg(msg, msglen, "SISL s1360 crashed or ran out of memory in its process");
+    /* One message for the deadline, the memory cap and a crash: a runaway
+     * s1360 meets whichever limit first depends on the machine's load, and
+     * results.csv must not depend on it (same rows for any thread count). */
+    (void)rc;
+    ob_method_msg(msg, msglen, "SISL s1360 did not finish in %g s within %s (stopped; it loops on some inputs)",
+                  timeout, SERVER_MEMORY_NOTE);
     return -1;
 }
 
