@@ -16,6 +16,13 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv);
 int ob_cmd_list(int argc, char **argv);
 int ob_cmd_bench(int argc, char **argv);
 
+/* compare BASE NEW: 0 no regression, 1 regression, 2 error, 3 not comparable. */
+int ob_cmd_compare(int argc, char **argv);
+/* draw: an SVG of one job's approximation; trace: its error along the
+ * parameter as CSV.  0, 1 (output not writable) or 2 (bad input). */
+int ob_cmd_draw(int argc, char **argv);
+int ob_cmd_trace(int argc, char **argv);
+
 int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv);
 
 /* Creates dir and its parents (mode 0777 & umask); 0 or -1 (errno set). */

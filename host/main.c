@@ -15,7 +15,11 @@ static const char usage[] =
     "                    [--threads N]\n"
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"
-    "                    [--out DIR]\n"
+    "                    [--reps N] [--out DIR]\n"
+    "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
+    "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
+    "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
+    "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
     "  ./offbench tables [--out DIR] [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n"
     "  ./offbench list   methods|curves|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
@@ -34,6 +38,12 @@ int main(int argc, char **argv)
         return ob_cmd_list(argc - 1, argv + 1);
     if (strcmp(cmd, "tables") == 0)
         return ob_cmd_tables(argc - 1, argv + 1, argc, argv);
+    if (strcmp(cmd, "compare") == 0)
+        return ob_cmd_compare(argc - 1, argv + 1);
+    if (strcmp(cmd, "draw") == 0)
+        return ob_cmd_draw(argc - 1, argv + 1);
+    if (strcmp(cmd, "trace") == 0)
+        return ob_cmd_trace(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {

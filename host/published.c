@@ -2,6 +2,7 @@
  * published.c - see published.h.
  */
 #include "published.h"
+#include "slurp.h"
 
 #include <errno.h>
 #include <math.h>
@@ -186,32 +187,10 @@ fail:
 
 static int load_file(const char *path, ob_pub_set *s, char *err, size_t errlen)
 {
-    FILE *fp = fopen(path, "rb");
-    if (!fp) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    char *buf;
+    size_t n;
+    if (ob_slurp(path, &buf, &n, err, errlen) != 0)
         return -1;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, fp);
-        if (n < cap)
-            break;
-        char *nb = realloc(buf, cap *= 2);
-        if (!nb) {
-            free(buf);
-            buf = NULL;
-        } else {
-            buf = nb;
-        }
-    }
-    int rd = ferror(fp);
-    fclose(fp);
-    if (!buf || rd) {
-        snprintf(err, errlen, "%s: %s", path, buf ? "read error" : "out of memory");
-        free(buf);
-        return -1;
-    }
     int rc = ob_pub_parse(buf, n, path, s, err, errlen);
     free(buf);
     if (rc == 0)

@@ -1,0 +1,84 @@
+/*
+ * results_csv.h - reading a run's results.csv (and its samples.csv) back,
+ * for `compare`.
+ *
+ * results.csv: a header naming the columns, then one row per job.  Columns
+ * are found by name (any order, extra columns ignored); required:
+ * curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,
+ * status,fit_ns,eval_ns,message (`family`, written by run, is not needed).
+ * Fields may be quoted ("a, b" with "" for a quote, newlines inside quotes),
+ * lines end in LF or CRLF, blank lines are skipped.  A job is identified by
+ * its key (curve, d, method, metric, split, tol), d and tol compared as
+ * doubles (1e-05 == 0.00001); a key given twice is an error.
+ *
+ * samples.csv (run --reps N): curve,d,method,metric,split,tol,rep,fit_ns,
+ * eval_ns, one row per job and repetition rep = 1..N; every key must be a
+ * row of results.csv and every (key, rep) appear once.
+ */
+#ifndef OB_RESULTS_CSV_H
+#define OB_RESULTS_CSV_H
+
+#include <stddef.h>
+
+typedef struct {
+    /* text fields point into the table's buffer */
+    const char *curve, *method, *metric, *split, *status, *message;
+    const char *d_text, *tol_text, *max_err_text;
+    double d, tol;
+    long ctrl_points;
+    double max_err;          /* NAN when empty or "nan" */
+    double fit_ns, eval_ns;
+    int line;                /* first line of the row in the file */
+    const double *rep_t;     /* samples.csv: fit_ns + eval_ns of repetition r
+                                at rep_t[r - 1], NAN where absent; NULL without */
+    int nsamples;            /* repetitions present for this row */
+} ob_res_row;
+
+typedef struct {
+    char *text;              /* the file, split in place (owned) */
+    ob_res_row *v;           /* rows in file order */
+    int n;
+    ob_res_row **sorted;     /* the rows ordered by key, for lookups */
+    double *rep_t;           /* n x maxrep sample times (owned), or NULL */
+    int maxrep;              /* largest rep in samples.csv; 0 without */
+} ob_res_table;
+
+/* Purpose: parse the text of a results.csv named `name` (copied: the caller
+ *          keeps text).
+ * Errors:  returns 0; -1 with "NAME:LINE: reason" in err: no header, a
+ *          missing or repeated column, a wrong field count, an unterminated
+ *          quote or text after a closing quote, an empty key field, d or tol
+ *          not a finite number, ctrl_points not a whole number >= 0, max_err
+ *          not a number (empty and nan are accepted) or negative, fit_ns or
+ *          eval_ns not a finite number >= 0, a status other than ok / limit /
+ *          fail / skip, a duplicate key (naming both lines), no memory.  *t is
+ *          always left safe for ob_res_free() (empty after an error). */
+int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen);
+
+/* Purpose: read and parse the results.csv at path.
+ * Errors:  as ob_res_parse, plus "PATH: cannot open: reason". */
+int ob_res_load(const char *path, ob_res_table *t, char *err, size_t errlen);
+
+/* Purpose: attach the repetitions of a samples.csv (text, named `name`) to
+ *          the rows of t: fills t->rep_t, t->maxrep, and each row's rep_t and
+ *          nsamples.
+ * Errors:  returns 0; -1 with "NAME:LINE: reason" in err (missing column,
+ *          malformed field, rep not a whole number in 1..100000, a key that
+ *          is not a row of results.csv, a (key, rep) twice, no memory); t then
+ *          has no samples, its rows are unchanged. */
+int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const char *name, char *err,
+                          size_t errlen);
+
+/* Purpose: as ob_res_attach_samples, reading the file at path. */
+int ob_res_load_samples(ob_res_table *t, const char *path, char *err, size_t errlen);
+
+/* Orders two rows by key: curve, d, method, metric, split, tol. */
+int ob_res_key_cmp(const ob_res_row *a, const ob_res_row *b);
+
+/* The row of t with the key of `key` (only its key fields are read), or NULL. */
+const ob_res_row *ob_res_find(const ob_res_table *t, const ob_res_row *key);
+
+/* Always safe to call (also twice, or on a zeroed table). */
+void ob_res_free(ob_res_table *t);
+
+#endif
