@@ -7,6 +7,7 @@
 #   required to build:     a C11 compiler with OpenMP (gcc), make
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
+#   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 set -u
 
 missing=""
@@ -23,6 +24,28 @@ have_header sisl.h || missing="$missing libsisl-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
+fi
+
+# Optional: python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py,
+# run as /usr/bin/python3).  Installed when missing and possible; never fails
+# the build: the C build and the tests do not need it.
+if ! /usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "deps: installing (optional, for the plots): python3-matplotlib"
+        if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends python3-matplotlib \
+                >>/tmp/offbench-deps.log 2>&1 \
+           || { apt-get update >>/tmp/offbench-deps.log 2>&1 \
+                && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+                       python3-matplotlib >>/tmp/offbench-deps.log 2>&1; }; then
+            echo "deps: installed: python3-matplotlib"
+        else
+            echo "deps: could not install python3-matplotlib (see /tmp/offbench-deps.log);" \
+                 "optional: only the plots need it" >&2
+        fi
+    else
+        echo "deps: optional: python3-matplotlib (for the plots):" \
+             "sudo apt-get install python3-matplotlib" >&2
+    fi
 fi
 
 [ -z "$missing" ] && exit 0
