@@ -8,8 +8,9 @@
  * A curve is a homogeneous Bézier segment given as a flat array of (w x, w y, w)
  * triples and its degree.  Metrics (see methods/metric.h for definitions):
  *   radial     | |A(t) - C(t)| - |d| |
- *   normal     |s - d| where C(t) + s N(t) meets A (Newton from u = t, else the
- *              sign change of the cross product nearest to t)
+ *   normal     |s - d| where C(t) + s N(t) meets A nearest to t in A's
+ *              parameter (Newton from u = t when no crossing lies closer,
+ *              else the sign change of the cross product nearest to t)
  *   hausdorff  two-sided distance between A and the exact offset O = C + d N:
  *              nearest sample (coarse global scan + local descent), then
  *              Newton projection with the target's curvature vector, golden
@@ -273,6 +274,20 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
         if (fabs(du) < 1e-15) {
             ok = 1;
             break;
+        }
+    }
+    if (ok) {
+        /* Newton may jump past nearer crossings to a far one (an extension of
+         * A far from the offset): keep its root only when g has no sign
+         * change strictly closer to t, checked on the scan's grid */
+        const double w = fabs(u - t) * (1.0 - 1e-9), h = 1.5 / (2 * S);
+        const int m = (int)ceil(2.0 * w / h) + 1;
+        double gp = obc_normal_g(ha, na, t - w, P, N, &dg);
+        for (int j = 1; j <= m && ok; j++) {
+            const double gj = obc_normal_g(ha, na, t - w + 2.0 * w * j / m, P, N, &dg);
+            if ((gp <= 0) != (gj <= 0))
+                ok = 0;
+            gp = gj;
         }
     }
     if (!(ok && !(u < -0.5 || u > 1.5))) {
