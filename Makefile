@@ -3,6 +3,8 @@
 #   make test       build and run every test; last line "N passed, N failed"
 #   make run        the default job on the embedded data, into out/run
 #   make tables     reproduce the published tables into results/, plots, README
+#   make nightly    the nightly run compared with results/baseline/ (report in out/nightly)
+#   make accept-baseline  run the nightly configuration and make it the baseline
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 
@@ -34,7 +36,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv
 
-.PHONY: all test run deps clean bench tables FORCE
+.PHONY: all test run deps clean bench tables nightly accept-baseline FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -100,6 +102,15 @@ tables: $(BIN)
 
 bench: $(BIN)
 	./$(BIN) bench --out out/bench
+
+# The nightly regression run against results/baseline/ (exit status of
+# compare: 0 no regression, 1 regression, 2 error, 3 not comparable), and
+# making the current tree's results the new baseline on purpose.
+nightly:
+	sh scripts/nightly.sh --out out/nightly
+
+accept-baseline:
+	sh scripts/nightly.sh --accept --out out/nightly
 
 clean:
 	rm -rf build build-san offbench out
