@@ -32,7 +32,7 @@ check '[ $? -eq 0 ]' "second run"
 # --- same: 0 ---
 cmp_rc 0 "$T/a" "$T/a"
 check 'grep -q "^\*\*OK: no regression\*\* (exit 0): 8 joined rows" "$T/out"' "dir vs itself: summary line: $(sed -n 6p "$T/out")"
-cmp_rc 0 "$T/a/results.csv" "$T/a/results.csv"
+cmp_rc 0 "$T/a/results.csv" "$T/a/results.csv" --time-floor-ns 0  # (judged on any machine)
 check 'grep -q "^| tiller | 4 | 1 | 1 | 1 |" "$T/out"' "file vs itself: per-method table"
 cmp_rc 0 "$T/a" "$T/b" --no-timing
 check 'grep -q "timings: not compared (--no-timing)" "$T/out"' "--no-timing is reported"
@@ -50,14 +50,18 @@ cmp_rc 0 "$T/g" "$T/a" --no-timing
 check 'grep -q "^## Improvements (1)" "$T/out" && grep -q "| ctrl_points | $((cp3 + 2)) | $cp3 |" "$T/out"' "improvement reported with exit 0"
 
 # --- timing: a row twice as slow (no samples: the threshold decides) ---
-mkdir "$T/s"
+# (the base row's time is set too: a fast machine may measure it under the
+# 1 ms floor below which rows are not judged)
+mkdir "$T/s" "$T/s0"
 cp "$T/a/meta.json" "$T/s/"
+cp "$T/a/meta.json" "$T/s0/"
+awk -F, 'BEGIN{OFS=","} NR==2{$12=0; $13=5000000} {print}' "$T/a/results.csv" > "$T/s0/results.csv"
 awk -F, 'BEGIN{OFS=","} NR==2{$12=0; $13=1000000000} {print}' "$T/a/results.csv" > "$T/s/results.csv"
-cmp_rc 1 "$T/a" "$T/s"
-check 'grep -q "| time | .* ms | 1000 ms |" "$T/out" && grep -q "by the threshold alone (no samples.csv)" "$T/out"' \
+cmp_rc 1 "$T/s0" "$T/s"
+check 'grep -q "| time | 5 ms | 1000 ms |" "$T/out" && grep -q "by the threshold alone (no samples.csv)" "$T/out"' \
     "timing regression by the threshold: $(grep '| time |' "$T/out")"
-cmp_rc 0 "$T/a" "$T/s" --no-timing
-cmp_rc 0 "$T/a" "$T/s" --time-threshold 1e9
+cmp_rc 0 "$T/s0" "$T/s" --no-timing
+cmp_rc 0 "$T/s0" "$T/s" --time-threshold 1e9
 # one row 1.5x slower, another 1.5x faster: the method's mean is unchanged, so
 # with --method-timing-only the row-level change is listed but does not fail
 mkdir "$T/m0" "$T/m1"
@@ -153,7 +157,7 @@ if $OB run $RUN --reps 4 --out "$T/r1" >/dev/null 2>&1 && [ -f "$T/r1/samples.cs
     awk -F, 'BEGIN{OFS=","} NR>1 && $3=="tiller" {$9=$9*3} {print}' "$T/r1/samples.csv" > "$T/r3.csv"
     mkdir "$T/r3" && cp "$T/r1/results.csv" "$T/r1/meta.json" "$T/r3/" && cp "$T/r3.csv" "$T/r3/samples.csv"
     awk -F, 'BEGIN{OFS=","} NR>1 && $3=="tiller" {$13=$13*3} {print}' "$T/r1/results.csv" > "$T/r3/results.csv"
-    cmp_rc 1 "$T/r1" "$T/r3"
+    cmp_rc 1 "$T/r1" "$T/r3" --time-floor-ns 0  # (judged on any machine)
     check 'grep -q "| time | .* | 0.0286 |" "$T/out" && grep -q "^| tiller | 4 | 1 | 1 | .* | 0.0286 | .* (slower) |" "$T/out"' \
         "3x slower with 4 reps: p = 2/70 per row and per method"
     $OB run $RUN --reps 3 --out "$T/r4" >/dev/null 2>&1
