@@ -353,12 +353,16 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         ob_error("ran out of memory; unfinished jobs are marked fail");
         status = 1;
     }
-    size_t cnt[4] = {0};
+    size_t cnt[OB_TIMEOUT + 1] = {0};
     for (size_t i = 0; i < njobs; i++)
-        cnt[jobs[i].status]++;
-    fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu; %s %s/results.csv\n",
+        if (jobs[i].status <= OB_TIMEOUT)
+            cnt[jobs[i].status]++;
+    char timeouts[48] = "";
+    if (cnt[OB_TIMEOUT])
+        snprintf(timeouts, sizeof timeouts, ", timeout %zu", cnt[OB_TIMEOUT]);
+    fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu%s; %s %s/results.csv\n",
             njobs, wall, omp_get_max_threads(), o.reps > 0 ? ", median of the timed repetitions" : "", cnt[OB_OK],
-            cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], written ? "wrote" : "could not write", o.out_dir);
+            cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], timeouts, written ? "wrote" : "could not write", o.out_dir);
 done:
     ob_cl_close(cl);
     free(rep_fit);

@@ -240,6 +240,13 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
         } else if (strcmp(a, "--threads") == 0) {
             if (parse_int(a, v, 1, 1024, &o->threads))
                 return -1;
+        } else if (strcmp(a, "--job-timeout") == 0) {
+            double s;
+            if (ob_parse_double(v, &s) || !(s > 0) || s > 1e6) {
+                ob_error("--job-timeout: expected seconds > 0 (at most 1e6), got '%s'", v);
+                return -1;
+            }
+            o->driver.job_timeout_ns = s * 1e9;
         } else if (strcmp(a, "--reps") == 0) {
             if (parse_int(a, v, 1, 1000, &o->reps))
                 return -1;

@@ -155,6 +155,10 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     else
         fprintf(f, "  \"seed\": null,\n");
     fprintf(f, "  \"samples_per_segment\": %d,\n", o->driver.samples);
+    if (o->driver.job_timeout_ns > 0)
+        fprintf(f, "  \"job_timeout_seconds\": %.6g,\n", o->driver.job_timeout_ns * 1e-9);
+    else
+        fprintf(f, "  \"job_timeout_seconds\": null,\n");
     fprintf(f, "  \"max_depth\": %d,\n  \"max_segments\": %d,\n  \"inflection_split\": %s,\n",
             o->driver.max_depth, o->driver.max_segments, o->driver.inflections ? "true" : "false");
     fprintf(f, "  \"method_params\": {");

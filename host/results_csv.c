@@ -290,8 +290,8 @@ static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t,
         else if (parse_ns(f[at[11]], &row->fit_ns) || parse_ns(f[at[12]], &row->eval_ns))
             bad = "fit_ns and eval_ns must be finite numbers >= 0";
         else if (strcmp(row->status, "ok") && strcmp(row->status, "limit") && strcmp(row->status, "fail") &&
-                 strcmp(row->status, "skip"))
-            bad = "status is not ok, limit, fail or skip";
+                 strcmp(row->status, "skip") && strcmp(row->status, "timeout"))
+            bad = "status is not ok, limit, fail, skip or timeout";
         if (bad) {
             csv_fail(&r, line, "%s", bad);
             goto fail;

@@ -109,7 +109,7 @@ static void job_end(ob_job *j, jstate *s, ob_status st, const char *msg)
         j->status = st;
         snprintf(j->message, sizeof j->message, "%s", msg);
     }
-    if (st == OB_FAIL || st == OB_SKIP)
+    if (st == OB_FAIL || st == OB_SKIP || st == OB_TIMEOUT)
         s->dead = 1;
 }
 
@@ -613,11 +613,20 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
             measure_chunk(jobs, its, cnt, fits, res, eval_ns, &o, &B);
             /* decide, in job order */
             for (long i = 0; i < cnt; i++) {
-                jobs[its[i].job].fit_ns += fit_ns[i];
-                jobs[its[i].job].eval_ns += eval_ns[i];
+                ob_job *jj = &jobs[its[i].job];
+                jj->fit_ns += fit_ns[i];
+                jj->eval_ns += eval_ns[i];
                 if (decide(jobs, js, &its[i], &res[i], &o, &next)) {
                     rc = -1;
                     goto out;
+                }
+                if (o.job_timeout_ns > 0 && !js[its[i].job].dead && js[its[i].job].pending > 0 &&
+                    jj->fit_ns + jj->eval_ns > o.job_timeout_ns) {
+                    char msg[160];
+                    snprintf(msg, sizeof msg, "job timeout: %.3g s of thread time used, limit %.3g s (%d segments "
+                             "accepted so far)", (jj->fit_ns + jj->eval_ns) * 1e-9, o.job_timeout_ns * 1e-9,
+                             jj->segments);
+                    job_end(jj, &js[its[i].job], OB_TIMEOUT, msg);
                 }
                 jstate *s = &js[its[i].job];
                 if (!s->finished && (s->pending == 0 || s->dead)) {

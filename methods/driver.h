@@ -22,7 +22,9 @@
  * error floor the job's other pending pieces are kept as they are (the job
  * cannot reach tol); greedy ends likewise when not even a sliver passes.
  * A method that still asks for a smaller piece (OB_RETRY_SMALLER) 12 halvings
- * below the initial piece ends the job with status fail.
+ * below the initial piece ends the job with status fail.  With a job timeout
+ * (job_timeout_ns), a job that has used more thread time than that ends with
+ * status timeout.
  *
  * Counting: k segments of degrees m_i joined end to end count 1 + sum m_i
  * control points (shared end points once), as the papers count.
@@ -92,6 +94,13 @@ typedef struct {
     int max_segments;   /* per job */
     int inflections;    /* 1: split at inflections first (forced for OB_CAP_CONVEX) */
     int chunk;          /* pieces per fit/measure batch (bounds memory) */
+    /* > 0: a job whose thread time (fit_ns + eval_ns) passes this ends with
+     * status timeout.  The driver works level by level over all jobs, so a
+     * job's own clock is the time spent on it, not the run's wall time; a
+     * single fit that never returns is not interrupted (SISL has its own
+     * deadline).  Timeouts depend on the machine: a run where any job times
+     * out is not reproducible across thread counts or machines. */
+    double job_timeout_ns;
     ob_batch_fn batch;  /* NULL: measure on the CPU with OpenMP */
     void *batch_ctx;
     long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */

@@ -21,7 +21,9 @@
  * may also return OB_RETRY_SMALLER: its output for this piece does not fit in
  * an ob_fit (e.g. more pieces than OB_MAX_PIECES); the driver then splits the
  * piece as if its error were too large. */
-typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_RETRY_SMALLER } ob_status;
+/* OB_TIMEOUT: the job used more than the run's --job-timeout (set by the
+ * driver, never returned by a method). */
+typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_TIMEOUT, OB_RETRY_SMALLER } ob_status;
 const char *ob_status_name(ob_status s);
 
 enum { OB_MAX_PIECES = 16 };

@@ -79,6 +79,7 @@ const char *ob_status_name(ob_status s)
     case OB_LIMIT: return "limit";
     case OB_FAIL: return "fail";
     case OB_SKIP: return "skip";
+    case OB_TIMEOUT: return "timeout";
     case OB_RETRY_SMALLER: return "retry-smaller";
     }
     return "?";

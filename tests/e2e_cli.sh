@@ -127,6 +127,15 @@ check '[ "$(cut -d, -f1-11 "$T/reps/results.csv")" = "$(cut -d, -f1-11 "$T/norep
 check 'grep -q "\"reps\": 3" "$T/reps/meta.json" && grep -q "\"method_versions\": {\"tiller\": 1" "$T/reps/meta.json"' "meta.json: reps and method_versions"
 check 'grep -q "\"rep_mismatches\": 0" "$T/reps/meta.json"' "repetitions agree with the warm-up"
 
+# --- --job-timeout: a job past its budget ends with status timeout; the rest go on ---
+$OB run --curve liu2002_ex1 --methods tiller,ahn --tols 1e3,1e-5 --job-timeout 1e-6 --out "$T/jt" 2>"$T/jt.err"
+check '[ $? -eq 0 ]' "a run with timeouts exits 0"
+got=$(awk -F, 'NR>1 && $2==1 {printf "%s:%s:%s ", $3, $6, $11}' "$T/jt/results.csv")
+check '[ "$got" = "tiller:1000:ok tiller:1e-05:timeout ahn:1000:ok ahn:1e-05:timeout " ]' "timeout rows: '$got'"
+check 'grep -q "job timeout: .* limit 1e-06 s" "$T/jt/results.csv" && grep -q "timeout 4;" "$T/jt.err"' \
+    "timeout message in results.csv and the count on stderr"
+check 'grep -q "\"job_timeout_seconds\": 1e-06" "$T/jt/meta.json"' "meta.json records the job timeout"
+
 # --- bad input: exit 2 and a message naming the file and line or the option ---
 printf 'curve ok\n  bezier 2\n  point 0 0\n  point 1 oops\n  point 2 0\n  offset 1\nend\n' > "$T/bad.curves"
 $OB run --curves "$T/bad.curves" --out "$T/c" 2>"$T/bad.err"
@@ -147,6 +156,9 @@ expect2 "--tols" --tols 1e-2,-1
 expect2 "--tols" --tols 1e-2,abc
 expect2 "--tols" --tols nan
 expect2 "--threads" --threads 0
+expect2 "--job-timeout" --job-timeout 0
+expect2 "--job-timeout" --job-timeout -1
+expect2 "--job-timeout" --job-timeout abc
 expect2 "--reps" --reps 0
 expect2 "--reps" --reps x
 expect2 "--curve" --curve no_such_curve

@@ -387,8 +387,40 @@ static void test_span_log(void)
     ob_curve_free(&c);
 }
 
+/* --job-timeout: a job past its thread-time budget ends with status timeout
+ * (no approximation: ctrl_points 0, max_err NaN, a message); a job that
+ * finishes within its first level is not cut; the other jobs of the run go
+ * on. */
+static void test_job_timeout(void)
+{
+    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_driver_opts o = fast_opts();
+    o.job_timeout_ns = 1.0;  /* 1 ns: any job needing a second level */
+    ob_job j[2];
+    memset(j, 0, sizeof j);
+    for (int k = 0; k < 2; k++) {
+        j[k].curve = &c;
+        j[k].d = 1.0;
+        j[k].method = ob_method_find("tiller");
+        j[k].metric = OB_METRIC_HAUSDORFF;
+        j[k].split = OB_SPLIT_MID;
+    }
+    j[0].tol = 1e-5;  /* hundreds of segments */
+    j[1].tol = 1e3;   /* passes at once */
+    CHECK(ob_driver_run(j, 2, &o) == 0, "driver run");
+    CHECK(j[0].status == OB_TIMEOUT && j[0].ctrl_points == 0 && isnan(j[0].max_err) &&
+              strstr(j[0].message, "job timeout"),
+          "tiller 1e-5 with a 1 ns budget: %s, %ld points, '%s'", ob_status_name(j[0].status), j[0].ctrl_points,
+          j[0].message);
+    CHECK(j[1].status == OB_OK && j[1].ctrl_points > 0, "a job done in its first level is not cut: %s",
+          ob_status_name(j[1].status));
+    CHECK(strcmp(ob_status_name(OB_TIMEOUT), "timeout") == 0, "status name");
+    ob_curve_free(&c);
+}
+
 int main(void)
 {
+    test_job_timeout();
     test_span_log();
     test_published_protocols();
     test_counting_and_tolerance();
