@@ -283,6 +283,9 @@ static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t,
             ;
         else if (parse_long(f[at[6]], 0, 1000000000L, &row->ctrl_points))
             bad = "ctrl_points is not a whole number >= 0";
+        else if (parse_long(f[at[7]], 0, 1000000000L, &row->segments) ||
+                 parse_long(f[at[8]], 0, 1000000L, &row->out_degree))
+            bad = "segments and out_degree must be whole numbers >= 0";
         else if (parse_err(row->max_err_text, &row->max_err))
             bad = "max_err is not a number >= 0 (nan or empty for none)";
         if (bad)

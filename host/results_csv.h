@@ -26,6 +26,7 @@ typedef struct {
     const char *d_text, *tol_text, *max_err_text;
     double d, tol;
     long ctrl_points;
+    long segments, out_degree;
     double max_err;          /* NAN when empty or "nan" */
     double fit_ns, eval_ns;
     int line;                /* first line of the row in the file */
@@ -49,9 +50,10 @@ typedef struct {
  *          missing or repeated column, a wrong field count, an unterminated
  *          quote or text after a closing quote, an empty key field, d or tol
  *          not a finite number, ctrl_points not a whole number >= 0, max_err
- *          not a number (empty and nan are accepted) or negative, fit_ns or
+ *          not a number (empty and nan are accepted) or negative, segments or
+ *          out_degree not whole numbers >= 0, fit_ns or
  *          eval_ns not a finite number >= 0, a status other than ok / limit /
- *          fail / skip, a duplicate key (naming both lines), no memory.  *t is
+ *          fail / skip / timeout, a duplicate key (naming both lines), no memory.  *t is
  *          always left safe for ob_res_free() (empty after an error). */
 int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen);
 

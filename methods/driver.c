@@ -526,6 +526,20 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     return push(next, &g);
 }
 
+/* A finished job's outputs: the control points of what was accepted, or none
+ * for a job that failed, was skipped or timed out. */
+static void finalize(ob_job *j, const jstate *s)
+{
+    if (j->status == OB_OK || j->status == OB_LIMIT) {
+        j->ctrl_points = j->segments > 0 ? 1 + s->ctrl_add : 0;
+    } else {
+        j->ctrl_points = 0;
+        j->segments = 0;
+        j->out_degree = 0;
+        j->max_err = NAN;
+    }
+}
+
 int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
 {
     ob_driver_opts o;
@@ -582,6 +596,9 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
         if (plans[i].n == 0) {  /* skipped before any work */
             js[i].finished = 1;
             done++;
+            finalize(&jobs[i], &js[i]);
+            if (o.job_done)
+                o.job_done(o.job_done_ctx, i);
         }
         for (size_t k = 0; k < plans[i].n; k++)
             if (push(&cur, &plans[i].v[k])) {
@@ -632,10 +649,17 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
                 if (!s->finished && (s->pending == 0 || s->dead)) {
                     s->finished = 1;
                     done++;
+                    finalize(jj, s);
+                    if (o.job_done)
+                        o.job_done(o.job_done_ctx, (size_t)its[i].job);
                 }
             }
             if (o.progress)
                 o.progress(o.progress_ctx, done, njobs);
+            if (o.stop && *o.stop) {
+                rc = 1;
+                goto out;
+            }
         }
         itemvec tmp = cur;
         cur = next;
@@ -645,16 +669,15 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
 out:
     for (size_t i = 0; i < njobs; i++) {
         ob_job *j = &jobs[i];
-        if (rc != 0 && js && (js[i].pending > 0 || !js[i].dead) && j->status == OB_OK) {
+        if (rc != 0 && (!js || !js[i].finished)) {
             j->status = OB_FAIL;
-            snprintf(j->message, sizeof j->message, "out of memory");
+            snprintf(j->message, sizeof j->message, "%s", rc > 0 ? "interrupted" : "out of memory");
         }
-        if (j->status == OB_OK || j->status == OB_LIMIT)
-            j->ctrl_points = j->segments > 0 ? 1 + (js ? js[i].ctrl_add : 0) : 0;
+        if (js)
+            finalize(j, &js[i]);
         else {
             j->ctrl_points = 0;
-            j->segments = 0;
-            j->out_degree = 0;
+            j->segments = j->out_degree = 0;
             j->max_err = NAN;
         }
         if (plans)

@@ -112,14 +112,22 @@ typedef struct {
      * accepted pieces of job i (draw and trace refit them to show the
      * approximation: fits are deterministic) */
     ob_span_log *spans;
+    /* if not NULL: called from the calling thread as soon as job i is
+     * finished, its outputs final (rows can be saved as jobs finish) */
+    void (*job_done)(void *ctx, size_t i);
+    void *job_done_ctx;
+    /* if not NULL: read between batches; once nonzero (a signal handler sets
+     * it) the driver stops, and jobs not finished get status fail with the
+     * message "interrupted" (job_done is not called for them) */
+    const volatile int *stop;
 } ob_driver_opts;
 
 void ob_driver_defaults(ob_driver_opts *o);
 
 /* Purpose: run every job to completion, filling its outputs.
  * Inputs:  jobs with their input fields set; opts (NULL for defaults).
- * Returns: 0, or -1 if memory ran out (jobs not finished get status fail and
- *          the message "out of memory").  Per-job problems never fail the run:
+ * Returns: 0; -1 if memory ran out (jobs not finished get status fail and
+ *          the message "out of memory"); 1 if stopped through opts->stop.  Per-job problems never fail the run:
  *          they end that job with status fail / skip / limit and a message.
  * Deterministic: outputs other than the timings do not depend on the number of
  * threads.  eval_ns: on the CPU the thread time of each measurement; with a
