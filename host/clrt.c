@@ -207,7 +207,10 @@ static char *kernel_source(char *where, size_t wlen)
         snprintf(p2, sizeof p2, "%s/measure.cl", dir);
         core = read_file(p1);
         body = read_file(p2);
-        snprintf(where, wlen, "%s", dir);
+        /* a long path is cut: it only names the source in meta.json */
+        const size_t n = strlen(dir) < wlen ? strlen(dir) : wlen - 1;
+        memcpy(where, dir, n);
+        where[n] = '\0';
     }
     if (!core || !body) {
         free(core);

@@ -6,6 +6,7 @@
 #include <inttypes.h>
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,62 +18,11 @@
 #include "curvefile.h"
 #include "datadir.h"
 #include "diag.h"
+#include "journal.h"
 #include "options.h"
 #include "output.h"
 #include "progress.h"
 #include "random.h"
-
-int ob_mkdir_p(const char *dir)
-{
-    char buf[4096];
-    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
-        errno = ENAMETOOLONG;
-        return -1;
-    }
-    for (char *p = buf + 1; *p; p++) {
-        if (*p != '/')
-            continue;
-        *p = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            return -1;
-        *p = '/';
-    }
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-        return -1;
-    struct stat st;
-    if (stat(buf, &st) != 0)
-        return -1;
-    if (!S_ISDIR(st.st_mode)) {  /* EEXIST from a file of that name */
-        errno = ENOTDIR;
-        return -1;
-    }
-    return 0;
-}
-
-/* Writes DIR/NAME through a temporary file and a rename, so a reader never
- * sees a half-written file. */
-int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx)
-{
-    char path[4200], tmp[4210];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        ob_error("%s: cannot write: %s", tmp, strerror(errno));
-        return -1;
-    }
-    int rc = writer(f, ctx);
-    if (fclose(f) != 0 || rc != 0) {
-        ob_error("%s: write failed", tmp);
-        remove(tmp);
-        return -1;
-    }
-    if (rename(tmp, path) != 0) {
-        ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
-        return -1;
-    }
-    return 0;
-}
 
 typedef struct {
     const ob_job *jobs;
@@ -268,6 +218,103 @@ out:
     return rc;
 }
 
+/* SIGINT / SIGTERM: the driver stops at the next batch; a second signal
+ * acts as usual (SA_RESETHAND). */
+static volatile sig_atomic_t stop_signal = 0;
+
+static void on_stop_signal(int sig)
+{
+    stop_signal = sig;
+}
+
+static void catch_stop_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sa.sa_flags = SA_RESETHAND | SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+typedef struct {
+    ob_journal *jr;
+    const ob_job *jobs;
+    int failed;
+} journal_ctx;
+
+static void journal_job_done(void *ctx, size_t i)
+{
+    journal_ctx *c = ctx;
+    if (!c->failed && ob_journal_add(c->jr, &c->jobs[i]) != 0) {
+        c->failed = 1;
+        ob_error("%s: cannot write: rows are no longer saved as jobs finish", c->jr->path);
+    }
+}
+
+/* The run without repetitions: rows saved to the journal as jobs finish;
+ * with --resume, the jobs the journal (or a finished results.csv) already
+ * has are restored instead of run.  Returns the driver's status (1: stopped
+ * by a signal), or 2 when the journal cannot be used (said through
+ * ob_error()).  *restored_n: how many jobs were restored. */
+static int run_journaled(ob_job *jobs, size_t njobs, ob_run_opts *o, const char *where, ob_journal *jr,
+                         double *wall, size_t *restored_n)
+{
+    char err[1024];
+    ob_res_table prev;
+    char *fp = ob_run_fingerprint(o, where);
+    size_t *idx = malloc((njobs ? njobs : 1) * sizeof *idx);
+    ob_job *pend = malloc((njobs ? njobs : 1) * sizeof *pend);
+    int rc = 2;
+    *restored_n = 0;
+    if (!fp || !idx || !pend) {
+        ob_error("out of memory");
+        memset(&prev, 0, sizeof prev);
+        goto out;
+    }
+    if (ob_journal_open(jr, o->out_dir, fp, o->resume_dir != NULL, &prev, err, sizeof err) != 0) {
+        ob_error("%s", err);
+        goto out;
+    }
+    size_t np = 0;
+    for (size_t i = 0; i < njobs; i++) {
+        ob_job *j = &jobs[i];
+        const ob_res_row key = {.curve = j->curve->id, .method = j->method->name,
+                                .metric = ob_metric_name(j->metric), .split = ob_split_name(j->split), .d = j->d,
+                                .tol = j->tol};
+        const ob_res_row *row = prev.n ? ob_res_find(&prev, &key) : NULL;
+        if (row && ob_job_from_row(j, row) == 0) {
+            ++*restored_n;
+            if (jr->from_results && ob_journal_add(jr, j) != 0) {
+                ob_error("%s: cannot write", jr->path);
+                goto out;
+            }
+        } else {
+            idx[np] = i;
+            pend[np++] = *j;
+        }
+    }
+    if (*restored_n)
+        fprintf(stderr, "offbench: resuming %s: %zu of %zu jobs restored, %zu to run\n", o->out_dir, *restored_n,
+                njobs, np);
+    journal_ctx jc = {jr, pend, 0};
+    o->driver.job_done = journal_job_done;
+    o->driver.job_done_ctx = &jc;
+    o->driver.stop = &stop_signal;
+    rc = run_once(pend, np, o, NULL, wall);
+    o->driver.job_done = NULL;
+    o->driver.job_done_ctx = NULL;
+    for (size_t k = 0; k < np; k++)
+        jobs[idx[k]] = pend[k];
+out:
+    ob_res_free(&prev);
+    free(fp);
+    free(idx);
+    free(pend);
+    return rc;
+}
+
 /* --backend: opencl must work (exit 2 with the reason otherwise), auto uses it
  * when it works and says why not in meta.json, cpu never tries.  The kernel
  * is built here, once, before any timed work. */
@@ -308,6 +355,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     ob_job *jobs = NULL;
     ob_cl *cl = NULL;
     double *rep_fit = NULL, *rep_eval = NULL;
+    ob_journal journal;
+    memset(&journal, 0, sizeof journal);
     int status = 2;
     if (ob_run_opts_parse(argc, argv, &o) != 0)
         goto done;
@@ -337,7 +386,24 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     if (ob_open_backend(&o, &cl) != 0)
         goto done;
     double wall = 0.0;
-    int drc = run_once(jobs, njobs, &o, o.reps > 0 ? "warm-up run" : NULL, &wall);
+    size_t restored = 0;
+    catch_stop_signals();
+    o.driver.stop = &stop_signal;
+    int drc = o.reps > 0 ? run_once(jobs, njobs, &o, "warm-up run", &wall)
+                         : run_journaled(jobs, njobs, &o, where, &journal, &wall, &restored);
+    if (drc == 2)
+        goto done;
+    if (drc == 1) {
+        ob_journal_close(&journal, 0);
+        if (o.reps > 0)
+            ob_error("interrupted by signal %d: nothing written (a run with --reps cannot be resumed)",
+                     (int)stop_signal);
+        else
+            ob_error("interrupted by signal %d: the finished jobs' rows are in %s; run the same command with "
+                     "--resume %s to finish", (int)stop_signal, journal.path, o.out_dir);
+        status = 128 + (int)stop_signal;
+        goto done;
+    }
     if (drc == 0 && o.reps > 0) {
         rep_fit = malloc((size_t)o.reps * njobs * sizeof *rep_fit);
         rep_eval = malloc((size_t)o.reps * njobs * sizeof *rep_eval);
@@ -349,6 +415,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         (o.reps == 0 || drc != 0 || ob_write_atomically(o.out_dir, "samples.csv", write_samples_cb, &r) == 0) &&
         ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) == 0;
     status = written ? 0 : 1;
+    ob_journal_close(&journal, written);  /* results.csv has every row now */
     if (drc != 0) {
         ob_error("ran out of memory; unfinished jobs are marked fail");
         status = 1;
@@ -364,6 +431,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
             njobs, wall, omp_get_max_threads(), o.reps > 0 ? ", median of the timed repetitions" : "", cnt[OB_OK],
             cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], timeouts, written ? "wrote" : "could not write", o.out_dir);
 done:
+    ob_journal_close(&journal, 0);
     ob_cl_close(cl);
     free(rep_fit);
     free(rep_eval);

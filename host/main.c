@@ -15,7 +15,7 @@ static const char usage[] =
     "                    [--threads N]\n"
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"
-    "                    [--job-timeout S] [--reps N] [--out DIR]\n"
+    "                    [--job-timeout S] [--reps N] [--out DIR | --resume DIR]\n"
     "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"

@@ -183,6 +183,7 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
     for (int i = 0; i < nm; i++)
         ob_param_defaults(ob_methods[i], o->params + i * OB_MAX_PARAMS);
 
+    int out_given = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -256,6 +257,7 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
                 return -1;
             }
             o->out_dir = v;
+            out_given = 1;
         } else if (strcmp(a, "--samples") == 0) {
             if (parse_int(a, v, OB_MIN_SAMPLES, OB_MAX_SAMPLES, &o->driver.samples))
                 return -1;
@@ -274,11 +276,29 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
                 ob_error("--inflections: expected yes or no, got '%s'", v);
                 return -1;
             }
+        } else if (strcmp(a, "--resume") == 0) {
+            if (!*v) {
+                ob_error("--resume: empty directory name");
+                return -1;
+            }
+            o->resume_dir = v;
         } else {
             ob_error("run: unknown option '%s'", a);
             return -1;
         }
         i += takes;
+    }
+    if (o->resume_dir) {
+        if (out_given && strcmp(o->out_dir, o->resume_dir) != 0) {
+            ob_error("--resume %s: the results go back into that directory; --out %s names another", o->resume_dir,
+                     o->out_dir);
+            return -1;
+        }
+        if (o->reps > 0) {
+            ob_error("--resume: not with --reps (repetitions time whole runs)");
+            return -1;
+        }
+        o->out_dir = o->resume_dir;
     }
     return 0;
 }

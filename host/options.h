@@ -44,6 +44,7 @@ typedef struct {
     long rep_mismatches;         /* for meta.json: job results that differed
                                     between repetitions (nondeterminism) */
     const char *out_dir;
+    const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
     ob_driver_opts driver;
     ob_backend_info binfo;       /* for meta.json */
     int argc;                    /* for meta.json */

@@ -35,24 +35,28 @@ void ob_csv_field(FILE *f, const char *s)
 int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs)
 {
     fprintf(f, "%s\n", OB_RESULTS_HEADER);
+    for (size_t i = 0; i < njobs; i++)
+        ob_write_result_row(f, &jobs[i]);
+    return ferror(f) ? -1 : 0;
+}
+
+int ob_write_result_row(FILE *f, const ob_job *j)
+{
     char d[40], tol[40], err[40];
-    for (size_t i = 0; i < njobs; i++) {
-        const ob_job *j = &jobs[i];
-        ob_fmt_double(d, sizeof d, j->d);
-        ob_fmt_double(tol, sizeof tol, j->tol);
-        if (isnan(j->max_err))
-            err[0] = '\0';
-        else
-            ob_fmt_double(err, sizeof err, j->max_err);
-        ob_csv_field(f, j->curve->id);
-        fprintf(f, ",%s,%s,%s,%s,%s,%ld,%d,%d,%s,%s,%.0f,%.0f,", d, j->method->name,
-                ob_metric_name(j->metric), ob_split_name(j->split), tol, j->ctrl_points,
-                j->segments, j->out_degree, err, ob_status_name(j->status), j->fit_ns, j->eval_ns);
-        ob_csv_field(f, j->message);
-        fputc(',', f);
-        ob_csv_field(f, j->curve->family ? j->curve->family : "");
-        fputc('\n', f);
-    }
+    ob_fmt_double(d, sizeof d, j->d);
+    ob_fmt_double(tol, sizeof tol, j->tol);
+    if (isnan(j->max_err))
+        err[0] = '\0';
+    else
+        ob_fmt_double(err, sizeof err, j->max_err);
+    ob_csv_field(f, j->curve->id);
+    fprintf(f, ",%s,%s,%s,%s,%s,%ld,%d,%d,%s,%s,%.0f,%.0f,", d, j->method->name, ob_metric_name(j->metric),
+            ob_split_name(j->split), tol, j->ctrl_points, j->segments, j->out_degree, err,
+            ob_status_name(j->status), j->fit_ns, j->eval_ns);
+    ob_csv_field(f, j->message);
+    fputc(',', f);
+    ob_csv_field(f, j->curve->family ? j->curve->family : "");
+    fputc('\n', f);
     return ferror(f) ? -1 : 0;
 }
 

@@ -16,6 +16,9 @@ extern const char OB_RESULTS_HEADER[];
  * write error. */
 int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs);
 
+/* Purpose: write one job's row (no header) to f.  Returns 0 or -1. */
+int ob_write_result_row(FILE *f, const ob_job *j);
+
 /* The samples.csv header line (no newline). */
 extern const char OB_SAMPLES_HEADER[];
 

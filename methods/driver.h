@@ -32,6 +32,7 @@
 #ifndef OB_DRIVER_H
 #define OB_DRIVER_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "method.h"
@@ -119,7 +120,7 @@ typedef struct {
     /* if not NULL: read between batches; once nonzero (a signal handler sets
      * it) the driver stops, and jobs not finished get status fail with the
      * message "interrupted" (job_done is not called for them) */
-    const volatile int *stop;
+    const volatile sig_atomic_t *stop;
 } ob_driver_opts;
 
 void ob_driver_defaults(ob_driver_opts *o);
