@@ -6,13 +6,20 @@
 #   make nightly    the nightly run compared with results/baseline/ (report in out/nightly)
 #   make accept-baseline  run the nightly configuration and make it the baseline
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
+#   make fuzz       libFuzzer on the curve-file and compare readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 
 CC      ?= gcc
 SAN     ?= 0
 OPT     ?= -O2
 CFLAGS_COMMON = -std=c11 -g -Wall -Wextra -Wshadow -fopenmp -D_POSIX_C_SOURCE=200809L
-ifeq ($(SAN),1)
+ifeq ($(SAN),fuzz)
+  # libFuzzer targets (make fuzz): clang, ASan + UBSan, objects in build-fuzz/
+  BUILD   := build-fuzz
+  OPT     := -O1
+  SANFLAGS := -fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer
+  BIN     := $(BUILD)/offbench
+else ifeq ($(SAN),1)
   BUILD   := build-san
   OPT     := -O1
   SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
@@ -36,7 +43,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv
 
-.PHONY: all test run deps clean bench tables nightly accept-baseline FORCE
+.PHONY: all test run deps clean bench tables nightly accept-baseline fuzz fuzz-run FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -112,7 +119,37 @@ nightly:
 accept-baseline:
 	sh scripts/nightly.sh --accept --out out/nightly
 
+# Fuzzing (needs clang with libFuzzer: Debian's clang): each target runs
+# FUZZ_SECONDS (default 60) from its seed corpus; a crash stops it, leaves
+# build-fuzz/crash-* and fails the target.  New corpus entries stay in
+# build-fuzz/corpus-*; the seeds are in tests/.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := curves compare
+FUZZ_SEEDS_curves := tests/bad_curves datasets
+FUZZ_SEEDS_compare := tests/fuzz/seeds_compare tests/bad_compare
+FUZZ_DICT_curves := -dict=tests/fuzz/curves.dict
+
+fuzz:
+	$(MAKE) SAN=fuzz CC=clang fuzz-run
+
+fuzz-run: $(patsubst %,$(BUILD)/fuzz/fuzz_%,$(FUZZ_TARGETS))
+	@for t in $(FUZZ_TARGETS); do \
+	    mkdir -p $(BUILD)/corpus-$$t; \
+	    echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	    seeds=""; dict=""; \
+	    case $$t in curves) seeds="$(FUZZ_SEEDS_curves)"; dict="$(FUZZ_DICT_curves)";; \
+	                compare) seeds="$(FUZZ_SEEDS_compare)";; esac; \
+	    $(BUILD)/fuzz/fuzz_$$t $$dict -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -print_final_stats=1 \
+	        -artifact_prefix=$(BUILD)/crash-$$t- $(BUILD)/corpus-$$t $$seeds > $(BUILD)/fuzz-$$t.log 2>&1 \
+	        || { tail -n 40 $(BUILD)/fuzz-$$t.log; echo "fuzz: $$t FAILED (see $(BUILD)/fuzz-$$t.log)"; exit 1; }; \
+	    grep -E "stat::number_of_executed_units|stat::new_units_added" $(BUILD)/fuzz-$$t.log | sed "s/^/fuzz: $$t: /"; \
+	done
+
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(BUILD)/libob.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -I. -o $@ $< $(BUILD)/libob.a $(LDFLAGS) $(LDLIBS)
+
 clean:
-	rm -rf build build-san offbench out
+	rm -rf build build-san build-fuzz offbench out
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

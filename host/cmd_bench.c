@@ -77,8 +77,15 @@ static double fma_loop(long iters)
 typedef double v8d __attribute__((vector_size(64)));
 typedef double v4d __attribute__((vector_size(32)));
 
-/* fp-contract=fast: -std=c11 turns contraction off, and this loop must be FMAs */
-__attribute__((target("avx512f,fma"), optimize("fp-contract=fast"))) static double fma_avx512(long iters)
+/* fp-contract=fast: -std=c11 turns contraction off, and this loop must be FMAs
+ * (gcc's attribute; clang, used by `make fuzz`, contracts within statements
+ * by default) */
+#if defined(__clang__)
+#define OB_CONTRACT
+#else
+#define OB_CONTRACT optimize("fp-contract=fast"),
+#endif
+__attribute__((OB_CONTRACT target("avx512f,fma"))) static double fma_avx512(long iters)
 {
     v8d x[8], a = {0}, c = {0};
     for (int k = 0; k < 8; k++)
@@ -97,7 +104,7 @@ __attribute__((target("avx512f,fma"), optimize("fp-contract=fast"))) static doub
     return s;
 }
 
-__attribute__((target("avx2,fma"), optimize("fp-contract=fast"))) static double fma_avx2(long iters)
+__attribute__((OB_CONTRACT target("avx2,fma"))) static double fma_avx2(long iters)
 {
     v4d x[10], a = {0.999999, 0.999999, 0.999999, 0.999999}, c = {1e-7, 1e-7, 1e-7, 1e-7};
     for (int k = 0; k < 10; k++)
