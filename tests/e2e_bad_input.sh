@@ -36,5 +36,22 @@ for f in tests/bad_curves/*.curves; do
 done
 if [ $n -ge 50 ]; then ok; else bad "only $n malformed curve files (at least 50 wanted)"; fi
 
+# Degenerate geometry inside a run (tests/hostile/geometry.curves: a cusp, an
+# arc offset by its own radius, a line, nearly parallel legs, a doubled
+# control point): every method ends every job with a status, non-ok ones with
+# a message; the run goes on and exits 0.  SISL runs away on the collapsing
+# arc: its deadline (1 s here) stops it.
+"$OB" run --curves tests/hostile/geometry.curves --methods all --tols 1e-2 --param sisl.timeout=1 \
+    --out "$T/hostile" >/dev/null 2>"$T/err"
+rc=$?
+rows=$(($(wc -l < "$T/hostile/results.csv") - 1))
+nm=$(awk -F, 'NR>1{print $3}' "$T/hostile/results.csv" | sort -u | wc -l)
+nomsg=$(awk -F, 'NR>1 && $11 != "ok" && $14 == ""' "$T/hostile/results.csv" | wc -l)
+badst=$(awk -F, 'NR>1 && $11 !~ /^(ok|limit|fail|skip)$/' "$T/hostile/results.csv" | wc -l)
+if [ $rc -eq 0 ] && [ $nm -ge 16 ] && [ $rows -eq $((7 * nm)) ] && [ $nomsg -eq 0 ] && [ $badst -eq 0 ]; then ok; else
+    bad "hostile geometry: exit $rc, $rows rows (7 x $nm methods wanted), $nomsg non-ok rows without a message, $badst bad statuses"; fi
+if grep -q '^arc_d_is_radius,1,sisl,.*,fail,.*did not finish in 1 s' "$T/hostile/results.csv"; then ok; else
+    bad "SISL's runaway on the collapsing arc is stopped: $(grep '^arc_d_is_radius,1,sisl' "$T/hostile/results.csv")"; fi
+
 echo "$pass passed, $fail failed, $skipped skipped"
 [ $fail -eq 0 ]
