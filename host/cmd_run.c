@@ -19,6 +19,7 @@
 #include "datadir.h"
 #include "diag.h"
 #include "journal.h"
+#include "shard.h"
 #include "options.h"
 #include "output.h"
 #include "progress.h"
@@ -218,6 +219,42 @@ out:
     return rc;
 }
 
+/* --shard K/N: keep the jobs of shard K (in job order); *idx gets their
+ * indices in the whole run's job list.  0, or -1 after ob_error(). */
+static int select_shard(const ob_run_opts *o, ob_job **jobs, size_t *njobs, size_t **idx)
+{
+    int *of = malloc((*njobs ? *njobs : 1) * sizeof *of);
+    *idx = malloc((*njobs ? *njobs : 1) * sizeof **idx);
+    if (!of || !*idx || ob_shard_assign(*jobs, *njobs, o->shard_n, of) != 0) {
+        free(of);
+        ob_error("out of memory");
+        return -1;
+    }
+    size_t n = 0;
+    for (size_t i = 0; i < *njobs; i++)
+        if (of[i] == o->shard_k) {
+            (*jobs)[n] = (*jobs)[i];
+            (*idx)[n++] = i;
+        }
+    free(of);
+    *njobs = n;
+    return 0;
+}
+
+typedef struct {
+    const size_t *idx;
+    size_t n;
+} shard_out;
+
+static int write_shard_cb(FILE *f, void *ctx)
+{
+    const shard_out *s = ctx;
+    fprintf(f, "job\n");
+    for (size_t i = 0; i < s->n; i++)
+        fprintf(f, "%zu\n", s->idx[i]);
+    return ferror(f) ? -1 : 0;
+}
+
 /* SIGINT / SIGTERM: the driver stops at the next batch; a second signal
  * acts as usual (SA_RESETHAND). */
 static volatile sig_atomic_t stop_signal = 0;
@@ -355,6 +392,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     ob_job *jobs = NULL;
     ob_cl *cl = NULL;
     double *rep_fit = NULL, *rep_eval = NULL;
+    size_t *shard_idx = NULL;
     ob_journal journal;
     memset(&journal, 0, sizeof journal);
     int status = 2;
@@ -377,6 +415,24 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     if (njobs == 0) {
         ob_error("no jobs: the selected curves have no offsets");
         goto done;
+    }
+    {
+        char *fp = ob_run_fingerprint(&o, where);
+        if (!fp) {
+            ob_error("out of memory");
+            status = 1;
+            goto done;
+        }
+        o.jobs_total = njobs;
+        o.plan_hash = ob_plan_hash(jobs, njobs, fp);
+        free(fp);
+    }
+    if (o.shard_n > 0) {
+        if (select_shard(&o, &jobs, &njobs, &shard_idx) != 0) {
+            status = 1;
+            goto done;
+        }
+        fprintf(stderr, "offbench: shard %d/%d: %zu of %zu jobs\n", o.shard_k, o.shard_n, njobs, o.jobs_total);
     }
     if (ob_mkdir_p(o.out_dir) != 0) {
         ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
@@ -413,6 +469,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     const int written =
         ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) == 0 &&
         (o.reps == 0 || drc != 0 || ob_write_atomically(o.out_dir, "samples.csv", write_samples_cb, &r) == 0) &&
+        (o.shard_n == 0 || ob_write_atomically(o.out_dir, "shard.csv", write_shard_cb,
+                                               &(shard_out){shard_idx, njobs}) == 0) &&
         ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) == 0;
     status = written ? 0 : 1;
     ob_journal_close(&journal, written);  /* results.csv has every row now */
@@ -435,6 +493,7 @@ done:
     ob_cl_close(cl);
     free(rep_fit);
     free(rep_eval);
+    free(shard_idx);
     free(jobs);
     ob_curveset_free(&set);
     ob_run_opts_free(&o);

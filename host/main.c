@@ -15,7 +15,8 @@ static const char usage[] =
     "                    [--threads N]\n"
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"
-    "                    [--job-timeout S] [--reps N] [--out DIR | --resume DIR]\n"
+    "                    [--job-timeout S] [--reps N] [--shard K/N] [--out DIR | --resume DIR]\n"
+    "  ./offbench merge  DIR... --out DIR   (the shards of one run into its results.csv)\n"
     "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
@@ -40,6 +41,8 @@ int main(int argc, char **argv)
         return ob_cmd_tables(argc - 1, argv + 1, argc, argv);
     if (strcmp(cmd, "compare") == 0)
         return ob_cmd_compare(argc - 1, argv + 1);
+    if (strcmp(cmd, "merge") == 0)
+        return ob_cmd_merge(argc - 1, argv + 1);
     if (strcmp(cmd, "draw") == 0)
         return ob_cmd_draw(argc - 1, argv + 1);
     if (strcmp(cmd, "trace") == 0)

@@ -2,6 +2,7 @@
  * options.c - parsing of the `run` options.  Every error names the option.
  */
 #include "options.h"
+#include "shard.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -276,6 +277,9 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
                 ob_error("--inflections: expected yes or no, got '%s'", v);
                 return -1;
             }
+        } else if (strcmp(a, "--shard") == 0) {
+            if (ob_shard_parse(a, v, &o->shard_k, &o->shard_n))
+                return -1;
         } else if (strcmp(a, "--resume") == 0) {
             if (!*v) {
                 ob_error("--resume: empty directory name");

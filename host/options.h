@@ -45,6 +45,12 @@ typedef struct {
                                     between repetitions (nondeterminism) */
     const char *out_dir;
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
+    int shard_k, shard_n;        /* --shard K/N: this process runs shard K of N
+                                    (shard.h); shard_n 0: the whole run */
+    /* for meta.json, filled by the run command: the whole run's job count
+     * and plan hash (shard.h), equal in every shard of one run */
+    size_t jobs_total;
+    uint64_t plan_hash;
     ob_driver_opts driver;
     ob_backend_info binfo;       /* for meta.json */
     int argc;                    /* for meta.json */

@@ -189,7 +189,15 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
             o->reps > 0 ? "true" : "false", o->rep_mismatches);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
-    fprintf(f, ",\n  \"jobs\": %zu,\n  \"wall_seconds\": %.3f,\n  \"argv\": [", njobs, wall_seconds);
+    fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
+    /* the shard lines are rewritten by merge (cmd_merge.c): keep them one
+     * key per line */
+    if (o->shard_n > 0)
+        fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
+    else
+        fprintf(f, "  \"shard\": null,\n");
+    fprintf(f, "  \"jobs_total\": %zu,\n  \"plan_hash\": \"%016" PRIx64 "\",\n", o->jobs_total, o->plan_hash);
+    fprintf(f, "  \"wall_seconds\": %.3f,\n  \"argv\": [", wall_seconds);
     for (int i = 0; i < o->argc; i++) {
         if (i)
             fputs(", ", f);

@@ -1,0 +1,127 @@
+/*
+ * shard.c - cost-balanced partition of a run's jobs (see shard.h).
+ */
+#include "shard.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diag.h"
+#include "numfmt.h"
+
+/* Median thread time per job (ms) of each method in the nightly baseline's
+ * random set (hausdorff, mid, five tolerances: results/plots/
+ * nightly_time_per_job.png); a method not listed counts as 2 ms. */
+static const struct {
+    const char *name;
+    double ms;
+} method_ms[] = {
+    {"exact", 0.35}, {"ahn", 1.24}, {"lstsq", 1.27}, {"interp", 1.30}, {"elber", 1.42}, {"chebyshev", 1.56},
+    {"kim2018", 1.72}, {"liu", 1.95}, {"coquillart", 2.04}, {"tiller", 2.06}, {"zhao", 2.33}, {"cobb", 2.50},
+    {"zhao-rational", 2.83}, {"sisl", 4.48}, {"lee", 8.02}, {"hoschek", 9.03},
+};
+
+double ob_job_cost(const ob_job *j)
+{
+    double ms = 2.0;
+    for (size_t k = 0; k < sizeof method_ms / sizeof method_ms[0]; k++)
+        if (strcmp(method_ms[k].name, j->method->name) == 0)
+            ms = method_ms[k].ms;
+    double size = 0.0;
+    for (int s = 0; s < j->curve->nseg; s++)
+        size += j->curve->seg[s].deg + 1;
+    const double tol = j->tol > 0 ? j->tol : 1e-3;
+    return ms * (size / 4.0) * pow(tol / 1e-3, -0.25);
+}
+
+typedef struct {
+    double cost;
+    size_t i;
+} costed;
+
+static int by_cost_desc(const void *a, const void *b)
+{
+    const costed *x = a, *y = b;
+    if (x->cost != y->cost)
+        return x->cost > y->cost ? -1 : 1;
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+int ob_shard_assign(const ob_job *jobs, size_t njobs, int n, int *shard_of)
+{
+    costed *c = malloc((njobs ? njobs : 1) * sizeof *c);
+    double *load = calloc((size_t)(n > 0 ? n : 1), sizeof *load);
+    if (!c || !load) {
+        free(c);
+        free(load);
+        return -1;
+    }
+    for (size_t i = 0; i < njobs; i++)
+        c[i] = (costed){ob_job_cost(&jobs[i]), i};
+    qsort(c, njobs, sizeof *c, by_cost_desc);
+    for (size_t k = 0; k < njobs; k++) {
+        int best = 0;
+        for (int s = 1; s < n; s++)
+            if (load[s] < load[best])
+                best = s;
+        shard_of[c[k].i] = best;
+        load[best] += c[k].cost;
+    }
+    free(c);
+    free(load);
+    return 0;
+}
+
+int ob_shard_parse(const char *opt, const char *spec, int *k, int *n)
+{
+    char *e;
+    errno = 0;
+    long kk = strtol(spec, &e, 10);
+    if (e == spec || *e != '/' || errno) {
+        ob_error("%s: expected K/N (shard K of N, 0 <= K < N), got '%s'", opt, spec);
+        return -1;
+    }
+    const char *s2 = e + 1;
+    long nn = strtol(s2, &e, 10);
+    if (e == s2 || *e || errno || nn < 1 || nn > 100000 || kk < 0 || kk >= nn) {
+        ob_error("%s: expected K/N with 0 <= K < N <= 100000, got '%s'", opt, spec);
+        return -1;
+    }
+    *k = (int)kk;
+    *n = (int)nn;
+    return 0;
+}
+
+static uint64_t fnv(uint64_t h, const void *p, size_t len)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < len; i++) {
+        h ^= b[i];
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+static uint64_t fnv_str(uint64_t h, const char *s)
+{
+    return fnv(h, s, strlen(s) + 1);  /* with the NUL: "ab","c" != "a","bc" */
+}
+
+uint64_t ob_plan_hash(const ob_job *jobs, size_t njobs, const char *fp)
+{
+    uint64_t h = fnv_str(14695981039346656037ULL, fp);
+    for (size_t i = 0; i < njobs; i++) {
+        char d[40], tol[40];
+        ob_fmt_double(d, sizeof d, jobs[i].d);
+        ob_fmt_double(tol, sizeof tol, jobs[i].tol);
+        h = fnv_str(h, jobs[i].curve->id);
+        h = fnv_str(h, d);
+        h = fnv_str(h, jobs[i].method->name);
+        h = fnv_str(h, ob_metric_name(jobs[i].metric));
+        h = fnv_str(h, ob_split_name(jobs[i].split));
+        h = fnv_str(h, tol);
+    }
+    return h;
+}

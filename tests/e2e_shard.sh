@@ -1,0 +1,71 @@
+#!/bin/sh
+# Sharded runs: --shard K/N splits the job list, merge puts the shards back
+# into exactly the unsharded results.csv (timing columns aside), and refuses
+# incomplete, repeated, overlapping or mixed sets with exit status 2.
+OB=${OFFBENCH:-./offbench}
+OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+check() { if eval "$1"; then ok; else bad "$2"; fi; }
+body() { cut -d, -f1-11,14- "$1"; }
+
+R="--random 24:5 --methods tiller,ahn,zhao,lee --tols 1e-1,1e-3 --backend cpu"
+$OB run $R --out "$T/all" 2>/dev/null
+check '[ $? -eq 0 ]' "unsharded run"
+for k in 0 1 2; do
+    $OB run $R --shard $k/3 --out "$T/s$k" 2>"$T/s$k.err"
+    check '[ $? -eq 0 ] && [ -f "$T/s$k/shard.csv" ] && grep -q "\"shard\": \"$k/3\"" "$T/s$k/meta.json"' "shard $k/3"
+done
+n0=$(($(wc -l < "$T/s0/results.csv") - 1)); n1=$(($(wc -l < "$T/s1/results.csv") - 1))
+n2=$(($(wc -l < "$T/s2/results.csv") - 1)); nall=$(($(wc -l < "$T/all/results.csv") - 1))
+check '[ $((n0 + n1 + n2)) -eq $nall ] && [ $n0 -gt 0 ] && [ $n1 -gt 0 ] && [ $n2 -gt 0 ]' \
+    "the shards split the $nall jobs: $n0 + $n1 + $n2"
+$OB merge "$T/s2" "$T/s0" "$T/s1" --out "$T/m" 2>"$T/m.err"
+check '[ $? -eq 0 ] && body "$T/m/results.csv" | cmp -s - "$(body "$T/all/results.csv" > "$T/all.txt"; echo "$T/all.txt")"' \
+    "merged shards equal the unsharded run: $(cat "$T/m.err")"
+check 'grep -q "\"shard\": null" "$T/m/meta.json" && grep -q "\"merged_shards\": 3" "$T/m/meta.json" && grep -q "\"jobs\": $nall," "$T/m/meta.json"' \
+    "merged meta.json"
+$OB compare "$T/all" "$T/m" --no-timing >/dev/null 2>&1
+check '[ $? -eq 0 ]' "compare: the merged run is comparable with the unsharded one and the same"
+
+# refused sets: exit 2, saying why
+refuse() {  # expected text, then merge arguments
+    want=$1; shift
+    $OB merge "$@" --out "$T/bad" >/dev/null 2>"$T/e.txt"
+    rc=$?
+    if [ $rc -eq 2 ] && grep -q -- "$want" "$T/e.txt"; then ok; else bad "merge $* -> exit $rc, '$(cat "$T/e.txt")'"; fi
+}
+refuse "shard 2/3 is missing" "$T/s0" "$T/s1"
+refuse "given twice" "$T/s0" "$T/s1" "$T/s1" "$T/s2"
+$OB run $R --samples 64 --shard 2/3 --out "$T/x2" 2>/dev/null
+refuse "not shards of one run: plan_hash" "$T/s0" "$T/s1" "$T/x2"
+$OB run $R --shard 1/2 --out "$T/y1" 2>/dev/null
+refuse "another shard count" "$T/s0" "$T/s1" "$T/y1"
+mkdir "$T/empty"
+refuse "not a finished shard" "$T/s0" "$T/s1" "$T/empty"
+refuse "not a run with --shard" "$T/s0" "$T/s1" "$T/all"
+cp -r "$T/s1" "$T/o1"
+first0=$(sed -n 2p "$T/s0/shard.csv")
+awk -v f="$first0" 'NR==2{print f; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+refuse "overlapping shards" "$T/s0" "$T/o1" "$T/s2"
+head -n 3 "$T/s1/shard.csv" > "$T/o1/shard.csv"
+refuse "one index per row" "$T/s0" "$T/o1" "$T/s2"
+refuse "usage"
+
+# repetitions: samples.csv is merged too
+for k in 0 1; do $OB run $R --reps 2 --shard $k/2 --out "$T/r$k" 2>/dev/null; done
+$OB merge "$T/r0" "$T/r1" --out "$T/rm" 2>/dev/null
+check '[ $? -eq 0 ] && [ $(($(wc -l < "$T/rm/samples.csv") - 1)) -eq $((2 * nall)) ] && body "$T/rm/results.csv" | cmp -s - "$T/all.txt"' \
+    "shards with --reps 2: results and samples.csv merged"
+
+# bad --shard specs
+for spec in 3/3 1/0 x -1/2 1/2/3 0/100001 ""; do
+    $OB run $R --shard "$spec" --out "$T/z" >/dev/null 2>"$T/e.txt"
+    check '[ $? -eq 2 ] && grep -q -- "--shard" "$T/e.txt"' "--shard '$spec': $(cat "$T/e.txt")"
+done
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
