@@ -6,6 +6,7 @@
 #   make nightly    the nightly run compared with results/baseline/ (report in out/nightly)
 #   make accept-baseline  run the nightly configuration and make it the baseline
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
+#   make MPI=1      ./offbench built with Open MPI (mpirun -n P ./offbench run ...)
 #   make fuzz       libFuzzer on the curve-file and compare readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 
@@ -13,7 +14,13 @@ CC      ?= gcc
 SAN     ?= 0
 OPT     ?= -O2
 CFLAGS_COMMON = -std=c11 -g -Wall -Wextra -Wshadow -fopenmp -D_POSIX_C_SOURCE=200809L
-ifeq ($(SAN),fuzz)
+ifeq ($(MPI),1)
+  # mpirun -n P ./offbench run ...: Open MPI (mpicc), objects in build-mpi/
+  CC      := mpicc
+  BUILD   := build-mpi
+  SANFLAGS := -DOB_MPI
+  BIN     := offbench
+else ifeq ($(SAN),fuzz)
   # libFuzzer targets (make fuzz): clang, ASan + UBSan, objects in build-fuzz/
   BUILD   := build-fuzz
   OPT     := -O1
@@ -47,11 +54,11 @@ PUBLISHED := results/published/published_tables.csv
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
-	@sh scripts/deps.sh
+	@MPI=$(MPI) sh scripts/deps.sh
 	@mkdir -p $(BUILD) && touch $@
 
 deps:
-	@sh scripts/deps.sh
+	@MPI=$(MPI) sh scripts/deps.sh
 
 # Build facts recorded in meta.json; rewritten only when they change.
 $(BUILD)/buildinfo.h: FORCE
@@ -86,8 +93,12 @@ $(BUILD)/libob.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BIN): $(BUILD)/host/main.o $(BUILD)/libob.a
-	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+# ./offbench is built with or without MPI: relink when that changes
+.offbench-flavor: FORCE
+	@echo "$(BUILD)" > $@.tmp; cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+
+$(BIN): $(BUILD)/host/main.o $(BUILD)/libob.a $(if $(filter offbench,$(BIN)),.offbench-flavor)
+	$(CC) $(LDFLAGS) -o $@ $(filter %.o %.a,$^) $(LDLIBS)
 
 $(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h
 	@mkdir -p $(dir $@)
@@ -150,6 +161,6 @@ $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(BUILD)/libob.a
 	$(CC) $(CFLAGS) -fsanitize=fuzzer -I. -o $@ $< $(BUILD)/libob.a $(LDFLAGS) $(LDLIBS)
 
 clean:
-	rm -rf build build-san build-fuzz offbench out
+	rm -rf build build-san build-fuzz build-mpi offbench out .offbench-flavor
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -19,6 +19,7 @@
 #include "datadir.h"
 #include "diag.h"
 #include "journal.h"
+#include "mpirun.h"
 #include "shard.h"
 #include "options.h"
 #include "output.h"
@@ -255,6 +256,78 @@ static int write_shard_cb(FILE *f, void *ctx)
     return ferror(f) ? -1 : 0;
 }
 
+typedef struct {
+    const char *header, *body;
+} text_out;
+
+static int write_text_cb(FILE *f, void *ctx)
+{
+    const text_out *t = ctx;
+    fprintf(f, "%s\n%s", t->header, t->body);
+    return ferror(f) ? -1 : 0;
+}
+
+/* Text of one job's row (and samples) for the gather. */
+static char *job_text(const ob_job *j, int reps, const double *fit, const double *eval, size_t stride)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (!f)
+        return NULL;
+    int rc = reps > 0 ? ob_write_job_samples(f, j, reps, fit, eval, stride) : ob_write_result_row(f, j);
+    if (fclose(f) != 0 || rc != 0) {
+        free(buf);
+        return NULL;
+    }
+    return buf;
+}
+
+/* Under mpirun: every rank sends its rows to rank 0, which writes the files
+ * of the whole run.  Returns the exit status (the same on every rank). */
+static int mpi_write(const ob_job *jobs, size_t njobs, const size_t *idx, ob_run_opts *o, const char *where,
+                     double wall, int drc, const double *rep_fit, const double *rep_eval)
+{
+    char **rows = calloc(njobs ? njobs : 1, sizeof *rows), **smp = calloc(njobs ? njobs : 1, sizeof *smp);
+    int ok = rows && smp && drc == 0;
+    for (size_t i = 0; ok && i < njobs; i++) {
+        rows[i] = job_text(&jobs[i], 0, NULL, NULL, 0);
+        smp[i] = o->reps > 0 ? job_text(&jobs[i], o->reps, rep_fit + i, rep_eval + i, njobs) : strdup("");
+        ok = rows[i] && smp[i];
+    }
+    char *res = NULL, *sam = NULL;
+    int status = 1;
+    if (ob_mpi_max(!ok) > 0) {
+        ob_error("rank %d: %s", ob_mpi_rank(), ok ? "another rank failed" : "out of memory");
+    } else if (ob_mpi_gather(rows, smp, idx, njobs, o->jobs_total, &res, &sam) != 0) {
+        ob_error("rank %d: gathering the rows at rank 0 failed", ob_mpi_rank());
+    } else if (ob_mpi_rank() == 0) {
+        run_out r = {NULL, o->jobs_total, o, where, wall, NULL, NULL};
+        const int written =
+            ob_write_atomically(o->out_dir, "results.csv", write_text_cb, &(text_out){OB_RESULTS_HEADER, res}) == 0 &&
+            (o->reps == 0 ||
+             ob_write_atomically(o->out_dir, "samples.csv", write_text_cb, &(text_out){OB_SAMPLES_HEADER, sam}) == 0) &&
+            ob_write_atomically(o->out_dir, "meta.json", write_meta_cb, &r) == 0;
+        fprintf(stderr, "offbench: %d ranks, %zu jobs in %.2f s: %s %s/results.csv\n", o->mpi_ranks, o->jobs_total,
+                wall, written ? "wrote" : "could not write", o->out_dir);
+        status = written ? 0 : 1;
+    } else {
+        status = 0;
+    }
+    status = (int)ob_mpi_max(status);
+    for (size_t i = 0; i < njobs; i++) {
+        if (rows)
+            free(rows[i]);
+        if (smp)
+            free(smp[i]);
+    }
+    free(rows);
+    free(smp);
+    free(res);
+    free(sam);
+    return status;
+}
+
 /* SIGINT / SIGTERM: the driver stops at the next batch; a second signal
  * acts as usual (SA_RESETHAND). */
 static volatile sig_atomic_t stop_signal = 0;
@@ -400,6 +473,16 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         goto done;
     o.argc = full_argc;
     o.argv = full_argv;
+    const int ranks = ob_mpi_size();
+    if (ranks > 1) {  /* every rank sees the same arguments: they all stop here alike */
+        if (o.shard_n > 0 || o.resume_dir) {
+            ob_error("under mpirun the ranks split the run: --shard and --resume do not apply");
+            goto done;
+        }
+        o.shard_k = ob_mpi_rank();
+        o.shard_n = ranks;
+        o.mpi_ranks = ranks;
+    }
     char where[4096];
     if (ob_load_run_curves(&o, &set, where, sizeof where) != 0)
         goto done;
@@ -427,15 +510,23 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         o.plan_hash = ob_plan_hash(jobs, njobs, fp);
         free(fp);
     }
+    if (ranks > 1 && !ob_mpi_all_equal(o.plan_hash)) {
+        ob_error("rank %d: the ranks were started with other arguments or data (plan hash differs)", ob_mpi_rank());
+        goto done;
+    }
     if (o.shard_n > 0) {
         if (select_shard(&o, &jobs, &njobs, &shard_idx) != 0) {
             status = 1;
             goto done;
         }
-        fprintf(stderr, "offbench: shard %d/%d: %zu of %zu jobs\n", o.shard_k, o.shard_n, njobs, o.jobs_total);
+        fprintf(stderr, "offbench: %s %d/%d: %zu of %zu jobs\n", ranks > 1 ? "rank" : "shard", o.shard_k, o.shard_n,
+                njobs, o.jobs_total);
     }
-    if (ob_mkdir_p(o.out_dir) != 0) {
+    /* under MPI only rank 0 writes; the ranks learn together that it can */
+    const int mkfail = ob_mpi_rank() == 0 && ob_mkdir_p(o.out_dir) != 0;
+    if (mkfail)
         ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
+    if (ob_mpi_max(mkfail) > 0) {
         status = 1;
         goto done;
     }
@@ -445,8 +536,12 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     size_t restored = 0;
     catch_stop_signals();
     o.driver.stop = &stop_signal;
-    int drc = o.reps > 0 ? run_once(jobs, njobs, &o, "warm-up run", &wall)
-                         : run_journaled(jobs, njobs, &o, where, &journal, &wall, &restored);
+    int drc = o.reps > 0 || ranks > 1 ? run_once(jobs, njobs, &o, o.reps > 0 ? "warm-up run" : NULL, &wall)
+                                      : run_journaled(jobs, njobs, &o, where, &journal, &wall, &restored);
+    if (ranks > 1 && ob_mpi_max(drc == 1) > 0 && drc != 1) {
+        drc = 1;  /* another rank was stopped: none writes */
+        stop_signal = stop_signal ? stop_signal : SIGTERM;
+    }
     if (drc == 2)
         goto done;
     if (drc == 1) {
@@ -464,6 +559,10 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         rep_fit = malloc((size_t)o.reps * njobs * sizeof *rep_fit);
         rep_eval = malloc((size_t)o.reps * njobs * sizeof *rep_eval);
         drc = !rep_fit || !rep_eval ? -1 : run_reps(jobs, njobs, &o, rep_fit, rep_eval, &wall);
+    }
+    if (ranks > 1) {
+        status = mpi_write(jobs, njobs, shard_idx, &o, where, ob_mpi_max(wall), drc, rep_fit, rep_eval);
+        goto done;
     }
     run_out r = {jobs, njobs, &o, where, wall, rep_fit, rep_eval};
     const int written =

@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "diag.h"
+#include "mpirun.h"
 
 static const char usage[] =
     "usage:\n"
@@ -26,7 +27,7 @@ static const char usage[] =
     "  ./offbench bench  [--out DIR] [--quick]\n"
     "See README.md for what each option means.\n";
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         fputs(usage, stderr);
@@ -56,4 +57,16 @@ int main(int argc, char **argv)
     ob_error("unknown command '%s'", cmd);
     fputs(usage, stderr);
     return 2;
+}
+
+/* Under mpirun (a build with MPI) every rank runs the command; see mpirun.h. */
+int main(int argc, char **argv)
+{
+    if (ob_mpi_init(&argc, &argv) != 0) {
+        ob_error("MPI could not start");
+        return 1;
+    }
+    const int rc = dispatch(argc, argv);
+    ob_mpi_finalize();
+    return rc;
 }

@@ -65,16 +65,20 @@ const char OB_SAMPLES_HEADER[] = "curve,d,method,metric,split,tol,rep,fit_ns,eva
 int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const double *fit, const double *eval)
 {
     fprintf(f, "%s\n", OB_SAMPLES_HEADER);
+    for (size_t i = 0; i < njobs; i++)
+        ob_write_job_samples(f, &jobs[i], reps, fit + i, eval + i, njobs);
+    return ferror(f) ? -1 : 0;
+}
+
+int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, const double *eval, size_t stride)
+{
     char d[40], tol[40];
-    for (size_t i = 0; i < njobs; i++) {
-        const ob_job *j = &jobs[i];
-        ob_fmt_double(d, sizeof d, j->d);
-        ob_fmt_double(tol, sizeof tol, j->tol);
-        for (int r = 0; r < reps; r++) {
-            ob_csv_field(f, j->curve->id);
-            fprintf(f, ",%s,%s,%s,%s,%s,%d,%.0f,%.0f\n", d, j->method->name, ob_metric_name(j->metric),
-                    ob_split_name(j->split), tol, r + 1, fit[(size_t)r * njobs + i], eval[(size_t)r * njobs + i]);
-        }
+    ob_fmt_double(d, sizeof d, j->d);
+    ob_fmt_double(tol, sizeof tol, j->tol);
+    for (int r = 0; r < reps; r++) {
+        ob_csv_field(f, j->curve->id);
+        fprintf(f, ",%s,%s,%s,%s,%s,%d,%.0f,%.0f\n", d, j->method->name, ob_metric_name(j->metric),
+                ob_split_name(j->split), tol, r + 1, fit[(size_t)r * stride], eval[(size_t)r * stride]);
     }
     return ferror(f) ? -1 : 0;
 }
@@ -192,7 +196,9 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
     /* the shard lines are rewritten by merge (cmd_merge.c): keep them one
      * key per line */
-    if (o->shard_n > 0)
+    if (o->mpi_ranks > 1)
+        fprintf(f, "  \"shard\": null,\n  \"mpi_ranks\": %d,\n", o->mpi_ranks);
+    else if (o->shard_n > 0)
         fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
     else
         fprintf(f, "  \"shard\": null,\n");

@@ -28,6 +28,10 @@ extern const char OB_SAMPLES_HEADER[];
  * eval[r * njobs + i].  Returns 0 or -1 on a write error. */
 int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const double *fit, const double *eval);
 
+/* Purpose: one job's samples.csv rows (no header): repetition r's timings
+ *          at fit[r * stride], eval[r * stride].  Returns 0 or -1. */
+int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, const double *eval, size_t stride);
+
 /* Purpose: write meta.json: what makes two runs comparable (build, backend,
  * threads, samples, limits, argv, time).  Returns 0 or -1. */
 int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,

@@ -7,6 +7,7 @@
 #   required to build:     a C11 compiler with OpenMP (gcc), make
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
+#   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 set -u
 
@@ -24,6 +25,11 @@ have_header sisl.h || missing="$missing libsisl-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
+fi
+# MPI (make MPI=1 only): Open MPI's compiler wrapper and mpirun
+if [ "${MPI:-0}" = 1 ]; then
+    command -v mpicc >/dev/null 2>&1 || missing="$missing libopenmpi-dev"
+    command -v mpirun >/dev/null 2>&1 || missing="$missing openmpi-bin"
 fi
 
 # Optional: python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py,
