@@ -561,6 +561,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         drc = !rep_fit || !rep_eval ? -1 : run_reps(jobs, njobs, &o, rep_fit, rep_eval, &wall);
     }
     if (ranks > 1) {
+        fprintf(stderr, "offbench: rank %d: %zu jobs in %.2f s\n", ob_mpi_rank(), njobs, wall);
         status = mpi_write(jobs, njobs, shard_idx, &o, where, ob_mpi_max(wall), drc, rep_fit, rep_eval);
         goto done;
     }
