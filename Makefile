@@ -38,7 +38,7 @@ else
 endif
 CFLAGS  += $(CFLAGS_COMMON) $(OPT) $(SANFLAGS)
 LDFLAGS += -fopenmp $(SANFLAGS)
-LDLIBS  += -lsisl -lm -ldl
+LDLIBS  += -lsisl -lflint -lgmp -lm -ldl
 
 LIB_SRC  := $(sort $(wildcard methods/*.c) $(filter-out host/main.c,$(wildcard host/*.c)))
 LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o \

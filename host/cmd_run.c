@@ -20,6 +20,7 @@
 #include "diag.h"
 #include "journal.h"
 #include "mpirun.h"
+#include "../methods/offdeg.h"
 #include "shard.h"
 #include "options.h"
 #include "output.h"
@@ -488,6 +489,15 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         goto done;
     if (o.threads > 0)
         omp_set_num_threads(o.threads);
+    /* the exact offset degree of every curve the run uses, once per curve */
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int c = 0; c < set.n; c++) {
+        ob_curve *cv = &set.v[c];
+        char msg[160];
+        if (selected(&o, cv->id) &&
+            ob_curve_offset_degree(cv, &cv->offset_degree, &cv->offset_rational, msg, sizeof msg) == 0)
+            cv->offset_known = 1;
+    }
     size_t njobs = 0;
     jobs = plan_jobs(&o, &set, &njobs);
     if (!jobs) {

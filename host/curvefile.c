@@ -66,6 +66,8 @@ typedef struct {
     int source_line, family_line;
     int kind, deg, deg_line;  /* kind: 0 none, 'z' bezier, 's' bspline */
     dvec knots, pts, offs;    /* pts holds x, y, w triples */
+    dvec hpts;                /* the same points as homogeneous w x, w y, w
+                                 (exact as given for `hpoint`) */
     int knots_line;
 } block;
 
@@ -102,6 +104,7 @@ static void block_clear(block *b)
     free(b->family);
     free(b->knots.v);
     free(b->pts.v);
+    free(b->hpts.v);
     free(b->offs.v);
     memset(b, 0, sizeof *b);
 }
@@ -273,10 +276,15 @@ static int kw_knots(parser *P, char *rest)
     return 0;
 }
 
-static int kw_point(parser *P, char *rest)
+/* `point X Y [W]` (Euclidean, weight W) or, homogeneous = 1, `hpoint WX WY W`
+ * (homogeneous coordinates: exact for integers, so that exact rational
+ * parameterizations such as (1 - t^2, 2t, 1 + t^2) can be given; the
+ * Bézier segment keeps them as written). */
+static int kw_point(parser *P, char *rest, int homogeneous)
 {
     block *b = &P->b;
-    int n = numbers(P, rest, "point", 2, 3);
+    const char *kw = homogeneous ? "hpoint" : "point";
+    int n = numbers(P, rest, kw, homogeneous ? 3 : 2, 3);
     if (n < 0)
         return -1;
     double w = n == 3 ? P->vals[2] : 1.0;
@@ -284,8 +292,12 @@ static int kw_point(parser *P, char *rest)
         return perr(P, P->line, "weight %.17g must be > 0", w);
     if (b->pts.n / 3 >= MAX_POINTS)
         return perr(P, P->line, "more than %d control points", (int)MAX_POINTS);
-    if (dvec_push(&b->pts, P->vals[0]) || dvec_push(&b->pts, P->vals[1]) ||
-        dvec_push(&b->pts, w))
+    const double x = homogeneous ? P->vals[0] / w : P->vals[0], y = homogeneous ? P->vals[1] / w : P->vals[1];
+    const double wx = homogeneous ? P->vals[0] : w * x, wy = homogeneous ? P->vals[1] : w * y;
+    if (!isfinite(x) || !isfinite(y))
+        return perr(P, P->line, "%s: the point is not finite", kw);
+    if (dvec_push(&b->pts, x) || dvec_push(&b->pts, y) || dvec_push(&b->pts, w) || dvec_push(&b->hpts, wx) ||
+        dvec_push(&b->hpts, wy) || dvec_push(&b->hpts, w))
         return perr(P, P->line, "out of memory");
     return 0;
 }
@@ -390,8 +402,11 @@ static int kw_end(parser *P, char *rest)
         if ((c->seg = calloc(1, sizeof *c->seg))) {
             c->nseg = 1;
             c->seg->deg = b->deg;
-            for (int i = 0; i < npts; i++)
-                ob_bez_set(c->seg, i, pt[3 * i], pt[3 * i + 1], pt[3 * i + 2]);
+            for (int i = 0; i < npts; i++) {
+                memcpy(c->seg->h[i], b->hpts.v + 3 * i, sizeof c->seg->h[i]);
+                if (c->seg->h[i][2] != 1.0)
+                    c->seg->rational = 1;
+            }
         }
     } else {
         char msg[200];
@@ -427,9 +442,9 @@ static int parse_line(parser *P, char *s)
     char *kw = next_tok(&s);
     if (!kw)
         return 0;
-    enum { CURVE, SOURCE, FAMILY, BEZIER, BSPLINE, KNOTS, POINT, OFFSET, END, NKW };
+    enum { CURVE, SOURCE, FAMILY, BEZIER, BSPLINE, KNOTS, POINT, HPOINT, OFFSET, END, NKW };
     static const char *const known[NKW] = {"curve", "source", "family", "bezier", "bspline",
-                                           "knots", "point",  "offset", "end"};
+                                           "knots", "point",  "hpoint", "offset", "end"};
     int i = 0;
     while (i < NKW && strcmp(kw, known[i]))
         i++;
@@ -445,7 +460,8 @@ static int parse_line(parser *P, char *s)
     case BEZIER:  return kw_degree(P, kw, 'z', s);
     case BSPLINE: return kw_degree(P, kw, 's', s);
     case KNOTS:   return kw_knots(P, s);
-    case POINT:   return kw_point(P, s);
+    case POINT:   return kw_point(P, s, 0);
+    case HPOINT:  return kw_point(P, s, 1);
     case OFFSET:  return kw_offset(P, s);
     default:      return kw_end(P, s);
     }

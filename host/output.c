@@ -15,7 +15,8 @@
 #include "numfmt.h"
 
 const char OB_RESULTS_HEADER[] =
-    "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family";
+    "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,"
+    "offset_degree,offset_rational";
 
 void ob_csv_field(FILE *f, const char *s)
 {
@@ -56,7 +57,10 @@ int ob_write_result_row(FILE *f, const ob_job *j)
     ob_csv_field(f, j->message);
     fputc(',', f);
     ob_csv_field(f, j->curve->family ? j->curve->family : "");
-    fputc('\n', f);
+    if (j->curve->offset_known)
+        fprintf(f, ",%d,%s\n", j->curve->offset_degree, j->curve->offset_rational ? "yes" : "no");
+    else
+        fputs(",,\n", f);
     return ferror(f) ? -1 : 0;
 }
 

@@ -40,6 +40,9 @@ typedef struct {
     double *d;          /* signed offset distances (owned) */
     char file[256];     /* where it was defined, for messages */
     int line;
+    /* the exact algebraic degree of its offset and whether the offset is
+     * rational (offdeg.h); filled by the run command, offset_known 0 before */
+    int offset_known, offset_degree, offset_rational;
 } ob_curve;
 
 /* ---- construction and access ------------------------------------------ */

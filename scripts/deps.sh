@@ -7,6 +7,7 @@
 #   required to build:     a C11 compiler with OpenMP (gcc), make
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
+#   FLINT (methods/offdeg.c): libflint-dev (required: exact offset degrees)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 set -u
@@ -22,6 +23,7 @@ rm -f /tmp/ob_omp_probe.$$
 
 have_header CL/cl.h || missing="$missing opencl-headers"
 have_header sisl.h || missing="$missing libsisl-dev"
+have_header flint/fmpz_poly.h || missing="$missing libflint-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
