@@ -48,7 +48,7 @@ TEST_BIN := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 TEST_SH  := $(sort $(wildcard tests/e2e_*.sh))
 DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
-PUBLISHED := results/published/published_tables.csv
+PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
 .PHONY: all test run deps clean bench tables nightly accept-baseline fuzz fuzz-run FORCE
 all: $(BIN)

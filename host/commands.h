@@ -27,6 +27,9 @@ int ob_cmd_trace(int argc, char **argv);
  * refused set or bad input; 1 output not writable). */
 int ob_cmd_merge(int argc, char **argv);
 
+/* atlas [--out DIR]: the Offset Atlas against the exact offset degrees. */
+int ob_cmd_atlas(int argc, char **argv);
+
 int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv);
 
 /* Creates dir and its parents (mode 0777 & umask); 0 or -1 (errno set). */

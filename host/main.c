@@ -22,6 +22,7 @@ static const char usage[] =
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
+    "  ./offbench atlas  [--out DIR]        (the Offset Atlas: exact offset degrees)\n"
     "  ./offbench tables [--out DIR] [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n"
     "  ./offbench list   methods|curves|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
@@ -42,6 +43,8 @@ static int dispatch(int argc, char **argv)
         return ob_cmd_tables(argc - 1, argv + 1, argc, argv);
     if (strcmp(cmd, "compare") == 0)
         return ob_cmd_compare(argc - 1, argv + 1);
+    if (strcmp(cmd, "atlas") == 0)
+        return ob_cmd_atlas(argc - 1, argv + 1);
     if (strcmp(cmd, "merge") == 0)
         return ob_cmd_merge(argc - 1, argv + 1);
     if (strcmp(cmd, "draw") == 0)
