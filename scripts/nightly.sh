@@ -40,6 +40,7 @@ threads=${OFFBENCH_THREADS:+--threads $OFFBENCH_THREADS}
 base=results/baseline
 start=$(date +%s)
 
+mkdir -p "$(dirname "$out")" || exit 2
 make >"$out.build.log" 2>&1 || { mkdir -p "$out"; mv "$out.build.log" "$out/build.log" 2>/dev/null;
     echo "nightly: the build failed (see $out/build.log)" >&2; exit 2; }
 rm -rf "$out"
