@@ -67,13 +67,14 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
             || { echo "deps: apt-get install$missing failed (see /tmp/offbench-deps.log);" \
                       "the CPU path builds without them" >&2
               have_header sisl.h || { echo "deps: libsisl-dev is required (the build links -lsisl)" >&2; exit 1; }
+              have_header flint/fmpz_poly.h || { echo "deps: libflint-dev is required (the build links -lflint)" >&2; exit 1; }
               exit 0; }
     fi
     echo "deps: installed:$missing"
 else
-    case "$missing" in *libsisl-dev*)
-        echo "deps: missing: libsisl-dev (SINTEF SISL, required: the build links -lsisl)" >&2
-        echo "deps: install it with: sudo apt-get install libsisl-dev" >&2
+    case "$missing" in *libsisl-dev*|*libflint-dev*)
+        echo "deps: missing:$missing (libsisl-dev and libflint-dev are required: the build links -lsisl -lflint)" >&2
+        echo "deps: install them with: sudo apt-get install$missing" >&2
         exit 1 ;;
     esac
     echo "deps: missing:$missing" >&2
