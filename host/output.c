@@ -14,6 +14,8 @@
 #include "buildinfo.h"
 #include "numfmt.h"
 
+#include <flint/flint.h>
+
 const char OB_RESULTS_HEADER[] =
     "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,"
     "offset_degree,offset_rational";
@@ -195,6 +197,8 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     /* timings are medians over reps timed runs after a warm-up (1: one run) */
     fprintf(f, "  \"reps\": %d,\n  \"warmup\": %s,\n  \"rep_mismatches\": %ld,\n", o->reps > 0 ? o->reps : 1,
             o->reps > 0 ? "true" : "false", o->rep_mismatches);
+    fprintf(f, "  \"offset_degree\": \"exact (FLINT %s): 2n + 2tau - mu of each Bezier segment, the largest per curve, "
+               "on the control points as stored (each double is exactly the rational m 2^e)\",\n", FLINT_VERSION);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
