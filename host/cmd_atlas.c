@@ -19,7 +19,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "../methods/offdeg.h"
 #include "commands.h"
@@ -99,25 +98,9 @@ static int parse_atlas(const char *text, const char *name, atlas_row *rows, int 
 static int load_atlas(atlas_row *rows, int *n, char *where, size_t wlen)
 {
     static const char rel[] = "results/published/offset_atlas.csv";
-    const char *env = getenv("OFFBENCH_ATLAS");
     char path[4200] = "", err[1024];
-    if (env && *env)
-        snprintf(path, sizeof path, "%s", env);
-    else if (access(rel, R_OK) == 0)
-        snprintf(path, sizeof path, "%s", rel);
-    else {
-        char exe[4096];
-        ssize_t k = readlink("/proc/self/exe", exe, sizeof exe - sizeof rel - 1);
-        if (k > 0) {
-            exe[k] = '\0';
-            char *slash = strrchr(exe, '/');
-            if (slash) {
-                strcpy(slash + 1, rel);
-                if (access(exe, R_OK) == 0)
-                    snprintf(path, sizeof path, "%s", exe);
-            }
-        }
-    }
+    if (ob_find_tree_file(rel, "OFFBENCH_ATLAS", path, sizeof path) != 0)
+        path[0] = '\0';
     if (path[0]) {
         char *text;
         size_t len;

@@ -53,3 +53,28 @@ int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, char *err
     }
     return 0;
 }
+
+int ob_find_tree_file(const char *rel, const char *env, char *path, size_t len)
+{
+    const char *e = env ? getenv(env) : NULL;
+    if (e && *e) {
+        snprintf(path, len, "%s", e);
+        return 0;
+    }
+    if (access(rel, R_OK) == 0) {
+        snprintf(path, len, "%s", rel);
+        return 0;
+    }
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return -1;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return -1;
+    slash[1] = '\0';
+    if ((size_t)snprintf(path, len, "%s%s", exe, rel) >= len || access(path, R_OK) != 0)
+        return -1;
+    return 0;
+}

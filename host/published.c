@@ -2,6 +2,7 @@
  * published.c - see published.h.
  */
 #include "published.h"
+#include "datadir.h"
 #include "slurp.h"
 
 #include <errno.h>
@@ -194,31 +195,18 @@ static int load_file(const char *path, ob_pub_set *s, char *err, size_t errlen)
     int rc = ob_pub_parse(buf, n, path, s, err, errlen);
     free(buf);
     if (rc == 0)
-        snprintf(s->where, sizeof s->where, "%s", path);
+        snprintf(s->where, sizeof s->where, "%.500s", path);
     return rc;
 }
 
 int ob_pub_load(ob_pub_set *s, char *err, size_t errlen)
 {
     static const char rel[] = "results/published/published_tables.csv";
-    const char *env = getenv("OFFBENCH_PUBLISHED");
+    char path[4200];
     s->v = NULL;
     s->n = 0;
-    if (env && *env)
-        return load_file(env, s, err, errlen);
-    if (access(rel, R_OK) == 0)
-        return load_file(rel, s, err, errlen);
-    char exe[4096];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - sizeof rel - 1);
-    if (n > 0) {
-        exe[n] = '\0';
-        char *slash = strrchr(exe, '/');
-        if (slash) {
-            strcpy(slash + 1, rel);
-            if (access(exe, R_OK) == 0)
-                return load_file(exe, s, err, errlen);
-        }
-    }
+    if (ob_find_tree_file(rel, "OFFBENCH_PUBLISHED", path, sizeof path) == 0)
+        return load_file(path, s, err, errlen);
     const struct ob_embedded_file *e = &ob_embedded_published[0];
     if (!e->name) {
         snprintf(err, errlen, "no published figures: %s not found and none compiled in", rel);

@@ -3,14 +3,7 @@
 # offset degrees for its rational curves, the rows it cannot cover said so,
 # a generic cubic's 10, the PH cubic's rational offset, and agreement with
 # the `exact` method (which detects rational offsets numerically).
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 $OB atlas --out "$T/a" > "$T/a.txt" 2>"$T/a.err"
 check '[ $? -eq 0 ] && [ -f "$T/a/atlas.csv" ]' "atlas runs: $(cat "$T/a.err")"

@@ -5,13 +5,7 @@
 # gives (a file that needs another loaded first, marked "# also-load:", is
 # left to test_curvefile.c and counted as skipped).  Under `make SAN=1 test` $OFFBENCH is the ASan/UBSan build, so a leak
 # or a sanitizer report changes the exit status and fails the check.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0 skipped=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 n=0
 for f in tests/bad_curves/*.curves; do

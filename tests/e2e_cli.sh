@@ -2,14 +2,7 @@
 # End-to-end tests of ./offbench: the acceptance commands of the foundation
 # issue, the CSV contract, determinism across thread counts, and clear errors
 # with exit status 2 on bad input.  Uses $OFFBENCH (set by make) or ./offbench.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 # column of results.csv by name
 col() { awk -F, -v c="$2" 'NR==1{for(i=1;i<=NF;i++)if($i==c)k=i;next}{print $k}' "$1" | tr '\n' ' ' | sed 's/ $//'; }

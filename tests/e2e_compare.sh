@@ -4,16 +4,9 @@
 # 2 (errors naming FILE:LINE or the option), 3 (not comparable: metric,
 # samples per segment), the CSV report, --out.  Uses $OFFBENCH (set by make)
 # or ./offbench; small runs, so the script takes seconds.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
+. "$(dirname "$0")/lib_e2e.sh"
 HERE=$(cd "$(dirname "$0")" && pwd)
 BAD=$HERE/bad_compare
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0 skipped=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
 
 # cmp_rc WANT BASE NEW [options]: compare, stdout in $T/out, stderr in $T/err
 cmp_rc() {

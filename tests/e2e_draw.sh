@@ -4,14 +4,7 @@
 # the trace's error column agrees with the run's max_err, bad options exit 2
 # naming the option, and fail/skip jobs are handled.  Uses $OFFBENCH (set by
 # make) or ./offbench.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0 skipped=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 if command -v python3 >/dev/null 2>&1; then
     wellformed() { python3 -c 'import xml.dom.minidom,sys; xml.dom.minidom.parse(sys.argv[1])' "$1" 2>/dev/null; }

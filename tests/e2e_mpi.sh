@@ -3,15 +3,7 @@
 # the run and rank 0 writes exactly the single-process results.csv.  Skipped
 # (and counted so) when the program is not built with MPI or mpirun is
 # missing: `make MPI=1 test` runs it.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
-body() { cut -d, -f1-11,14- "$1"; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 if ! command -v mpirun >/dev/null 2>&1 || ! ldd "$OB" 2>/dev/null | grep -q libmpi; then
     echo "SKIP: $OB is not built with MPI (make MPI=1) or mpirun is missing" >&2

@@ -4,16 +4,9 @@
 # naming the file on bad input.  Needs /usr/bin/python3 with matplotlib
 # (Debian's python3-matplotlib); without it every check counts as skipped.
 # Uses $OFFBENCH (set by make) or ./offbench.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
+. "$(dirname "$0")/lib_e2e.sh"
 PLOT=$(cd "$(dirname "$0")/.." && pwd)/scripts/plot.py
 PY=/usr/bin/python3
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
 
 NCHECKS=28
 if ! "$PY" -c 'import matplotlib' >/dev/null 2>&1; then

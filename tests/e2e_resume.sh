@@ -4,17 +4,8 @@
 # (timing columns aside); SIGINT ends a run cleanly (exit 130, the finished
 # rows kept); a partial last line is cut off; a resume with other options, or
 # from nothing, is refused with exit 2.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
+. "$(dirname "$0")/lib_e2e.sh"
 now() { date +%s.%N; }
-# the result columns without the timings (fit_ns, eval_ns)
-body() { cut -d, -f1-11,14- "$1"; }
 
 R="--random 12:5 --methods tiller,cobb,ahn,zhao,interp --backend cpu --threads 2"
 t0=$(now)

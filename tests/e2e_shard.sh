@@ -2,15 +2,7 @@
 # Sharded runs: --shard K/N splits the job list, merge puts the shards back
 # into exactly the unsharded results.csv (timing columns aside), and refuses
 # incomplete, repeated, overlapping or mixed sets with exit status 2.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
-body() { cut -d, -f1-11,14- "$1"; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 R="--random 24:5 --methods tiller,ahn,zhao,lee --tols 1e-1,1e-3 --backend cpu"
 $OB run $R --out "$T/all" 2>/dev/null

@@ -2,15 +2,7 @@
 # scripts/slurm_array.sh against a stand-in for sbatch that runs each array
 # task (and then the merge job) at once, in order: the recipe's commands must
 # produce the unsharded run's results.csv.
-OB=${OFFBENCH:-./offbench}
-OB=$(cd "$(dirname "$OB")" && pwd)/$(basename "$OB")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-check() { if eval "$1"; then ok; else bad "$2"; fi; }
-body() { cut -d, -f1-11,14- "$1"; }
+. "$(dirname "$0")/lib_e2e.sh"
 
 # sbatch stand-in: reads the batch script from stdin, runs it once per array
 # index with SLURM_ARRAY_TASK_ID set (or once), prints a job id
