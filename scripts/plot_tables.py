@@ -16,7 +16,6 @@ Exits 2, naming the file and line, on a missing or malformed CSV.
 
 Needs matplotlib: run it as /usr/bin/python3 (Debian's python3-matplotlib).
 """
-import csv
 import math
 import os
 import re
@@ -28,6 +27,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+
+import csvrows  # noqa: E402  (scripts/csvrows.py, beside this file)
 
 HEADER = ("source,table,curve,d,tol,method,label,protocol,published,ours,ratio,"
           "status,unit,d_run,metric,split,job_status,note").split(",")
@@ -43,55 +44,15 @@ def die(msg):
     sys.exit(2)
 
 
-def number(path, line, row, field, required=False):
-    """The float in row[field], None if empty; exits 2 if not a number."""
-    text = row[field].strip()
-    if not text:
-        if required:
-            die(f"{path}:{line}: empty {field}")
-        return None
-    try:
-        return float(text)
-    except ValueError:
-        die(f"{path}:{line}: {field} is not a number: {text!r}")
-
-
 def read_rows(path):
     """The rows of tables.csv as dicts, with tol/published/ours as floats."""
-    try:
-        f = open(path, newline="", encoding="utf-8-sig")
-    except OSError as e:
-        die(f"cannot read {path}: {e.strerror}")
-    rows = []
-    with f:
-        reader = csv.reader(f)
-        try:
-            header = next(reader, None)
-            if header is None:
-                die(f"{path}:1: empty file (expected the header)")
-            if [h.strip() for h in header] != HEADER:
-                die(f"{path}:1: unexpected header; expected\n  " + ",".join(HEADER))
-            while True:
-                line = reader.line_num + 1  # where this record starts
-                fields = next(reader, None)
-                if fields is None:
-                    break
-                if not any(x.strip() for x in fields):
-                    continue
-                if len(fields) != len(HEADER):
-                    hint = " (unbalanced quote?)" if any("\n" in x for x in fields) else ""
-                    die(f"{path}:{line}: {len(fields)} fields, expected {len(HEADER)}{hint}")
-                row = dict(zip(HEADER, (x.strip() for x in fields)))
-                if row["unit"] not in UNITS:
-                    die(f"{path}:{line}: unit {row['unit']!r} is not one of {', '.join(UNITS)}")
-                if not row["source"] or not row["table"] or not row["label"]:
-                    die(f"{path}:{line}: empty source, table or label")
-                for field in ("tol", "published", "ours"):
-                    row[field] = number(path, line, row, field)
-                row["line"] = line
-                rows.append(row)
-        except csv.Error as e:
-            die(f"{path}:{reader.line_num}: {e}")
+    rows = csvrows.read_csv(path, HEADER, ("tol", "published", "ours"), die=die)
+    for row in rows:
+        line = row["line"] = row["_line"]
+        if row["unit"] not in UNITS:
+            die(f"{path}:{line}: unit {row['unit']!r} is not one of {', '.join(UNITS)}")
+        if not row["source"] or not row["table"] or not row["label"]:
+            die(f"{path}:{line}: empty source, table or label")
     return rows
 
 
