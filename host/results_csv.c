@@ -237,6 +237,18 @@ static const char *read_key(char **f, const int *at, ob_res_row *row)
     return NULL;
 }
 
+/* The next data row, which must have the header's nh fields: 1, 0 at the
+ * end, or -1 after csv_fail(). */
+static int csv_row(csv_reader *r, int *line, int nh)
+{
+    const int nf = csv_next(r, line);
+    if (nf > 0 && nf != nh) {
+        csv_fail(r, *line, "%d fields, the header has %d", nf, nh);
+        return -1;
+    }
+    return nf > 0 ? 1 : nf;
+}
+
 /* Parses buf[0..len) (owned by t from here on, with room for a NUL). */
 static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen)
 {
@@ -253,15 +265,11 @@ static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t,
     if (nh < 0)
         goto fail;
     for (;;) {
-        int nf = csv_next(&r, &line);
-        if (nf == 0)
+        const int got = csv_row(&r, &line, nh);
+        if (got == 0)
             break;
-        if (nf < 0)
+        if (got < 0)
             goto fail;
-        if (nf != nh) {
-            csv_fail(&r, line, "%d fields, the header has %d", nf, nh);
-            goto fail;
-        }
         if (t->n == cap) {
             cap = cap ? 2 * cap : 256;
             ob_res_row *nv = realloc(t->v, (size_t)cap * sizeof *nv);
@@ -364,15 +372,11 @@ static int attach_owned(ob_res_table *t, char *buf, size_t len, const char *name
     if (nh < 0)
         goto done;
     for (;;) {
-        int nf = csv_next(&r, &line);
-        if (nf == 0)
+        const int got = csv_row(&r, &line, nh);
+        if (got == 0)
             break;
-        if (nf < 0)
+        if (got < 0)
             goto done;
-        if (nf != nh) {
-            csv_fail(&r, line, "%d fields, the header has %d", nf, nh);
-            goto done;
-        }
         ob_res_row key;
         long rep;
         double fit, eval;
