@@ -188,7 +188,7 @@ static int err_kind(ob_metric m)
 
 int ob_jobview_point_is_approx(const ob_jobview *v) { return err_kind(v->job.metric) == OBC_K_RADIAL; }
 
-size_t ob_jobview_scratch(const ob_jobview *v) { return (size_t)OBC_REC * (size_t)v->samples; }
+size_t ob_jobview_scratch(const ob_jobview *v) { return (size_t)OBC_TABLE_SIZE(v->samples); }
 
 void ob_jobview_prepare(const ob_jobview *v, const ob_jv_piece *p, double *scratch)
 {
@@ -196,13 +196,7 @@ void ob_jobview_prepare(const ob_jobview *v, const ob_jv_piece *p, double *scrat
         return;
     /* the approximation's sample table, as obc_measure builds it: the
      * offset-to-approximation side starts from its nearest sample */
-    const int S = v->samples;
-    for (int k = 0; k < S; k++) {
-        double P[2], dP[2], K[2];
-        obc_pc_eval(&p->approx.h[0][0], p->approx.deg, 0.0, obc_sample_t(k, S), P, dP, K);
-        double *r = scratch + OBC_REC * k;
-        r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
-    }
+    obc_fill_table(&p->approx.h[0][0], p->approx.deg, 0.0, v->samples, scratch);
 }
 
 double ob_jobview_err_at(const ob_jobview *v, const ob_jv_piece *p, const double *scratch, double s, double xy[2])
@@ -214,6 +208,7 @@ double ob_jobview_err_at(const ob_jobview *v, const ob_jv_piece *p, const double
     else
         ob_bez_offset_point(&p->base, s, d, xy);
     /* a negative cut asks for the exact distance */
+    int hint = -1;
     return obc_err_at(kind, &p->base.h[0][0], p->base.deg, &p->approx.h[0][0], p->approx.deg, d, v->samples,
-                      scratch, NULL, s, -1, -1.0);
+                      scratch, NULL, s, -1, -1.0, &hint);
 }

@@ -10,7 +10,7 @@
  *   metric[i], d[i]          the record's sampled metric code and offset
  *   bdeg[i], boff[i]         degree of the base piece, offset of its
  *   adeg[i], aoff[i]         homogeneous control points in ctrl (doubles)
- *   soff[i]                  offset of its scratch (OBC_SCRATCH_PER_SAMPLE S doubles) in scratch,
+ *   soff[i]                  offset of its scratch (2 OBC_TABLE_SIZE(S) doubles) in scratch,
  *                            used by hausdorff only
  *   err[i], tpar[i]          the error and the base parameter of its maximum
  */

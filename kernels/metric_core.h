@@ -217,8 +217,6 @@ OBC_FN double obc_dist(const double a[2], const double b[2])
     return sqrt(x * x + y * y);
 }
 
-OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
-
 /* ---- the error at one parameter -------------------------------------- */
 
 /* Everything an error evaluation needs, passed by value (no pointers to
@@ -227,12 +225,68 @@ OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
                  const OBC_G double *tgt, const OBC_G double *qry
 #define OBC_PASS hb, nb, ha, na, d, S, tgt, qry
 
-/* Hausdorff sample tables: per sample k, OBC_REC doubles at [OBC_REC k]:
+/* Hausdorff sample tables.  Per sample k, OBC_REC doubles at [OBC_REC k]:
  * point, derivative and curvature vector (obc_pc_eval) of the offset O or
- * of the approximation A at t_k.  Kept so that a query at a sample point and
- * the first Newton step of its projection cost no curve evaluation. */
-#define OBC_REC 6
-#define OBC_SCRATCH_PER_SAMPLE (2 * OBC_REC)
+ * of the approximation A at t_k, and at OBC_MARGIN the margin of span k
+ * (samples k, k+1; see obc_fill_table).  Kept so that a query at a sample
+ * point and the first Newton step of its projection cost no curve
+ * evaluation.  After the S rows, per block of OBC_BLK spans, a circle
+ * (centre x, y, radius, unused) holding the block's part of the curve: the
+ * nearest-foot search skips blocks that cannot hold a nearer point. */
+#define OBC_REC 8
+#define OBC_MARGIN 6
+#define OBC_BLK 16
+#define OBC_NBLK(S) (((S) + OBC_BLK - 2) / OBC_BLK)
+#define OBC_TABLE_SIZE(S) (OBC_REC * (S) + 4 * OBC_NBLK(S))
+#define OBC_MAX_CAND 8 /* spans refined per query beyond the nearest sample's (obc_side_dist) */
+
+OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
+
+/* Purpose: the sample table T of curve (h, n) or of its exact dc-offset.
+ * The margin of span j bounds how far the curve strays from the chord
+ * P_j P_{j+1}: a cubic Hermite arc with end derivatives m0, m1 over a span
+ * of parameter length h strays at most (4/27) h (|m0 - c| + |m1 - c|) from
+ * its chord (c = chord / h); the margin takes 0.5 instead of 4/27 to cover
+ * the curve's departure from its Hermite arc.  A block's circle holds its
+ * sample points (hence its chords) widened by its largest margin. */
+OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G double *T)
+{
+    for (int k = 0; k < S; k++) {
+        double P[2], dP[2], K[2];
+        obc_pc_eval(h, n, dc, obc_sample_t(k, S), P, dP, K);
+        OBC_G double *r = T + OBC_REC * k;
+        r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
+        r[6] = r[7] = 0.0;
+    }
+    const double hs = 1.0 / (S - 1);
+    for (int j = 0; j + 1 < S; j++) {
+        OBC_G double *a = T + OBC_REC * j;
+        const OBC_G double *b = a + OBC_REC;
+        const double c0 = (b[0] - a[0]) / hs, c1 = (b[1] - a[1]) / hs;
+        const double e0 = sqrt((a[2] - c0) * (a[2] - c0) + (a[3] - c1) * (a[3] - c1));
+        const double e1 = sqrt((b[2] - c0) * (b[2] - c0) + (b[3] - c1) * (b[3] - c1));
+        a[OBC_MARGIN] = 0.5 * hs * (e0 + e1);
+    }
+    for (int bk = 0; bk < OBC_NBLK(S); bk++) {
+        const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
+        double x0 = OBC_INF, x1 = -OBC_INF, y0 = OBC_INF, y1 = -OBC_INF, m = 0.0;
+        for (int j = j0; j <= j1; j++) {
+            const OBC_G double *r = T + OBC_REC * j;
+            x0 = fmin(x0, r[0]), x1 = fmax(x1, r[0]);
+            y0 = fmin(y0, r[1]), y1 = fmax(y1, r[1]);
+            if (j < j1)
+                m = fmax(m, r[OBC_MARGIN]);
+        }
+        const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+        double rad = 0.0;
+        for (int j = j0; j <= j1; j++) {
+            const double x = T[OBC_REC * j] - cx, y = T[OBC_REC * j + 1] - cy;
+            rad = fmax(rad, sqrt(x * x + y * y));
+        }
+        OBC_G double *c = T + OBC_REC * S + 4 * bk;
+        c[0] = cx, c[1] = cy, c[2] = rad + m, c[3] = 0.0;
+    }
+}
 
 OBC_FN double obc_radial_err(OBC_ARGS, double t)
 {
@@ -427,14 +481,69 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
     return best;
 }
 
+/* Distance from Q to the chord of span j (samples j, j+1) of table T. */
+OBC_FN double obc_chord_dist2(const double Q[2], const OBC_G double *T, int j)
+{
+    const OBC_G double *a = T + OBC_REC * j, *b = a + OBC_REC;
+    const double vx = b[0] - a[0], vy = b[1] - a[1], wx = Q[0] - a[0], wy = Q[1] - a[1];
+    const double vv = vx * vx + vy * vy;
+    const double s = vv > 0.0 ? fmin(1.0, fmax(0.0, (wx * vx + wy * vy) / vv)) : 0.0;
+    const double x = wx - s * vx, y = wy - s * vy;
+    return x * x + y * y;
+}
+
+OBC_FN double obc_sample_dist2(const double Q[2], const OBC_G double *T, int j)
+{
+    const double x = Q[0] - T[OBC_REC * j], y = Q[1] - T[OBC_REC * j + 1];
+    return x * x + y * y;
+}
+
+/* Lower bound of the distance from Q to block bk of table T (S samples). */
+OBC_FN double obc_block_lb(const double Q[2], const OBC_G double *T, int S, int bk)
+{
+    const OBC_G double *c = T + OBC_REC * S + 4 * bk;
+    const double x = Q[0] - c[0], y = Q[1] - c[1];
+    return sqrt(x * x + y * y) - c[2];
+}
+
+/* The nearest sample point of block bk to Q, if nearer than *db (squared). */
+OBC_FN void obc_block_nearest(const double Q[2], const OBC_G double *T, int S, int bk, double *db, int *jb)
+{
+    const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
+    for (int j = j0; j <= j1; j++) {
+        const double e = obc_sample_dist2(Q, T, j);
+        if (e < *db) {
+            *db = e;
+            *jb = j;
+        }
+    }
+}
+
 /* Hausdorff, one side: distance from the query curve's point at u to the
  * target curve, whose sample table is tgt.  kind OBC_K_H_APPROX: query A,
  * target O; OBC_K_H_OFFSET: query O, target A.  k >= 0: u is sample k and the
  * query point is read from the query table qry.  cut: as in obc_project.
- * *tfoot: the foot. */
-OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, double *tfoot)
+ * *hint: a sample of the target near the last foot found (-1: none); it is
+ * tried first and updated.  *tfoot: the foot.
+ * Method: the nearest foot is searched globally.  (1) The nearest sample
+ * point, over the blocks whose circle comes nearer than the best so far
+ * (the nearest block first).  (2) Newton projection from it on its two
+ * spans.  (3) Every other span whose chord comes within its margin of the
+ * best distance so far (in a block that can) is refined likewise.  A local
+ * search from the nearest sample alone (what was done before) lands on a
+ * foot that is not the nearest one where the target folds back on itself:
+ * the swallowtail of an offset near its cusps.  A fold brings a few spans
+ * within reach (two or three branches, two spans each); more than
+ * OBC_MAX_CAND means the target is all but equidistant from Q over many
+ * spans (an arc about Q: the offset of a piece that has shrunk to a point),
+ * where every span gives the distance to within its margin, and refining
+ * them all would cost S projections for each query. */
+OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int *hint, double *tfoot)
 {
     const int to_offset = kind == OBC_K_H_APPROX;
+    const OBC_G double *hc = to_offset ? hb : ha;
+    const int nc = to_offset ? nb : na;
+    const double dc = to_offset ? d : 0.0;
     double Q[2], dQ[2], K[2];
     if (k >= 0) {
         Q[0] = qry[OBC_REC * k];
@@ -444,70 +553,110 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, dou
     } else {
         obc_pc_eval(hb, nb, d, u, Q, dQ, K);
     }
-    /* nearest sample: coarse global scan, then local descent (squared distances) */
-    int jb = 0;
+    const double cut2 = cut >= 0.0 ? cut * cut : -1.0;
+    int jb = -1;
     double db = OBC_INF;
-    for (int j = 0; j < S; j += 4) {
-        const double x = Q[0] - tgt[OBC_REC * j], y = Q[1] - tgt[OBC_REC * j + 1], e = x * x + y * y;
-        if (e < db) {
-            db = e;
-            jb = j;
+    /* near the last foot first: a distance under the cut settles the query */
+    if (*hint >= 0) {
+        for (int j = *hint - 1; j <= *hint + 1; j++)
+            if (j >= 0 && j < S && obc_sample_dist2(Q, tgt, j) < db) {
+                db = obc_sample_dist2(Q, tgt, j);
+                jb = j;
+            }
+        if (db <= cut2) {
+            *hint = jb;
+            *tfoot = obc_sample_t(jb, S);
+            return sqrt(db);
         }
     }
-    for (;;) {
-        int moved = 0;
-        for (int sgn = -1; sgn <= 1; sgn += 2) {
-            const int j = jb + sgn;
-            if (j < 0 || j >= S)
+    /* (1) the nearest sample point: the nearest block, then any other block
+     * that can hold a nearer one */
+    const int nblk = OBC_NBLK(S);
+    int b0 = 0;
+    double lb0 = OBC_INF;
+    for (int bk = 0; bk < nblk; bk++) {
+        const double lb = obc_block_lb(Q, tgt, S, bk);
+        if (lb < lb0) {
+            lb0 = lb;
+            b0 = bk;
+        }
+    }
+    obc_block_nearest(Q, tgt, S, b0, &db, &jb);
+    for (int bk = 0; bk < nblk; bk++)
+        if (bk != b0 && obc_block_lb(Q, tgt, S, bk) < sqrt(db))
+            obc_block_nearest(Q, tgt, S, bk, &db, &jb);
+    if (jb < 0) { /* no finite sample */
+        *tfoot = 0.0;
+        return OBC_INF;
+    }
+    *hint = jb;
+    if (db <= cut2) {
+        *tfoot = obc_sample_t(jb, S);
+        return sqrt(db);
+    }
+    /* (2) the foot near the nearest sample */
+    const int ja = jb > 0 ? jb - 1 : 0, jz = jb < S - 1 ? jb + 1 : S - 1;
+    double tb;
+    double best = obc_project(hc, nc, dc, Q, obc_sample_t(jb, S), obc_sample_t(ja, S), obc_sample_t(jz, S),
+                              tgt + OBC_REC * jb, cut, &tb);
+    /* (3) feet on other spans that may be nearer, at most OBC_MAX_CAND */
+    int ncand = 0;
+    for (int bk = 0; bk < nblk && !(best <= cut) && ncand < OBC_MAX_CAND; bk++) {
+        if (!(obc_block_lb(Q, tgt, S, bk) < best))
+            continue;
+        const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
+        for (int j = j0; j < j1 && !(best <= cut) && ncand < OBC_MAX_CAND; j++) {
+            if (j >= ja && j < jz)
                 continue;
-            const double x = Q[0] - tgt[OBC_REC * j], y = Q[1] - tgt[OBC_REC * j + 1], e = x * x + y * y;
-            if (e < db) {
-                db = e;
-                jb = j;
-                moved = 1;
+            const double reach = best + tgt[OBC_REC * j + OBC_MARGIN];
+            if (!(obc_chord_dist2(Q, tgt, j) < reach * reach))
+                continue;
+            const int js = obc_sample_dist2(Q, tgt, j + 1) < obc_sample_dist2(Q, tgt, j) ? j + 1 : j;
+            ncand++;
+            double tp;
+            const double e = obc_project(hc, nc, dc, Q, obc_sample_t(js, S), obc_sample_t(j, S),
+                                         obc_sample_t(j + 1, S), tgt + OBC_REC * js, cut, &tp);
+            if (e < best) {
+                best = e;
+                tb = tp;
             }
         }
-        if (!moved)
-            break;
     }
-    const double lo = obc_sample_t(jb > 0 ? jb - 1 : 0, S);
-    const double hi = obc_sample_t(jb < S - 1 ? jb + 1 : S - 1, S);
-    if (to_offset)
-        return obc_project(hb, nb, d, Q, obc_sample_t(jb, S), lo, hi, tgt + OBC_REC * jb, cut, tfoot);
-    return obc_project(ha, na, 0.0, Q, obc_sample_t(jb, S), lo, hi, tgt + OBC_REC * jb, cut, tfoot);
+    *tfoot = tb;
+    return best;
 }
 
 /* The error at t; k >= 0 when t is sample k (Hausdorff reuses its tables);
  * Hausdorff may return any value <= cut when the error is <= cut. */
-OBC_FN double obc_err_at(int kind, OBC_ARGS, double t, int k, double cut)
+OBC_FN double obc_err_at(int kind, OBC_ARGS, double t, int k, double cut, int *hint)
 {
     double tf;
     switch (kind) {
     case OBC_K_RADIAL: return obc_radial_err(OBC_PASS, t);
     case OBC_K_NORMAL: return obc_normal_err(OBC_PASS, t);
-    default: return obc_side_dist(kind, OBC_PASS, t, k, cut, &tf);
+    default: return obc_side_dist(kind, OBC_PASS, t, k, cut, hint, &tf);
     }
 }
 
 /* Golden-section maximization of the error on [a,b]. */
-OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, double *targ)
+OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, double *targ)
 {
     const double g = 0.6180339887498949;
     double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0), f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0);
+    double f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0, hint), f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0, hint);
     for (int it = 0; it < 40 && b - a > 1e-13; it++) {
         if (f1 > f2) {
             b = x2;
             x2 = x1;
             f2 = f1;
             x1 = b - g * (b - a);
-            f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0);
+            f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0, hint);
         } else {
             a = x1;
             x1 = x2;
             f1 = f2;
             x2 = a + g * (b - a);
-            f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0);
+            f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0, hint);
         }
     }
     if (f1 > f2) {
@@ -525,9 +674,9 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, double *tar
 OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 {
     double best = -1.0;
-    int kb = 0;
+    int kb = 0, hint = -1;
     for (int k = 0; k < S; k++) {
-        const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best);
+        const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best, &hint);
         if (!(e <= best)) {
             best = e;
             kb = k;
@@ -543,7 +692,7 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
     }
     const double a = obc_sample_t(kb > 0 ? kb - 1 : 0, S), b = obc_sample_t(kb < S - 1 ? kb + 1 : S - 1, S);
     double tr;
-    const double er = obc_golden_max(kind, OBC_PASS, a, b, &tr);
+    const double er = obc_golden_max(kind, OBC_PASS, a, b, &hint, &tr);
     if (er > best) {
         *err = er;
         *targ = tr;
@@ -554,8 +703,8 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 
 /* Purpose: the error of approximation (ha, na) against the exact d-offset of
  * base (hb, nb) under a sampled metric, and the base parameter of its maximum.
- * scratch: OBC_SCRATCH_PER_SAMPLE S doubles (hausdorff: the sample tables of
- * O and of A).  S >= 2. */
+ * scratch: 2 OBC_TABLE_SIZE(S) doubles (hausdorff: the sample tables of O
+ * and of A).  S >= 2. */
 OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
                         int S, OBC_G double *scratch, double *err, double *t)
 {
@@ -572,23 +721,15 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
         *t = 0.0;
         return;
     }
-    OBC_G double *O = scratch, *A = scratch + OBC_REC * S;
-    for (int k = 0; k < S; k++) {
-        double P[2], dP[2], K[2];
-        obc_pc_eval(hb, nb, d, obc_sample_t(k, S), P, dP, K);
-        O[OBC_REC * k] = P[0], O[OBC_REC * k + 1] = P[1];
-        O[OBC_REC * k + 2] = dP[0], O[OBC_REC * k + 3] = dP[1];
-        O[OBC_REC * k + 4] = K[0], O[OBC_REC * k + 5] = K[1];
-        obc_pc_eval(ha, na, 0.0, obc_sample_t(k, S), P, dP, K);
-        A[OBC_REC * k] = P[0], A[OBC_REC * k + 1] = P[1];
-        A[OBC_REC * k + 2] = dP[0], A[OBC_REC * k + 3] = dP[1];
-        A[OBC_REC * k + 4] = K[0], A[OBC_REC * k + 5] = K[1];
-    }
+    OBC_G double *O = scratch, *A = scratch + OBC_TABLE_SIZE(S);
+    obc_fill_table(hb, nb, d, S, O);
+    obc_fill_table(ha, na, 0.0, S, A);
     double e1, t1, e2, t2, tf;
     /* from A to O: the maximum's parameter is A's; report its foot on O */
     obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, &e1, &t1);
     if (!(isnan(e1) || isinf(e1))) {
-        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, t1, -1, -1.0, &tf);
+        int hint = -1;
+        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, t1, -1, -1.0, &hint, &tf);
         t1 = tf;
     }
     obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, &e2, &t2);

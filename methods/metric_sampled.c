@@ -11,15 +11,15 @@
 
 _Thread_local long obc_eval_count;
 
-size_t ob_metric_scratch(int S) { return (size_t)OBC_SCRATCH_PER_SAMPLE * (size_t)ob_clamp_samples(S); }
+size_t ob_metric_scratch(int S) { return 2 * (size_t)OBC_TABLE_SIZE(ob_clamp_samples(S)); }
 
 /* Hausdorff keeps sample tables of the offset and of the approximation: on
- * the stack up to the default S, on the heap past it (at most 384 KiB). */
+ * the stack up to the default S, on the heap past it (at most 0.5 MiB). */
 enum { STACK_SAMPLES = 512 };
 
 static int measure_core(int code, const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
-    double local[OBC_SCRATCH_PER_SAMPLE * STACK_SAMPLES];
+    double local[2 * OBC_TABLE_SIZE(STACK_SAMPLES)];
     S = ob_clamp_samples(S);
     double *scratch = local;
     if (S > STACK_SAMPLES && !(scratch = malloc(ob_metric_scratch(S) * sizeof *scratch))) {
