@@ -196,7 +196,8 @@ void ob_jobview_prepare(const ob_jobview *v, const ob_jv_piece *p, double *scrat
         return;
     /* the approximation's sample table, as obc_measure builds it: the
      * offset-to-approximation side starts from its nearest sample */
-    obc_fill_table(&p->approx.h[0][0], p->approx.deg, 0.0, v->samples, scratch);
+    long ops = 0;
+    obc_fill_table(&p->approx.h[0][0], p->approx.deg, 0.0, v->samples, scratch, &ops);
 }
 
 double ob_jobview_err_at(const ob_jobview *v, const ob_jv_piece *p, const double *scratch, double s, double xy[2])
@@ -209,6 +210,7 @@ double ob_jobview_err_at(const ob_jobview *v, const ob_jv_piece *p, const double
         ob_bez_offset_point(&p->base, s, d, xy);
     /* a negative cut asks for the exact distance */
     int hint = -1;
+    long ops = 0;
     return obc_err_at(kind, &p->base.h[0][0], p->base.deg, &p->approx.h[0][0], p->approx.deg, d, v->samples,
-                      scratch, NULL, s, -1, -1.0, &hint);
+                      scratch, NULL, &ops, s, -1, -1.0, &hint);
 }

@@ -195,6 +195,11 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     }
     fprintf(f, "},\n");
     /* timings are medians over reps timed runs after a warm-up (1: one run) */
+    fprintf(f, "  \"timing\": {\"fit_ns\": \"CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID) in the "
+               "method's fit calls of the job, summed\", \"eval_ns\": \"measuring the job's pieces: on the CPU the "
+               "thread CPU time of each measurement, summed; with the OpenCL backend each launch's wall time shared "
+               "among its records by the floating-point operations each took (counted by the kernel), summed\", "
+               "\"with_reps\": \"the median over the timed repetitions; samples.csv has each\"},\n");
     fprintf(f, "  \"reps\": %d,\n  \"warmup\": %s,\n  \"rep_mismatches\": %ld,\n", o->reps > 0 ? o->reps : 1,
             o->reps > 0 ? "true" : "false", o->rep_mismatches);
     fprintf(f, "  \"offset_degree\": \"exact (FLINT %s): 2n + 2tau - mu of each Bezier segment, the largest per curve, "

@@ -31,18 +31,25 @@
 #define OBC_G __global
 #define OBC_FN
 #define OBC_INF ((double)INFINITY)
-#define OBC_COUNT_EVAL()
 #else
 #include <math.h>
 #define OBC_G
 #define OBC_FN static inline
 #define OBC_INF ((double)INFINITY)
-/* curve evaluations made by this thread: the benchmark's operation count */
-extern _Thread_local long obc_eval_count;
-#define OBC_COUNT_EVAL() (obc_eval_count++)
 #endif
 
 #define OBC_MAX_DEG 32           /* = OB_MAX_DEG */
+
+/* The work of a measurement, counted in floating-point operations as every
+ * function below adds them to *ops: a de Casteljau evaluation of degree n
+ * (n (n + 1) / 2 lerps of 3 coordinates, and the quotient rule), a distance
+ * to a sample point, to a chord, to a block's circle.  The OpenCL host
+ * shares a batch's time among its records by this count (one launch
+ * measures them all); the bench turns it into flop/s. */
+#define OBC_OPS_EVAL(n) (9 * (n) * ((n) + 1) / 2 + 30)
+#define OBC_OPS_POINT 5
+#define OBC_OPS_CHORD 16
+#define OBC_OPS_BLOCK 7
 
 /* metric codes: = ob_metric in methods/metric.h */
 #define OBC_RADIAL 1
@@ -59,12 +66,12 @@ extern _Thread_local long obc_eval_count;
 
 /* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
  * homogeneous points; derivatives from its last three levels; quotient rule. */
-OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2])
+OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2], long *ops)
 {
     double q[OBC_MAX_DEG + 1][3];
     double lv2[3][3], lv1[2][3];
     const double s = 1.0 - t;
-    OBC_COUNT_EVAL();
+    *ops += OBC_OPS_EVAL(n);
     for (int i = 0; i <= n; i++)
         for (int k = 0; k < 3; k++)
             q[i][k] = h[3 * i + k];
@@ -108,10 +115,10 @@ OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double ou
     out[2][1] = (H[2][1] - 2.0 * w1 * D1 - w2 * P1) / w;
 }
 
-OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2])
+OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2], long *ops)
 {
     double o[3][2];
-    obc_eval(h, n, t, 0, o);
+    obc_eval(h, n, t, 0, o, ops);
     p[0] = o[0][0];
     p[1] = o[0][1];
 }
@@ -120,7 +127,7 @@ OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2])
  * vanishes (C'(t+h) ~ h C'', so +C'' below t = 1, -C'' at 1).  "Vanishes" is
  * judged against |C''| (scale-free) and against the control polygon's extent
  * (round-off on a point-like segment).  Returns -1 for a point-like segment. */
-OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2])
+OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2], long *ops)
 {
     const double x0 = h[0] / h[2], y0 = h[1] / h[2];
     double ext = 0.0, mag = 0.0;
@@ -134,7 +141,7 @@ OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2])
         return -1;
     const double tiny = 1e-12 * ext;
     double o[3][2];
-    obc_eval(h, n, t, 2, o);
+    obc_eval(h, n, t, 2, o, ops);
     const double s1 = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
     if (s1 > 1e-12 * s2 && s1 > tiny) {
@@ -149,7 +156,7 @@ OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2])
         return 0;
     }
     const double dh = t >= 1.0 ? -1e-6 : 1e-6;
-    obc_eval(h, n, t + dh, 1, o);
+    obc_eval(h, n, t + dh, 1, o, ops);
     if (sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]) > tiny) {
         v[0] = o[1][0];
         v[1] = o[1][1];
@@ -159,10 +166,10 @@ OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2])
 }
 
 /* Unit left normal (-y', x')/|C'|; (0,0) and -1 for a point-like segment. */
-OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2])
+OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2], long *ops)
 {
     double v[2];
-    if (obc_tangent(h, n, t, v) != 0) {
+    if (obc_tangent(h, n, t, v, ops) != 0) {
         N[0] = N[1] = 0.0;
         return -1;
     }
@@ -176,10 +183,10 @@ OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2])
  * or of its exact d-offset at t.  For the offset: O' = C' (1 - d kappa), since
  * N' = -kappa C', and kappa_O N_O = kappa / (1 - d kappa) N. */
 OBC_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double P[2], double dP[2],
-                        double K[2])
+                        double K[2], long *ops)
 {
     double o[3][2];
-    obc_eval(h, n, t, 2, o);
+    obc_eval(h, n, t, 2, o, ops);
     const double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
     const int regular = sp > 1e-12 * s2 && sp > 0;
@@ -190,7 +197,7 @@ OBC_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double
         N[0] = -o[1][1] / sp;
         N[1] = o[1][0] / sp;
     } else if (d != 0.0) {
-        obc_normal(h, n, t, N); /* the one-sided limit at a cusp */
+        obc_normal(h, n, t, N, ops); /* the one-sided limit at a cusp */
     }
     if (d == 0.0) {
         P[0] = o[0][0];
@@ -222,8 +229,8 @@ OBC_FN double obc_dist(const double a[2], const double b[2])
 /* Everything an error evaluation needs, passed by value (no pointers to
  * structs across OpenCL address spaces). */
 #define OBC_ARGS const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d, int S, \
-                 const OBC_G double *tgt, const OBC_G double *qry
-#define OBC_PASS hb, nb, ha, na, d, S, tgt, qry
+                 const OBC_G double *tgt, const OBC_G double *qry, long *ops
+#define OBC_PASS hb, nb, ha, na, d, S, tgt, qry, ops
 
 /* Hausdorff sample tables.  Per sample k, OBC_REC doubles at [OBC_REC k]:
  * point, derivative and curvature vector (obc_pc_eval) of the offset O or
@@ -249,11 +256,11 @@ OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
  * its chord (c = chord / h); the margin takes 0.5 instead of 4/27 to cover
  * the curve's departure from its Hermite arc.  A block's circle holds its
  * sample points (hence its chords) widened by its largest margin. */
-OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G double *T)
+OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
 {
     for (int k = 0; k < S; k++) {
         double P[2], dP[2], K[2];
-        obc_pc_eval(h, n, dc, obc_sample_t(k, S), P, dP, K);
+        obc_pc_eval(h, n, dc, obc_sample_t(k, S), P, dP, K, ops);
         OBC_G double *r = T + OBC_REC * k;
         r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
         r[6] = r[7] = 0.0;
@@ -292,17 +299,17 @@ OBC_FN double obc_radial_err(OBC_ARGS, double t)
 {
     (void)S, (void)tgt, (void)qry;
     double p[2], q[2];
-    obc_point(hb, nb, t, p);
-    obc_point(ha, na, t, q);
+    obc_point(hb, nb, t, p, ops);
+    obc_point(ha, na, t, q, ops);
     return fabs(obc_dist(q, p) - fabs(d));
 }
 
 /* g(u) = (A(u) - P) x N: zero where A meets the normal line through P. */
 OBC_FN double obc_normal_g(const OBC_G double *ha, int na, double u, const double P[2], const double N[2],
-                           double *dg)
+                           double *dg, long *ops)
 {
     double o[3][2];
-    obc_eval(ha, na, u, 1, o);
+    obc_eval(ha, na, u, 1, o, ops);
     const double r0 = o[0][0] - P[0], r1 = o[0][1] - P[1];
     *dg = o[1][0] * N[1] - o[1][1] * N[0];
     return r0 * N[1] - r1 * N[0];
@@ -312,13 +319,13 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
 {
     (void)tgt, (void)qry;
     double P[2], N[2], dg = 0.0;
-    obc_point(hb, nb, t, P);
-    obc_normal(hb, nb, t, N);
+    obc_point(hb, nb, t, P, ops);
+    obc_normal(hb, nb, t, N, ops);
     /* Newton from u = t: the approximations are parameterized close to the base */
     double u = t, g;
     int ok = 0;
     for (int it = 0; it < 30; it++) {
-        g = obc_normal_g(ha, na, u, P, N, &dg);
+        g = obc_normal_g(ha, na, u, P, N, &dg, ops);
         if (dg == 0.0)
             break;
         const double du = g / dg;
@@ -336,9 +343,9 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
          * change strictly closer to t, checked on the scan's grid */
         const double w = fabs(u - t) * (1.0 - 1e-9), h = 1.5 / (2 * S);
         const int m = (int)ceil(2.0 * w / h) + 1;
-        double gp = obc_normal_g(ha, na, t - w, P, N, &dg);
+        double gp = obc_normal_g(ha, na, t - w, P, N, &dg, ops);
         for (int j = 1; j <= m && ok; j++) {
-            const double gj = obc_normal_g(ha, na, t - w + 2.0 * w * j / m, P, N, &dg);
+            const double gj = obc_normal_g(ha, na, t - w + 2.0 * w * j / m, P, N, &dg, ops);
             if ((gp <= 0) != (gj <= 0))
                 ok = 0;
             gp = gj;
@@ -351,15 +358,15 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
          * instead of vanishing: such a crossing is not an intersection */
         const int M = 2 * S;
         double best = OBC_INF, ub = -1e300;
-        double u0 = -0.25, g0 = obc_normal_g(ha, na, u0, P, N, &dg);
+        double u0 = -0.25, g0 = obc_normal_g(ha, na, u0, P, N, &dg, ops);
         for (int j = 1; j <= M; j++) {
             const double u1 = -0.25 + 1.5 * j / M;
-            const double g1 = obc_normal_g(ha, na, u1, P, N, &dg);
+            const double g1 = obc_normal_g(ha, na, u1, P, N, &dg, ops);
             if ((g0 <= 0) != (g1 <= 0)) {
                 double lo = u0, hi = u1, glo = g0;
                 for (int it = 0; it < 100 && hi - lo > 1e-15; it++) {
                     const double mid = 0.5 * (lo + hi);
-                    const double gm = obc_normal_g(ha, na, mid, P, N, &dg);
+                    const double gm = obc_normal_g(ha, na, mid, P, N, &dg, ops);
                     if ((gm <= 0) == (glo <= 0)) {
                         lo = mid;
                         glo = gm;
@@ -368,7 +375,7 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
                     }
                 }
                 const double r = 0.5 * (lo + hi);
-                const double gr = fabs(obc_normal_g(ha, na, r, P, N, &dg));
+                const double gr = fabs(obc_normal_g(ha, na, r, P, N, &dg, ops));
                 if (gr <= 1e-6 * fmax(fabs(g0), fabs(g1)) && fabs(r - t) < best) {
                     best = fabs(r - t);
                     ub = r;
@@ -382,13 +389,13 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
             double q[2], O[2];
             O[0] = P[0] + d * N[0];
             O[1] = P[1] + d * N[1];
-            obc_point(ha, na, t, q);
+            obc_point(ha, na, t, q, ops);
             return obc_dist(q, O);
         }
         u = ub;
     }
     double q[2];
-    obc_point(ha, na, u, q);
+    obc_point(ha, na, u, q, ops);
     const double s = (q[0] - P[0]) * N[0] + (q[1] - P[1]) * N[1];
     return fabs(s - d);
 }
@@ -409,7 +416,7 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
  * safe; there, and wherever it has not settled in 20 steps, golden-section
  * search on the bracket takes over. */
 OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const double Q[2], double t0, double lo,
-                          double hi, const OBC_G double *start, double cut, double *tp)
+                          double hi, const OBC_G double *start, double cut, double *tp, long *ops)
 {
     double t = t0, P[2], dP[2], K[2];
     if (start) {
@@ -417,7 +424,7 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
         dP[0] = start[2], dP[1] = start[3];
         K[0] = start[4], K[1] = start[5];
     } else {
-        obc_pc_eval(hc, nc, dc, t, P, dP, K);
+        obc_pc_eval(hc, nc, dc, t, P, dP, K, ops);
     }
     double best = obc_dist(Q, P), tb = t, prev = OBC_INF;
     int settled = 0;
@@ -438,7 +445,7 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
         if (tn == t)
             break;
         t = tn;
-        obc_pc_eval(hc, nc, dc, t, P, dP, K);
+        obc_pc_eval(hc, nc, dc, t, P, dP, K, ops);
         const double e = obc_dist(Q, P);
         if (e < best) {
             best = e;
@@ -450,9 +457,9 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
     if (!settled && !(best <= cut)) {
         const double g = 0.6180339887498949;
         double a = lo, b = hi, x1 = b - g * (b - a), x2 = a + g * (b - a);
-        obc_pc_eval(hc, nc, dc, x1, P, dP, K);
+        obc_pc_eval(hc, nc, dc, x1, P, dP, K, ops);
         double f1 = obc_dist(Q, P);
-        obc_pc_eval(hc, nc, dc, x2, P, dP, K);
+        obc_pc_eval(hc, nc, dc, x2, P, dP, K, ops);
         double f2 = obc_dist(Q, P);
         for (int it = 0; it < 60 && b - a > 1e-14; it++) {
             if (f1 < f2) {
@@ -460,14 +467,14 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
                 x2 = x1;
                 f2 = f1;
                 x1 = b - g * (b - a);
-                obc_pc_eval(hc, nc, dc, x1, P, dP, K);
+                obc_pc_eval(hc, nc, dc, x1, P, dP, K, ops);
                 f1 = obc_dist(Q, P);
             } else {
                 a = x1;
                 x1 = x2;
                 f1 = f2;
                 x2 = a + g * (b - a);
-                obc_pc_eval(hc, nc, dc, x2, P, dP, K);
+                obc_pc_eval(hc, nc, dc, x2, P, dP, K, ops);
                 f2 = obc_dist(Q, P);
             }
         }
@@ -482,9 +489,10 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
 }
 
 /* Distance from Q to the chord of span j (samples j, j+1) of table T. */
-OBC_FN double obc_chord_dist2(const double Q[2], const OBC_G double *T, int j)
+OBC_FN double obc_chord_dist2(const double Q[2], const OBC_G double *T, int j, long *ops)
 {
     const OBC_G double *a = T + OBC_REC * j, *b = a + OBC_REC;
+    *ops += OBC_OPS_CHORD;
     const double vx = b[0] - a[0], vy = b[1] - a[1], wx = Q[0] - a[0], wy = Q[1] - a[1];
     const double vv = vx * vx + vy * vy;
     const double s = vv > 0.0 ? fmin(1.0, fmax(0.0, (wx * vx + wy * vy) / vv)) : 0.0;
@@ -499,17 +507,19 @@ OBC_FN double obc_sample_dist2(const double Q[2], const OBC_G double *T, int j)
 }
 
 /* Lower bound of the distance from Q to block bk of table T (S samples). */
-OBC_FN double obc_block_lb(const double Q[2], const OBC_G double *T, int S, int bk)
+OBC_FN double obc_block_lb(const double Q[2], const OBC_G double *T, int S, int bk, long *ops)
 {
     const OBC_G double *c = T + OBC_REC * S + 4 * bk;
     const double x = Q[0] - c[0], y = Q[1] - c[1];
+    *ops += OBC_OPS_BLOCK;
     return sqrt(x * x + y * y) - c[2];
 }
 
 /* The nearest sample point of block bk to Q, if nearer than *db (squared). */
-OBC_FN void obc_block_nearest(const double Q[2], const OBC_G double *T, int S, int bk, double *db, int *jb)
+OBC_FN void obc_block_nearest(const double Q[2], const OBC_G double *T, int S, int bk, double *db, int *jb, long *ops)
 {
     const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
+    *ops += OBC_OPS_POINT * (j1 - j0 + 1);
     for (int j = j0; j <= j1; j++) {
         const double e = obc_sample_dist2(Q, T, j);
         if (e < *db) {
@@ -549,15 +559,16 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
         Q[0] = qry[OBC_REC * k];
         Q[1] = qry[OBC_REC * k + 1];
     } else if (to_offset) {
-        obc_pc_eval(ha, na, 0.0, u, Q, dQ, K);
+        obc_pc_eval(ha, na, 0.0, u, Q, dQ, K, ops);
     } else {
-        obc_pc_eval(hb, nb, d, u, Q, dQ, K);
+        obc_pc_eval(hb, nb, d, u, Q, dQ, K, ops);
     }
     const double cut2 = cut >= 0.0 ? cut * cut : -1.0;
     int jb = -1;
     double db = OBC_INF;
     /* near the last foot first: a distance under the cut settles the query */
     if (*hint >= 0) {
+        *ops += 3 * OBC_OPS_POINT;
         for (int j = *hint - 1; j <= *hint + 1; j++)
             if (j >= 0 && j < S && obc_sample_dist2(Q, tgt, j) < db) {
                 db = obc_sample_dist2(Q, tgt, j);
@@ -575,16 +586,16 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     int b0 = 0;
     double lb0 = OBC_INF;
     for (int bk = 0; bk < nblk; bk++) {
-        const double lb = obc_block_lb(Q, tgt, S, bk);
+        const double lb = obc_block_lb(Q, tgt, S, bk, ops);
         if (lb < lb0) {
             lb0 = lb;
             b0 = bk;
         }
     }
-    obc_block_nearest(Q, tgt, S, b0, &db, &jb);
+    obc_block_nearest(Q, tgt, S, b0, &db, &jb, ops);
     for (int bk = 0; bk < nblk; bk++)
-        if (bk != b0 && obc_block_lb(Q, tgt, S, bk) < sqrt(db))
-            obc_block_nearest(Q, tgt, S, bk, &db, &jb);
+        if (bk != b0 && obc_block_lb(Q, tgt, S, bk, ops) < sqrt(db))
+            obc_block_nearest(Q, tgt, S, bk, &db, &jb, ops);
     if (jb < 0) { /* no finite sample */
         *tfoot = 0.0;
         return OBC_INF;
@@ -598,24 +609,24 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     const int ja = jb > 0 ? jb - 1 : 0, jz = jb < S - 1 ? jb + 1 : S - 1;
     double tb;
     double best = obc_project(hc, nc, dc, Q, obc_sample_t(jb, S), obc_sample_t(ja, S), obc_sample_t(jz, S),
-                              tgt + OBC_REC * jb, cut, &tb);
+                              tgt + OBC_REC * jb, cut, &tb, ops);
     /* (3) feet on other spans that may be nearer, at most OBC_MAX_CAND */
     int ncand = 0;
     for (int bk = 0; bk < nblk && !(best <= cut) && ncand < OBC_MAX_CAND; bk++) {
-        if (!(obc_block_lb(Q, tgt, S, bk) < best))
+        if (!(obc_block_lb(Q, tgt, S, bk, ops) < best))
             continue;
         const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
         for (int j = j0; j < j1 && !(best <= cut) && ncand < OBC_MAX_CAND; j++) {
             if (j >= ja && j < jz)
                 continue;
             const double reach = best + tgt[OBC_REC * j + OBC_MARGIN];
-            if (!(obc_chord_dist2(Q, tgt, j) < reach * reach))
+            if (!(obc_chord_dist2(Q, tgt, j, ops) < reach * reach))
                 continue;
             const int js = obc_sample_dist2(Q, tgt, j + 1) < obc_sample_dist2(Q, tgt, j) ? j + 1 : j;
             ncand++;
             double tp;
             const double e = obc_project(hc, nc, dc, Q, obc_sample_t(js, S), obc_sample_t(j, S),
-                                         obc_sample_t(j + 1, S), tgt + OBC_REC * js, cut, &tp);
+                                         obc_sample_t(j + 1, S), tgt + OBC_REC * js, cut, &tp, ops);
             if (e < best) {
                 best = e;
                 tb = tp;
@@ -704,16 +715,16 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 /* Purpose: the error of approximation (ha, na) against the exact d-offset of
  * base (hb, nb) under a sampled metric, and the base parameter of its maximum.
  * scratch: 2 OBC_TABLE_SIZE(S) doubles (hausdorff: the sample tables of O
- * and of A).  S >= 2. */
+ * and of A).  S >= 2.  *ops: the work done is added (OBC_OPS_*). */
 OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
-                        int S, OBC_G double *scratch, double *err, double *t)
+                        int S, OBC_G double *scratch, double *err, double *t, long *ops)
 {
     if (metric == OBC_RADIAL) {
-        obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, scratch, err, t);
+        obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
         return;
     }
     if (metric == OBC_NORMAL) {
-        obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, scratch, err, t);
+        obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
         return;
     }
     if (metric != OBC_HAUSDORFF) {
@@ -722,17 +733,17 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
         return;
     }
     OBC_G double *O = scratch, *A = scratch + OBC_TABLE_SIZE(S);
-    obc_fill_table(hb, nb, d, S, O);
-    obc_fill_table(ha, na, 0.0, S, A);
+    obc_fill_table(hb, nb, d, S, O, ops);
+    obc_fill_table(ha, na, 0.0, S, A, ops);
     double e1, t1, e2, t2, tf;
     /* from A to O: the maximum's parameter is A's; report its foot on O */
-    obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, &e1, &t1);
+    obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, &e1, &t1);
     if (!(isnan(e1) || isinf(e1))) {
         int hint = -1;
-        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, t1, -1, -1.0, &hint, &tf);
+        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, t1, -1, -1.0, &hint, &tf);
         t1 = tf;
     }
-    obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, &e2, &t2);
+    obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, ops, &e2, &t2);
     if (e1 >= e2) {
         *err = e1;
         *t = t1;

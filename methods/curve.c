@@ -38,7 +38,8 @@ double ob_bez_weight(const ob_bez *b, int i) { return b->h[i][2]; }
 
 void ob_bez_eval(const ob_bez *b, double t, int nder, double out[][2])
 {
-    obc_eval(&b->h[0][0], b->deg, t, nder, out);
+    long ops = 0; /* the metrics' work count, not wanted here */
+    obc_eval(&b->h[0][0], b->deg, t, nder, out, &ops);
 }
 
 void ob_bez_point(const ob_bez *b, double t, double p[2])
@@ -130,12 +131,14 @@ int ob_bez_elevate(const ob_bez *b, int to, ob_bez *out)
  * -1 on point-like segments, are the metric core's (kernels/metric_core.h). */
 static int tangent_dir(const ob_bez *b, double t, double v[2])
 {
-    return obc_tangent(&b->h[0][0], b->deg, t, v);
+    long ops = 0;
+    return obc_tangent(&b->h[0][0], b->deg, t, v, &ops);
 }
 
 int ob_bez_normal(const ob_bez *b, double t, double n[2])
 {
-    return obc_normal(&b->h[0][0], b->deg, t, n);
+    long ops = 0;
+    return obc_normal(&b->h[0][0], b->deg, t, n, &ops);
 }
 
 double ob_bez_curvature(const ob_bez *b, double t)

@@ -96,12 +96,20 @@ typedef struct {
     ob_span_log *spans; /* NULL, or where accepted pieces go */
 } jstate;
 
-static double now_ns(void)
+static double clock_ns(clockid_t id)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(id, &ts);
     return ts.tv_sec * 1e9 + ts.tv_nsec;
 }
+
+/* Wall time: what a batch backend's launch costs the run. */
+static double wall_ns(void) { return clock_ns(CLOCK_MONOTONIC); }
+
+/* CPU time of the calling thread: what one fit or one CPU measurement cost,
+ * whatever else the machine was doing meanwhile (other threads, other
+ * processes, a thread descheduled mid-call). */
+static double thread_ns(void) { return clock_ns(CLOCK_THREAD_CPUTIME_ID); }
 
 static void job_end(ob_job *j, jstate *s, ob_status st, const char *msg)
 {
@@ -243,10 +251,10 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
         ob_param_defaults(j->method, defaults);
         par = defaults;
     }
-    double t0 = now_ns();
+    double t0 = thread_ns();
     const ob_fit_args args = {j->d, j->tol, par};
     r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
-    double t1 = now_ns();
+    double t1 = thread_ns();
     r->n = r->st == OB_OK ? fit->n : 0;
     if (r->st == OB_RETRY_SMALLER)
         r->err = INFINITY;
@@ -331,13 +339,18 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
     if (ns > 0) {
         for (int k = 0; k < ns; k++)
             B->srec[k] = B->rec[B->sampled[k]];
-        const double t0 = now_ns();
+        const double t0 = wall_ns();
         backend_ok = o->batch(o->batch_ctx, B->srec, ns, o->samples, B->sout) == 0;
-        const double share = (now_ns() - t0) / ns;
+        const double wall = wall_ns() - t0;
         if (backend_ok) {
+            /* one launch measured them all: each record's share of its wall
+             * time is its share of the work (the kernel counts it) */
+            double total = 0.0;
+            for (int k = 0; k < ns; k++)
+                total += B->sout[k].work;
             for (int k = 0; k < ns; k++) {
                 B->out[B->sampled[k]] = B->sout[k];
-                B->ns[B->sampled[k]] = share;
+                B->ns[B->sampled[k]] = total > 0.0 ? wall * (B->sout[k].work / total) : wall / ns;
             }
         } else if (o->batch_fallbacks) {
             (*o->batch_fallbacks)++;
@@ -347,10 +360,10 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
     for (int r = 0; r < n; r++) {
         if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
             continue;
-        const double t0 = now_ns();
+        const double t0 = thread_ns();
         if (ob_measure(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, o->samples, &B->out[r]))
             B->out[r].err = NAN;  /* cannot be measured: reported below */
-        B->ns[r] = now_ns() - t0;
+        B->ns[r] = thread_ns() - t0;
     }
     /* per item: the largest error over its pieces, at a base parameter */
     for (long i = 0; i < cnt; i++) {

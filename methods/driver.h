@@ -57,8 +57,13 @@ typedef struct {
     int segments;
     int out_degree;      /* largest degree among the output segments */
     double max_err;      /* largest measured error over the accepted segments */
-    double fit_ns;       /* thread time spent in the method's fit */
-    double eval_ns;      /* thread time spent measuring */
+    double fit_ns;       /* CPU time of the calling thread in the method's fit
+                            calls (CLOCK_THREAD_CPUTIME_ID), summed */
+    double eval_ns;      /* measuring: on the CPU, the thread CPU time of each
+                            measurement, summed; with a batch backend (one
+                            launch measures many records), the launch's wall
+                            time shared among its records by the work each
+                            took (ob_errval.work), summed */
     char message[160];
 } ob_job;
 
@@ -131,8 +136,7 @@ void ob_driver_defaults(ob_driver_opts *o);
  *          the message "out of memory"); 1 if stopped through opts->stop.  Per-job problems never fail the run:
  *          they end that job with status fail / skip / limit and a message.
  * Deterministic: outputs other than the timings do not depend on the number of
- * threads.  eval_ns: on the CPU the thread time of each measurement; with a
- * batch backend the batch's wall time shared equally among its records. */
+ * threads.  Timings: see ob_job's fit_ns and eval_ns. */
 int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts);
 
 #endif

@@ -36,6 +36,7 @@ int ob_clamp_samples(int samples)
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out)
 {
+    out->work = 0.0;
     switch (m) {
     case OB_METRIC_BOUND: return ob_metric_bound(base, approx, d, out);
     case OB_METRIC_RADIAL: return ob_metric_radial(base, approx, d, samples, out);

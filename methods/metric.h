@@ -45,6 +45,8 @@ enum { OB_DEFAULT_SAMPLES = 256, OB_MIN_SAMPLES = 8, OB_MAX_SAMPLES = 4096 };
 typedef struct {
     double err;  /* the error, >= 0 (+inf when it cannot be measured) */
     double t;    /* base parameter in [0,1] where it is largest */
+    double work; /* floating-point operations the measurement took, as
+                    kernels/metric_core.h counts them (OBC_OPS_*); 0 for bound */
 } ob_errval;
 
 /* Purpose: error of `approx` against the exact d-offset of `base`.

@@ -9,8 +9,6 @@
 
 #include <stdlib.h>
 
-_Thread_local long obc_eval_count;
-
 size_t ob_metric_scratch(int S) { return 2 * (size_t)OBC_TABLE_SIZE(ob_clamp_samples(S)); }
 
 /* Hausdorff keeps sample tables of the offset and of the approximation: on
@@ -27,8 +25,10 @@ static int measure_core(int code, const ob_bez *base, const ob_bez *approx, doub
         out->t = 0.0;
         return -1;
     }
+    long ops = 0;
     obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, S, scratch, &out->err,
-                &out->t);
+                &out->t, &ops);
+    out->work = (double)ops;
     if (scratch != local)
         free(scratch);
     return 0;

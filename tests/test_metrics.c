@@ -681,7 +681,8 @@ static void test_normal_nearest_crossing(void)
         a = fit.seg[0];
         for (int k = 0; k < 256; k++, n++) {
             const double t = k / 255.0;
-            const double got = obc_normal_err(&b.h[0][0], b.deg, &a.h[0][0], a.deg, d, 256, NULL, NULL, t);
+            long ops = 0;
+            const double got = obc_normal_err(&b.h[0][0], b.deg, &a.h[0][0], a.deg, d, 256, NULL, NULL, &ops, t);
             const double want = ref_normal_err(&b, &a, d, t);
             if (isnan(want))  /* no crossing: the point mismatch, tested elsewhere */
                 continue;
