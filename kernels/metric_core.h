@@ -681,19 +681,27 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, 
 /* Sample S parameters, take the largest error, refine it between the
  * neighbours.  A NaN or infinite sample ends the scan as the worst.  Each
  * sample is asked only for errors above the running maximum (the cut), which
- * lets the Hausdorff projection stop early without changing the result. */
+ * lets the Hausdorff search stop early without changing the result. */
+#define OBC_COARSE 8
 OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 {
     double best = -1.0;
-    int kb = 0, hint = -1;
-    for (int k = 0; k < S; k++) {
-        const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best, &hint);
-        if (!(e <= best)) {
-            best = e;
-            kb = k;
+    int kb = 0, hint = -1, bad = 0;
+    /* Hausdorff: every OBC_COARSE-th sample first, so that the running
+     * maximum is near the final one early and most samples are settled by
+     * the cut; the others in order */
+    const int step = kind == OBC_K_H_APPROX || kind == OBC_K_H_OFFSET ? OBC_COARSE : 1;
+    for (int pass = 0; pass < (step > 1 ? 2 : 1) && !bad; pass++) {
+        for (int k = pass ? 1 : 0; k < S && !bad; k += pass ? 1 : step) {
+            if (pass && k % step == 0)
+                continue;
+            const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best, &hint);
+            if (!(e <= best)) {
+                best = e;
+                kb = k;
+            }
+            bad = isnan(e) || isinf(e);
         }
-        if (isnan(e) || isinf(e))
-            break;
     }
     *err = best;
     *targ = obc_sample_t(kb, S);
