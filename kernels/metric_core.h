@@ -411,7 +411,10 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
  * settled distance (branch and bound; pass a negative cut for the exact
  * distance).  Settled when a step is below 1e-8 of the bracket (the
  * distance is then exact far below that, being quadratic in the parameter
- * error) or stops shrinking (round-off in (P - Q).P' is the floor).  Beyond
+ * error) or stops shrinking while below 1e-6 of it (round-off in (P - Q).P'
+ * is the floor).  A step that stops shrinking before that is Newton stalling
+ * at a cusp of the target, where P' vanishes (the foot is often the cusp
+ * itself): golden section settles it.  Beyond
  * the centre of curvature (1 - K.(Q - P) small or negative) Newton is not
  * safe; there, and wherever it has not settled in 20 steps, golden-section
  * search on the bracket takes over. */
@@ -440,7 +443,7 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
             break;
         const double step = (r0 * dP[0] + r1 * dP[1]) / (dd * den);
         const double tn = fmin(hi, fmax(lo, t + step));
-        settled = fabs(tn - t) <= 1e-8 * (hi - lo) || fabs(step) >= prev;
+        settled = fabs(tn - t) <= 1e-8 * (hi - lo) || (fabs(step) >= prev && fabs(step) <= 1e-6 * (hi - lo));
         prev = fabs(step);
         if (tn == t)
             break;
