@@ -191,11 +191,14 @@ void ob_jobview_describe(const ob_jobview *v, char *buf, size_t len)
 
 void ob_jobview_summary(const ob_jobview *v, char *buf, size_t len)
 {
-    char err[40] = "-";
+    char err[40] = "-", gap[40] = "-";
     if (!isnan(v->job.max_err))
         ob_fmt_double(err, sizeof err, v->job.max_err);
-    snprintf(buf, len, "status %s, ctrl_points = %ld, segments = %d, max_err = %s", ob_status_name(v->job.status),
-             v->job.ctrl_points, v->job.segments, err);
+    if (!isnan(v->job.max_gap))
+        ob_fmt_double(gap, sizeof gap, v->job.max_gap);
+    const char *cont = ob_cont_name(v->job.continuity);
+    snprintf(buf, len, "status %s, ctrl_points = %ld, segments = %d, max_err = %s, max_gap = %s, continuity = %s",
+             ob_status_name(v->job.status), v->job.ctrl_points, v->job.segments, err, gap, cont[0] ? cont : "-");
 }
 
 /* ---- pointwise error: the metric core's obc_err_at ------------------------ */

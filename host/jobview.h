@@ -66,8 +66,10 @@ int ob_jobview_has_approx(const ob_jobview *v);
 
 /* "CURVE: METHOD, d = D, tol = T, metric M, split S" */
 void ob_jobview_describe(const ob_jobview *v, char *buf, size_t len);
-/* "status ok, ctrl_points = N, segments = N, max_err = E": the figures of
- * results.csv, written as it writes them (max_err "-" for fail and skip). */
+/* "status ok, ctrl_points = N, segments = N, max_err = E, max_gap = G,
+ * continuity = C": the figures of results.csv, written as it writes them
+ * ("-" where its field is empty: max_err for fail and skip, max_gap and
+ * continuity without joints). */
 void ob_jobview_summary(const ob_jobview *v, char *buf, size_t len);
 
 /* ---- the error at one parameter ------------------------------------------ */
