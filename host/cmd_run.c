@@ -149,7 +149,9 @@ static int same_result(const ob_job *a, const ob_job *b)
 {
     return a->status == b->status && a->ctrl_points == b->ctrl_points && a->segments == b->segments &&
            a->out_degree == b->out_degree &&
-           (a->max_err == b->max_err || (isnan(a->max_err) && isnan(b->max_err)));
+           (a->max_err == b->max_err || (isnan(a->max_err) && isnan(b->max_err))) &&
+           (a->max_gap == b->max_gap || (isnan(a->max_gap) && isnan(b->max_gap))) &&
+           a->continuity == b->continuity;
 }
 
 /* One driver run with its progress bar; returns the driver's status and the

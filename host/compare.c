@@ -179,6 +179,34 @@ static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pa
     }
 }
 
+/* The joint columns (max_gap, max_kink, continuity) are informational: a
+ * note says how many joined rows reach another measured continuity, or that
+ * one side has no such columns (an older build).  Never judged: an open
+ * joint already shows in ctrl_points.  0, or -1 without memory. */
+static int joints_note(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, int np, ob_cmp_result *r)
+{
+    if (!bs->res.has_joints || !ns->res.has_joints) {
+        if (bs->res.has_joints == ns->res.has_joints)
+            return 0;
+        return ob_strlist_addf(&r->notes,
+                               "%s has no joint columns (max_gap, max_kink, continuity: written by an older offbench): "
+                               "joints not compared; ctrl_points now counts both ends of a joint that does not "
+                               "close", bs->res.has_joints ? ns->label : bs->label);
+    }
+    int n = 0;
+    const pair *first = NULL;
+    for (int i = 0; i < np; i++)
+        if (strcmp(pr[i].b->continuity, pr[i].n->continuity) != 0) {
+            if (!n++)
+                first = &pr[i];
+        }
+    if (!n)
+        return 0;
+    return ob_strlist_addf(&r->notes, "%d joined row(s) reach another measured continuity (informational), e.g. "
+                           "%s d=%s %s tol=%s: '%s' -> '%s'", n, first->b->curve, first->b->d_text, first->b->method,
+                           first->b->tol_text, first->b->continuity, first->n->continuity);
+}
+
 int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, char *err,
                 size_t errlen)
 {
@@ -241,8 +269,8 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
         m->gm_t = c[2] ? exp(s[2] / c[2]) : NAN;
     }
     judge_methods(bs, ns, pr, np, o, r, xb, xn);
-    rc = 0;
-    if (r->timing && bs->has_samples && ns->has_samples) {
+    rc = joints_note(bs, ns, pr, np, r);
+    if (rc == 0 && r->timing && bs->has_samples && ns->has_samples) {
         int reps = bt->maxrep < nt->maxrep ? bt->maxrep : nt->maxrep, need = 2;
         while (need < OB_MW_EXACT_MAX && !(ob_mw_min_p(need, need) < o->alpha))
             need++;

@@ -100,6 +100,8 @@ static int refit_span(ob_jobview *v, const ob_span *sp, void *work, int *cap, in
         q->tb = p == fit.n - 1 ? sp->b : sp->a + (sp->b - sp->a) * fit.t[p + 1];
         ob_bez_subsegment(&sub, fit.t[p], fit.t[p + 1], &q->base);  /* as the driver measures */
         q->approx = fit.seg[p];
+        q->fit_first = p == 0;
+        q->own_count = fit.ctrl_points > 0;
         add += fit.seg[p].deg;
     }
     if (fit.ctrl_points > 0)  /* the method's own representation, e.g. a B-spline */
@@ -136,9 +138,30 @@ int ob_jobview_run(ob_jobview *v)
     free(work);
     if (rc != 0)
         return 1;
+    /* the joints, as the driver counts them (methods/joints.h): an open one
+     * inside a fit (unless the fit counts its own representation) or between
+     * fits is two points */
+    const double gtol = ob_joint_gap_tol(v->curve, v->job.d);
+    ob_joint_stats st;
+    memset(&st, 0, sizeof st);
+    long open = 0;
+    for (int p = 1; p < v->npieces; p++) {
+        const ob_jv_piece *a = &v->pieces[p - 1], *b = &v->pieces[p];
+        ob_end l, r;
+        ob_bez_end(&a->approx, 1, &l);
+        ob_bez_end(&b->approx, 0, &r);
+        if (!b->fit_first) {
+            const int o = ob_joint_measure(&st, &l, &r, gtol);
+            open += b->own_count ? 0 : o;
+        } else {
+            open += ob_joint_between(&st, v->curve, gtol, a->seg, &l, b->seg, &r);
+        }
+    }
+    ctrl += open;
     if (segs != v->job.segments || ctrl != v->job.ctrl_points) {
-        ob_error("%s: refitting the accepted pieces gave %d segments and %ld control points, the run %d and %ld",
-                 v->cmd, segs, ctrl, v->job.segments, v->job.ctrl_points);
+        ob_error("%s: refitting the accepted pieces gave %d segments and %ld control points (%ld open joints), the "
+                 "run %d and %ld",
+                 v->cmd, segs, ctrl, open, v->job.segments, v->job.ctrl_points);
         return 1;
     }
     return 0;
@@ -168,11 +191,14 @@ void ob_jobview_describe(const ob_jobview *v, char *buf, size_t len)
 
 void ob_jobview_summary(const ob_jobview *v, char *buf, size_t len)
 {
-    char err[40] = "-";
+    char err[40] = "-", gap[40] = "-";
     if (!isnan(v->job.max_err))
         ob_fmt_double(err, sizeof err, v->job.max_err);
-    snprintf(buf, len, "status %s, ctrl_points = %ld, segments = %d, max_err = %s", ob_status_name(v->job.status),
-             v->job.ctrl_points, v->job.segments, err);
+    if (!isnan(v->job.max_gap))
+        ob_fmt_double(gap, sizeof gap, v->job.max_gap);
+    const char *cont = ob_cont_name(v->job.continuity);
+    snprintf(buf, len, "status %s, ctrl_points = %ld, segments = %d, max_err = %s, max_gap = %s, continuity = %s",
+             ob_status_name(v->job.status), v->job.ctrl_points, v->job.segments, err, gap, cont[0] ? cont : "-");
 }
 
 /* ---- pointwise error: the metric core's obc_err_at ------------------------ */

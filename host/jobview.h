@@ -27,6 +27,8 @@ typedef struct {
     double ta, tb;    /* base parameters it covers in segment seg */
     ob_bez base;      /* segment seg over [ta, tb], cut as the driver cut it */
     ob_bez approx;    /* the approximating piece, over [0, 1] like base */
+    int fit_first;    /* 1: the first piece of its fit (span) */
+    int own_count;    /* 1: its fit counts its own representation (ob_fit.ctrl_points) */
 } ob_jv_piece;
 
 typedef struct {
@@ -53,7 +55,8 @@ int ob_jobview_open(ob_jobview *v, const char *cmd, int argc, char **argv, int h
  * its spans when it ended ok or limit.  Returns 0 (also when the job itself
  * ended fail or skip: see v->job.status), or the exit status after ob_error():
  * 2 (the backend the options require is not available), 1 (out of memory; the
- * refit does not reproduce the run's counts). */
+ * refit does not reproduce the run's counts: segments, and control points
+ * with the open joints counted twice as the driver counts them). */
 int ob_jobview_run(ob_jobview *v);
 
 void ob_jobview_close(ob_jobview *v);
@@ -63,8 +66,10 @@ int ob_jobview_has_approx(const ob_jobview *v);
 
 /* "CURVE: METHOD, d = D, tol = T, metric M, split S" */
 void ob_jobview_describe(const ob_jobview *v, char *buf, size_t len);
-/* "status ok, ctrl_points = N, segments = N, max_err = E": the figures of
- * results.csv, written as it writes them (max_err "-" for fail and skip). */
+/* "status ok, ctrl_points = N, segments = N, max_err = E, max_gap = G,
+ * continuity = C": the figures of results.csv, written as it writes them
+ * ("-" where its field is empty: max_err for fail and skip, max_gap and
+ * continuity without joints). */
 void ob_jobview_summary(const ob_jobview *v, char *buf, size_t len);
 
 /* ---- the error at one parameter ------------------------------------------ */

@@ -107,6 +107,15 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
     }
     const char *body = text + first + 1;
     const size_t blen = keep - (first + 1);
+    const char *hend = memchr(body, '\n', blen);
+    if (hend && ((size_t)(hend - body) != strlen(OB_RESULTS_HEADER) ||
+                 memcmp(body, OB_RESULTS_HEADER, strlen(OB_RESULTS_HEADER)) != 0)) {
+        /* rows of another build's columns cannot be continued or restored */
+        snprintf(err, errlen, "%s:2: written by another version of offbench (its columns differ): run again "
+                 "without --resume", j->path);
+        free(text);
+        return -1;
+    }
     int rc = 0;
     if (blen > 0 && memchr(body, '\n', blen)) {  /* a header line at least */
         rc = ob_res_parse(body, blen, j->path, restored, err, errlen);
@@ -146,6 +155,12 @@ int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, 
     /* the run had finished: its rows are taken as they are */
     if (ob_res_load(res, restored, err, errlen) != 0)
         return -1;
+    if (!restored->has_joints) {
+        snprintf(err, errlen, "--resume: %s was written by an older offbench (no max_gap column): run again without "
+                 "--resume", res);
+        ob_res_free(restored);
+        return -1;
+    }
     j->from_results = 1;
     return create(j, fp, err, errlen);
 }
@@ -195,5 +210,9 @@ int ob_job_from_row(ob_job *job, const ob_res_row *row)
     job->fit_ns = row->fit_ns;
     job->eval_ns = row->eval_ns;
     snprintf(job->message, sizeof job->message, "%s", row->message);
+    job->max_gap = row->max_gap;
+    job->max_kink = row->max_kink;
+    if (ob_cont_parse(row->continuity ? row->continuity : "", &job->continuity) != 0)
+        job->continuity = OB_CONT_NONE;
     return 0;
 }

@@ -44,7 +44,9 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where);
  *          holding the restored rows' text.
  * Errors:  returns 0; -1 with the reason in err (naming the file and line):
  *          unreadable or malformed files, another fingerprint ("DIR was run
- *          with other options"), no previous run to resume, cannot write.
+ *          with other options"), a journal with other columns or a
+ *          results.csv without the joint columns (another build), no
+ *          previous run to resume, cannot write.
  *          *j and *restored are always safe to pass to the free functions. */
 int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, ob_res_table *restored, char *err,
                     size_t errlen);
@@ -57,7 +59,7 @@ int ob_journal_add(ob_journal *j, const ob_job *job);
 void ob_journal_close(ob_journal *j, int remove_it);
 
 /* Purpose: give job the results of row (status, counts, error, timings,
- *          message).  Returns 0, or -1 when the row's status is unknown. */
+ *          message, joints).  Returns 0, or -1 when the row's status is unknown. */
 int ob_job_from_row(ob_job *job, const ob_res_row *row);
 
 #endif

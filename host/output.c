@@ -18,7 +18,7 @@
 
 const char OB_RESULTS_HEADER[] =
     "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,"
-    "offset_degree,offset_rational";
+    "offset_degree,offset_rational,max_gap,max_kink,continuity";
 
 void ob_csv_field(FILE *f, const char *s)
 {
@@ -60,9 +60,16 @@ int ob_write_result_row(FILE *f, const ob_job *j)
     fputc(',', f);
     ob_csv_field(f, j->curve->family ? j->curve->family : "");
     if (j->curve->offset_known)
-        fprintf(f, ",%d,%s\n", j->curve->offset_degree, j->curve->offset_rational ? "yes" : "no");
+        fprintf(f, ",%d,%s", j->curve->offset_degree, j->curve->offset_rational ? "yes" : "no");
     else
-        fputs(",,\n", f);
+        fputs(",,", f);
+    /* the joints (methods/joints.h): empty when none was measured */
+    char gap[40] = "", kink[40] = "";
+    if (!isnan(j->max_gap))
+        ob_fmt_double(gap, sizeof gap, j->max_gap);
+    if (!isnan(j->max_kink))
+        ob_fmt_double(kink, sizeof kink, j->max_kink);
+    fprintf(f, ",%s,%s,%s\n", gap, kink, ob_cont_name(j->continuity));
     return ferror(f) ? -1 : 0;
 }
 
@@ -204,6 +211,14 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
             o->reps > 0 ? "true" : "false", o->rep_mismatches);
     fprintf(f, "  \"offset_degree\": \"exact (FLINT %s): 2n + 2tau - mu of each Bezier segment, the largest per curve, "
                "on the control points as stored (each double is exactly the rational m 2^e)\",\n", FLINT_VERSION);
+    /* the thresholds of the joint columns (methods/joints.h) */
+    fprintf(f, "  \"joints\": {\"open_gap_rel\": %.17g, \"size\": \"the diagonal of the base curve's control-point "
+               "bounding box grown by |d| on every side\", \"g1_kink_rad\": %.17g, \"doc\": \"max_gap: the largest "
+               "distance between the end of a piece and the start of the next; a joint farther apart than "
+               "open_gap_rel * size is open and counts two control points; max_kink: the largest angle between "
+               "their end tangents; continuity: open (a joint open), G0 (closed, a kink over g1_kink_rad), G1, or "
+               "empty (no joint); joints at a corner or gap of the base curve are not measured\"},\n",
+            OB_JOINT_GAP_REL, OB_JOINT_KINK_RAD);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);

@@ -252,18 +252,26 @@ static int csv_row(csv_reader *r, int *line, int nh)
 /* Parses buf[0..len) (owned by t from here on, with room for a NUL). */
 static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen)
 {
+    /* required, then the optional joint columns (NREQ on) */
     static const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", "ctrl_points",
                                        "segments", "out_degree", "max_err", "status", "fit_ns", "eval_ns",
-                                       "message"};
-    enum { NCOL = sizeof cols / sizeof cols[0] };
+                                       "message", "max_gap", "max_kink", "continuity"};
+    enum { NCOL = sizeof cols / sizeof cols[0], NREQ = 14 };
     int at[NCOL];
     memset(t, 0, sizeof *t);
     t->text = buf;
     csv_reader r = {buf, buf + len, 1, name, NULL, 0, err, errlen};
     int cap = 0, line = 0;
-    int nh = csv_header(&r, cols, NCOL, NCOL, at);
+    int nh = csv_header(&r, cols, NCOL, NREQ, at);
     if (nh < 0)
         goto fail;
+    const int njc = (at[14] >= 0) + (at[15] >= 0) + (at[16] >= 0);
+    if (njc != 0 && njc != 3) {
+        csv_fail(&r, 1, "the joint columns max_gap, max_kink and continuity come together (this header has %d of them)",
+                 njc);
+        goto fail;
+    }
+    t->has_joints = njc == 3;
     for (;;) {
         const int got = csv_row(&r, &line, nh);
         if (got == 0)
@@ -287,6 +295,8 @@ static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t,
         row->status = f[at[10]];
         row->message = f[at[13]];
         row->max_err_text = f[at[9]];
+        row->max_gap = row->max_kink = NAN;
+        row->continuity = t->has_joints ? f[at[16]] : "";
         if (bad)
             ;
         else if (parse_long(f[at[6]], 0, 1000000000L, &row->ctrl_points))
@@ -296,6 +306,11 @@ static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t,
             bad = "segments and out_degree must be whole numbers >= 0";
         else if (parse_err(row->max_err_text, &row->max_err))
             bad = "max_err is not a number >= 0 (nan or empty for none)";
+        else if (t->has_joints && (parse_err(f[at[14]], &row->max_gap) || parse_err(f[at[15]], &row->max_kink)))
+            bad = "max_gap and max_kink must be numbers >= 0 (empty for none)";
+        else if (t->has_joints && strcmp(row->continuity, "") && strcmp(row->continuity, "open") &&
+                 strcmp(row->continuity, "G0") && strcmp(row->continuity, "G1"))
+            bad = "continuity is not empty, open, G0 or G1";
         if (bad)
             ;
         else if (parse_ns(f[at[11]], &row->fit_ns) || parse_ns(f[at[12]], &row->eval_ns))

@@ -6,6 +6,8 @@
  * are found by name (any order, extra columns ignored); required:
  * curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,
  * status,fit_ns,eval_ns,message (`family`, written by run, is not needed).
+ * Optional: max_gap, max_kink, continuity (the joints; files written before
+ * they existed have none, and are read all the same: has_joints 0).
  * Fields may be quoted ("a, b" with "" for a quote, newlines inside quotes),
  * lines end in LF or CRLF, blank lines are skipped.  A job is identified by
  * its key (curve, d, method, metric, split, tol), d and tol compared as
@@ -29,6 +31,8 @@ typedef struct {
     long segments, out_degree;
     double max_err;          /* NAN when empty or "nan" */
     double fit_ns, eval_ns;
+    double max_gap, max_kink;  /* NAN when empty or the column is absent */
+    const char *continuity;  /* "" when empty or absent */
     int line;                /* first line of the row in the file */
     const double *rep_t;     /* samples.csv: fit_ns + eval_ns of repetition r
                                 at rep_t[r - 1], NAN where absent; NULL without */
@@ -42,6 +46,7 @@ typedef struct {
     ob_res_row **sorted;     /* the rows ordered by key, for lookups */
     double *rep_t;           /* n x maxrep sample times (owned), or NULL */
     int maxrep;              /* largest rep in samples.csv; 0 without */
+    int has_joints;          /* the header has max_gap, max_kink and continuity */
 } ob_res_table;
 
 /* Purpose: parse the text of a results.csv named `name` (copied: the caller
@@ -50,7 +55,9 @@ typedef struct {
  *          missing or repeated column, a wrong field count, an unterminated
  *          quote or text after a closing quote, an empty key field, d or tol
  *          not a finite number, ctrl_points not a whole number >= 0, max_err
- *          not a number (empty and nan are accepted) or negative, segments or
+ *          not a number (empty and nan are accepted) or negative, max_gap or
+ *          max_kink likewise, continuity other than empty / open / G0 / G1,
+ *          only some of the three joint columns, segments or
  *          out_degree not whole numbers >= 0, fit_ns or
  *          eval_ns not a finite number >= 0, a status other than ok / limit /
  *          fail / skip / timeout, a duplicate key (naming both lines), no memory.  *t is

@@ -53,6 +53,15 @@ enum { STALL_LEVELS = 4 };
  * (instead of halving down to the segment limit). */
 enum { RETRY_LEVELS = 12 };
 
+/* What the joints need of one fit (joints.h): the start of its first piece,
+ * the end of its last, and the joints between its own pieces. */
+typedef struct {
+    ob_end first, last;
+    ob_joint_stats in;
+    int count_open;     /* open inner joints counted in ctrl_points (none for a
+                           method's own representation: it has its own count) */
+} fitjoints;
+
 /* One pending piece of one job. */
 typedef struct {
     int job, seg, depth;
@@ -61,6 +70,7 @@ typedef struct {
     double lo, hi;      /* greedy: longest passing / shortest failing end so far */
     double pass_err;    /* greedy: results of the candidate [a, lo] */
     int pass_ctrl_add, pass_maxdeg, pass_n;
+    fitjoints pass_fj;  /* greedy: the joints of the candidate [a, lo] */
     int final;          /* greedy: accept this fit whatever its error */
     double parent_err;  /* mid/maxerr: the error of the piece this one was split from */
     int stall;          /* successive splits without a real drop of the error */
@@ -94,7 +104,22 @@ typedef struct {
     int finished;   /* counted as done for progress */
     int floored;    /* a piece hit an error floor: keep the rest as they are */
     ob_span_log *spans; /* NULL, or where accepted pieces go */
+    /* joints: the ends of every accepted fit until the job is finalized */
+    double gap_tol;     /* a joint is open past this (joints.h) */
+    struct fitends *ends;
+    int nends, capends;
+    int ends_oom;       /* an end could not be stored */
+    ob_joint_stats st;  /* inner joints of the accepted fits, then (finalized) all */
+    long open_count;    /* joints counted twice in ctrl_points */
+    int joined;         /* the joints between fits are measured, ends freed */
 } jstate;
+
+/* The ends of one accepted fit over [a, ...] of base segment seg. */
+typedef struct fitends {
+    int seg;
+    double a;
+    ob_end first, last;
+} fitends;
 
 static double clock_ns(clockid_t id)
 {
@@ -213,12 +238,31 @@ static int span_cmp(const void *x, const void *y)
     return p->a < q->a ? -1 : p->a > q->a;
 }
 
-/* Accept a finished segment (pieces with their degrees and error) covering
- * [a, b] of base segment seg. */
+/* Keeps the ends of an accepted fit for the joints between fits. */
+static void keep_ends(jstate *s, int seg, double a, const fitjoints *fj)
+{
+    if (s->nends == s->capends) {
+        const int nc = s->capends ? 2 * s->capends : 16;
+        fitends *nv = realloc(s->ends, (size_t)nc * sizeof *nv);
+        if (!nv) {
+            s->ends_oom = 1;
+            return;
+        }
+        s->ends = nv;
+        s->capends = nc;
+    }
+    s->ends[s->nends++] = (fitends){seg, a, fj->first, fj->last};
+}
+
+/* Accept a finished segment (pieces with their degrees and error, the
+ * joints of its fit) covering [a, b] of base segment seg. */
 static void accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg,
-                   double err)
+                   double err, const fitjoints *fj)
 {
     log_span(s->spans, seg, a, b);
+    keep_ends(s, seg, a, fj);
+    ob_joint_merge(&s->st, &fj->in);
+    s->open_count += fj->count_open;
     j->segments += npieces;
     s->ctrl_add += ctrl_add;
     if (maxdeg > j->out_degree)
@@ -397,8 +441,39 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
     }
 }
 
-/* Decide what becomes of one measured item; children go to `next`. */
-static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
+/* The joints of one fit's pieces (joints.h); fit->n >= 1. */
+static void fit_joints(const ob_fit *fit, double gap_tol, fitjoints *fj)
+{
+    memset(fj, 0, sizeof *fj);
+    ob_bez_end(&fit->seg[0], 0, &fj->first);
+    ob_bez_end(&fit->seg[fit->n - 1], 1, &fj->last);
+    for (int p = 1; p < fit->n; p++) {
+        ob_end l, r;
+        ob_bez_end(&fit->seg[p - 1], 1, &l);
+        ob_bez_end(&fit->seg[p], 0, &r);
+        fj->count_open += ob_joint_measure(&fj->in, &l, &r, gap_tol);
+    }
+    if (fit->ctrl_points > 0)  /* the method's own representation has its own count */
+        fj->count_open = 0;
+}
+
+/* The joints of every fitted item of a chunk (items whose fit failed get
+ * none). */
+static void joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res,
+                         fitjoints *fj)
+{
+#pragma omp parallel for schedule(dynamic, 16) if (cnt > 64)
+    for (long i = 0; i < cnt; i++) {
+        if (res[i].st == OB_OK)
+            fit_joints(&fits[i], js[its[i].job].gap_tol, &fj[i]);
+        else
+            memset(&fj[i], 0, sizeof fj[i]);
+    }
+}
+
+/* Decide what becomes of one measured item (fj: the joints of its fit);
+ * children go to `next`. */
+static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
                   const ob_driver_opts *o, itemvec *next)
 {
     ob_job *j = &jobs[it->job];
@@ -425,7 +500,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
 
     if (j->split != OB_SPLIT_GREEDY) {
         if (pass) {
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             return 0;
         }
         const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
@@ -436,11 +511,11 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             return 0;
         }
         if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             return 0;
         }
         if (stall >= STALL_LEVELS && !(it->depth >= o->max_depth || full)) {
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             snprintf(msg, sizeof msg, "error stalls at %.3g > tol under subdivision at t in [%.6g, %.6g] "
                      "of segment %d (%d splits without a 10%% drop); the rest kept as it was", r->err, it->a,
                      it->b, it->seg, STALL_LEVELS);
@@ -453,7 +528,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
                 job_end(j, s, OB_FAIL, msg);
                 return 0;
             }
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             if (full)
                 snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
             else
@@ -488,7 +563,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             job_end(j, s, OB_FAIL, msg);
             return 0;
         }
-        accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+        accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
         if (!pass) {
             snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
             job_end(j, s, OB_LIMIT, msg);
@@ -497,7 +572,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     }
     if (pass) {
         if (it->b >= it->end) {
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             return 0;
         }
         g.lo = it->b;
@@ -505,12 +580,13 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
         g.pass_ctrl_add = r->ctrl_add;
         g.pass_maxdeg = r->maxdeg;
         g.pass_n = r->n;
+        g.pass_fj = *fj;
     } else {
         g.hi = it->b;
     }
     if (g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
         if (g.lo > g.a) {
-            accept(j, s, it->seg, it->a, g.lo, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err);
+            accept(j, s, it->seg, it->a, g.lo, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err, &g.pass_fj);
             g.a = g.lo;
         } else if (retry) {
             job_end(j, s, OB_FAIL, msg);
@@ -519,7 +595,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
             /* not even a sliver passes: an error floor subdivision cannot get
              * under; keep the sliver, fit the rest of the stretch once and keep
              * it too, and end the job with status limit */
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err);
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
                      it->b - it->a, it->a, it->seg, r->err);
             job_end(j, s, OB_LIMIT, msg);
@@ -539,17 +615,58 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r,
     return push(next, &g);
 }
 
-/* A finished job's outputs: the control points of what was accepted, or none
- * for a job that failed, was skipped or timed out. */
-static void finalize(ob_job *j, const jstate *s)
+static int ends_cmp(const void *x, const void *y)
 {
+    const fitends *p = x, *q = y;
+    if (p->seg != q->seg)
+        return p->seg < q->seg ? -1 : 1;
+    return p->a < q->a ? -1 : p->a > q->a;
+}
+
+/* The joints between consecutive accepted fits, in curve order (once: the
+ * ends are freed). */
+static void join_fits(ob_job *j, jstate *s)
+{
+    if (s->joined)
+        return;
+    s->joined = 1;
+    if (s->nends > 1)
+        qsort(s->ends, (size_t)s->nends, sizeof *s->ends, ends_cmp);
+    for (int i = 1; i < s->nends; i++)
+        s->open_count += ob_joint_between(&s->st, j->curve, s->gap_tol, s->ends[i - 1].seg, &s->ends[i - 1].last,
+                                          s->ends[i].seg, &s->ends[i].first);
+    free(s->ends);
+    s->ends = NULL;
+    s->nends = s->capends = 0;
+}
+
+/* A finished job's outputs: the control points of what was accepted (one
+ * more for each joint whose ends are apart) and its joints, or none for a
+ * job that failed, was skipped or timed out.  Called again for a finished
+ * job, it gives the same outputs. */
+static void finalize(ob_job *j, jstate *s)
+{
+    if ((j->status == OB_OK || j->status == OB_LIMIT) && s->ends_oom)
+        job_end(j, s, OB_FAIL, "out of memory keeping the ends of the accepted pieces");
     if (j->status == OB_OK || j->status == OB_LIMIT) {
-        j->ctrl_points = j->segments > 0 ? 1 + s->ctrl_add : 0;
+        join_fits(j, s);
+        j->ctrl_points = j->segments > 0 ? 1 + s->ctrl_add + s->open_count : 0;
+        j->joints = s->st.joints;
+        j->open_joints = (int)s->open_count;
+        j->max_gap = s->st.joints > 0 ? s->st.max_gap : NAN;
+        j->max_kink = s->st.joints > 0 ? s->st.max_kink : NAN;
+        j->continuity = ob_joint_continuity(&s->st);
     } else {
+        free(s->ends);
+        s->ends = NULL;
+        s->nends = s->capends = 0;
         j->ctrl_points = 0;
         j->segments = 0;
         j->out_degree = 0;
         j->max_err = NAN;
+        j->max_gap = j->max_kink = NAN;
+        j->continuity = OB_CONT_NONE;
+        j->joints = j->open_joints = 0;
     }
 }
 
@@ -577,7 +694,13 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
     itemres *res = malloc((size_t)o.chunk * sizeof *res);
     double *fit_ns = malloc((size_t)o.chunk * sizeof *fit_ns);
     double *eval_ns = malloc((size_t)o.chunk * sizeof *eval_ns);
+    fitjoints *fj = NULL;
     if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns || batch_alloc(&B, o.chunk)) {
+        rc = -1;
+        goto out;
+    }
+    fj = malloc((size_t)o.chunk * sizeof *fj);
+    if (!fj) {
         rc = -1;
         goto out;
     }
@@ -592,6 +715,10 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
         j->fit_ns = j->eval_ns = 0.0;
         j->message[0] = '\0';
         js[i].spans = o.spans ? &o.spans[i] : NULL;
+        j->max_gap = j->max_kink = NAN;
+        j->continuity = OB_CONT_NONE;
+        j->joints = j->open_joints = 0;
+        js[i].gap_tol = ob_joint_gap_tol(j->curve, j->d);
     }
     int plan_fail = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : plan_fail)
@@ -639,6 +766,9 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
                 }
                 fit_ns[i] = fit_item(jobs, &its[i], w, &fits[i], &res[i]);
             }
+
+            /* the ends and inner joints of every fit (joints.h) */
+            joints_chunk(js, its, cnt, fits, res, fj);
             /* measure every fit: one batch */
             measure_chunk(jobs, its, cnt, fits, res, eval_ns, &o, &B);
             /* decide, in job order */
@@ -646,7 +776,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
                 ob_job *jj = &jobs[its[i].job];
                 jj->fit_ns += fit_ns[i];
                 jj->eval_ns += eval_ns[i];
-                if (decide(jobs, js, &its[i], &res[i], &o, &next)) {
+                if (decide(jobs, js, &its[i], &res[i], &fj[i], &o, &next)) {
                     rc = -1;
                     goto out;
                 }
@@ -692,6 +822,9 @@ out:
             j->ctrl_points = 0;
             j->segments = j->out_degree = 0;
             j->max_err = NAN;
+            j->max_gap = j->max_kink = NAN;
+            j->continuity = OB_CONT_NONE;
+            j->joints = j->open_joints = 0;
         }
         if (plans)
             free(plans[i].v);
@@ -708,5 +841,6 @@ out:
     free(fit_ns);
     free(eval_ns);
     batch_free(&B);
+    free(fj);
     return rc;
 }

@@ -27,7 +27,17 @@
  * status timeout.
  *
  * Counting: k segments of degrees m_i joined end to end count 1 + sum m_i
- * control points (shared end points once), as the papers count.
+ * control points (shared end points once), as the papers count, plus one for
+ * every joint whose ends are apart (joints.h: farther than 1e-12 of the
+ * curve's size): there the end points are not shared.  A fit with its own
+ * representation (ob_fit.ctrl_points > 0, e.g. a B-spline) counts that, and
+ * the joints between fits are counted the same way.
+ *
+ * Joints: after the fits, the driver measures every joint of a job (between
+ * the pieces of a fit, between consecutive accepted fits in curve order, and
+ * across base segments where the base is G1; joints.h): the largest gap and
+ * kink and the continuity reached.  Per accepted fit it keeps only its two
+ * ends (point and tangent direction) until the job is finalized.
  */
 #ifndef OB_DRIVER_H
 #define OB_DRIVER_H
@@ -35,6 +45,7 @@
 #include <signal.h>
 #include <stddef.h>
 
+#include "joints.h"
 #include "method.h"
 #include "metric.h"
 
@@ -65,6 +76,13 @@ typedef struct {
                             time shared among its records by the work each
                             took (ob_errval.work), summed */
     char message[160];
+    /* joints (joints.h), for jobs that produced an approximation: */
+    double max_gap;      /* largest gap at a measured joint; NAN: none measured */
+    double max_kink;     /* largest angle (rad) between end tangents there; NAN: none */
+    ob_cont continuity;  /* measured: open, G0, G1; OB_CONT_NONE without joints */
+    int joints;          /* joints measured */
+    int open_joints;     /* joints counted twice in ctrl_points (measured open,
+                            or not measured with their ends apart) */
 } ob_job;
 
 /* One measurement of a batch: an approximating piece against its base piece. */

@@ -31,8 +31,9 @@ enum { OB_MAX_PIECES = 16 };
 /* The result of one fit: n pieces; piece i approximates the offset of the base
  * segment over base parameters [t[i], t[i+1]] (t[0] = 0, t[n] = 1).  The
  * pieces are what the metrics measure.  ctrl_points: 0 when the output is the
- * pieces themselves (they count 1 + sum of degrees); otherwise the number of
- * control points of the method's own representation of the same curve, e.g. a
+ * pieces themselves (they count 1 + sum of degrees, plus one for each joint
+ * whose ends are apart: driver.h, joints.h); otherwise the number of control
+ * points of the method's own representation of the same curve, e.g. a
  * B-spline whose Bézier pieces these are (DESIGN: B-splines count their
  * control points). */
 typedef struct {
@@ -83,7 +84,10 @@ typedef struct ob_method {
      * reading of the paper), so that runs of different versions are not
      * compared for regressions (meta.json method_versions; compare exit 3). */
     int version;
-    const char *continuity; /* of the approximation at segment joints, e.g. "G0", "C1/G2" */
+    /* claimed for the approximation at segment joints, e.g. "G0", "C1/G2",
+     * "none" (the pieces are not made to meet); what a run reaches is
+     * measured (joints.h: results.csv max_gap, max_kink, continuity) */
+    const char *continuity;
     unsigned caps;
     /* >0: the driver splits pieces so the tangent turns by less than this (rad) */
     double max_turn;

@@ -76,6 +76,25 @@
  * negative.
  * The fit is in the base's parameter: R(t_i) lies on the normal line at C(t_i),
  * so the radial and bound metrics apply (OB_CAP_SAME_PARAM).
+ *
+ * End points: the paper's R(A,t) does not interpolate the offset's end points,
+ * and its construction does not share end points between pieces.  Every
+ * unknown goes to the equioscillation conditions: "Suppose there are k
+ * parameters, t_1 < t_2 < ... < t_k, which satisfy R(A,t_i) - C_r(t_i) =
+ * +-e N(t_i)" and "the number of extrema k could be (3n+2)/2 or (3n+3)/2 to
+ * obtain consistent equations" (section 3): no equation is left for the ends,
+ * and in a Chebyshev (minimax) fit the error at the interval's ends is
+ * typically +-e itself.  The accelerated algorithm the paper uses takes
+ * ratlsq's nodes, both ends included, with targets C_r(t_i) + sigma_i e N(t_i):
+ * again +-e at t = 0 and 1, not 0.  Where the paper subdivides (Table 1: C_1,
+ * C_2), each half is fitted on its own ("The advantage is more obvious after
+ * the curve is subdivided"), with nothing said about joining them.  So the
+ * pieces of a subdivided zhao / zhao-rational approximation are about the
+ * error apart at their joints (measured on liu2002_ex1: up to 1.3 tol for
+ * zhao, 0.8 tol for zhao-rational), and the driver counts both ends of each
+ * such joint (methods/joints.h); the method does not claim any continuity
+ * at joints ("none" below).  Forcing the ends to interpolate would be
+ * another method than the paper's, so it is not done here.
  */
 #include "method.h"
 
@@ -338,7 +357,7 @@ const ob_method ob_method_zhao = {
     .name = "zhao",
     .version = 1,
     .citation = "Zhao & Zhou 2017, A novel method of offset approximation along the normal direction (MDPI), polynomial",
-    .continuity = "G0",
+    .continuity = "none",  /* the ends are not interpolated: pieces do not meet (see the top) */
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
@@ -352,7 +371,7 @@ const ob_method ob_method_zhao_rational = {
     .name = "zhao-rational",
     .version = 1,
     .citation = "Zhao & Zhou 2017, A novel method of offset approximation along the normal direction (MDPI), rational",
-    .continuity = "G0",
+    .continuity = "none",  /* the ends are not interpolated: pieces do not meet (see the top) */
     .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_ORIENTED,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,

@@ -31,14 +31,16 @@ check '[ $? -eq 2 ]' "unknown option"
 
 # results.csv: per curve, and consistent with the exact method
 $OB run --methods exact,tiller --tols 1e-1 --out "$T/r" 2>/dev/null
-rows() { awk -F, -v c="$1" 'NR>1 && $1 == c && $3 == "exact" {print $11 ":" $(NF-1) ":" $NF}' "$T/r/results.csv" | sort -u; }
+rows() { rcols "$T/r/results.csv" curve method status offset_degree offset_rational |
+         awk -F: -v c="$1" '$1 == c && $2 == "exact" {print $3 ":" $4 ":" $5}' | sort -u; }
 check '[ "$(rows liu2002_ex1)" = "skip:10:no" ]' "generic cubic: offset_degree 10, not rational, exact skips: $(rows liu2002_ex1)"
 check '[ "$(rows ph_cubic)" = "ok:10:yes" ]' "PH cubic: rational, exact works: $(rows ph_cubic)"
 check '[ "$(rows atlas_circle)" = "ok:4:yes" ]' "exact circle: $(rows atlas_circle)"
 # exact detects rational offsets numerically (within 1e-10): everywhere but
 # arc_quarter, whose weight sqrt(2)/2 rounded to a double makes it exactly an
 # ellipse (offset degree 8, not rational) that is a circle to 1e-16
-incons=$(awk -F, 'NR>1 && $3 == "exact" && $1 != "arc_quarter" && (($11 == "skip") != ($NF == "no")) {print $1}' "$T/r/results.csv" | sort -u)
+incons=$(rcols "$T/r/results.csv" curve method status offset_rational |
+         awk -F: '$2 == "exact" && $1 != "arc_quarter" && (($3 == "skip") != ($4 == "no")) {print $1}' | sort -u)
 check '[ -z "$incons" ]' "offset_rational agrees with the exact method: '$incons'"
 check '[ "$(rows arc_quarter)" = "ok:8:no" ]' "arc_quarter: the rounded circle: $(rows arc_quarter)"
 

@@ -24,7 +24,7 @@ check '[ "$got" = "13 19 31 43 61 13 19 31 43 61 " ]' "Ahn Table 1 'Our method':
 
 # --- the CSV contract ---
 hdr=$(head -n 1 "$T/a/results.csv")
-check '[ "$hdr" = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,offset_degree,offset_rational" ]' "header: $hdr"
+check '[ "$hdr" = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,offset_degree,offset_rational,max_gap,max_kink,continuity" ]' "header: $hdr"
 check '[ "$(col "$T/a/results.csv" offset_degree | tr " " "\n" | sort -u)" = "10" ] && [ "$(col "$T/a/results.csv" offset_rational | tr " " "\n" | sort -u)" = "no" ]' \
     "liu2002_ex1 (a generic cubic): offset_degree 10, not rational"
 check '[ "$(col "$T/a/results.csv" tol | cut -d" " -f1-5)" = "0.1 0.01 0.001 0.0001 1e-05" ]' "tolerances printed exactly"
@@ -32,6 +32,26 @@ for k in git_commit compiler cflags omp_threads samples_per_segment argv timesta
     check 'grep -q "\"$k\"" "$T/a/meta.json"' "meta.json has $k"
 done
 check 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/a/meta.json" 2>/dev/null || ! command -v python3 >/dev/null' "meta.json is valid JSON"
+
+# --- the joint columns, last: measured continuity and the largest gap ---
+J="--curve liu2002_ex1 --methods ahn,cobb,zhao-rational --tols 1e-3"
+$OB run $J --backend cpu --out "$T/j" 2>/dev/null
+check '[ $? -eq 0 ] && [ "$(head -n 1 "$T/j/results.csv" | cut -d, -f18-)" = "max_gap,max_kink,continuity" ]' \
+    "the joint columns come last: $(head -n 1 "$T/j/results.csv" | cut -d, -f18-)"
+got=$(rcols "$T/j/results.csv" method continuity | tr '\n' ' ')
+check '[ "$got" = "ahn:G1 cobb:G0 zhao-rational:open ahn:G1 cobb:G0 zhao-rational:open " ]' "measured continuity: '$got'"
+# zhao-rational's pieces are ~tol apart, and ctrl_points counts those ends twice
+got=$(rcols "$T/j/results.csv" method max_gap ctrl_points segments out_degree |
+      awk -F: '{ok = ($1 == "zhao-rational") ? ($2 > 1e-5 && $3 > 1 + $4 * $5) : ($2 < 1e-12 && $3 == 1 + $4 * $5); if (!ok) print}')
+check '[ -z "$got" ]' "max_gap and ctrl_points of open and closed joints: '$got'"
+check 'grep -q "\"joints\": {\"open_gap_rel\": 9.9999999999999998e-13" "$T/j/meta.json" && grep -q "\"g1_kink_rad\"" "$T/j/meta.json"' \
+    "meta.json names the joint thresholds"
+if $OB run $J --backend opencl --out "$T/jcl" 2>/dev/null; then
+    body "$T/jcl/results.csv" > "$T/jcl.txt"
+    check 'body "$T/j/results.csv" | cmp -s - "$T/jcl.txt"' "--backend opencl and cpu give the same results, joints included"
+else
+    skipped=$((skipped + 1))
+fi
 
 # --- default job, every status valid, identical for 1 and 2 threads ---
 # (a fixed set of methods of every kind keeps the run time independent of how
@@ -68,7 +88,7 @@ check '[ -s "$T/r1.cut" ] && cmp -s "$T/r1.cut" "$T/r2.cut"' "--random 24:3: --t
 check '[ -z "$(col "$T/r1/results.csv" status | tr " " "\n" | grep -vE "^(ok|limit|fail|skip)$")" ]' "--random 24:3: status values"
 check '[ "$(col "$T/r1/results.csv" curve | tr " " "\n" | sort -u | wc -l)" -eq 24 ]' "--random 24:3: 24 curves in results.csv"
 check '[ "$(awk -F, "NR>1{print \$1}" "$T/r1/results.csv" | sort -u | head -n 1)" = "rnd3_000000" ]' "random ids: rnd3_000000 ..."
-fams=$(awk -F, 'NR>1{print $(NF-2)}' "$T/r1/results.csv" | sort -u | tr '\n' ' ')
+fams=$(rcols "$T/r1/results.csv" family | sort -u | tr '\n' ' ')
 check '[ "$fams" = "cubic degenerate inflection loop quintic rational septic tight " ]' "every family in the family column: '$fams'"
 check 'grep -q "\"seed\": 3," "$T/r1/meta.json"' "meta.json records the seed"
 check 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/r1/meta.json" 2>/dev/null || ! command -v python3 >/dev/null' "meta.json with a seed is valid JSON"
@@ -85,7 +105,7 @@ check '[ $? -eq 0 ]' "the default seed is 1"
 $OB run --curves datasets/published.curves --random 8:2 --curve rnd2_000005,liu2002_ex1 \
     --methods cobb --tols 1e-1 --out "$T/rc" 2>/dev/null
 check '[ $? -eq 0 ]' "--curves with --random and --curve runs"
-got=$(awk -F, 'NR>1 && !s[$1]++ {printf "%s:%s ", $1, $(NF-2)}' "$T/rc/results.csv")
+got=$(rcols "$T/rc/results.csv" curve family | awk '!s[$0]++' | tr '\n' ' ')
 check '[ "$got" = "liu2002_ex1:published rnd2_000005:tight " ]' "file curves first, then the selected random one: '$got'"
 $OB run --random 8:2 --curve rnd2_000008 --out "$T/rx" >/dev/null 2>"$T/rx.err"
 check '[ $? -eq 2 ] && grep -q -- "--curve" "$T/rx.err"' "--curve naming a random curve past N exits 2"

@@ -42,6 +42,19 @@ check 'grep -q "^| tiller | 4 | .* | regression |" "$T/out"' "tiller's verdict i
 cmp_rc 0 "$T/g" "$T/a" --no-timing
 check 'grep -q "^## Improvements (1)" "$T/out" && grep -q "| ctrl_points | $((cp3 + 2)) | $cp3 |" "$T/out"' "improvement reported with exit 0"
 
+# --- the joint columns are informational: a base written before them is read
+# (said in a note), and another measured continuity is a note, not a change ---
+mkdir "$T/nj" "$T/cj"
+cp "$T/a/meta.json" "$T/nj/"
+cp "$T/a/meta.json" "$T/cj/"
+nojoints "$T/a/results.csv" > "$T/nj/results.csv"
+cmp_rc 0 "$T/nj" "$T/a" --no-timing
+check 'grep -q "note: BASE has no joint columns" "$T/out"' "a base without the joint columns: $(grep note "$T/out")"
+awk -F, 'BEGIN{OFS=","} NR==3{$NF="G0"} {print}' "$T/a/results.csv" > "$T/cj/results.csv"
+cmp_rc 0 "$T/a" "$T/cj" --no-timing
+check 'grep -q "note: 1 joined row(s) reach another measured continuity" "$T/out"' \
+    "another continuity is a note: $(grep note "$T/out")"
+
 # --- timing: a row twice as slow (no samples: the threshold decides) ---
 # (the base row's time is set too: a fast machine may measure it under the
 # 1 ms floor below which rows are not judged)

@@ -13,8 +13,9 @@ else
 fi
 
 # the row of results.csv for (curve, d): the run's figures, as the SVG title writes them
-run_row() {  # dir d -> "status S, ctrl_points = N, segments = N, max_err = E"
-    awk -F, -v d="$2" 'NR>1 && $2==d {printf "status %s, ctrl_points = %s, segments = %s, max_err = %s", $11, $7, $8, ($10 == "" ? "-" : $10)}' "$1/results.csv"
+run_row() {  # dir d -> "status S, ctrl_points = N, segments = N, max_err = E, max_gap = G, continuity = C"
+    rcols "$1/results.csv" d status ctrl_points segments max_err max_gap continuity |
+        awk -F: -v d="$2" '$1==d {printf "status %s, ctrl_points = %s, segments = %s, max_err = %s, max_gap = %s, continuity = %s", $2, $3, $4, ($5 == "" ? "-" : $5), ($6 == "" ? "-" : $6), ($7 == "" ? "-" : $7)}'
 }
 svg_summary() { sed -n 's/.*<text class="summary"[^>]*>\([^<]*\)<\/text>.*/\1/p' "$1"; }
 joints() { grep -o 'class="joint"' "$1" | wc -l | tr -d ' '; }

@@ -41,6 +41,18 @@ wait $pid
 rc=$?
 check '[ $rc -eq 130 ] && [ -s "$T/i/results.journal.csv" ] && [ ! -e "$T/i/results.csv" ] && grep -q -- "--resume" "$T/i.err"' \
     "SIGINT: exit $rc (130 wanted), journal kept, no results.csv: $(cat "$T/i.err" | tail -n 1)"
+# a journal, or a finished results.csv, of a build without the joint columns
+# cannot be continued: refused, naming the file
+mkdir -p "$T/oldj" "$T/old"
+{ head -n 1 "$T/i/results.journal.csv"; tail -n +2 "$T/i/results.journal.csv" | nojoints /dev/stdin; } \
+    > "$T/oldj/results.journal.csv"
+$OB run $R --resume "$T/oldj" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "results.journal.csv:2: written by another version of offbench" "$T/e.txt"' \
+    "resume of an older build's journal: $(cat "$T/e.txt")"
+nojoints "$T/ref/results.csv" > "$T/old/results.csv"
+$OB run $R --resume "$T/old" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "older offbench (no max_gap column)" "$T/e.txt"' \
+    "resume of an older build's results.csv: $(cat "$T/e.txt")"
 # a partial last line (a kill in the middle of a write) is cut off
 printf 'rnd5_000001,0.1,tiller,hausd' >> "$T/i/results.journal.csv"
 $OB run $R --samples 64 --resume "$T/i" >/dev/null 2>"$T/e.txt"

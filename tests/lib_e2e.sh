@@ -12,3 +12,14 @@ bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
 check() { if eval "$1"; then ok; else bad "$2"; fi; }
 # a results.csv without its timing columns (fit_ns, eval_ns)
 body() { cut -d, -f1-11,14- "$1"; }
+# a results.csv as builds before the joint columns wrote it (the last three
+# dropped; they never hold commas)
+nojoints() { awk -F, 'BEGIN{OFS=","} {NF = NF - 3; print}' "$1"; }
+# columns of a results.csv by name, one line per row, values joined by ':'
+# (rcols FILE NAME...).  A quoted message may hold commas, the columns after
+# it never do: those are counted from the end of the line.
+rcols() {
+    f=$1; shift
+    awk -F, -v cols="$*" 'NR==1{for(i=1;i<=NF;i++){at[$i]=i; if($i=="message")m=i}; n=NF; nc=split(cols,c," "); next}
+        {s=""; for(j=1;j<=nc;j++){k=at[c[j]]; s=s (j>1?":":"") (k>m ? $(NF-(n-k)) : $k)}; print s}' "$f"
+}

@@ -214,6 +214,8 @@ static void test_csv(void)
         CHECK(strcmp(t.v[1].message, "singular, \"really\"\nsecond line") == 0, "quoted message: '%s'",
               t.v[1].message);
         CHECK(isnan(t.v[1].max_err) && isnan(t.v[2].max_err), "nan and empty max_err");
+        CHECK(!t.has_joints && isnan(t.v[0].max_gap) && strcmp(t.v[0].continuity, "") == 0,
+              "a file without the joint columns is read: none");
         CHECK(t.v[1].line == 4 && t.v[2].line == 6, "line numbers %d %d", t.v[1].line, t.v[2].line);
         ob_res_row key = t.v[1];
         key.tol_text = "0.00001";
@@ -251,6 +253,38 @@ static void test_csv(void)
     expect_samples_bad(&t, s, "s.csv:2", "fit_ns and eval_ns");
     expect_samples_bad(&t, "curve,d,method,metric,split,tol,fit_ns,eval_ns\n", "s.csv:1", "no column 'rep'");
     ob_res_free(&t);
+    ob_res_free(&t);
+
+    /* the joint columns: optional, all three or none, values checked */
+    const char jhdr[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
+                        "eval_ns,message,family,offset_degree,offset_rational,max_gap,max_kink,continuity\n";
+    char jt[1024];
+    snprintf(jt, sizeof jt, "%sc1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,f,10,no,0.031,2.06,open\n"
+             "c1,1,cobb,hausdorff,mid,0.1,4,1,3,0.05,ok,1,1,,f,10,no,,,\n", jhdr);
+    CHECK(ob_res_parse(jt, strlen(jt), "j.csv", &t, err, sizeof err) == 0 && t.n == 2 && t.has_joints,
+          "joint columns: %s", err);
+    if (t.n == 2)
+        CHECK(t.v[0].max_gap == 0.031 && t.v[0].max_kink == 2.06 && strcmp(t.v[0].continuity, "open") == 0 &&
+                  isnan(t.v[1].max_gap) && isnan(t.v[1].max_kink) && strcmp(t.v[1].continuity, "") == 0,
+              "joint values");
+    ob_res_free(&t);
+    struct { const char *row, *why; } jbad[] = {
+        {"c1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,f,10,no,0.03,1,C2\n", "continuity is not"},
+        {"c1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,f,10,no,-1,1,open\n", "max_gap and max_kink"},
+        {"c1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,f,10,no,0.1,x,open\n", "max_gap and max_kink"},
+    };
+    for (size_t k = 0; k < sizeof jbad / sizeof jbad[0]; k++) {
+        snprintf(jt, sizeof jt, "%s%s", jhdr, jbad[k].row);
+        CHECK(ob_res_parse(jt, strlen(jt), "j.csv", &t, err, sizeof err) == -1 && strstr(err, "j.csv:2") &&
+                  strstr(err, jbad[k].why),
+              "'%s': %s", jbad[k].row, err);
+        ob_res_free(&t);
+    }
+    const char half[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
+                        "eval_ns,message,max_gap\nc1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,0.1\n";
+    CHECK(ob_res_parse(half, strlen(half), "h.csv", &t, err, sizeof err) == -1 && strstr(err, "h.csv:1") &&
+              strstr(err, "come together"),
+          "only max_gap: %s", err);
     ob_res_free(&t);
 
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,,f\nc,1,m,hausdorff,mid,0.1,10,3,3\n", "r.csv:3",
