@@ -374,7 +374,7 @@ int ob_cmd_bench(int argc, char **argv)
                 gbest = fmax(gbest, flops / g);
             }
         }
-        printf("\n%-18s >= %.2f GFLOP/s at best (curve evaluations only), %.1f%% of the scalar peak%s",
+        printf("\n%-18s >= %.2f GFLOP/s at best (as the metric core counts them), %.1f%% of the scalar peak%s",
                "", gbest / 1e9, 100.0 * gbest / peak[1], vpeak > 0 ? "" : "\n");
         if (vpeak > 0)
             printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
