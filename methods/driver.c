@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,6 +66,7 @@ typedef struct {
 /* One pending piece of one job. */
 typedef struct {
     int job, seg, depth;
+    int grp;            /* the job's share group (share_groups) */
     double a, b;        /* the piece fitted now: base parameters of segment seg */
     double end;         /* greedy: end of the stretch being covered */
     double lo, hi;      /* greedy: longest passing / shortest failing end so far */
@@ -174,7 +176,7 @@ static int check_applicable(ob_job *j, jstate *s)
 }
 
 /* Initial pieces of one job: inflections, then the method's turning limit. */
-static int plan_job(const ob_job *j, int jobidx, const ob_driver_opts *o, itemvec *out)
+static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, itemvec *out)
 {
     const ob_method *m = j->method;
     int convex = o->inflections || (m->caps & OB_CAP_CONVEX);
@@ -202,7 +204,7 @@ static int plan_job(const ob_job *j, int jobidx, const ob_driver_opts *o, itemve
             double prev = a;
             for (int p = 1; p <= k; p++) {
                 double next = p == k ? e : a + (e - a) * ob_bez_turn_param(&sub, turn * p / k);
-                item it = {.job = jobidx, .seg = s, .depth = 0, .a = prev, .b = next,
+                item it = {.job = jobidx, .grp = grp, .seg = s, .depth = 0, .a = prev, .b = next,
                            .end = next, .lo = prev, .hi = next, .parent_err = INFINITY};
                 if (push(out, &it))
                     return -1;
@@ -670,6 +672,137 @@ static void finalize(ob_job *j, jstate *s)
     }
 }
 
+/* ---- shared pieces -------------------------------------------------------
+ * Jobs that differ only in their tolerance (same curve, d, method,
+ * parameters, metric and split) of a method whose fit ignores the tolerance
+ * (ob_method_fit_uses_tol) fit and measure the same piece to the same
+ * result, and their mid and maxerr trees of a coarser tolerance lie inside
+ * a finer one's.  Such jobs form a share group.  Each level is sorted by
+ * (group, segment, piece, job), so that the items of a group on one piece
+ * are adjacent; the first live one is fitted and measured, the others take
+ * its results.  A job's decisions see exactly what they would alone (its own
+ * items keep their order: (segment, piece) within a job), and every job is
+ * charged the piece's full cost (fit_ns, eval_ns say what the job costs
+ * run alone). */
+
+typedef struct {
+    const ob_job *j;
+    size_t i;
+} jobref;
+
+static int ptr_cmp(const void *p, const void *q) { return (uintptr_t)p < (uintptr_t)q ? -1 : (uintptr_t)p > (uintptr_t)q; }
+
+static int job_share_cmp(const void *x, const void *y)
+{
+    const ob_job *a = ((const jobref *)x)->j, *b = ((const jobref *)y)->j;
+    int c;
+    if ((c = ptr_cmp(a->curve, b->curve)) || (c = ptr_cmp(a->method, b->method)) ||
+        (c = ptr_cmp(a->params, b->params)))
+        return c;
+    if (a->d != b->d)
+        return a->d < b->d ? -1 : 1;
+    if (a->metric != b->metric)
+        return a->metric < b->metric ? -1 : 1;
+    if (a->split != b->split)
+        return a->split < b->split ? -1 : 1;
+    const size_t i = ((const jobref *)x)->i, k = ((const jobref *)y)->i;
+    return i < k ? -1 : i > k;
+}
+
+/* Purpose: the share group of every job (grp[i]), or NULL when memory ran out. */
+static int *share_groups(const ob_job *jobs, size_t njobs)
+{
+    int *grp = malloc((njobs ? njobs : 1) * sizeof *grp);
+    jobref *r = malloc((njobs ? njobs : 1) * sizeof *r);
+    if (!grp || !r) {
+        free(grp);
+        free(r);
+        return NULL;
+    }
+    for (size_t i = 0; i < njobs; i++)
+        r[i] = (jobref){&jobs[i], i};
+    qsort(r, njobs, sizeof *r, job_share_cmp);
+    int id = -1;
+    for (size_t k = 0; k < njobs; k++) {
+        const ob_job *j = r[k].j, *p = k ? r[k - 1].j : NULL;
+        const int same = p && p->curve == j->curve && p->method == j->method && p->params == j->params &&
+                         p->d == j->d && p->metric == j->metric && p->split == j->split;
+        if (!same || ob_method_fit_uses_tol(j->method, j->params))
+            id++;
+        grp[r[k].i] = id;
+    }
+    free(r);
+    return grp;
+}
+
+/* 1 when items x and y fit the same piece for the same share group. */
+static int same_piece(const item *x, const item *y)
+{
+    return x->grp == y->grp && x->seg == y->seg && x->a == y->a && x->b == y->b;
+}
+
+static int item_share_cmp(const void *x, const void *y)
+{
+    const item *p = x, *q = y;
+    if (p->grp != q->grp)
+        return p->grp < q->grp ? -1 : 1;
+    if (p->seg != q->seg)
+        return p->seg < q->seg ? -1 : 1;
+    if (p->a != q->a)
+        return p->a < q->a ? -1 : 1;
+    if (p->b != q->b)
+        return p->b < q->b ? -1 : 1;
+    return p->job < q->job ? -1 : p->job > q->job;
+}
+
+/* Items in a chunk: how many of the n items from start to take (at most
+ * chunk), ending before a run of one piece that the chunk would cut (unless
+ * the run fills it). */
+static long chunk_count(const itemvec *cur, size_t start, int chunk)
+{
+    size_t n = cur->n - start < (size_t)chunk ? cur->n - start : (size_t)chunk;
+    size_t end = start + n;
+    if (end < cur->n) {
+        size_t r = end;
+        while (r > start && same_piece(&cur->v[r - 1], &cur->v[end]))
+            r--;
+        if (r > start)
+            end = r;
+    }
+    return (long)(end - start);
+}
+
+/* rep[i]: the item of the chunk whose fit item i takes (i itself: its own). */
+static void chunk_reps(const item *its, long cnt, const jstate *js, int *rep)
+{
+    long first = -1; /* the run's first live item */
+    for (long i = 0; i < cnt; i++) {
+        if (i == 0 || !same_piece(&its[i - 1], &its[i]))
+            first = -1;
+        rep[i] = (int)i;
+        if (js[its[i].job].dead)
+            continue;
+        if (first < 0)
+            first = i;
+        else
+            rep[i] = (int)first;
+    }
+}
+
+/* Items that take another's fit get its results (and are charged its cost). */
+static void copy_shared(long cnt, const int *rep, itemres *res, fitjoints *fj, double *fit_ns, double *eval_ns)
+{
+    for (long i = 0; i < cnt; i++) {
+        const int r = rep[i];
+        if (r == i)
+            continue;
+        res[i] = res[r];
+        fj[i] = fj[r];
+        fit_ns[i] = fit_ns[r];
+        eval_ns[i] = eval_ns[r];
+    }
+}
+
 int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
 {
     ob_driver_opts o;
@@ -695,7 +828,9 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
     double *fit_ns = malloc((size_t)o.chunk * sizeof *fit_ns);
     double *eval_ns = malloc((size_t)o.chunk * sizeof *eval_ns);
     fitjoints *fj = NULL;
-    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns || batch_alloc(&B, o.chunk)) {
+    int *grp = share_groups(jobs, njobs), *rep = malloc((size_t)o.chunk * sizeof *rep);
+    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns || !grp || !rep ||
+        batch_alloc(&B, o.chunk)) {
         rc = -1;
         goto out;
     }
@@ -725,7 +860,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
     for (long i = 0; i < (long)njobs; i++) {
         if (!check_applicable(&jobs[i], &js[i]))
             continue;
-        plan_fail |= plan_job(&jobs[i], (int)i, &o, &plans[i]) != 0;
+        plan_fail |= plan_job(&jobs[i], (int)i, grp[i], &o, &plans[i]) != 0;
     }
     if (plan_fail) {
         rc = -1;
@@ -752,15 +887,19 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
 
     while (cur.n > 0) {
         next.n = 0;
-        for (size_t start = 0; start < cur.n; start += (size_t)o.chunk) {
-            const long cnt = (long)((cur.n - start) < (size_t)o.chunk ? cur.n - start : (size_t)o.chunk);
+        /* the items of one share group on one piece side by side */
+        qsort(cur.v, cur.n, sizeof *cur.v, item_share_cmp);
+        long cnt;
+        for (size_t start = 0; start < cur.n; start += (size_t)cnt) {
+            cnt = chunk_count(&cur, start, o.chunk);
             const item *its = cur.v + start;
-            /* fit every pending piece */
+            chunk_reps(its, cnt, js, rep);
+            /* fit every pending piece (once per share group) */
 #pragma omp parallel for schedule(dynamic, 4) if (cnt > 1)
             for (long i = 0; i < cnt; i++) {
                 void *w = work + wsize * (size_t)omp_get_thread_num();
-                if (js[its[i].job].dead) {
-                    res[i].st = OB_SKIP;
+                if (js[its[i].job].dead || rep[i] != i) {
+                    res[i].st = OB_SKIP;  /* dead, or takes its representative's fit below */
                     fit_ns[i] = 0.0;
                     continue;
                 }
@@ -771,6 +910,7 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
             joints_chunk(js, its, cnt, fits, res, fj);
             /* measure every fit: one batch */
             measure_chunk(jobs, its, cnt, fits, res, eval_ns, &o, &B);
+            copy_shared(cnt, rep, res, fj, fit_ns, eval_ns);
             /* decide, in job order */
             for (long i = 0; i < cnt; i++) {
                 ob_job *jj = &jobs[its[i].job];
@@ -842,5 +982,7 @@ out:
     free(eval_ns);
     batch_free(&B);
     free(fj);
+    free(grp);
+    free(rep);
     return rc;
 }

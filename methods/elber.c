@@ -317,6 +317,9 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
     return OB_OK;
 }
 
+/* Only the adaptive variant refines to the tolerance. */
+static int elber_uses_tol(const double *par) { return par[2] != 0.0; }
+
 const ob_method ob_method_elber = {
     .name = "elber",
     .version = 1,
@@ -328,5 +331,6 @@ const ob_method ob_method_elber = {
     .work_size = sizeof(el_work),
     .params = elber_params,
     .nparams = 4,
+    .fit_uses_tol = elber_uses_tol,
     .fit = elber_fit,
 };

@@ -461,5 +461,6 @@ const ob_method ob_method_lee = {
     .work_size = 0,
     .params = lee_params,
     .nparams = NPARAM,
+    .fit_uses_tol = ob_fit_uses_tol_always, /* the circle is approximated to tol */
     .fit = lee_fit,
 };

@@ -94,6 +94,13 @@ typedef struct ob_method {
     /* degree of the output for an input of degree n (rational_in: weights != 1) */
     int (*out_degree)(int n, int rational_in);
     size_t work_size;       /* bytes of scratch per fit call */
+    /* NULL when fit() ignores the tolerance (the output depends on the piece,
+     * d and the parameters only); else 1 when it reads it with these
+     * parameter values.  Jobs that differ only in their tolerance share the
+     * fits and measurements of the pieces they have in common when it is
+     * NULL or returns 0 (the driver's shared pieces; the method contract
+     * test checks the claim). */
+    int (*fit_uses_tol)(const double *par);
     const ob_param *params; /* NULL, or nparams (<= OB_MAX_PARAMS) entries */
     int nparams;
     /* Purpose: approximate the d-offset of `base` over its whole [0,1].
@@ -121,6 +128,11 @@ void ob_param_defaults(const ob_method *m, double *par);
 void ob_fit_single(ob_fit *out, const ob_bez *seg);
 /* out_degree for methods whose output has the input's degree. */
 int ob_degree_same(int n, int rational_in);
+/* fit_uses_tol for methods that always read the tolerance. */
+int ob_fit_uses_tol_always(const double *par);
+/* 1 when method m's fit reads the tolerance with parameter values par (NULL:
+ * the defaults). */
+int ob_method_fit_uses_tol(const ob_method *m, const double *par);
 int ob_method_msg(char *msg, size_t msglen, const char *fmt, ...);
 
 #endif

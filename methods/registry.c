@@ -85,6 +85,24 @@ const char *ob_status_name(ob_status s)
     return "?";
 }
 
+int ob_fit_uses_tol_always(const double *par)
+{
+    (void)par;
+    return 1;
+}
+
+int ob_method_fit_uses_tol(const ob_method *m, const double *par)
+{
+    if (!m->fit_uses_tol)
+        return 0;
+    double defaults[OB_MAX_PARAMS];
+    if (!par) {
+        ob_param_defaults(m, defaults);
+        par = defaults;
+    }
+    return m->fit_uses_tol(par) != 0;
+}
+
 int ob_degree_same(int n, int rational_in)
 {
     (void)rational_in;

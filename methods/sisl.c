@@ -463,5 +463,6 @@ const ob_method ob_method_sisl = {
     .work_size = 0,
     .params = sisl_params,
     .nparams = 2,
+    .fit_uses_tol = ob_fit_uses_tol_always, /* s1360 offsets to tol */
     .fit = sisl_fit,
 };

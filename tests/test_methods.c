@@ -78,8 +78,8 @@ static int guard_ok(const unsigned char *p, size_t n)
     return 1;
 }
 
-static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fit *out,
-                         char msg[MSGLEN])
+static ob_status run_fit_tol(const ob_method *m, const ob_bez *base, double d, double tol, ob_fit *out,
+                             char msg[MSGLEN])
 {
     guarded_fit *g = malloc(sizeof *g);
     unsigned char *work = malloc(m->work_size + GUARD);
@@ -95,7 +95,7 @@ static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fi
     ob_bez copy = *base;
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
-    const ob_fit_args args = {d, 1e-3, par};
+    const ob_fit_args args = {d, tol, par};
     ob_status st = m->fit(base, &args, work, &g->fit, mbuf, MSGLEN);
     CHECK(guard_ok(g->pre, GUARD) && guard_ok(g->post, GUARD), "%s: wrote outside ob_fit", m->name);
     CHECK(guard_ok(work + m->work_size, GUARD), "%s: wrote past work_size %zu", m->name, m->work_size);
@@ -108,6 +108,11 @@ static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fi
     free(g);
     free(work);
     return st;
+}
+
+static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fit *out, char msg[MSGLEN])
+{
+    return run_fit_tol(m, base, d, 1e-3, out, msg);
 }
 
 /* Bitwise equality of the meaningful part of two fits. */
@@ -264,6 +269,17 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
     /* determinism */
     ob_status st2 = run_fit(m, C, d, &f2, msg);
     CHECK(st2 == OB_OK && same_fit(&f, &f2), "%s/%s/%g: two fits differ", m->name, cn, d);
+
+    /* a fit that claims to ignore the tolerance gives the same bits at any
+     * (the driver then shares it among the jobs that differ in tol only) */
+    if (!ob_method_fit_uses_tol(m, NULL)) {
+        const double tols[2] = {1e-1, 1e-6};
+        for (int k = 0; k < 2; k++) {
+            ob_status st3 = run_fit_tol(m, C, d, tols[k], &f2, msg);
+            CHECK(st3 == OB_OK && same_fit(&f, &f2), "%s/%s/%g: the fit at tol %g differs from the fit at 1e-3 "
+                  "(the method does not declare fit_uses_tol)", m->name, cn, d, tols[k]);
+        }
+    }
 
     /* halving reduces the Hausdorff error (unless the method's accuracy is set
      * by the tolerance, not by the piece) */
