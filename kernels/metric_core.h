@@ -652,7 +652,11 @@ OBC_FN double obc_err_at(int kind, OBC_ARGS, double t, int k, double cut, int *h
     }
 }
 
-/* Golden-section maximization of the error on [a,b]. */
+/* Golden-section maximization of the error on [a,b].  Each new point is
+ * compared with the point kept from the last step, and when it loses, its
+ * value is not used again: it is asked only for errors above the kept
+ * value (the cut, as in obc_sample_refine), which lets the Hausdorff search
+ * stop early without changing the result. */
 OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, double *targ)
 {
     const double g = 0.6180339887498949;
@@ -664,13 +668,16 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, 
             x2 = x1;
             f2 = f1;
             x1 = b - g * (b - a);
-            f1 = obc_err_at(kind, OBC_PASS, x1, -1, -1.0, hint);
+            /* only whether f1 > f2 matters unless it is: f2 as the cut */
+            f1 = obc_err_at(kind, OBC_PASS, x1, -1, f2, hint);
         } else {
             a = x1;
             x1 = x2;
             f1 = f2;
             x2 = a + g * (b - a);
-            f2 = obc_err_at(kind, OBC_PASS, x2, -1, -1.0, hint);
+            /* only whether f2 < f1 matters unless f2 >= f1 (a tie goes to
+             * x2): a cut strictly below f1 */
+            f2 = obc_err_at(kind, OBC_PASS, x2, -1, f1 - fabs(f1) * 0x1p-51, hint);
         }
     }
     if (f1 > f2) {
