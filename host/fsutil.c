@@ -57,6 +57,7 @@ int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *,
     }
     if (rename(tmp, path) != 0) {
         ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+        remove(tmp);
         return -1;
     }
     return 0;
