@@ -36,6 +36,21 @@ typedef struct {
  *          parameter, the data source); malloc'd, NULL without memory. */
 char *ob_run_fingerprint(const ob_run_opts *o, const char *where);
 
+/* Purpose: everything that decides a resumed run's results and job set, as
+ *          one line of " key=value" tokens (values %-escaped): the options
+ *          of ob_run_fingerprint, the selected curves' content hash
+ *          (o->data_hash), --curve, --methods, --tols, --metric, --split,
+ *          --shard, the build (git commit, dirty flag, compiler flags) and
+ *          the versions of the run's methods.  Kept in the journal's first
+ *          line and, once the run has finished, in DIR/results.fingerprint.
+ *          malloc'd; NULL without memory. */
+char *ob_resume_fingerprint(const ob_run_opts *o, const char *where);
+
+/* Purpose: 0 when fingerprints was and now agree; else 1 with the first
+ *          difference in out, named as the user knows it ("--samples differs
+ *          (the run's 8, now 256)"). */
+int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len);
+
 /* Purpose: start the journal of a run in dir.  Fresh (resume 0): create it
  *          (replacing an old one).  resume 1: read dir's journal (its
  *          fingerprint must equal fp) or, without one, dir/results.csv;
