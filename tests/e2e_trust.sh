@@ -109,5 +109,8 @@ check '[ ! -e "$T/cdir.tmp" ]' "compare --out DIR leaves no DIR.tmp"
 $OB run --random 4:5 --tols 1e-2 --methods tiller --device NOSUCH --out "$T/nodev" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && [ ! -e "$T/nodev" ]' "--device NOSUCH: exit 2, no --out created: $(cat "$T/e.txt")"
 
+$OB tables --table liu2002:1 --device NOSUCH --out "$T/nodevt" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && [ ! -e "$T/nodevt" ]' "tables --device NOSUCH: exit 2, no --out created: $(cat "$T/e.txt")"
+
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
