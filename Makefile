@@ -87,7 +87,7 @@ $(BUILD)/%.o: %.c $(BUILD)/.deps-ok
 $(BUILD)/embedded_%.o: $(BUILD)/embedded_%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
-$(BUILD)/host/output.o: $(BUILD)/buildinfo.h
+$(BUILD)/host/output.o $(BUILD)/host/journal.o $(BUILD)/host/main.o: $(BUILD)/buildinfo.h
 
 $(BUILD)/libob.a: $(LIB_OBJ)
 	@rm -f $@

@@ -28,6 +28,11 @@
 #ifndef OB_HAVE_CL
 
 int ob_cl_compiled(void) { return 0; }
+int ob_cl_loader_status(char *msg, size_t len)
+{
+    snprintf(msg, len, "not compiled in (the OpenCL headers were missing at build time)");
+    return -1;
+}
 int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
 {
     (void)device_substr;
@@ -142,6 +147,13 @@ struct ob_cl {
 };
 
 int ob_cl_compiled(void) { return 1; }
+int ob_cl_loader_status(char *msg, size_t len)
+{
+    if (load_cl(msg, len) != 0)
+        return -1;
+    snprintf(msg, len, "compiled in; loader libOpenCL found");
+    return 0;
+}
 const char *ob_cl_platform(const ob_cl *c) { return c ? c->platform : ""; }
 const char *ob_cl_device(const ob_cl *c) { return c ? c->device : ""; }
 const char *ob_cl_driver(const ob_cl *c) { return c ? c->driver : ""; }

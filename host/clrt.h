@@ -19,6 +19,10 @@ typedef struct ob_cl ob_cl;
 /* 1 if this build has the OpenCL backend compiled in. */
 int ob_cl_compiled(void);
 
+/* Whether the backend can be used at all: compiled in and the OpenCL loader
+ * found (dlopen; no platform or device is opened).  0, or -1; msg says which. */
+int ob_cl_loader_status(char *msg, size_t len);
+
 /* Purpose: open the first OpenCL device that supports double precision and
  *          whose "PLATFORM DEVICE" name contains device_substr (NULL: any),
  *          load kernels/measure.cl with kernels/metric_core.h prepended (from

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "clrt.h"
 #include "commands.h"
@@ -91,6 +92,57 @@ static int selected(const ob_run_opts *o, const char *id)
         if (strcmp(o->curve_ids[i], id) == 0)
             return 1;
     return 0;
+}
+
+static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t i = 0; i < n; i++) {
+        h ^= c[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+/* FNV-1a over the content of the curves the run uses (id, segments' degrees
+ * and homogeneous control points, offsets): a resume of a run whose curve
+ * file changed is refused (journal.h). */
+static uint64_t curves_hash(const ob_run_opts *o, const ob_curveset *set)
+{
+    uint64_t h = 14695981039346656037ull;
+    for (int c = 0; c < set->n; c++) {
+        const ob_curve *cv = &set->v[c];
+        if (!selected(o, cv->id))
+            continue;
+        h = fnv1a(h, cv->id, strlen(cv->id) + 1);
+        h = fnv1a(h, &cv->nseg, sizeof cv->nseg);
+        for (int s = 0; s < cv->nseg; s++) {
+            h = fnv1a(h, &cv->seg[s].deg, sizeof cv->seg[s].deg);
+            h = fnv1a(h, cv->seg[s].h, (size_t)(cv->seg[s].deg + 1) * sizeof cv->seg[s].h[0]);
+        }
+        h = fnv1a(h, &cv->nd, sizeof cv->nd);
+        h = fnv1a(h, cv->d, (size_t)cv->nd * sizeof *cv->d);
+    }
+    return h;
+}
+
+static int write_line_cb(FILE *f, void *ctx)
+{
+    fprintf(f, "%s\n", (const char *)ctx);
+    return ferror(f) ? -1 : 0;
+}
+
+/* A fresh run owns its directory: the files of an earlier run there go
+ * (a journal only with --force: without it the run was refused before). */
+static void remove_stale(const char *dir)
+{
+    static const char *const names[] = {"results.csv", "meta.json", "samples.csv", "shard.csv",
+                                        "results.fingerprint", "results.journal.csv"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char p[4200];
+        snprintf(p, sizeof p, "%s/%s", dir, names[i]);
+        remove(p);
+    }
 }
 
 static ob_job *plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *njobs)
@@ -376,7 +428,7 @@ static int run_journaled(ob_job *jobs, size_t njobs, ob_run_opts *o, const char 
 {
     char err[1024];
     ob_res_table prev;
-    char *fp = ob_run_fingerprint(o, where);
+    char *fp = ob_resume_fingerprint(o, where);
     size_t *idx = malloc((njobs ? njobs : 1) * sizeof *idx);
     ob_job *pend = malloc((njobs ? njobs : 1) * sizeof *pend);
     int rc = 2;
@@ -471,11 +523,17 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     size_t *shard_idx = NULL;
     ob_journal journal;
     memset(&journal, 0, sizeof journal);
+    int lock_fd = -1;
     int status = 2;
     if (ob_run_opts_parse(argc, argv, &o) != 0)
         goto done;
     o.argc = full_argc;
     o.argv = full_argv;
+    {
+        const char *oom = getenv("OFFBENCH_TEST_OOM_AFTER");  /* test hook (driver.h) */
+        if (oom && *oom)
+            o.driver.test_oom_after = strtol(oom, NULL, 10);
+    }
     const int ranks = ob_mpi_size();
     if (ranks > 1) {  /* every rank sees the same arguments: they all stop here alike */
         if (o.shard_n > 0 || o.resume_dir) {
@@ -522,6 +580,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         o.plan_hash = ob_plan_hash(jobs, njobs, fp);
         free(fp);
     }
+    o.data_hash = curves_hash(&o, &set);
     if (ranks > 1 && !ob_mpi_all_equal(o.plan_hash)) {
         ob_error("rank %d: the ranks were started with other arguments or data (plan hash differs)", ob_mpi_rank());
         goto done;
@@ -534,16 +593,43 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         fprintf(stderr, "offbench: %s %d/%d: %zu of %zu jobs\n", ranks > 1 ? "rank" : "shard", o.shard_k, o.shard_n,
                 njobs, o.jobs_total);
     }
-    /* under MPI only rank 0 writes; the ranks learn together that it can */
-    const int mkfail = ob_mpi_rank() == 0 && ob_mkdir_p(o.out_dir) != 0;
-    if (mkfail)
-        ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
-    if (ob_mpi_max(mkfail) > 0) {
-        status = 1;
-        goto done;
-    }
     if (ob_open_backend(&o, &cl) != 0)
         goto done;
+    /* Only now, when the run can start, is the directory created and taken:
+     * under MPI only rank 0 writes; the ranks learn together that it can. */
+    {
+        int dirfail = 0;
+        if (ob_mpi_rank() == 0) {
+            char err[8400];
+            struct stat st;
+            int lrc = 0;
+            if (o.resume_dir && stat(o.out_dir, &st) != 0) {
+                ob_error("--resume: %s does not exist: nothing to resume", o.out_dir);
+                dirfail = 2;
+            } else if (!o.resume_dir && ob_mkdir_p(o.out_dir) != 0) {
+                ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
+                dirfail = 1;
+            } else if ((lrc = ob_lock_dir(o.out_dir, &lock_fd, err, sizeof err)) != 0) {
+                ob_error("%s", err);
+                dirfail = lrc == -2 ? 2 : 1;
+            } else if (!o.resume_dir) {
+                char jp[4200];
+                snprintf(jp, sizeof jp, "%s/results.journal.csv", o.out_dir);
+                if (!o.force && stat(jp, &st) == 0) {
+                    ob_error("%s holds an interrupted run (%s): finish it with --resume %s, choose another --out, "
+                             "or add --force to discard it and start afresh", o.out_dir, jp, o.out_dir);
+                    dirfail = 2;
+                } else {
+                    remove_stale(o.out_dir);
+                }
+            }
+        }
+        const long worst = ob_mpi_max(dirfail);
+        if (worst > 0) {
+            status = worst == 2 ? 2 : 1;
+            goto done;
+        }
+    }
     double wall = 0.0;
     size_t restored = 0;
     catch_stop_signals();
@@ -577,19 +663,36 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         status = mpi_write(jobs, njobs, shard_idx, &o, where, ob_mpi_max(wall), drc, rep_fit, rep_eval);
         goto done;
     }
+    if (drc != 0) {
+        /* jobs that never ran are no results: nothing is written, the
+         * journal (if any) keeps the finished jobs' rows */
+        ob_journal_close(&journal, 0);
+        if (o.reps > 0)
+            ob_error("ran out of memory: nothing written");
+        else
+            ob_error("ran out of memory before every job had run: nothing written; the finished jobs' rows are in "
+                     "%s; --resume %s runs the others", journal.path, o.out_dir);
+        status = 1;
+        goto done;
+    }
+    char *rfp = ob_resume_fingerprint(&o, where);
+    if (!rfp) {
+        ob_error("out of memory");
+        status = 1;
+        goto done;
+    }
     run_out r = {jobs, njobs, &o, where, wall, rep_fit, rep_eval};
+    /* the fingerprint first: a results.csv is never there without its own */
     const int written =
+        ob_write_atomically(o.out_dir, "results.fingerprint", write_line_cb, rfp) == 0 &&
         ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) == 0 &&
         (o.reps == 0 || drc != 0 || ob_write_atomically(o.out_dir, "samples.csv", write_samples_cb, &r) == 0) &&
         (o.shard_n == 0 || ob_write_atomically(o.out_dir, "shard.csv", write_shard_cb,
                                                &(shard_out){shard_idx, njobs}) == 0) &&
         ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) == 0;
+    free(rfp);
     status = written ? 0 : 1;
     ob_journal_close(&journal, written);  /* results.csv has every row now */
-    if (drc != 0) {
-        ob_error("ran out of memory; unfinished jobs are marked fail");
-        status = 1;
-    }
     size_t cnt[OB_TIMEOUT + 1] = {0};
     for (size_t i = 0; i < njobs; i++)
         if (jobs[i].status <= OB_TIMEOUT)
@@ -602,6 +705,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
             cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], timeouts, written ? "wrote" : "could not write", o.out_dir);
 done:
     ob_journal_close(&journal, 0);
+    if (lock_fd >= 0)
+        close(lock_fd);  /* the lock goes with it */
     ob_cl_close(cl);
     free(rep_fit);
     free(rep_eval);

@@ -395,13 +395,13 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
         ob_error("--table %s: no such table in %s (tables are SOURCE:TABLE, e.g. liu2002:1)", only, pub.where);
         goto done;
     }
+    if (ob_open_backend(&o, &cl) != 0)  /* before --out: a run that cannot start creates nothing */
+        goto done;
     if (ob_mkdir_p(o.out_dir) != 0) {
         ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
         status = 1;
         goto done;
     }
-    if (ob_open_backend(&o, &cl) != 0)
-        goto done;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     int rrc = run_slots(&pl, &o);

@@ -39,6 +39,13 @@ int ob_mkdir_p(const char *dir);
  * file); writer returns 0 or -1.  Returns 0, or -1 after ob_error(). */
 int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx);
 
+/* Makes this process the owner of run directory dir: an exclusive lock on
+ * dir/.lock (which gets our pid), held until the process ends (the kernel
+ * drops it however the process ends).  Returns 0 with the descriptor in
+ * *fd (keep it open); -2 when another process holds it (err names dir and
+ * the holder's pid); -1 when the file cannot be created or locked (err). */
+int ob_lock_dir(const char *dir, int *fd, char *err, size_t errlen);
+
 /* Loads the curves a run's options select: --curves FILE, then the --random
  * curves; the default set (datasets/ or the embedded copy) when neither is
  * given; checks that every --curve ID exists.  `where` names the source for

@@ -5,6 +5,7 @@
 #include "journal.h"
 
 #include <errno.h>
+#include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "buildinfo.h"
 #include "numfmt.h"
 #include "output.h"
 #include "slurp.h"
@@ -56,6 +58,220 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where)
     return s;
 }
 
+/* A growing string of " key=value" tokens; a value's spaces, '%' and line
+ * ends are %-escaped, so tokens split at spaces. */
+typedef struct {
+    char *s;
+    size_t n, cap;
+    int oom;
+} fpbuf;
+
+static void fp_putc(fpbuf *b, char c)
+{
+    if (b->oom)
+        return;
+    if (b->n + 2 > b->cap) {
+        size_t nc = b->cap ? 2 * b->cap : 1024;
+        char *ns = realloc(b->s, nc);
+        if (!ns) {
+            b->oom = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = nc;
+    }
+    b->s[b->n++] = c;
+    b->s[b->n] = '\0';
+}
+
+static void fp_tok(fpbuf *b, const char *key, const char *val)
+{
+    if (b->n)
+        fp_putc(b, ' ');
+    for (const char *p = key; *p; p++)
+        fp_putc(b, *p);
+    fp_putc(b, '=');
+    for (const unsigned char *p = (const unsigned char *)val; *p; p++) {
+        if (*p == ' ' || *p == '%' || *p < 0x20) {
+            char hex[4];
+            snprintf(hex, sizeof hex, "%%%02X", *p);
+            for (int k = 0; hex[k]; k++)
+                fp_putc(b, hex[k]);
+        } else {
+            fp_putc(b, (char)*p);
+        }
+    }
+}
+
+static void fp_num(fpbuf *b, const char *key, double v)
+{
+    char num[40];
+    ob_fmt_double(num, sizeof num, v);
+    fp_tok(b, key, num);
+}
+
+char *ob_resume_fingerprint(const ob_run_opts *o, const char *where)
+{
+    fpbuf b = {0};
+    char v[64];
+    fp_num(&b, "samples", o->driver.samples);
+    fp_num(&b, "max_depth", o->driver.max_depth);
+    fp_num(&b, "max_segments", o->driver.max_segments);
+    fp_num(&b, "inflections", o->driver.inflections);
+    fp_num(&b, "job_timeout", o->driver.job_timeout_ns);
+    fp_tok(&b, "data", where);
+    snprintf(v, sizeof v, "%016" PRIx64, o->data_hash);
+    fp_tok(&b, "data_hash", v);
+    if (!o->curve_ids) {
+        fp_tok(&b, "curves", "all");
+    } else {
+        fpbuf c = {0};
+        for (int i = 0; i < o->ncurve_ids; i++) {
+            if (i)
+                fp_putc(&c, ',');
+            for (const char *p = o->curve_ids[i]; *p; p++)
+                fp_putc(&c, *p);
+        }
+        b.oom |= c.oom;
+        fp_tok(&b, "curves", c.s ? c.s : "");
+        free(c.s);
+    }
+    {
+        fpbuf m = {0};
+        for (int i = 0; i < o->nmethods; i++) {
+            if (i)
+                fp_putc(&m, ',');
+            for (const char *p = o->methods[i]->name; *p; p++)
+                fp_putc(&m, *p);
+        }
+        b.oom |= m.oom;
+        fp_tok(&b, "methods", m.s ? m.s : "");
+        free(m.s);
+    }
+    {
+        fpbuf t = {0};
+        for (int i = 0; i < o->ntols; i++) {
+            char num[40];
+            ob_fmt_double(num, sizeof num, o->tols[i]);
+            if (i)
+                fp_putc(&t, ',');
+            for (const char *p = num; *p; p++)
+                fp_putc(&t, *p);
+        }
+        b.oom |= t.oom;
+        fp_tok(&b, "tols", t.s ? t.s : "");
+        free(t.s);
+    }
+    fp_tok(&b, "metric", ob_metric_name(o->metric));
+    fp_tok(&b, "split", ob_split_name(o->split));
+    snprintf(v, sizeof v, "%d/%d", o->shard_k, o->shard_n);
+    fp_tok(&b, "shard", o->shard_n > 0 ? v : "none");
+    fp_tok(&b, "git", OB_GIT_COMMIT);
+    fp_num(&b, "dirty", OB_GIT_DIRTY);
+    fp_tok(&b, "cflags", OB_CFLAGS);
+    for (int i = 0; i < o->nmethods; i++) {
+        char key[96];
+        snprintf(key, sizeof key, "version.%s", o->methods[i]->name);
+        fp_num(&b, key, o->methods[i]->version);
+    }
+    for (int m = 0; ob_methods[m]; m++)
+        for (int k = 0; k < ob_methods[m]->nparams; k++) {
+            char key[128];
+            snprintf(key, sizeof key, "%s.%s", ob_methods[m]->name, ob_methods[m]->params[k].name);
+            fp_num(&b, key, o->params[m * OB_MAX_PARAMS + k]);
+        }
+    if (b.oom || !b.s) {
+        free(b.s);
+        return NULL;
+    }
+    return b.s;
+}
+
+/* What a fingerprint key means to the user. */
+static void key_label(const char *key, size_t klen, char *out, size_t len)
+{
+    static const struct {
+        const char *key, *label;
+    } names[] = {
+        {"samples", "--samples"},
+        {"max_depth", "--max-depth"},
+        {"max_segments", "--max-segments"},
+        {"inflections", "--inflections"},
+        {"job_timeout", "--job-timeout"},
+        {"data", "the data source (--curves / --random)"},
+        {"data_hash", "the curve data (the content of the loaded curves changed)"},
+        {"curves", "--curve"},
+        {"methods", "--methods"},
+        {"tols", "--tols"},
+        {"metric", "--metric"},
+        {"split", "--split"},
+        {"shard", "--shard"},
+        {"git", "the build (git commit)"},
+        {"dirty", "the build (uncommitted changes: git dirty flag)"},
+        {"cflags", "the build (compiler flags)"},
+    };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strlen(names[i].key) == klen && memcmp(names[i].key, key, klen) == 0) {
+            snprintf(out, len, "%s", names[i].label);
+            return;
+        }
+    if (klen > 8 && memcmp(key, "version.", 8) == 0)
+        snprintf(out, len, "the build (method %.*s's version)", (int)(klen - 8), key + 8);
+    else
+        snprintf(out, len, "--param %.*s", (int)klen, key);
+}
+
+/* The value of key in fingerprint fp (its length in *vlen), or NULL. */
+static const char *fp_find(const char *fp, const char *key, size_t klen, size_t *vlen)
+{
+    for (const char *p = fp; *p;) {
+        const char *end = strchr(p, ' ');
+        if (!end)
+            end = p + strlen(p);
+        const char *eq = memchr(p, '=', (size_t)(end - p));
+        if (eq && (size_t)(eq - p) == klen && memcmp(p, key, klen) == 0) {
+            *vlen = (size_t)(end - eq - 1);
+            return eq + 1;
+        }
+        p = *end ? end + 1 : end;
+    }
+    return NULL;
+}
+
+int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
+{
+    out[0] = '\0';
+    if (strcmp(was, now) == 0)
+        return 0;
+    /* the first key of now that was has with another value, or lacks */
+    for (int pass = 0; pass < 2; pass++) {
+        const char *a = pass ? was : now, *b = pass ? now : was;
+        for (const char *p = a; *p;) {
+            const char *end = strchr(p, ' ');
+            if (!end)
+                end = p + strlen(p);
+            const char *eq = memchr(p, '=', (size_t)(end - p));
+            if (eq) {
+                const size_t klen = (size_t)(eq - p), alen = (size_t)(end - eq - 1);
+                size_t blen = 0;
+                const char *bv = fp_find(b, p, klen, &blen);
+                if (!bv || blen != alen || memcmp(bv, eq + 1, alen) != 0) {
+                    char label[160];
+                    key_label(p, klen, label, sizeof label);
+                    const char *wv = pass ? eq + 1 : bv, *nv = pass ? bv : eq + 1;
+                    const size_t wl = pass ? alen : blen, nl = pass ? blen : alen;
+                    snprintf(out, len, "%s differs (the run's %.*s, now %.*s)", label, wv ? (int)(wl > 80 ? 80 : wl) : 4,
+                             wv ? wv : "none", nv ? (int)(nl > 80 ? 80 : nl) : 4, nv ? nv : "none");
+                    return 1;
+                }
+            }
+            p = *end ? end + 1 : end;
+        }
+    }
+    snprintf(out, len, "the fingerprints differ");
+    return 1;
+}
+
 /* Creates the journal afresh: first line and header. */
 static int create(ob_journal *j, const char *fp, char *err, size_t errlen)
 {
@@ -92,8 +308,11 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
     }
     const size_t fplen = first - (sizeof MAGIC - 1);
     if (fplen != strlen(fp) || memcmp(text + sizeof MAGIC - 1, fp, fplen) != 0) {
-        snprintf(err, errlen, "%s:1: the interrupted run had other options (samples, limits, job timeout, method "
-                 "parameters or data): resume it with the same options", j->path);
+        char *was = strndup(text + sizeof MAGIC - 1, fplen), diff[512];
+        ob_fingerprint_diff(was ? was : "", fp, diff, sizeof diff);
+        free(was);
+        snprintf(err, errlen, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
+                 "same options and build, or start afresh (another --out, or --force)", j->path, diff);
         free(text);
         return -1;
     }
@@ -161,6 +380,26 @@ int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, 
         ob_res_free(restored);
         return -1;
     }
+    /* the finished run's fingerprint, written beside its results.csv */
+    char fpath[4200], *was = NULL, diff[512];
+    size_t wlen = 0;
+    snprintf(fpath, sizeof fpath, "%s/results.fingerprint", dir);
+    if (ob_slurp(fpath, &was, &wlen, diff, sizeof diff) != 0) {
+        snprintf(err, errlen, "--resume: %s has no results.fingerprint (the options, data and build of its run): "
+                 "it cannot be checked; run again without --resume", dir);
+        ob_res_free(restored);
+        return -1;
+    }
+    while (wlen > 0 && (was[wlen - 1] == '\n' || was[wlen - 1] == '\r'))
+        was[--wlen] = '\0';
+    if (ob_fingerprint_diff(was, fp, diff, sizeof diff) != 0) {
+        snprintf(err, errlen, "--resume: %s: the finished run had other options, data or build: %s; resume it with "
+                 "the same options and build, or run afresh (another --out)", fpath, diff);
+        free(was);
+        ob_res_free(restored);
+        return -1;
+    }
+    free(was);
     j->from_results = 1;
     return create(j, fp, err, errlen);
 }

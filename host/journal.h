@@ -10,7 +10,8 @@
  * (through a temporary file and a rename) and the journal removed.
  *
  * `run --resume DIR` takes the finished rows from DIR's journal (or, when the
- * run had finished, from DIR/results.csv), runs only the other jobs, and
+ * run had finished, from DIR/results.csv, checked against the fingerprint
+ * the run left in DIR/results.fingerprint), runs only the other jobs, and
  * writes the same results.csv an uninterrupted run writes (timing columns
  * aside: a restored row keeps its own timings).
  */
@@ -36,15 +37,32 @@ typedef struct {
  *          parameter, the data source); malloc'd, NULL without memory. */
 char *ob_run_fingerprint(const ob_run_opts *o, const char *where);
 
+/* Purpose: everything that decides a resumed run's results and job set, as
+ *          one line of " key=value" tokens (values %-escaped): the options
+ *          of ob_run_fingerprint, the selected curves' content hash
+ *          (o->data_hash), --curve, --methods, --tols, --metric, --split,
+ *          --shard, the build (git commit, dirty flag, compiler flags) and
+ *          the versions of the run's methods.  Kept in the journal's first
+ *          line and, once the run has finished, in DIR/results.fingerprint.
+ *          malloc'd; NULL without memory. */
+char *ob_resume_fingerprint(const ob_run_opts *o, const char *where);
+
+/* Purpose: 0 when fingerprints was and now agree; else 1 with the first
+ *          difference in out, named as the user knows it ("--samples differs
+ *          (the run's 8, now 256)"). */
+int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len);
+
 /* Purpose: start the journal of a run in dir.  Fresh (resume 0): create it
  *          (replacing an old one).  resume 1: read dir's journal (its
- *          fingerprint must equal fp) or, without one, dir/results.csv;
+ *          fingerprint must equal fp) or, without one, dir/results.csv
+ *          (dir/results.fingerprint, written by the finished run, must equal
+ *          fp: a finished run without it is refused);
  *          their rows go to *restored (empty when there is nothing); then
  *          continue the journal (a partial last line cut off) or start one
  *          holding the restored rows' text.
  * Errors:  returns 0; -1 with the reason in err (naming the file and line):
- *          unreadable or malformed files, another fingerprint ("DIR was run
- *          with other options"), a journal with other columns or a
+ *          unreadable or malformed files, another fingerprint (err names
+ *          the first difference, ob_fingerprint_diff), a journal with other columns or a
  *          results.csv without the joint columns (another build), no
  *          previous run to resume, cannot write.
  *          *j and *restored are always safe to pass to the free functions. */

@@ -4,9 +4,14 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "buildinfo.h"
+#include "clrt.h"
 #include "commands.h"
 #include "diag.h"
 #include "mpirun.h"
+
+/* The release; the git commit says exactly what was built. */
+#define OB_VERSION "0.16"
 
 static const char usage[] =
     "usage:\n"
@@ -26,6 +31,7 @@ static const char usage[] =
     "  ./offbench tables [--out DIR] [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n"
     "  ./offbench list   methods|curves|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
+    "  ./offbench --version   (the build: version, git commit, flags, OpenCL loader)\n"
     "See README.md for what each option means.\n";
 
 static int dispatch(int argc, char **argv)
@@ -53,6 +59,14 @@ static int dispatch(int argc, char **argv)
         return ob_cmd_trace(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
+    if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
+        char cl[512];
+        ob_cl_loader_status(cl, sizeof cl);
+        printf("offbench %s\ngit commit: %s\ngit dirty: %s\ncompiler: gcc %s\ncflags: %s\nOpenCL: %s\n", OB_VERSION,
+               OB_GIT_COMMIT, OB_GIT_DIRTY ? "yes (uncommitted changes at build time)" : "no", __VERSION__, OB_CFLAGS,
+               cl);
+        return 0;
+    }
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
         fputs(usage, stdout);
         return 0;

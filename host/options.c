@@ -193,6 +193,10 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             ob_error("run: see README.md or './offbench help' for the options");
             return -1;
         }
+        if (strcmp(a, "--force") == 0) {  /* the one option without a value */
+            o->force = 1;
+            continue;
+        }
         if (!v) {
             ob_error("%s: missing value", a);
             return -1;
@@ -300,6 +304,10 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
         }
         if (o->reps > 0) {
             ob_error("--resume: not with --reps (repetitions time whole runs)");
+            return -1;
+        }
+        if (o->force) {
+            ob_error("--resume: not with --force (--force starts the run afresh)");
             return -1;
         }
         o->out_dir = o->resume_dir;

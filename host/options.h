@@ -45,6 +45,10 @@ typedef struct {
                                     between repetitions (nondeterminism) */
     const char *out_dir;
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
+    int force;                   /* --force: a fresh run over an interrupted
+                                    run's journal (which it removes) */
+    uint64_t data_hash;          /* FNV-1a of the selected curves' content
+                                    (filled by the run command; journal.h) */
     int shard_k, shard_n;        /* --shard K/N: this process runs shard K of N
                                     (shard.h); shard_n 0: the whole run */
     /* for meta.json, filled by the run command: the whole run's job count

@@ -935,6 +935,10 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
                     finalize(jj, s);
                     if (o.job_done)
                         o.job_done(o.job_done_ctx, (size_t)its[i].job);
+                    if (o.test_oom_after > 0 && done >= (size_t)o.test_oom_after) {
+                        rc = -1;
+                        goto out;
+                    }
                 }
             }
             if (o.progress)

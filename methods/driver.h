@@ -144,6 +144,11 @@ typedef struct {
      * it) the driver stops, and jobs not finished get status fail with the
      * message "interrupted" (job_done is not called for them) */
     const volatile sig_atomic_t *stop;
+    /* test hook (0: off): after this many jobs have finished the driver
+     * returns -1 as if memory had run out; set by `run` from the environment
+     * variable OFFBENCH_TEST_OOM_AFTER (README "Testing"), read once before
+     * any work, checked between jobs, never inside a timed section */
+    long test_oom_after;
 } ob_driver_opts;
 
 void ob_driver_defaults(ob_driver_opts *o);
