@@ -10,8 +10,9 @@
 #include "diag.h"
 #include "mpirun.h"
 
-/* The release; the git commit says exactly what was built. */
-#define OB_VERSION "0.16"
+/* The version is the date of the commit built (there are no numbered
+ * releases); the commit and its dirty flag say exactly what was built. */
+#define OB_VERSION OB_GIT_DATE
 
 static const char usage[] =
     "usage:\n"
