@@ -311,6 +311,12 @@ static int kw_offset(parser *P, char *rest)
     for (int i = 0; i < n; i++) {
         if (P->vals[i] == 0)
             return perr(P, P->line, "offset distance 0 (must be != 0)");
+        /* a job is (curve, d, method, tol): the same d twice would be two
+         * jobs with one key, which compare and --resume refuse */
+        for (size_t k = 0; k < b->offs.n; k++)
+            if (b->offs.v[k] == P->vals[i])
+                return perr(P, P->line, "offset %.17g given twice (every d of a curve must differ)",
+                            P->vals[i]);
         if (b->offs.n >= MAX_OFFSETS)
             return perr(P, P->line, "more than %d offsets", (int)MAX_OFFSETS);
         if (dvec_push(&b->offs, P->vals[i]))

@@ -1,0 +1,78 @@
+#!/bin/sh
+# Input the program must refuse (issue 16, "Results you can trust"): every
+# case exits 2 before any work, writes no results.csv, and its message names
+# the option or FILE:LINE.  Covers duplicate job keys, unbounded or
+# non-regular input files, out-of-range method parameters, repeated options
+# and curves whose scale the metrics' double arithmetic cannot measure.
+. "$(dirname "$0")/lib_e2e.sh"
+
+# refused WHAT PATTERN ARGS...: `offbench ARGS` exits 2 within 20 s, with
+# PATTERN (fixed string) in its message, no results.csv under $T/o and no
+# sanitizer report.
+refused() {
+    what=$1 pat=$2; shift 2
+    rm -rf "$T/o"
+    timeout 20 "$OB" "$@" >/dev/null 2>"$T/err"
+    rc=$?
+    if [ $rc -eq 2 ] && grep -q -F -- "$pat" "$T/err" && [ ! -e "$T/o/results.csv" ] \
+       && ! grep -q -E "Sanitizer|runtime error" "$T/err"; then ok; else
+        bad "$what: exit $rc, expected 2 and '$pat' in: $(head -c 300 "$T/err")"; fi
+}
+RUN="run --curve liu2002_ex1 --methods tiller --tols 1e-1 --out $T/o"
+
+# ---- 5: duplicate job keys ------------------------------------------------
+refused "--tols 1e-2,0.01" "--tols" run --curve liu2002_ex1 --methods tiller --tols 1e-2,0.01 --out "$T/o"
+refused "--tols 0.1,0.1" "--tols" run --curve liu2002_ex1 --methods tiller --tols 0.1,0.1 --out "$T/o"
+refused "--curve X,X" "--curve" run --curve liu2002_ex1,liu2002_ex1 --methods tiller --tols 1e-1 --out "$T/o"
+cat > "$T/dup1.curves" <<'C'
+curve dup_a
+  bezier 2
+  point 0 0
+  point 1 1
+  point 2 0
+  offset 0.1 0.1
+end
+C
+refused "offset 0.1 0.1" "$T/dup1.curves:6:" run --curves "$T/dup1.curves" --methods tiller --tols 1e-1 --out "$T/o"
+cat > "$T/dup2.curves" <<'C'
+curve dup_b
+  bezier 2
+  point 0 0
+  point 1 1
+  point 2 0
+  offset 0.1 -0.2
+  offset 1e-1
+end
+C
+refused "offset repeated on another line" "$T/dup2.curves:7:" run --curves "$T/dup2.curves" --methods tiller --tols 1e-1 --out "$T/o"
+
+# ---- 8: method parameters ---------------------------------------------------
+for p in elber.iterations=-1 elber.iterations=2.5 liu.nodes=0 chebyshev.nodes=1025 lee.tol_frac=-5 \
+         zhao.degree=99 exact.detect_tol=-1 sisl.timeout=0 coquillart.reading=4 hoschek.samples=-1 \
+         lstsq.target=0.5 zhao.npfac=17 elber.rounds=nan; do
+    name=${p%%=*}
+    refused "--param $p" "--param $name" $RUN --param "$p"
+done
+grep -q -F "range" "$T/err" && ok || bad "--param: the message gives the range: $(cat "$T/err")"
+# a long value is read whole, not truncated to 255 characters
+z=$(printf '%0300d' 0)
+rm -rf "$T/o"
+"$OB" $RUN --param "elber.iterations=${z}3" >/dev/null 2>"$T/err"
+rc=$?
+if [ $rc -eq 0 ] && grep -q '"elber.iterations": 3,' "$T/o/meta.json"; then ok; else
+    bad "--param with a 300-character value: exit $rc, $(grep -o '"elber.iterations": [^,]*' "$T/o/meta.json" 2>/dev/null) $(head -c 200 "$T/err")"; fi
+
+# ---- 11: repeated options ---------------------------------------------------
+refused "--tols twice" "--tols" $RUN --tols 1e-2
+refused "--metric twice" "--metric" $RUN --metric radial --metric bound
+refused "--samples twice" "--samples" $RUN --samples 64 --samples 128
+refused "--curve twice" "--curve" $RUN --curve liu2002_ex2
+refused "--methods twice" "--methods" $RUN --methods cobb
+refused "--param M.N twice" "--param elber.iterations" $RUN --param elber.iterations=3 --param elber.iterations=4
+# different parameters may be given side by side
+rm -rf "$T/o"
+"$OB" $RUN --param elber.iterations=3 --param elber.update=1 >/dev/null 2>"$T/err"
+check '[ $? -eq 0 ] && [ -s "$T/o/results.csv" ]' "--param for two parameters: $(head -c 200 "$T/err")"
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
