@@ -6,13 +6,16 @@
 # and curves whose scale the metrics' double arithmetic cannot measure.
 . "$(dirname "$0")/lib_e2e.sh"
 
+# without a sanitizer a runaway read is also stopped by a memory limit
+lim=""
+case "$OB" in *build-san*|*build-fuzz*) ;; *) lim="ulimit -v 4000000;" ;; esac
 # refused WHAT PATTERN ARGS...: `offbench ARGS` exits 2 within 20 s, with
 # PATTERN (fixed string) in its message, no results.csv under $T/o and no
 # sanitizer report.
 refused() {
     what=$1 pat=$2; shift 2
     rm -rf "$T/o"
-    timeout 20 "$OB" "$@" >/dev/null 2>"$T/err"
+    (eval "$lim"; timeout 20 "$OB" "$@" >/dev/null 2>"$T/err")
     rc=$?
     if [ $rc -eq 2 ] && grep -q -F -- "$pat" "$T/err" && [ ! -e "$T/o/results.csv" ] \
        && ! grep -q -E "Sanitizer|runtime error" "$T/err"; then ok; else
@@ -45,6 +48,38 @@ curve dup_b
 end
 C
 refused "offset repeated on another line" "$T/dup2.curves:7:" run --curves "$T/dup2.curves" --methods tiller --tols 1e-1 --out "$T/o"
+
+# ---- 6: unbounded readers, non-regular files -----------------------------
+"$OB" $RUN >/dev/null 2>&1 && mkdir -p "$T/base" && cp "$T/o/results.csv" "$T/o/meta.json" "$T/base/"
+check '[ -s "$T/base/results.csv" ]' "a run to compare against"
+cmp_refused() {
+    what=$1 pat=$2; shift 2
+    (eval "$lim"; timeout 20 "$OB" compare "$@" >/dev/null 2>"$T/err")
+    rc=$?
+    if [ $rc -eq 2 ] && grep -q -F -- "$pat" "$T/err" && ! grep -q -E "Sanitizer|runtime error" "$T/err"; then ok; else
+        bad "$what: exit $rc, expected 2 and '$pat' in: $(head -c 300 "$T/err")"; fi
+}
+cmp_refused "compare BASE /dev/zero" "/dev/zero: not a regular file" "$T/base/results.csv" /dev/zero
+mkdir -p "$T/zero" && ln -s /dev/zero "$T/zero/results.csv" && cp "$T/base/meta.json" "$T/zero/"
+cmp_refused "compare BASE DIR with results.csv -> /dev/zero" "not a regular file" "$T/base" "$T/zero"
+mkdir -p "$T/zmeta" && cp "$T/base/results.csv" "$T/zmeta/" && ln -s /dev/zero "$T/zmeta/meta.json"
+cmp_refused "compare BASE DIR with meta.json -> /dev/zero" "meta.json: not a regular file" "$T/base" "$T/zmeta"
+mkfifo "$T/fifo.csv" 2>/dev/null && cmp_refused "compare BASE FIFO" "fifo.csv: not a regular file" "$T/base/results.csv" "$T/fifo.csv"
+# a (sparse) results.csv beyond the cap is refused from its size
+mkdir -p "$T/big" && cp "$T/base/meta.json" "$T/big/" && truncate -s 1100M "$T/big/results.csv"
+cmp_refused "compare BASE results.csv over the cap" "too large" "$T/base" "$T/big"
+rm -f "$T/big/results.csv"
+# the journal of --resume
+mkdir -p "$T/jr" && cp "$T/base/meta.json" "$T/jr/" && ln -s /dev/zero "$T/jr/results.journal.csv"
+refused "--resume with journal -> /dev/zero" "not a regular file" run --curve liu2002_ex1 --methods tiller --tols 1e-1 --resume "$T/jr"
+# shard.csv of merge
+"$OB" run --curve liu2002_ex1 --methods tiller --tols 1e-1 --shard 0/2 --out "$T/s0" >/dev/null 2>&1
+"$OB" run --curve liu2002_ex1 --methods tiller --tols 1e-1 --shard 1/2 --out "$T/s1" >/dev/null 2>&1
+rm -f "$T/s1/shard.csv" && ln -s /dev/zero "$T/s1/shard.csv"
+(eval "$lim"; timeout 20 "$OB" merge "$T/s0" "$T/s1" --out "$T/m" >/dev/null 2>"$T/err")
+rc=$?
+if [ $rc -eq 2 ] && grep -q -F "shard.csv: not a regular file" "$T/err"; then ok; else
+    bad "merge with shard.csv -> /dev/zero: exit $rc: $(head -c 300 "$T/err")"; fi
 
 # ---- 8: method parameters ---------------------------------------------------
 for p in elber.iterations=-1 elber.iterations=2.5 liu.nodes=0 chebyshev.nodes=1025 lee.tol_frac=-5 \
