@@ -109,5 +109,34 @@ rm -rf "$T/o"
 "$OB" $RUN --param elber.iterations=3 --param elber.update=1 >/dev/null 2>"$T/err"
 check '[ $? -eq 0 ] && [ -s "$T/o/results.csv" ]' "--param for two parameters: $(head -c 200 "$T/err")"
 
+# ---- 10: curves beyond the scale the metrics can measure -------------------
+mk() {  # mk NAME X1 Y1 X2 Y2 X3 Y3 D
+    printf 'curve %s\n  bezier 2\n  point %s %s\n  point %s %s\n  point %s %s\n  offset %s\nend\n' "$@" > "$T/$1.curves"
+}
+mk tiny 0 0 1e-160 1e-160 2e-160 0 1e-161
+refused "extent 1e-160" "$T/tiny.curves:4:" run --curves "$T/tiny.curves" --methods ahn,hoschek,kim2018 --tols 1e-1 --out "$T/o"
+mk smallext 1e-49 1e-49 1.01e-49 1.02e-49 1.02e-49 1e-49 1e-49
+refused "extent 2e-51 (coordinates above 1e-50)" "$T/smallext.curves:1:" run --curves "$T/smallext.curves" --methods ahn --tols 1e-1 --out "$T/o"
+mk smalld 0 0 1e6 1e6 2e6 0 1e-7
+refused "offset below 1e-12 of the coordinates" "$T/smalld.curves:1:" run --curves "$T/smalld.curves" --methods ahn --tols 1e-1 --out "$T/o"
+mk denorm 0 0 1 1e-310 2 0 0.1
+refused "denormal coordinate" "$T/denorm.curves:4:" run --curves "$T/denorm.curves" --methods ahn --tols 1e-1 --out "$T/o"
+mk smallco 0 0 1 1e-101 2 0 0.1
+refused "coordinate below 1e-100" "$T/smallco.curves:4:" run --curves "$T/smallco.curves" --methods ahn --tols 1e-1 --out "$T/o"
+mk tinyd 0 0 1 1 2 0 1e-120
+refused "offset below 1e-100" "$T/tinyd.curves:6:" run --curves "$T/tinyd.curves" --methods ahn --tols 1e-1 --out "$T/o"
+mk flat 1e6 1e6 1e6 1.0000000000001e6 1e6 1e6 0.1
+refused "extent below 1e-12 of the coordinates" "$T/flat.curves:1:" run --curves "$T/flat.curves" --methods ahn --tols 1e-1 --out "$T/o"
+rm -f "$T/t.svg"
+timeout 20 "$OB" draw --curves "$T/tiny.curves" --curve tiny --method ahn --tol 1e-1 --out "$T/t.svg" >/dev/null 2>"$T/err"
+rc=$?
+if [ $rc -eq 2 ] && grep -q -F "$T/tiny.curves:4:" "$T/err" && ! grep -q nan "$T/t.svg" 2>/dev/null; then ok; else
+    bad "draw of the tiny curve: exit $rc: $(head -c 200 "$T/err")"; fi
+# the limits themselves are accepted: extent, coordinates and d at 1e-50
+mk edge 0 0 1e-50 1e-50 2e-50 0 1e-50
+rm -rf "$T/o"
+"$OB" run --curves "$T/edge.curves" --methods tiller --tols 1e-1 --out "$T/o" >/dev/null 2>"$T/err"
+check '[ $? -eq 0 ] && [ -s "$T/o/results.csv" ]' "a curve at the scale limits is accepted: $(head -c 200 "$T/err")"
+
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
