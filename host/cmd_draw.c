@@ -59,7 +59,7 @@ typedef struct {
     const char *method, *tol, *out;
     int have_d;
     double d;
-    int points;
+    int points, points_given;
     int ncurve;          /* --curve options seen */
     int argc;            /* what goes to the run parser */
     char **argv;
@@ -161,6 +161,10 @@ static int parse_args(const char *cmd, int trace, int argc, char **argv, cmd_arg
             }
             a->out = val;
         } else { /* --points */
+            if (a->points_given++) {
+                ob_error("--points: given twice");
+                return 2;
+            }
             char *end;
             errno = 0;
             const long n = strtol(val, &end, 10);

@@ -98,6 +98,11 @@ static int list_curves(int argc, char **argv)
             ob_error("%s: missing value", argv[i]);
             return 2;
         }
+        for (int k = 2; k < i; k += 2)
+            if (strcmp(argv[k], argv[i]) == 0) {
+                ob_error("%s: given twice (give each option once)", argv[i]);
+                return 2;
+            }
         if (strcmp(argv[i], "--curves") == 0)
             file = argv[i + 1];
         else if (ob_random_parse(argv[i], argv[i + 1], &rn, &seed))

@@ -104,6 +104,14 @@ refused "--samples twice" "--samples" $RUN --samples 64 --samples 128
 refused "--curve twice" "--curve" $RUN --curve liu2002_ex2
 refused "--methods twice" "--methods" $RUN --methods cobb
 refused "--param M.N twice" "--param elber.iterations" $RUN --param elber.iterations=3 --param elber.iterations=4
+# ... and in the other commands
+cmp_refused "compare --format twice" "--format: given twice" "$T/base" "$T/base" --format md --format csv
+cmp_refused "compare --err-rtol twice" "--err-rtol: given twice" "$T/base" "$T/base" --err-rtol=0.1 --err-rtol 0.2
+refused "tables --protocols twice" "--protocols: given twice" tables --protocols paper --protocols best --out "$T/o"
+refused "list curves --curves twice" "--curves: given twice" list curves --curves datasets/published.curves --curves datasets/reference.curves
+refused "draw --d twice" "--d: given twice" draw --curve liu2002_ex1 --method tiller --tol 1e-1 --d 1 --d -1 --out "$T/o.svg"
+refused "draw --out twice" "--out: given twice" draw --curve liu2002_ex1 --method tiller --tol 1e-1 --out "$T/a.svg" --out "$T/b.svg"
+refused "trace --points twice" "--points: given twice" trace --curve liu2002_ex1 --method tiller --tol 1e-1 --points 10 --points 20
 # different parameters may be given side by side
 rm -rf "$T/o"
 "$OB" $RUN --param elber.iterations=3 --param elber.update=1 >/dev/null 2>"$T/err"
