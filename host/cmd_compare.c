@@ -143,7 +143,8 @@ static int num_opt(const char *opt, const char *v, double lo, double hi, int ope
 
 static int parse_opts(int argc, char **argv, cmd_opts *o)
 {
-    int npos = 0;
+    int npos = 0, nseen = 0;
+    char seen[16][64];
     o->c = ob_cmp_defaults();
     o->csv = 0;
     o->out = NULL;
@@ -160,6 +161,14 @@ static int parse_opts(int argc, char **argv, cmd_opts *o)
         char name[64];
         const char *v = NULL, *eq = strchr(a, '=');
         snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - a) : (int)strlen(a), a);
+        /* each option once: a repeated one is an error, not "the last wins" */
+        for (int k = 0; k < nseen; k++)
+            if (strcmp(seen[k], name) == 0) {
+                ob_error("%s: given twice (give each option once)", name);
+                return -1;
+            }
+        if (nseen < (int)(sizeof seen / sizeof seen[0]))
+            snprintf(seen[nseen++], sizeof seen[0], "%s", name);
         if (strcmp(name, "--no-timing") == 0 || strcmp(name, "--method-timing-only") == 0 ||
             strcmp(name, "--help") == 0) {
             if (eq) {

@@ -59,7 +59,7 @@ typedef struct {
     const char *method, *tol, *out;
     int have_d;
     double d;
-    int points;
+    int points, points_given;
     int ncurve;          /* --curve options seen */
     int argc;            /* what goes to the run parser */
     char **argv;
@@ -141,18 +141,30 @@ static int parse_args(const char *cmd, int trace, int argc, char **argv, cmd_arg
             }
             a->tol = val;
         } else if (strcmp(o, "--d") == 0) {
+            if (a->have_d) {
+                ob_error("--d: given twice; %s shows one job", cmd);
+                return 2;
+            }
             if (ob_parse_double(val, &a->d) || a->d == 0.0) {
                 ob_error("--d: '%s' is not an offset distance (a nonzero finite number)", val);
                 return 2;
             }
             a->have_d = 1;
         } else if (strcmp(o, "--out") == 0) {
+            if (a->out) {
+                ob_error("--out: given twice");
+                return 2;
+            }
             if (!*val) {
                 ob_error("--out: empty file name");
                 return 2;
             }
             a->out = val;
         } else { /* --points */
+            if (a->points_given++) {
+                ob_error("--points: given twice");
+                return 2;
+            }
             char *end;
             errno = 0;
             const long n = strtol(val, &end, 10);

@@ -43,10 +43,13 @@ static int list_methods(void)
                (m->caps & OB_CAP_RATIONAL_IN) ? "input ok" : "no",
                m->continuity, m->citation, (m->caps & OB_CAP_CONVEX) ? " [convex pieces]" : "");
         for (int k = 0; k < m->nparams; k++) {
-            char num[40];
-            ob_fmt_double(num, sizeof num, m->params[k].def);
-            printf("%-12s   --param %s.%s=%s (default): %s\n", "", m->name, m->params[k].name, num,
-                   m->params[k].doc);
+            char num[40], lo[40], hi[40];
+            const ob_param *p = &m->params[k];
+            ob_fmt_double(num, sizeof num, p->def);
+            ob_fmt_double(lo, sizeof lo, p->min);
+            ob_fmt_double(hi, sizeof hi, p->max);
+            printf("%-12s   --param %s.%s=%s (default; %s %s..%s): %s\n", "", m->name, p->name, num,
+                   p->integer ? "whole numbers" : "range", lo, hi, p->doc);
         }
     }
     return 0;
@@ -95,6 +98,11 @@ static int list_curves(int argc, char **argv)
             ob_error("%s: missing value", argv[i]);
             return 2;
         }
+        for (int k = 2; k < i; k += 2)
+            if (strcmp(argv[k], argv[i]) == 0) {
+                ob_error("%s: given twice (give each option once)", argv[i]);
+                return 2;
+            }
         if (strcmp(argv[i], "--curves") == 0)
             file = argv[i + 1];
         else if (ob_random_parse(argv[i], argv[i + 1], &rn, &seed))

@@ -330,6 +330,11 @@ static int parse_opts(int argc, char **argv, ob_run_opts *o, const char **only, 
             ob_error("%s: missing value", a);
             return -1;
         }
+        for (int k = 1; k < i; k += 2)  /* every option takes a value */
+            if (strcmp(argv[k], a) == 0) {
+                ob_error("%s: given twice (give each option once)", a);
+                return -1;
+            }
         if (strcmp(a, "--out") == 0) {
             out = argv[++i];
             continue;

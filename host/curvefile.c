@@ -11,6 +11,15 @@
  * Limits (beyond the ones in DESIGN.md), to keep hostile input bounded:
  * lines <= 4096 bytes, |numbers| <= 1e12, <= 10000 control points and
  * <= 1000 offsets per curve, files <= 64 MiB.
+ *
+ * Scale limits, so that the metrics' double arithmetic (squared distances,
+ * products of up to six lengths in the bound metric and the curvature) never
+ * underflows and an offset point C + dN differs from C: every coordinate is 0
+ * or of magnitude >= 1e-50 (no denormals), every weight and |d| >= 1e-50, and
+ * the control polygon of the curve and of each of its Bezier segments spans
+ * (largest side of its bounding box) at least 1e-50 and at least 1e-12 times
+ * the largest coordinate magnitude M of the curve, which |d| must also reach.
+ * A curve below them would be measured as a point: error 0, status ok.
  */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
@@ -36,6 +45,8 @@ enum {
     MAX_IDLEN = 63,
 };
 #define VALUE_LIMIT 1e12
+#define SCALE_MIN 1e-50   /* smallest nonzero coordinate, weight, |d|, extent */
+#define SCALE_REL 1e-12   /* smallest extent and |d| relative to the coordinates */
 #define FILE_LIMIT ((size_t)64 << 20)
 
 /* A growable array of doubles. */
@@ -296,6 +307,17 @@ static int kw_point(parser *P, char *rest, int homogeneous)
     const double wx = homogeneous ? P->vals[0] : w * x, wy = homogeneous ? P->vals[1] : w * y;
     if (!isfinite(x) || !isfinite(y))
         return perr(P, P->line, "%s: the point is not finite", kw);
+    if (w < SCALE_MIN)
+        return perr(P, P->line, "%s: weight %.17g is below 1e-50", kw, w);
+    for (int c = 0; c < 2; c++) {
+        const double v = c ? y : x;
+        if (fabs(v) > VALUE_LIMIT)
+            return perr(P, P->line, "%s: coordinate %.17g is beyond +-1e12", kw, v);
+        if (v != 0 && fabs(v) < SCALE_MIN)
+            return perr(P, P->line,
+                        "%s: coordinate %.17g is too small (a coordinate is 0 or of magnitude 1e-50 to 1e12)", kw,
+                        v);
+    }
     if (dvec_push(&b->pts, x) || dvec_push(&b->pts, y) || dvec_push(&b->pts, w) || dvec_push(&b->hpts, wx) ||
         dvec_push(&b->hpts, wy) || dvec_push(&b->hpts, w))
         return perr(P, P->line, "out of memory");
@@ -311,6 +333,14 @@ static int kw_offset(parser *P, char *rest)
     for (int i = 0; i < n; i++) {
         if (P->vals[i] == 0)
             return perr(P, P->line, "offset distance 0 (must be != 0)");
+        if (fabs(P->vals[i]) < SCALE_MIN)
+            return perr(P, P->line, "offset distance %.17g is too small (|d| must be 1e-50 to 1e12)", P->vals[i]);
+        /* a job is (curve, d, method, tol): the same d twice would be two
+         * jobs with one key, which compare and --resume refuse */
+        for (size_t k = 0; k < b->offs.n; k++)
+            if (b->offs.v[k] == P->vals[i])
+                return perr(P, P->line, "offset %.17g given twice (every d of a curve must differ)",
+                            P->vals[i]);
         if (b->offs.n >= MAX_OFFSETS)
             return perr(P, P->line, "more than %d offsets", (int)MAX_OFFSETS);
         if (dvec_push(&b->offs, P->vals[i]))
@@ -387,6 +417,23 @@ static int kw_end(parser *P, char *rest)
         moves = pt[3 * i] != pt[0] || pt[3 * i + 1] != pt[1];
     if (!moves)
         return perr(P, L, "curve '%s': all control points coincide (zero-length curve)", b->id);
+    double M = 0, lo[2] = {pt[0], pt[1]}, hi[2] = {pt[0], pt[1]};
+    for (int i = 0; i < npts; i++)
+        for (int c = 0; c < 2; c++) {
+            M = fmax(M, fabs(pt[3 * i + c]));
+            lo[c] = fmin(lo[c], pt[3 * i + c]);
+            hi[c] = fmax(hi[c], pt[3 * i + c]);
+        }
+    const double E = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(E >= SCALE_MIN) || !(E >= SCALE_REL * M))
+        return perr(P, L,
+                    "curve '%s': its control polygon spans %.3g, too small to measure (at least 1e-50 and 1e-12 "
+                    "times its largest coordinate %.3g)",
+                    b->id, E, M);
+    for (size_t k = 0; k < b->offs.n; k++)
+        if (!(fabs(b->offs.v[k]) >= SCALE_REL * M))
+            return perr(P, L, "curve '%s': offset %.17g is below 1e-12 times its largest coordinate %.3g", b->id,
+                        b->offs.v[k], M);
 
     if (P->n == P->cap) {
         int cap = P->cap ? 2 * P->cap : 8;
@@ -414,6 +461,25 @@ static int kw_end(parser *P, char *rest)
                                       &c->seg, &c->nseg, msg, sizeof msg);
         if (rc == -1) /* not expected after the checks above */
             return perr(P, L, "%s", msg);
+        /* each segment is measured on its own: it must span enough too */
+        for (int k = 0; c->seg && k < c->nseg; k++) {
+            const ob_bez *sg = &c->seg[k];
+            double slo[2] = {0, 0}, shi[2] = {0, 0};
+            for (int i = 0; i <= sg->deg; i++)
+                for (int q = 0; q < 2; q++) {
+                    const double v = sg->h[i][q] / sg->h[i][2];
+                    slo[q] = i ? fmin(slo[q], v) : v;
+                    shi[q] = i ? fmax(shi[q], v) : v;
+                }
+            const double se = fmax(shi[0] - slo[0], shi[1] - slo[1]);
+            if (!(se >= SCALE_MIN) || !(se >= SCALE_REL * M)) {
+                ob_curve_free(c);
+                return perr(P, b->knots_line,
+                            "curve '%s': its Bezier segment %d spans %.3g, too small to measure (at least 1e-50 "
+                            "and 1e-12 times the largest coordinate %.3g)",
+                            b->id, k, se, M);
+            }
+        }
     }
     c->d = malloc(b->offs.n * sizeof *c->d);
     c->source = strdup(b->source ? b->source : "");

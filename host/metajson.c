@@ -472,7 +472,7 @@ int ob_json_load(const char *path, ob_json_flat *out, char *err, size_t errlen)
     size_t len;
     out->v = NULL;
     out->n = out->cap = 0;
-    if (ob_slurp(path, &text, &len, err, errlen))
+    if (ob_slurp_max(path, OB_JSON_LIMIT, &text, &len, err, errlen))
         return -1;
     int rc = ob_json_flatten(text, len, path, out, err, errlen);
     free(text);

@@ -48,6 +48,8 @@ int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat
 
 /* Purpose: read and flatten the file at path.
  * Errors:  as ob_json_flatten, plus "PATH: cannot open: reason". */
+/* The largest meta.json ob_json_load reads (64 MiB; a run's is a few KiB). */
+#define OB_JSON_LIMIT ((size_t)64 << 20)
 int ob_json_load(const char *path, ob_json_flat *out, char *err, size_t errlen);
 
 /* The entry of a key path, or NULL. */

@@ -125,40 +125,69 @@ static int parse_tols(const char *s, ob_run_opts *o)
             rc = -1;
             break;
         }
+        /* compared as numbers: 1e-2 and 0.01 are one job key */
+        for (int k = 0; k < o->ntols && rc == 0; k++)
+            if (o->tols[k] == t) {
+                ob_error("--tols: '%s' is listed twice (the same tolerance as '%s')", v[i], v[k]);
+                rc = -1;
+            }
+        if (rc)
+            break;
         o->tols[o->ntols++] = t;
     }
     free_list(v, n);
     return rc;
 }
 
-/* --param METHOD.NAME=VALUE */
+/* --param METHOD.NAME=VALUE: the value read whole (no length limit) and
+ * refused unless inside the parameter's range (method.h), so that no job
+ * runs with a value its fit() would reject or silently replace. */
 static int parse_param(const char *s, ob_run_opts *o)
 {
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", s);
+    char *buf = strdup(s);
+    if (!buf)
+        return -1;
+    int rc = -1;
     char *dot = strchr(buf, '.'), *eq = strchr(buf, '=');
     if (!dot || !eq || eq < dot) {
-        ob_error("--param: expected METHOD.NAME=VALUE, got '%s'", s);
-        return -1;
+        ob_error("--param: expected METHOD.NAME=VALUE, got '%.300s'", s);
+        goto out;
     }
     *dot = *eq = '\0';
     const ob_method *m = ob_method_find(buf);
     if (!m) {
-        ob_error("--param: unknown method '%s'", buf);
-        return -1;
+        ob_error("--param: unknown method '%.100s'", buf);
+        goto out;
     }
     int k = ob_param_find(m, dot + 1);
     if (k < 0) {
-        ob_error("--param: method '%s' has no parameter '%s' (see './offbench list methods')", buf, dot + 1);
-        return -1;
+        ob_error("--param: method '%s' has no parameter '%.100s' (see './offbench list methods')", buf, dot + 1);
+        goto out;
     }
+    const ob_param *p = &m->params[k];
     double v;
+    char msg[256];
     if (ob_parse_double(eq + 1, &v)) {
-        ob_error("--param: '%s' is not a number", eq + 1);
-        return -1;
+        ob_error("--param %s.%s: '%.100s' is not a number (range %.17g to %.17g%s)", m->name, p->name, eq + 1,
+                 p->min, p->max, p->integer ? ", whole numbers" : "");
+        goto out;
+    }
+    if (ob_param_check(m, p, v, msg, sizeof msg)) {
+        ob_error("--param %s", msg);
+        goto out;
     }
     o->params[ob_method_index(m) * OB_MAX_PARAMS + k] = v;
-    return 0;
+    rc = 0;
+out:
+    free(buf);
+    return rc;
+}
+
+/* 1 when --param values a and b set the same METHOD.NAME. */
+static int same_param(const char *a, const char *b)
+{
+    const char *ea = strchr(a, '='), *eb = strchr(b, '=');
+    return ea && eb && ea - a == eb - b && strncmp(a, b, (size_t)(ea - a)) == 0;
 }
 
 int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
@@ -201,6 +230,19 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             ob_error("%s: missing value", a);
             return -1;
         }
+        /* One rule for every option but --param (one per METHOD.NAME, checked
+         * in parse_param): given twice is an error, not "the last one wins",
+         * so that a command line means what it says (a list option takes
+         * all its values in one comma list). */
+        if (strcmp(a, "--param") != 0)
+            for (int k = 1; k < i; k += 2)
+                if (strcmp(argv[k], a) == 0) {
+                    ob_error("%s: given twice (give each option once%s)", a,
+                             strcmp(a, "--curve") == 0 || strcmp(a, "--tols") == 0 || strcmp(a, "--methods") == 0
+                                 ? "; list all values in one comma list"
+                                 : "");
+                    return -1;
+                }
         if (strcmp(a, "--curves") == 0) {
             o->curves_file = v;
         } else if (strcmp(a, "--curve") == 0) {
@@ -208,6 +250,12 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             o->curve_ids = split_list(v, &o->ncurve_ids);
             if (!o->curve_ids)
                 return -1;
+            for (int k = 0; k < o->ncurve_ids; k++)
+                for (int l = 0; l < k; l++)
+                    if (strcmp(o->curve_ids[k], o->curve_ids[l]) == 0) {
+                        ob_error("--curve: '%s' is listed twice", o->curve_ids[k]);
+                        return -1;
+                    }
         } else if (strcmp(a, "--random") == 0) {
             if (ob_random_parse(a, v, &o->random_n, &o->random_seed))
                 return -1;
@@ -215,6 +263,11 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             if (parse_methods(v, o))
                 return -1;
         } else if (strcmp(a, "--param") == 0) {
+            for (int k = 1; k < i; k += 2)
+                if (strcmp(argv[k], "--param") == 0 && same_param(argv[k + 1], v)) {
+                    ob_error("--param %.*s: given twice", (int)(strchr(v, '=') - v), v);
+                    return -1;
+                }
             if (parse_param(v, o))
                 return -1;
         } else if (strcmp(a, "--tols") == 0) {

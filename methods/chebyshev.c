@@ -22,7 +22,7 @@
 static const ob_param chebyshev_params[] = {
     {"nodes", 64, "Gauss-Chebyshev nodes for the Chebyshev coefficients of f~ (1..1024). "
                   "Not given by Liu-Wang; 64 makes the quadrature error negligible (the "
-                  "truncated Chebyshev series); n-1 gives Chebyshev interpolation"},
+                  "truncated Chebyshev series); n-1 gives Chebyshev interpolation", 1, 1024, 1},
 };
 
 static ob_status chebyshev_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,

@@ -47,11 +47,11 @@ static const ob_param coquillart_params[] = {
     {"reading", 0.0,
      "sign convention of d(1 + kappa D): 0 = d(1 - kappa D) with signed kappa and D "
      "(left normal; exact on circular arcs: the default, the geometric reading), "
-     "1 = d(1 + kappa D) signed, 2 = d(1 + |kappa||D|), 3 = d(1 - |kappa||D|)"},
+     "1 = d(1 + kappa D) signed, 2 = d(1 + |kappa||D|), 3 = d(1 - |kappa||D|)", 0, 3, 1},
     {"foot", 0.0,
      "the curve point associated with P_j: 0 = the nearest point (Liu-Wang's description: "
      "the default), 1 = the Greville abscissa xi_j = j/n (the form in which cobb reproduces "
-     "Elber-Lee-Kim's Cob column); D_j is the signed distance from P_j to C(xi_j) either way"},
+     "Elber-Lee-Kim's Cob column); D_j is the signed distance from P_j to C(xi_j) either way", 0, 1, 1},
 };
 
 /* Nearest parameter: the best of S samples of |C(t) - P|, then safeguarded

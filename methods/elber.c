@@ -51,20 +51,20 @@ static const ob_param elber_params[] = {
     {"iterations", 5.0,
      "perturbation passes after Cobb's polygon (integer 0..100000; 0 = cobb).  Default 5: "
      "the seeds give no count; 5 passes reduce all node-error modes of a cubic but the "
-     "slowest (7/9 per pass) below 0.5 %, large counts converge to interp"},
+     "slowest (7/9 per pass) below 0.5 %, large counts converge to interp", 0, 100000, 1},
     {"update", 0.0,
      "0 = move Q_j by the node error vector O_j - A(j/n) (Jacobi step for the node "
      "interpolation: the default); 1 = move Q_j along N(j/n) by the error component "
-     "along that normal (adjust only the offset amount)"},
+     "along that normal (adjust only the offset amount)", 0, 1, 1},
     {"variant", 0.0,
      "0 = control point perturbation of one Bezier segment (Liu-Wang's description of "
      "Elber-Cohen 1992: the default); 1 = Elber's adaptive variant (METHODS.md): refine the "
      "base as a B-spline by knot insertion where the node errors of ||A - C||^2 exceed the "
      "tolerance, re-offset (Cobb at the Greville abscissae), repeat; one B-spline, counted by "
-     "its control points"},
+     "its control points", 0, 1, 1},
     {"rounds", 20.0,
      "variant 1: most refinement rounds (integer 1..100); default 20 (METHODS.md: at most "
-     "~20 rounds)"},
+     "~20 rounds)", 1, 100, 1},
 };
 
 enum { EL_MAXK = OB_MAX_PIECES - 1,                      /* interior knots */

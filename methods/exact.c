@@ -40,7 +40,7 @@ static const ob_param exact_params[NPARAM] = {
     {"detect_tol", 1e-10,
      "relative tolerance of the tests that recognise a circular arc (equal legs, weight "
      "ratio = cos of the half angle), a straight segment and a PH curve (x'^2+y'^2 = "
-     "sigma^2, coefficient-wise relative to the largest); round-off level, our choice"},
+     "sigma^2, coefficient-wise relative to the largest); round-off level, our choice", 0, 1e-2, 0},
 };
 
 static int exact_degree(int n, int rational_in)

@@ -65,15 +65,15 @@ typedef struct {
 static const ob_param hoschek_params[HP_COUNT] = {
     {"samples", 0,
      "offset samples M (both ends included), uniform in the base parameter; 0 = 8 (m + 1) for "
-     "output degree m (8 per coefficient, the oversampling NPFAC = 8 of Numerical Recipes' fits)"},
+     "output degree m (8 per coefficient, the oversampling NPFAC = 8 of Numerical Recipes' fits)", 0, HOSCHEK_MAX_SAMPLES, 1},
     {"iterations", 20,
      "parameter corrections (projection of every sample onto the fit, then a new fit); 0 = plain "
      "least squares in the base parameter. Default 20: a cost compromise, the correction "
-     "converges linearly and slowly (see hoschek.c)"},
+     "converges linearly and slowly (see hoschek.c)", 0, HOSCHEK_MAX_ITER, 1},
     {"tangents", 0,
      "0: only the end points are fixed to the offset's (METHODS.md); 1: also the end tangent "
-     "directions (G1 ends, needs degree >= 3)"},
-    {"degree", 0, "output degree; 0 = the base's degree"},
+     "directions (G1 ends, needs degree >= 3)", 0, 1, 1},
+    {"degree", 0, "output degree; 0 = the base's degree", 0, OB_MAX_DEG, 1},
 };
 
 static double dist2(const double a[2], const double b[2])

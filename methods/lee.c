@@ -58,28 +58,28 @@ static const ob_param lee_params[NPARAM] = {
     {"tol_frac", 1.0,
      "the circle approximation error is at most tol_frac * tol (the job's tolerance); "
      "1 is our choice (no fraction is given in the sources here): the offset error is "
-     "then at most tol"},
+     "then at most tol", 1e-6, 1e6, 0},
     {"arc", 0.0,
      "0: each arc is the quadratic Bezier interpolating the circle at its ends, middle "
      "control point at the tangent intersection (error r(1-cos h)^2/(2 cos h), h the half "
      "angle; the natural reading, Ahn 2023 calls Lee's quadratics interpolating); 1: that "
      "quadratic scaled about the centre by 2/(2+e) so the radial error equioscillates "
-     "(error r e/(2+e), the best radial approximation in this family)"},
+     "(error r e/(2+e), the best radial approximation in this family)", 0, 1, 1},
     {"arcs_on", 0.0,
      "0: the whole circle is cut once into the fewest equal arcs meeting the tolerance, "
      "independent of the curve (our reading of approximating the circle); 1: each piece's "
      "own range of normal directions is cut into the fewest equal arcs, from its lowest "
      "normal angle (the arcs then differ between driver pieces; their ends interpolate the "
-     "offset where the normal turns one way)"},
+     "offset where the normal turns one way)", 0, 1, 1},
     {"start", 0.0,
      "arcs_on=0: angle in radians of the first arc boundary, for the offset vector d N "
-     "(0 = the positive x direction; our choice)"},
+     "(0 = the positive x direction; our choice)", -1e3, 1e3, 0},
     {"clip", 0.0,
      "arcs_on=0: 0: each part is convolved with its whole arc of the circle approximation "
      "(the circle approximated once: the reading of METHODS.md, default); 1: with the interpolating quadratic of the sub-arc that the part's normals "
      "cover, so every piece interpolates the offset at its ends (with 0 a piece end inside an "
      "arc is off the offset's end by O(h^3) along the tangent, which the per-piece hausdorff "
-     "metric sees and no subdivision removes)"},
+     "metric sees and no subdivision removes)", 0, 1, 1},
 };
 
 static int lee_degree(int n, int rational_in)

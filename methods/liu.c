@@ -33,7 +33,7 @@ static const ob_param liu_params[] = {
     {"nodes", 64, "Gauss-Legendre nodes for the Legendre coefficients of f~ (1..1024). "
                   "Liu-Wang use Gauss-Legendre quadrature without giving a count; 64 "
                   "makes the quadrature error negligible for smooth normals (< 1e-14 on the whole "
-                  "liu2002_ex1 cubic, whose normal turns by 3 rad)"},
+                  "liu2002_ex1 cubic, whose normal turns by 3 rad)", 1, 1024, 1},
 };
 
 static ob_status liu_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,

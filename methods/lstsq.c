@@ -21,11 +21,11 @@
 
 static const ob_param lstsq_params[] = {
     {"samples", 32, "uniform interior samples t_j = j/(M+1), j = 1..M, of the least-squares "
-                    "fit (>= n-1, <= 1024).  Not given by Liu-Wang; 32 is the harness's choice"},
+                    "fit (>= n-1, <= 1024).  Not given by Liu-Wang; 32 is the harness's choice", 1, 1024, 1},
     {"target", 0, "0: fit the samples of the normal curve d N (W d N for rational input) "
                   "with the ends fixed, the literal 'least squares on sampled normals' (default); "
                   "1: fit the samples of f~ = (f - f0 B_0^n - f1 B_n^n)/((1-t)t), the discrete "
-                  "analogue of Liu-Wang's eq. (7)"},
+                  "analogue of Liu-Wang's eq. (7)", 0, 1, 1},
 };
 
 static ob_status lstsq_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,

@@ -53,11 +53,18 @@ typedef struct {
 } ob_fit_args;
 
 /* A parameter of a method: a choice the paper leaves open.  `def` is the
- * paper's reading; `./offbench run --param METHOD.NAME=VALUE` overrides it. */
+ * paper's reading; `./offbench run --param METHOD.NAME=VALUE` overrides it.
+ * Every value the method accepts lies in [min, max] (and is a whole number
+ * when `integer`); `--param` refuses any other before a job runs
+ * (ob_param_check), so fit() never sees one.  The ranges are what each fit()
+ * checks itself; the method contract test holds every default inside its
+ * range. */
 typedef struct {
     const char *name;
     double def;
     const char *doc;   /* what the values mean, and where the default comes from */
+    double min, max;   /* the accepted values, both included */
+    int integer;       /* 1: only whole numbers */
 } ob_param;
 
 enum { OB_MAX_PARAMS = 8 };
@@ -121,6 +128,9 @@ int ob_method_count(void);
 int ob_method_index(const ob_method *m);
 /* Index of the parameter called name, or -1. */
 int ob_param_find(const ob_method *m, const char *name);
+/* 0 when v is an accepted value of parameter p (finite, in [min, max], whole
+ * if p->integer); else -1 with "METHOD.NAME = V is out of range: ..." in msg. */
+int ob_param_check(const ob_method *m, const ob_param *p, double v, char *msg, size_t msglen);
 /* The method's default parameter values, into par[OB_MAX_PARAMS]. */
 void ob_param_defaults(const ob_method *m, double *par);
 

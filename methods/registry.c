@@ -5,6 +5,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <math.h>
 #include <string.h>
 
 extern const ob_method ob_method_tiller, ob_method_cobb, ob_method_coquillart, ob_method_elber,
@@ -55,6 +56,19 @@ int ob_param_find(const ob_method *m, const char *name)
     for (int i = 0; i < m->nparams; i++)
         if (strcmp(m->params[i].name, name) == 0)
             return i;
+    return -1;
+}
+
+int ob_param_check(const ob_method *m, const ob_param *p, double v, char *msg, size_t msglen)
+{
+    if (isfinite(v) && v >= p->min && v <= p->max && (!p->integer || v == floor(v)))
+        return 0;
+    if (p->integer)
+        ob_method_msg(msg, msglen, "%s.%s = %g is out of range: a whole number from %.17g to %.17g", m->name,
+                      p->name, v, p->min, p->max);
+    else
+        ob_method_msg(msg, msglen, "%s.%s = %g is out of range: a number from %.17g to %.17g", m->name, p->name,
+                      v, p->min, p->max);
     return -1;
 }
 

@@ -127,10 +127,10 @@ static int sisl_degree(int n, int rational_in)
 static const ob_param sisl_params[] = {
     {"max_step", 0.0,
      "s1360's maximal step length amax; 0 (default) = SISL's own choice, which its manual "
-     "gives as the longest side of the curve's bounding box"},
+     "gives as the longest side of the curve's bounding box", 0, 1e12, 0},
     {"timeout", 20.0,
      "seconds one s1360 call may take (it runs in a child process, killed past this; the fit "
-     "then fails): s1360 loops without end on some inputs.  Our choice; 0.1..3600"},
+     "then fails): s1360 loops without end on some inputs.  Our choice; 0.1..3600", 0.1, 3600, 0},
 };
 
 /* s1360's result as plain arrays (ik order, in vertices, idim 2, ikind 1). */
@@ -399,7 +399,12 @@ static ob_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, 
         for (int c = 0; c < dim; c++)
             q.coef[dim * i + c] = base->h[i][c];  /* polynomial: w = 1, h = (x, y) */
     sisl_result res;
-    const double timeout = a->par[1] >= 0.1 && a->par[1] <= 3600 ? a->par[1] : 20.0;
+    const double timeout = a->par[1];
+    if (!(timeout >= 0.1 && timeout <= 3600) || !(q.amax >= 0.0 && q.amax <= 1e12)) {
+        /* --param refuses these; a caller that bypasses it gets no silent substitute */
+        ob_method_msg(msg, msglen, "timeout %g (0.1..3600) or max_step %g (0..1e12) out of range", timeout, q.amax);
+        return OB_FAIL;
+    }
     if (guarded_s1360(&q, timeout, &res, msg, msglen) != 0)
         return OB_FAIL;
     const sisl_result *rc = &res;

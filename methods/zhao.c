@@ -128,23 +128,23 @@ static const ob_param zhao_params[ZP_COUNT] = {
     {"iterations", 5,
      "solves of eq. (2) in the accelerated algorithm (the first with e = 0); the iterate with the "
      "smallest maximum error at the nodes is kept. Default 5 = MAXIT of Press et al.'s ratlsq, "
-     "the program the paper follows (the paper: 'iterate to convergence'; it shows iterations 1, 2, 4)"},
+     "the program the paper follows (the paper: 'iterate to convergence'; it shows iterations 1, 2, 4)", 1, ZHAO_MAX_ITER, 1},
     {"npfac", 8,
      "node multiplier: npt = npfac * k nodes, k = floor((3n+3)/2) (rational) or n+1 "
      "(polynomial). Default 8 = NPFAC of ratlsq; gives the paper's 96 sample points for its septic; "
      "1..16; 1 = exactly k nodes (the fit then interpolates its targets where the system is square, "
-     "so e stays 0)"},
+     "so e stays 0)", 1, ZHAO_MAX_NPFAC, 1},
     {"weighted", 1,
      "1: weight the equations of each node by the |error| there from the previous solve, as "
      "ratlsq does (default: the program the paper follows); 0: unweighted (the paper's steps as "
-     "written do not mention weights)"},
+     "written do not mention weights)", 0, 1, 1},
     {"degree", 0,
-     "output degree; 0 = the base's degree (the paper's examples; 'an arbitrary degree' is allowed)"},
+     "output degree; 0 = the base's degree (the paper's examples; 'an arbitrary degree' is allowed)", 0, OB_MAX_DEG, 1},
     {"on_pole", 1,
      "no iterate with a denominator positive on [0,1] (zhao-rational): 1 = ask the driver to split "
      "the piece (OB_RETRY_SMALLER, as if the error were too large; default: the paper requires a "
      "pole-free solution and says nothing of what to do without one, and a smaller piece usually "
-     "has one), 0 = fail"},
+     "has one), 0 = fail", 0, 1, 1},
 };
 
 /* 1 if the Bernstein polynomial b (degree n, b[0] > 0) is positive on [0,1]:

@@ -552,6 +552,60 @@ static void test_ahn(void)
     }
 }
 
+/* Every parameter of every registered method has a documented range
+ * (method.h) that holds its default, and ob_param_check (what --param
+ * applies) accepts exactly that range; fit() does not reject a value at
+ * either end of it. */
+static void test_param_ranges(const ob_method *m)
+{
+    char msg[256];
+    CHECK(m->nparams >= 0 && m->nparams <= OB_MAX_PARAMS && (m->nparams == 0 || m->params),
+          "%s: %d parameters", m->name, m->nparams);
+    for (int k = 0; k < m->nparams; k++) {
+        const ob_param *p = &m->params[k];
+        CHECK(p->name && p->name[0] && p->doc && p->doc[0], "%s: parameter %d has a name and a doc", m->name, k);
+        CHECK(isfinite(p->min) && isfinite(p->max) && p->min < p->max, "%s.%s: range %g..%g", m->name, p->name,
+              p->min, p->max);
+        CHECK(p->def >= p->min && p->def <= p->max, "%s.%s: default %g inside %g..%g", m->name, p->name, p->def,
+              p->min, p->max);
+        if (p->integer)
+            CHECK(p->min == floor(p->min) && p->max == floor(p->max) && p->def == floor(p->def),
+                  "%s.%s: whole-number range and default", m->name, p->name);
+        CHECK(ob_param_check(m, p, p->def, msg, sizeof msg) == 0, "%s.%s: default accepted", m->name, p->name);
+        CHECK(ob_param_check(m, p, p->min, msg, sizeof msg) == 0, "%s.%s: min accepted", m->name, p->name);
+        CHECK(ob_param_check(m, p, p->max, msg, sizeof msg) == 0, "%s.%s: max accepted", m->name, p->name);
+        const double below = p->integer ? p->min - 1 : nextafter(p->min, -INFINITY);
+        const double above = p->integer ? p->max + 1 : nextafter(p->max, INFINITY);
+        CHECK(ob_param_check(m, p, below, msg, sizeof msg) != 0 && strstr(msg, p->name) && strstr(msg, "range"),
+              "%s.%s: %g refused with a message naming it: %s", m->name, p->name, below, msg);
+        CHECK(ob_param_check(m, p, above, msg, sizeof msg) != 0, "%s.%s: %g refused", m->name, p->name, above);
+        CHECK(ob_param_check(m, p, NAN, msg, sizeof msg) != 0, "%s.%s: nan refused", m->name, p->name);
+        if (p->integer)
+            CHECK(ob_param_check(m, p, p->min + 0.5, msg, sizeof msg) != 0, "%s.%s: %g refused (not whole)",
+                  m->name, p->name, p->min + 0.5);
+        /* fit() itself takes both ends (on liu2002_ex1: any status, but not
+         * a complaint about the parameter) */
+        static const double ends_skip_slow = 1000; /* a timeout or pass count above this is not run */
+        for (int e = 0; e < 2; e++) {
+            double par[OB_MAX_PARAMS];
+            ob_param_defaults(m, par);
+            par[k] = e ? p->max : p->min;
+            if (par[k] > ends_skip_slow && p->integer)
+                continue;
+            if (strcmp(m->name, "sisl") == 0 && strcmp(p->name, "timeout") == 0)
+                continue;
+            void *work = m->work_size ? malloc(m->work_size) : NULL;
+            ob_fit f;
+            msg[0] = '\0';
+            const ob_fit_args a = {0.5, 1e-2, par};
+            ob_status st = m->fit(&curves[0], &a, work, &f, msg, sizeof msg);
+            free(work);
+            CHECK(st == OB_OK || st == OB_RETRY_SMALLER || !(strstr(msg, "range") || strstr(msg, "must be")),
+                  "%s.%s = %g: fit refuses a value inside the range: %s", m->name, p->name, par[k], msg);
+        }
+    }
+}
+
 int main(void)
 {
     make_curves();
@@ -562,6 +616,7 @@ int main(void)
         CHECK(m->name && m->name[0] && m->fit && m->out_degree, "method %d incomplete", i);
         CHECK(m->version >= 1, "%s: has a version (meta.json method_versions), got %d", m->name, m->version);
         CHECK(ob_method_find(m->name) == m, "%s: found by name", m->name);
+        test_param_ranges(m);
         for (int c = 0; c < ncurves; c++)
             for (int k = 0; k < ND; k++)
                 test_generic(m, cname[c], &curves[c], DS[k]);

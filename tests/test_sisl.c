@@ -55,7 +55,7 @@ static const double EX2[7][2] = {{-3.01619, 2.34143},  {-3.97193, -2.20842}, {-1
 
 static ob_status fit(const ob_bez *C, double d, double tol, double max_step, ob_fit *f, char *msg)
 {
-    double par[OB_MAX_PARAMS] = {max_step};
+    double par[OB_MAX_PARAMS] = {max_step, 20.0}; /* timeout: the default */
     const ob_fit_args a = {d, tol, par};
     msg[0] = '\0';
     return M->fit(C, &a, NULL, f, msg, MSGLEN);
