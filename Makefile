@@ -50,7 +50,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test run deps clean bench tables nightly accept-baseline fuzz fuzz-run FORCE
+.PHONY: all test soak run deps clean bench tables nightly accept-baseline fuzz fuzz-run FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -107,6 +107,12 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h
 
 test: $(BIN) $(TEST_BIN)
 	@OFFBENCH=$(abspath $(BIN)) sh tests/run_all.sh $(TEST_BIN) $(TEST_SH)
+
+# The soak test, longer than in `make test` (README "Testing").
+SOAK_KILLS ?= 200
+SOAK_RUN   ?= --random 40:5 --methods tiller,cobb,ahn,zhao,lee --tols 1e-2,1e-3,1e-4 --backend cpu
+soak: $(BIN)
+	@OFFBENCH=$(abspath $(BIN)) SOAK_KILLS=$(SOAK_KILLS) SOAK_RUN="$(SOAK_RUN)" $(if $(SOAK_SEED),SOAK_SEED=$(SOAK_SEED)) SOAK_VERBOSE=1 sh tests/e2e_soak.sh
 
 run: $(BIN)
 	./$(BIN) run --out out/run

@@ -10,7 +10,12 @@
  * count; job total); another build or method versions (git_commit, compiler,
  * cflags, method_versions.*); the same shard twice; a shard missing; a job
  * index out of range or in two shards; a shard.csv whose indices do not match
- * its results.csv rows one for one; a results.csv with another header.  Rows
+ * its results.csv rows one for one; a results.csv with another header; a
+ * directory with a journal (results.journal.csv: an unfinished shard); a row
+ * whose key (curve, d, method, metric, split, tol) is not that of the job
+ * shard.csv gives it (shard.csv holds each job's index and key hash: the
+ * reason names results.csv and the line); rows whose keys, in job order, do
+ * not hash to the run's plan_hash (from meta.json's plan_seed).  Rows
  * are copied as text, so the merged file is byte for byte what the shards
  * wrote, in job order.  Exit 1: the output cannot be written.
  *
@@ -29,6 +34,7 @@
 #include "metajson.h"
 #include "output.h"
 #include "results_csv.h"
+#include "shard.h"
 #include "slurp.h"
 
 typedef struct {
@@ -41,6 +47,7 @@ typedef struct {
     char **slines;       /* data lines of samples.csv, or NULL */
     size_t nslines;
     size_t *idx;         /* job index of each line */
+    uint64_t *key;       /* the hash of its job's key (shard.csv "key") */
     int k, n, reps;
 } shard_in;
 
@@ -54,6 +61,45 @@ static void shard_free(shard_in *s)
     free(s->lines);
     free(s->slines);
     free(s->idx);
+    free(s->key);
+}
+
+/* The key of a results.csv row (curve, d, method, metric, split, tol) as
+ * written, unquoted into buf; 0, or -1 when the line has no six fields. */
+static int row_key(const char *line, char *buf, size_t cap, const char *key[6])
+{
+    size_t n = 0;
+    const char *p = line;
+    for (int k = 0; k < 6; k++) {
+        key[k] = buf + n;
+        if (*p == '"') {
+            for (p++;; p++) {
+                if (!*p)
+                    return -1;
+                if (*p == '"') {
+                    if (p[1] != '"')
+                        break;
+                    p++;
+                }
+                if (n + 1 >= cap)
+                    return -1;
+                buf[n++] = *p;
+            }
+            p++;
+        } else {
+            for (; *p && *p != ','; p++) {
+                if (n + 1 >= cap)
+                    return -1;
+                buf[n++] = *p;
+            }
+        }
+        if (n + 1 >= cap || (*p != ',' && k < 5) || (k == 5 && *p != ',' && *p))
+            return -1;
+        buf[n++] = '\0';
+        if (*p)
+            p++;
+    }
+    return 0;
 }
 
 /* Splits text into lines in place (LF or CRLF); *hdr gets the first line,
@@ -101,6 +147,14 @@ static int load_shard(shard_in *s, const char *dir)
     char path[4200], err[1024];
     memset(s, 0, sizeof *s);
     s->dir = dir;
+    snprintf(path, sizeof path, "%s/results.journal.csv", dir);
+    FILE *jf = fopen(path, "r");
+    if (jf || errno != ENOENT) {
+        if (jf)
+            fclose(jf);
+        ob_error("merge: %s: an unfinished shard (%s is there: finish it with run ... --resume %s)", dir, path, dir);
+        return -1;
+    }
     snprintf(path, sizeof path, "%s/meta.json", dir);
     if (ob_json_load(path, &s->meta, err, sizeof err) != 0 ||
         ob_slurp(path, &s->meta_text, &s->meta_len, err, sizeof err) != 0) {
@@ -140,29 +194,44 @@ static int load_shard(shard_in *s, const char *dir)
         ob_error("merge: %s", err);
         return -1;
     }
-    if (split_lines(s->idx_text, s->idx_len, &hdr, &il, &ni) != 0 || !hdr || strcmp(hdr, "job") != 0 ||
+    if (split_lines(s->idx_text, s->idx_len, &hdr, &il, &ni) != 0 || !hdr || strcmp(hdr, "job,key") != 0 ||
         ni != s->nlines) {
         free(il);
-        ob_error("merge: %s: expected the header 'job' and one index per row of results.csv (%zu)", path,
+        ob_error("merge: %s: expected the header 'job,key' and one index per row of results.csv (%zu)", path,
                  s->nlines);
         return -1;
     }
     s->idx = malloc((ni ? ni : 1) * sizeof *s->idx);
-    for (size_t i = 0; s->idx && i < ni; i++) {
-        char *e;
+    s->key = malloc((ni ? ni : 1) * sizeof *s->key);
+    for (size_t i = 0; s->idx && s->key && i < ni; i++) {
+        char *e, *e2;
         errno = 0;
         unsigned long long v = strtoull(il[i], &e, 10);
-        if (*il[i] == '-' || *e || errno) {
-            ob_error("merge: %s:%zu: '%s' is not a job index", path, i + 2, il[i]);
+        const int bad = *il[i] == '-' || e == il[i] || *e != ',' || errno;
+        unsigned long long h = bad ? 0 : strtoull(e + 1, &e2, 16);
+        if (bad || e2 != e + 17 || *e2 || errno) {
+            ob_error("merge: %s:%zu: '%s' is not a job index and key hash", path, i + 2, il[i]);
             free(il);
             return -1;
         }
         s->idx[i] = (size_t)v;
+        s->key[i] = (uint64_t)h;
     }
     free(il);
-    if (!s->idx) {
+    if (!s->idx || !s->key) {
         ob_error("out of memory");
         return -1;
+    }
+    /* every row must be the job shard.csv says it is */
+    for (size_t i = 0; i < ni; i++) {
+        char buf[4096];
+        const char *key[6];
+        if (row_key(s->lines[i], buf, sizeof buf, key) != 0 || ob_key_step(OB_FNV_BASIS, key) != s->key[i]) {
+            ob_error("merge: %s/results.csv:%zu: the row is not job %zu of the run (%s/shard.csv:%zu): rows "
+                     "edited, reordered or from another run",
+                     dir, i + 2, s->idx[i], dir, i + 2);
+            return -1;
+        }
     }
     snprintf(path, sizeof path, "%s/samples.csv", dir);
     FILE *probe = fopen(path, "r");
@@ -181,7 +250,7 @@ static int load_shard(shard_in *s, const char *dir)
 /* What every shard of one run has in common. */
 static int check_same(const shard_in *a, const shard_in *b)
 {
-    static const char *const keys[] = {"plan_hash", "jobs_total", "git_commit", "compiler", "cflags", "reps"};
+    static const char *const keys[] = {"plan_hash", "plan_seed", "jobs_total", "git_commit", "compiler", "cflags", "reps"};
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
         if (!ob_json_same(ob_json_get(&a->meta, keys[k]), ob_json_get(&b->meta, keys[k]))) {
             ob_error("merge: %s and %s are not shards of one run: %s %s vs %s", a->dir, b->dir, keys[k],
@@ -361,6 +430,31 @@ int ob_cmd_merge(int argc, char **argv)
             ob_error("merge: job %zu is in no shard: a gap (of %zu jobs)", j, total);
             goto done;
         }
+    /* the rows' keys in job order must give the plan's hash: each row is the
+     * job its shard.csv names (checked above), and these are the run's jobs
+     * at those indices */
+    {
+        const ob_json_entry *ps = ob_json_get(&sh[0].meta, "plan_seed"), *ph = ob_json_get(&sh[0].meta, "plan_hash");
+        if (!ps || !ph || ps->type != OB_JSON_STRING || ph->type != OB_JSON_STRING) {
+            ob_error("merge: %s/meta.json: no plan_seed or plan_hash (written by an older offbench?)", in[0]);
+            goto done;
+        }
+        uint64_t h = (uint64_t)strtoull(ps->value, NULL, 16);
+        for (size_t j = 0; j < total; j++) {
+            char buf[4096];
+            const char *key[6];
+            row_key(sh[who[j]].lines[row[j]], buf, sizeof buf, key);  /* parsed in load_shard */
+            h = ob_key_step(h, key);
+        }
+        char hex[20];
+        snprintf(hex, sizeof hex, "%016" PRIx64, h);
+        if (strcmp(hex, ph->value) != 0) {
+            ob_error("merge: the rows in job order are not the run's jobs (their keys hash to %s, plan_hash is %s): "
+                     "job indices in shard.csv edited?",
+                     hex, ph->value);
+            goto done;
+        }
+    }
     if (ob_mkdir_p(out) != 0) {
         ob_error("merge: --out: cannot create '%s': %s", out, strerror(errno));
         status = 1;

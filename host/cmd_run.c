@@ -300,14 +300,17 @@ static int select_shard(const ob_run_opts *o, ob_job **jobs, size_t *njobs, size
 typedef struct {
     const size_t *idx;
     size_t n;
+    const ob_job *jobs;
 } shard_out;
 
 static int write_shard_cb(FILE *f, void *ctx)
 {
     const shard_out *s = ctx;
-    fprintf(f, "job\n");
+    /* each job's index in the whole run and the hash of its key (shard.h),
+     * for merge to check the rows of results.csv against the plan */
+    fprintf(f, "job,key\n");
     for (size_t i = 0; i < s->n; i++)
-        fprintf(f, "%zu\n", s->idx[i]);
+        fprintf(f, "%zu,%016" PRIx64 "\n", s->idx[i], ob_job_key_step(OB_FNV_BASIS, &s->jobs[i]));
     return ferror(f) ? -1 : 0;
 }
 
@@ -578,6 +581,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         }
         o.jobs_total = njobs;
         o.plan_hash = ob_plan_hash(jobs, njobs, fp);
+        o.plan_seed = ob_plan_seed(fp);
         free(fp);
     }
     o.data_hash = curves_hash(&o, &set);
@@ -688,7 +692,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) == 0 &&
         (o.reps == 0 || drc != 0 || ob_write_atomically(o.out_dir, "samples.csv", write_samples_cb, &r) == 0) &&
         (o.shard_n == 0 || ob_write_atomically(o.out_dir, "shard.csv", write_shard_cb,
-                                               &(shard_out){shard_idx, njobs}) == 0) &&
+                                               &(shard_out){shard_idx, njobs, jobs}) == 0) &&
         ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) == 0;
     free(rfp);
     status = written ? 0 : 1;

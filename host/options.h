@@ -55,6 +55,7 @@ typedef struct {
      * and plan hash (shard.h), equal in every shard of one run */
     size_t jobs_total;
     uint64_t plan_hash;
+    uint64_t plan_seed;          /* ob_plan_seed(): merge recomputes plan_hash */
     int mpi_ranks;               /* > 1: run by that many MPI ranks (mpirun.h) */
     ob_driver_opts driver;
     ob_backend_info binfo;       /* for meta.json */

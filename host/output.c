@@ -230,7 +230,8 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
         fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
     else
         fprintf(f, "  \"shard\": null,\n");
-    fprintf(f, "  \"jobs_total\": %zu,\n  \"plan_hash\": \"%016" PRIx64 "\",\n", o->jobs_total, o->plan_hash);
+    fprintf(f, "  \"jobs_total\": %zu,\n  \"plan_hash\": \"%016" PRIx64 "\",\n  \"plan_seed\": \"%016" PRIx64 "\",\n",
+            o->jobs_total, o->plan_hash, o->plan_seed);
     fprintf(f, "  \"wall_seconds\": %.3f,\n  \"argv\": [", wall_seconds);
     for (int i = 0; i < o->argc; i++) {
         if (i)

@@ -109,19 +109,32 @@ static uint64_t fnv_str(uint64_t h, const char *s)
     return fnv(h, s, strlen(s) + 1);  /* with the NUL: "ab","c" != "a","bc" */
 }
 
+uint64_t ob_plan_seed(const char *fp)
+{
+    return fnv_str(14695981039346656037ULL, fp);
+}
+
+uint64_t ob_key_step(uint64_t h, const char *const key[6])
+{
+    for (int k = 0; k < 6; k++)
+        h = fnv_str(h, key[k]);
+    return h;
+}
+
+uint64_t ob_job_key_step(uint64_t h, const ob_job *j)
+{
+    char d[40], tol[40];
+    ob_fmt_double(d, sizeof d, j->d);
+    ob_fmt_double(tol, sizeof tol, j->tol);
+    const char *const key[6] = {j->curve->id, d, j->method->name, ob_metric_name(j->metric),
+                                ob_split_name(j->split), tol};
+    return ob_key_step(h, key);
+}
+
 uint64_t ob_plan_hash(const ob_job *jobs, size_t njobs, const char *fp)
 {
-    uint64_t h = fnv_str(14695981039346656037ULL, fp);
-    for (size_t i = 0; i < njobs; i++) {
-        char d[40], tol[40];
-        ob_fmt_double(d, sizeof d, jobs[i].d);
-        ob_fmt_double(tol, sizeof tol, jobs[i].tol);
-        h = fnv_str(h, jobs[i].curve->id);
-        h = fnv_str(h, d);
-        h = fnv_str(h, jobs[i].method->name);
-        h = fnv_str(h, ob_metric_name(jobs[i].metric));
-        h = fnv_str(h, ob_split_name(jobs[i].split));
-        h = fnv_str(h, tol);
-    }
+    uint64_t h = ob_plan_seed(fp);
+    for (size_t i = 0; i < njobs; i++)
+        h = ob_job_key_step(h, &jobs[i]);
     return h;
 }

@@ -39,4 +39,14 @@ int ob_shard_parse(const char *opt, const char *spec, int *k, int *n);
  *          one run, different for another run. */
 uint64_t ob_plan_hash(const ob_job *jobs, size_t njobs, const char *fp);
 
+/* Purpose: the pieces of ob_plan_hash, for `merge` to recompute it from the
+ *          rows: the hash of the fingerprint alone (meta.json "plan_seed"),
+ *          then one step per job over its key as results.csv writes it
+ *          (curve, d, method, metric, split, tol).  ob_key_step(FNV offset
+ *          basis, key) alone is a job's key hash (shard.csv "key"). */
+uint64_t ob_plan_seed(const char *fp);
+uint64_t ob_key_step(uint64_t h, const char *const key[6]);
+uint64_t ob_job_key_step(uint64_t h, const ob_job *j);
+#define OB_FNV_BASIS 14695981039346656037ULL
+
 #endif

@@ -40,12 +40,34 @@ mkdir "$T/empty"
 refuse "not a finished shard" "$T/s0" "$T/s1" "$T/empty"
 refuse "not a run with --shard" "$T/s0" "$T/s1" "$T/all"
 cp -r "$T/s1" "$T/o1"
-first0=$(sed -n 2p "$T/s0/shard.csv")
-awk -v f="$first0" 'NR==2{print f; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+first0=$(sed -n 2p "$T/s0/shard.csv" | cut -d, -f1)
+awk -F, -v OFS=, -v f="$first0" 'NR==2{$1=f} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
 refuse "overlapping shards" "$T/s0" "$T/o1" "$T/s2"
 head -n 3 "$T/s1/shard.csv" > "$T/o1/shard.csv"
 refuse "one index per row" "$T/s0" "$T/o1" "$T/s2"
 refuse "usage"
+# merge checks every row's key against the plan's job index (exit 2 naming
+# the shard file and line), and takes no unfinished shard (a journal)
+rm -rf "$T/o1" && cp -r "$T/s1" "$T/o1"
+own=$(sed -n 3p "$T/s1/results.csv" | cut -d, -f1)
+other=$(tail -n +2 "$T/all/results.csv" | cut -d, -f1 | grep -v -x -F "$own" | head -n 1)
+awk -F, -v OFS=, -v c="$other" 'NR==3{$1=c} {print}' "$T/s1/results.csv" > "$T/o1/results.csv"
+refuse "o1/results.csv:3: " "$T/s0" "$T/o1" "$T/s2"
+{ head -n 1 "$T/s1/results.csv"; tail -n +2 "$T/s1/results.csv" | sed -n '1!G;h;$p'; } > "$T/o1/results.csv"
+refuse "o1/results.csv:2: " "$T/s0" "$T/o1" "$T/s2"
+cp "$T/s1/results.csv" "$T/o1/results.csv"
+# job indices swapped in shard.csv alone: the rows no longer sit at their jobs
+awk -F, -v OFS=, 'NR==2{a=$0; next} NR==3{print; print a; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+refuse "o1/results.csv:2: " "$T/s0" "$T/o1" "$T/s2"
+# only the job indices swapped (each key kept with its row): the plan hash
+awk -F, -v OFS=, 'NR==2{a=$1; b=$2; next} NR==3{print $1, b; print a, $2; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+refuse "not the run's jobs" "$T/s0" "$T/o1" "$T/s2"
+cp "$T/s1/shard.csv" "$T/o1/shard.csv"
+: > "$T/o1/results.journal.csv"
+refuse "o1: an unfinished shard" "$T/s0" "$T/o1" "$T/s2"
+rm -f "$T/o1/results.journal.csv"
+$OB merge "$T/s0" "$T/o1" "$T/s2" --out "$T/m2" 2>"$T/e.txt"
+check '[ $? -eq 0 ]' "the untouched copy merges: $(cat "$T/e.txt")"
 
 # repetitions: samples.csv is merged too
 for k in 0 1; do $OB run $R --reps 2 --shard $k/2 --out "$T/r$k" 2>/dev/null; done
