@@ -301,6 +301,9 @@ int ob_cmd_merge(int argc, char **argv)
         ob_error("merge: usage: ./offbench merge DIR... --out DIR (the directories of run --shard K/N)");
         goto done;
     }
+    /* the shards themselves are the inputs: --out must not be, or hold, one */
+    if (ob_check_out_not_input("merge", out, 1, in, (size_t)nin) != 0)
+        goto done;  /* status 2 */
     sh = calloc((size_t)nin, sizeof *sh);
     if (!sh)
         goto done;

@@ -603,7 +603,10 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
             char err[8400];
             struct stat st;
             int lrc = 0;
-            if (o.resume_dir && stat(o.out_dir, &st) != 0) {
+            const char *const inputs[] = {o.curves_file};
+            if (ob_check_out_not_input("run", o.out_dir, 1, inputs, 1) != 0) {
+                dirfail = 2;  /* the curve file would sit among (or be) the run's outputs */
+            } else if (o.resume_dir && stat(o.out_dir, &st) != 0) {
                 ob_error("--resume: %s does not exist: nothing to resume", o.out_dir);
                 dirfail = 2;
             } else if (!o.resume_dir && ob_mkdir_p(o.out_dir) != 0) {

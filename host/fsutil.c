@@ -122,3 +122,82 @@ int ob_lock_dir(const char *dir, int *fd_out, char *err, size_t errlen)
     *fd_out = fd;
     return 0;
 }
+
+/* stat of path's directory and its last name (for a path that need not
+ * exist); 0 or -1. */
+static int parent_of(const char *path, struct stat *dst, const char **base)
+{
+    char dir[4200];
+    const char *slash = strrchr(path, '/');
+    while (slash && slash > path && !slash[1]) {  /* "a/b/": b is the name */
+        const char *s = slash - 1;
+        while (s > path && *s != '/')
+            s--;
+        slash = *s == '/' ? s : NULL;
+    }
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    *base = slash ? slash + 1 : path;
+    return stat(dir, dst);
+}
+
+static int same_node(const struct stat *a, const struct stat *b)
+{
+    return a->st_dev == b->st_dev && a->st_ino == b->st_ino;
+}
+
+/* Is the existing file or directory path, or one of the directories above
+ * it, the directory d?  Walks up through "/.." by device and inode. */
+static int lies_in(const char *path, const struct stat *d)
+{
+    char buf[4200];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return 0;
+    struct stat st, prev;
+    if (stat(buf, &st) != 0)
+        return 0;
+    for (int depth = 0; depth < 256; depth++) {
+        if (same_node(&st, d))
+            return 1;
+        prev = st;
+        const size_t len = strlen(buf);
+        if (len + 4 >= sizeof buf || snprintf(buf + len, sizeof buf - len, "/..") < 0 || stat(buf, &st) != 0)
+            return 0;
+        if (same_node(&st, &prev))  /* the root is its own parent */
+            return 0;
+    }
+    return 0;
+}
+
+int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, const char *const *in, size_t nin)
+{
+    struct stat os, ps;
+    const char *obase = NULL;
+    const int exists = stat(out, &os) == 0;
+    const int parent_ok = !exists && parent_of(out, &ps, &obase) == 0;
+    for (size_t i = 0; i < nin; i++) {
+        if (!in[i])
+            continue;
+        int clash = 0;
+        struct stat is;
+        if (exists && (out_is_dir || S_ISDIR(os.st_mode)))
+            clash = lies_in(in[i], &os);  /* the directory is, or holds, the input */
+        else if (exists)
+            clash = stat(in[i], &is) == 0 && same_node(&is, &os);
+        else if (parent_ok) {  /* not there yet: the same directory and name */
+            struct stat ips;
+            const char *ibase = NULL;
+            clash = parent_of(in[i], &ips, &ibase) == 0 && same_node(&ips, &ps) && strcmp(ibase, obase) == 0;
+        }
+        if (clash) {
+            ob_error("%s: --out %s %s the input %s: it would be overwritten; choose another --out", cmd, out,
+                     exists && (out_is_dir || S_ISDIR(os.st_mode)) && !(stat(in[i], &is) == 0 && same_node(&is, &os))
+                         ? "holds" : "is",
+                     in[i]);
+            return -1;
+        }
+    }
+    return 0;
+}
