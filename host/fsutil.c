@@ -158,6 +158,16 @@ static int lies_in(const char *path, const struct stat *d)
     struct stat st, prev;
     if (stat(buf, &st) != 0)
         return 0;
+    if (!S_ISDIR(st.st_mode)) {  /* a file: is it the directory? then its directory on up */
+        const char *base;
+        if (same_node(&st, d) || parent_of(path, &st, &base) != 0)
+            return same_node(&st, d);
+        const char *slash = strrchr(path, '/');
+        if (!slash)
+            snprintf(buf, sizeof buf, ".");
+        else
+            snprintf(buf, sizeof buf, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    }
     for (int depth = 0; depth < 256; depth++) {
         if (same_node(&st, d))
             return 1;
@@ -198,6 +208,57 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
                      in[i]);
             return -1;
         }
+    }
+    return 0;
+}
+
+/* Every file of the set to NAME.tmp (flushed and fsync'ed), and only when all
+ * of them are complete the renames, in the caller's order.  A failed write
+ * (disk full, a size limit) therefore changes none of the files; the
+ * temporaries go. */
+int ob_write_set_atomically(const char *dir, const ob_out_file *files, size_t n)
+{
+    char path[4200], tmp[4210];
+    size_t done = 0;
+    int ok = 1;
+    for (; done < n && ok; done++) {
+        snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[done].name);
+        FILE *f = fopen(tmp, "w");
+        if (!f) {
+            ob_error("%s: cannot write: %s", tmp, strerror(errno));
+            break;
+        }
+        int rc = files[done].writer(f, files[done].ctx);
+        if (rc == 0 && (fflush(f) != 0 || fsync(fileno(f)) != 0))
+            rc = -1;
+        if (fclose(f) != 0 || rc != 0) {
+            ob_error("%s: write failed", tmp);
+            ok = 0;
+        }
+    }
+    if (!ok || done < n) {
+        for (size_t i = 0; i < done + (done < n); i++) {
+            snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[i].name);
+            remove(tmp);
+        }
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
+        snprintf(tmp, sizeof tmp, "%s.tmp", path);
+        if (rename(tmp, path) != 0) {
+            ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+            for (size_t k = i; k < n; k++) {
+                snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[k].name);
+                remove(tmp);
+            }
+            return -1;
+        }
+    }
+    const int dfd = open(dir, O_RDONLY);  /* the renames themselves to disk */
+    if (dfd >= 0) {
+        (void)fsync(dfd);
+        close(dfd);
     }
     return 0;
 }
