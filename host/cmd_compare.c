@@ -302,6 +302,10 @@ int ob_cmd_compare(int argc, char **argv)
     }
     for (int i = 0; i < r.incomparable.n; i++)
         ob_error("not comparable: %s", r.incomparable.v[i]);
+    const char *const inputs[] = {o.in[0], o.in[1], b.results_path, b.meta_path, b.samples_path,
+                                  n.results_path, n.meta_path, n.samples_path};
+    if (o.out && ob_check_out_not_input("compare", o.out, 0, inputs, sizeof inputs / sizeof inputs[0]) != 0)
+        goto done;  /* status 2 */
     report_ctx ctx = {&o, &b, &n, &r};
     if (emit(&o, &ctx) == 0)
         status = ob_cmp_status(&r);

@@ -539,6 +539,11 @@ static int run_cmd(int trace, int argc, char **argv)
     status = ob_jobview_open(&v, cmd, a.argc, a.argv, a.have_d, a.d);
     FILE *f = NULL;
     const int to_stdout = trace && (!a.out || strcmp(a.out, "-") == 0);
+    if (status == 0 && !to_stdout) {
+        const char *const inputs[] = {v.o.curves_file};
+        if (ob_check_out_not_input(cmd, a.out, 0, inputs, 1) != 0)
+            status = 2;
+    }
     if (status == 0) {
         f = to_stdout ? stdout : fopen(a.out, "w");
         if (!f) {

@@ -370,6 +370,9 @@ int ob_cmd_merge(int argc, char **argv)
         ob_error("merge: usage: ./offbench merge DIR... --out DIR (the directories of run --shard K/N)");
         goto done;
     }
+    /* the shards themselves are the inputs: --out must not be, or hold, one */
+    if (ob_check_out_not_input("merge", out, 1, in, (size_t)nin) != 0)
+        goto done;  /* status 2 */
     sh = calloc((size_t)nin, sizeof *sh);
     if (!sh)
         goto done;
@@ -461,11 +464,13 @@ int ob_cmd_merge(int argc, char **argv)
         goto done;
     }
     merged m = {sh, nin, total, who, row, wall};
-    status = ob_write_atomically(out, "results.csv", write_results_cb, &m) == 0 &&
-                     (!sh[0].smp_text || ob_write_atomically(out, "samples.csv", write_samples_cb, &m) == 0) &&
-                     ob_write_atomically(out, "meta.json", write_meta_cb, &m) == 0
-                 ? 0
-                 : 1;
+    ob_out_file set[3];  /* all or none, results.csv renamed last */
+    size_t nset = 0;
+    set[nset++] = (ob_out_file){"meta.json", write_meta_cb, &m};
+    if (sh[0].smp_text)
+        set[nset++] = (ob_out_file){"samples.csv", write_samples_cb, &m};
+    set[nset++] = (ob_out_file){"results.csv", write_results_cb, &m};
+    status = ob_write_set_atomically(out, set, nset) == 0 ? 0 : 1;
     if (status == 0)
         fprintf(stderr, "offbench: merged %d shards, %zu jobs, into %s/results.csv\n", nin, total, out);
 done:

@@ -361,11 +361,14 @@ static int mpi_write(const ob_job *jobs, size_t njobs, const size_t *idx, ob_run
         ob_error("rank %d: gathering the rows at rank 0 failed", ob_mpi_rank());
     } else if (ob_mpi_rank() == 0) {
         run_out r = {NULL, o->jobs_total, o, where, wall, NULL, NULL};
-        const int written =
-            ob_write_atomically(o->out_dir, "results.csv", write_text_cb, &(text_out){OB_RESULTS_HEADER, res}) == 0 &&
-            (o->reps == 0 ||
-             ob_write_atomically(o->out_dir, "samples.csv", write_text_cb, &(text_out){OB_SAMPLES_HEADER, sam}) == 0) &&
-            ob_write_atomically(o->out_dir, "meta.json", write_meta_cb, &r) == 0;
+        text_out rt = {OB_RESULTS_HEADER, res}, st = {OB_SAMPLES_HEADER, sam};
+        ob_out_file set[3];
+        size_t nset = 0;
+        set[nset++] = (ob_out_file){"meta.json", write_meta_cb, &r};
+        if (o->reps != 0)
+            set[nset++] = (ob_out_file){"samples.csv", write_text_cb, &st};
+        set[nset++] = (ob_out_file){"results.csv", write_text_cb, &rt};  /* last: see ob_write_set_atomically */
+        const int written = ob_write_set_atomically(o->out_dir, set, nset) == 0;
         fprintf(stderr, "offbench: %d ranks, %zu jobs in %.2f s: %s %s/results.csv\n", o->mpi_ranks, o->jobs_total,
                 wall, written ? "wrote" : "could not write", o->out_dir);
         status = written ? 0 : 1;
@@ -607,7 +610,10 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
             char err[8400];
             struct stat st;
             int lrc = 0;
-            if (o.resume_dir && stat(o.out_dir, &st) != 0) {
+            const char *const inputs[] = {o.curves_file};
+            if (ob_check_out_not_input("run", o.out_dir, 1, inputs, 1) != 0) {
+                dirfail = 2;  /* the curve file would sit among (or be) the run's outputs */
+            } else if (o.resume_dir && stat(o.out_dir, &st) != 0) {
                 ob_error("--resume: %s does not exist: nothing to resume", o.out_dir);
                 dirfail = 2;
             } else if (!o.resume_dir && ob_mkdir_p(o.out_dir) != 0) {
@@ -686,14 +692,21 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         goto done;
     }
     run_out r = {jobs, njobs, &o, where, wall, rep_fit, rep_eval};
-    /* the fingerprint first: a results.csv is never there without its own */
-    const int written =
-        ob_write_atomically(o.out_dir, "results.fingerprint", write_line_cb, rfp) == 0 &&
-        ob_write_atomically(o.out_dir, "results.csv", write_results_cb, &r) == 0 &&
-        (o.reps == 0 || drc != 0 || ob_write_atomically(o.out_dir, "samples.csv", write_samples_cb, &r) == 0) &&
-        (o.shard_n == 0 || ob_write_atomically(o.out_dir, "shard.csv", write_shard_cb,
-                                               &(shard_out){shard_idx, njobs, jobs}) == 0) &&
-        ob_write_atomically(o.out_dir, "meta.json", write_meta_cb, &r) == 0;
+    /* All or none: every file is written to a temporary first and renamed
+     * only when all are complete, results.csv last, so a results.csv is
+     * never there beside another run's fingerprint, meta.json, samples.csv
+     * or shard.csv (ob_write_set_atomically; README "Output"). */
+    shard_out so = {shard_idx, njobs, jobs};
+    ob_out_file outs[5];
+    size_t nset = 0;
+    outs[nset++] = (ob_out_file){"results.fingerprint", write_line_cb, rfp};
+    if (o.reps != 0 && drc == 0)
+        outs[nset++] = (ob_out_file){"samples.csv", write_samples_cb, &r};
+    if (o.shard_n != 0)
+        outs[nset++] = (ob_out_file){"shard.csv", write_shard_cb, &so};
+    outs[nset++] = (ob_out_file){"meta.json", write_meta_cb, &r};
+    outs[nset++] = (ob_out_file){"results.csv", write_results_cb, &r};
+    const int written = ob_write_set_atomically(o.out_dir, outs, nset) == 0;
     free(rfp);
     status = written ? 0 : 1;
     ob_journal_close(&journal, written);  /* results.csv has every row now */

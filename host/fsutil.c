@@ -122,3 +122,143 @@ int ob_lock_dir(const char *dir, int *fd_out, char *err, size_t errlen)
     *fd_out = fd;
     return 0;
 }
+
+/* stat of path's directory and its last name (for a path that need not
+ * exist); 0 or -1. */
+static int parent_of(const char *path, struct stat *dst, const char **base)
+{
+    char dir[4200];
+    const char *slash = strrchr(path, '/');
+    while (slash && slash > path && !slash[1]) {  /* "a/b/": b is the name */
+        const char *s = slash - 1;
+        while (s > path && *s != '/')
+            s--;
+        slash = *s == '/' ? s : NULL;
+    }
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    *base = slash ? slash + 1 : path;
+    return stat(dir, dst);
+}
+
+static int same_node(const struct stat *a, const struct stat *b)
+{
+    return a->st_dev == b->st_dev && a->st_ino == b->st_ino;
+}
+
+/* Is the existing file or directory path, or one of the directories above
+ * it, the directory d?  Walks up through "/.." by device and inode. */
+static int lies_in(const char *path, const struct stat *d)
+{
+    char buf[4200];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return 0;
+    struct stat st, prev;
+    if (stat(buf, &st) != 0)
+        return 0;
+    if (!S_ISDIR(st.st_mode)) {  /* a file: is it the directory? then its directory on up */
+        const char *base;
+        if (same_node(&st, d) || parent_of(path, &st, &base) != 0)
+            return same_node(&st, d);
+        const char *slash = strrchr(path, '/');
+        if (!slash)
+            snprintf(buf, sizeof buf, ".");
+        else
+            snprintf(buf, sizeof buf, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    }
+    for (int depth = 0; depth < 256; depth++) {
+        if (same_node(&st, d))
+            return 1;
+        prev = st;
+        const size_t len = strlen(buf);
+        if (len + 4 >= sizeof buf || snprintf(buf + len, sizeof buf - len, "/..") < 0 || stat(buf, &st) != 0)
+            return 0;
+        if (same_node(&st, &prev))  /* the root is its own parent */
+            return 0;
+    }
+    return 0;
+}
+
+int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, const char *const *in, size_t nin)
+{
+    struct stat os, ps;
+    const char *obase = NULL;
+    const int exists = stat(out, &os) == 0;
+    const int parent_ok = !exists && parent_of(out, &ps, &obase) == 0;
+    for (size_t i = 0; i < nin; i++) {
+        if (!in[i])
+            continue;
+        int clash = 0;
+        struct stat is;
+        if (exists && (out_is_dir || S_ISDIR(os.st_mode)))
+            clash = lies_in(in[i], &os);  /* the directory is, or holds, the input */
+        else if (exists)
+            clash = stat(in[i], &is) == 0 && same_node(&is, &os);
+        else if (parent_ok) {  /* not there yet: the same directory and name */
+            struct stat ips;
+            const char *ibase = NULL;
+            clash = parent_of(in[i], &ips, &ibase) == 0 && same_node(&ips, &ps) && strcmp(ibase, obase) == 0;
+        }
+        if (clash) {
+            ob_error("%s: --out %s %s the input %s: it would be overwritten; choose another --out", cmd, out,
+                     exists && (out_is_dir || S_ISDIR(os.st_mode)) && !(stat(in[i], &is) == 0 && same_node(&is, &os))
+                         ? "holds" : "is",
+                     in[i]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Every file of the set to NAME.tmp (flushed and fsync'ed), and only when all
+ * of them are complete the renames, in the caller's order.  A failed write
+ * (disk full, a size limit) therefore changes none of the files; the
+ * temporaries go. */
+int ob_write_set_atomically(const char *dir, const ob_out_file *files, size_t n)
+{
+    char path[4200], tmp[4210];
+    size_t done = 0;
+    int ok = 1;
+    for (; done < n && ok; done++) {
+        snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[done].name);
+        FILE *f = fopen(tmp, "w");
+        if (!f) {
+            ob_error("%s: cannot write: %s", tmp, strerror(errno));
+            break;
+        }
+        int rc = files[done].writer(f, files[done].ctx);
+        if (rc == 0 && (fflush(f) != 0 || fsync(fileno(f)) != 0))
+            rc = -1;
+        if (fclose(f) != 0 || rc != 0) {
+            ob_error("%s: write failed", tmp);
+            ok = 0;
+        }
+    }
+    if (!ok || done < n) {
+        for (size_t i = 0; i < done + (done < n); i++) {
+            snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[i].name);
+            remove(tmp);
+        }
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
+        snprintf(tmp, sizeof tmp, "%s.tmp", path);
+        if (rename(tmp, path) != 0) {
+            ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+            for (size_t k = i; k < n; k++) {
+                snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[k].name);
+                remove(tmp);
+            }
+            return -1;
+        }
+    }
+    const int dfd = open(dir, O_RDONLY);  /* the renames themselves to disk */
+    if (dfd >= 0) {
+        (void)fsync(dfd);
+        close(dfd);
+    }
+    return 0;
+}

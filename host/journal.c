@@ -337,7 +337,7 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
     }
     int rc = 0;
     if (blen > 0 && memchr(body, '\n', blen)) {  /* a header line at least */
-        rc = ob_res_parse(body, blen, j->path, restored, err, errlen);
+        rc = ob_res_parse_at(body, blen, j->path, 2, restored, err, errlen);  /* body is line 2 on */
         if (rc == 0) {
             j->f = fopen(j->path, "a");
             if (!j->f) {

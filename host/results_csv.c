@@ -108,7 +108,7 @@ static int csv_next(csv_reader *r, int *line)
  * optional, an error when required).  Returns the field count, or -1. */
 static int csv_header(csv_reader *r, const char *const *cols, int ncols, int nrequired, int *at)
 {
-    int line = 1;
+    int line = r->line;
     if (r->end - r->s >= 3 && memcmp(r->s, "\xef\xbb\xbf", 3) == 0)
         r->s += 3;
     /* count the header's fields first: they size r->f */
@@ -119,7 +119,7 @@ static int csv_header(csv_reader *r, const char *const *cols, int ncols, int nre
     }
     r->f = malloc((size_t)(n + 1) * sizeof *r->f);
     if (!r->f)
-        return csv_fail(r, 1, "out of memory");
+        return csv_fail(r, r->line, "out of memory");
     r->nmax = n + 1;
     int nh = csv_next(r, &line);
     if (nh < 0)
@@ -250,7 +250,8 @@ static int csv_row(csv_reader *r, int *line, int nh)
 }
 
 /* Parses buf[0..len) (owned by t from here on, with room for a NUL). */
-static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen)
+static int parse_owned(char *buf, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
+                       size_t errlen)
 {
     /* required, then the optional joint columns (NREQ on) */
     static const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", "ctrl_points",
@@ -260,14 +261,14 @@ static int parse_owned(char *buf, size_t len, const char *name, ob_res_table *t,
     int at[NCOL];
     memset(t, 0, sizeof *t);
     t->text = buf;
-    csv_reader r = {buf, buf + len, 1, name, NULL, 0, err, errlen};
+    csv_reader r = {buf, buf + len, first_line, name, NULL, 0, err, errlen};
     int cap = 0, line = 0;
     int nh = csv_header(&r, cols, NCOL, NREQ, at);
     if (nh < 0)
         goto fail;
     const int njc = (at[14] >= 0) + (at[15] >= 0) + (at[16] >= 0);
     if (njc != 0 && njc != 3) {
-        csv_fail(&r, 1, "the joint columns max_gap, max_kink and continuity come together (this header has %d of them)",
+        csv_fail(&r, first_line, "the joint columns max_gap, max_kink and continuity come together (this header has %d of them)",
                  njc);
         goto fail;
     }
@@ -349,6 +350,12 @@ fail:
 
 int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen)
 {
+    return ob_res_parse_at(text, len, name, 1, t, err, errlen);
+}
+
+int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
+                    size_t errlen)
+{
     memset(t, 0, sizeof *t);
     char *buf = malloc(len + 1);
     if (!buf) {
@@ -357,7 +364,7 @@ int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t
     }
     memcpy(buf, text, len);
     buf[len] = '\0';
-    return parse_owned(buf, len, name, t, err, errlen);
+    return parse_owned(buf, len, name, first_line, t, err, errlen);
 }
 
 int ob_res_load(const char *path, ob_res_table *t, char *err, size_t errlen)
@@ -367,7 +374,7 @@ int ob_res_load(const char *path, ob_res_table *t, char *err, size_t errlen)
     memset(t, 0, sizeof *t);
     if (ob_slurp(path, &buf, &len, err, errlen))
         return -1;
-    return parse_owned(buf, len, path, t, err, errlen);
+    return parse_owned(buf, len, path, 1, t, err, errlen);
 }
 
 typedef struct {

@@ -63,6 +63,10 @@ typedef struct {
  *          fail / skip / timeout, a duplicate key (naming both lines), no memory.  *t is
  *          always left safe for ob_res_free() (empty after an error). */
 int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen);
+/* As ob_res_parse, for text that starts on line first_line of the file name
+ * (the journal's header is its line 2): messages say NAME:LINE of the file. */
+int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
+                    size_t errlen);
 
 /* Purpose: read and parse the results.csv at path.
  * Errors:  as ob_res_parse, plus "PATH: cannot open: reason". */

@@ -112,5 +112,50 @@ check '[ $? -eq 2 ] && [ ! -e "$T/nodev" ]' "--device NOSUCH: exit 2, no --out c
 $OB tables --table liu2002:1 --device NOSUCH --out "$T/nodevt" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && [ ! -e "$T/nodevt" ]' "tables --device NOSUCH: exit 2, no --out created: $(cat "$T/e.txt")"
 
+# 7. outputs that are inputs: an --out that is, or holds, an input is refused
+# (exit 2, naming both) and the input is left as it was
+mkdir -p "$T/p"
+$OB run $S --methods tiller --shard 0/2 --out "$T/p/sh0" >/dev/null 2>&1
+$OB run $S --methods tiller --shard 1/2 --out "$T/p/sh1" >/dev/null 2>&1
+cp -r "$T/p/sh0" "$T/sh0.orig"
+$OB compare "$T/p/sh0" "$T/p/sh1" --out "$T/p/sh0/results.csv" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "$T/p/sh0/results.csv" "$T/e.txt" && cmp -s "$T/sh0.orig/results.csv" "$T/p/sh0/results.csv"' \
+    "compare A B --out A/results.csv: exit 2 naming it, A untouched: $(cat "$T/e.txt")"
+$OB merge "$T/p/sh0" "$T/p/sh1" --out "$T/p/sh0" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "$T/p/sh0" "$T/e.txt" && diff -r -x .lock "$T/sh0.orig" "$T/p/sh0" >/dev/null' \
+    "merge S0 S1 --out S0: exit 2 naming S0, the shard untouched: $(cat "$T/e.txt")"
+$OB merge "$T/p/sh0" "$T/p/sh1" --out "$T/p" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "$T/p" "$T/e.txt" && [ ! -e "$T/p/results.csv" ]' \
+    "merge --out a directory that holds the shards: exit 2: $(cat "$T/e.txt")"
+$OB run $S --methods tiller --shard 1/2 --resume "$T/p/sh0" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && diff -r -x .lock "$T/sh0.orig" "$T/p/sh0" >/dev/null' \
+    "run --shard 1/2 --resume <shard 0>: exit 2, shard 0 untouched: $(cat "$T/e.txt")"
+mkdir -p "$T/rc"
+cp "$T/ref.curves" "$T/rc/results.csv"
+$OB run --curves "$T/rc/results.csv" --methods tiller --tols 1e-2 --backend cpu --out "$T/rc" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "$T/rc" "$T/e.txt" && cmp -s "$T/ref.curves" "$T/rc/results.csv"' \
+    "run --curves DIR/results.csv --out DIR: exit 2, the curve file untouched: $(cat "$T/e.txt")"
+cp "$T/ref.curves" "$T/dr.curves"
+id=$(grep -m 1 '^curve ' "$T/dr.curves" | awk '{print $2}')
+$OB draw --curves "$T/dr.curves" --curve "$id" --method tiller --tol 1e-2 --backend cpu --out "$T/dr.curves" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && cmp -s "$T/ref.curves" "$T/dr.curves"' "draw --curves F --out F: exit 2, F untouched: $(cat "$T/e.txt")"
+
+# 11a. results.csv and meta.json change together: a write that fails (a file
+# size limit: results.csv fits, meta.json does not) leaves neither
+rm -rf "$T/w"
+OFFBENCH_TEST_OOM_AFTER=3 $OB run $S --methods tiller,cobb --out "$T/w" >/dev/null 2>&1
+(trap '' XFSZ; ulimit -f 5; $OB run $S --methods tiller,cobb --resume "$T/w" >/dev/null 2>"$T/e.txt")
+rc=$?
+check '[ $rc -ne 0 ] && [ ! -e "$T/w/results.csv" ] && [ ! -e "$T/w/meta.json" ] && [ -s "$T/w/results.journal.csv" ]' \
+    "a failed meta.json write: exit $rc, neither results.csv nor meta.json written, journal kept: $(ls "$T/w"; cat "$T/e.txt")"
+check '[ -z "$(ls "$T/w" | grep "\.tmp$")" ]' "a failed write leaves no .tmp: $(ls "$T/w")"
+
+# 11b. a corrupted journal line N is reported as line N
+rm -rf "$T/jl"
+OFFBENCH_TEST_OOM_AFTER=5 $OB run $S --methods tiller,cobb --out "$T/jl" >/dev/null 2>&1
+sed '4s/$/,extra/' "$T/jl/results.journal.csv" > "$T/jl.j" && cp "$T/jl.j" "$T/jl/results.journal.csv"
+$OB run $S --methods tiller,cobb --resume "$T/jl" >/dev/null 2>"$T/e.txt"
+check '[ $? -ne 0 ] && grep -q "results.journal.csv:4:" "$T/e.txt"' "journal line 4 corrupted is named line 4: $(cat "$T/e.txt")"
+
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
