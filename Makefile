@@ -7,7 +7,7 @@
 #   make accept-baseline  run the nightly configuration and make it the baseline
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
 #   make MPI=1      ./offbench built with Open MPI (mpirun -n P ./offbench run ...)
-#   make fuzz       libFuzzer on the curve-file and compare readers (clang; FUZZ_SECONDS each)
+#   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 
 CC      ?= gcc
@@ -142,9 +142,10 @@ accept-baseline:
 # build-fuzz/crash-* and fails the target.  New corpus entries stay in
 # build-fuzz/corpus-*; the seeds are in tests/.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := curves compare
+FUZZ_TARGETS := curves compare journal
 FUZZ_SEEDS_curves := tests/bad_curves datasets
 FUZZ_SEEDS_compare := tests/fuzz/seeds_compare tests/bad_compare
+FUZZ_SEEDS_journal := tests/fuzz/seeds_journal
 FUZZ_DICT_curves := -dict=tests/fuzz/curves.dict
 
 fuzz:
@@ -156,7 +157,8 @@ fuzz-run: $(patsubst %,$(BUILD)/fuzz/fuzz_%,$(FUZZ_TARGETS))
 	    echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
 	    seeds=""; dict=""; \
 	    case $$t in curves) seeds="$(FUZZ_SEEDS_curves)"; dict="$(FUZZ_DICT_curves)";; \
-	                compare) seeds="$(FUZZ_SEEDS_compare)";; esac; \
+	                compare) seeds="$(FUZZ_SEEDS_compare)";; \
+	                journal) seeds="$(FUZZ_SEEDS_journal)";; esac; \
 	    $(BUILD)/fuzz/fuzz_$$t $$dict -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -print_final_stats=1 \
 	        -artifact_prefix=$(BUILD)/crash-$$t- $(BUILD)/corpus-$$t $$seeds > $(BUILD)/fuzz-$$t.log 2>&1 \
 	        || { tail -n 40 $(BUILD)/fuzz-$$t.log; echo "fuzz: $$t FAILED (see $(BUILD)/fuzz-$$t.log)"; exit 1; }; \
