@@ -11,22 +11,8 @@
 
 #include "methods/driver.h"
 #include "tests/check.h"
+#include "tests/driver_fixture.h"
 
-static ob_curve make_curve(const char *id, int deg, const double (*xy)[2], double d)
-{
-    ob_curve c;
-    memset(&c, 0, sizeof c);
-    snprintf(c.id, sizeof c.id, "%s", id);
-    c.nseg = 1;
-    c.seg = calloc(1, sizeof *c.seg);
-    ob_bez_from_points(c.seg, deg, xy);
-    c.nd = 1;
-    c.d = malloc(sizeof *c.d);
-    c.d[0] = d;
-    return c;
-}
-
-static const double ex1[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
 
 /* These tests are about the driver, not the methods (each method's behaviour
  * is tested in its own program): a fixed set of fast methods of both kinds,
@@ -63,7 +49,7 @@ static void run_one(ob_job *j, const ob_curve *c, const char *method, ob_metric 
 /* Liu-Wang Table 1 (Til, Cob) and Ahn Table 1: the protocols of METHODS.md. */
 static void test_published_protocols(void)
 {
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     const double tols[5] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
     const long til[5] = {10, 31, 97, 322, 886}, cob[5] = {10, 31, 94, 316, 865}, ahn[5] = {13, 19, 31, 43, 61};
     for (int sign = -1; sign <= 1; sign += 2) {
@@ -86,7 +72,7 @@ static void test_published_protocols(void)
 /* Every ok job meets its tolerance; counting is 1 + sum of degrees. */
 static void test_counting_and_tolerance(void)
 {
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     for (int mi = 0; driver_methods[mi]; mi++)
         for (int metric = 0; metric < OB_METRIC_COUNT; metric++)
             for (int split = 0; split < OB_SPLIT_COUNT; split++) {
@@ -110,7 +96,7 @@ static void test_counting_and_tolerance(void)
 /* The greedy split reaches no more segments than the midpoint split. */
 static void test_greedy_not_worse(void)
 {
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     const double tols[3] = {1e-2, 1e-3, 1e-4};
     for (int m = 0; driver_methods[m]; m++)
         for (int i = 0; i < 3; i++) {
@@ -127,7 +113,7 @@ static void test_greedy_not_worse(void)
  * complete (if too coarse) approximation. */
 static void test_limits(void)
 {
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     ob_driver_opts o = fast_opts();
     o.max_segments = 5;
     for (int split = 0; split < OB_SPLIT_COUNT; split++) {
@@ -151,7 +137,7 @@ static void test_limits(void)
 static void test_presplit(void)
 {
     const double s_curve[4][2] = {{0, 0}, {1, 1}, {2, -1}, {3, 0}};
-    ob_curve c = make_curve("s", 3, s_curve, 0.1);
+    ob_curve c = fixture_curve("s", 3, s_curve, 0.1);
     ob_job j;
     run_one(&j, &c, "cobb", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, NULL);
     CHECK(j.segments == 2, "S curve, huge tol: %d segments (inflection split)", j.segments);
@@ -165,7 +151,7 @@ static void test_presplit(void)
 
     /* a convex cubic whose tangent turns by more than pi */
     const double wide[4][2] = {{0, 0}, {4, 3}, {-4, 3}, {0, 0.5}};
-    ob_curve w = make_curve("wide", 3, wide, 0.05);
+    ob_curve w = fixture_curve("wide", 3, wide, 0.05);
     CHECK(ob_bez_inflections(&w.seg[0], (double[8]){0}, 8) == 0, "test curve is convex");
     CHECK(ob_bez_turn(&w.seg[0], 512) > OB_PI, "test curve turns by %g > pi", ob_bez_turn(&w.seg[0], 512));
     run_one(&j, &w, "ahn", OB_METRIC_RADIAL, OB_SPLIT_MID, 1e3, NULL);
@@ -198,7 +184,7 @@ static void test_failures_are_contained(void)
                                .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = same_degree, .fit = fail_fit};
     const ob_method garbage = {.name = "garbage", .citation = "test", .continuity = "G0",
                                .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = same_degree, .fit = nan_fit};
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     ob_job jobs[3];
     memset(jobs, 0, sizeof jobs);
     const ob_method *ms[3] = {&failing, &garbage, ob_method_find("tiller")};
@@ -222,7 +208,7 @@ static void test_failures_are_contained(void)
     CHECK(jobs[2].status == OB_OK && jobs[2].max_err <= 1e-3, "a good job beside them is unaffected");
 
     /* rational input to a polynomial-only method: skip with a reason */
-    ob_curve r = make_curve("arc", 2, (const double[3][2]){{1, 0}, {1, 1}, {0, 1}}, 0.5);
+    ob_curve r = fixture_curve("arc", 2, (const double[3][2]){{1, 0}, {1, 1}, {0, 1}}, 0.5);
     ob_bez_set(&r.seg[0], 1, 1, 1, sqrt(0.5));
     ob_job j;
     run_one(&j, &r, "ahn", OB_METRIC_HAUSDORFF, OB_SPLIT_MID, 1e-3, NULL);
@@ -260,11 +246,11 @@ static ob_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fi
 
 static void test_retry_and_counts(void)
 {
-    static const ob_param pp[1] = {{"count", 0.0, "control points claimed per fit (0: from the degrees)"}};
+    static const ob_param pp[1] = {{"count", 0.0, "control points claimed per fit (0: from the degrees)", 0.0, 1e6, 1}};
     const ob_method picky = {.name = "picky", .citation = "test", .continuity = "G0",
                              .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = ob_degree_same,
                              .fit = picky_fit, .params = pp, .nparams = 1};
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     double par[OB_MAX_PARAMS] = {0};
     ob_job j;
     memset(&j, 0, sizeof j);
@@ -299,7 +285,7 @@ static void test_retry_and_counts(void)
 static void test_determinism(void)
 {
     const double q5[6][2] = {{3, -1}, {4, 2}, {4.5, 2}, {5.5, 1.5}, {6.5, 0}, {7, -1}};
-    ob_curve c[2] = {make_curve("ex1", 3, ex1, 1.0), make_curve("q5", 5, q5, 0.5)};
+    ob_curve c[2] = {fixture_curve("ex1", 3, fixture_liu_ex1, 1.0), fixture_curve("q5", 5, q5, 0.5)};
     enum { NJ = 2 * 3 * 3 * 2 };
     ob_job ref[NJ], got[NJ];
     int n = 0;
@@ -337,7 +323,7 @@ static void test_determinism(void)
  * (what draw and trace rely on). */
 static void test_span_log(void)
 {
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     const ob_driver_opts fast = fast_opts();
     for (int m = 0; driver_methods[m]; m++)
         for (int sp = 0; sp < OB_SPLIT_COUNT; sp++) {
@@ -393,7 +379,7 @@ static void test_span_log(void)
  * on. */
 static void test_job_timeout(void)
 {
-    ob_curve c = make_curve("ex1", 3, ex1, 1.0);
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     ob_driver_opts o = fast_opts();
     o.job_timeout_ns = 1.0;  /* 1 ns: any job needing a second level */
     ob_job j[2];

@@ -137,7 +137,7 @@ static ob_bez rough_offset(const ob_bez *base, double d, int m, double noise, in
 
 static double measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d, int S, double *t)
 {
-    ob_errval e = {NAN, NAN};
+    ob_errval e = {NAN, NAN, 0.0};
     int rc = ob_measure(m, base, approx, d, S, &e);
     if (t)
         *t = e.t;
@@ -581,7 +581,7 @@ static void test_measure(void)
     /* unknown metric ids */
     static const int bad_ids[3] = {OB_METRIC_COUNT, 99, -1};
     for (int i = 0; i < 3; i++) {
-        ob_errval e = {0, 0};
+        ob_errval e = {0, 0, 0};
         int rc = ob_measure((ob_metric)bad_ids[i], &base, &app, d, 256, &e);
         CHECK(rc == -1 && isinf(e.err) && e.err > 0, "unknown metric %d: rc %d err %g", bad_ids[i], rc, e.err);
     }
@@ -621,7 +621,7 @@ static void test_measure(void)
                 int i = idx == 0 ? 0 : idx == 1 ? victim->deg / 2 : victim->deg;
                 victim->h[i][0] = NAN;
                 for (int m = 0; m < OB_METRIC_COUNT; m++) {
-                    ob_errval e = {0, 0};
+                    ob_errval e = {0, 0, 0};
                     ob_measure((ob_metric)m, &b, &a, d, 256, &e);
                     CHECK(isinf(e.err) && e.err > 0, "%s: NaN in the %s's control point %d (%s): err = %g, expected +inf",
                           ob_metric_name(m), which ? "base" : "approximation", i, rat ? "rational" : "polynomial",

@@ -10,8 +10,8 @@
 
 #include "methods/driver.h"
 #include "tests/check.h"
+#include "tests/driver_fixture.h"
 
-static const double ex1[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
 static const double tols[5] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
 
 /* tiller's fit, counting its calls (a test method may keep state) */
@@ -25,13 +25,7 @@ static ob_status counting_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob
 
 static void setup(ob_job *j, const ob_curve *c, const ob_method *m, ob_split sp, double tol)
 {
-    memset(j, 0, sizeof *j);
-    j->curve = c;
-    j->d = c->d[0];
-    j->method = m;
-    j->metric = OB_METRIC_HAUSDORFF;
-    j->split = sp;
-    j->tol = tol;
+    fixture_job(j, c, m, OB_METRIC_HAUSDORFF, sp, tol);
 }
 
 static int same_result(const ob_job *a, const ob_job *b)
@@ -74,15 +68,7 @@ static int uses_tol(const double *par) { (void)par; return 1; }
 
 int main(void)
 {
-    ob_curve c;
-    memset(&c, 0, sizeof c);
-    snprintf(c.id, sizeof c.id, "ex1");
-    c.nseg = 1;
-    c.seg = calloc(1, sizeof *c.seg);
-    ob_bez_from_points(c.seg, 3, ex1);
-    c.nd = 1;
-    c.d = malloc(sizeof *c.d);
-    c.d[0] = 1.0;
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     ob_method counting = *ob_method_find("tiller");
     counting.name = "counting-tiller";
     counting.fit = counting_fit;

@@ -13,8 +13,8 @@
 
 #include "methods/driver.h"
 #include "tests/check.h"
+#include "tests/driver_fixture.h"
 
-static const double ex1[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
 
 static void sleep_ms(int ms)
 {
@@ -35,13 +35,7 @@ static int same_degree(int n, int r) { (void)r; return n; }
 
 static void setup(ob_job *j, ob_curve *c, const ob_method *m, double tol)
 {
-    memset(j, 0, sizeof *j);
-    j->curve = c;
-    j->d = 1.0;
-    j->method = m;
-    j->metric = OB_METRIC_HAUSDORFF;
-    j->split = OB_SPLIT_MID;
-    j->tol = tol;
+    fixture_job(j, c, m, OB_METRIC_HAUSDORFF, OB_SPLIT_MID, tol);
 }
 
 static void test_fit_is_cpu_time(ob_curve *c)
@@ -111,15 +105,7 @@ static void test_batch_shares_by_work(ob_curve *c)
 
 int main(void)
 {
-    ob_curve c;
-    memset(&c, 0, sizeof c);
-    snprintf(c.id, sizeof c.id, "ex1");
-    c.nseg = 1;
-    c.seg = calloc(1, sizeof *c.seg);
-    ob_bez_from_points(c.seg, 3, ex1);
-    c.nd = 1;
-    c.d = malloc(sizeof *c.d);
-    c.d[0] = 1.0;
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
     test_fit_is_cpu_time(&c);
     test_batch_shares_by_work(&c);
     ob_curve_free(&c);
