@@ -15,6 +15,7 @@
 
 #include "methods/driver.h"
 #include "tests/check.h"
+#include "tests/driver_fixture.h"
 #include "tests/testlib.h"
 
 static const double ex1[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
@@ -126,14 +127,8 @@ static void run_job(ob_job *j, const ob_curve *c, const ob_method *m, ob_metric 
 {
     ob_driver_opts o;
     ob_driver_defaults(&o);
-    memset(j, 0, sizeof *j);
+    fixture_job(j, c, m, metric, split, tol);
     memset(L, 0, sizeof *L);
-    j->curve = c;
-    j->d = c->d[0];
-    j->method = m;
-    j->metric = metric;
-    j->split = split;
-    j->tol = tol;
     o.spans = L;
     ob_driver_run(j, 1, &o);
 }
