@@ -76,6 +76,9 @@ typedef struct {
     int final;          /* greedy: accept this fit whatever its error */
     double parent_err;  /* mid/maxerr: the error of the piece this one was split from */
     int stall;          /* successive splits without a real drop of the error */
+    int chain_to;       /* > 0: the leftmost piece of a chain of requests for a
+                           smaller piece, already fitted down to this depth
+                           (probe_retry_chain): not fitted again above it */
 } item;
 
 typedef struct {
@@ -278,6 +281,9 @@ typedef struct {
     ob_status st;
     int ctrl_add, maxdeg, n;
     double err, t;          /* t: base parameter of the largest error */
+    int chain_to;           /* > 0: asks for a smaller piece, and so do its
+                               leftmost descendants down to this depth, the
+                               retry or depth limit (probe_retry_chain) */
     char msg[160];
 } itemres;
 
@@ -288,6 +294,7 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
     ob_bez sub;
     ob_bez_subsegment(&j->curve->seg[it->seg], it->a, it->b, &sub);
     r->msg[0] = '\0';
+    r->chain_to = 0;
     r->err = 0.0;
     r->t = 0.5 * (it->a + it->b);
     r->ctrl_add = r->maxdeg = 0;
@@ -309,6 +316,58 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
         snprintf(r->msg, sizeof r->msg, "method returned %d pieces", fit->n);
     }
     return t1 - t0;
+}
+
+/* What decide() says of a piece that asks for a smaller piece (r: its fit's
+ * result) when none may be made: at the retry limit, or past the depth or
+ * segment limits. */
+static void retry_end_msg(const item *it, const itemres *r, int at_retry_limit, char *msg, size_t len)
+{
+    const char *why = r->msg[0] ? r->msg : "the method needs a smaller piece";
+    if (at_retry_limit)
+        snprintf(msg, len, "%.60s, still after %d halvings, at t in [%.6g, %.6g] of segment %d", why,
+                 RETRY_LEVELS, it->a, it->b, it->seg);
+    else
+        snprintf(msg, len, "%.60s; pieces that small are past the limits, at t in [%.6g, %.6g] of segment %d",
+                 why, it->a, it->b, it->seg);
+}
+
+/* Purpose: find out at once whether a piece that asked for a smaller piece
+ * (r->st == OB_RETRY_SMALLER, split mid or maxerr) heads a chain of such
+ * requests down to the retry limit.
+ * Method: such a piece is halved, and a descendant still asking at
+ * RETRY_LEVELS halvings (or at the depth limit) fails the job (decide).
+ * Where the method's request does not depend on the piece's size (a
+ * rational fit whose every iterate has a pole, at any scale), the
+ * breadth-first driver fitted all 2^(RETRY_LEVELS - depth) descendants
+ * before the first of them failed the job at the limit.  The leftmost chain
+ * of halvings is fitted here instead; if every piece on it asks again,
+ * r->chain_to gets the depth it reached, and decide() then carries only the
+ * leftmost descendant down, unfitted, to be fitted (and to fail the job, in
+ * its turn among the items of that level) at that depth: the first piece at
+ * that level the breadth-first driver would have failed the job on.  What is
+ * not fitted, the rest of the subtree, could change the outcome only by a
+ * terminal event of its own above that depth (a fit error, a limit).
+ * Returns the thread time spent.  fit: scratch, overwritten. */
+static double probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, void *work, ob_fit *fit,
+                                itemres *r)
+{
+    const ob_job *j = &jobs[it->job];
+    if (r->st != OB_RETRY_SMALLER || j->split == OB_SPLIT_GREEDY || it->chain_to > 0)
+        return 0.0;
+    item c = *it;
+    itemres cr;
+    double ns = 0.0;
+    while (c.depth < RETRY_LEVELS && c.depth < max_depth) {
+        c.b = 0.5 * (c.a + c.b);
+        c.depth++;
+        ns += fit_item(jobs, &c, work, fit, &cr);
+        if (cr.st != OB_RETRY_SMALLER)
+            return ns;
+    }
+    if (c.depth > it->depth)
+        r->chain_to = c.depth;
+    return ns;
 }
 
 /* The measurements of one batch: every piece of every fitted item. */
@@ -493,10 +552,8 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
     /* a method that asks for a smaller piece is treated as too large an error;
      * if no smaller piece may be made, there is nothing to accept */
     const int retry = r->st == OB_RETRY_SMALLER;
-    if (retry) {
-        snprintf(msg, sizeof msg, "%.60s; pieces that small are past the limits, at t in [%.6g, %.6g] of segment %d",
-                 r->msg[0] ? r->msg : "the method needs a smaller piece", it->a, it->b, it->seg);
-    }
+    if (retry)
+        retry_end_msg(it, r, 0, msg, sizeof msg);
     const int pass = !retry && r->err <= j->tol;
     const int full = j->segments + s->pending + 1 >= o->max_segments;
 
@@ -507,8 +564,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
         }
         const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
         if (retry && it->depth >= RETRY_LEVELS) {
-            snprintf(msg, sizeof msg, "%.60s, still after %d halvings, at t in [%.6g, %.6g] of segment %d",
-                     r->msg[0] ? r->msg : "the method needs a smaller piece", RETRY_LEVELS, it->a, it->b, it->seg);
+            retry_end_msg(it, r, 1, msg, sizeof msg);
             job_end(j, s, OB_FAIL, msg);
             return 0;
         }
@@ -554,6 +610,11 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
         l.lo = l.a;
         rr.end = rr.hi = rr.b;
         rr.lo = rr.a;
+        l.chain_to = retry ? (it->chain_to > 0 ? it->chain_to : r->chain_to) : 0;
+        if (l.chain_to > 0) {  /* a chain of requests down to the limit: its leftmost piece alone */
+            s->pending += 1;
+            return push(next, &l);
+        }
         s->pending += 2;
         return push(next, &l) || push(next, &rr) ? -1 : 0;
     }
@@ -898,12 +959,20 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
 #pragma omp parallel for schedule(dynamic, 4) if (cnt > 1)
             for (long i = 0; i < cnt; i++) {
                 void *w = work + wsize * (size_t)omp_get_thread_num();
+                if (its[i].chain_to > its[i].depth) {  /* its fit asked for a smaller piece (the probe) */
+                    memset(&res[i], 0, sizeof res[i]);
+                    res[i].st = OB_RETRY_SMALLER;
+                    res[i].err = INFINITY;
+                    fit_ns[i] = 0.0;
+                    continue;
+                }
                 if (js[its[i].job].dead || rep[i] != i) {
                     res[i].st = OB_SKIP;  /* dead, or takes its representative's fit below */
                     fit_ns[i] = 0.0;
                     continue;
                 }
                 fit_ns[i] = fit_item(jobs, &its[i], w, &fits[i], &res[i]);
+                fit_ns[i] += probe_retry_chain(jobs, &its[i], o.max_depth, w, &fits[i], &res[i]);
             }
 
             /* the ends and inner joints of every fit (joints.h) */

@@ -281,6 +281,63 @@ static void test_retry_and_counts(void)
     ob_curve_free(&c);
 }
 
+/* A method that asks for a smaller piece wherever the piece covers a point
+ * of its "pole" set, whatever its size: the failure at the retry limit is
+ * found without fitting the whole binary tree of halvings below (the base
+ * is the segment x = t, so a piece's x range is its parameter range). */
+static long pole_calls;
+static ob_status pole_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+{
+    (void)a, (void)w;
+    __atomic_add_fetch(&pole_calls, 1, __ATOMIC_RELAXED);
+    double p0[2], p1[2];
+    ob_bez_ctrl(b, 0, p0);
+    ob_bez_ctrl(b, b->deg, p1);
+    /* always: everywhere; else the point 0.26 and all of (0.5, 1] */
+    const int always = a->par[0] != 0.0;
+    if (always || (p0[0] <= 0.26 && p1[0] >= 0.26) || p1[0] > 0.5) {
+        snprintf(msg, len, "pole");
+        return OB_RETRY_SMALLER;
+    }
+    ob_fit_single(out, b);
+    return OB_OK;
+}
+
+static void test_retry_chains(void)
+{
+    static const ob_param pp[1] = {{"always", 0.0, "1: every piece asks for a smaller one", 0.0, 1.0, 1}};
+    const ob_method pole = {.name = "pole", .citation = "test", .continuity = "G0",
+                            .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = ob_degree_same,
+                            .fit = pole_fit, .params = pp, .nparams = 1};
+    const double line[4][2] = {{0, 0}, {1.0 / 3, 0}, {2.0 / 3, 0}, {1, 0}};
+    ob_curve c = fixture_curve("line", 3, line, 0.1);
+    double par[OB_MAX_PARAMS] = {1};
+    const ob_split splits[2] = {OB_SPLIT_MID, OB_SPLIT_MAXERR};
+    for (int k = 0; k < 2; k++) {
+        ob_job j;
+        fixture_job(&j, &c, &pole, OB_METRIC_RADIAL, splits[k], 1e-3);
+        j.params = par;
+        par[0] = 1;
+        pole_calls = 0;
+        const ob_driver_opts o = fast_opts();
+        ob_driver_run(&j, 1, &o);
+        CHECK(j.status == OB_FAIL && strstr(j.message, "pole, still after 12 halvings, at t in [0, 0.000244141]"),
+              "%s: everywhere: %s '%s'", ob_split_name(splits[k]), ob_status_name(j.status), j.message);
+        CHECK(pole_calls <= 2 * 13, "%s: everywhere: %ld fits for a failure at 12 halvings (breadth first: 4607)",
+              ob_split_name(splits[k]), pole_calls);
+        /* the chain down (0.5, 1] fails no sooner than the piece on 0.26, to
+         * its left at the same level, as the breadth-first order has it */
+        par[0] = 0;
+        pole_calls = 0;
+        ob_driver_run(&j, 1, &o);
+        CHECK(j.status == OB_FAIL && strstr(j.message, "pole, still after 12 halvings, at t in [0.259766, 0.26001]"),
+              "%s: the leftmost failure at the limit: %s '%s'", ob_split_name(splits[k]), ob_status_name(j.status),
+              j.message);
+        CHECK(pole_calls < 200, "%s: %ld fits (breadth first: 2633)", ob_split_name(splits[k]), pole_calls);
+    }
+    ob_curve_free(&c);
+}
+
 /* Same results for any thread count and batch size (timings aside). */
 static void test_determinism(void)
 {
@@ -415,6 +472,7 @@ int main(void)
     test_presplit();
     test_failures_are_contained();
     test_retry_and_counts();
+    test_retry_chains();
     test_determinism();
     return check_done();
 }
