@@ -65,35 +65,46 @@
 /* ---- curves ---------------------------------------------------------- */
 
 /* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
- * homogeneous points; derivatives from its last three levels; quotient rule. */
+ * homogeneous points; derivatives from its last three levels; quotient rule.
+ * The first level is read from h, and the levels above 2 run without the
+ * copies of levels 2 and 1, which are kept when reached (the same lerps in
+ * the same order as the textbook loop: the same bits). */
 OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2], long *ops)
 {
     double q[OBC_MAX_DEG + 1][3];
     double lv2[3][3], lv1[2][3];
     const double s = 1.0 - t;
     *ops += OBC_OPS_EVAL(n);
-    for (int i = 0; i <= n; i++)
+    if (n == 0) {
         for (int k = 0; k < 3; k++)
-            q[i][k] = h[3 * i + k];
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < 3; k++)
-            lv2[i][k] = 0.0;
-    for (int i = 0; i < 2; i++)
-        for (int k = 0; k < 3; k++)
-            lv1[i][k] = 0.0;
-    for (int r = n; r >= 1; r--) {
-        if (r == 2)
-            for (int i = 0; i < 3; i++)
-                for (int k = 0; k < 3; k++)
-                    lv2[i][k] = q[i][k];
-        if (r == 1)
-            for (int i = 0; i < 2; i++)
-                for (int k = 0; k < 3; k++)
-                    lv1[i][k] = q[i][k];
-        for (int i = 0; i < r; i++)
+            q[0][k] = h[k];
+    } else if (n == 1) {
+        for (int i = 0; i < 2; i++)
             for (int k = 0; k < 3; k++)
-                q[i][k] = s * q[i][k] + t * q[i + 1][k];
+                lv1[i][k] = h[3 * i + k];
+    } else if (n == 2) {
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                lv2[i][k] = h[3 * i + k];
+    } else {
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++)
+                q[i][k] = s * h[3 * i + k] + t * h[3 * i + 3 + k];
+        for (int r = n - 1; r >= 3; r--)
+            for (int i = 0; i < r; i++)
+                for (int k = 0; k < 3; k++)
+                    q[i][k] = s * q[i][k] + t * q[i + 1][k];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                lv2[i][k] = q[i][k];
     }
+    if (n >= 2)
+        for (int i = 0; i < 2; i++)
+            for (int k = 0; k < 3; k++)
+                lv1[i][k] = s * lv2[i][k] + t * lv2[i + 1][k];
+    if (n >= 1)
+        for (int k = 0; k < 3; k++)
+            q[0][k] = s * lv1[0][k] + t * lv1[1][k];
     double H[3][3];
     for (int k = 0; k < 3; k++) {
         H[0][k] = q[0][k];
