@@ -64,50 +64,73 @@
 
 /* ---- curves ---------------------------------------------------------- */
 
-/* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
- * homogeneous points; derivatives from its last three levels; quotient rule.
- * The first level is read from h, and the levels above 2 run without the
- * copies of levels 2 and 1, which are kept when reached (the same lerps in
- * the same order as the textbook loop: the same bits). */
-OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2], long *ops)
+/* The de Casteljau levels of obc_eval on the first K coordinates of the
+ * homogeneous points h (stride 3): the point q0, levels 2 (lv2) and 1
+ * (lv1), kept when reached. */
+OBC_FN void obc_casteljau(const OBC_G double *h, int n, double t, const int K, double q0[3], double lv2[3][3],
+                          double lv1[2][3])
 {
     double q[OBC_MAX_DEG + 1][3];
-    double lv2[3][3], lv1[2][3];
     const double s = 1.0 - t;
-    *ops += OBC_OPS_EVAL(n);
     if (n == 0) {
-        for (int k = 0; k < 3; k++)
-            q[0][k] = h[k];
-    } else if (n == 1) {
+        for (int k = 0; k < K; k++)
+            q0[k] = h[k];
+        return;
+    }
+    if (n == 1) {
         for (int i = 0; i < 2; i++)
-            for (int k = 0; k < 3; k++)
+            for (int k = 0; k < K; k++)
                 lv1[i][k] = h[3 * i + k];
     } else if (n == 2) {
         for (int i = 0; i < 3; i++)
-            for (int k = 0; k < 3; k++)
+            for (int k = 0; k < K; k++)
                 lv2[i][k] = h[3 * i + k];
     } else {
-        for (int i = 0; i < n; i++)
+        for (int i = 0; i <= n; i++)
             for (int k = 0; k < 3; k++)
-                q[i][k] = s * h[3 * i + k] + t * h[3 * i + 3 + k];
-        for (int r = n - 1; r >= 3; r--)
+                q[i][k] = h[3 * i + k];
+        for (int r = n; r >= 3; r--) {
             for (int i = 0; i < r; i++)
-                for (int k = 0; k < 3; k++)
+                for (int k = 0; k < K; k++)
                     q[i][k] = s * q[i][k] + t * q[i + 1][k];
-        for (int i = 0; i < 3; i++)
-            for (int k = 0; k < 3; k++)
-                lv2[i][k] = q[i][k];
+            if (r == 3)
+                for (int i = 0; i < 3; i++)
+                    for (int k = 0; k < K; k++)
+                        lv2[i][k] = q[i][k];
+        }
     }
     if (n >= 2)
         for (int i = 0; i < 2; i++)
-            for (int k = 0; k < 3; k++)
+            for (int k = 0; k < K; k++)
                 lv1[i][k] = s * lv2[i][k] + t * lv2[i + 1][k];
-    if (n >= 1)
-        for (int k = 0; k < 3; k++)
-            q[0][k] = s * lv1[0][k] + t * lv1[1][k];
+    for (int k = 0; k < K; k++)
+        q0[k] = s * lv1[0][k] + t * lv1[1][k];
+}
+
+/* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
+ * homogeneous points; derivatives from its last three levels; quotient rule.
+ * A polynomial segment (every weight exactly 1) at t in [0,1] runs the pass
+ * on x and y alone: there every level's weight is exactly 1 (fl(fl(1 - t) +
+ * t) = 1 for t in [0,1]) and every derivative of the weight exactly 0, so
+ * the result has the same bits as the homogeneous pass. */
+OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2], long *ops)
+{
+    double q0[3], lv2[3][3] = {{0.0}}, lv1[2][3] = {{0.0}};
+    *ops += OBC_OPS_EVAL(n);
+    int poly = t >= 0.0 && t <= 1.0;
+    for (int i = 0; i <= n && poly; i++)
+        poly = h[3 * i + 2] == 1.0;
+    if (poly) {
+        obc_casteljau(h, n, t, 2, q0, lv2, lv1);
+        q0[2] = 1.0;
+        lv1[0][2] = lv1[1][2] = 1.0;
+        lv2[0][2] = lv2[1][2] = lv2[2][2] = 1.0;
+    } else {
+        obc_casteljau(h, n, t, 3, q0, lv2, lv1);
+    }
     double H[3][3];
     for (int k = 0; k < 3; k++) {
-        H[0][k] = q[0][k];
+        H[0][k] = q0[k];
         H[1][k] = n >= 1 ? n * (lv1[1][k] - lv1[0][k]) : 0.0;
         H[2][k] = n >= 2 ? n * (n - 1) * (lv2[2][k] - 2.0 * lv2[1][k] + lv2[0][k]) : 0.0;
     }
