@@ -280,6 +280,7 @@ OBC_FN double obc_dist(const double a[2], const double b[2])
 #define OBC_NBLK(S) (((S) + OBC_BLK - 2) / OBC_BLK)
 #define OBC_TABLE_SIZE(S) (OBC_REC * (S) + 4 * OBC_NBLK(S))
 #define OBC_MAX_CAND 8 /* spans refined per query beyond the nearest sample's (obc_side_dist) */
+#define OBC_LB_CACHE 32 /* block bounds kept per query (obc_side_dist): all of them up to S = 513 */
 
 OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
 
@@ -622,17 +623,23 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     const int nblk = OBC_NBLK(S);
     int b0 = 0;
     double lb0 = OBC_INF;
+    double lbc[OBC_LB_CACHE]; /* the bounds of the first blocks, asked again below */
     for (int bk = 0; bk < nblk; bk++) {
         const double lb = obc_block_lb(Q, tgt, S, bk, ops);
+        if (bk < OBC_LB_CACHE)
+            lbc[bk] = lb;
         if (lb < lb0) {
             lb0 = lb;
             b0 = bk;
         }
     }
     obc_block_nearest(Q, tgt, S, b0, &db, &jb, ops);
+    double rdb = sqrt(db); /* kept while db is */
     for (int bk = 0; bk < nblk; bk++)
-        if (bk != b0 && obc_block_lb(Q, tgt, S, bk, ops) < sqrt(db))
+        if (bk != b0 && (bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops)) < rdb) {
             obc_block_nearest(Q, tgt, S, bk, &db, &jb, ops);
+            rdb = sqrt(db);
+        }
     if (jb < 0) { /* no finite sample */
         *tfoot = 0.0;
         return OBC_INF;
@@ -650,7 +657,7 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     /* (3) feet on other spans that may be nearer, at most OBC_MAX_CAND */
     int ncand = 0;
     for (int bk = 0; bk < nblk && !(best <= cut) && ncand < OBC_MAX_CAND; bk++) {
-        if (!(obc_block_lb(Q, tgt, S, bk, ops) < best))
+        if (!((bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops)) < best))
             continue;
         const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
         for (int j = j0; j < j1 && !(best <= cut) && ncand < OBC_MAX_CAND; j++) {
