@@ -4,11 +4,12 @@
  *   draw  --curve ID --method M --tol T [--d D] [run options] --out FILE.svg
  *   trace --curve ID --method M --tol T [--d D] [run options] [--points N] [--out FILE.csv]
  *
- * Both take --method, --tol, --d, --out (and trace --points) out of the
- * command line and hand the rest, with --methods M --tols T, to the `run`
- * option parser, so every run option (--curves, --random, --metric, --split,
- * --samples, --param, --backend, ...) means what it means for run and the
- * job gets the figures run writes into results.csv.  The job: exactly one
+ * Both have their own options --method, --tol, --d, --out (and trace
+ * --points) and take the run options (cliopts.h: one parser, run's flag
+ * table) but those that select many jobs or write a run directory, so every
+ * run option (--curves, --random, --metric, --split, --samples, --param,
+ * --backend, ...) means what it means for run and the job gets the figures
+ * run writes into results.csv.  The job: exactly one
  * --curve; d = --d (any nonzero finite value) or the curve's first offset.
  *
  * draw writes an SVG like the papers' figures: the base curve (solid), the
@@ -44,6 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cliopts.h"
 #include "commands.h"
 #include "diag.h"
 #include "jobview.h"
@@ -56,126 +58,100 @@ enum { DEFAULT_POINTS = 64, MAX_POINTS = 100000 };
 /* ---- options ------------------------------------------------------------- */
 
 typedef struct {
+    const char *cmd;
+    int trace;
     const char *method, *tol, *out;
     int have_d;
     double d;
-    int points, points_given;
-    int ncurve;          /* --curve options seen */
-    int argc;            /* what goes to the run parser */
-    char **argv;
+    int points;
 } cmd_args;
 
-/* Splits argv into the command's own options and the run options.
- * Returns 0, 2 after ob_error(), or -1 after printing the usage (--help). */
-static int parse_args(const char *cmd, int trace, int argc, char **argv, cmd_args *a)
+enum { DO_METHOD, DO_TOL, DO_D, DO_OUT, DO_POINTS };
+
+static const ob_flag draw_flags[] = {
+    {"method", "M", "the job's method", DO_METHOD, OB_FLAG_ONCE},
+    {"tol", "T", "the job's tolerance", DO_TOL, OB_FLAG_ONCE},
+    {"d", "D", "the offset distance (default: the curve's first offset)", DO_D, OB_FLAG_ONCE},
+    {"out", "FILE", "draw: the SVG file; trace: the CSV file (default: standard output)", DO_OUT, OB_FLAG_ONCE},
+    {"points", "N", "trace: samples per piece (default 64)", DO_POINTS, OB_FLAG_ONCE},
+};
+
+/* The run options draw and trace do not take: they show one job (--method,
+ * --tol) and write one file (their own --out). */
+static const char RUN_SKIP[] = "methods tols out resume force shard reps ";
+
+static int apply_draw_flag(void *ctx, int id, const char *opt, const char *val)
+{
+    cmd_args *a = ctx;
+    double t;
+    switch (id) {
+    case DO_METHOD:
+        if (!ob_method_find(val)) {
+            ob_error("--method: unknown method '%s' (see './offbench list methods')", val);
+            return -1;
+        }
+        a->method = val;
+        return 0;
+    case DO_TOL:
+        if (ob_parse_double(val, &t) || !(t > 0) || t > 1e6) {
+            ob_error("--tol: '%s' is not a tolerance (a number > 0 and <= 1e6)", val);
+            return -1;
+        }
+        a->tol = val;
+        return 0;
+    case DO_D:
+        if (ob_parse_double(val, &a->d) || a->d == 0.0) {
+            ob_error("--d: '%s' is not an offset distance (a nonzero finite number)", val);
+            return -1;
+        }
+        a->have_d = 1;
+        return 0;
+    case DO_OUT:
+        if (!*val) {
+            ob_error("--out: empty file name");
+            return -1;
+        }
+        a->out = val;
+        return 0;
+    default: {
+        char *end;
+        errno = 0;
+        const long n = strtol(val, &end, 10);
+        if (!*val || *end || errno || n < 2 || n > MAX_POINTS) {
+            ob_error("%s: expected a whole number from 2 to %d, got '%s'", opt, MAX_POINTS, val);
+            return -1;
+        }
+        a->points = (int)n;
+        return 0;
+    }
+    }
+}
+
+/* The command's own options and the run options it takes, into a and o.
+ * Returns 0, 2 after ob_error(), or -1 after printing the help (--help). */
+static int parse_args(const char *cmd, int trace, int argc, char **argv, cmd_args *a, ob_run_opts *o)
 {
     memset(a, 0, sizeof *a);
+    a->cmd = cmd;
+    a->trace = trace;
     a->points = DEFAULT_POINTS;
-    a->argv = calloc((size_t)argc + 5, sizeof *a->argv);
-    if (!a->argv) {
+    if (ob_run_opts_init(o, argc, argv)) {
         ob_error("%s: out of memory", cmd);
         return 2;
     }
-    a->argv[a->argc++] = argv[0];
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
-            printf("usage: ./offbench %s --curve ID --method M --tol T [--d D] [run options]%s\n"
-                   "See README.md; run options: --curves, --random, --metric, --split, --samples, --param, ...\n",
-                   cmd, trace ? " [--points N] [--out FILE.csv]" : " --out FILE.svg");
-            return -1;
-        }
-        if (strncmp(o, "--", 2) != 0) {
-            ob_error("%s: unexpected argument '%s' (options are --NAME VALUE)", cmd, o);
-            return 2;
-        }
-        if (strcmp(o, "--methods") == 0 || strcmp(o, "--tols") == 0) {
-            ob_error("%s: %s shows one job: use --%.*s", o, cmd, (int)strlen(o) - 3, o + 2);
-            return 2;
-        }
-        if (strcmp(o, "--points") == 0 && !trace) {
-            ob_error("--points: only trace takes it (draw samples each piece itself)");
-            return 2;
-        }
-        const int own = strcmp(o, "--method") == 0 || strcmp(o, "--tol") == 0 || strcmp(o, "--d") == 0 ||
-                        strcmp(o, "--out") == 0 || strcmp(o, "--points") == 0;
-        if (!val) {
-            ob_error("%s: missing value", o);
-            return 2;
-        }
-        i++;
-        if (!own) {
-            if (strcmp(o, "--curve") == 0) {
-                if (++a->ncurve > 1) {
-                    ob_error("--curve: given twice; %s shows exactly one curve", cmd);
-                    return 2;
-                }
-                if (strchr(val, ',')) {
-                    ob_error("--curve: '%s' names several curves; %s shows exactly one", val, cmd);
-                    return 2;
-                }
-            }
-            a->argv[a->argc++] = (char *)o;
-            a->argv[a->argc++] = (char *)val;
-            continue;
-        }
-        if (strcmp(o, "--method") == 0) {
-            if (a->method) {
-                ob_error("--method: given twice; %s shows one job", cmd);
-                return 2;
-            }
-            if (!ob_method_find(val)) {
-                ob_error("--method: unknown method '%s' (see './offbench list methods')", val);
-                return 2;
-            }
-            a->method = val;
-        } else if (strcmp(o, "--tol") == 0) {
-            double t;
-            if (a->tol) {
-                ob_error("--tol: given twice; %s shows one job", cmd);
-                return 2;
-            }
-            if (ob_parse_double(val, &t) || !(t > 0) || t > 1e6) {
-                ob_error("--tol: '%s' is not a tolerance (a number > 0 and <= 1e6)", val);
-                return 2;
-            }
-            a->tol = val;
-        } else if (strcmp(o, "--d") == 0) {
-            if (a->have_d) {
-                ob_error("--d: given twice; %s shows one job", cmd);
-                return 2;
-            }
-            if (ob_parse_double(val, &a->d) || a->d == 0.0) {
-                ob_error("--d: '%s' is not an offset distance (a nonzero finite number)", val);
-                return 2;
-            }
-            a->have_d = 1;
-        } else if (strcmp(o, "--out") == 0) {
-            if (a->out) {
-                ob_error("--out: given twice");
-                return 2;
-            }
-            if (!*val) {
-                ob_error("--out: empty file name");
-                return 2;
-            }
-            a->out = val;
-        } else { /* --points */
-            if (a->points_given++) {
-                ob_error("--points: given twice");
-                return 2;
-            }
-            char *end;
-            errno = 0;
-            const long n = strtol(val, &end, 10);
-            if (!*val || *end || errno || n < 2 || n > MAX_POINTS) {
-                ob_error("--points: expected a whole number from 2 to %d, got '%s'", MAX_POINTS, val);
-                return 2;
-            }
-            a->points = (int)n;
-        }
-    }
-    if (a->ncurve == 0) {
+    const ob_flagset sets[2] = {
+        {draw_flags, (int)(sizeof draw_flags / sizeof draw_flags[0]) - (trace ? 0 : 1), NULL, NULL, "options",
+         apply_draw_flag, a},
+        {ob_run_flags, ob_run_nflags, NULL, RUN_SKIP, "run options (as for run)", ob_run_flag_apply, o},
+    };
+    const int rc = ob_cli_parse(trace ? "--curve ID --method M --tol T [--d D] [--points N] [--out FILE.csv] [run options]"
+                                      : "--curve ID --method M --tol T [--d D] --out FILE.svg [run options]",
+                                sets, 2, argc, argv, 0, NULL, NULL);
+    if (rc == OB_CLI_HELP)
+        return -1;
+    if (rc != OB_CLI_OK || ob_run_opts_finish(o))
+        return 2;
+    if (o->ncurve_ids == 0) {
         ob_error("--curve: missing; %s shows one job: --curve ID --method M --tol T", cmd);
         return 2;
     }
@@ -191,11 +167,7 @@ static int parse_args(const char *cmd, int trace, int argc, char **argv, cmd_arg
         ob_error("--out: missing; draw writes an SVG file (--out FILE.svg)");
         return 2;
     }
-    a->argv[a->argc++] = "--methods";
-    a->argv[a->argc++] = (char *)a->method;
-    a->argv[a->argc++] = "--tols";
-    a->argv[a->argc++] = (char *)a->tol;
-    return 0;
+    return ob_run_opt_set(o, "methods", a->method) || ob_run_opt_set(o, "tols", a->tol) ? 2 : 0;
 }
 
 /* The one line on stderr with the figures of results.csv. */
@@ -531,12 +503,13 @@ static int run_cmd(int trace, int argc, char **argv)
     const char *cmd = trace ? "trace" : "draw";
     cmd_args a;
     ob_jobview v;
-    int status = parse_args(cmd, trace, argc, argv, &a);
+    memset(&v, 0, sizeof v);
+    int status = parse_args(cmd, trace, argc, argv, &a, &v.o);
     if (status != 0) {
-        free(a.argv);
+        ob_run_opts_free(&v.o);
         return status < 0 ? 0 : status;  /* -1: --help */
     }
-    status = ob_jobview_open(&v, cmd, a.argc, a.argv, a.have_d, a.d);
+    status = ob_jobview_open(&v, cmd, a.have_d, a.d);
     FILE *f = NULL;
     const int to_stdout = trace && (!a.out || strcmp(a.out, "-") == 0);
     if (status == 0 && !to_stdout) {
@@ -583,7 +556,6 @@ static int run_cmd(int trace, int argc, char **argv)
     if (f && !to_stdout && status != 0)
         remove(a.out);
     ob_jobview_close(&v);
-    free(a.argv);
     return status;
 }
 

@@ -531,8 +531,11 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     memset(&journal, 0, sizeof journal);
     int lock_fd = -1;
     int status = 2;
-    if (ob_run_opts_parse(argc, argv, &o) != 0)
+    const int prc = ob_run_opts_parse(argc, argv, &o);
+    if (prc != OB_CLI_OK) {
+        status = prc == OB_CLI_HELP ? 0 : 2;
         goto done;
+    }
     o.argc = full_argc;
     o.argv = full_argv;
     {

@@ -19,6 +19,7 @@
 
 #include "commands.h"
 #include "datadir.h"
+#include "cliopts.h"
 #include "diag.h"
 #include "progress.h"
 #include "published.h"
@@ -282,12 +283,8 @@ static void plan_free(ob_tab_plan *pl)
     memset(pl, 0, sizeof *pl);
 }
 
-static const char usage[] = "usage: ./offbench tables [--out DIR] [--table SOURCE:TABLE,...]\n"
-                            "                         [--protocols paper,rigorous,best]\n"
-                            "                         [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n";
-
-/* The options `tables` shares with `run`, checked here and parsed by run's
- * parser (so the defaults and messages are the same). */
+/* The options `tables` shares with `run` are run's own (its flag table and
+ * parser: the same defaults and messages). */
 /* --protocols LIST: a bit per protocol; 0 on an unknown name. */
 static unsigned parse_protocols(const char *list)
 {
@@ -309,59 +306,55 @@ static unsigned parse_protocols(const char *list)
     return bits;
 }
 
+/* What tables' own options set. */
+typedef struct {
+    const char *out, *only;
+    unsigned protos;
+} tables_args;
+
+enum { TO_OUT, TO_TABLE, TO_PROTOCOLS };
+
+static const ob_flag tables_flags[] = {
+    {"out", "DIR", "output directory (default out/tables)", TO_OUT, OB_FLAG_ONCE},
+    {"table", "SOURCE:TABLE,...", "only these tables", TO_TABLE, OB_FLAG_ONCE},
+    {"protocols", "LIST", "paper, rigorous, best (default all three)", TO_PROTOCOLS, OB_FLAG_ONCE},
+};
+
+static int apply_tables_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    tables_args *t = ctx;
+    if (id == TO_OUT)
+        t->out = v;
+    else if (id == TO_TABLE)
+        t->only = v;
+    else if (!(t->protos = parse_protocols(v))) {
+        ob_error("%s: '%s': give one or more of paper, rigorous, best, separated by commas", opt, v);
+        return -1;
+    }
+    return 0;
+}
+
+/* Returns 0, 1 after printing the help (--help), or -1 after ob_error(). */
 static int parse_opts(int argc, char **argv, ob_run_opts *o, const char **only, unsigned *protos)
 {
-    char *av[16];
-    int ac = 0;
-    av[ac++] = "run";
-    const char *out = "out/tables";
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage, stdout);
-            return 1;
-        }
-        if (strcmp(a, "--out") && strcmp(a, "--table") && strcmp(a, "--protocols") && strcmp(a, "--backend") && strcmp(a, "--device") && strcmp(a, "--threads")) {
-            ob_error("tables: unknown option '%s'", a);
-            fputs(usage, stderr);
-            return -1;
-        }
-        if (i + 1 >= argc) {
-            ob_error("%s: missing value", a);
-            return -1;
-        }
-        for (int k = 1; k < i; k += 2)  /* every option takes a value */
-            if (strcmp(argv[k], a) == 0) {
-                ob_error("%s: given twice (give each option once)", a);
-                return -1;
-            }
-        if (strcmp(a, "--out") == 0) {
-            out = argv[++i];
-            continue;
-        }
-        if (strcmp(a, "--table") == 0) {
-            *only = argv[++i];
-            continue;
-        }
-        if (strcmp(a, "--protocols") == 0) {
-            if (!(*protos = parse_protocols(argv[++i]))) {
-                ob_error("--protocols: '%s': give one or more of paper, rigorous, best, separated by commas",
-                         argv[i]);
-                return -1;
-            }
-            continue;
-        }
-        if (ac + 2 > 12) {
-            ob_error("tables: option '%s' given too often", a);
-            return -1;
-        }
-        av[ac++] = argv[i];
-        av[ac++] = argv[++i];
-    }
-    av[ac++] = "--out";
-    av[ac++] = (char *)out;
-    av[ac] = NULL;
-    return ob_run_opts_parse(ac, av, o) ? -1 : 0;
+    tables_args t = {"out/tables", NULL, *protos};
+    if (ob_run_opts_init(o, argc, argv))
+        return -1;
+    const ob_flagset sets[2] = {
+        {tables_flags, (int)(sizeof tables_flags / sizeof tables_flags[0]), NULL, NULL, "options",
+         apply_tables_flag, &t},
+        {ob_run_flags, ob_run_nflags, "backend device threads ", NULL, "run options (as for run)",
+         ob_run_flag_apply, o},
+    };
+    const int rc = ob_cli_parse("[--out DIR] [--table SOURCE:TABLE,...] [--protocols LIST] [run options]", sets, 2,
+                                argc, argv, 0, NULL, NULL);
+    if (rc != OB_CLI_OK)
+        return rc == OB_CLI_HELP ? 1 : -1;
+    if (ob_run_opt_set(o, "out", t.out))
+        return -1;
+    *only = t.only;
+    *protos = t.protos;
+    return ob_run_opts_finish(o) ? -1 : 0;
 }
 
 int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)

@@ -15,12 +15,9 @@
 #include "diag.h"
 #include "numfmt.h"
 
-int ob_jobview_open(ob_jobview *v, const char *cmd, int argc, char **argv, int have_d, double d)
+int ob_jobview_open(ob_jobview *v, const char *cmd, int have_d, double d)
 {
-    memset(v, 0, sizeof *v);
     v->cmd = cmd;
-    if (ob_run_opts_parse(argc, argv, &v->o) != 0)
-        return 2;
     if (v->o.ncurve_ids != 1) {
         ob_error("--curve: %s needs exactly one curve id", cmd);
         return 2;

@@ -44,12 +44,13 @@ typedef struct {
     int samples;            /* S of the sampled metrics, as the driver used it */
 } ob_jobview;
 
-/* Purpose: parse `run` options (argv[0] is ignored; the caller has turned
- * --method/--tol into --methods/--tols), load the curves, pick the one curve
- * and set up the job.  d: the offset if have_d, else the curve's first one.
+/* Purpose: from the run options in v->o (parsed by the caller, with one
+ * method and one tolerance; the rest of *v zeroed), load the curves, pick
+ * the one curve and set up the job.  d: the offset if have_d, else the
+ * curve's first one.
  * Returns 0, or the exit status (2 bad input, 1 out of memory) after
  * ob_error().  Always call ob_jobview_close() afterwards. */
-int ob_jobview_open(ob_jobview *v, const char *cmd, int argc, char **argv, int have_d, double d);
+int ob_jobview_open(ob_jobview *v, const char *cmd, int have_d, double d);
 
 /* Purpose: run the job (backend and threads as the options say), then refit
  * its spans when it ended ok or limit.  Returns 0 (also when the job itself

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cliopts.h"
 #include "diag.h"
 #include "numfmt.h"
 #include "random.h"
@@ -190,7 +191,175 @@ static int same_param(const char *a, const char *b)
     return ea && eb && ea - a == eb - b && strncmp(a, b, (size_t)(ea - a)) == 0;
 }
 
-int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
+enum {
+    RO_CURVES, RO_CURVE, RO_RANDOM, RO_METHODS, RO_TOLS, RO_METRIC, RO_SPLIT, RO_BACKEND, RO_DEVICE,
+    RO_THREADS, RO_SAMPLES, RO_MAX_DEPTH, RO_MAX_SEGMENTS, RO_INFLECTIONS, RO_PARAM, RO_JOB_TIMEOUT,
+    RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE,
+};
+
+const ob_flag ob_run_flags[] = {
+    {"curves", "FILE", "curve file (default: every file under datasets/)", RO_CURVES, OB_FLAG_ONCE},
+    {"curve", "ID,...", "only these curves", RO_CURVE, OB_FLAG_LIST},
+    {"random", "N[:SEED]", "N random test curves of the families (seed 1 by default)", RO_RANDOM, OB_FLAG_ONCE},
+    {"methods", "LIST|all", "methods to run (default all; './offbench list methods')", RO_METHODS, OB_FLAG_LIST},
+    {"tols", "T,...", "tolerances (default 1e-1,1e-2,1e-3,1e-4,1e-5)", RO_TOLS, OB_FLAG_LIST},
+    {"metric", "M", "bound, radial, normal or hausdorff (default)", RO_METRIC, OB_FLAG_ONCE},
+    {"split", "RULE", "mid (default), maxerr or greedy", RO_SPLIT, OB_FLAG_ONCE},
+    {"backend", "B", "auto (default), opencl or cpu", RO_BACKEND, OB_FLAG_ONCE},
+    {"device", "NAME", "the OpenCL device whose name contains NAME", RO_DEVICE, OB_FLAG_ONCE},
+    {"threads", "N", "OpenMP threads (default: all cores)", RO_THREADS, OB_FLAG_ONCE},
+    {"samples", "S", "samples per piece of the sampled metrics (default 256)", RO_SAMPLES, OB_FLAG_ONCE},
+    {"max-depth", "N", "subdivision depth limit (default 40)", RO_MAX_DEPTH, OB_FLAG_ONCE},
+    {"max-segments", "N", "pieces per job limit (default 20000)", RO_MAX_SEGMENTS, OB_FLAG_ONCE},
+    {"inflections", "yes|no", "split every method's input at inflections (default yes)", RO_INFLECTIONS, OB_FLAG_ONCE},
+    {"param", "METHOD.NAME=VALUE", "a method parameter ('./offbench list methods')", RO_PARAM, OB_FLAG_REPEAT},
+    {"job-timeout", "S", "thread seconds per job before status timeout", RO_JOB_TIMEOUT, OB_FLAG_ONCE},
+    {"reps", "N", "timed repetitions after a warm-up run (samples.csv)", RO_REPS, OB_FLAG_ONCE},
+    {"shard", "K/N", "run shard K of N (merge the shards with 'merge')", RO_SHARD, OB_FLAG_ONCE},
+    {"out", "DIR", "output directory (default out)", RO_OUT, OB_FLAG_ONCE},
+    {"resume", "DIR", "finish the interrupted run in DIR", RO_RESUME, OB_FLAG_ONCE},
+    {"force", NULL, "start afresh over an interrupted run's journal", RO_FORCE, OB_FLAG_ONCE},
+};
+const int ob_run_nflags = (int)(sizeof ob_run_flags / sizeof ob_run_flags[0]);
+
+static int parse_curve_ids(const char *v, ob_run_opts *o)
+{
+    free_list(o->curve_ids, o->ncurve_ids);
+    o->curve_ids = split_list(v, &o->ncurve_ids);
+    if (!o->curve_ids)
+        return -1;
+    for (int k = 0; k < o->ncurve_ids; k++)
+        for (int l = 0; l < k; l++)
+            if (strcmp(o->curve_ids[k], o->curve_ids[l]) == 0) {
+                ob_error("--curve: '%s' is listed twice", o->curve_ids[k]);
+                return -1;
+            }
+    return 0;
+}
+
+static int parse_dir(const char *opt, const char *v, const char **out)
+{
+    if (!*v) {
+        ob_error("%s: empty directory name", opt);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+/* The selections: which curves, methods, tolerances, metric and split. */
+static int apply_selection(ob_run_opts *o, int id, const char *opt, const char *v)
+{
+    switch (id) {
+    case RO_CURVES: o->curves_file = v; return 0;
+    case RO_CURVE: return parse_curve_ids(v, o);
+    case RO_RANDOM: return ob_random_parse(opt, v, &o->random_n, &o->random_seed);
+    case RO_METHODS: return parse_methods(v, o);
+    case RO_TOLS: return parse_tols(v, o);
+    case RO_METRIC:
+        if (ob_metric_parse(v, &o->metric)) {
+            ob_error("--metric: unknown metric '%s' (bound, radial, normal, hausdorff)", v);
+            return -1;
+        }
+        return 0;
+    case RO_SPLIT:
+        if (ob_split_parse(v, &o->split)) {
+            ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy)", v);
+            return -1;
+        }
+        return 0;
+    }
+    return 1; /* not a selection */
+}
+
+/* How the run goes: backend, limits, outputs. */
+static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *v)
+{
+    double s;
+    switch (id) {
+    case RO_BACKEND:
+        if (strcmp(v, "auto") == 0)
+            o->backend = OB_BACKEND_AUTO;
+        else if (strcmp(v, "cpu") == 0)
+            o->backend = OB_BACKEND_CPU;
+        else if (strcmp(v, "opencl") == 0)
+            o->backend = OB_BACKEND_OPENCL;
+        else {
+            ob_error("--backend: unknown backend '%s' (auto, opencl, cpu)", v);
+            return -1;
+        }
+        return 0;
+    case RO_DEVICE: o->device = v; return 0;
+    case RO_THREADS: return parse_int(opt, v, 1, 1024, &o->threads);
+    case RO_SAMPLES: return parse_int(opt, v, OB_MIN_SAMPLES, OB_MAX_SAMPLES, &o->driver.samples);
+    case RO_MAX_DEPTH: return parse_int(opt, v, 1, 60, &o->driver.max_depth);
+    case RO_MAX_SEGMENTS: return parse_int(opt, v, 1, 10000000, &o->driver.max_segments);
+    case RO_INFLECTIONS:
+        if (strcmp(v, "yes") != 0 && strcmp(v, "no") != 0) {
+            ob_error("--inflections: expected yes or no, got '%s'", v);
+            return -1;
+        }
+        o->driver.inflections = strcmp(v, "yes") == 0;
+        return 0;
+    case RO_JOB_TIMEOUT:
+        if (ob_parse_double(v, &s) || !(s > 0) || s > 1e6) {
+            ob_error("--job-timeout: expected seconds > 0 (at most 1e6), got '%s'", v);
+            return -1;
+        }
+        o->driver.job_timeout_ns = s * 1e9;
+        return 0;
+    case RO_REPS: return parse_int(opt, v, 1, 1000, &o->reps);
+    case RO_SHARD: return ob_shard_parse(opt, v, &o->shard_k, &o->shard_n);
+    case RO_OUT: o->out_given = 1; return parse_dir(opt, v, &o->out_dir);
+    case RO_RESUME: return parse_dir(opt, v, &o->resume_dir);
+    case RO_FORCE: o->force = 1; return 0;
+    }
+    return 1;
+}
+
+/* --param: each METHOD.NAME at most once (the flag itself repeats). */
+static int apply_param(ob_run_opts *o, const char *v)
+{
+    for (int k = 0; k < o->nparam_seen; k++)
+        if (same_param(o->param_seen[k], v)) {
+            ob_error("--param %.*s: given twice", (int)(strchr(v, '=') - v), v);
+            return -1;
+        }
+    if (parse_param(v, o))
+        return -1;
+    if (o->nparam_seen < OB_MAX_PARAM_ARGS)
+        o->param_seen[o->nparam_seen++] = v;
+    return 0;
+}
+
+int ob_run_flag_apply(void *ctx, int id, const char *opt, const char *value)
+{
+    ob_run_opts *o = ctx;
+    if (id == RO_PARAM)
+        return apply_param(o, value);
+    int rc = apply_selection(o, id, opt, value);
+    if (rc <= 0)
+        return rc;
+    rc = apply_execution(o, id, opt, value);
+    if (rc > 0) {
+        ob_error("%s: not an option of run", opt);
+        return -1;
+    }
+    return rc;
+}
+
+int ob_run_opt_set(ob_run_opts *o, const char *name, const char *value)
+{
+    char opt[64];
+    snprintf(opt, sizeof opt, "--%s", name);
+    for (int i = 0; i < ob_run_nflags; i++)
+        if (strcmp(ob_run_flags[i].name, name) == 0)
+            return ob_run_flag_apply(o, ob_run_flags[i].id, opt, value);
+    ob_error("%s: not an option of run", opt);
+    return -1;
+}
+
+int ob_run_opts_init(ob_run_opts *o, int argc, char **argv)
 {
     memset(o, 0, sizeof *o);
     o->metric = OB_METRIC_HAUSDORFF;
@@ -212,160 +381,39 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
         return -1;
     for (int i = 0; i < nm; i++)
         ob_param_defaults(ob_methods[i], o->params + i * OB_MAX_PARAMS);
-
-    int out_given = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            ob_error("run: see README.md or './offbench help' for the options");
-            return -1;
-        }
-        if (strcmp(a, "--force") == 0) {  /* the one option without a value */
-            o->force = 1;
-            continue;
-        }
-        if (!v) {
-            ob_error("%s: missing value", a);
-            return -1;
-        }
-        /* One rule for every option but --param (one per METHOD.NAME, checked
-         * in parse_param): given twice is an error, not "the last one wins",
-         * so that a command line means what it says (a list option takes
-         * all its values in one comma list). */
-        if (strcmp(a, "--param") != 0)
-            for (int k = 1; k < i; k += 2)
-                if (strcmp(argv[k], a) == 0) {
-                    ob_error("%s: given twice (give each option once%s)", a,
-                             strcmp(a, "--curve") == 0 || strcmp(a, "--tols") == 0 || strcmp(a, "--methods") == 0
-                                 ? "; list all values in one comma list"
-                                 : "");
-                    return -1;
-                }
-        if (strcmp(a, "--curves") == 0) {
-            o->curves_file = v;
-        } else if (strcmp(a, "--curve") == 0) {
-            free_list(o->curve_ids, o->ncurve_ids);
-            o->curve_ids = split_list(v, &o->ncurve_ids);
-            if (!o->curve_ids)
-                return -1;
-            for (int k = 0; k < o->ncurve_ids; k++)
-                for (int l = 0; l < k; l++)
-                    if (strcmp(o->curve_ids[k], o->curve_ids[l]) == 0) {
-                        ob_error("--curve: '%s' is listed twice", o->curve_ids[k]);
-                        return -1;
-                    }
-        } else if (strcmp(a, "--random") == 0) {
-            if (ob_random_parse(a, v, &o->random_n, &o->random_seed))
-                return -1;
-        } else if (strcmp(a, "--methods") == 0) {
-            if (parse_methods(v, o))
-                return -1;
-        } else if (strcmp(a, "--param") == 0) {
-            for (int k = 1; k < i; k += 2)
-                if (strcmp(argv[k], "--param") == 0 && same_param(argv[k + 1], v)) {
-                    ob_error("--param %.*s: given twice", (int)(strchr(v, '=') - v), v);
-                    return -1;
-                }
-            if (parse_param(v, o))
-                return -1;
-        } else if (strcmp(a, "--tols") == 0) {
-            if (parse_tols(v, o))
-                return -1;
-        } else if (strcmp(a, "--metric") == 0) {
-            if (ob_metric_parse(v, &o->metric)) {
-                ob_error("--metric: unknown metric '%s' (bound, radial, normal, hausdorff)", v);
-                return -1;
-            }
-        } else if (strcmp(a, "--split") == 0) {
-            if (ob_split_parse(v, &o->split)) {
-                ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy)", v);
-                return -1;
-            }
-        } else if (strcmp(a, "--backend") == 0) {
-            if (strcmp(v, "auto") == 0)
-                o->backend = OB_BACKEND_AUTO;
-            else if (strcmp(v, "cpu") == 0)
-                o->backend = OB_BACKEND_CPU;
-            else if (strcmp(v, "opencl") == 0)
-                o->backend = OB_BACKEND_OPENCL;
-            else {
-                ob_error("--backend: unknown backend '%s' (auto, opencl, cpu)", v);
-                return -1;
-            }
-        } else if (strcmp(a, "--device") == 0) {
-            o->device = v;
-        } else if (strcmp(a, "--threads") == 0) {
-            if (parse_int(a, v, 1, 1024, &o->threads))
-                return -1;
-        } else if (strcmp(a, "--job-timeout") == 0) {
-            double s;
-            if (ob_parse_double(v, &s) || !(s > 0) || s > 1e6) {
-                ob_error("--job-timeout: expected seconds > 0 (at most 1e6), got '%s'", v);
-                return -1;
-            }
-            o->driver.job_timeout_ns = s * 1e9;
-        } else if (strcmp(a, "--reps") == 0) {
-            if (parse_int(a, v, 1, 1000, &o->reps))
-                return -1;
-        } else if (strcmp(a, "--out") == 0) {
-            if (!*v) {
-                ob_error("--out: empty directory name");
-                return -1;
-            }
-            o->out_dir = v;
-            out_given = 1;
-        } else if (strcmp(a, "--samples") == 0) {
-            if (parse_int(a, v, OB_MIN_SAMPLES, OB_MAX_SAMPLES, &o->driver.samples))
-                return -1;
-        } else if (strcmp(a, "--max-depth") == 0) {
-            if (parse_int(a, v, 1, 60, &o->driver.max_depth))
-                return -1;
-        } else if (strcmp(a, "--max-segments") == 0) {
-            if (parse_int(a, v, 1, 10000000, &o->driver.max_segments))
-                return -1;
-        } else if (strcmp(a, "--inflections") == 0) {
-            if (strcmp(v, "yes") == 0)
-                o->driver.inflections = 1;
-            else if (strcmp(v, "no") == 0)
-                o->driver.inflections = 0;
-            else {
-                ob_error("--inflections: expected yes or no, got '%s'", v);
-                return -1;
-            }
-        } else if (strcmp(a, "--shard") == 0) {
-            if (ob_shard_parse(a, v, &o->shard_k, &o->shard_n))
-                return -1;
-        } else if (strcmp(a, "--resume") == 0) {
-            if (!*v) {
-                ob_error("--resume: empty directory name");
-                return -1;
-            }
-            o->resume_dir = v;
-        } else {
-            ob_error("run: unknown option '%s'", a);
-            return -1;
-        }
-        i += takes;
-    }
-    if (o->resume_dir) {
-        if (out_given && strcmp(o->out_dir, o->resume_dir) != 0) {
-            ob_error("--resume %s: the results go back into that directory; --out %s names another", o->resume_dir,
-                     o->out_dir);
-            return -1;
-        }
-        if (o->reps > 0) {
-            ob_error("--resume: not with --reps (repetitions time whole runs)");
-            return -1;
-        }
-        if (o->force) {
-            ob_error("--resume: not with --force (--force starts the run afresh)");
-            return -1;
-        }
-        o->out_dir = o->resume_dir;
-    }
     return 0;
+}
+
+int ob_run_opts_finish(ob_run_opts *o)
+{
+    if (!o->resume_dir)
+        return 0;
+    if (o->out_given && strcmp(o->out_dir, o->resume_dir) != 0) {
+        ob_error("--resume %s: the results go back into that directory; --out %s names another", o->resume_dir,
+                 o->out_dir);
+        return -1;
+    }
+    if (o->reps > 0) {
+        ob_error("--resume: not with --reps (repetitions time whole runs)");
+        return -1;
+    }
+    if (o->force) {
+        ob_error("--resume: not with --force (--force starts the run afresh)");
+        return -1;
+    }
+    o->out_dir = o->resume_dir;
+    return 0;
+}
+
+int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
+{
+    if (ob_run_opts_init(o, argc, argv))
+        return OB_CLI_ERROR;
+    const ob_flagset set = {ob_run_flags, ob_run_nflags, NULL, NULL, "run options", ob_run_flag_apply, o};
+    const int rc = ob_cli_parse(OB_RUN_SYNOPSIS, &set, 1, argc, argv, 0, NULL, NULL);
+    if (rc != OB_CLI_OK)
+        return rc;
+    return ob_run_opts_finish(o) ? OB_CLI_ERROR : OB_CLI_OK;
 }
 
 void ob_run_opts_free(ob_run_opts *o)

@@ -8,7 +8,7 @@
 
 #include "../methods/driver.h"
 
-enum { OB_MAX_TOLS = 64 };
+enum { OB_MAX_TOLS = 64, OB_MAX_PARAM_ARGS = 256 };
 
 typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backend;
 
@@ -47,6 +47,9 @@ typedef struct {
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
     int force;                   /* --force: a fresh run over an interrupted
                                     run's journal (which it removes) */
+    int out_given;               /* --out was given (parsing) */
+    const char *param_seen[OB_MAX_PARAM_ARGS]; /* the --param values so far (parsing) */
+    int nparam_seen;
     uint64_t data_hash;          /* FNV-1a of the selected curves' content
                                     (filled by the run command; journal.h) */
     int shard_k, shard_n;        /* --shard K/N: this process runs shard K of N
@@ -63,10 +66,37 @@ typedef struct {
     char **argv;
 } ob_run_opts;
 
+#include "cliopts.h"
+
+/* What `run --help` prints after the command's name. */
+#define OB_RUN_SYNOPSIS "[options]   (a benchmark run: every method on every curve at every tolerance)"
+
+/* The run options, for the commands that take some of them (draw, trace,
+ * tables) beside their own. */
+extern const ob_flag ob_run_flags[];
+extern const int ob_run_nflags;
+
+/* Purpose: apply one run option (an ob_flag_apply for ob_run_flags; ctx: the
+ *          ob_run_opts, set up by ob_run_opts_init). */
+int ob_run_flag_apply(void *ctx, int id, const char *opt, const char *value);
+
+/* Purpose: apply the run option --name value (what draw and trace turn
+ *          their --method and --tol into).  Returns 0, or -1 after ob_error(). */
+int ob_run_opt_set(ob_run_opts *o, const char *name, const char *value);
+
+/* Purpose: the defaults, before any option (argv: recorded for meta.json).
+ * Returns 0, or -1 when out of memory.  *o is then safe to free. */
+int ob_run_opts_init(ob_run_opts *o, int argc, char **argv);
+
+/* Purpose: the checks across options, once all are applied.  Returns 0, or
+ *          -1 after ob_error(). */
+int ob_run_opts_finish(ob_run_opts *o);
+
 /* Purpose: parse `run` options (argv[0] is "run").
- * Errors:  returns 0; -1 after reporting through ob_error() an unknown option,
- *          a missing or malformed value (naming the option).  Always leaves
- *          *o safe to pass to ob_run_opts_free(). */
+ * Returns: OB_CLI_OK; OB_CLI_HELP after printing the help (exit 0);
+ *          OB_CLI_ERROR after reporting through ob_error() an unknown
+ *          option, a missing or malformed value (naming the option).
+ *          Always leaves *o safe to pass to ob_run_opts_free(). */
 int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o);
 
 /* Always safe to call. */

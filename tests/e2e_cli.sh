@@ -185,6 +185,24 @@ expect2 "--param" --param tiller.nosuch=1
 expect2 "--param" --param nosuch.x=1
 expect2 "--param" --param tiller
 for spec in 0 abc 5: 5:x -3 10000001 1:2:3; do expect2 "--random" --random "$spec"; done
+expect2 "--threads: given twice" --threads=1 --threads 2
+expect2 "--force: takes no value" --force=yes
+$OB run --out= >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--out: empty directory name" "$T/e.txt"' "--out= is an empty name: $(cat "$T/e.txt")"
+expect2 "unexpected argument 'stray'" stray
+
+# --- one parser for every command: --help on stdout with exit 0, --opt=value ---
+for cmd in run draw trace tables; do
+    $OB $cmd --help >"$T/help.out" 2>"$T/help.err"
+    check '[ $? -eq 0 ] && grep -q -- "--threads N" "$T/help.out" && [ ! -s "$T/help.err" ]' \
+        "$cmd --help: exit 0, the flag table on stdout: $(head -c 300 "$T/help.err")"
+done
+check '$OB trace --help | grep -q -- "--points N"' "trace --help lists --points"
+check '! $OB draw --help | grep -q -- "--points N"' "draw --help does not list trace's --points"
+$OB run --curve=liu2002_ex1 --methods=tiller --tols=1e-2 --threads=1 --out="$T/eq" 2>/dev/null
+$OB run --curve liu2002_ex1 --methods tiller --tols 1e-2 --threads 1 --out "$T/sp" 2>/dev/null
+check '[ -s "$T/eq/results.csv" ] && [ "$(body "$T/eq/results.csv")" = "$(body "$T/sp/results.csv")" ]' \
+    "--opt=value runs the same job as --opt value"
 $OB list curves --random 0 >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--random" "$T/e.txt"' "list curves --random 0 exits 2 naming the option"
 $OB frobnicate >/dev/null 2>&1

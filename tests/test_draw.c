@@ -158,7 +158,8 @@ static int job(ob_jobview *v, const char *const *args, int have_d, double d)
     for (int i = 0; args[i]; i++)
         argv[argc++] = (char *)args[i];
     argv[argc] = NULL;
-    int rc = ob_jobview_open(v, "test", argc, argv, have_d, d);
+    memset(v, 0, sizeof *v);
+    int rc = ob_run_opts_parse(argc, argv, &v->o) ? 2 : ob_jobview_open(v, "test", have_d, d);
     return rc ? rc : ob_jobview_run(v);
 }
 

@@ -583,7 +583,8 @@ static int run_job(ob_jobview *v, const job_spec *j)
     for (int i = 0; rest[i]; i++)
         argv[argc++] = (char *)rest[i];
     argv[argc] = NULL;
-    int rc = ob_jobview_open(v, "test", argc, argv, j->have_d, j->d);
+    memset(v, 0, sizeof *v);
+    int rc = ob_run_opts_parse(argc, argv, &v->o) ? 2 : ob_jobview_open(v, "test", j->have_d, j->d);
     if (rc == 0)
         rc = ob_jobview_run(v);
     return rc == 0 && ob_jobview_has_approx(v) ? 0 : 1;
