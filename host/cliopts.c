@@ -32,6 +32,17 @@ static int takes(const ob_flagset *s, const ob_flag *f)
     return (!s->only || listed(s->only, f->name)) && !(s->skip && listed(s->skip, f->name));
 }
 
+int ob_cli_apply_dir(void *ctx, int id, const char *opt, const char *value)
+{
+    (void)id;
+    if (!*value) {
+        ob_error("%s: empty directory name", opt);
+        return -1;
+    }
+    *(const char **)ctx = value;
+    return 0;
+}
+
 void ob_cli_help(FILE *f, const char *cmd, const char *synopsis, const ob_flagset *sets, int nsets)
 {
     fprintf(f, "usage: ./offbench %s %s\n", cmd, synopsis);

@@ -61,6 +61,10 @@ enum { OB_CLI_OK = 0, OB_CLI_HELP = 1, OB_CLI_ERROR = 2 };
 int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int argc, char **argv, int npos_max,
                  char **pos, int *npos);
 
+/* An ob_flag_apply for a directory (ctx: a const char **): refuses an empty
+ * name. */
+int ob_cli_apply_dir(void *ctx, int id, const char *opt, const char *value);
+
 /* The help of the tables (what --help prints) on f. */
 void ob_cli_help(FILE *f, const char *cmd, const char *synopsis, const ob_flagset *sets, int nsets);
 

@@ -23,6 +23,7 @@
 #include "../methods/offdeg.h"
 #include "commands.h"
 #include "datadir.h"
+#include "cliopts.h"
 #include "diag.h"
 #include "output.h"
 #include "slurp.h"
@@ -172,17 +173,16 @@ static int write_csv(FILE *f, void *ctx)
     return ferror(f) ? -1 : 0;
 }
 
+static const ob_flag out_flag[] = {{"out", "DIR", "output directory (default out/atlas)", 0, OB_FLAG_ONCE}};
+
 int ob_cmd_atlas(int argc, char **argv)
 {
     const char *out = "out/atlas";
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc && argv[i + 1][0]) {
-            out = argv[++i];
-        } else {
-            ob_error("atlas: unknown or incomplete option '%s' (usage: ./offbench atlas [--out DIR])", argv[i]);
-            return 2;
-        }
-    }
+    const ob_flagset flags = {out_flag, 1, NULL, NULL, "options", ob_cli_apply_dir, &out};
+    const int prc = ob_cli_parse("[--out DIR]   (the Offset Atlas: exact offset degrees)", &flags, 1, argc, argv, 0,
+                                 NULL, NULL);
+    if (prc != OB_CLI_OK)
+        return prc == OB_CLI_HELP ? 0 : 2;
     atlas_row rows[MAX_ROWS];
     atlas_out res[MAX_ROWS];
     int n = 0, status = 2;

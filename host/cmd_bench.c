@@ -39,6 +39,7 @@
 #include "commands.h"
 #include "curvefile.h"
 #include "datadir.h"
+#include "cliopts.h"
 #include "diag.h"
 #include "random.h"
 
@@ -266,20 +267,35 @@ static double whole_run(int threads, const ob_curveset *set, ob_driver_opts *o, 
     return dt;
 }
 
+typedef struct {
+    const char *out;
+    int quick;
+} bench_args;
+
+static const ob_flag bench_flags[] = {
+    {"out", "DIR", "output directory (default out/bench)", 0, OB_FLAG_ONCE},
+    {"quick", NULL, "a tenth of the records (a smoke test of the figures)", 1, OB_FLAG_ONCE},
+};
+
+static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    bench_args *a = ctx;
+    if (id == 1) {
+        a->quick = 1;
+        return 0;
+    }
+    return ob_cli_apply_dir(&a->out, id, opt, v);
+}
+
 int ob_cmd_bench(int argc, char **argv)
 {
-    const char *out_dir = "out/bench";
-    int quick = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-            out_dir = argv[++i];
-        else if (strcmp(argv[i], "--quick") == 0)
-            quick = 1;
-        else {
-            ob_error("bench: unknown option '%s' (--out DIR, --quick)", argv[i]);
-            return 2;
-        }
-    }
+    bench_args a = {"out/bench", 0};
+    const ob_flagset flags = {bench_flags, 2, NULL, NULL, "options", apply_bench_flag, &a};
+    const int prc = ob_cli_parse("[--out DIR] [--quick]", &flags, 1, argc, argv, 0, NULL, NULL);
+    if (prc != OB_CLI_OK)
+        return prc == OB_CLI_HELP ? 0 : 2;
+    const char *out_dir = a.out;
+    const int quick = a.quick;
     if (ob_mkdir_p(out_dir) != 0) {
         ob_error("--out: cannot create '%s': %s", out_dir, strerror(errno));
         return 1;

@@ -11,6 +11,8 @@
 #include "commands.h"
 #include "curvefile.h"
 #include "datadir.h"
+#include "cliopts.h"
+#include "columns.h"
 #include "diag.h"
 #include "numfmt.h"
 #include "random.h"
@@ -79,6 +81,36 @@ static void print_curve(const ob_curve *c)
            c->nseg ? c->seg[0].deg : 0, rat ? "yes" : "no", offs, c->source ? c->source : "");
 }
 
+typedef struct {
+    const char *file;
+    long rn;
+    uint64_t seed;
+} list_curves_args;
+
+static const ob_flag list_curves_flags[] = {
+    {"curves", "FILE", "this curve file (default: every file under datasets/)", 0, OB_FLAG_ONCE},
+    {"random", "N[:SEED]", "N random test curves of seed SEED (after the file)", 1, OB_FLAG_ONCE},
+};
+
+static int apply_list_curves_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    list_curves_args *a = ctx;
+    if (id == 0) {
+        a->file = v;
+        return 0;
+    }
+    return ob_random_parse(opt, v, &a->rn, &a->seed);
+}
+
+/* list columns: the results.csv header, one column a line with what it holds. */
+static int list_columns(void)
+{
+    printf("# results.csv, in this order: %s\n", ob_results_header());
+    for (int c = 0; c < OB_NCOLS; c++)
+        printf("%-16s %s\n", ob_columns[c].name, ob_columns[c].meaning);
+    return fflush(stdout) == 0 ? 0 : 1;
+}
+
 /* list curves [--curves FILE] [--random N[:SEED]]: as `run` loads them (the
  * file first); the random curves are generated one at a time, not stored. */
 static int list_curves(int argc, char **argv)
@@ -89,25 +121,14 @@ static int list_curves(int argc, char **argv)
     long rn = 0;
     uint64_t seed = 1;
     int rc = 0;
-    for (int i = 2; i < argc; i += 2) {
-        if (strcmp(argv[i], "--curves") != 0 && strcmp(argv[i], "--random") != 0) {
-            ob_error("list curves: unknown option '%s' (use --curves FILE, --random N[:SEED])", argv[i]);
-            return 2;
-        }
-        if (i + 1 >= argc) {
-            ob_error("%s: missing value", argv[i]);
-            return 2;
-        }
-        for (int k = 2; k < i; k += 2)
-            if (strcmp(argv[k], argv[i]) == 0) {
-                ob_error("%s: given twice (give each option once)", argv[i]);
-                return 2;
-            }
-        if (strcmp(argv[i], "--curves") == 0)
-            file = argv[i + 1];
-        else if (ob_random_parse(argv[i], argv[i + 1], &rn, &seed))
-            return 2;
-    }
+    list_curves_args a = {NULL, 0, 1};
+    const ob_flagset flags = {list_curves_flags, 2, NULL, NULL, "options", apply_list_curves_flag, &a};
+    const int prc = ob_cli_parse("[--curves FILE] [--random N[:SEED]]", &flags, 1, argc - 1, argv + 1, 0, NULL, NULL);
+    if (prc != OB_CLI_OK)
+        return prc == OB_CLI_HELP ? 0 : 2;
+    file = a.file;
+    rn = a.rn;
+    seed = a.seed;
     if (file) {
         snprintf(where, sizeof where, "%s", file);
         rc = ob_curves_load_file(file, &set, err, sizeof err);
@@ -158,18 +179,28 @@ static int list_curves(int argc, char **argv)
 int ob_cmd_list(int argc, char **argv)
 {
     if (argc < 2) {
-        ob_error("list: what? methods, curves or devices");
+        ob_error("list: what? methods, curves, columns or devices");
         return 2;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        puts("usage: ./offbench list methods|curves|columns|devices\n"
+             "  methods   every method: citation, claimed continuity, parameters with defaults and ranges\n"
+             "  curves    the curves a run loads (list curves --help for its options)\n"
+             "  columns   the columns of results.csv, in order, with what each holds\n"
+             "  devices   the OpenCL devices found");
+        return 0;
     }
     if (strcmp(argv[1], "methods") == 0)
         return list_methods();
     if (strcmp(argv[1], "curves") == 0)
         return list_curves(argc, argv);
+    if (strcmp(argv[1], "columns") == 0)
+        return list_columns();
     if (strcmp(argv[1], "devices") == 0) {
         ob_cl_list_devices(stdout);
         printf("# --backend cpu: the C reference path with OpenMP (always available)\n");
         return 0;
     }
-    ob_error("list: unknown subject '%s' (methods, curves, devices)", argv[1]);
+    ob_error("list: unknown subject '%s' (methods, curves, columns, devices)", argv[1]);
     return 2;
 }

@@ -29,7 +29,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "columns.h"
 #include "commands.h"
+#include "cliopts.h"
 #include "diag.h"
 #include "metajson.h"
 #include "output.h"
@@ -183,7 +185,7 @@ static int load_shard(shard_in *s, const char *dir)
         ob_error("merge: %s", err[0] ? err : "out of memory");
         return -1;
     }
-    if (!hdr || strcmp(hdr, OB_RESULTS_HEADER) != 0 || s->nlines != (size_t)nrows) {
+    if (!hdr || strcmp(hdr, ob_results_header()) != 0 || s->nlines != (size_t)nrows) {
         ob_error("merge: %s: not results.csv as run writes it (header, or a row over several lines)", path);
         return -1;
     }
@@ -314,7 +316,7 @@ typedef struct {
 static int write_results_cb(FILE *f, void *ctx)
 {
     const merged *m = ctx;
-    fprintf(f, "%s\n", OB_RESULTS_HEADER);
+    fprintf(f, "%s\n", ob_results_header());
     for (size_t j = 0; j < m->total; j++)
         fprintf(f, "%s\n", m->sh[m->who[j]].lines[m->row[j]]);
     return ferror(f) ? -1 : 0;
@@ -342,6 +344,21 @@ static int write_meta_cb(FILE *f, void *ctx)
     return write_meta(f, s0, m->nsh, m->total, m->wall);
 }
 
+static const ob_flag merge_flags[] = {
+    {"out", "DIR", "the merged run's directory", 0, OB_FLAG_ONCE},
+};
+
+static int apply_merge_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    (void)id;
+    if (!*v) {
+        ob_error("merge: %s needs a directory", opt);
+        return -1;
+    }
+    *(const char **)ctx = v;
+    return 0;
+}
+
 int ob_cmd_merge(int argc, char **argv)
 {
     const char *out = NULL;
@@ -352,19 +369,12 @@ int ob_cmd_merge(int argc, char **argv)
     size_t *row = NULL;
     if (!in)
         return 1;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--out") == 0) {
-            if (i + 1 >= argc || !*argv[i + 1]) {
-                ob_error("merge: --out needs a directory");
-                goto done;
-            }
-            out = argv[++i];
-        } else if (argv[i][0] == '-' && argv[i][1] == '-') {
-            ob_error("merge: unknown option '%s' (usage: ./offbench merge DIR... --out DIR)", argv[i]);
-            goto done;
-        } else {
-            in[nin++] = argv[i];
-        }
+    const ob_flagset flags = {merge_flags, 1, NULL, NULL, "options", apply_merge_flag, &out};
+    const int prc = ob_cli_parse("DIR... --out DIR   (the shards of one run into its results.csv)", &flags, 1, argc,
+                                 argv, argc, (char **)in, &nin);
+    if (prc != OB_CLI_OK) {
+        status = prc == OB_CLI_HELP ? 0 : 2;
+        goto done;
     }
     if (!out || nin == 0) {
         ob_error("merge: usage: ./offbench merge DIR... --out DIR (the directories of run --shard K/N)");

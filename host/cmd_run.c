@@ -14,6 +14,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "columns.h"
 #include "clrt.h"
 #include "commands.h"
 #include "curvefile.h"
@@ -361,7 +362,7 @@ static int mpi_write(const ob_job *jobs, size_t njobs, const size_t *idx, ob_run
         ob_error("rank %d: gathering the rows at rank 0 failed", ob_mpi_rank());
     } else if (ob_mpi_rank() == 0) {
         run_out r = {NULL, o->jobs_total, o, where, wall, NULL, NULL};
-        text_out rt = {OB_RESULTS_HEADER, res}, st = {OB_SAMPLES_HEADER, sam};
+        text_out rt = {ob_results_header(), res}, st = {OB_SAMPLES_HEADER, sam};
         ob_out_file set[3];
         size_t nset = 0;
         set[nset++] = (ob_out_file){"meta.json", write_meta_cb, &r};

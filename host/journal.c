@@ -2,6 +2,7 @@
  * journal.c - rows saved as jobs finish, and resuming an interrupted run
  * (see journal.h).
  */
+#include "columns.h"
 #include "journal.h"
 
 #include <errno.h>
@@ -280,7 +281,7 @@ static int create(ob_journal *j, const char *fp, char *err, size_t errlen)
         snprintf(err, errlen, "%s: cannot write: %s", j->path, strerror(errno));
         return -1;
     }
-    fprintf(j->f, "%s%s\n%s\n", MAGIC, fp, OB_RESULTS_HEADER);
+    fprintf(j->f, "%s%s\n%s\n", MAGIC, fp, ob_results_header());
     if (fflush(j->f) != 0) {
         snprintf(err, errlen, "%s: write failed", j->path);
         return -1;
@@ -327,8 +328,8 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
     const char *body = text + first + 1;
     const size_t blen = keep - (first + 1);
     const char *hend = memchr(body, '\n', blen);
-    if (hend && ((size_t)(hend - body) != strlen(OB_RESULTS_HEADER) ||
-                 memcmp(body, OB_RESULTS_HEADER, strlen(OB_RESULTS_HEADER)) != 0)) {
+    if (hend && ((size_t)(hend - body) != strlen(ob_results_header()) ||
+                 memcmp(body, ob_results_header(), strlen(ob_results_header())) != 0)) {
         /* rows of another build's columns cannot be continued or restored */
         snprintf(err, errlen, "%s:2: written by another version of offbench (its columns differ): run again "
                  "without --resume", j->path);

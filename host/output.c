@@ -12,13 +12,10 @@
 #include <time.h>
 
 #include "buildinfo.h"
+#include "columns.h"
 #include "numfmt.h"
 
 #include <flint/flint.h>
-
-const char OB_RESULTS_HEADER[] =
-    "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,"
-    "offset_degree,offset_rational,max_gap,max_kink,continuity";
 
 void ob_csv_field(FILE *f, const char *s)
 {
@@ -37,39 +34,65 @@ void ob_csv_field(FILE *f, const char *s)
 
 int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs)
 {
-    fprintf(f, "%s\n", OB_RESULTS_HEADER);
+    fprintf(f, "%s\n", ob_results_header());
     for (size_t i = 0; i < njobs; i++)
         ob_write_result_row(f, &jobs[i]);
     return ferror(f) ? -1 : 0;
 }
 
+/* A number of the row in full precision; empty when NaN (none measured). */
+static void put_double(FILE *f, double v)
+{
+    char b[40] = "";
+    if (!isnan(v))
+        ob_fmt_double(b, sizeof b, v);
+    fputs(b, f);
+}
+
+/* Column c of job j's row (columns.h). */
+static void put_field(FILE *f, const ob_job *j, ob_col c)
+{
+    const ob_curve *cv = j->curve;
+    switch (c) {
+    case OB_COL_CURVE: ob_csv_field(f, cv->id); break;
+    case OB_COL_D: put_double(f, j->d); break;
+    case OB_COL_METHOD: fputs(j->method->name, f); break;
+    case OB_COL_METRIC: fputs(ob_metric_name(j->metric), f); break;
+    case OB_COL_SPLIT: fputs(ob_split_name(j->split), f); break;
+    case OB_COL_TOL: put_double(f, j->tol); break;
+    case OB_COL_CTRL_POINTS: fprintf(f, "%ld", j->ctrl_points); break;
+    case OB_COL_SEGMENTS: fprintf(f, "%d", j->segments); break;
+    case OB_COL_OUT_DEGREE: fprintf(f, "%d", j->out_degree); break;
+    case OB_COL_MAX_ERR: put_double(f, j->max_err); break;
+    case OB_COL_STATUS: fputs(ob_status_name(j->status), f); break;
+    case OB_COL_FIT_NS: fprintf(f, "%.0f", j->fit_ns); break;
+    case OB_COL_EVAL_NS: fprintf(f, "%.0f", j->eval_ns); break;
+    case OB_COL_MESSAGE: ob_csv_field(f, j->message); break;
+    case OB_COL_FAMILY: ob_csv_field(f, cv->family ? cv->family : ""); break;
+    case OB_COL_OFFSET_DEGREE:
+        if (cv->offset_known)
+            fprintf(f, "%d", cv->offset_degree);
+        break;
+    case OB_COL_OFFSET_RATIONAL:
+        if (cv->offset_known)
+            fputs(cv->offset_rational ? "yes" : "no", f);
+        break;
+    /* the joints (methods/joints.h): empty when none was measured */
+    case OB_COL_MAX_GAP: put_double(f, j->max_gap); break;
+    case OB_COL_MAX_KINK: put_double(f, j->max_kink); break;
+    case OB_COL_CONTINUITY: fputs(ob_cont_name(j->continuity), f); break;
+    case OB_NCOLS: break;
+    }
+}
+
 int ob_write_result_row(FILE *f, const ob_job *j)
 {
-    char d[40], tol[40], err[40];
-    ob_fmt_double(d, sizeof d, j->d);
-    ob_fmt_double(tol, sizeof tol, j->tol);
-    if (isnan(j->max_err))
-        err[0] = '\0';
-    else
-        ob_fmt_double(err, sizeof err, j->max_err);
-    ob_csv_field(f, j->curve->id);
-    fprintf(f, ",%s,%s,%s,%s,%s,%ld,%d,%d,%s,%s,%.0f,%.0f,", d, j->method->name, ob_metric_name(j->metric),
-            ob_split_name(j->split), tol, j->ctrl_points, j->segments, j->out_degree, err,
-            ob_status_name(j->status), j->fit_ns, j->eval_ns);
-    ob_csv_field(f, j->message);
-    fputc(',', f);
-    ob_csv_field(f, j->curve->family ? j->curve->family : "");
-    if (j->curve->offset_known)
-        fprintf(f, ",%d,%s", j->curve->offset_degree, j->curve->offset_rational ? "yes" : "no");
-    else
-        fputs(",,", f);
-    /* the joints (methods/joints.h): empty when none was measured */
-    char gap[40] = "", kink[40] = "";
-    if (!isnan(j->max_gap))
-        ob_fmt_double(gap, sizeof gap, j->max_gap);
-    if (!isnan(j->max_kink))
-        ob_fmt_double(kink, sizeof kink, j->max_kink);
-    fprintf(f, ",%s,%s,%s\n", gap, kink, ob_cont_name(j->continuity));
+    for (int c = 0; c < OB_NCOLS; c++) {
+        if (c)
+            fputc(',', f);
+        put_field(f, j, (ob_col)c);
+    }
+    fputc('\n', f);
     return ferror(f) ? -1 : 0;
 }
 

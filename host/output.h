@@ -9,9 +9,6 @@
 #include "../methods/driver.h"
 #include "options.h"
 
-/* The results.csv header line (no newline), columns in contract order. */
-extern const char OB_RESULTS_HEADER[];
-
 /* Purpose: write one row per job, in job order, to f.  Returns 0 or -1 on a
  * write error. */
 int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs);

@@ -7,6 +7,8 @@
  */
 #include "results_csv.h"
 
+#include "columns.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -254,9 +256,14 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
                        size_t errlen)
 {
     /* required, then the optional joint columns (NREQ on) */
-    static const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", "ctrl_points",
-                                       "segments", "out_degree", "max_err", "status", "fit_ns", "eval_ns",
-                                       "message", "max_gap", "max_kink", "continuity"};
+    /* the names from the column table (columns.h), in the order of at[] */
+    const char *const cols[] = {
+        ob_columns[OB_COL_CURVE].name,      ob_columns[OB_COL_D].name,          ob_columns[OB_COL_METHOD].name,
+        ob_columns[OB_COL_METRIC].name,     ob_columns[OB_COL_SPLIT].name,      ob_columns[OB_COL_TOL].name,
+        ob_columns[OB_COL_CTRL_POINTS].name, ob_columns[OB_COL_SEGMENTS].name,  ob_columns[OB_COL_OUT_DEGREE].name,
+        ob_columns[OB_COL_MAX_ERR].name,    ob_columns[OB_COL_STATUS].name,     ob_columns[OB_COL_FIT_NS].name,
+        ob_columns[OB_COL_EVAL_NS].name,    ob_columns[OB_COL_MESSAGE].name,    ob_columns[OB_COL_MAX_GAP].name,
+        ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name};
     enum { NCOL = sizeof cols / sizeof cols[0], NREQ = 14 };
     int at[NCOL];
     memset(t, 0, sizeof *t);

@@ -199,6 +199,24 @@ for cmd in run draw trace tables; do
 done
 check '$OB trace --help | grep -q -- "--points N"' "trace --help lists --points"
 check '! $OB draw --help | grep -q -- "--points N"' "draw --help does not list trace's --points"
+for cmd in merge atlas bench "list" "list curves" compare; do
+    $OB $cmd --help >"$T/help.out" 2>"$T/help.err"
+    check '[ $? -eq 0 ] && grep -q "usage" "$T/help.out" && [ ! -s "$T/help.err" ]' "$cmd --help: exit 0 on stdout"
+done
+$OB list curves --random=3:7 >"$T/lc.out" 2>"$T/e.txt"
+check '[ $? -eq 0 ] && grep -q rnd7_000002 "$T/lc.out"' "list curves --random=N:SEED: $(cat "$T/e.txt")"
+$OB atlas --out= >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--out: empty directory name" "$T/e.txt"' "atlas --out=: refused by name"
+$OB bench --quick=1 >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--quick: takes no value" "$T/e.txt"' "bench --quick=1: $(cat "$T/e.txt")"
+
+# --- the column table: list columns says what results.csv holds, in its order ---
+$OB list columns >"$T/cols.out"
+check '[ $? -eq 0 ] && [ "$(head -n 1 "$T/cols.out")" = "# results.csv, in this order: $(head -n 1 "$T/a/results.csv")" ]' \
+    "list columns gives results.csv's header: $(head -n 1 "$T/cols.out")"
+check '[ $(($(wc -l <"$T/cols.out") - 1)) -eq $(head -n 1 "$T/a/results.csv" | tr , "\n" | wc -l) ]' \
+    "list columns: one line per column"
+
 $OB run --curve=liu2002_ex1 --methods=tiller --tols=1e-2 --threads=1 --out="$T/eq" 2>/dev/null
 $OB run --curve liu2002_ex1 --methods tiller --tols 1e-2 --threads 1 --out "$T/sp" 2>/dev/null
 check '[ -s "$T/eq/results.csv" ] && [ "$(body "$T/eq/results.csv")" = "$(body "$T/sp/results.csv")" ]' \
