@@ -30,10 +30,10 @@ static const char usage[] =
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
     "  ./offbench atlas  [--out DIR]        (the Offset Atlas: exact offset degrees)\n"
     "  ./offbench tables [--out DIR] [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n"
-    "  ./offbench list   methods|curves|devices\n"
+    "  ./offbench list   methods|curves|columns|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
     "  ./offbench --version   (the build: version, git commit, flags, OpenCL loader)\n"
-    "See README.md for what each option means.\n";
+    "Every command takes --help (its options, exit 0) and --name=value.  See README.md.\n";
 
 static int dispatch(int argc, char **argv)
 {
