@@ -111,15 +111,10 @@
 
 #include "commands.h"
 #include "compare.h"
+#include "cliopts.h"
 #include "diag.h"
 #include "numfmt.h"
 
-static const char usage[] =
-    "usage: ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--err-atol A]\n"
-    "                          [--time-threshold F] [--time-floor-ns N] [--alpha A] [--max-rows N]\n"
-    "                          [--no-timing] [--method-timing-only]\n"
-    "BASE and NEW: results.csv files or run directories.  Exit 0 no regression, 1 regression,\n"
-    "2 error, 3 not comparable.\n";
 
 typedef struct {
     ob_cmp_opts c;
@@ -141,107 +136,79 @@ static int num_opt(const char *opt, const char *v, double lo, double hi, int ope
     return 0;
 }
 
+enum { CO_FORMAT, CO_OUT, CO_ERR_RTOL, CO_ERR_ATOL, CO_TIME_THRESHOLD, CO_TIME_FLOOR, CO_ALPHA, CO_MAX_ROWS,
+       CO_NO_TIMING, CO_METHOD_TIMING };
+
+static const ob_flag compare_flags[] = {
+    {"format", "md|csv", "the report's format (default md)", CO_FORMAT, OB_FLAG_ONCE},
+    {"out", "FILE", "write the report there (default: standard output)", CO_OUT, OB_FLAG_ONCE},
+    {"err-rtol", "R", "max_err may grow by this factor before it is a regression", CO_ERR_RTOL, OB_FLAG_ONCE},
+    {"err-atol", "A", "... or by this much", CO_ERR_ATOL, OB_FLAG_ONCE},
+    {"time-threshold", "F", "a timing ratio past 1 + F is slower", CO_TIME_THRESHOLD, OB_FLAG_ONCE},
+    {"time-floor-ns", "N", "timings below N ns are not judged", CO_TIME_FLOOR, OB_FLAG_ONCE},
+    {"alpha", "A", "significance level of the rank test", CO_ALPHA, OB_FLAG_ONCE},
+    {"max-rows", "N", "rows of each table in the report", CO_MAX_ROWS, OB_FLAG_ONCE},
+    {"no-timing", NULL, "judge the results only", CO_NO_TIMING, OB_FLAG_ONCE},
+    {"method-timing-only", NULL, "judge timing per method only, not per job", CO_METHOD_TIMING, OB_FLAG_ONCE},
+};
+
+static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    cmd_opts *o = ctx;
+    double x;
+    switch (id) {
+    case CO_FORMAT:
+        if (strcmp(v, "md") != 0 && strcmp(v, "csv") != 0) {
+            ob_error("--format: expected md or csv, got '%s'", v);
+            return -1;
+        }
+        o->csv = strcmp(v, "csv") == 0;
+        return 0;
+    case CO_OUT:
+        if (!*v) {
+            ob_error("--out: expected a file name");
+            return -1;
+        }
+        o->out = v;
+        return 0;
+    case CO_ERR_RTOL: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.err_rtol);
+    case CO_ERR_ATOL: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.err_atol);
+    case CO_TIME_THRESHOLD: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.time_threshold);
+    case CO_TIME_FLOOR: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.time_floor_ns);
+    case CO_ALPHA: return num_opt(opt, v, 0, 1, 1, "a number > 0 and <= 1", &o->c.alpha);
+    case CO_MAX_ROWS:
+        if (num_opt(opt, v, 0, 1e9, 0, "a whole number >= 0", &x) || x != floor(x)) {
+            ob_error("--max-rows: expected a whole number >= 0, got '%s'", v);
+            return -1;
+        }
+        o->c.max_rows = (int)x;
+        return 0;
+    case CO_NO_TIMING: o->c.no_timing = 1; return 0;
+    default: o->c.method_timing_only = 1; return 0;
+    }
+}
+
+/* Returns 0, 1 after printing the help (--help), or -1 after ob_error(). */
 static int parse_opts(int argc, char **argv, cmd_opts *o)
 {
-    int npos = 0, nseen = 0;
-    char seen[16][64];
     o->c = ob_cmp_defaults();
     o->csv = 0;
     o->out = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strncmp(a, "--", 2) != 0) {
-            if (npos == 2) {
-                ob_error("compare: too many arguments ('%s'): expected BASE NEW", a);
-                return -1;
-            }
-            o->in[npos++] = a;
-            continue;
-        }
-        char name[64];
-        const char *v = NULL, *eq = strchr(a, '=');
-        snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - a) : (int)strlen(a), a);
-        /* each option once: a repeated one is an error, not "the last wins" */
-        for (int k = 0; k < nseen; k++)
-            if (strcmp(seen[k], name) == 0) {
-                ob_error("%s: given twice (give each option once)", name);
-                return -1;
-            }
-        if (nseen < (int)(sizeof seen / sizeof seen[0]))
-            snprintf(seen[nseen++], sizeof seen[0], "%s", name);
-        if (strcmp(name, "--no-timing") == 0 || strcmp(name, "--method-timing-only") == 0 ||
-            strcmp(name, "--help") == 0) {
-            if (eq) {
-                ob_error("%s takes no value", name);
-                return -1;
-            }
-            if (strcmp(name, "--help") == 0) {
-                fputs(usage, stdout);
-                return 1;
-            }
-            if (strcmp(name, "--no-timing") == 0)
-                o->c.no_timing = 1;
-            else
-                o->c.method_timing_only = 1;
-            continue;
-        }
-        static const char *const with_value[] = {"--format", "--out", "--err-rtol", "--err-atol",
-                                                 "--time-threshold", "--time-floor-ns", "--alpha", "--max-rows"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-            known |= strcmp(name, with_value[k]) == 0;
-        if (!known) {
-            ob_error("compare: unknown option '%s'", name);
-            return -1;
-        }
-        if (eq)
-            v = eq + 1;
-        else if (i + 1 < argc)
-            v = argv[++i];
-        else {
-            ob_error("%s: missing value", name);
-            return -1;
-        }
-        double x;
-        int rc = 0;
-        if (strcmp(name, "--format") == 0) {
-            if (strcmp(v, "md") != 0 && strcmp(v, "csv") != 0) {
-                ob_error("--format: expected md or csv, got '%s'", v);
-                return -1;
-            }
-            o->csv = strcmp(v, "csv") == 0;
-        } else if (strcmp(name, "--out") == 0) {
-            if (!*v) {
-                ob_error("--out: expected a file name");
-                return -1;
-            }
-            o->out = v;
-        } else if (strcmp(name, "--err-rtol") == 0) {
-            rc = num_opt(name, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.err_rtol);
-        } else if (strcmp(name, "--err-atol") == 0) {
-            rc = num_opt(name, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.err_atol);
-        } else if (strcmp(name, "--time-threshold") == 0) {
-            rc = num_opt(name, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.time_threshold);
-        } else if (strcmp(name, "--time-floor-ns") == 0) {
-            rc = num_opt(name, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.time_floor_ns);
-        } else if (strcmp(name, "--alpha") == 0) {
-            rc = num_opt(name, v, 0, 1, 1, "a number > 0 and <= 1", &o->c.alpha);
-        } else {
-            rc = num_opt(name, v, 0, 1e9, 0, "a whole number >= 0", &x);
-            if (rc == 0 && x != floor(x)) {
-                ob_error("--max-rows: expected a whole number >= 0, got '%s'", v);
-                rc = -1;
-            }
-            o->c.max_rows = rc ? o->c.max_rows : (int)x;
-        }
-        if (rc)
-            return -1;
-    }
+    const ob_flagset flags = {compare_flags, (int)(sizeof compare_flags / sizeof compare_flags[0]), NULL, NULL,
+                              "options", apply_compare_flag, o};
+    char *pos[2];
+    int npos = 0;
+    const int rc = ob_cli_parse("BASE NEW [options]   (results.csv files or run directories; exit 0 no regression, "
+                                "1 regression, 2 error, 3 not comparable)",
+                                &flags, 1, argc, argv, 2, pos, &npos);
+    if (rc != OB_CLI_OK)
+        return rc == OB_CLI_HELP ? 1 : -1;
     if (npos != 2) {
         ob_error("compare: expected BASE NEW (results.csv files or run directories)");
-        fputs(usage, stderr);
         return -1;
     }
+    o->in[0] = pos[0];
+    o->in[1] = pos[1];
     return 0;
 }
 
