@@ -6,6 +6,7 @@
  * dlsym from libOpenCL.so.1 (the ICD loader), once.
  */
 #define _GNU_SOURCE
+#include "diag.h"
 #include "clrt.h"
 
 #include <dlfcn.h>
@@ -519,7 +520,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     }
     return 0;
 fail:
-    fprintf(stderr, "offbench: OpenCL batch of %d records: %s; measuring it on the CPU\n", n, err);
+    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", n, err);
     return -1;
 }
 

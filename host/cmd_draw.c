@@ -176,7 +176,7 @@ static void report(const ob_jobview *v)
     char what[512], sum[256];
     ob_jobview_describe(v, what, sizeof what);
     ob_jobview_summary(v, sum, sizeof sum);
-    fprintf(stderr, "offbench: %s %s: %s%s%s\n", v->cmd, what, sum, v->job.message[0] ? ": " : "",
+    ob_info("%s %s: %s%s%s", v->cmd, what, sum, v->job.message[0] ? ": " : "",
             v->job.message);
 }
 
@@ -529,15 +529,15 @@ static int run_cmd(int trace, int argc, char **argv)
     if (status == 0) {
         report(&v);
         if (trace && ob_jobview_has_approx(&v))
-            fprintf(stderr, "offbench: trace: err is the %s error at t%s; x,y is the %s\n",
+            ob_info("trace: err is the %s error at t%s; x,y is the %s",
                     v.job.metric == OB_METRIC_BOUND ? "radial" : ob_metric_name(v.job.metric),
                     v.job.metric == OB_METRIC_BOUND ? " (bound has no pointwise form)" : "",
                     ob_jobview_point_is_approx(&v) ? "approximation point A(t)" : "exact offset point O(t)");
         if (trace && !ob_jobview_has_approx(&v))
-            fprintf(stderr, "offbench: trace: the job ended %s, so there is no approximation to trace\n",
+            ob_info("trace: the job ended %s, so there is no approximation to trace",
                     ob_status_name(v.job.status));
         if (!trace && !ob_jobview_has_approx(&v))
-            fprintf(stderr, "offbench: draw: the job ended %s; the figure shows the curve and its offset only\n",
+            ob_info("draw: the job ended %s; the figure shows the curve and its offset only",
                     ob_status_name(v.job.status));
         const int wrc = trace ? write_trace(f, &v, a.points) : write_svg(f, &v);
         if (wrc != 0) {

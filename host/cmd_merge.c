@@ -482,7 +482,7 @@ int ob_cmd_merge(int argc, char **argv)
     set[nset++] = (ob_out_file){"results.csv", write_results_cb, &m};
     status = ob_write_set_atomically(out, set, nset) == 0 ? 0 : 1;
     if (status == 0)
-        fprintf(stderr, "offbench: merged %d shards, %zu jobs, into %s/results.csv\n", nin, total, out);
+        ob_info("merged %d shards, %zu jobs, into %s/results.csv", nin, total, out);
 done:
     for (int i = 0; sh && i < nin; i++)
         shard_free(&sh[i]);

@@ -214,7 +214,7 @@ static int run_once(ob_job *jobs, size_t njobs, ob_run_opts *o, const char *what
     ob_progress bar;
     ob_progress_init(&bar);
     if (what)
-        fprintf(stderr, "offbench: %s\n", what);
+        ob_info("%s", what);
     o->driver.progress = ob_progress_cb;
     o->driver.progress_ctx = &bar;
     double t0 = now_s();
@@ -252,8 +252,8 @@ static int run_reps(ob_job *jobs, size_t njobs, ob_run_opts *o, double *fit, dou
             eval[(size_t)r * njobs + i] = jobs[i].eval_ns;
             if (!same_result(&jobs[i], &ref[i])) {
                 if (o->rep_mismatches++ < 5)
-                    fprintf(stderr, "offbench: warning: repetition %d of %s d=%g %s tol=%g differs from the "
-                            "warm-up (%s, %ld points vs %s, %ld): nondeterministic\n", r + 1, jobs[i].curve->id,
+                    ob_warn("repetition %d of %s d=%g %s tol=%g differs from the "
+                            "warm-up (%s, %ld points vs %s, %ld): nondeterministic", r + 1, jobs[i].curve->id,
                             jobs[i].d, jobs[i].method->name, jobs[i].tol, ob_status_name(jobs[i].status),
                             jobs[i].ctrl_points, ob_status_name(ref[i].status), ref[i].ctrl_points);
             }
@@ -268,7 +268,7 @@ static int run_reps(ob_job *jobs, size_t njobs, ob_run_opts *o, double *fit, dou
         *wall = median_strided(walls, 1, reps, tmp);
     }
     if (o->rep_mismatches > 0)
-        fprintf(stderr, "offbench: warning: %ld job results differed between repetitions\n", o->rep_mismatches);
+        ob_warn("%ld job results differed between repetitions", o->rep_mismatches);
 out:
     free(ref);
     free(walls);
@@ -370,7 +370,7 @@ static int mpi_write(const ob_job *jobs, size_t njobs, const size_t *idx, ob_run
             set[nset++] = (ob_out_file){"samples.csv", write_text_cb, &st};
         set[nset++] = (ob_out_file){"results.csv", write_text_cb, &rt};  /* last: see ob_write_set_atomically */
         const int written = ob_write_set_atomically(o->out_dir, set, nset) == 0;
-        fprintf(stderr, "offbench: %d ranks, %zu jobs in %.2f s: %s %s/results.csv\n", o->mpi_ranks, o->jobs_total,
+        ob_info("%d ranks, %zu jobs in %.2f s: %s %s/results.csv", o->mpi_ranks, o->jobs_total,
                 wall, written ? "wrote" : "could not write", o->out_dir);
         status = written ? 0 : 1;
     } else {
@@ -468,7 +468,7 @@ static int run_journaled(ob_job *jobs, size_t njobs, ob_run_opts *o, const char 
         }
     }
     if (*restored_n)
-        fprintf(stderr, "offbench: resuming %s: %zu of %zu jobs restored, %zu to run\n", o->out_dir, *restored_n,
+        ob_info("resuming %s: %zu of %zu jobs restored, %zu to run", o->out_dir, *restored_n,
                 njobs, np);
     journal_ctx jc = {jr, pend, 0};
     o->driver.job_done = journal_job_done;
@@ -515,7 +515,7 @@ int ob_open_backend(ob_run_opts *o, ob_cl **cl)
     o->driver.batch = ob_cl_measure_batch;
     o->driver.batch_ctx = *cl;
     o->driver.batch_fallbacks = &b->fallbacks;
-    fprintf(stderr, "offbench: OpenCL %s / %s, kernels from %s built in %.2f s\n", b->platform, b->device,
+    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s", b->platform, b->device,
             b->kernels, b->build_seconds);
     return 0;
 }
@@ -601,7 +601,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
             status = 1;
             goto done;
         }
-        fprintf(stderr, "offbench: %s %d/%d: %zu of %zu jobs\n", ranks > 1 ? "rank" : "shard", o.shard_k, o.shard_n,
+        ob_info("%s %d/%d: %zu of %zu jobs", ranks > 1 ? "rank" : "shard", o.shard_k, o.shard_n,
                 njobs, o.jobs_total);
     }
     if (ob_open_backend(&o, &cl) != 0)
@@ -673,7 +673,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         drc = !rep_fit || !rep_eval ? -1 : run_reps(jobs, njobs, &o, rep_fit, rep_eval, &wall);
     }
     if (ranks > 1) {
-        fprintf(stderr, "offbench: rank %d: %zu jobs in %.2f s\n", ob_mpi_rank(), njobs, wall);
+        ob_info("rank %d: %zu jobs in %.2f s", ob_mpi_rank(), njobs, wall);
         status = mpi_write(jobs, njobs, shard_idx, &o, where, ob_mpi_max(wall), drc, rep_fit, rep_eval);
         goto done;
     }
@@ -721,7 +721,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     char timeouts[48] = "";
     if (cnt[OB_TIMEOUT])
         snprintf(timeouts, sizeof timeouts, ", timeout %zu", cnt[OB_TIMEOUT]);
-    fprintf(stderr, "offbench: %zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu%s; %s %s/results.csv\n",
+    ob_info("%zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu%s; %s %s/results.csv",
             njobs, wall, omp_get_max_threads(), o.reps > 0 ? ", median of the timed repetitions" : "", cnt[OB_OK],
             cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], timeouts, written ? "wrote" : "could not write", o.out_dir);
 done:

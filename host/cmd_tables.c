@@ -414,9 +414,8 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     int cnt[OB_TAB_NSTATUS] = {0};
     for (int i = 0; i < pl.nrows; i++)
         cnt[ob_tab_row_status(&pl, &pl.rows[i], NULL)]++;
-    fprintf(stderr,
-            "offbench: %d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
-            "differs %d, no-method %d, no-data %d; wrote %s/tables.csv and tables.md\n",
+    ob_info("%d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
+            "differs %d, no-method %d, no-data %d; wrote %s/tables.csv and tables.md",
             pl.nrows, pub.n, (int)OB_PROTO_COUNT, pl.nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4],
             o.out_dir);
 done:

@@ -1,5 +1,5 @@
 /*
- * diag.c - error funnel.  See diag.h.
+ * diag.c - the message funnel.  See diag.h.
  */
 #include "diag.h"
 
@@ -25,4 +25,29 @@ void ob_error(const char *fmt, ...)
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
     handler(buf);
+}
+
+/* Informational lines are not errors: they go to stderr whatever handler
+ * the errors have (a test capturing errors still sees the run's figures). */
+static void vnote(const char *prefix, const char *fmt, va_list ap)
+{
+    char buf[8192];
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    fprintf(stderr, "offbench: %s%s\n", prefix, buf);
+}
+
+void ob_warn(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vnote("warning: ", fmt, ap);
+    va_end(ap);
+}
+
+void ob_info(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vnote("", fmt, ap);
+    va_end(ap);
 }

@@ -1,9 +1,11 @@
 /*
- * diag.h - the one funnel every user-facing error goes through.
+ * diag.h - the one funnel every user-facing message goes through.
  *
  * ob_error() formats a message and hands it to the current handler (by default:
  * "offbench: MESSAGE" on stderr).  It never aborts: callers return a status.
- * Tests install a handler to capture messages.
+ * Tests install a handler to capture messages.  ob_warn() ("offbench:
+ * warning: MESSAGE") and ob_info() ("offbench: MESSAGE") are the lines that
+ * report, not fail: always on stderr, one line each (no newline in fmt).
  */
 #ifndef OB_DIAG_H
 #define OB_DIAG_H
@@ -14,5 +16,7 @@ typedef void (*ob_error_handler)(const char *message);
 ob_error_handler ob_set_error_handler(ob_error_handler h);
 
 void ob_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void ob_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void ob_info(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 #endif
