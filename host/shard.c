@@ -11,24 +11,10 @@
 #include "diag.h"
 #include "numfmt.h"
 
-/* Median thread time per job (ms) of each method in the nightly baseline's
- * random set (hausdorff, mid, five tolerances: results/plots/
- * nightly_time_per_job.png); a method not listed counts as 2 ms. */
-static const struct {
-    const char *name;
-    double ms;
-} method_ms[] = {
-    {"exact", 0.35}, {"ahn", 1.24}, {"lstsq", 1.27}, {"interp", 1.30}, {"elber", 1.42}, {"chebyshev", 1.56},
-    {"kim2018", 1.72}, {"liu", 1.95}, {"coquillart", 2.04}, {"tiller", 2.06}, {"zhao", 2.33}, {"cobb", 2.50},
-    {"zhao-rational", 2.83}, {"sisl", 4.48}, {"lee", 8.02}, {"hoschek", 9.03},
-};
-
 double ob_job_cost(const ob_job *j)
 {
-    double ms = 2.0;
-    for (size_t k = 0; k < sizeof method_ms / sizeof method_ms[0]; k++)
-        if (strcmp(method_ms[k].name, j->method->name) == 0)
-            ms = method_ms[k].ms;
+    /* the method's own figure (method.h), else 2 ms */
+    const double ms = j->method->cost_ms > 0 ? j->method->cost_ms : 2.0;
     double size = 0.0;
     for (int s = 0; s < j->curve->nseg; s++)
         size += j->curve->seg[s].deg + 1;

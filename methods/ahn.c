@@ -69,6 +69,7 @@ const ob_method ob_method_ahn = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_CONVEX | OB_CAP_SAME_PARAM,
     .max_turn = OB_PI,
     .out_degree = ahn_degree,
+    .cost_ms = 1.24,
     .work_size = 0,
     .fit = ahn_fit,
 };

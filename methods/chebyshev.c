@@ -39,6 +39,7 @@ const ob_method ob_method_chebyshev = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
+    .cost_ms = 1.56,
     .work_size = 2 * OB_NF_MAX_NODES * sizeof(double),
     .params = chebyshev_params,
     .nparams = 1,

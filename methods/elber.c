@@ -328,6 +328,7 @@ const ob_method ob_method_elber = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
+    .cost_ms = 1.42,
     .work_size = sizeof(el_work),
     .params = elber_params,
     .nparams = 4,

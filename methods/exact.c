@@ -303,6 +303,7 @@ const ob_method ob_method_exact = {
     .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = exact_degree,
+    .cost_ms = 0.35,
     .work_size = 0,
     .params = exact_params,
     .nparams = NPARAM,

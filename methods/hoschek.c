@@ -258,6 +258,7 @@ const ob_method ob_method_hoschek = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
+    .cost_ms = 9.03,
     .work_size = sizeof(hoschek_work),
     .params = hoschek_params,
     .nparams = HP_COUNT,

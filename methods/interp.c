@@ -123,6 +123,7 @@ const ob_method ob_method_interp = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
+    .cost_ms = 1.3,
     .work_size = sizeof(ip_work),
     .fit = interp_fit,
 };

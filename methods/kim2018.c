@@ -72,6 +72,7 @@ const ob_method ob_method_kim2018 = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_CONVEX | OB_CAP_SAME_PARAM,
     .max_turn = OB_PI,
     .out_degree = kim2018_degree,
+    .cost_ms = 1.72,
     .work_size = 0,
     .fit = kim2018_fit,
 };

@@ -458,6 +458,7 @@ const ob_method ob_method_lee = {
     .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_TOL_DRIVEN,
     .max_turn = 0.0,
     .out_degree = lee_degree,
+    .cost_ms = 8.02,
     .work_size = 0,
     .params = lee_params,
     .nparams = NPARAM,

@@ -50,6 +50,7 @@ const ob_method ob_method_liu = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
+    .cost_ms = 1.95,
     .work_size = 4 * OB_NF_MAX_NODES * sizeof(double),
     .params = liu_params,
     .nparams = 1,

@@ -100,6 +100,11 @@ typedef struct ob_method {
     double max_turn;
     /* degree of the output for an input of degree n (rational_in: weights != 1) */
     int (*out_degree)(int n, int rational_in);
+    /* Median thread time per job (ms) in the nightly baseline's random set
+     * (hausdorff, mid, five tolerances: results/plots/
+     * nightly_time_per_job.png): the cost model of --shard (host/shard.c);
+     * 0 counts as 2 ms. */
+    double cost_ms;
     size_t work_size;       /* bytes of scratch per fit call */
     /* NULL when fit() ignores the tolerance (the output depends on the piece,
      * d and the parameters only); else 1 when it reads it with these

@@ -465,6 +465,7 @@ const ob_method ob_method_sisl = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_ORIENTED | OB_CAP_TOL_DRIVEN,
     .max_turn = 0.0,
     .out_degree = sisl_degree,
+    .cost_ms = 4.48,
     .work_size = 0,
     .params = sisl_params,
     .nparams = 2,

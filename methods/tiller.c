@@ -79,6 +79,7 @@ const ob_method ob_method_tiller = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
     .out_degree = ob_degree_same,
+    .cost_ms = 2.06,
     .work_size = 0,
     .fit = tiller_fit,
 };

@@ -616,6 +616,8 @@ int main(void)
         CHECK(m->name && m->name[0] && m->fit && m->out_degree, "method %d incomplete", i);
         CHECK(m->version >= 1, "%s: has a version (meta.json method_versions), got %d", m->name, m->version);
         CHECK(ob_method_find(m->name) == m, "%s: found by name", m->name);
+        CHECK(m->cost_ms > 0 && m->cost_ms < 1e4, "%s: a cost for --shard's model (cost_ms, method.h), got %g",
+              m->name, m->cost_ms);
         test_param_ranges(m);
         for (int c = 0; c < ncurves; c++)
             for (int k = 0; k < ND; k++)
