@@ -40,6 +40,7 @@ static const implicit eqs[] = {
     {"atlas_lemniscate", 4, 5, {{1, 4, 0}, {2, 2, 2}, {1, 0, 4}, {-1, 2, 0}, {1, 0, 2}}},
     {"atlas_cardioid", 4, 6, {{1, 4, 0}, {2, 2, 2}, {1, 0, 4}, {-2, 3, 0}, {-2, 1, 2}, {-1, 0, 2}}},
     {"atlas_trifolium", 4, 5, {{1, 4, 0}, {2, 2, 2}, {1, 0, 4}, {-1, 3, 0}, {3, 1, 2}}},
+    {"atlas_ramphoid", 4, 5, {{1, 4, 0}, {1, 2, 2}, {-2, 2, 1}, {-1, 1, 2}, {1, 0, 2}}},
 };
 
 static unsigned long binomial(int n, int k)
