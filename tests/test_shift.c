@@ -78,15 +78,6 @@ static void ref_normal(const ob_bez *b, double t, double N[2], double *kappa)
         *kappa = (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (s * s * s);
 }
 
-static void ref_offset(const ob_bez *b, double t, double d, double O[2])
-{
-    double N[2];
-    ref_point(b, t, O);
-    ref_normal(b, t, N, NULL);
-    O[0] += d * N[0];
-    O[1] += d * N[1];
-}
-
 static void ctrl(const ob_bez *b, int i, double p[2])
 {
     p[0] = b->h[i][0] / b->h[i][2];

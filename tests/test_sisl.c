@@ -61,18 +61,6 @@ static ob_status fit(const ob_bez *C, double d, double tol, double max_step, ob_
     return M->fit(C, &a, NULL, f, msg, MSGLEN);
 }
 
-/* Independent exact offset point and left normal (testlib's reference evaluation). */
-static void ref_offset(const ob_bez *C, double t, double d, double o[2], double N[2])
-{
-    double e[2][2];
-    ref_eval(C, t, 1, e);
-    double L = hypot(e[1][0], e[1][1]);
-    N[0] = -e[1][1] / L;
-    N[1] = e[1][0] / L;
-    o[0] = e[0][0] + d * N[0];
-    o[1] = e[0][1] + d * N[1];
-}
-
 /* SISL's s1360 called directly on a polynomial segment (domain [0,1]). */
 static SISLCurve *sisl_direct(const ob_bez *C, double d, double tol, double amax, int *stat)
 {
@@ -244,7 +232,7 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
         }
         /* at its base parameter, each breakpoint is the exact offset point */
         double o[2], N[2], p[2];
-        ref_offset(C, a, d, o, N);
+        ref_offset_normal(C, a, d, o, N);
         ref_point(A, 0.0, p);
         worst_knot = fmax(worst_knot, dist2d(p, o));
         /* orientation: the middle of the piece is on the side of sign(d) */
@@ -279,7 +267,7 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
                             (hypot(da[1][0], da[1][1]) * hypot(dc[1][0], dc[1][1]));
                 worst_g1 = fmax(worst_g1, da[1][0] * dc[1][0] + da[1][1] * dc[1][1] > 0 ? fabs(sn) : INFINITY);
             }
-            ref_offset(C, 1.0, d, o, N);
+            ref_offset_normal(C, 1.0, d, o, N);
             ref_point(A, 1.0, p);
             worst_knot = fmax(worst_knot, dist2d(p, o));
         }
@@ -410,7 +398,7 @@ static void test_rational(void)
         int poly = 1;
         for (int i = 0; i < f.n; i++) {
             double o[2], N[2], p[2];
-            ref_offset(&qc, f.t[i], d, o, N);
+            ref_offset_normal(&qc, f.t[i], d, o, N);
             ref_point(&f.seg[i], 0.0, p);
             wk = fmax(wk, dist2d(p, o));
             wk = fmax(wk, fabs(hypot(p[0], p[1]) - r));
@@ -591,7 +579,7 @@ static void test_parameterization(void)
     for (int i = 0; i < f.n; i++)
         for (int s = 1; s < 32; s++) {
             double u = s / 32.0, t = f.t[i] + (f.t[i + 1] - f.t[i]) * u, o[2], N[2], p[2];
-            ref_offset(&C, t, d, o, N);
+            ref_offset_normal(&C, t, d, o, N);
             ref_point(&f.seg[i], u, p);
             par = fmax(par, dist2d(p, o));
         }
