@@ -12,7 +12,8 @@
  *  - its per-span Elber-Cohen bound met the tolerance, so the error sampled
  *    densely (radial: | |A(t) - C(t)| - |d| |) is within it, on random
  *    cubics, a rational arc and both signs of d;
- *  - a piece it cannot fit with at most OB_MAX_PIECES spans asks for a smaller
+ *  - a spline of more than 16 spans comes back whole (one spline, not two);
+ *    a piece it cannot fit with at most OB_MAX_PIECES spans asks for a smaller
  *    piece (OB_RETRY_SMALLER), and a tighter tolerance never gets fewer points.
  */
 #include <stdlib.h>
@@ -168,8 +169,8 @@ static void test_random(const ob_method *m)
     CHECK(ok >= tried * 3 / 4, "%d of %d random fits ok", ok, tried);
 }
 
-/* Liu-Wang's Example 1 at 1e-1: a handful of control points, not 16 spans;
- * at 1e-9 no 16-span spline is close enough: a smaller piece is asked for. */
+/* Liu-Wang's Example 1 at 1e-1: a handful of control points; at 1e-9 no
+ * spline of OB_MAX_PIECES spans is close enough: a smaller piece is asked for. */
 static void test_example1(const ob_method *m)
 {
     const double xy[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
@@ -177,6 +178,11 @@ static void test_example1(const ob_method *m)
     const result r = run(m, &b, 1.0, 1e-1);
     CHECK(r.st == OB_OK && r.f.ctrl_points >= 4 && r.f.ctrl_points <= 10, "example 1 at 1e-1: status %d, %ld points",
           r.st, r.f.ctrl_points);
+    /* one spline of more than 16 spans: returned whole, not split (the spans
+     * fit in an ob_fit; splitting would make two splines of it) */
+    const result f = run(m, &b, 1.0, 1e-5);
+    CHECK(f.st == OB_OK && f.f.n > 16 && f.f.n == f.f.ctrl_points - 3,
+          "example 1 at 1e-5: one spline (status %d, %d spans, %ld points: %s)", f.st, f.f.n, f.f.ctrl_points, f.msg);
     const result t = run(m, &b, 1.0, 1e-9);
     CHECK(t.st == OB_RETRY_SMALLER && strstr(t.msg, "control points"), "example 1 at 1e-9: status %d (%s)", t.st,
           t.msg);

@@ -14,7 +14,7 @@
  *   pieces cut where the normal crosses an arc boundary and joined end to
  *   end; degree 3n-2 (polynomial) and 5n-4 (rational); radial error at most
  *   the circle approximation error (+ round-off) and decreasing with tol; the
- *   parameters; OB_RETRY_SMALLER when more than OB_MAX_PIECES arcs are met.
+ *   parameters; OB_RETRY_SMALLER when more than OB_SPLIT_PIECES arcs are met.
  * Reference computations use tests/testlib.h (independent of the library).
  */
 #include <math.h>

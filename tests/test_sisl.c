@@ -19,7 +19,7 @@
  *    liu2002_ex2 (d = 0.5) given to s1360 as one B-spline;
  *  - the result is not parameterized like the base inside a span (why the
  *    method does not claim OB_CAP_SAME_PARAM);
- *  - OB_RETRY_SMALLER past OB_MAX_PIECES spans; OB_FAIL with SISL's status for
+ *  - OB_RETRY_SMALLER past OB_SPLIT_PIECES spans; OB_FAIL with SISL's status for
  *    a bad tolerance, and nothing printed (s6err is silenced);
  *  - the parameter max_step reaches s1360;
  *  - fits made on several OpenMP threads at once equal the serial ones.
@@ -448,7 +448,7 @@ static void test_tolerance(void)
                   tol, e, prev_err);
             CHECK(ctrl > prev_ctrl, "liu d %g tol %g: %d control points, not more than %d", d, tol,
                   ctrl, prev_ctrl);
-            if (spans <= OB_MAX_PIECES)  /* then the method returns exactly this curve */
+            if (spans <= OB_SPLIT_PIECES)  /* then the method returns exactly this curve */
                 CHECK(mctrl == ctrl && merr == e, "liu d %g tol %g: method %ld / %g vs direct %d / %g",
                       d, tol, mctrl, merr, ctrl, e);
             prev_err = e;
