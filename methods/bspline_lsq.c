@@ -22,6 +22,11 @@
  * most OB_MAX_PIECES spans meets it: OB_RETRY_SMALLER (the driver halves the
  * base piece and fits each part).
  *
+ * Joints: the spans of one spline are C2; the spline interpolates nothing,
+ * not even the offset's end points, so the splines of neighbouring base
+ * segments (or of the halves the driver makes) do not meet: claimed "none",
+ * like zhao's (their gaps are within the tolerance's order).
+ *
  * Readings (Ahn's sentence gives none of these): uniform knots in the base's
  * parameter (Hoschek-Wissel's spline is in the curve's parameter; the bound
  * needs A and C to share it); the sample count, 8 per control point by
@@ -193,7 +198,7 @@ const ob_method ob_method_bspline_lsq = {
     .version = 1,
     .citation = "Lee, Kim & Elber 1996, Planar curve offset based on circle approximation (CAD 28:617-630) "
                 "(\"Lst\": Hoschek-Wissel least-squares B-spline, Elber-Cohen 1991 bound)",
-    .continuity = "C2",
+    .continuity = "none",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_TOL_DRIVEN,
     .max_turn = 0.0,
     .out_degree = bl_out_degree,
