@@ -61,6 +61,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *ob_proto_name(ob_proto p)
@@ -80,7 +81,20 @@ static void set_param(ob_tab_spec *s, const char *name, double v)
     }
 }
 
-/* "zhao2017_quintic/C1" -> curve "zhao2017_quintic", [0, 1/2]. */
+/* The cut point of "C1@X" / "C2@X" (0 < X < 1; plain C1, C2: 1/2), or -1. */
+static double cut_point(const char *piece)
+{
+    if (!piece[2])
+        return 0.5;
+    if (piece[2] != '@')
+        return -1.0;
+    char *end;
+    const double x = strtod(piece + 3, &end);
+    return end != piece + 3 && !*end && x > 0.0 && x < 1.0 ? x : -1.0;
+}
+
+/* "zhao2017_quintic/C1" -> curve "zhao2017_quintic", [0, 1/2]; "C2@0.4" ->
+ * [0.4, 1] (the cut Zhao-Zhou do not give, for the sweep). */
 static int resolve_piece(const char *curve, ob_tab_spec *s, char *err, size_t errlen)
 {
     const char *slash = strchr(curve, '/');
@@ -96,15 +110,16 @@ static int resolve_piece(const char *curve, ob_tab_spec *s, char *err, size_t er
     const char *piece = slash + 1;
     if (is(piece, "C"))
         return 0;
-    if (is(piece, "C1")) {
-        s->piece_b = 0.5;
+    const double cut = strncmp(piece, "C1", 2) == 0 || strncmp(piece, "C2", 2) == 0 ? cut_point(piece) : -1.0;
+    if (cut > 0.0) {
+        if (piece[1] == '1')
+            s->piece_b = cut;
+        else
+            s->piece_a = cut;
         return 0;
     }
-    if (is(piece, "C2")) {
-        s->piece_a = 0.5;
-        return 0;
-    }
-    snprintf(err, errlen, "curve '%s': unknown piece '%s' (known: C, C1, C2)", curve, piece);
+    snprintf(err, errlen, "curve '%s': unknown piece '%s' (known: C, C1, C2, C1@X, C2@X with 0 < X < 1)", curve,
+             piece);
     return -1;
 }
 

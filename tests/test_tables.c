@@ -168,6 +168,19 @@ static void test_protocols(void)
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.nset == 1 &&
               strcmp(s.set_name[0], "iterations") == 0 && s.set_value[0] == 2,
           "iter2 variant");
+    c = cell("zhao2017", "1", "zhao2017_quintic/C1@0.4", "lee", "Lee", "max_err", NAN);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.0 && s.piece_b == 0.4,
+          "C1@0.4: the first part cut at t = 0.4 (%s)", err);
+    c = cell("zhao2017", "1", "zhao2017_quintic/C2@0.7", "lee", "Lee", "max_err", NAN);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.7 && s.piece_b == 1.0,
+          "C2@0.7: the second part from t = 0.7 (%s)", err);
+    static const char *const bad_cuts[] = {"zhao2017_quintic/C1@1", "zhao2017_quintic/C2@0", "zhao2017_quintic/C1@x",
+                                           "zhao2017_quintic/C1@0.5x", "zhao2017_quintic/C@0.5"};
+    for (int k = 0; k < 5; k++) {
+        c = cell("zhao2017", "1", bad_cuts[k], "lee", "Lee", "max_err", NAN);
+        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "piece"),
+              "%s refused: %s", bad_cuts[k], err);
+    }
     c = cell("zhao2017", "1", "zhao2017_quintic/C9", "lee", "Lee", "max_err", NAN);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "C9"), "unknown piece: %s",
           err);
