@@ -14,7 +14,12 @@
  *   at inflections: the inflection pre-split is Liu-Wang's own rule for their
  *   method (§2.4, and Example 3: "由于它具有拐点, 我们首先在曲线的拐点处将曲线
  *   离散为两段", since it has an inflection we first split it there), so the
- *   [13] columns get none.  Table 3 is theirs throughout ("例 3 中的基曲线及
+ *   [13] columns get none.  IRIT's B-splines are open uniform, so Example 2,
+ *   "3 次均匀 B 样条曲线" (a cubic uniform B-spline, §3), is read with the
+ *   clamped knots 0^4 1 2 3 4^4 (datasets/published.curves; the unclamped
+ *   reading is liu2002_ex2_unclamped).  With both readings, tiller and cobb
+ *   reproduce Table 2 exactly (5/5 each; unclamped with the pre-split 0/5 and
+ *   2/5).  Table 3 is theirs throughout ("例 3 中的基曲线及
  *   所有方法的比较结果均由我们得出", the curve and every method's result of
  *   Example 3 are ours): there the pre-split stays.
  * - Lst, Liu-Wang Tables 1-2 and Ahn Tables 1-2: Lee, Kim & Elber's
