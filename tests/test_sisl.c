@@ -16,7 +16,7 @@
  *    span measured by ob_metric_hausdorff against its base sub-segment; the
  *    ratio true error / SISL's tolerance is PRINTED (not asserted); asserted:
  *    finite, decreasing with the tolerance, counts increasing; the same for
- *    liu2002_ex2 (d = 0.5) given to s1360 as one B-spline;
+ *    liu2002_ex2_unclamped (d = 0.5) given to s1360 as one B-spline;
  *  - the result is not parameterized like the base inside a span (why the
  *    method does not claim OB_CAP_SAME_PARAM);
  *  - OB_RETRY_SMALLER past OB_SPLIT_PIECES spans; OB_FAIL with SISL's status for
@@ -48,7 +48,7 @@ enum { MSGLEN = 160 };
 
 static const double LIU[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
 
-/* liu2002_ex2 (datasets/published.curves): uniform cubic B-spline, 7 points */
+/* liu2002_ex2_unclamped (datasets/published.curves): uniform cubic B-spline, 7 points */
 static const double EX2[7][2] = {{-3.01619, 2.34143},  {-3.97193, -2.20842}, {-1.07045, 0.0722807},
                                  {0.319568, -2.77522}, {-0.152767, 2.299},   {2.92416, -0.939865},
                                  {2.8027, 3.02775}};
@@ -456,7 +456,7 @@ static void test_tolerance(void)
         }
     }
 
-    /* liu2002_ex2: s1360 on the whole B-spline, as a C user would call it */
+    /* liu2002_ex2_unclamped: s1360 on the whole B-spline, as a C user would call it */
     static const double kn[11] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
     double pts[7][3], co[14];
     for (int i = 0; i < 7; i++) {
@@ -468,11 +468,11 @@ static void test_tolerance(void)
     int nseg = 0;
     char err[128];
     int r = ob_bspline_to_bezier(3, 7, kn, (const double (*)[3])pts, &segs, &nseg, err, sizeof err);
-    CHECK(r == 0 && nseg == 4, "liu2002_ex2: %d segments (%s)", nseg, err);
+    CHECK(r == 0 && nseg == 4, "liu2002_ex2_unclamped: %d segments (%s)", nseg, err);
     if (r != 0)
         return;
     SISLCurve *pc = newCurve(7, 4, (double *)kn, co, 1, 2, 1);
-    printf("  liu2002_ex2, d 0.5, s1360 on the whole B-spline (domain [3, 7]): true error vs tol\n");
+    printf("  liu2002_ex2_unclamped, d 0.5, s1360 on the whole B-spline (domain [3, 7]): true error vs tol\n");
     double prev_err = INFINITY;
     int prev_ctrl = 0;
     for (int i = 0; i < 5; i++) {
@@ -484,9 +484,9 @@ static void test_tolerance(void)
         if (rc && stat >= 0)
             e = measure_sisl(rc, segs, nseg, 3.0, 0.5, &tw, &ctrl, &spans);
         printf("  %+5g %7.0e %6d %6d %12.4g %8.3g %8.4f\n", 0.5, tol, ctrl, spans, e, e / tol, tw);
-        CHECK(rc && stat >= 0 && rc->et[3] == 3.0 && rc->et[rc->in] == 7.0, "liu2002_ex2 tol %g: "
+        CHECK(rc && stat >= 0 && rc->et[3] == 3.0 && rc->et[rc->in] == 7.0, "liu2002_ex2_unclamped tol %g: "
               "status %d, domain", tol, stat);
-        CHECK(isfinite(e) && e < prev_err && ctrl > prev_ctrl, "liu2002_ex2 tol %g: error %g "
+        CHECK(isfinite(e) && e < prev_err && ctrl > prev_ctrl, "liu2002_ex2_unclamped tol %g: error %g "
               "(before %g), %d control points (before %d)", tol, e, prev_err, ctrl, prev_ctrl);
         prev_err = e;
         prev_ctrl = ctrl;
