@@ -45,7 +45,6 @@ typedef struct {
 static const struct {
     const char *name, *why;
 } not_covered[] = {
-    {"Ramphoid", "no rational parameterization known to us for the atlas' ramphoid quartic"},
     {"x^4 + y^4 - y^2", "not rational (a quartic with a tacnode at the origin: genus 1); the implicit-case formula "
                         "with resultants is not built"},
 };

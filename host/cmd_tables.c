@@ -26,7 +26,7 @@
 #include "tables.h"
 
 /* The radii swept for Zhao-Zhou's quintic (its radius is not published). */
-static const double sweep_d[] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0};
+static const double sweep_d[] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.25, 1.5, 2.0};
 enum { NSWEEP = sizeof sweep_d / sizeof sweep_d[0] };
 
 static int group_of(const ob_tab_spec *s) { return 2 * s->single_piece + s->inflections; }
@@ -189,7 +189,12 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
             }
         }
     /* Zhao-Zhou's quintic: its radius is not published, so sweep it */
-    static const char *pieces[] = {"zhao2017_quintic/C", "zhao2017_quintic/C1", "zhao2017_quintic/C2"};
+    /* nor where it was cut into C1 and C2: t = 1/2 (tables.md) and others (zhao_sweep.csv) */
+    static const char *pieces[] = {"zhao2017_quintic/C",      "zhao2017_quintic/C1",     "zhao2017_quintic/C2",
+                                   "zhao2017_quintic/C1@0.3", "zhao2017_quintic/C2@0.3", "zhao2017_quintic/C1@0.4",
+                                   "zhao2017_quintic/C2@0.4", "zhao2017_quintic/C1@0.6", "zhao2017_quintic/C2@0.6",
+                                   "zhao2017_quintic/C1@0.7", "zhao2017_quintic/C2@0.7"};
+    enum { NPIECES = sizeof pieces / sizeof pieces[0] };
     static const char *methods[] = {"lee", "zhao-rational"};
     if (!selected(only, "zhao2017", "1"))
         return 0;
@@ -198,7 +203,7 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
     snprintf(cell.source, sizeof cell.source, "zhao2017");
     snprintf(cell.table, sizeof cell.table, "1");
     snprintf(cell.unit, sizeof cell.unit, "max_err");
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < NPIECES; k++)
         for (int m = 0; m < 2; m++)
             for (int p = 0; p < 2; p++)
                 for (int i = 0; i < NSWEEP && (protos & (1u << p)); i++) {
@@ -210,6 +215,10 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                     const ob_curve *curve = find_curve(pl, set, &s, err, sizeof err);
                     if (!curve)
                         continue;
+                    if (pl->nsweep == OB_TAB_MAX_SWEEP) {
+                        ob_error("more than %d points in the quintic's sweep", OB_TAB_MAX_SWEEP);
+                        return -1;
+                    }
                     ob_tab_sweep *w = &pl->sweep[pl->nsweep++];
                     w->piece = pieces[k] + strlen("zhao2017_quintic/");
                     w->method = methods[m];

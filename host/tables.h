@@ -12,7 +12,7 @@
 #include "published.h"
 #include "tables_protocol.h"
 
-enum { OB_TAB_MAX_PIECES = 16, OB_TAB_MAX_SWEEP = 128 };
+enum { OB_TAB_MAX_PIECES = 32, OB_TAB_MAX_SWEEP = 512 };
 
 /* One distinct job (cells that need the same run share it). */
 typedef struct {
@@ -33,7 +33,7 @@ typedef struct {
 
 /* One point of the Zhao-Zhou quintic sweep. */
 typedef struct {
-    const char *piece;      /* C, C1, C2 */
+    const char *piece;      /* C, C1, C2 (cut at 1/2), C1@X, C2@X (cut at X) */
     const char *method;
     ob_proto proto;
     ob_metric metric;

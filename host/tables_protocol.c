@@ -2,11 +2,41 @@
  * tables_protocol.c - the measurement protocol of every published column.
  *
  * Evidence for the `paper` readings (../shared/METHODS.md, the seeds):
- * - Liu-Wang Tables 1-2, Til Cob Coq Elb: these columns come from Elber, Lee &
- *   Kim's comparison (Liu-Wang §3: "the data of Examples 1 and 2 are taken
- *   from [13], which has tables comparing Til, Cob, Elb"), measured with
- *   Elber-Lee-Kim's symbolic bound and split at the midpoint.  Checked: tiller
- *   and cobb reproduce Table 1 exactly this way, for both signs of d.
+ * - Liu-Wang Tables 1-2, Til Cob Coq Elb: these columns come from Lee, Kim &
+ *   Elber 1996 (Planar curve offset based on circle approximation, CAD 28(8);
+ *   Liu-Wang's [13]), Liu-Wang §3: "例 1 和例 2 中的数据取自文献[13]. 文献[13]
+ *   中有关于 Til, Cob, Elb 等方法的比较结果的表格" (the data of Examples 1 and 2
+ *   are taken from [13], which has tables comparing Til, Cob, Elb and
+ *   others), measured with the symbolic bound of |A - C|^2 (Elber, Lee & Kim
+ *   1997, Liu-Wang's [3], describe it) and split at the midpoint.  Checked:
+ *   tiller and cobb reproduce Table 1 exactly this way, for both signs of d.
+ *   Those runs were made in IRIT, whose subdivision offsetting does not split
+ *   at inflections: the inflection pre-split is Liu-Wang's own rule for their
+ *   method (§2.4, and Example 3: "由于它具有拐点, 我们首先在曲线的拐点处将曲线
+ *   离散为两段", since it has an inflection we first split it there), so the
+ *   [13] columns get none.  IRIT's B-splines are open uniform, so Example 2,
+ *   "3 次均匀 B 样条曲线" (a cubic uniform B-spline, §3), is read with the
+ *   clamped knots 0^4 1 2 3 4^4 (datasets/published.curves; the unclamped
+ *   reading is liu2002_ex2_unclamped).  With both readings, tiller and cobb
+ *   reproduce Table 2 exactly (5/5 each; unclamped with the pre-split 0/5 and
+ *   2/5).  Table 3 is theirs throughout ("例 3 中的基曲线及
+ *   所有方法的比较结果均由我们得出", the curve and every method's result of
+ *   Example 3 are ours): there the pre-split stays.
+ * - Lst, Liu-Wang Tables 1-2 and Ahn Tables 1-2: Lee, Kim & Elber's
+ *   least-squares B-spline (method bspline-lsq).  Ahn §5: "The Lst method was
+ *   proposed by Lee et al. [11] and they explained that it is an extension of
+ *   Hoschek and Wissel [2] while adapting the global error bounding technique
+ *   of the method in [36]" ([11] = Liu-Wang's [13], [36] = Elber & Cohen
+ *   1991), and his Tables 1-2 "have been presented in [11, 13, 26]".
+ *   Liu-Wang's Table 1 Lst column is Ahn's, figure for figure (7 13 19 31
+ *   50), and comes from the same [13] tables; Liu-Wang's own sentence calls
+ *   Lst their method with a sampled least-squares normal ("采样最小二乘逼近
+ *   法向", §3), which their Table 3 (their own runs) keeps (method lstsq).
+ *   Measured by the method's own criterion, the Elber-Cohen bound (the bound
+ *   metric), midpoint split, no inflection pre-split, like the other [13]
+ *   columns; Ahn's sign of d, as for his M2 column from the same paper.
+ * - Ahn's M2 column is Lee, Kim & Elber's own method ("M2 [11]") from the same
+ *   runs: no inflection pre-split either (lee does not need convex pieces).
  * - Liu-Wang, Liu Che Lst: "we usually take several measurement points on the
  *   segment to compute the error; when it misses the tolerance the segment is
  *   split at the point of largest error" (§2.3, Step 5), and the base is split
@@ -36,6 +66,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *ob_proto_name(ob_proto p)
@@ -55,7 +86,20 @@ static void set_param(ob_tab_spec *s, const char *name, double v)
     }
 }
 
-/* "zhao2017_quintic/C1" -> curve "zhao2017_quintic", [0, 1/2]. */
+/* The cut point of "C1@X" / "C2@X" (0 < X < 1; plain C1, C2: 1/2), or -1. */
+static double cut_point(const char *piece)
+{
+    if (!piece[2])
+        return 0.5;
+    if (piece[2] != '@')
+        return -1.0;
+    char *end;
+    const double x = strtod(piece + 3, &end);
+    return end != piece + 3 && !*end && x > 0.0 && x < 1.0 ? x : -1.0;
+}
+
+/* "zhao2017_quintic/C1" -> curve "zhao2017_quintic", [0, 1/2]; "C2@0.4" ->
+ * [0.4, 1] (the cut Zhao-Zhou do not give, for the sweep). */
 static int resolve_piece(const char *curve, ob_tab_spec *s, char *err, size_t errlen)
 {
     const char *slash = strchr(curve, '/');
@@ -71,15 +115,16 @@ static int resolve_piece(const char *curve, ob_tab_spec *s, char *err, size_t er
     const char *piece = slash + 1;
     if (is(piece, "C"))
         return 0;
-    if (is(piece, "C1")) {
-        s->piece_b = 0.5;
+    const double cut = strncmp(piece, "C1", 2) == 0 || strncmp(piece, "C2", 2) == 0 ? cut_point(piece) : -1.0;
+    if (cut > 0.0) {
+        if (piece[1] == '1')
+            s->piece_b = cut;
+        else
+            s->piece_a = cut;
         return 0;
     }
-    if (is(piece, "C2")) {
-        s->piece_a = 0.5;
-        return 0;
-    }
-    snprintf(err, errlen, "curve '%s': unknown piece '%s' (known: C, C1, C2)", curve, piece);
+    snprintf(err, errlen, "curve '%s': unknown piece '%s' (known: C, C1, C2, C1@X, C2@X with 0 < X < 1)", curve,
+             piece);
     return -1;
 }
 
@@ -107,9 +152,32 @@ static int resolve_method(const char *name, ob_tab_spec *s, char *err, size_t er
     return -1;
 }
 
+/* Lee, Kim & Elber 1996's tables, which Liu-Wang copy into their Tables 1-2
+ * (their [13]) and Ahn into his (his [11]). */
+static int from_lee1996(const ob_pub_cell *c)
+{
+    return (is(c->source, "liu2002") && (is(c->table, "1") || is(c->table, "2")) && !is(c->label, "Liu") &&
+            !is(c->label, "Che")) ||
+           (is(c->source, "ahn2023") && is(c->label, "Lst"));
+}
+
 static void paper_counts(const ob_pub_cell *c, ob_tab_spec *s)
 {
-    if (is(c->source, "liu2002") &&
+    if (is(c->label, "Lst") && from_lee1996(c)) {
+        s->method = ob_method_find("bspline-lsq");
+        s->metric = OB_METRIC_BOUND;
+        s->split = OB_SPLIT_MID;
+        s->inflections = 0;
+        s->d_factor = is(c->source, "ahn2023") ? -1.0 : 1.0;
+        s->note = "Lee, Kim & Elber 1996's Lst (Ahn: Hoschek-Wissel least squares with Elber-Cohen's bound): "
+                  "bspline-lsq, its bound, midpoint split, no inflection split";
+    } else if (from_lee1996(c)) {
+        s->metric = OB_METRIC_BOUND;
+        s->split = OB_SPLIT_MID;
+        s->inflections = 0;
+        s->note = "Lee, Kim & Elber 1996's runs (IRIT): symbolic bound of |A - C|^2, midpoint split, "
+                  "no inflection split";
+    } else if (is(c->source, "liu2002") &&
         (is(c->label, "Liu") || is(c->label, "Che") || is(c->label, "Lst"))) {
         s->metric = OB_METRIC_RADIAL;
         s->split = OB_SPLIT_MAXERR;
@@ -117,12 +185,18 @@ static void paper_counts(const ob_pub_cell *c, ob_tab_spec *s)
     } else if (is(c->source, "liu2002")) {
         s->metric = OB_METRIC_BOUND;
         s->split = OB_SPLIT_MID;
-        s->note = "Elber-Lee-Kim: symbolic bound of |A - C|^2, midpoint split";
+        s->note = "Liu-Wang's own runs of the [13] methods: symbolic bound of |A - C|^2, midpoint split, "
+                  "inflections first";
     } else if (is(c->source, "ahn2023")) {
         s->metric = OB_METRIC_RADIAL;
         s->split = OB_SPLIT_MID;
         s->d_factor = -1.0;
         s->note = "Ahn: Hausdorff distance of the normal fields (radial, dense), midpoint split; his normal points right";
+        if (is(c->label, "M2")) {
+            s->inflections = 0;
+            s->note = "Ahn's measure (radial, dense, midpoint split; his normal points right) of Lee, Kim & "
+                      "Elber 1996's own runs (his [11]): no inflection split";
+        }
         if (s->method && !(s->method->caps & OB_CAP_SAME_PARAM)) {
             s->metric = OB_METRIC_HAUSDORFF;
             s->note = "Ahn's protocol, but the method is not parameterized like the base (radial does not apply): "
@@ -172,6 +246,7 @@ int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, char *err, 
     ob_tab_spec paper;
     if (ob_tab_resolve(c, OB_PROTO_PAPER, &paper, err, errlen))
         return -1;
+    s->method = paper.method;  /* which method a column is, is the paper's reading */
     s->d_factor = paper.d_factor;
     s->nset = paper.nset;
     for (int i = 0; i < paper.nset; i++) {

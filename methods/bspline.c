@@ -65,11 +65,8 @@ static int validate(int p, int npts, const double *knots, const double (*pts)[3]
     return 0;
 }
 
-/* Bézier segment of the span [U[k], U[k+1]] (p <= k < npts, non-empty).
- * rational: 0 forces every output weight to exactly 1 (the affine sums below
- * would otherwise leave 1 +- 1 ulp). Returns 0, or -1 if a value overflowed. */
-static int span_to_bezier(int p, int k, const double *U, const double (*pts)[3],
-                          int rational, ob_bez *out)
+int ob_bspline_span_to_bezier(int p, int k, const double *U, const double (*pts)[3],
+                              int rational, ob_bez *out)
 {
     const double a = U[k], b = U[k + 1];
     /* local knots t[1..2p] = U[k-p+1 .. k+p]; t[p] = a, t[p+1] = b */
@@ -133,7 +130,7 @@ int ob_bspline_to_bezier(int p, int npts, const double *knots,
         int rational = 0;
         for (int i = k - p; i <= k; i++)
             rational |= pts[i][2] != 1.0;
-        if (span_to_bezier(p, k, knots, pts, rational, &s[m])) {
+        if (ob_bspline_span_to_bezier(p, k, knots, pts, rational, &s[m])) {
             free(s);
             return fail(err, errlen, "bspline: overflow converting span %d", k);
         }

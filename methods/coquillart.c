@@ -30,7 +30,8 @@
  *   3  d (1 - |kappa| |D|)  unsigned, opposite sign (the same as 1 there)
  * Foot point (parameter `foot`): 0 = the nearest point, as Liu-Wang describe
  * it (default); 1 = the Greville abscissa xi_j = j/n, the form in which cobb
- * reproduces Elber-Lee-Kim's Cob column (METHODS.md), for comparison.
+ * reproduces the Cob column of Lee, Kim & Elber 1996 (Liu-Wang's [13];
+ * METHODS.md), for comparison.
  * No combination of foot and sign readings reproduces the published Coq
  * columns (Liu-Wang Table 1: 10, 28, 88, 295, 817 under bound/mid, a little
  * below Cob): on liu2002_ex1 the readings 0/2 give 10, 13, 28, 52, 106 (foot
@@ -51,7 +52,7 @@ static const ob_param coquillart_params[] = {
     {"foot", 0.0,
      "the curve point associated with P_j: 0 = the nearest point (Liu-Wang's description: "
      "the default), 1 = the Greville abscissa xi_j = j/n (the form in which cobb reproduces "
-     "Elber-Lee-Kim's Cob column); D_j is the signed distance from P_j to C(xi_j) either way", 0, 1, 1},
+     "Lee-Kim-Elber's Cob column); D_j is the signed distance from P_j to C(xi_j) either way", 0, 1, 1},
 };
 
 /* Nearest parameter: the best of S samples of |C(t) - P|, then safeguarded

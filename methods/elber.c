@@ -41,7 +41,7 @@
  * node fails or `rounds` rounds are done.  The result is one B-spline with
  * simple interior knots: its Bézier pieces are the output (over the knot
  * intervals of the base's parameter) and ob_fit.ctrl_points counts its
- * n + 1 + k control points.  More than OB_MAX_PIECES pieces: OB_RETRY_SMALLER.
+ * n + 1 + k control points.  More than OB_SPLIT_PIECES pieces: OB_RETRY_SMALLER.
  */
 #include "method.h"
 
@@ -67,8 +67,8 @@ static const ob_param elber_params[] = {
      "~20 rounds)", 1, 100, 1},
 };
 
-enum { EL_MAXK = OB_MAX_PIECES - 1,                      /* interior knots */
-       EL_MAXCP = OB_MAX_DEG * OB_MAX_PIECES + 1,          /* control points */
+enum { EL_MAXK = OB_SPLIT_PIECES - 1,                     /* interior knots */
+       EL_MAXCP = OB_MAX_DEG * OB_SPLIT_PIECES + 1,         /* control points */
        EL_MAXV = 2 * (2 * OB_MAX_DEG + 1) + EL_MAXK * (OB_MAX_DEG + 1) };
 
 /* scratch of the adaptive variant */
@@ -207,7 +207,7 @@ static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int ro
             break;
         if (k_int + nins > EL_MAXK) {
             ob_method_msg(msg, msglen, "adaptive refinement needs more than %d pieces",
-                          OB_MAX_PIECES);
+                          OB_SPLIT_PIECES);
             return OB_RETRY_SMALLER;
         }
         for (int k = 0; k < nins; k++)

@@ -21,7 +21,7 @@
  * Pieces: the fit splits its base piece at the parameters where d N(t)
  * crosses an arc boundary (roots of C'(t) . u_j for the boundary direction
  * u_j, kept where d N points along +u_j) and writes one rational piece per
- * part, with its t breakpoints; more than OB_MAX_PIECES parts give
+ * part, with its t breakpoints; more than OB_SPLIT_PIECES parts give
  * OB_RETRY_SMALLER.  The error does not depend on the size of the base piece,
  * only on the circle approximation, which depends on the tolerance.
  *
@@ -282,7 +282,7 @@ static void angle_range(const ob_bez *b, const double (*H)[2], int mh, double sd
     }
 }
 
-enum { MAXCROSS = 4 * OB_MAX_PIECES };
+enum { MAXCROSS = 4 * OB_SPLIT_PIECES };
 
 static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
                          char *msg, size_t msglen)
@@ -391,9 +391,9 @@ static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
             tb[nt++] = cut[i];
     tb[nt++] = 1.0;
     const int np = nt - 1;
-    if (np > OB_MAX_PIECES) {
+    if (np > OB_SPLIT_PIECES) {
         ob_method_msg(msg, msglen, "%d arcs of the circle meet this piece (at most %d pieces)",
-                      np, OB_MAX_PIECES);
+                      np, OB_SPLIT_PIECES);
         return OB_RETRY_SMALLER;
     }
 

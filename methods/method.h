@@ -26,7 +26,12 @@
 typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_TIMEOUT, OB_RETRY_SMALLER } ob_status;
 const char *ob_status_name(ob_status s);
 
-enum { OB_MAX_PIECES = 16 };
+/* OB_MAX_PIECES: the most pieces one fit can hold (one B-spline of up to 64
+ * spans, bspline-lsq, is returned whole).  OB_SPLIT_PIECES: the most pieces
+ * lee, sisl and elber's adaptive variant return before they ask for a smaller
+ * piece (their published counts were reproduced with it; unchanged when the
+ * storage grew). */
+enum { OB_MAX_PIECES = 64, OB_SPLIT_PIECES = 16 };
 
 /* The result of one fit: n pieces; piece i approximates the offset of the base
  * segment over base parameters [t[i], t[i+1]] (t[0] = 0, t[n] = 1).  The

@@ -34,7 +34,7 @@
  *    blossoming (de Boor's algorithm with the span's end knots as arguments),
  *    in fixed-size local arrays.  ctrl_points = the B-spline's own number of
  *    control points (DESIGN: B-spline outputs count their control points).
- *    More spans than OB_MAX_PIECES: OB_RETRY_SMALLER (the driver splits the
+ *    More spans than OB_SPLIT_PIECES: OB_RETRY_SMALLER (the driver splits the
  *    piece and SISL starts again on each half).
  *  - SISL's tolerance is not a bound under our metrics (tests/test_sisl.c
  *    prints the measurement): on liu2002_ex1 the hausdorff error of its
@@ -434,9 +434,9 @@ static ob_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, 
     int spans = 0;
     for (int j = p; j < nv; j++)
         spans += et[j] < et[j + 1];
-    if (spans > OB_MAX_PIECES) {
+    if (spans > OB_SPLIT_PIECES) {
         ob_method_msg(msg, msglen, "SISL's offset has %d spans, more than %d pieces", spans,
-                      OB_MAX_PIECES);
+                      OB_SPLIT_PIECES);
         st = OB_RETRY_SMALLER;
         goto done;
     }

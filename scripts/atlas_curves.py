@@ -39,6 +39,10 @@ CURVES = [
      "the epitrochoid limacon of Pascal r = 2 + cos(theta), (x^2 + y^2 - x)^2 = 4 (x^2 + y^2) (7 terms): "
      "x = (3 + t^2)(1 - t^2)/(1 + t^2)^2, y = 2t (3 + t^2)/(1 + t^2)^2 (t = tan(theta/2)); the atlas does not "
      "say which epitrochoid: this reading is ours"),
+    ("Ramphoid", "atlas_ramphoid", ([1, -1, 1], [1], [1, -1, 2, -1, 1]), (0, 1),
+     "ramphoid quartic x^4 + x^2 y^2 - 2 x^2 y - x y^2 + y^2 (degree 4, 5 terms, as the atlas lists; the atlas "
+     "gives no equation: this reading is ours): a ramphoid cusp at the origin and an acnode at infinity, so "
+     "genus 0; x = 1/(1 + t^2), y = 1/((1 + t^2)(t^2 - t + 1)), the cusp at t = infinity"),
     ("Lemniscate", "atlas_lemniscate", ([0, 1, 0, 1], [0, 1, 0, -1], [1, 0, 0, 0, 1]), (0, 1),
      "lemniscate of Bernoulli (x^2 + y^2)^2 = x^2 - y^2: x = (t + t^3)/(1 + t^4), y = (t - t^3)/(1 + t^4)"),
     ("Cardioid", "atlas_cardioid", ([2, 0, -2], [0, 4], [1, 0, 2, 0, 1]), (0, 1),
@@ -69,8 +73,8 @@ def main():
     print("# The rational curves of San Segundo & Sendra's Offset Atlas (seed 003, ../shared/offset_atlas.csv)")
     print("# as exact Bezier segments: written by scripts/atlas_curves.py (see there for each derivation).")
     print("# hpoint WX WY W: homogeneous integer control points, so each curve is exact, not rounded.")
-    print("# Not here: Ramphoid (no rational parameterization known to us), x^4 + y^4 - y^2 (genus 1: a quartic")
-    print("# with one tacnode; not rational), the quadrics (surfaces).")
+    print("# Not here: x^4 + y^4 - y^2 (genus 1: a quartic with one tacnode; not rational), the quadrics")
+    print("# (surfaces).")
     for name, cid, (X, Y, W), (t0, t1), how in CURVES:
         n = max(len(X), len(Y), len(W)) - 1
         cols = [bernstein(compose(p, t0, t1), n) for p in (X, Y, W)]

@@ -239,10 +239,18 @@ check '[ "$(tab Til liu2002)" = "10:match 31:match 97:match 322:match 886:match 
 check '[ "$(tab Cob liu2002)" = "10:match 31:match 94:match 316:match 865:match " ]' "Cob under paper: $(tab Cob liu2002)"
 got=$(awk -F, 'NR>1 && $1=="ahn2023" && $2=="1" && $6=="ahn" {printf "%s:%s ", $10, $12}' "$T/tab/tables.csv")
 check '[ "$got" = "13:match 19:match 31:match 43:match 61:match " ]' "Ahn 'Our method' under paper: $got"
+check '[ "$(tab Lst liu2002)" = "7:match 13:match 19:match 31:match 50:match " ]' "Liu-Wang T1 Lst (bspline-lsq) under paper: $(tab Lst liu2002)"
+check '[ "$(tab Lst ahn2023)" = "7:match 13:match 19:match 31:match 50:match " ]' "Ahn T1 Lst (bspline-lsq) under paper: $(tab Lst ahn2023)"
+check '[ "$(tab M2 ahn2023)" = "22:match 29:match 43:match 71:match 127:match " ]' "Ahn T1 M2 under paper: $(tab M2 ahn2023)"
 check '[ "$(awk -F, '"'"'NR>1 && $6=="cl" && $12!="no-method"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 0 ]' "CL is no-method"
 check '[ "$(awk -F, '"'"'NR>1 && $2=="3-left" && $6=="ahn" && $12=="no-data"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 5 ]' "the S is no-data"
 check '[ "$(grep -c "" "$T/tab/tables.csv")" -eq $((1 + 35 + 35 + 25 + 9)) ]' "one row per published cell"
 check 'grep -q "^## Liu & Wang 2002" "$T/tab/tables.md" && grep -q "Per column, match / close / differs" "$T/tab/tables.md"' "tables.md lays out the tables"
+# Example 2 on the clamped reading without the pre-split: Liu-Wang's Til and Cob
+$OB tables --table liu2002:2 --protocols paper --out "$T/tab4" 2>/dev/null
+tab4() { awk -F, -v l="$1" 'NR>1 && $7==l {printf "%s:%s ", $10, $12}' "$T/tab4/tables.csv"; }
+check '[ "$(tab4 Til)" = "25:match 67:match 202:match 640:match 1918:match " ]' "Liu-Wang T2 Til under paper: $(tab4 Til)"
+check '[ "$(tab4 Cob)" = "28:match 73:match 208:match 637:match 1846:match " ]' "Liu-Wang T2 Cob under paper: $(tab4 Cob)"
 $OB tables --table nosuch:1 --out "$T/tab2" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--table" "$T/e.txt"' "tables --table of an unknown table exits 2"
 $OB tables --protocols fast --out "$T/tab2" >/dev/null 2>"$T/e.txt"

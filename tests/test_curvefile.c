@@ -94,7 +94,7 @@ static void test_published(void)
     char err[512] = "";
     int rc = ob_curves_load_file(PUBLISHED, &set, err, sizeof err);
     CHECK(rc == 0, "load %s: %s", PUBLISHED, err);
-    CHECK(set.n == 4, "%d curves", set.n);
+    CHECK(set.n == 5, "%d curves", set.n);
     static const struct {
         const char *id;
         int nseg, deg, nd;
@@ -102,10 +102,11 @@ static void test_published(void)
     } want[] = {
         {"liu2002_ex1", 1, 3, 2, 1.0, -1.0},
         {"liu2002_ex2", 4, 3, 1, 0.5, 0},
+        {"liu2002_ex2_unclamped", 4, 3, 1, 0.5, 0},
         {"zhao2017_septic", 1, 7, 1, 0.5, 0},
         {"zhao2017_quintic", 1, 5, 1, 0.5, 0},
     };
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < 5; k++) {
         int i = ob_curveset_find(&set, want[k].id);
         CHECK(i == k, "%s at index %d", want[k].id, i);
         if (i < 0)
@@ -125,22 +126,27 @@ static void test_published(void)
         CHECK(strstr(c->source, "seed text") != NULL, "%s: source '%s'", c->id, c->source);
     }
     /* spot checks of the data itself */
-    if (set.n == 4) {
+    if (set.n == 5) {
         const ob_bez *b = &set.v[0].seg[0];
         CHECK(b->h[0][0] == -0.785938 && b->h[0][1] == 0.891849 && b->h[3][0] == 0.9 &&
                   b->h[3][1] == -0.2 && b->h[2][2] == 1.0,
               "liu2002_ex1 control points");
-        b = &set.v[2].seg[0];
-        CHECK(b->h[0][0] == -0.8 && b->h[7][1] == 3.9 && b->h[5][0] == -1.2, "septic points");
         b = &set.v[3].seg[0];
+        CHECK(b->h[0][0] == -0.8 && b->h[7][1] == 3.9 && b->h[5][0] == -1.2, "septic points");
+        b = &set.v[4].seg[0];
         CHECK(b->h[0][0] == 3 && b->h[0][1] == -1 && b->h[5][0] == 7, "quintic points");
-        /* ex2: first Bézier point of a uniform cubic is (P0 + 4 P1 + P2) / 6 */
+        /* ex2, open uniform (clamped): it starts at P0 and ends at P6 */
         b = &set.v[1].seg[0];
-        CHECK_NEAR(b->h[0][0], (-3.01619 + 4 * -3.97193 + -1.07045) / 6, 1e-14, "ex2 start x");
-        CHECK_NEAR(b->h[0][1], (2.34143 + 4 * -2.20842 + 0.0722807) / 6, 1e-14, "ex2 start y");
-        for (int s = 0; s + 1 < 4; s++)
-            CHECK(fabs(set.v[1].seg[s].h[3][0] - set.v[1].seg[s + 1].h[0][0]) < 1e-14,
-                  "ex2 joint %d", s);
+        CHECK(b->h[0][0] == -3.01619 && b->h[0][1] == 2.34143, "ex2 (clamped) starts at P0");
+        CHECK(set.v[1].seg[3].h[3][0] == 2.8027 && set.v[1].seg[3].h[3][1] == 3.02775, "ex2 (clamped) ends at P6");
+        /* ex2 unclamped: the first Bézier point of a uniform cubic is (P0 + 4 P1 + P2) / 6 */
+        b = &set.v[2].seg[0];
+        CHECK_NEAR(b->h[0][0], (-3.01619 + 4 * -3.97193 + -1.07045) / 6, 1e-14, "ex2 unclamped start x");
+        CHECK_NEAR(b->h[0][1], (2.34143 + 4 * -2.20842 + 0.0722807) / 6, 1e-14, "ex2 unclamped start y");
+        for (int c = 1; c <= 2; c++)
+            for (int s = 0; s + 1 < 4; s++)
+                CHECK(fabs(set.v[c].seg[s].h[3][0] - set.v[c].seg[s + 1].h[0][0]) < 1e-14, "%s joint %d",
+                      set.v[c].id, s);
     }
     ob_curveset_free(&set);
     CHECK(set.n == 0 && set.v == NULL, "freed set is zeroed");
@@ -172,7 +178,7 @@ static void test_crlf_roundtrip(void)
     memcpy(bom, "\xEF\xBB\xBF", 3);
     memcpy(bom + 3, crlf, m);
     CHECK(parse_exact(bom, m + 3 - 2, PUBLISHED, &c, err, sizeof err) == 0, "BOM: %s", err);
-    CHECK(a.n == 4 && b.n == a.n && c.n == a.n, "counts %d %d %d", a.n, b.n, c.n);
+    CHECK(a.n == 5 && b.n == a.n && c.n == a.n, "counts %d %d %d", a.n, b.n, c.n);
     for (int i = 0; i < a.n && i < b.n && i < c.n; i++) {
         CHECK(same_curve(&a.v[i], &b.v[i]), "CRLF curve %d differs", i);
         CHECK(same_curve(&a.v[i], &c.v[i]), "BOM curve %d differs", i);

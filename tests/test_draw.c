@@ -163,16 +163,6 @@ static int job(ob_jobview *v, const char *const *args, int have_d, double d)
     return rc ? rc : ob_jobview_run(v);
 }
 
-/* The exact offset point of segment b at t, from the reference evaluation. */
-static void ref_offset(const ob_bez *b, double t, double d, double o[2])
-{
-    double e[3][2];
-    ref_eval(b, t, 1, e);
-    const double s = hypot(e[1][0], e[1][1]);
-    o[0] = e[0][0] - d * e[1][1] / s;
-    o[1] = e[0][1] + d * e[1][0] / s;
-}
-
 static double seg_dist(const double p[2], const double a[2], const double b[2])
 {
     const double vx = b[0] - a[0], vy = b[1] - a[1];

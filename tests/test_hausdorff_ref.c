@@ -429,16 +429,6 @@ static double ref_hausdorff(const ob_bez *base, const ob_bez *approx, double d, 
 /* liu2002_ex1's control points (datasets/published.curves). */
 static const double liu_ex1[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
 
-/* The exact offset point by testlib's evaluator (quotient rule by powers). */
-static void tl_offset(const ob_bez *b, double t, double d, double o[2])
-{
-    double e[2][2];
-    ref_eval(b, t, 1, e);
-    const double s = hypot(e[1][0], e[1][1]);
-    o[0] = e[0][0] - d * e[1][1] / s;
-    o[1] = e[0][1] + d * e[1][0] / s;
-}
-
 /* The evaluator here agrees with testlib's (a different formula) on a
  * rational and a polynomial segment. */
 static void test_evaluator(void)
@@ -453,7 +443,7 @@ static void test_evaluator(void)
             const double t = i / 50.0;
             double a[2], b[2], pa[2], v[2], e[2][2];
             rc_point(&c, t, a);
-            tl_offset(&bs[k], t, 0.75, b);
+            ref_offset(&bs[k], t, 0.75, b);
             rbez_eval(&c.b, t, pa, v);
             ref_eval(&bs[k], t, 1, e);
             dev = fmax(dev, fmax(dist2d(a, b), fmax(dist2d(pa, e[0]), dist2d(v, e[1]))));
@@ -489,14 +479,14 @@ static double brute_side(const rcurve *qc, const ob_bez *qb, const side *t, cons
     *hi_dev = -INFINITY;
     for (int j = 0; j <= BF_T && tp; j++) {
         if (t->c.offset)
-            tl_offset(tb, (double)j / BF_T, t->c.d, tp[j]);
+            ref_offset(tb, (double)j / BF_T, t->c.d, tp[j]);
         else
             ref_point(tb, (double)j / BF_T, tp[j]);
     }
     for (int i = 0; i <= BF_Q && tp; i++) {
         double q[2];
         if (qc->offset)
-            tl_offset(qb, (double)i / BF_Q, qc->d, q);
+            ref_offset(qb, (double)i / BF_Q, qc->d, q);
         else
             ref_point(qb, (double)i / BF_Q, q);
         double best = INFINITY;

@@ -14,7 +14,7 @@
  *   pieces cut where the normal crosses an arc boundary and joined end to
  *   end; degree 3n-2 (polynomial) and 5n-4 (rational); radial error at most
  *   the circle approximation error (+ round-off) and decreasing with tol; the
- *   parameters; OB_RETRY_SMALLER when more than OB_MAX_PIECES arcs are met.
+ *   parameters; OB_RETRY_SMALLER when more than OB_SPLIT_PIECES arcs are met.
  * Reference computations use tests/testlib.h (independent of the library).
  */
 #include <math.h>
@@ -38,18 +38,6 @@ static const double EX1[4][2] = {
 /* ---- helpers --------------------------------------------------------------- */
 
 static double crs(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
-
-/* Exact offset point and unit left normal from testlib's reference evaluation. */
-static void ref_offset(const ob_bez *C, double t, double d, double p[2], double N[2])
-{
-    double o[2][2];
-    ref_eval(C, t, 1, o);
-    double l = hypot(o[1][0], o[1][1]);
-    N[0] = -o[1][1] / l;
-    N[1] = o[1][0] / l;
-    p[0] = o[0][0] + d * N[0];
-    p[1] = o[0][1] + d * N[1];
-}
 
 static ob_status fit(const ob_method *m, const ob_bez *C, double d, double tol, const double *par,
                      ob_fit *out, char *msg)
@@ -75,15 +63,6 @@ static double fit_error(ob_metric mt, const ob_bez *C, const ob_fit *f, double d
         worst = fmax(worst, e.err);
     }
     return worst;
-}
-
-/* Point of the fit at base parameter t (the piece containing t). */
-static void fit_point(const ob_fit *f, double t, double p[2])
-{
-    int i = 0;
-    while (i < f->n - 1 && t > f->t[i + 1])
-        i++;
-    ref_point(&f->seg[i], (t - f->t[i]) / (f->t[i + 1] - f->t[i]), p);
 }
 
 static ob_curve one_curve(const ob_bez *b, double d)
@@ -232,7 +211,7 @@ static void check_exact(const char *what, const ob_bez *C, double d)
     double worst = 0.0;
     for (int k = 0; k <= 200; k++) {
         double t = k / 200.0, p[2], N[2], q[2];
-        ref_offset(C, t, d, p, N);
+        ref_offset_normal(C, t, d, p, N);
         ref_point(&f.seg[0], t, q);
         worst = fmax(worst, dist2d(p, q));
     }
@@ -495,7 +474,7 @@ static void check_lee_construction(const char *what, const ob_bez *C, double d, 
     double bworst = 0.0, jworst = 0.0;
     for (int i = 1; i < f.n; i++) {
         double p[2], N[2], x;
-        ref_offset(C, f.t[i], d, p, N);
+        ref_offset_normal(C, f.t[i], d, p, N);
         x = atan2(d * N[1], d * N[0]) / D;
         bworst = fmax(bworst, fabs(x - nearbyint(x)));
         double l[2], r[2];
@@ -656,10 +635,10 @@ static void test_lee(void)
         if (st != OB_OK)
             continue;
         double p[2], N[2], A[2];
-        ref_offset(&g, 0.0, d, p, N);
+        ref_offset_normal(&g, 0.0, d, p, N);
         fit_point(&f, 0.0, A);
         double e0 = dist2d(p, A);
-        ref_offset(&g, 1.0, d, p, N);
+        ref_offset_normal(&g, 1.0, d, p, N);
         fit_point(&f, 1.0, A);
         CHECK(e0 < 1e-12 && dist2d(p, A) < 1e-12, "lee arcs_on=1: the ends interpolate the offset "
               "(%g, %g)", e0, dist2d(p, A));
@@ -708,11 +687,11 @@ static void test_lee(void)
             same &= f.t[i] == f0.t[i];
         CHECK(same, "lee clip=1: same breakpoints");
         double p[2], N[2], A[2], A0[2];
-        ref_offset(&g, 0.0, d, p, N);
+        ref_offset_normal(&g, 0.0, d, p, N);
         fit_point(&f, 0.0, A);
         fit_point(&f0, 0.0, A0);
         double e0 = dist2d(p, A), w0 = dist2d(p, A0);
-        ref_offset(&g, 1.0, d, p, N);
+        ref_offset_normal(&g, 1.0, d, p, N);
         fit_point(&f, 1.0, A);
         CHECK(e0 < 1e-12 && dist2d(p, A) < 1e-12, "lee clip=1: ends on the offset (%g, %g)", e0,
               dist2d(p, A));

@@ -27,17 +27,6 @@
 
 /* ---- independent helpers (the shared ones are in testlib.h) ---------------- */
 
-/* Exact offset point C(t) + d N(t), N = (-y', x')/|C'|. */
-static void ref_offset(const ob_bez *b, double t, double d, double O[2])
-{
-    double o[2][2];
-    ref_eval(b, t, 1, o);
-    const double *P = o[0], *D = o[1];
-    double sp = hypot(D[0], D[1]);
-    O[0] = P[0] - d * D[1] / sp;
-    O[1] = P[1] + d * D[0] / sp;
-}
-
 /* Bernstein product written here (binomial formula). */
 static void bmul(const double *a, int m, const double *b, int n, double *c)
 {

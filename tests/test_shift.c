@@ -78,15 +78,6 @@ static void ref_normal(const ob_bez *b, double t, double N[2], double *kappa)
         *kappa = (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (s * s * s);
 }
 
-static void ref_offset(const ob_bez *b, double t, double d, double O[2])
-{
-    double N[2];
-    ref_point(b, t, O);
-    ref_normal(b, t, N, NULL);
-    O[0] += d * N[0];
-    O[1] += d * N[1];
-}
-
 static void ctrl(const ob_bez *b, int i, double p[2])
 {
     p[0] = b->h[i][0] / b->h[i][2];
@@ -425,9 +416,9 @@ static void check_adaptive(const char *cn, const ob_bez *C, double d, double tol
     if (st != OB_OK)
         return;
     const int np = f.n, k = np - 1;
-    CHECK(np >= 1 && np <= OB_MAX_PIECES && f.t[0] == 0.0 && f.t[np] == 1.0,
+    CHECK(np >= 1 && np <= OB_SPLIT_PIECES && f.t[0] == 0.0 && f.t[np] == 1.0,
           "elber adaptive %s: %d pieces", cn, np);
-    if (np < 1 || np > OB_MAX_PIECES)
+    if (np < 1 || np > OB_SPLIT_PIECES)
         return;
     CHECK(f.ctrl_points == p + 1 + k, "elber adaptive %s: %ld control points, %d pieces of degree "
           "%d", cn, f.ctrl_points, np, p);
@@ -446,7 +437,7 @@ static void check_adaptive(const char *cn, const ob_bez *C, double d, double tol
     }
     /* every node of D = ||A - C||^2 (Greville abscissae of degree 2p on the
      * knots 0^(2p+1), u_k^(p+1), 1^(2p+1)) passes the tolerance */
-    double V[2 * (2 * OB_MAX_DEG + 1) + OB_MAX_PIECES * (OB_MAX_DEG + 1)];
+    double V[2 * (2 * OB_MAX_DEG + 1) + OB_SPLIT_PIECES * (OB_MAX_DEG + 1)];
     int nv = 0, worst_ok = 1;
     for (int r = 0; r <= 2 * p; r++)
         V[nv++] = 0.0;
@@ -494,7 +485,7 @@ static void test_elber_adaptive(void)
     int prev = 0, grows = 1;
     for (double tol = 1.0; tol >= 1e-3; tol /= 10) {
         ob_status st = fit_adaptive(&liu, 1.0, tol, 20, &f);
-        int np = st == OB_OK ? f.n : st == OB_RETRY_SMALLER ? OB_MAX_PIECES + 1 : -1;
+        int np = st == OB_OK ? f.n : st == OB_RETRY_SMALLER ? OB_SPLIT_PIECES + 1 : -1;
         grows &= np >= prev;
         prev = np;
     }

@@ -16,10 +16,10 @@
  *    span measured by ob_metric_hausdorff against its base sub-segment; the
  *    ratio true error / SISL's tolerance is PRINTED (not asserted); asserted:
  *    finite, decreasing with the tolerance, counts increasing; the same for
- *    liu2002_ex2 (d = 0.5) given to s1360 as one B-spline;
+ *    liu2002_ex2_unclamped (d = 0.5) given to s1360 as one B-spline;
  *  - the result is not parameterized like the base inside a span (why the
  *    method does not claim OB_CAP_SAME_PARAM);
- *  - OB_RETRY_SMALLER past OB_MAX_PIECES spans; OB_FAIL with SISL's status for
+ *  - OB_RETRY_SMALLER past OB_SPLIT_PIECES spans; OB_FAIL with SISL's status for
  *    a bad tolerance, and nothing printed (s6err is silenced);
  *  - the parameter max_step reaches s1360;
  *  - fits made on several OpenMP threads at once equal the serial ones.
@@ -48,7 +48,7 @@ enum { MSGLEN = 160 };
 
 static const double LIU[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
 
-/* liu2002_ex2 (datasets/published.curves): uniform cubic B-spline, 7 points */
+/* liu2002_ex2_unclamped (datasets/published.curves): uniform cubic B-spline, 7 points */
 static const double EX2[7][2] = {{-3.01619, 2.34143},  {-3.97193, -2.20842}, {-1.07045, 0.0722807},
                                  {0.319568, -2.77522}, {-0.152767, 2.299},   {2.92416, -0.939865},
                                  {2.8027, 3.02775}};
@@ -59,18 +59,6 @@ static ob_status fit(const ob_bez *C, double d, double tol, double max_step, ob_
     const ob_fit_args a = {d, tol, par};
     msg[0] = '\0';
     return M->fit(C, &a, NULL, f, msg, MSGLEN);
-}
-
-/* Independent exact offset point and left normal (testlib's reference evaluation). */
-static void ref_offset(const ob_bez *C, double t, double d, double o[2], double N[2])
-{
-    double e[2][2];
-    ref_eval(C, t, 1, e);
-    double L = hypot(e[1][0], e[1][1]);
-    N[0] = -e[1][1] / L;
-    N[1] = e[1][0] / L;
-    o[0] = e[0][0] + d * N[0];
-    o[1] = e[0][1] + d * N[1];
 }
 
 /* SISL's s1360 called directly on a polynomial segment (domain [0,1]). */
@@ -244,7 +232,7 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
         }
         /* at its base parameter, each breakpoint is the exact offset point */
         double o[2], N[2], p[2];
-        ref_offset(C, a, d, o, N);
+        ref_offset_normal(C, a, d, o, N);
         ref_point(A, 0.0, p);
         worst_knot = fmax(worst_knot, dist2d(p, o));
         /* orientation: the middle of the piece is on the side of sign(d) */
@@ -279,7 +267,7 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
                             (hypot(da[1][0], da[1][1]) * hypot(dc[1][0], dc[1][1]));
                 worst_g1 = fmax(worst_g1, da[1][0] * dc[1][0] + da[1][1] * dc[1][1] > 0 ? fabs(sn) : INFINITY);
             }
-            ref_offset(C, 1.0, d, o, N);
+            ref_offset_normal(C, 1.0, d, o, N);
             ref_point(A, 1.0, p);
             worst_knot = fmax(worst_knot, dist2d(p, o));
         }
@@ -410,7 +398,7 @@ static void test_rational(void)
         int poly = 1;
         for (int i = 0; i < f.n; i++) {
             double o[2], N[2], p[2];
-            ref_offset(&qc, f.t[i], d, o, N);
+            ref_offset_normal(&qc, f.t[i], d, o, N);
             ref_point(&f.seg[i], 0.0, p);
             wk = fmax(wk, dist2d(p, o));
             wk = fmax(wk, fabs(hypot(p[0], p[1]) - r));
@@ -460,7 +448,7 @@ static void test_tolerance(void)
                   tol, e, prev_err);
             CHECK(ctrl > prev_ctrl, "liu d %g tol %g: %d control points, not more than %d", d, tol,
                   ctrl, prev_ctrl);
-            if (spans <= OB_MAX_PIECES)  /* then the method returns exactly this curve */
+            if (spans <= OB_SPLIT_PIECES)  /* then the method returns exactly this curve */
                 CHECK(mctrl == ctrl && merr == e, "liu d %g tol %g: method %ld / %g vs direct %d / %g",
                       d, tol, mctrl, merr, ctrl, e);
             prev_err = e;
@@ -468,7 +456,7 @@ static void test_tolerance(void)
         }
     }
 
-    /* liu2002_ex2: s1360 on the whole B-spline, as a C user would call it */
+    /* liu2002_ex2_unclamped: s1360 on the whole B-spline, as a C user would call it */
     static const double kn[11] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
     double pts[7][3], co[14];
     for (int i = 0; i < 7; i++) {
@@ -480,11 +468,11 @@ static void test_tolerance(void)
     int nseg = 0;
     char err[128];
     int r = ob_bspline_to_bezier(3, 7, kn, (const double (*)[3])pts, &segs, &nseg, err, sizeof err);
-    CHECK(r == 0 && nseg == 4, "liu2002_ex2: %d segments (%s)", nseg, err);
+    CHECK(r == 0 && nseg == 4, "liu2002_ex2_unclamped: %d segments (%s)", nseg, err);
     if (r != 0)
         return;
     SISLCurve *pc = newCurve(7, 4, (double *)kn, co, 1, 2, 1);
-    printf("  liu2002_ex2, d 0.5, s1360 on the whole B-spline (domain [3, 7]): true error vs tol\n");
+    printf("  liu2002_ex2_unclamped, d 0.5, s1360 on the whole B-spline (domain [3, 7]): true error vs tol\n");
     double prev_err = INFINITY;
     int prev_ctrl = 0;
     for (int i = 0; i < 5; i++) {
@@ -496,9 +484,9 @@ static void test_tolerance(void)
         if (rc && stat >= 0)
             e = measure_sisl(rc, segs, nseg, 3.0, 0.5, &tw, &ctrl, &spans);
         printf("  %+5g %7.0e %6d %6d %12.4g %8.3g %8.4f\n", 0.5, tol, ctrl, spans, e, e / tol, tw);
-        CHECK(rc && stat >= 0 && rc->et[3] == 3.0 && rc->et[rc->in] == 7.0, "liu2002_ex2 tol %g: "
+        CHECK(rc && stat >= 0 && rc->et[3] == 3.0 && rc->et[rc->in] == 7.0, "liu2002_ex2_unclamped tol %g: "
               "status %d, domain", tol, stat);
-        CHECK(isfinite(e) && e < prev_err && ctrl > prev_ctrl, "liu2002_ex2 tol %g: error %g "
+        CHECK(isfinite(e) && e < prev_err && ctrl > prev_ctrl, "liu2002_ex2_unclamped tol %g: error %g "
               "(before %g), %d control points (before %d)", tol, e, prev_err, ctrl, prev_ctrl);
         prev_err = e;
         prev_ctrl = ctrl;
@@ -591,7 +579,7 @@ static void test_parameterization(void)
     for (int i = 0; i < f.n; i++)
         for (int s = 1; s < 32; s++) {
             double u = s / 32.0, t = f.t[i] + (f.t[i + 1] - f.t[i]) * u, o[2], N[2], p[2];
-            ref_offset(&C, t, d, o, N);
+            ref_offset_normal(&C, t, d, o, N);
             ref_point(&f.seg[i], u, p);
             par = fmax(par, dist2d(p, o));
         }

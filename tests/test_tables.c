@@ -114,9 +114,46 @@ static void test_protocols(void)
           "Ahn: radial, his normal points right");
     CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, err, sizeof err) == 0 && s.d_factor == -1.0,
           "the sign of d is kept by the other protocols");
-    c = cell("ahn2023", "1", "liu2002_ex1", "hoschek", "Lst", "ctrl_points", 1e-2);
+    c = cell("ahn2023", "1", "liu2002_ex1", "hoschek", "Hos", "ctrl_points", 1e-2);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_HAUSDORFF,
           "a method not parameterized like the base is not measured radially");
+    /* the columns of Lee, Kim & Elber 1996 (Liu-Wang's [13], Ahn's [11]) */
+    const ob_method *lsq = ob_method_find("bspline-lsq");
+    static const struct {
+        const char *source, *table, *method;
+    } lee_lst[] = {{"liu2002", "1", "lstsq"}, {"liu2002", "2", "lstsq"}, {"ahn2023", "1", "hoschek"},
+                   {"ahn2023", "2", "hoschek"}};
+    for (int k = 0; k < 4; k++) {
+        c = cell(lee_lst[k].source, lee_lst[k].table, "liu2002_ex1", lee_lst[k].method, "Lst", "ctrl_points", 1e-2);
+        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && lsq && s.method == lsq &&
+                  s.metric == OB_METRIC_BOUND && s.split == OB_SPLIT_MID && !s.inflections &&
+                  strstr(s.note, "Lee, Kim & Elber 1996"),
+              "%s T%s Lst: Lee et al.'s least-squares B-spline, its own bound, no inflection split (%s)",
+              lee_lst[k].source, lee_lst[k].table, s.note ? s.note : "");
+        CHECK(ob_tab_resolve(&c, OB_PROTO_RIGOROUS, &s, err, sizeof err) == 0 && s.method == lsq &&
+                  s.metric == OB_METRIC_HAUSDORFF,
+              "%s T%s Lst: the other protocols measure the same method", lee_lst[k].source, lee_lst[k].table);
+    }
+    c = cell("ahn2023", "2", "liu2002_ex2", "lee", "M2", "ctrl_points", 1e-2);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_RADIAL &&
+              s.d_factor == -1.0 && !s.inflections,
+          "Ahn's M2 (Lee et al.'s runs): his measure, no inflection split");
+    c = cell("ahn2023", "2", "liu2002_ex2", "kim2018", "[26]", "ctrl_points", 1e-2);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.inflections,
+          "Ahn's other columns: inflections first");
+    c = cell("liu2002", "3", "liu2002_ex3", "lstsq", "Lst", "ctrl_points", 1e-2);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.method == ob_method_find("lstsq") &&
+              s.metric == OB_METRIC_RADIAL && s.inflections,
+          "Liu-Wang T3 Lst (their own runs): their normal-LSQ variant, their protocol");
+    static const char *const lee_cols[] = {"Til", "Cob", "Coq", "Elb"};
+    for (int k = 0; k < 4; k++)
+        for (int t = 1; t <= 3; t++) {
+            char tab[2] = {(char)('0' + t), 0};
+            c = cell("liu2002", tab, "liu2002_ex1", "tiller", lee_cols[k], "ctrl_points", 1e-2);
+            CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_BOUND &&
+                      s.inflections == (t == 3),
+                  "Liu-Wang T%d %s: %s inflection split", t, lee_cols[k], t == 3 ? "their" : "no (IRIT's runs)");
+        }
     c = cell("ahn2023", "1", "liu2002_ex1", "cl", "CL", "ctrl_points", 1e-2);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.method == NULL, "CL: no method");
     c = cell("zhao2017", "1", "zhao2017_quintic/C1", "zhao-rational", "Ours", "max_err", NAN);
@@ -131,6 +168,19 @@ static void test_protocols(void)
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.nset == 1 &&
               strcmp(s.set_name[0], "iterations") == 0 && s.set_value[0] == 2,
           "iter2 variant");
+    c = cell("zhao2017", "1", "zhao2017_quintic/C1@0.4", "lee", "Lee", "max_err", NAN);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.0 && s.piece_b == 0.4,
+          "C1@0.4: the first part cut at t = 0.4 (%s)", err);
+    c = cell("zhao2017", "1", "zhao2017_quintic/C2@0.7", "lee", "Lee", "max_err", NAN);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.7 && s.piece_b == 1.0,
+          "C2@0.7: the second part from t = 0.7 (%s)", err);
+    static const char *const bad_cuts[] = {"zhao2017_quintic/C1@1", "zhao2017_quintic/C2@0", "zhao2017_quintic/C1@x",
+                                           "zhao2017_quintic/C1@0.5x", "zhao2017_quintic/C@0.5"};
+    for (int k = 0; k < 5; k++) {
+        c = cell("zhao2017", "1", bad_cuts[k], "lee", "Lee", "max_err", NAN);
+        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "piece"),
+              "%s refused: %s", bad_cuts[k], err);
+    }
     c = cell("zhao2017", "1", "zhao2017_quintic/C9", "lee", "Lee", "max_err", NAN);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "C9"), "unknown piece: %s",
           err);

@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include "methods/curve.h"
+#include "methods/method.h"
 
 /* ---- random numbers -------------------------------------------------------- */
 
@@ -125,6 +126,35 @@ static inline void ref_point(const ob_bez *b, double t, double p[2])
     ref_eval(b, t, 0, o);
     p[0] = o[0][0];
     p[1] = o[0][1];
+}
+
+/* Exact offset point O = C(t) + d N(t) and the unit left normal N =
+ * (-y', x')/|C'|. */
+static inline void ref_offset_normal(const ob_bez *b, double t, double d, double O[2], double N[2])
+{
+    double o[2][2];
+    ref_eval(b, t, 1, o);
+    const double sp = hypot(o[1][0], o[1][1]);
+    N[0] = -o[1][1] / sp;
+    N[1] = o[1][0] / sp;
+    O[0] = o[0][0] + d * N[0];
+    O[1] = o[0][1] + d * N[1];
+}
+
+/* Exact offset point C(t) + d N(t). */
+static inline void ref_offset(const ob_bez *b, double t, double d, double O[2])
+{
+    double N[2];
+    ref_offset_normal(b, t, d, O, N);
+}
+
+/* Point of a method's fit at base parameter t (the piece containing t). */
+static inline void fit_point(const ob_fit *f, double t, double p[2])
+{
+    int i = 0;
+    while (i < f->n - 1 && t > f->t[i + 1])
+        i++;
+    ref_point(&f->seg[i], (t - f->t[i]) / (f->t[i + 1] - f->t[i]), p);
 }
 
 /* ---- curve builders ------------------------------------------------------------ */
