@@ -202,6 +202,7 @@ const ob_method ob_method_bspline_lsq = {
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_TOL_DRIVEN,
     .max_turn = 0.0,
     .out_degree = bl_out_degree,
+    .cost_ms = 1.8, /* tiller's 2.06 scaled by their ratio on --random 40:2026 */
     .work_size = sizeof(bl_work),
     .fit_uses_tol = ob_fit_uses_tol_always,
     .params = bl_params,
