@@ -9,8 +9,6 @@
 #include "diag.h"
 #include "clrt.h"
 
-#include "../kernels/metric_core.h"
-
 #include <dlfcn.h>
 #include <math.h>
 #include <stdint.h>
@@ -144,8 +142,6 @@ struct ob_cl {
     /* batch buffers, grown on demand */
     size_t cap_rec, cap_ctrl, cap_scr;
     cl_mem metric, d, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
-    cl_mem basis;       /* the basis tables (metric_core.h) for basis_S samples */
-    int basis_S;
     /* host staging */
     int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff;
     double *h_d, *h_ctrl, *h_err, *h_tpar, *h_work;
@@ -367,7 +363,7 @@ fail:
 static void release_buffers(ob_cl *c)
 {
     cl_mem *bufs[] = {&c->metric, &c->d, &c->bdeg, &c->boff, &c->adeg, &c->aoff,
-                      &c->ctrl, &c->soff, &c->scratch, &c->err, &c->tpar, &c->work, &c->basis};
+                      &c->ctrl, &c->soff, &c->scratch, &c->err, &c->tpar, &c->work};
     for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++)
         if (*bufs[i]) {
             cl.clReleaseMemObject(*bufs[i]);
@@ -416,31 +412,6 @@ void ob_cl_close(ob_cl *c)
         c->buf = cl.clCreateBuffer(c->ctx, flags, (n) * sizeof(type), NULL, &e);         \
         CL_CHECK(e);                                                                    \
     } while (0)
-
-/* The basis tables for S samples on the device: the host's own copy
- * (ob_metric_basis, the numbers the CPU path uses), uploaded once per S. */
-static int ensure_basis(ob_cl *c, int S, char *err, size_t errlen)
-{
-    if (c->basis && c->basis_S == S)
-        return 0;
-    const double *B = ob_metric_basis(S);
-    if (!B) {
-        snprintf(err, errlen, "out of memory for the basis tables");
-        return -1;
-    }
-    cl_int e;
-    if (c->basis)
-        cl.clReleaseMemObject(c->basis);
-    const size_t bytes = (size_t)OBC_BASIS_SIZE(S) * sizeof(double);
-    c->basis = cl.clCreateBuffer(c->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, (void *)B, &e);
-    if (e != CL_SUCCESS || !c->basis) {
-        c->basis = NULL;
-        snprintf(err, errlen, "clCreateBuffer(basis, %zu bytes) failed (%d)", bytes, (int)e);
-        return -1;
-    }
-    c->basis_S = S;
-    return 0;
-}
 
 static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, char *err, size_t errlen)
 {
@@ -495,7 +466,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     }
     if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2)
         return -1;
-    if (ensure_capacity(c, (size_t)n, nctrl, nscr, err, errlen) || ensure_basis(c, S, err, errlen))
+    if (ensure_capacity(c, (size_t)n, nctrl, nscr, err, errlen))
         return -1;
     size_t pc = 0, ps = 0;
     for (int i = 0; i < n; i++) {
@@ -523,8 +494,8 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->aoff, CL_FALSE, 0, ni, c->h_aoff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->soff, CL_FALSE, 0, ni, c->h_soff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->ctrl, CL_FALSE, 0, pc * sizeof(double), c->h_ctrl, 0, NULL, NULL));
-    cl_mem args[] = {c->metric, c->d, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->basis, c->scratch,
-                     c->err, c->tpar, c->work};
+    cl_mem args[] = {c->metric, c->d, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->scratch, c->err, c->tpar,
+                     c->work};
     CL_CHECK(cl.clSetKernelArg(c->k, 0, sizeof(int), &n));
     CL_CHECK(cl.clSetKernelArg(c->k, 1, sizeof(int), &S));
     for (cl_uint k = 0; k < sizeof args / sizeof *args; k++)

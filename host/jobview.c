@@ -51,10 +51,6 @@ int ob_jobview_open(ob_jobview *v, const char *cmd, int have_d, double d)
     j->split = v->o.split;
     j->tol = v->o.tols[0];
     v->samples = ob_clamp_samples(v->o.driver.samples);
-    if (!(v->basis = ob_metric_basis(v->samples))) {
-        ob_error("%s: out of memory", cmd);
-        return 1;
-    }
     return 0;
 }
 
@@ -224,7 +220,7 @@ void ob_jobview_prepare(const ob_jobview *v, const ob_jv_piece *p, double *scrat
     /* the approximation's sample table, as obc_measure builds it: the
      * offset-to-approximation side starts from its nearest sample */
     long ops = 0;
-    obc_fill_table(&p->approx.h[0][0], p->approx.deg, 0.0, v->samples, v->basis, scratch, &ops);
+    obc_fill_table(&p->approx.h[0][0], p->approx.deg, 0.0, v->samples, scratch, &ops);
 }
 
 double ob_jobview_err_at(const ob_jobview *v, const ob_jv_piece *p, const double *scratch, double s, double xy[2])

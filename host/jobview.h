@@ -42,7 +42,6 @@ typedef struct {
     ob_jv_piece *pieces;    /* npieces accepted pieces in curve order (after run) */
     int npieces;
     int samples;            /* S of the sampled metrics, as the driver used it */
-    const double *basis;    /* the basis tables for S (ob_metric_basis) */
 } ob_jobview;
 
 /* Purpose: from the run options in v->o (parsed by the caller, with one

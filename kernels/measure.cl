@@ -12,8 +12,6 @@
  *   adeg[i], aoff[i]         homogeneous control points in ctrl (doubles)
  *   soff[i]                  offset of its scratch (2 OBC_TABLE_SIZE(S) doubles) in scratch,
  *                            used by hausdorff only
- *   basis                    the Bernstein basis tables for S (OBC_BASIS_SIZE(S) doubles,
- *                            built by the host: metric_core.h, obc_basis_build)
  *   err[i], tpar[i]          the error and the base parameter of its maximum
  *   work[i]                  the work it took (flops, counted as OBC_OPS_* say),
  *                            by which the host shares the launch's time
@@ -22,7 +20,7 @@ __kernel void ob_measure_batch(const int nrec, const int S, __global const int *
                                __global const double *d, __global const int *bdeg,
                                __global const int *boff, __global const int *adeg,
                                __global const int *aoff, __global const double *ctrl,
-                               __global const int *soff, __global const double *basis, __global double *scratch,
+                               __global const int *soff, __global double *scratch,
                                __global double *err, __global double *tpar, __global double *work)
 {
     const int i = get_global_id(0);
@@ -30,8 +28,8 @@ __kernel void ob_measure_batch(const int nrec, const int S, __global const int *
         return;
     double e, t;
     long ops = 0;
-    obc_measure(metric[i], ctrl + boff[i], bdeg[i], ctrl + aoff[i], adeg[i], d[i], S, basis, scratch + soff[i], &e,
-                &t, &ops);
+    obc_measure(metric[i], ctrl + boff[i], bdeg[i], ctrl + aoff[i], adeg[i], d[i], S, scratch + soff[i], &e, &t,
+                &ops);
     err[i] = e;
     tpar[i] = t;
     work[i] = (double)ops;

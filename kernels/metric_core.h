@@ -47,7 +47,6 @@
  * shares a batch's time among its records by this count (one launch
  * measures them all); the bench turns it into flop/s. */
 #define OBC_OPS_EVAL(n) (9 * (n) * ((n) + 1) / 2 + 30)
-#define OBC_OPS_TAB(n) (18 * ((n) + 1) + 30) /* the same from a basis table (obc_eval_tab) */
 #define OBC_OPS_POINT 5
 #define OBC_OPS_CHORD 16
 #define OBC_OPS_BLOCK 7
@@ -108,15 +107,6 @@ OBC_FN void obc_casteljau(const OBC_G double *h, int n, double t, const int K, d
         q0[k] = s * lv1[0][k] + t * lv1[1][k];
 }
 
-/* Whether the segment is polynomial: every weight exactly 1. */
-OBC_FN int obc_is_poly(const OBC_G double *h, int n)
-{
-    int poly = 1;
-    for (int i = 0; i <= n && poly; i++)
-        poly = h[3 * i + 2] == 1.0;
-    return poly;
-}
-
 /* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
  * homogeneous points; derivatives from its last three levels; quotient rule.
  * A polynomial segment (every weight exactly 1) at t in [0,1] runs the pass
@@ -127,7 +117,9 @@ OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double ou
 {
     double q0[3], lv2[3][3] = {{0.0}}, lv1[2][3] = {{0.0}};
     *ops += OBC_OPS_EVAL(n);
-    const int poly = t >= 0.0 && t <= 1.0 && obc_is_poly(h, n);
+    int poly = t >= 0.0 && t <= 1.0;
+    for (int i = 0; i <= n && poly; i++)
+        poly = h[3 * i + 2] == 1.0;
     if (poly) {
         obc_casteljau(h, n, t, 2, q0, lv2, lv1);
         q0[2] = 1.0;
@@ -224,10 +216,11 @@ OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2], long 
 /* Point P, derivative dP and curvature vector K = kappa N of the curve (d = 0)
  * or of its exact d-offset at t.  For the offset: O' = C' (1 - d kappa), since
  * N' = -kappa C', and kappa_O N_O = kappa / (1 - d kappa) N. */
-/* obc_pc_eval's result from the curve's point and derivatives o at t. */
-OBC_FN void obc_pc_from(const OBC_G double *h, int n, double d, double t, double o[3][2], double P[2],
-                        double dP[2], double K[2], long *ops)
+OBC_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double P[2], double dP[2],
+                        double K[2], long *ops)
 {
+    double o[3][2];
+    obc_eval(h, n, t, 2, o, ops);
     const double sp = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
     const int regular = sp > 1e-12 * s2 && sp > 0;
@@ -257,14 +250,6 @@ OBC_FN void obc_pc_from(const OBC_G double *h, int n, double d, double t, double
     const double ko = f != 0.0 ? kappa / f : 0.0;
     K[0] = ko * N[0];
     K[1] = ko * N[1];
-}
-
-OBC_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double P[2], double dP[2],
-                        double K[2], long *ops)
-{
-    double o[3][2];
-    obc_eval(h, n, t, 2, o, ops);
-    obc_pc_from(h, n, d, t, o, P, dP, K, ops);
 }
 
 OBC_FN double obc_dist(const double a[2], const double b[2])
@@ -299,102 +284,18 @@ OBC_FN double obc_dist(const double a[2], const double b[2])
 
 OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
 
-/* Bernstein basis tables: for each degree n <= OBC_MAX_DEG, at the S sample
- * parameters t_k, the values and first two derivatives of B_i^n(t_k),
- * 3 doubles per (k, i) at OBC_BASIS_OFF(n, S) + 3 ((n + 1) k + i).  Built
- * once per S (obc_basis_build, on the host: one copy of the numbers for
- * both backends), they turn the S evaluations of a sample table into small
- * dense products (obc_fill_table). */
-#define OBC_BASIS_OFF(n, S) (3L * (S) * ((long)(n) * ((n) + 1) / 2))
-#define OBC_BASIS_SIZE(S) OBC_BASIS_OFF(OBC_MAX_DEG + 1, S)
-
-/* Purpose: the basis tables of every degree at S samples into B
- * (OBC_BASIS_SIZE(S) doubles).  Method: the Bernstein triangle b_i^m(t) =
- * (1 - t) b_i^{m-1} + t b_{i-1}^{m-1} (no binomials, no powers), and
- * B_i^n' = n (b_{i-1}^{n-1} - b_i^{n-1}), B_i^n'' = n (n - 1) (b_{i-2}^{n-2}
- * - 2 b_{i-1}^{n-2} + b_i^{n-2}) from its last levels. */
-OBC_FN void obc_basis_build(int S, OBC_G double *B)
-{
-    for (int k = 0; k < S; k++) {
-        const double t = obc_sample_t(k, S), s = 1.0 - t;
-        double b[OBC_MAX_DEG + 1], b1[OBC_MAX_DEG + 1], b2[OBC_MAX_DEG + 1];
-        for (int i = 0; i <= OBC_MAX_DEG; i++)
-            b[i] = b1[i] = b2[i] = 0.0;
-        b[0] = 1.0;
-        for (int n = 0; n <= OBC_MAX_DEG; n++) {
-            if (n > 0) {
-                for (int i = 0; i < n; i++)
-                    b2[i] = b1[i];
-                for (int i = 0; i < n; i++)
-                    b1[i] = b[i];
-                b[n] = t * b[n - 1];
-                for (int i = n - 1; i >= 1; i--)
-                    b[i] = s * b[i] + t * b[i - 1];
-                b[0] = s * b[0];
-            }
-            OBC_G double *r = B + OBC_BASIS_OFF(n, S) + 3L * (n + 1) * k;
-            for (int i = 0; i <= n; i++) {
-                const double lo1 = i > 0 ? b1[i - 1] : 0.0, hi1 = i < n ? b1[i] : 0.0;
-                const double d2a = i > 1 ? b2[i - 2] : 0.0, d2b = i > 0 && i < n ? b2[i - 1] : 0.0,
-                             d2c = i < n - 1 ? b2[i] : 0.0;
-                r[3 * i] = b[i];
-                r[3 * i + 1] = n >= 1 ? n * (lo1 - hi1) : 0.0;
-                r[3 * i + 2] = n >= 2 ? n * (n - 1) * (d2a - 2.0 * d2b + d2c) : 0.0;
-            }
-        }
-    }
-}
-
-/* obc_eval (nder = 2) at sample k from the basis table Bn of degree n: the
- * homogeneous point and derivatives as sums over the control points, then
- * the quotient rule (a polynomial segment has w = 1, w' = w'' = 0 exactly). */
-OBC_FN void obc_eval_tab(const OBC_G double *h, int n, const OBC_G double *Bn, int k, int poly, double out[3][2],
-                         long *ops)
-{
-    const OBC_G double *r = Bn + 3L * (n + 1) * k;
-    double H[3][3] = {{0.0}};
-    const int K = poly ? 2 : 3;
-    *ops += OBC_OPS_TAB(n);
-    for (int i = 0; i <= n; i++)
-        for (int c = 0; c < K; c++) {
-            const double x = h[3 * i + c];
-            H[0][c] += r[3 * i] * x;
-            H[1][c] += r[3 * i + 1] * x;
-            H[2][c] += r[3 * i + 2] * x;
-        }
-    if (poly) {
-        H[0][2] = 1.0;
-        H[1][2] = H[2][2] = 0.0;
-    }
-    const double w = H[0][2], w1 = H[1][2], w2 = H[2][2];
-    const double P0 = H[0][0] / w, P1 = H[0][1] / w;
-    const double D0 = (H[1][0] - w1 * P0) / w, D1 = (H[1][1] - w1 * P1) / w;
-    out[0][0] = P0;
-    out[0][1] = P1;
-    out[1][0] = D0;
-    out[1][1] = D1;
-    out[2][0] = (H[2][0] - 2.0 * w1 * D0 - w2 * P0) / w;
-    out[2][1] = (H[2][1] - 2.0 * w1 * D1 - w2 * P1) / w;
-}
-
 /* Purpose: the sample table T of curve (h, n) or of its exact dc-offset.
  * The margin of span j bounds how far the curve strays from the chord
  * P_j P_{j+1}: a cubic Hermite arc with end derivatives m0, m1 over a span
  * of parameter length h strays at most (4/27) h (|m0 - c| + |m1 - c|) from
  * its chord (c = chord / h); the margin takes 0.5 instead of 4/27 to cover
  * the curve's departure from its Hermite arc.  A block's circle holds its
- * sample points (hence its chords) widened by its largest margin.  basis:
- * the tables of obc_basis_build for S. */
-OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, const OBC_G double *basis,
-                           OBC_G double *T, long *ops)
+ * sample points (hence its chords) widened by its largest margin. */
+OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
 {
-    const OBC_G double *Bn = basis + OBC_BASIS_OFF(n, S);
-    const int poly = obc_is_poly(h, n);
     for (int k = 0; k < S; k++) {
-        double P[2], dP[2], K[2], o[3][2];
-        const double t = obc_sample_t(k, S);
-        obc_eval_tab(h, n, Bn, k, poly, o, ops);
-        obc_pc_from(h, n, dc, t, o, P, dP, K, ops);
+        double P[2], dP[2], K[2];
+        obc_pc_eval(h, n, dc, obc_sample_t(k, S), P, dP, K, ops);
         OBC_G double *r = T + OBC_REC * k;
         r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
         r[6] = r[7] = 0.0;
@@ -873,10 +774,9 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 /* Purpose: the error of approximation (ha, na) against the exact d-offset of
  * base (hb, nb) under a sampled metric, and the base parameter of its maximum.
  * scratch: 2 OBC_TABLE_SIZE(S) doubles (hausdorff: the sample tables of O
- * and of A).  basis: the tables of obc_basis_build for S (hausdorff).
- * S >= 2.  *ops: the work done is added (OBC_OPS_*). */
+ * and of A).  S >= 2.  *ops: the work done is added (OBC_OPS_*). */
 OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
-                        int S, const OBC_G double *basis, OBC_G double *scratch, double *err, double *t, long *ops)
+                        int S, OBC_G double *scratch, double *err, double *t, long *ops)
 {
     if (metric == OBC_RADIAL) {
         obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
@@ -892,8 +792,8 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
         return;
     }
     OBC_G double *O = scratch, *A = scratch + OBC_TABLE_SIZE(S);
-    obc_fill_table(hb, nb, d, S, basis, O, ops);
-    obc_fill_table(ha, na, 0.0, S, basis, A, ops);
+    obc_fill_table(hb, nb, d, S, O, ops);
+    obc_fill_table(ha, na, 0.0, S, A, ops);
     double e1, t1, e2, t2, tf;
     /* from A to O: the maximum's parameter is A's; report its foot on O */
     obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, &e1, &t1);

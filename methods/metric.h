@@ -64,11 +64,6 @@ int ob_clamp_samples(int samples);
  * OpenCL host sizes its scratch buffer with it). */
 size_t ob_metric_scratch(int samples);
 
-/* The Bernstein basis tables of every degree at the (clamped) sample count
- * (kernels/metric_core.h, OBC_BASIS_SIZE doubles), built on first use and
- * kept; NULL when out of memory (or more than 16 sample counts in use). */
-const double *ob_metric_basis(int samples);
-
 /* The individual metrics (same contract, S clamped likewise). */
 int ob_metric_bound(const ob_bez *base, const ob_bez *approx, double d, ob_errval *out);
 int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);

@@ -7,42 +7,9 @@
 
 #include "../kernels/metric_core.h"
 
-#include <pthread.h>
 #include <stdlib.h>
 
 size_t ob_metric_scratch(int S) { return 2 * (size_t)OBC_TABLE_SIZE(ob_clamp_samples(S)); }
-
-/* The basis tables (metric_core.h, obc_basis_build) of the sample counts in
- * use: built once each, kept for the life of the program (a run uses one
- * S; tests a few). */
-enum { BASIS_CACHE = 16 };
-static struct {
-    int S;
-    double *B;
-} basis_cache[BASIS_CACHE];
-static pthread_mutex_t basis_lock = PTHREAD_MUTEX_INITIALIZER;
-
-const double *ob_metric_basis(int S)
-{
-    S = ob_clamp_samples(S);
-    const double *got = NULL;
-    pthread_mutex_lock(&basis_lock);
-    int k = 0;
-    while (k < BASIS_CACHE && basis_cache[k].B && basis_cache[k].S != S)
-        k++;
-    if (k < BASIS_CACHE && !basis_cache[k].B) {
-        double *B = malloc((size_t)OBC_BASIS_SIZE(S) * sizeof *B);
-        if (B) {
-            obc_basis_build(S, B);
-            basis_cache[k].S = S;
-            basis_cache[k].B = B;
-        }
-    }
-    if (k < BASIS_CACHE)
-        got = basis_cache[k].B;
-    pthread_mutex_unlock(&basis_lock);
-    return got;
-}
 
 /* Hausdorff keeps sample tables of the offset and of the approximation: on
  * the stack up to the default S, on the heap past it (at most 0.5 MiB). */
@@ -58,16 +25,8 @@ static int measure_core(int code, const ob_bez *base, const ob_bez *approx, doub
         out->t = 0.0;
         return -1;
     }
-    const double *basis = code == OBC_HAUSDORFF ? ob_metric_basis(S) : NULL;
-    if (code == OBC_HAUSDORFF && !basis) {
-        if (scratch != local)
-            free(scratch);
-        out->err = (double)INFINITY;
-        out->t = 0.0;
-        return -1;
-    }
     long ops = 0;
-    obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, S, basis, scratch, &out->err,
+    obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, S, scratch, &out->err,
                 &out->t, &ops);
     out->work = (double)ops;
     if (scratch != local)

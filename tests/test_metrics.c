@@ -686,60 +686,8 @@ static void test_normal_nearest_crossing(void)
           worst);
 }
 
-/* The basis tables (obc_basis_build) against the closed form C(n,i) t^i
- * (1-t)^(n-i) and its derivatives (testlib.h), and a tabulated evaluation against the
- * de Casteljau one, polynomial and rational, at every sample. */
-static void test_basis_tables(void)
-{
-    const int S = 37;
-    const double *B = ob_metric_basis(S);
-    CHECK(B != NULL, "basis tables for S = %d", S);
-    if (!B)
-        return;
-    CHECK(ob_metric_basis(S) == B, "built once per S");
-    double worst[3] = {0, 0, 0};
-    for (int n = 0; n <= OBC_MAX_DEG; n += (n < 8 ? 1 : 8))
-        for (int k = 0; k < S; k++)
-            for (int i = 0; i <= n; i++)
-                for (int der = 0; der < 3; der++) {
-                    const double got = B[OBC_BASIS_OFF(n, S) + 3L * ((n + 1) * k + i) + der];
-                    const double want = dbern(n, i, der, obc_sample_t(k, S));
-                    const double scale = der == 0 ? 1.0 : (der == 1 ? n : (double)n * n) + 1.0;
-                    worst[der] = fmax(worst[der], fabs(got - want) / scale);
-                }
-    CHECK(worst[0] < 1e-15 && worst[1] < 1e-14 && worst[2] < 1e-13,
-          "basis values, first and second derivatives as the closed form: %.3g %.3g %.3g", worst[0], worst[1],
-          worst[2]);
-    srand(7);
-    for (int trial = 0; trial < 40; trial++) {
-        const int n = 1 + trial % 7;
-        ob_bez b;
-        memset(&b, 0, sizeof b);
-        b.deg = n;
-        for (int i = 0; i <= n; i++) {
-            const double w = trial % 2 ? 0.5 + (double)rand() / RAND_MAX : 1.0;
-            b.h[i][0] = w * ((double)rand() / RAND_MAX * 4 - 2);
-            b.h[i][1] = w * ((double)rand() / RAND_MAX * 4 - 2);
-            b.h[i][2] = w;
-        }
-        double dev = 0.0;
-        for (int k = 0; k < S; k++) {
-            double o[3][2], e[3][2];
-            long ops = 0;
-            obc_eval_tab(&b.h[0][0], n, B + OBC_BASIS_OFF(n, S), k, obc_is_poly(&b.h[0][0], n), o, &ops);
-            obc_eval(&b.h[0][0], n, obc_sample_t(k, S), 2, e, &ops);
-            for (int der = 0; der < 3; der++)
-                for (int c = 0; c < 2; c++)
-                    dev = fmax(dev, fabs(o[der][c] - e[der][c]) / (1.0 + fabs(e[der][c])));
-        }
-        CHECK(dev < 1e-12, "trial %d (degree %d, %s): tabulated = de Casteljau to %.3g", trial, n,
-              trial % 2 ? "rational" : "polynomial", dev);
-    }
-}
-
 int main(void)
 {
-    test_basis_tables();
     testlib_seed(0x2545F4914F6CDD1DULL);
     test_normal_nearest_crossing();
     test_straight();
