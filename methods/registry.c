@@ -13,7 +13,7 @@ extern const ob_method ob_method_tiller, ob_method_cobb, ob_method_coquillart, o
 extern const ob_method ob_method_exact, ob_method_lee;
 extern const ob_method ob_method_zhao, ob_method_zhao_rational, ob_method_hoschek;
 extern const ob_method ob_method_liu, ob_method_chebyshev, ob_method_lstsq;
-extern const ob_method ob_method_sisl;
+extern const ob_method ob_method_sisl, ob_method_cubic_opt;
 
 const ob_method *const ob_methods[] = {
     &ob_method_tiller,
@@ -30,6 +30,7 @@ const ob_method *const ob_methods[] = {
     &ob_method_zhao,
     &ob_method_zhao_rational,
     &ob_method_hoschek,
+    &ob_method_cubic_opt,
     &ob_method_exact,
     &ob_method_sisl,
     NULL,
