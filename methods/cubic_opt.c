@@ -62,6 +62,8 @@
 enum { CP_SAMPLES, CP_REFINE, CP_COUNT };
 enum { CO_MAX_SAMPLES = 128, CO_CUSP_SAMPLES = 64, CO_MAX_ITER = 40 };
 
+/* |1 - d kappa| at or below this is round-off of zero, not a sign */
+static const double CO_G_ZERO = 1e-12;
 /* handle lengths in chord units beyond this are not candidates (a cubic
  * with longer handles loops) */
 static const double AMAX = 4.0;
@@ -664,10 +666,14 @@ static int offset_cusps(const ob_bez *base, double d, double *tc, int max)
     int n = 0;
     if (d == 0.0)
         return 0;
+    /* tp, gp: the last sample where |1 - d kappa| is more than round-off
+     * (an offset that collapses to a point has 1 - d kappa = 0 throughout) */
     double tp = 0.5 / CO_CUSP_SAMPLES, gp = speed_factor(base, tp, d);
     for (int k = 1; k < CO_CUSP_SAMPLES; k++) {
         const double t = (k + 0.5) / CO_CUSP_SAMPLES, g = speed_factor(base, t, d);
-        if ((g < 0.0) != (gp < 0.0)) {
+        if (fabs(g) <= CO_G_ZERO)
+            continue;
+        if (fabs(gp) > CO_G_ZERO && (g < 0.0) != (gp < 0.0)) {
             double lo = tp, hi = t;
             for (int it = 0; it < 60 && hi - lo > 1e-15; it++) {
                 const double mid = 0.5 * (lo + hi);
