@@ -113,6 +113,10 @@ static const double GL16[8][2] = {
     {0.9722875115366163, 0.031126761969323947},  {0.99470046749582497, 0.013576229705877048},
 };
 
+#ifdef CO_PROFILE
+long co_profile_errors, co_profile_refines, co_profile_rounds;
+#endif
+
 static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
 static double cross2(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
 
@@ -168,8 +172,12 @@ static void offset_moments(const ob_bez *base, double d, const co_cubic *c, doub
         const double t = i < 8 ? 1.0 - GL16[7 - i][0] : GL16[i - 8][0], w = GL16[i < 8 ? 7 - i : i - 8][1];
         double o[3][2], N[2];
         ob_bez_eval(base, t, 2, o);
-        ob_bez_normal(base, t, N);
-        const double g = speed_factor(base, t, d);
+        const double sp = hypot(o[1][0], o[1][1]);
+        if (!(sp > 0.0))
+            continue;  /* O' = 0 there: nothing to add (N is bounded) */
+        N[0] = -o[1][1] / sp;
+        N[1] = o[1][0] / sp;
+        const double g = 1.0 - d * cross2(o[1], o[2]) / (sp * sp * sp);
         const double r[2] = {(o[0][0] + d * N[0] - c->P0[0]) / c->L, (o[0][1] + d * N[1] - c->P0[1]) / c->L};
         const double dr[2] = {o[1][0] * g / c->L, o[1][1] * g / c->L};
         const double x = dot2(r, e), y = cross2(e, r), dx = dot2(dr, e), dy = cross2(e, dr);
@@ -293,8 +301,8 @@ static int normal_error(const co_cubic *c, const double P[4][2], const double C[
         uu -= du;
         if (!(uu > -0.5 && uu < 1.5))
             return -1;
-        if (fabs(du) < 1e-15)
-            break;
+        if (fabs(du) < 1e-9)
+            break;  /* quadratic convergence: the next step would be below 1e-17 */
     }
     cubic_eval(P, uu, A, dA);
     const double N[2] = {-T[1], T[0]}, r[2] = {A[0] - C[0], A[1] - C[1]};
@@ -330,13 +338,18 @@ static int alternants(const co_err *E, int *idx)
 
 /* Purpose: the error of cubic c at the samples of W, its alternants and
  *          its estimate.
- * Method:  normal_error at each sample, continued from the previous
- *          intersection; each alternant at the vertex of the parabola
+ * Inputs:  near: NULL, or the record of a nearby cubic (its intersection
+ *          parameters start Newton).
+ * Method:  normal_error at each sample, from near's parameter or else
+ *          continued from the previous intersection; each alternant at the vertex of the parabola
  *          through its sample and the neighbours (the ends count, e = 0),
  *          evaluated there when that is larger. */
-static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, co_err *E)
+static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, const co_err *near, co_err *E)
 {
     double P[4][2];
+#ifdef CO_PROFILE
+    co_profile_errors++;
+#endif
     cubic_points(c, P);
     E->n = ns + 2;
     E->e[0] = E->e[ns + 1] = E->ja[0] = E->jb[0] = E->ja[ns + 1] = E->jb[ns + 1] = 0.0;
@@ -344,7 +357,7 @@ static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, c
     E->u[ns + 1] = 1.0;
     E->max = 0.0;
     for (int j = 1; j <= ns; j++) {
-        E->u[j] = j == 1 ? W->t[1] : E->u[j - 1];
+        E->u[j] = near ? near->u[j] : j == 1 ? W->t[1] : E->u[j - 1];
         if (normal_error(c, P, W->C[j], W->T[j], d, &E->u[j], &E->e[j], &E->ja[j], &E->jb[j])) {
             E->max = INFINITY;
             E->nalt = 0;
@@ -473,7 +486,7 @@ static double try_step(co_cubic *c, const co_work *W, int ns, double d, co_err *
     t.b = fmin(AMAX, fmax(0.0, c->b + db));
     if (t.a == c->a && t.b == c->b)
         return 0.0;
-    cubic_error(&t, W, ns, d, trial);
+    cubic_error(&t, W, ns, d, E, trial);
     if (!(trial->max < E->max))
         return 0.0;
     const double gain = E->max - trial->max;
@@ -489,19 +502,29 @@ static double try_step(co_cubic *c, const co_work *W, int ns, double d, co_err *
  *          the estimate, the four moves by r along a and b (a pattern
  *          search: far from the minimax the linearized alternation can
  *          point anywhere); r doubles after a kept Remez step and shrinks
- *          by 4 when nothing is kept.  Stops after CO_MAX_ITER rounds, when
- *          a full Remez step shorter than 1e-10 is kept (converged) or when
- *          r < 1e-9. */
+ *          by 4 when nothing is kept.  Stops after CO_MAX_ITER rounds, after
+ *          a full Remez step shorter than 1e-8 (converging quadratically:
+ *          the next would be below round-off) or when r < 1e-9. */
 static void refine(co_cubic *c, const co_work *W, int ns, double d, co_err *E, co_err *trial)
 {
+#ifdef CO_PROFILE
+    co_profile_refines++;
+#endif
     double r = 0.25 * fmax(0.1, fmax(c->a, c->b));
     for (int it = 0; it < CO_MAX_ITER && E->max > 0.0; it++) {
+#ifdef CO_PROFILE
+        co_profile_rounds++;
+#endif
         double step[2];
         if (remez_step(E, step) == 0 && isfinite(step[0]) && isfinite(step[1])) {
             const double len = hypot(step[0], step[1]), f = len > r ? r / len : 1.0;
-            if (try_step(c, W, ns, d, E, trial, f * step[0], f * step[1]) > 0.0) {
-                if (f == 1.0 && len < 1e-10)
-                    return;
+            const double g_ = try_step(c, W, ns, d, E, trial, f * step[0], f * step[1]);
+#ifdef CO_TRACE
+            printf("  round %d: nalt %d max %.6g remez len %.3g r %.3g f %.3g gain %.3g\n", it, E->nalt, E->max, len, r, f, g_);
+#endif
+            if (f == 1.0 && len < 1e-8)
+                return;  /* converged: the next step would be below 1e-15 */
+            if (g_ > 0.0) {
                 r = fmin(AMAX, 2.0 * r);
                 continue;
             }
@@ -524,9 +547,16 @@ static int sample_base(const ob_bez *base, int ns, co_work *W, char *msg, size_t
 {
     W->base = base;
     for (int j = 0; j <= ns + 1; j++) {
+        double o[2][2];
         W->t[j] = j == ns + 1 ? 1.0 : (double)j / (ns + 1);
-        ob_bez_point(base, W->t[j], W->C[j]);
-        if (base_tangent(base, W->t[j], W->T[j])) {
+        ob_bez_eval(base, W->t[j], 1, o);
+        W->C[j][0] = o[0][0];
+        W->C[j][1] = o[0][1];
+        const double sp = hypot(o[1][0], o[1][1]);
+        if (sp > 0.0) {
+            W->T[j][0] = o[1][0] / sp;
+            W->T[j][1] = o[1][1] / sp;
+        } else if (base_tangent(base, W->t[j], W->T[j])) {
             ob_method_msg(msg, msglen, "no tangent at t = %.6g (point-like base)", W->t[j]);
             return -1;
         }
@@ -627,7 +657,7 @@ static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on
         for (int k = 0; k < n; k++) {
             c.a = as[k];
             c.b = bs[k];
-            cubic_error(&c, W, ns, d, E);
+            cubic_error(&c, W, ns, d, NULL, E);
             if (E->max < best->max) {
                 *best = *E;
                 ba = as[k];
