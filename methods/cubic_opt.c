@@ -38,9 +38,13 @@
  *     exact derivatives de/da, de/db along the normal lines; a step is kept
  *     only when the estimate falls (halved up to four times), so the result
  *     is never worse than the best candidate.
- * Offset cusps (1 - d kappa changes sign inside the piece) are found by
- * sampling and bisection and the piece is fitted as one cubic per stretch
- * between them (a fit of several pieces, joined G0 at the cusps).
+ * Offset cusps (1 - d kappa changes sign inside the piece, ob_bez_offset_cusps)
+ * split the piece: one cubic per stretch between them (a fit of several
+ * pieces, joined G0 at the cusps).  The method asks the driver to cut its
+ * initial pieces there too (OB_CAP_CUSP_BREAKS): a greedy prefix that ends
+ * just before a cusp, where the offset's curvature is unbounded, fails
+ * while one that reaches it passes, and greedy bisection assumes the
+ * error grows with the prefix.
  * Degenerate input: a point-like base fails; a base whose tangent reverses
  * between samples (a cusp of the base, where the offset jumps by 2d) or an
  * offset whose end points coincide (a closed piece) asks for a smaller piece
@@ -60,10 +64,8 @@
 #include "bernstein.h"
 
 enum { CP_SAMPLES, CP_REFINE, CP_COUNT };
-enum { CO_MAX_SAMPLES = 128, CO_CUSP_SAMPLES = 64, CO_MAX_ITER = 40 };
+enum { CO_MAX_SAMPLES = 128, CO_MAX_ITER = 40 };
 
-/* |1 - d kappa| at or below this is round-off of zero, not a sign */
-static const double CO_G_ZERO = 1e-12;
 /* handle lengths in chord units beyond this are not candidates (a cubic
  * with longer handles loops) */
 static const double AMAX = 4.0;
@@ -113,9 +115,6 @@ static const double GL16[8][2] = {
     {0.9722875115366163, 0.031126761969323947},  {0.99470046749582497, 0.013576229705877048},
 };
 
-#ifdef CO_PROFILE
-long co_profile_errors, co_profile_refines, co_profile_rounds;
-#endif
 
 static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
 static double cross2(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
@@ -347,9 +346,6 @@ static int alternants(const co_err *E, int *idx)
 static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, const co_err *near, co_err *E)
 {
     double P[4][2];
-#ifdef CO_PROFILE
-    co_profile_errors++;
-#endif
     cubic_points(c, P);
     E->n = ns + 2;
     E->e[0] = E->e[ns + 1] = E->ja[0] = E->jb[0] = E->ja[ns + 1] = E->jb[ns + 1] = 0.0;
@@ -507,24 +503,15 @@ static double try_step(co_cubic *c, const co_work *W, int ns, double d, co_err *
  *          the next would be below round-off) or when r < 1e-9. */
 static void refine(co_cubic *c, const co_work *W, int ns, double d, co_err *E, co_err *trial)
 {
-#ifdef CO_PROFILE
-    co_profile_refines++;
-#endif
     double r = 0.25 * fmax(0.1, fmax(c->a, c->b));
     for (int it = 0; it < CO_MAX_ITER && E->max > 0.0; it++) {
-#ifdef CO_PROFILE
-        co_profile_rounds++;
-#endif
         double step[2];
         if (remez_step(E, step) == 0 && isfinite(step[0]) && isfinite(step[1])) {
             const double len = hypot(step[0], step[1]), f = len > r ? r / len : 1.0;
-            const double g_ = try_step(c, W, ns, d, E, trial, f * step[0], f * step[1]);
-#ifdef CO_TRACE
-            printf("  round %d: nalt %d max %.6g remez len %.3g r %.3g f %.3g gain %.3g\n", it, E->nalt, E->max, len, r, f, g_);
-#endif
+            const double gain = try_step(c, W, ns, d, E, trial, f * step[0], f * step[1]);
             if (f == 1.0 && len < 1e-8)
                 return;  /* converged: the next step would be below 1e-15 */
-            if (g_ > 0.0) {
+            if (gain > 0.0) {
                 r = fmin(AMAX, 2.0 * r);
                 continue;
             }
@@ -684,44 +671,6 @@ static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on
     return OB_OK;
 }
 
-/* Purpose: the parameters in (0,1) where 1 - d kappa changes sign (the
- *          cusps of the untrimmed offset), ascending.
- * Method:  signs at CO_CUSP_SAMPLES midpoints of equal intervals, each
- *          change bisected to full precision (a pair of cusps closer than
- *          the spacing is missed: the piece's error is then large and a
- *          smaller piece sees it).  Returns the count, or max + 1 when
- *          there are more than max. */
-static int offset_cusps(const ob_bez *base, double d, double *tc, int max)
-{
-    int n = 0;
-    if (d == 0.0)
-        return 0;
-    /* tp, gp: the last sample where |1 - d kappa| is more than round-off
-     * (an offset that collapses to a point has 1 - d kappa = 0 throughout) */
-    double tp = 0.5 / CO_CUSP_SAMPLES, gp = speed_factor(base, tp, d);
-    for (int k = 1; k < CO_CUSP_SAMPLES; k++) {
-        const double t = (k + 0.5) / CO_CUSP_SAMPLES, g = speed_factor(base, t, d);
-        if (fabs(g) <= CO_G_ZERO)
-            continue;
-        if (fabs(gp) > CO_G_ZERO && (g < 0.0) != (gp < 0.0)) {
-            double lo = tp, hi = t;
-            for (int it = 0; it < 60 && hi - lo > 1e-15; it++) {
-                const double mid = 0.5 * (lo + hi);
-                if ((speed_factor(base, mid, d) < 0.0) == (gp < 0.0))
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            if (n == max)
-                return max + 1;
-            tc[n++] = 0.5 * (lo + hi);
-        }
-        tp = t;
-        gp = g;
-    }
-    return n;
-}
-
 static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
                                size_t msglen)
 {
@@ -735,7 +684,7 @@ static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *w
         return OB_SKIP;
     }
     double tc[OB_MAX_PIECES];
-    const int nc = offset_cusps(base, a->d, tc, OB_MAX_PIECES - 1);
+    const int nc = ob_bez_offset_cusps(base, a->d, tc, OB_MAX_PIECES - 1);
     if (nc > OB_MAX_PIECES - 1) {
         ob_method_msg(msg, msglen, "more than %d offset cusps in the piece", OB_MAX_PIECES - 1);
         return OB_RETRY_SMALLER;
@@ -773,7 +722,7 @@ const ob_method ob_method_cubic_opt = {
     .citation = "G1 cubic offsets, area/moment candidates (kurbo 0.11) refined to the minimax along normals "
                 "(offbench issue 19)",
     .continuity = "G1",
-    .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN,
+    .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_CUSP_BREAKS,
     .max_turn = 0.0,
     .out_degree = degree_three,
     .work_size = sizeof(co_work),

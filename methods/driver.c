@@ -175,7 +175,26 @@ static int check_applicable(ob_job *j, jstate *s)
     return 1;
 }
 
-/* Initial pieces of one job: inflections, then the method's turning limit. */
+/* The offset's cusps of segment b (OB_CAP_CUSP_BREAKS) merged into the
+ * ascending cuts[1..nc-1] (room entries in all); returns the new nc. */
+static int add_cusp_cuts(const ob_bez *b, double d, double *cuts, int nc, int room)
+{
+    double ts[3 * OB_MAX_DEG];
+    int k = ob_bez_offset_cusps(b, d, ts, 3 * OB_MAX_DEG);
+    k = k > 3 * OB_MAX_DEG ? 3 * OB_MAX_DEG : k;  /* more: the method splits the rest itself */
+    for (int i = 0; i < k && nc < room; i++) {
+        int p = nc++;
+        while (p > 1 && cuts[p - 1] > ts[i]) {
+            cuts[p] = cuts[p - 1];
+            p--;
+        }
+        cuts[p] = ts[i];
+    }
+    return nc;
+}
+
+/* Initial pieces of one job: inflections (and the offset's cusps when the
+ * method asks), then the method's turning limit. */
 static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, itemvec *out)
 {
     const ob_method *m = j->method;
@@ -187,6 +206,8 @@ static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *
         cuts[nc++] = 0.0;
         if (convex)
             nc += ob_bez_inflections(b, cuts + 1, 3 * OB_MAX_DEG);
+        if (m->caps & OB_CAP_CUSP_BREAKS)
+            nc = add_cusp_cuts(b, j->d, cuts, nc, (int)(sizeof cuts / sizeof cuts[0]) - 1);
         cuts[nc++] = 1.0;
         for (int i = 0; i + 1 < nc; i++) {
             double a = cuts[i], e = cuts[i + 1];

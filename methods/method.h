@@ -82,6 +82,9 @@ enum {
     OB_CAP_TOL_DRIVEN   = 1u << 6,  /* the accuracy comes from the job's tolerance through the
                                        method's own construction (Lee's circle, SISL), not only
                                        from the piece's size: halving need not reduce the error */
+    OB_CAP_CUSP_BREAKS  = 1u << 7,  /* the driver cuts the initial pieces at the offset's cusps
+                                       (ob_bez_offset_cusps): the method fits up to a cusp, not
+                                       across it */
 };
 
 typedef struct ob_method {

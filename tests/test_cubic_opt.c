@@ -14,7 +14,10 @@
  *  5. degenerate input: a clear status with a message, never NaN: a point,
  *     a closed piece, a cusp of the base, zero-length handles, an inflection,
  *     offset cusps (split there, at 1 - d kappa = 0), a straight segment and
- *     d = 0 (exact).
+ *     d = 0 (exact);
+ *  6. the offset's cusps as breaks: ob_bez_offset_cusps against a reference
+ *     bisection, and the driver's greedy pieces of cubic-opt (which asks for
+ *     the breaks, OB_CAP_CUSP_BREAKS) end at both cusps of liu2002_ex1, d = 1.
  * The reference geometry (points, derivatives, curvature) is testlib's, not
  * the library's; errors are measured by dense sampling here or by the
  * library's hausdorff metric (tested on its own in test_metrics).
@@ -24,6 +27,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "driver_fixture.h"
 #include "methods/curve.h"
 #include "methods/method.h"
 #include "methods/metric.h"
@@ -328,6 +332,56 @@ static void test_degenerate(void)
     }
 }
 
+/* ---- 6. cusps as breaks --------------------------------------------------------- */
+
+/* The root of 1 - d kappa in [lo, hi] (a sign change) by bisection on
+ * testlib's curvature. */
+static double ref_cusp(const ob_bez *b, double d, double lo, double hi)
+{
+    const int neg_lo = 1.0 - d * ref_curvature(b, lo) < 0.0;
+    for (int it = 0; it < 200 && hi - lo > 1e-16; it++) {
+        const double mid = 0.5 * (lo + hi);
+        if ((1.0 - d * ref_curvature(b, mid) < 0.0) == neg_lo)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+static void test_cusp_breaks(void)
+{
+    const ob_bez liu = make(3, LIU, NULL);
+    const double want[2] = {ref_cusp(&liu, 1.0, 0.4, 0.6), ref_cusp(&liu, 1.0, 0.75, 0.9)};
+    double ts[4];
+    const int n = ob_bez_offset_cusps(&liu, 1.0, ts, 4);
+    CHECK(n == 2, "liu2002_ex1 d = 1: %d offset cusps, 2 expected", n);
+    for (int i = 0; i < n && i < 2; i++)
+        CHECK_NEAR(ts[i], want[i], 1e-12, "offset cusp parameter");
+    CHECK(ob_bez_offset_cusps(&liu, -1.0, ts, 4) == 0, "liu2002_ex1 d = -1: no offset cusps");
+    CHECK(ob_bez_offset_cusps(&liu, 1.0, ts, 1) == 2, "more cusps than max: max + 1");
+    const ob_bez qc = quarter_circle(1.0, 0);
+    CHECK(ob_bez_offset_cusps(&qc, 1.0, ts, 4) == 0, "a circle offset by its radius: no cusps");
+
+    ob_curve c = fixture_curve("liu2002_ex1", 3, LIU, 1.0);
+    ob_job j;
+    fixture_job(&j, &c, M, OB_METRIC_HAUSDORFF, OB_SPLIT_GREEDY, 1e-4);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    ob_span_log log = {0};
+    o.spans = &log;
+    CHECK(ob_driver_run(&j, 1, &o) == 0 && j.status == OB_OK && j.max_err <= 1e-4, "driver: %s, max_err %g (%s)",
+          ob_status_name(j.status), j.max_err, j.message);
+    for (int i = 0; i < 2; i++) {
+        int found = 0;
+        for (int k = 0; k < log.n; k++)
+            found |= fabs(log.v[k].a - want[i]) < 1e-9;
+        CHECK(found, "driver: no greedy piece starts at the offset cusp t = %.12g", want[i]);
+    }
+    free(log.v);
+    ob_curve_free(&c);
+}
+
 int main(void)
 {
     M = ob_method_find("cubic-opt");
@@ -342,5 +396,6 @@ int main(void)
     test_order();
     test_parameterization();
     test_degenerate();
+    test_cusp_breaks();
     return check_done();
 }
