@@ -709,13 +709,6 @@ static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *w
     return OB_OK;
 }
 
-static int degree_three(int n, int rational_in)
-{
-    (void)n;
-    (void)rational_in;
-    return 3;
-}
-
 const ob_method ob_method_cubic_opt = {
     .name = "cubic-opt",
     .version = 1,
@@ -724,7 +717,7 @@ const ob_method ob_method_cubic_opt = {
     .continuity = "G1",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_CUSP_BREAKS,
     .max_turn = 0.0,
-    .out_degree = degree_three,
+    .out_degree = ob_degree_three,
     .work_size = sizeof(co_work),
     .params = cubic_opt_params,
     .nparams = CP_COUNT,

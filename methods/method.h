@@ -141,6 +141,8 @@ void ob_param_defaults(const ob_method *m, double *par);
 void ob_fit_single(ob_fit *out, const ob_bez *seg);
 /* out_degree for methods whose output has the input's degree. */
 int ob_degree_same(int n, int rational_in);
+/* out_degree for methods whose output is cubic whatever the input. */
+int ob_degree_three(int n, int rational_in);
 /* fit_uses_tol for methods that always read the tolerance. */
 int ob_fit_uses_tol_always(const double *par);
 /* 1 when method m's fit reads the tolerance with parameter values par (NULL:

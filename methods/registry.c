@@ -124,6 +124,13 @@ int ob_degree_same(int n, int rational_in)
     return n;
 }
 
+int ob_degree_three(int n, int rational_in)
+{
+    (void)n;
+    (void)rational_in;
+    return 3;
+}
+
 void ob_fit_single(ob_fit *out, const ob_bez *seg)
 {
     out->n = 1;
