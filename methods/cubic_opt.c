@@ -45,13 +45,20 @@
  * just before a cusp, where the offset's curvature is unbounded, fails
  * while one that reaches it passes, and greedy bisection assumes the
  * error grows with the prefix.
- * Degenerate input: a point-like base fails; a base whose tangent reverses
- * between samples (a cusp of the base, where the offset jumps by 2d) or an
- * offset whose end points coincide (a closed piece) asks for a smaller piece
- * (OB_RETRY_SMALLER, the driver fails the job with the reason after 12
- * halvings); an offset that collapses to a point (a circle offset by its
- * radius) is that point.  No loop runs more than a fixed count, and every
- * output is checked finite.
+ * Degenerate input: a point-like base fails; an offset whose end points
+ * coincide (a closed piece) asks for a smaller piece (OB_RETRY_SMALLER); an
+ * offset that collapses to a point (a circle offset by its radius) is that
+ * point.  Where no candidate can be scored (the base's tangent reverses
+ * between two samples: a cusp of the base, where the offset jumps by 2d,
+ * or a hook below the sampling; a normal line that misses every
+ * candidate) and on a piece with more offset cusps than a fit holds (the
+ * curvature of a sliver is round-off), the fit is the Hermite-like cubic
+ * with handles of a third of the chord along the offset's end tangents:
+ * the driver measures it and splits or, where the error stops falling,
+ * ends the job with status limit, as for the other methods (asking for a
+ * smaller piece there made 2^12 retries of a 1e-8 sliver, 0.4 s per job).
+ * No loop runs more than a fixed count, and every output is checked
+ * finite.
  * The output is polynomial (rational bases are sampled like any other) and
  * not in the base's parameter (normal or hausdorff metric).  The fit does
  * not read the tolerance.
@@ -528,10 +535,11 @@ static void refine(co_cubic *c, const co_work *W, int ns, double d, co_err *E, c
 /* ---- one stretch, cusps, the method --------------------------------------- */
 
 /* The base at the sample parameters t_j = j / (ns + 1), j = 0..ns+1, into
- * W.  Returns -1 (msg) when the base is point-like or its tangent reverses
- * between two samples (a cusp of the base: the offset jumps there). */
+ * W.  Returns 0; -1 (msg) when the base is point-like; 1 when its tangent
+ * reverses between two samples (a cusp of the base: the offset jumps). */
 static int sample_base(const ob_bez *base, int ns, co_work *W, char *msg, size_t msglen)
 {
+    int reverses = 0;
     W->base = base;
     for (int j = 0; j <= ns + 1; j++) {
         double o[2][2];
@@ -547,13 +555,10 @@ static int sample_base(const ob_bez *base, int ns, co_work *W, char *msg, size_t
             ob_method_msg(msg, msglen, "no tangent at t = %.6g (point-like base)", W->t[j]);
             return -1;
         }
-        if (j > 0 && dot2(W->T[j - 1], W->T[j]) < 0.0) {
-            ob_method_msg(msg, msglen, "the base's tangent reverses between t = %.6g and %.6g (a cusp of the "
-                          "base: its offset jumps by 2d)", W->t[j - 1], W->t[j]);
-            return -1;
-        }
+        if (j > 0 && dot2(W->T[j - 1], W->T[j]) < 0.0)
+            reverses = 1;
     }
-    return 0;
+    return reverses;
 }
 
 /* The largest distance of a control point of base from the first. */
@@ -609,18 +614,18 @@ static int candidates(const ob_bez *base, double d, const co_cubic *c, double *a
 }
 
 /* Purpose: the G1 cubic for the d-offset of a stretch without offset cusps.
+ * Inputs:  hermite: 1 to skip the candidates (the fallback cubic).
  * Outputs: *out (a cubic Bézier).  Returns OB_OK, OB_RETRY_SMALLER or
  *          OB_FAIL with the reason in msg. */
-static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on, co_work *W, ob_bez *out,
-                             char *msg, size_t msglen)
+static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on, int hermite, co_work *W,
+                             ob_bez *out, char *msg, size_t msglen)
 {
     co_cubic c;
-    if (base_size(base) == 0.0) {
+    const int reverses = base_size(base) > 0.0 ? sample_base(base, ns, W, msg, msglen) : -1;
+    if (reverses < 0) {
         ob_method_msg(msg, msglen, "the base piece is a point");
         return OB_FAIL;
     }
-    if (sample_base(base, ns, W, msg, msglen))
-        return OB_RETRY_SMALLER;
     if (offset_ends(base, d, &c)) {
         /* a closed stretch, or an offset that collapses to a point (a
          * circle offset by its radius): the point itself is exact */
@@ -635,6 +640,8 @@ static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on
             return OB_RETRY_SMALLER;
         }
         c.L = 0.0;
+    } else if (reverses || hermite) {
+        c.a = c.b = 1.0 / 3.0;
     } else {
         double as[5], bs[5];
         co_err *E = &W->cur, *best = &W->best;
@@ -651,13 +658,9 @@ static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on
                 bb = bs[k];
             }
         }
-        if (!(best->max < INFINITY)) {
-            ob_method_msg(msg, msglen, "no candidate cubic meets every normal line of the piece");
-            return OB_RETRY_SMALLER;
-        }
-        c.a = ba;
-        c.b = bb;
-        if (refine_on)
+        c.a = best->max < INFINITY ? ba : 1.0 / 3.0;
+        c.b = best->max < INFINITY ? bb : 1.0 / 3.0;
+        if (refine_on && best->max < INFINITY)
             refine(&c, W, ns, d, best, &W->trial);
     }
     double P[4][2];
@@ -684,11 +687,10 @@ static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *w
         return OB_SKIP;
     }
     double tc[OB_MAX_PIECES];
-    const int nc = ob_bez_offset_cusps(base, a->d, tc, OB_MAX_PIECES - 1);
-    if (nc > OB_MAX_PIECES - 1) {
-        ob_method_msg(msg, msglen, "more than %d offset cusps in the piece", OB_MAX_PIECES - 1);
-        return OB_RETRY_SMALLER;
-    }
+    int nc = ob_bez_offset_cusps(base, a->d, tc, OB_MAX_PIECES - 1);
+    const int hermite = nc > OB_MAX_PIECES - 1;  /* more cusps than pieces: round-off */
+    if (hermite)
+        nc = 0;
     out->n = 0;
     out->ctrl_points = 0;
     out->t[0] = 0.0;
@@ -701,7 +703,7 @@ static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *w
             sub = *base;
         else
             ob_bez_subsegment(base, out->t[out->n], t1, &sub);
-        ob_status st = fit_stretch(&sub, a->d, ns, refine_on, work, &out->seg[out->n], msg, msglen);
+        ob_status st = fit_stretch(&sub, a->d, ns, refine_on, hermite, work, &out->seg[out->n], msg, msglen);
         if (st != OB_OK)
             return st;
         out->t[++out->n] = t1;

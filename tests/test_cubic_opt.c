@@ -12,7 +12,8 @@
  *  4. independence of the base's parameterization (a rational
  *     reparameterization of the same cubic, and the reversed curve);
  *  5. degenerate input: a clear status with a message, never NaN: a point,
- *     a closed piece, a cusp of the base, zero-length handles, an inflection,
+ *     a closed piece, a cusp of the base (a finite fallback cubic), zero-length
+ *     handles, an inflection,
  *     offset cusps (split there, at 1 - d kappa = 0), a straight segment and
  *     d = 0 (exact);
  *  6. the offset's cusps as breaks: ob_bez_offset_cusps against a reference
@@ -305,8 +306,9 @@ static void test_degenerate(void)
     static const double sshape[4][2] = {{0, 0}, {1, 1}, {2, -1}, {3, 0}};
     static const double line1[2][2] = {{0, 0}, {3, 1}};
     expect("point", point, 3, 0.5, OB_FAIL, 0);
-    expect("closed loop", loop, 3, 0.1, OB_RETRY_SMALLER, 0);
-    expect("cusp of the base", cusp, 3, 0.1, OB_RETRY_SMALLER, 0);
+    expect("closed loop, d = 0 (the offset's ends coincide)", loop, 3, 0.0, OB_RETRY_SMALLER, 0);
+    expect("closed loop, d = 0.1 (tangent reversed between samples: the fallback cubic)", loop, 3, 0.1, OB_OK, 10.0);
+    expect("cusp of the base (the offset jumps: the fallback cubic)", cusp, 3, 0.1, OB_OK, 1.0);
     expect("straight with collapsed handles", flat, 3, 0.3, OB_OK, 1e-12);
     expect("straight, degree 1", line1, 1, -0.7, OB_OK, 1e-12);
     expect("zero-length handle at the start", handles0, 3, 0.05, OB_OK, 0.05);
