@@ -24,7 +24,7 @@
  *     with p, q linear; the cubic's moment has no a^3, b^3 terms (integrals
  *     of B^2 B' over [0,1] of basis functions vanishing at both ends), so
  *     the moment condition times q(a)^2 is a quartic in a: up to four
- *     candidates with a, b in [0, AMAX].  The circular-arc guess
+ *     candidates with a, b in [AMIN, AMAX].  The circular-arc guess
  *     (4/3) tan(theta/4) joins them, so a candidate always exists.
  *  2. scoring: each candidate's error along the base's normals, e(t) =
  *     (A(u) - C(t)) . N(t) - d where A(u) lies on the normal line of C at t
@@ -76,6 +76,10 @@ enum { CO_MAX_SAMPLES = 128, CO_MAX_ITER = 40 };
 /* handle lengths in chord units beyond this are not candidates (a cubic
  * with longer handles loops) */
 static const double AMAX = 4.0;
+/* and never shorter than this: a handle of length 0 would leave the end
+ * tangent to the next control point, not the offset's (a kink at the
+ * joint); the minimax next to a cusp of the offset wants it near 0 */
+static const double AMIN = 1e-6;
 
 static const ob_param cubic_opt_params[CP_COUNT] = {
     {"samples", 24,
@@ -276,8 +280,8 @@ static int quartic_candidates(const double K[3], double m[4][4], double At, doub
             continue;
         const double b = (p[0] + p[1] * a) / qa;
         if (b >= 0.0 && b <= AMAX && isfinite(b)) {
-            as[n] = a;
-            bs[n] = b;
+            as[n] = fmax(a, AMIN);
+            bs[n] = fmax(b, AMIN);
             n++;
         }
     }
@@ -479,14 +483,14 @@ static int remez_step(const co_err *E, double step[2])
     return 0;
 }
 
-/* Try handle lengths (a + da, b + db) (kept in [0, AMAX]); keeps them in
+/* Try handle lengths (a + da, b + db) (kept in [AMIN, AMAX]); keeps them in
  * c, E when the estimate falls.  Returns the fall (0: not kept). */
 static double try_step(co_cubic *c, const co_work *W, int ns, double d, co_err *E, co_err *trial, double da,
                        double db)
 {
     co_cubic t = *c;
-    t.a = fmin(AMAX, fmax(0.0, c->a + da));
-    t.b = fmin(AMAX, fmax(0.0, c->b + db));
+    t.a = fmin(AMAX, fmax(AMIN, c->a + da));
+    t.b = fmin(AMAX, fmax(AMIN, c->b + db));
     if (t.a == c->a && t.b == c->b)
         return 0.0;
     cubic_error(&t, W, ns, d, E, trial);

@@ -332,6 +332,43 @@ static void test_degenerate(void)
                   f.t[i], 1.0 - ref_curvature(&liu, f.t[i]));
         CHECK(fit_error(&liu, &f, 1.0) < 0.01, "offset cusps: error %g", fit_error(&liu, &f, 1.0));
     }
+    /* next to a cusp the minimax wants a handle of length 0; kept positive,
+     * the end tangents stay the offset's (G1 wherever the offset is) */
+    static const double spans[][2] = {{0.3, 0.5043}, {0.4, 0.5043}, {0.5044, 0.6}, {0.7, 0.827}, {0.8271, 0.9},
+                                      {0.0, 0.5}, {0.5, 1.0}};
+    /* the last two on the halves of --random 100:7's curve 80 at d = 0.1018:
+     * a sharp turn without cusps, where the minimax handle is 0 */
+    static const double rnd80[4][2] = {{0.9345528314, 0.9733680353}, {0.6223105346, 0.5383843136},
+                                       {0.2200874025, 0.2967469687}, {0.7181739429, 0.8966260691}};
+    const ob_bez r80 = make(3, rnd80, NULL);
+    for (int k = 0; k < 7; k++) {
+        ob_bez sub;
+        const double dk = k < 5 ? 1.0 : 0.1018;
+        ob_bez_subsegment(k < 5 ? &liu : &r80, spans[k][0], spans[k][1], &sub);
+        st = fit(&sub, dk, &f, msg);
+        CHECK(st == OB_OK, "next to a cusp [%g, %g]: %s (%s)", spans[k][0], spans[k][1], ob_status_name(st), msg);
+        if (st != OB_OK)
+            continue;
+        for (int e = 0; e < 2; e++) {
+            const ob_bez *A = &f.seg[e ? f.n - 1 : 0];
+            double P[4][2], O[2], T[2];
+            for (int i = 0; i < 4; i++)
+                ob_bez_ctrl(A, i, P[i]);
+            ref_offset(&sub, 0.5, dk, O, T);  /* the direction of travel inside */
+            const double g = 1.0 - dk * ref_curvature(&sub, 0.5), h[2] = {e ? P[3][0] - P[2][0] : P[1][0] - P[0][0],
+                                                                     e ? P[3][1] - P[2][1] : P[1][1] - P[0][1]};
+            double c[2][2];
+            ref_eval(&sub, e, 1, c);
+            const double s = hypot(c[1][0], c[1][1]), Tb[2] = {(g < 0 ? -1 : 1) * c[1][0] / s,
+                                                                (g < 0 ? -1 : 1) * c[1][1] / s};
+            const double hl = hypot(h[0], h[1]);
+            /* the handle off T by round-off of the control points' size */
+            const double ro = 1e-14 * (1.0 + hypot(P[0][0], P[0][1]) + hypot(P[3][0], P[3][1]));
+            CHECK(hl > 0 && fabs(h[0] * Tb[1] - h[1] * Tb[0]) <= ro && h[0] * Tb[0] + h[1] * Tb[1] > 0,
+                  "next to a cusp or sharp turn [%g, %g]: end %d handle %.3g along %.17g,%.17g, tangent %.17g,%.17g", spans[k][0],
+                  spans[k][1], e, hl, h[0], h[1], Tb[0], Tb[1]);
+        }
+    }
 }
 
 /* ---- 6. cusps as breaks --------------------------------------------------------- */
