@@ -127,6 +127,14 @@ static const double GL16[8][2] = {
 };
 
 
+/* Node i (0..15, ascending) of the 16-point rule on [0,1], its weight in *w. */
+static double gl16(int i, double *w)
+{
+    const int k = i < 8 ? 7 - i : i - 8;
+    *w = GL16[k][1];
+    return i < 8 ? 1.0 - GL16[k][0] : GL16[k][0];
+}
+
 static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
 static double cross2(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
 
@@ -179,7 +187,8 @@ static void offset_moments(const ob_bez *base, double d, const co_cubic *c, doub
     const double e[2] = {(c->P3[0] - c->P0[0]) / c->L, (c->P3[1] - c->P0[1]) / c->L};
     double A = 0.0, M = 0.0;
     for (int i = 0; i < 16; i++) {
-        const double t = i < 8 ? 1.0 - GL16[7 - i][0] : GL16[i - 8][0], w = GL16[i < 8 ? 7 - i : i - 8][1];
+        double w;
+        const double t = gl16(i, &w);
         double o[3][2], N[2];
         ob_bez_eval(base, t, 2, o);
         const double sp = hypot(o[1][0], o[1][1]);
@@ -210,7 +219,8 @@ static void cubic_moments(const double t0[2], const double t1[2], double K[3], d
     memset(m, 0, 16 * sizeof m[0][0]);
     K[0] = K[1] = K[2] = 0.0;
     for (int i = 0; i < 16; i++) {
-        const double s = i < 8 ? 1.0 - GL16[7 - i][0] : GL16[i - 8][0], w = GL16[i < 8 ? 7 - i : i - 8][1];
+        double w;
+        const double s = gl16(i, &w);
         const double v = 1.0 - s, B1 = 3 * v * v * s, B2 = 3 * v * s * s, B3 = s * s * s;
         const double D1 = 3 * v * (1 - 3 * s), D2 = 3 * s * (2 - 3 * s), D3 = 3 * s * s;
         /* index 0: the part without a or b, 1: times a, 2: times b */
