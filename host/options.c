@@ -280,7 +280,7 @@ int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o)
             }
         } else if (strcmp(a, "--split") == 0) {
             if (ob_split_parse(v, &o->split)) {
-                ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy)", v);
+                ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy, optimal)", v);
                 return -1;
             }
         } else if (strcmp(a, "--backend") == 0) {

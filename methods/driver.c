@@ -11,7 +11,7 @@
 #include <string.h>
 #include <time.h>
 
-static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy"};
+static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy", "optimal"};
 
 const char *ob_split_name(ob_split s) { return (s >= 0 && s < OB_SPLIT_COUNT) ? split_names[s] : "?"; }
 
@@ -38,6 +38,10 @@ void ob_driver_defaults(ob_driver_opts *o)
 /* greedy bisection stops when the bracket on the end parameter is this
  * fraction of the stretch still to cover */
 static const double GREEDY_EPS = 1e-4;
+/* optimal: the bisection on the common error level stops when its bracket
+ * is within this ratio, or after OPT_ROUNDS passes */
+static const double OPT_RATIO = 1.02;
+enum { OPT_ROUNDS = 12 };
 /* maxerr split keeps this fraction of the piece on either side */
 static const double MAXERR_MARGIN = 0.05;
 /* A piece whose error has not dropped below STALL_RATIO of its parent's over
@@ -76,6 +80,11 @@ typedef struct {
     int final;          /* greedy: accept this fit whatever its error */
     double parent_err;  /* mid/maxerr: the error of the piece this one was split from */
     int stall;          /* successive splits without a real drop of the error */
+    /* optimal (decide_optimal): greedy passes over the stretch [start, end]
+     * at an error level; phase 0 counts the pieces at tol, 1 bisects the
+     * level, 2 is the final pass (the greedy code, at the level) */
+    int phase, pieces, target, rounds;
+    double start, level, elo, ehi, pass_max;
 } item;
 
 typedef struct {
@@ -226,7 +235,8 @@ static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *
             for (int p = 1; p <= k; p++) {
                 double next = p == k ? e : a + (e - a) * ob_bez_turn_param(&sub, turn * p / k);
                 item it = {.job = jobidx, .grp = grp, .seg = s, .depth = 0, .a = prev, .b = next,
-                           .end = next, .lo = prev, .hi = next, .parent_err = INFINITY};
+                           .end = next, .lo = prev, .hi = next, .parent_err = INFINITY,
+                           .start = prev, .level = j->tol};
                 if (push(out, &it))
                     return -1;
                 prev = next;
@@ -494,6 +504,77 @@ static void joints_chunk(const jstate *js, const item *its, long cnt, const ob_f
     }
 }
 
+/* The optimal rule at the end of one pass over its stretch: the next
+ * level, or the final pass.  Phase 0 (at tol) gives the target count; a
+ * pass of phase 1 is feasible when it covers the stretch in at most target
+ * pieces.  The upper level is always one whose pass was feasible, so the
+ * final pass at it (the same fits, the same decisions) takes that pass's
+ * pieces; the lower one starts at 1/64 of phase 0's largest error. */
+static void optimal_next_pass(item *g, int covered)
+{
+    if (g->phase == 0) {
+        g->target = g->pieces;
+        g->ehi = g->level;
+        g->elo = g->pass_max / 64;
+    } else if (covered && g->pieces <= g->target) {
+        g->ehi = g->level;
+    } else {
+        g->elo = g->level;
+    }
+    g->rounds++;
+    const int done = g->target <= 1 || g->ehi <= OPT_RATIO * g->elo || g->rounds > OPT_ROUNDS;
+    g->phase = done ? 2 : 1;
+    g->level = done ? g->ehi : sqrt(g->elo * g->ehi);
+    g->pieces = 0;
+    g->pass_max = 0.0;
+    g->a = g->lo = g->start;
+    g->hi = g->b = g->end;
+}
+
+/* Purpose: the optimal split rule's counting passes (phases 0 and 1): the
+ *          greedy bisection on the end of the prefix [a, b] at the item's
+ *          level, counting the pieces instead of accepting them.
+ * Method:  a pass that needs more than target pieces, or where not even a
+ *          sliver meets the level, is infeasible and ends early; phase 0
+ *          where not even a sliver passes goes straight to the final pass
+ *          at tol, which is greedy's (with its limit rules).  The level is
+ *          bisected geometrically between an infeasible and a feasible one;
+ *          the final pass (phase 2, in decide) accepts the pieces at the
+ *          lowest feasible level found.  Every pass fits the same pieces
+ *          as a greedy run at that tolerance would. */
+static int decide_optimal(const ob_job *j, jstate *s, const item *it, const itemres *r, int pass, itemvec *next)
+{
+    item g = *it;
+    if (pass) {
+        g.lo = it->b;
+        g.pass_err = r->err;
+    } else {
+        g.hi = it->b;
+    }
+    const int reached = pass && it->b >= it->end;
+    if (reached || g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
+        if (g.lo > g.a) {  /* a piece of this pass: [a, lo] */
+            g.pieces++;
+            g.pass_max = fmax(g.pass_max, g.pass_err);
+            g.a = g.lo;
+            g.hi = g.b = g.end;
+            if (g.a >= g.end || (g.phase == 1 && g.pieces > g.target))
+                optimal_next_pass(&g, g.a >= g.end);
+        } else if (g.phase == 0) {
+            g.phase = 2;  /* not even a sliver at tol: greedy decides */
+            g.level = j->tol;
+            g.a = g.lo = g.start;
+            g.hi = g.b = g.end;
+        } else {
+            optimal_next_pass(&g, 0);
+        }
+    } else {
+        g.b = 0.5 * (g.lo + g.hi);
+    }
+    s->pending++;
+    return push(next, &g);
+}
+
 /* Decide what becomes of one measured item (fj: the joints of its fit);
  * children go to `next`. */
 static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
@@ -518,10 +599,13 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
         snprintf(msg, sizeof msg, "%.60s; pieces that small are past the limits, at t in [%.6g, %.6g] of segment %d",
                  r->msg[0] ? r->msg : "the method needs a smaller piece", it->a, it->b, it->seg);
     }
-    const int pass = !retry && r->err <= j->tol;
+    /* the optimal rule's passes are greedy at their own error level */
+    const int pass = !retry && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
     const int full = j->segments + s->pending + 1 >= o->max_segments;
 
-    if (j->split != OB_SPLIT_GREEDY) {
+    if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
+        return decide_optimal(j, s, it, r, pass, next);
+    if (j->split == OB_SPLIT_MID || j->split == OB_SPLIT_MAXERR) {
         if (pass) {
             accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             return 0;
@@ -579,7 +663,8 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
         return push(next, &l) || push(next, &rr) ? -1 : 0;
     }
 
-    /* greedy: bisection on the end of the prefix [a, b] */
+    /* greedy (and the optimal rule's final pass): bisection on the end of
+     * the prefix [a, b] */
     item g = *it;
     if (it->final) {
         if (retry) {
