@@ -18,7 +18,7 @@ static const char usage[] =
     "usage:\n"
     "  ./offbench run    [--curves FILE] [--curve ID,...] [--methods LIST|all]\n"
     "                    [--tols 1e-1,1e-2,...] [--metric bound|radial|normal|hausdorff]\n"
-    "                    [--split mid|maxerr|greedy] [--backend auto|opencl|cpu] [--device NAME]\n"
+    "                    [--split mid|maxerr|greedy|optimal] [--backend auto|opencl|cpu] [--device NAME]\n"
     "                    [--threads N]\n"
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"

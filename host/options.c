@@ -204,7 +204,7 @@ const ob_flag ob_run_flags[] = {
     {"methods", "LIST|all", "methods to run (default all; './offbench list methods')", RO_METHODS, OB_FLAG_LIST},
     {"tols", "T,...", "tolerances (default 1e-1,1e-2,1e-3,1e-4,1e-5)", RO_TOLS, OB_FLAG_LIST},
     {"metric", "M", "bound, radial, normal or hausdorff (default)", RO_METRIC, OB_FLAG_ONCE},
-    {"split", "RULE", "mid (default), maxerr or greedy", RO_SPLIT, OB_FLAG_ONCE},
+    {"split", "RULE", "mid (default), maxerr, greedy or optimal", RO_SPLIT, OB_FLAG_ONCE},
     {"backend", "B", "auto (default), opencl or cpu", RO_BACKEND, OB_FLAG_ONCE},
     {"device", "NAME", "the OpenCL device whose name contains NAME", RO_DEVICE, OB_FLAG_ONCE},
     {"threads", "N", "OpenMP threads (default: all cores)", RO_THREADS, OB_FLAG_ONCE},
@@ -264,7 +264,7 @@ static int apply_selection(ob_run_opts *o, int id, const char *opt, const char *
         return 0;
     case RO_SPLIT:
         if (ob_split_parse(v, &o->split)) {
-            ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy)", v);
+            ob_error("--split: unknown split rule '%s' (mid, maxerr, greedy, optimal)", v);
             return -1;
         }
         return 0;

@@ -162,6 +162,42 @@ void ob_bez_offset_point(const ob_bez *b, double t, double d, double p[2])
 
 /* ---- shape analysis --------------------------------------------------- */
 
+enum { CUSP_SAMPLES = 64 };
+/* |1 - d kappa| at or below this is round-off of zero, not a sign */
+static const double CUSP_G_ZERO = 1e-12;
+
+static double speed_factor(const ob_bez *b, double t, double d) { return 1.0 - d * ob_bez_curvature(b, t); }
+
+int ob_bez_offset_cusps(const ob_bez *b, double d, double *ts, int max)
+{
+    int n = 0;
+    if (d == 0.0)
+        return 0;
+    /* tp, gp: the last sample where |1 - d kappa| is more than round-off */
+    double tp = 0.5 / CUSP_SAMPLES, gp = speed_factor(b, tp, d);
+    for (int k = 1; k < CUSP_SAMPLES; k++) {
+        const double t = (k + 0.5) / CUSP_SAMPLES, g = speed_factor(b, t, d);
+        if (fabs(g) <= CUSP_G_ZERO)
+            continue;
+        if (fabs(gp) > CUSP_G_ZERO && (g < 0.0) != (gp < 0.0)) {
+            double lo = tp, hi = t;
+            for (int it = 0; it < 60 && hi - lo > 1e-15; it++) {
+                const double mid = 0.5 * (lo + hi);
+                if ((speed_factor(b, mid, d) < 0.0) == (gp < 0.0))
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            if (n == max)
+                return max + 1;
+            ts[n++] = 0.5 * (lo + hi);
+        }
+        tp = t;
+        gp = g;
+    }
+    return n;
+}
+
 int ob_bez_inflections(const ob_bez *b, double *ts, int max)
 {
     const int n = b->deg;

@@ -108,6 +108,16 @@ int ob_bez_elevate(const ob_bez *b, int to, ob_bez *out);
  * Returns: number of parameters written (<= max). */
 int ob_bez_inflections(const ob_bez *b, double *ts, int max);
 
+/* Purpose: the cusps of the untrimmed d-offset: parameters in (0,1) where
+ *          1 - d kappa changes sign (the offset's derivative C' (1 - d kappa)
+ *          reverses), ascending.
+ * Method:  signs at 64 midpoints of equal intervals, each change bisected
+ *          to full precision; |1 - d kappa| <= 1e-12 is round-off of zero,
+ *          not a sign (an offset that collapses to a point has no cusps).
+ *          Two cusps closer than the spacing are missed.
+ * Returns: the number written (<= max), or max + 1 when there are more. */
+int ob_bez_offset_cusps(const ob_bez *b, double d, double *ts, int max);
+
 /* Purpose: total turning of the tangent over [0,1] in radians (>= 0),
  * summed over `samples` sub-intervals (angle increments are < pi there). */
 double ob_bez_turn(const ob_bez *b, int samples);

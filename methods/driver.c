@@ -11,7 +11,7 @@
 #include <string.h>
 #include <time.h>
 
-static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy"};
+static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy", "optimal"};
 
 const char *ob_split_name(ob_split s) { return (s >= 0 && s < OB_SPLIT_COUNT) ? split_names[s] : "?"; }
 
@@ -38,6 +38,10 @@ void ob_driver_defaults(ob_driver_opts *o)
 /* greedy bisection stops when the bracket on the end parameter is this
  * fraction of the stretch still to cover */
 static const double GREEDY_EPS = 1e-4;
+/* optimal: the bisection on the common error level stops when its bracket
+ * is within this ratio, or after OPT_ROUNDS passes */
+static const double OPT_RATIO = 1.02;
+enum { OPT_ROUNDS = 12 };
 /* maxerr split keeps this fraction of the piece on either side */
 static const double MAXERR_MARGIN = 0.05;
 /* A piece whose error has not dropped below STALL_RATIO of its parent's over
@@ -79,6 +83,11 @@ typedef struct {
     int chain_to;       /* > 0: the leftmost piece of a chain of requests for a
                            smaller piece, already fitted down to this depth
                            (probe_retry_chain): not fitted again above it */
+    /* optimal (decide_optimal): greedy passes over the stretch [start, end]
+     * at an error level; phase 0 counts the pieces at tol, 1 bisects the
+     * level, 2 is the final pass (the greedy code, at the level) */
+    int phase, pieces, target, rounds;
+    double start, level, elo, ehi, pass_max;
 } item;
 
 typedef struct {
@@ -178,7 +187,26 @@ static int check_applicable(ob_job *j, jstate *s)
     return 1;
 }
 
-/* Initial pieces of one job: inflections, then the method's turning limit. */
+/* The offset's cusps of segment b (OB_CAP_CUSP_BREAKS) merged into the
+ * ascending cuts[1..nc-1] (room entries in all); returns the new nc. */
+static int add_cusp_cuts(const ob_bez *b, double d, double *cuts, int nc, int room)
+{
+    double ts[3 * OB_MAX_DEG];
+    int k = ob_bez_offset_cusps(b, d, ts, 3 * OB_MAX_DEG);
+    k = k > 3 * OB_MAX_DEG ? 3 * OB_MAX_DEG : k;  /* more: the method splits the rest itself */
+    for (int i = 0; i < k && nc < room; i++) {
+        int p = nc++;
+        while (p > 1 && cuts[p - 1] > ts[i]) {
+            cuts[p] = cuts[p - 1];
+            p--;
+        }
+        cuts[p] = ts[i];
+    }
+    return nc;
+}
+
+/* Initial pieces of one job: inflections (and the offset's cusps when the
+ * method asks), then the method's turning limit. */
 static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, itemvec *out)
 {
     const ob_method *m = j->method;
@@ -190,6 +218,8 @@ static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *
         cuts[nc++] = 0.0;
         if (convex)
             nc += ob_bez_inflections(b, cuts + 1, 3 * OB_MAX_DEG);
+        if (m->caps & OB_CAP_CUSP_BREAKS)
+            nc = add_cusp_cuts(b, j->d, cuts, nc, (int)(sizeof cuts / sizeof cuts[0]) - 1);
         cuts[nc++] = 1.0;
         for (int i = 0; i + 1 < nc; i++) {
             double a = cuts[i], e = cuts[i + 1];
@@ -208,7 +238,8 @@ static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *
             for (int p = 1; p <= k; p++) {
                 double next = p == k ? e : a + (e - a) * ob_bez_turn_param(&sub, turn * p / k);
                 item it = {.job = jobidx, .grp = grp, .seg = s, .depth = 0, .a = prev, .b = next,
-                           .end = next, .lo = prev, .hi = next, .parent_err = INFINITY};
+                           .end = next, .lo = prev, .hi = next, .parent_err = INFINITY,
+                           .start = prev, .level = j->tol};
                 if (push(out, &it))
                     return -1;
                 prev = next;
@@ -353,7 +384,7 @@ static double probe_retry_chain(const ob_job *jobs, const item *it, int max_dept
                                 itemres *r)
 {
     const ob_job *j = &jobs[it->job];
-    if (r->st != OB_RETRY_SMALLER || j->split == OB_SPLIT_GREEDY || it->chain_to > 0)
+    if (r->st != OB_RETRY_SMALLER || (j->split != OB_SPLIT_MID && j->split != OB_SPLIT_MAXERR) || it->chain_to > 0)
         return 0.0;
     item c = *it;
     itemres cr;
@@ -532,6 +563,77 @@ static void joints_chunk(const jstate *js, const item *its, long cnt, const ob_f
     }
 }
 
+/* The optimal rule at the end of one pass over its stretch: the next
+ * level, or the final pass.  Phase 0 (at tol) gives the target count; a
+ * pass of phase 1 is feasible when it covers the stretch in at most target
+ * pieces.  The upper level is always one whose pass was feasible, so the
+ * final pass at it (the same fits, the same decisions) takes that pass's
+ * pieces; the lower one starts at 1/64 of phase 0's largest error. */
+static void optimal_next_pass(item *g, int covered)
+{
+    if (g->phase == 0) {
+        g->target = g->pieces;
+        g->ehi = g->level;
+        g->elo = g->pass_max / 64;
+    } else if (covered && g->pieces <= g->target) {
+        g->ehi = g->level;
+    } else {
+        g->elo = g->level;
+    }
+    g->rounds++;
+    const int done = g->target <= 1 || g->ehi <= OPT_RATIO * g->elo || g->rounds > OPT_ROUNDS;
+    g->phase = done ? 2 : 1;
+    g->level = done ? g->ehi : sqrt(g->elo * g->ehi);
+    g->pieces = 0;
+    g->pass_max = 0.0;
+    g->a = g->lo = g->start;
+    g->hi = g->b = g->end;
+}
+
+/* Purpose: the optimal split rule's counting passes (phases 0 and 1): the
+ *          greedy bisection on the end of the prefix [a, b] at the item's
+ *          level, counting the pieces instead of accepting them.
+ * Method:  a pass that needs more than target pieces, or where not even a
+ *          sliver meets the level, is infeasible and ends early; phase 0
+ *          where not even a sliver passes goes straight to the final pass
+ *          at tol, which is greedy's (with its limit rules).  The level is
+ *          bisected geometrically between an infeasible and a feasible one;
+ *          the final pass (phase 2, in decide) accepts the pieces at the
+ *          lowest feasible level found.  Every pass fits the same pieces
+ *          as a greedy run at that tolerance would. */
+static int decide_optimal(const ob_job *j, jstate *s, const item *it, const itemres *r, int pass, itemvec *next)
+{
+    item g = *it;
+    if (pass) {
+        g.lo = it->b;
+        g.pass_err = r->err;
+    } else {
+        g.hi = it->b;
+    }
+    const int reached = pass && it->b >= it->end;
+    if (reached || g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
+        if (g.lo > g.a) {  /* a piece of this pass: [a, lo] */
+            g.pieces++;
+            g.pass_max = fmax(g.pass_max, g.pass_err);
+            g.a = g.lo;
+            g.hi = g.b = g.end;
+            if (g.a >= g.end || (g.phase == 1 && g.pieces > g.target))
+                optimal_next_pass(&g, g.a >= g.end);
+        } else if (g.phase == 0) {
+            g.phase = 2;  /* not even a sliver at tol: greedy decides */
+            g.level = j->tol;
+            g.a = g.lo = g.start;
+            g.hi = g.b = g.end;
+        } else {
+            optimal_next_pass(&g, 0);
+        }
+    } else {
+        g.b = 0.5 * (g.lo + g.hi);
+    }
+    s->pending++;
+    return push(next, &g);
+}
+
 /* Decide what becomes of one measured item (fj: the joints of its fit);
  * children go to `next`. */
 static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
@@ -554,10 +656,13 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
     const int retry = r->st == OB_RETRY_SMALLER;
     if (retry)
         retry_end_msg(it, r, 0, msg, sizeof msg);
-    const int pass = !retry && r->err <= j->tol;
+    /* the optimal rule's passes are greedy at their own error level */
+    const int pass = !retry && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
     const int full = j->segments + s->pending + 1 >= o->max_segments;
 
-    if (j->split != OB_SPLIT_GREEDY) {
+    if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
+        return decide_optimal(j, s, it, r, pass, next);
+    if (j->split == OB_SPLIT_MID || j->split == OB_SPLIT_MAXERR) {
         if (pass) {
             accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
             return 0;
@@ -619,7 +724,8 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
         return push(next, &l) || push(next, &rr) ? -1 : 0;
     }
 
-    /* greedy: bisection on the end of the prefix [a, b] */
+    /* greedy (and the optimal rule's final pass): bisection on the end of
+     * the prefix [a, b] */
     item g = *it;
     if (it->final) {
         if (retry) {

@@ -14,7 +14,16 @@
  *           within [5 %, 95 %] of the piece so no sliver is made;
  *   greedy  the longest prefix that passes, by bisection on its end parameter
  *           (to 1e-4 of the stretch still to cover), then the rest likewise: the
- *           fewest segments the method can reach.
+ *           fewest segments the method can reach;
+ *   optimal the fewest pieces whose errors all meet tol at a common error
+ *           level: greedy at tol gives the count n of each initial piece
+ *           (between the inflections, and the offset's cusps for methods
+ *           that ask), then greedy passes at a level bisected geometrically
+ *           (to 2 %, at most 12 passes) find the lowest level that n pieces
+ *           reach, and a last greedy pass at that level is accepted: at
+ *           most greedy's count (fewer where a method's error does not grow
+ *           with the prefix), the errors equalized (max_err at most
+ *           greedy's), at about ten times greedy's fits.
  * A piece narrower than 2^-max_depth, or a job past max_segments, or a piece
  * whose error stops falling under subdivision (below 90 % of its parent's over
  * 4 successive splits: an error floor of the method), is accepted as it is and
@@ -49,7 +58,7 @@
 #include "method.h"
 #include "metric.h"
 
-typedef enum { OB_SPLIT_MID = 0, OB_SPLIT_MAXERR, OB_SPLIT_GREEDY, OB_SPLIT_COUNT } ob_split;
+typedef enum { OB_SPLIT_MID = 0, OB_SPLIT_MAXERR, OB_SPLIT_GREEDY, OB_SPLIT_OPTIMAL, OB_SPLIT_COUNT } ob_split;
 const char *ob_split_name(ob_split s);
 int ob_split_parse(const char *name, ob_split *s);
 

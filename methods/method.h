@@ -87,6 +87,9 @@ enum {
     OB_CAP_TOL_DRIVEN   = 1u << 6,  /* the accuracy comes from the job's tolerance through the
                                        method's own construction (Lee's circle, SISL), not only
                                        from the piece's size: halving need not reduce the error */
+    OB_CAP_CUSP_BREAKS  = 1u << 7,  /* the driver cuts the initial pieces at the offset's cusps
+                                       (ob_bez_offset_cusps): the method fits up to a cusp, not
+                                       across it */
 };
 
 typedef struct ob_method {
@@ -148,6 +151,8 @@ void ob_param_defaults(const ob_method *m, double *par);
 void ob_fit_single(ob_fit *out, const ob_bez *seg);
 /* out_degree for methods whose output has the input's degree. */
 int ob_degree_same(int n, int rational_in);
+/* out_degree for methods whose output is cubic whatever the input. */
+int ob_degree_three(int n, int rational_in);
 /* fit_uses_tol for methods that always read the tolerance. */
 int ob_fit_uses_tol_always(const double *par);
 /* 1 when method m's fit reads the tolerance with parameter values par (NULL:

@@ -14,6 +14,7 @@ extern const ob_method ob_method_exact, ob_method_lee;
 extern const ob_method ob_method_zhao, ob_method_zhao_rational, ob_method_hoschek;
 extern const ob_method ob_method_liu, ob_method_chebyshev, ob_method_lstsq;
 extern const ob_method ob_method_sisl, ob_method_bspline_lsq;
+extern const ob_method ob_method_cubic_opt;
 
 const ob_method *const ob_methods[] = {
     &ob_method_tiller,
@@ -31,6 +32,7 @@ const ob_method *const ob_methods[] = {
     &ob_method_zhao_rational,
     &ob_method_hoschek,
     &ob_method_bspline_lsq,
+    &ob_method_cubic_opt,
     &ob_method_exact,
     &ob_method_sisl,
     NULL,
@@ -122,6 +124,13 @@ int ob_degree_same(int n, int rational_in)
 {
     (void)rational_in;
     return n;
+}
+
+int ob_degree_three(int n, int rational_in)
+{
+    (void)n;
+    (void)rational_in;
+    return 3;
 }
 
 void ob_fit_single(ob_fit *out, const ob_bez *seg)

@@ -117,13 +117,6 @@ void s6err(char *routine, int status, int position)
 
 enum { SISL_OUT_DEG = 3 };
 
-static int sisl_degree(int n, int rational_in)
-{
-    (void)n;
-    (void)rational_in;
-    return SISL_OUT_DEG;
-}
-
 static const ob_param sisl_params[] = {
     {"max_step", 0.0,
      "s1360's maximal step length amax; 0 (default) = SISL's own choice, which its manual "
@@ -464,7 +457,7 @@ const ob_method ob_method_sisl = {
     .continuity = "G1",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_ORIENTED | OB_CAP_TOL_DRIVEN,
     .max_turn = 0.0,
-    .out_degree = sisl_degree,
+    .out_degree = ob_degree_three, /* SISL_OUT_DEG */
     .cost_ms = 4.48,
     .work_size = 0,
     .params = sisl_params,

@@ -94,6 +94,9 @@ static void test_counting_and_tolerance(void)
 }
 
 /* The greedy split reaches no more segments than the midpoint split. */
+/* The smaller of a and b (b when a is not a number). */
+static double tol_or(double a, double b) { return a <= b ? a : b; }
+
 static void test_greedy_not_worse(void)
 {
     ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
@@ -106,6 +109,36 @@ static void test_greedy_not_worse(void)
             CHECK(b.status == OB_OK && b.segments <= a.segments, "%s tol %g: greedy %d vs mid %d",
                   driver_methods[m], tols[i], b.segments, a.segments);
         }
+    ob_curve_free(&c);
+}
+
+/* The optimal rule: no more pieces than greedy (fewer where greedy's error
+ * does not grow with the prefix: tiller next to the cusps at d = 1), every
+ * error within tol, the largest no more than greedy's, and lower on most
+ * jobs with several pieces (not where the largest error is that of a
+ * stretch of one piece between forced breaks, which no level changes). */
+static void test_optimal(void)
+{
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
+    const double tols[3] = {1e-2, 1e-3, 1e-4};
+    int lower = 0, multi = 0;
+    for (int sign = -1; sign <= 1; sign += 2) {
+        c.d[0] = sign;
+        for (int m = 0; driver_methods[m]; m++)
+            for (int i = 0; i < 3; i++) {
+                ob_job g, o;
+                run_one(&g, &c, driver_methods[m], OB_METRIC_HAUSDORFF, OB_SPLIT_GREEDY, tols[i], NULL);
+                run_one(&o, &c, driver_methods[m], OB_METRIC_HAUSDORFF, OB_SPLIT_OPTIMAL, tols[i], NULL);
+                CHECK(o.status == OB_OK && o.ctrl_points <= g.ctrl_points && o.segments <= g.segments &&
+                      o.max_err <= tol_or(g.max_err, tols[i]),
+                      "%s d %d tol %g: optimal %s %ld points, max_err %g; greedy %ld, %g", driver_methods[m], sign,
+                      tols[i], ob_status_name(o.status), o.ctrl_points, o.max_err, g.ctrl_points, g.max_err);
+                multi += g.segments > 1;
+                lower += g.segments > 1 && o.max_err < g.max_err;
+            }
+    }
+    CHECK(multi > 0 && 4 * lower >= 3 * multi, "optimal: max_err lower than greedy's on %d of %d jobs with several pieces",
+          lower, multi);
     ob_curve_free(&c);
 }
 
@@ -343,7 +376,7 @@ static void test_determinism(void)
 {
     const double q5[6][2] = {{3, -1}, {4, 2}, {4.5, 2}, {5.5, 1.5}, {6.5, 0}, {7, -1}};
     ob_curve c[2] = {fixture_curve("ex1", 3, fixture_liu_ex1, 1.0), fixture_curve("q5", 5, q5, 0.5)};
-    enum { NJ = 2 * 3 * 3 * 2 };
+    enum { NJ = 2 * 3 * OB_SPLIT_COUNT * 2 };  /* curves x methods x split rules x tols */
     ob_job ref[NJ], got[NJ];
     int n = 0;
     for (int ci = 0; ci < 2; ci++)
@@ -468,6 +501,7 @@ int main(void)
     test_published_protocols();
     test_counting_and_tolerance();
     test_greedy_not_worse();
+    test_optimal();
     test_limits();
     test_presplit();
     test_failures_are_contained();

@@ -148,7 +148,7 @@ static double fit_error(ob_metric metric, const ob_bez *base, const ob_fit *f, d
 /* Methods documented (METHODS.md) to interpolate the offset end points. */
 static int interpolates_ends(const ob_method *m)
 {
-    static const char *const names[] = {"tiller", "cobb", "ahn", "kim2018", "liu", "interp", NULL};
+    static const char *const names[] = {"tiller", "cobb", "ahn", "kim2018", "liu", "interp", "cubic-opt", NULL};
     for (int i = 0; names[i]; i++)
         if (strcmp(names[i], m->name) == 0)
             return 1;
@@ -297,8 +297,11 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
         if (s0 == OB_OK && s1 == OB_OK) {
             double e0 = fit_error(OB_METRIC_HAUSDORFF, &L, &h0, d);
             double e1 = fit_error(OB_METRIC_HAUSDORFF, &R, &h1, d);
-            CHECK(fmax(e0, e1) < whole, "%s/%s/%g: halves %.3g %.3g, whole %.3g", m->name, cn, d,
-                  e0, e1, whole);
+            /* a fit of several pieces (split at offset cusps, say) may keep
+             * its worst piece whole in one half: then no larger */
+            const double allow = f.n > 1 ? whole * (1 + 1e-6) : whole;
+            CHECK(fmax(e0, e1) < whole || (f.n > 1 && fmax(e0, e1) <= allow), "%s/%s/%g: halves %.3g %.3g, "
+                  "whole %.3g (%d pieces)", m->name, cn, d, e0, e1, whole, f.n);
         }
     }
 
