@@ -24,6 +24,9 @@
  *   random_run       all methods at 5 tolerances on a fixed random set (--random
  *                    24:1; 1000 curves would not fit the bench's time), CPU
  *                    and OpenCL: jobs per second
+ *   fit_per_job/M,   per method of that run (CPU): the median over its jobs
+ *   eval_per_job/M   of the fit time (its own thread CPU time) and of the
+ *                    measuring time, seconds (rate: jobs/s of that work)
  */
 #include <errno.h>
 #include <math.h>
@@ -203,8 +206,9 @@ static void cpu_batch(const ob_measure_rec *recs, int n, int S, ob_errval *out, 
 
 /* ---- whole runs --------------------------------------------------------- */
 
-/* Every method at 5 tolerances on the curves of set, hausdorff, mid split. */
-static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njobs)
+/* Every method at 5 tolerances on the curves of set, hausdorff, mid split.
+ * keep: NULL, or where the jobs go (with their timings; the caller frees). */
+static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njobs, ob_job **keep)
 {
     static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
     const int nm = ob_method_count();
@@ -230,9 +234,54 @@ static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njob
     double t0 = now_s();
     ob_driver_run(jobs, n, o);
     double dt = now_s() - t0;
-    free(jobs);
+    if (keep)
+        *keep = jobs;
+    else
+        free(jobs);
     *njobs = n;
     return dt;
+}
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Per method, the median over its jobs of the fit time (fit_ns: the
+ * method's own thread CPU time) and of the measuring time (eval_ns), as
+ * bench.csv rows fit_per_job/NAME and eval_per_job/NAME (items 1: rate is
+ * jobs per second of that work) and one printed line. */
+static void per_method_times(bench_out *b, const ob_job *jobs, size_t n, int threads)
+{
+    double *v = malloc((n ? n : 1) * sizeof *v), *w = malloc((n ? n : 1) * sizeof *w);
+    if (!v || !w) {
+        free(v);
+        free(w);
+        return;
+    }
+    printf("median per job, fit / measure (ms):");
+    for (int m = 0; ob_methods[m]; m++) {
+        size_t k = 0;
+        for (size_t i = 0; i < n; i++)
+            if (jobs[i].method == ob_methods[m]) {
+                v[k] = jobs[i].fit_ns * 1e-9;
+                w[k++] = jobs[i].eval_ns * 1e-9;
+            }
+        if (k == 0)
+            continue;
+        qsort(v, k, sizeof *v, cmp_dbl);
+        qsort(w, k, sizeof *w, cmp_dbl);
+        char what[96];
+        snprintf(what, sizeof what, "fit_per_job/%s", ob_methods[m]->name);
+        row(b, what, "cpu", threads, 1.0, v[k / 2], "jobs/s");
+        snprintf(what, sizeof what, "eval_per_job/%s", ob_methods[m]->name);
+        row(b, what, "cpu", threads, 1.0, w[k / 2], "jobs/s");
+        printf(" %s %.3g / %.3g", ob_methods[m]->name, v[k / 2] * 1e3, w[k / 2] * 1e3);
+    }
+    printf("\n");
+    free(v);
+    free(w);
 }
 
 static double whole_run(int threads, const ob_curveset *set, ob_driver_opts *o, size_t *njobs)
@@ -425,18 +474,22 @@ int ob_cmd_bench(int argc, char **argv)
         ob_driver_defaults(&o);
         omp_set_num_threads(N);
         size_t nj = 0;
-        double c = random_run(&rset, &o, &nj);
+        ob_job *kept = NULL;
+        double c = random_run(&rset, &o, &nj, &kept);
         row(&b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
         printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
                rset.n, ob_method_count(), nj, nj / c);
         if (cl) {
             o.batch = ob_cl_measure_batch;
             o.batch_ctx = cl;
-            double g = random_run(&rset, &o, &nj);
+            double g = random_run(&rset, &o, &nj, NULL);
             row(&b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
             printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);
         }
         printf("\n");
+        if (kept)
+            per_method_times(&b, kept, nj, N);
+        free(kept);
     }
     ob_curveset_free(&rset);
     ob_cl_close(cl);
