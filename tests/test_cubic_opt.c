@@ -58,7 +58,7 @@ static ob_status fit(const ob_bez *base, double d, ob_fit *f, char *msg) { retur
 
 /* Exact offset point and unit offset tangent (testlib's reference
  * evaluation): O = C + d N, O' = C' (1 - d kappa). */
-static void ref_offset(const ob_bez *b, double t, double d, double O[2], double T[2])
+static void ref_offset_tangent(const ob_bez *b, double t, double d, double O[2], double T[2])
 {
     double o[3][2];
     ref_eval(b, t, 2, o);
@@ -172,7 +172,7 @@ static void check_ends(const char *name, const ob_bez *C, double d)
     for (int e = 0; e < 2; e++) {
         const ob_bez *A = &f.seg[e ? f.n - 1 : 0];
         double O[2], T[2], a[2][2];
-        ref_offset(C, e, d, O, T);
+        ref_offset_tangent(C, e, d, O, T);
         ref_eval(A, e, 1, a);
         const double s = hypot(a[1][0], a[1][1]), scale = 1.0 + fabs(d) + hypot(O[0], O[1]);
         CHECK(dist2d(a[0], O) <= 1e-14 * scale, "%s d %g: end %d off the offset by %g", name, d, e,
@@ -354,7 +354,7 @@ static void test_degenerate(void)
             double P[4][2], O[2], T[2];
             for (int i = 0; i < 4; i++)
                 ob_bez_ctrl(A, i, P[i]);
-            ref_offset(&sub, 0.5, dk, O, T);  /* the direction of travel inside */
+            ref_offset_tangent(&sub, 0.5, dk, O, T);  /* the direction of travel inside */
             const double g = 1.0 - dk * ref_curvature(&sub, 0.5), h[2] = {e ? P[3][0] - P[2][0] : P[1][0] - P[0][0],
                                                                      e ? P[3][1] - P[2][1] : P[1][1] - P[0][1]};
             double c[2][2];
