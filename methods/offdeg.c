@@ -332,13 +332,20 @@ int ob_curve_offset_degree(const ob_curve *c, int *degree, int *rational, char *
 {
     *degree = -1;
     *rational = 1;
-    for (int s = 0; s < c->nseg; s++) {
+    int rc = 0;
+    for (int s = 0; s < c->nseg && rc == 0; s++) {
         ob_offdeg od;
-        if (ob_offset_degree(&c->seg[s], &od, msg, msglen) != 0)
-            return -1;
+        if (ob_offset_degree(&c->seg[s], &od, msg, msglen) != 0) {
+            rc = -1;
+            break;
+        }
         if (od.offset_degree > *degree)
             *degree = od.offset_degree;
         *rational = *rational && od.rational;
     }
-    return 0;
+    /* FLINT keeps a per-thread cache of big integers; the run calls this from
+     * OpenMP workers that live until exit, where the cache would be lost
+     * (valgrind: definitely lost): give it back after each curve */
+    flint_cleanup();
+    return rc;
 }
