@@ -123,7 +123,7 @@ run: $(BIN)
 tables: $(BIN)
 	./$(BIN) tables --out results/tables
 	/usr/bin/python3 scripts/plot_tables.py results/tables/tables.csv results/plots
-	/usr/bin/python3 scripts/readme_tables.py results/tables/tables.md README.md
+	/usr/bin/python3 scripts/readme_tables.py results/tables/tables.md results/TABLES.md
 
 bench: $(BIN)
 	./$(BIN) bench --out out/bench
