@@ -27,6 +27,7 @@
 #include "methods/driver.h"
 #include "methods/method.h"
 #include "methods/metric.h"
+#include "fit_error.h"
 #include "testlib.h"
 
 extern const ob_method ob_method_lee, ob_method_exact;
@@ -50,19 +51,6 @@ static ob_status fit(const ob_method *m, const ob_bez *C, double d, double tol, 
     ob_fit_args a = {d, tol, par};
     msg[0] = '\0';
     return m->fit(C, &a, NULL, out, msg, MSGLEN);
-}
-
-static double fit_error(ob_metric mt, const ob_bez *C, const ob_fit *f, double d)
-{
-    double worst = 0.0;
-    for (int i = 0; i < f->n; i++) {
-        ob_bez sub;
-        ob_bez_subsegment(C, f->t[i], f->t[i + 1], &sub);
-        ob_errval e;
-        ob_measure(mt, &sub, &f->seg[i], d, 512, &e);
-        worst = fmax(worst, e.err);
-    }
-    return worst;
 }
 
 static ob_curve one_curve(const ob_bez *b, double d)
@@ -205,7 +193,7 @@ static void check_exact(const char *what, const ob_bez *C, double d)
         return;
     CHECK(f.seg[0].deg == m->out_degree(C->deg, C->rational), "exact %s: degree %d vs %d", what,
           f.seg[0].deg, m->out_degree(C->deg, C->rational));
-    double eh = fit_error(OB_METRIC_HAUSDORFF, C, &f, d), er = fit_error(OB_METRIC_RADIAL, C, &f, d);
+    double eh = fit_max_err(OB_METRIC_HAUSDORFF, C, &f, d, 512), er = fit_max_err(OB_METRIC_RADIAL, C, &f, d, 512);
     CHECK(eh < 1e-12, "exact %s d %g: hausdorff %g", what, d, eh);
     CHECK(er < 1e-12, "exact %s d %g: radial %g", what, d, er);
     double worst = 0.0;
@@ -486,7 +474,7 @@ static void check_lee_construction(const char *what, const ob_bez *C, double d, 
     CHECK(jworst < 1e-12 * (1 + fabs(d)), "lee %s: pieces join (gap %g)", what, jworst);
     /* radial error: at most the circle approximation error, and it is that
      * error where the normal passes an arc's middle */
-    double er = fit_error(OB_METRIC_RADIAL, C, &f, d), ce = circ_err(fabs(d), OB_PI / M);
+    double er = fit_max_err(OB_METRIC_RADIAL, C, &f, d, 512), ce = circ_err(fabs(d), OB_PI / M);
     CHECK(er <= ce + 1e-12 && ce <= tol, "lee %s d %g tol %g: radial %.17g > circle error %.17g",
           what, d, tol, er, ce);
     double turn = ob_bez_turn(C, 512);
@@ -579,7 +567,7 @@ static void test_lee(void)
                 ok = 0;
                 break;
             }
-            double e = fit_error(OB_METRIC_RADIAL, &g, &f, sg);
+            double e = fit_max_err(OB_METRIC_RADIAL, &g, &f, sg, 512);
             ok &= e < prev && e <= tol && f.n >= prevn;
             prev = e;
             prevn = f.n;
@@ -598,8 +586,8 @@ static void test_lee(void)
     ob_param_defaults(m, par);
     par[0] = 0.25;  /* tol_frac */
     st = fit(m, &g, -1.0, 1e-2, par, &f, msg);
-    CHECK(st == OB_OK && fit_error(OB_METRIC_RADIAL, &g, &f, -1.0) <= 0.25e-2,
-          "lee tol_frac 0.25: radial %g", fit_error(OB_METRIC_RADIAL, &g, &f, -1.0));
+    CHECK(st == OB_OK && fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512) <= 0.25e-2,
+          "lee tol_frac 0.25: radial %g", fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512));
     ob_param_defaults(m, par);
     par[1] = 1;  /* arc: the equioscillating scaled quadratic */
     for (int k = 0; k < 2; k++) {
@@ -642,15 +630,15 @@ static void test_lee(void)
         fit_point(&f, 1.0, A);
         CHECK(e0 < 1e-12 && dist2d(p, A) < 1e-12, "lee arcs_on=1: the ends interpolate the offset "
               "(%g, %g)", e0, dist2d(p, A));
-        CHECK(fit_error(OB_METRIC_RADIAL, &g, &f, d) <= 1e-3, "lee arcs_on=1: radial %g",
-              fit_error(OB_METRIC_RADIAL, &g, &f, d));
+        CHECK(fit_max_err(OB_METRIC_RADIAL, &g, &f, d, 512) <= 1e-3, "lee arcs_on=1: radial %g",
+              fit_max_err(OB_METRIC_RADIAL, &g, &f, d, 512));
     }
     {
         static const double ln[4][2] = {{0.1, -0.2}, {0.31, -0.06}, {1.9, 1.0}, {3.1, 1.8}};
         ob_bez L = make(3, ln, NULL);
         st = fit(m, &L, 0.4, 1e-3, par, &f, msg);
         CHECK(st == OB_OK && f.n == 1 && f.seg[0].deg == 7 &&
-                  fit_error(OB_METRIC_HAUSDORFF, &L, &f, 0.4) < 1e-12,
+                  fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.4, 512) < 1e-12,
               "lee arcs_on=1 on a straight cubic: the exact translate (%s)", msg);
     }
     ob_param_defaults(m, par);
@@ -660,10 +648,10 @@ static void test_lee(void)
         ob_bez L = make(3, ln, NULL);
         par[3] = atan2(2.0, -1.0);  /* direction of the left normal (-1, 2) */
         st = fit(m, &L, 0.3, 1e-2, par, &f, msg);
-        double e1 = st == OB_OK ? fit_error(OB_METRIC_HAUSDORFF, &L, &f, 0.3) : INFINITY;
+        double e1 = st == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : INFINITY;
         par[3] = atan2(2.0, -1.0) + OB_PI / 7;
         st = fit(m, &L, 0.3, 1e-2, par, &f, msg);
-        double e2 = st == OB_OK ? fit_error(OB_METRIC_HAUSDORFF, &L, &f, 0.3) : 0.0;
+        double e2 = st == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : 0.0;
         CHECK(e1 < 1e-12 && e2 > 1e-4, "lee start: boundary on the normal %g, off it %g", e1, e2);
     }
 
@@ -697,11 +685,11 @@ static void test_lee(void)
               dist2d(p, A));
         CHECK(w0 > 1e-3, "lee clip=0: start off the offset by %g (end shift, O(h^3))", w0);
         const int M = arcs_for(1.0, tol);
-        double ce = circ_err(1.0, OB_PI / M), er = fit_error(OB_METRIC_RADIAL, &g, &f, d);
+        double ce = circ_err(1.0, OB_PI / M), er = fit_max_err(OB_METRIC_RADIAL, &g, &f, d, 512);
         CHECK(er <= ce + 1e-12 && er >= 0.99 * ce, "lee clip=1: radial %g, circle error %g", er, ce);
         if (d < 0) {
-            double eh = fit_error(OB_METRIC_HAUSDORFF, &g, &f, d);
-            double eh0 = fit_error(OB_METRIC_HAUSDORFF, &g, &f0, d);
+            double eh = fit_max_err(OB_METRIC_HAUSDORFF, &g, &f, d, 512);
+            double eh0 = fit_max_err(OB_METRIC_HAUSDORFF, &g, &f0, d, 512);
             CHECK(eh <= ce * 1.0001, "lee clip=1 d %g: hausdorff %g, circle error %g", d, eh, ce);
             CHECK(eh0 > 2 * ce, "lee clip=0 d %g: hausdorff %g (end shift), circle error %g", d,
                   eh0, ce);

@@ -39,6 +39,7 @@
 #include "methods/curve.h"
 #include "methods/method.h"
 #include "methods/metric.h"
+#include "fit_error.h"
 #include "testlib.h"
 
 extern const ob_method ob_method_sisl;
@@ -77,20 +78,6 @@ static SISLCurve *sisl_direct(const ob_bez *C, double d, double tol, double amax
     s1360(pc, d, tol, en, amax, 2, &rc, stat);
     freeCurve(pc);
     return rc;
-}
-
-/* Largest Hausdorff error of a fit, each piece against its base sub-segment. */
-static double fit_hausdorff(const ob_bez *C, const ob_fit *f, double d)
-{
-    double worst = 0.0;
-    for (int i = 0; i < f->n; i++) {
-        ob_bez sub;
-        ob_bez_subsegment(C, f->t[i], f->t[i + 1], &sub);
-        ob_errval e;
-        ob_metric_hausdorff(&sub, &f->seg[i], d, OB_DEFAULT_SAMPLES, &e);
-        worst = fmax(worst, e.err);
-    }
-    return worst;
 }
 
 /* The result of s1360 on a whole curve, measured span by span: the Bezier
@@ -187,7 +174,7 @@ static void split_fit(const ob_bez *C, double d, double tol, long *ctrl, double 
         return;
     }
     *ctrl += f.ctrl_points;
-    *err = fmax(*err, fit_hausdorff(C, &f, d));
+    *err = fmax(*err, fit_max_err(OB_METRIC_HAUSDORFF, C, &f, d, OB_DEFAULT_SAMPLES));
 }
 
 /* ---- structure, orientation, conversion --------------------------------- */
@@ -325,7 +312,7 @@ static void test_structure(void)
     static ob_fit f, fr;
     char msg[MSGLEN];
     if (fit(&C, 1.0, 1e-3, 0.0, &f, msg) == OB_OK && fit(&Cr, -1.0, 1e-3, 0.0, &fr, msg) == OB_OK) {
-        double e = fit_hausdorff(&C, &f, 1.0), er = fit_hausdorff(&Cr, &fr, -1.0);
+        double e = fit_max_err(OB_METRIC_HAUSDORFF, &C, &f, 1.0, OB_DEFAULT_SAMPLES), er = fit_max_err(OB_METRIC_HAUSDORFF, &Cr, &fr, -1.0, OB_DEFAULT_SAMPLES);
         CHECK(fabs(e - er) > 1e-6 || f.n != fr.n, "reversed: %g vs %g, %d vs %d spans: not oriented",
               e, er, f.n, fr.n);
     } else {
@@ -364,7 +351,7 @@ static void test_lines(void)
                         wd = fmax(wd, fabs((dir[0] * v[1] - dir[1] * v[0]) / len - d));
                     }
                 CHECK(wd < 1e-14, "line deg %d d %g: control points off the offset line by %g", n, d, wd);
-                double e = fit_hausdorff(&C, &f, d);
+                double e = fit_max_err(OB_METRIC_HAUSDORFF, &C, &f, d, OB_DEFAULT_SAMPLES);
                 CHECK(e < 1e-13, "line deg %d d %g tol %g: hausdorff error %g", n, d, tol, e);
                 double en = 0.0;
                 for (int i = 0; i < f.n; i++) {
@@ -411,7 +398,7 @@ static void test_rational(void)
         }
         CHECK(wk < 1e-12, "quarter circle d %g: breakpoints off the offset circle by %g", d, wk);
         CHECK(poly && f.seg[0].deg == 3, "quarter circle d %g: output not a polynomial cubic", d);
-        double h = fit_hausdorff(&qc, &f, d);
+        double h = fit_max_err(OB_METRIC_HAUSDORFF, &qc, &f, d, OB_DEFAULT_SAMPLES);
         /* for a circle the true error is the radial deviation: the metric must see it */
         CHECK(fabs(h - wr) <= 0.05 * wr + 1e-12, "quarter circle d %g: hausdorff %g vs radial "
               "deviation %g", d, h, wr);
@@ -583,7 +570,7 @@ static void test_parameterization(void)
             ref_point(&f.seg[i], u, p);
             par = fmax(par, dist2d(p, o));
         }
-    double geo = fit_hausdorff(&C, &f, d);
+    double geo = fit_max_err(OB_METRIC_HAUSDORFF, &C, &f, d, OB_DEFAULT_SAMPLES);
     printf("  liu2002_ex1 d 1 tol 1e-3: same-parameter distance |A(t) - O(t)| %.3g, hausdorff %.3g\n",
            par, geo);
     CHECK(par > 2.0 * geo, "same-parameter distance %g vs hausdorff %g", par, geo);
