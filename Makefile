@@ -40,12 +40,12 @@ CFLAGS  += $(CFLAGS_COMMON) $(OPT) $(SANFLAGS)
 LDFLAGS += -fopenmp $(SANFLAGS)
 LDLIBS  += -lsisl -lflint -lgmp -lm -ldl
 
-LIB_SRC  := $(sort $(wildcard methods/*.c) $(filter-out host/main.c,$(wildcard host/*.c)))
+LIB_SRC  := $(sort $(wildcard methods/*.c methods/*/*.c) $(filter-out host/main.c,$(wildcard host/*.c host/*/*.c)))
 LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o \
             $(BUILD)/embedded_published.o
-TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_SRC := $(sort $(wildcard tests/*/test_*.c))
 TEST_BIN := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
-TEST_SH  := $(sort $(wildcard tests/e2e_*.sh))
+TEST_SH  := $(sort $(wildcard tests/e2e/e2e_*.sh))
 DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
@@ -83,12 +83,12 @@ $(BUILD)/embedded_kernels.c: $(KERNELS) scripts/embed_data.sh
 
 $(BUILD)/%.o: %.c $(BUILD)/.deps-ok
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -MMD -MP -I$(BUILD) -c $< -o $@
+	$(CC) $(CFLAGS) -MMD -MP -I. -I$(BUILD) -c $< -o $@
 
 $(BUILD)/embedded_%.o: $(BUILD)/embedded_%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
-$(BUILD)/host/output.o $(BUILD)/host/journal.o $(BUILD)/host/main.o: $(BUILD)/buildinfo.h
+$(BUILD)/host/io/output.o $(BUILD)/host/run/journal.o $(BUILD)/host/main.o: $(BUILD)/buildinfo.h
 
 $(BUILD)/libob.a: $(LIB_OBJ)
 	@rm -f $@
@@ -112,7 +112,7 @@ test: $(BIN) $(TEST_BIN)
 SOAK_KILLS ?= 200
 SOAK_RUN   ?= --random 40:5 --methods tiller,cobb,ahn,zhao,lee --tols 1e-2,1e-3,1e-4 --backend cpu
 soak: $(BIN)
-	@OFFBENCH=$(abspath $(BIN)) SOAK_KILLS=$(SOAK_KILLS) SOAK_RUN="$(SOAK_RUN)" $(if $(SOAK_SEED),SOAK_SEED=$(SOAK_SEED)) SOAK_VERBOSE=1 sh tests/e2e_soak.sh
+	@OFFBENCH=$(abspath $(BIN)) SOAK_KILLS=$(SOAK_KILLS) SOAK_RUN="$(SOAK_RUN)" $(if $(SOAK_SEED),SOAK_SEED=$(SOAK_SEED)) SOAK_VERBOSE=1 sh tests/e2e/e2e_soak.sh
 
 run: $(BIN)
 	./$(BIN) run --out out/run
@@ -143,8 +143,8 @@ accept-baseline:
 # build-fuzz/corpus-*; the seeds are in tests/.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := curves compare journal
-FUZZ_SEEDS_curves := tests/bad_curves datasets
-FUZZ_SEEDS_compare := tests/fuzz/seeds_compare tests/bad_compare
+FUZZ_SEEDS_curves := tests/data/bad_curves datasets
+FUZZ_SEEDS_compare := tests/fuzz/seeds_compare tests/data/bad_compare
 FUZZ_SEEDS_journal := tests/fuzz/seeds_journal
 FUZZ_DICT_curves := -dict=tests/fuzz/curves.dict
 

@@ -1,7 +1,7 @@
 /*
  * diag.c - the message funnel.  See diag.h.
  */
-#include "diag.h"
+#include "host/diag.h"
 
 #include <stdarg.h>
 #include <stdio.h>

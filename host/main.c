@@ -5,10 +5,10 @@
 #include <string.h>
 
 #include "buildinfo.h"
-#include "clrt.h"
-#include "commands.h"
-#include "diag.h"
-#include "mpirun.h"
+#include "host/backend/clrt.h"
+#include "host/cli/commands.h"
+#include "host/diag.h"
+#include "host/run/mpirun.h"
 
 /* The version is the date of the commit built (there are no numbered
  * releases); the commit and its dirty flag say exactly what was built. */

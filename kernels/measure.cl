@@ -4,7 +4,7 @@
  * sample-and-refine code as the CPU reference.
  *
  * The host builds this file with kernels/metric_core.h prepended (it holds the
- * formulas, shared with methods/metric_sampled.c).
+ * formulas, shared with methods/metrics/metric_sampled.c).
  *
  * Buffers (structure of arrays, sized once per run and grown when needed):
  *   metric[i], d[i]          the record's sampled metric code and offset

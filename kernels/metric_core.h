@@ -1,12 +1,12 @@
 /*
  * metric_core.h - the sampled error metrics, written once for both the CPU
- * reference (compiled as C11 by methods/metric_sampled.c) and the OpenCL
+ * reference (compiled as C11 by methods/metrics/metric_sampled.c) and the OpenCL
  * kernel (the host prepends this text to kernels/measure.cl).  One source of
  * the formulas means the two backends cannot drift apart; the tests check
  * that they agree.
  *
  * A curve is a homogeneous Bézier segment given as a flat array of (w x, w y, w)
- * triples and its degree.  Metrics (see methods/metric.h for definitions):
+ * triples and its degree.  Metrics (see methods/metrics/metric.h for definitions):
  *   radial     | |A(t) - C(t)| - |d| |
  *   normal     |s - d| where C(t) + s N(t) meets A nearest to t in A's
  *              parameter (Newton from u = t when no crossing lies closer,
@@ -51,7 +51,7 @@
 #define OBC_OPS_CHORD 16
 #define OBC_OPS_BLOCK 7
 
-/* metric codes: = ob_metric in methods/metric.h */
+/* metric codes: = ob_metric in methods/metrics/metric.h */
 #define OBC_RADIAL 1
 #define OBC_NORMAL 2
 #define OBC_HAUSDORFF 3

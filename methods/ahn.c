@@ -16,12 +16,12 @@
  * on circular arcs.  The moments, the 2x2 solve and the construction of
  * C + d N^a are shared with kim2018.c (convolution.c).
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "convolution.h"
+#include "methods/common/convolution.h"
 
 static int ahn_degree(int n, int rational_in)
 {

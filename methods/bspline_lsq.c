@@ -34,14 +34,14 @@
  * hoschek.c); the offset of a rational base is sampled like any other, the
  * spline is polynomial.
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "bspline.h"
-#include "givens_ls.h"
-#include "metric.h"
+#include "methods/core/bspline.h"
+#include "methods/common/givens_ls.h"
+#include "methods/metrics/metric.h"
 
 enum {
     BL_DEG = 3,

@@ -17,7 +17,7 @@
  * series itself.  nodes = n-1 gives instead the
  * interpolant of f~ at the Chebyshev points.
  */
-#include "normalfit.h"
+#include "methods/common/normalfit.h"
 
 static const ob_param chebyshev_params[] = {
     {"nodes", 64, "Gauss-Chebyshev nodes for the Chebyshev coefficients of f~ (1..1024). "

@@ -6,7 +6,7 @@
  * published Cob column, see METHODS.md.)  Rational input: the Euclidean point is
  * moved and its weight kept, i.e. w_j (P_j + d N) in homogeneous form.
  */
-#include "method.h"
+#include "methods/method.h"
 
 static ob_status cobb_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
                           char *msg, size_t msglen)

@@ -40,7 +40,7 @@
  * Rational input: the Euclidean point is moved and its weight kept (as cobb),
  * so the rational quadratic form of a circular arc is offset exactly.
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 

@@ -63,12 +63,12 @@
  * not in the base's parameter (normal or hausdorff metric).  The fit does
  * not read the tolerance.
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "bernstein.h"
+#include "methods/core/bernstein.h"
 
 enum { CP_SAMPLES, CP_REFINE, CP_COUNT };
 enum { CO_MAX_SAMPLES = 128, CO_MAX_ITER = 40 };

@@ -43,7 +43,7 @@
  * intervals of the base's parameter) and ob_fit.ctrl_points counts its
  * n + 1 + k control points.  More than OB_SPLIT_PIECES pieces: OB_RETRY_SMALLER.
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 

@@ -27,12 +27,12 @@
  * Output degree: 2n-1 for polynomial input, n for rational input (2 for the
  * arcs of (a)).
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "bernstein.h"
+#include "methods/core/bernstein.h"
 
 enum { P_DETECT, NPARAM };
 

@@ -38,14 +38,14 @@
  * a B-spline with interior knots, as in Hoschek-Wissel and Lee's "Lst",
  * would count fewer control points.
  */
-#include "method.h"
+#include "methods/method.h"
 
-#include "bernstein.h"
+#include "methods/core/bernstein.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "givens_ls.h"
+#include "methods/common/givens_ls.h"
 
 enum { HP_SAMPLES, HP_ITER, HP_TANGENTS, HP_DEGREE, HP_COUNT };
 

@@ -18,11 +18,11 @@
  * sampled offset points; the per-segment node interpolation at t*_j = j/n is
  * METHODS.md's form of the family.
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 
-#include "bernstein.h"
+#include "methods/core/bernstein.h"
 
 enum { IP_N = OB_MAX_DEG + 1 };
 

@@ -26,9 +26,9 @@
  * Ahn's description, and the degree n+1 agrees with the 4k+1 counts of the
  * [26] column of Ahn's Table 1 for a cubic.
  */
-#include "method.h"
+#include "methods/method.h"
 
-#include "convolution.h"
+#include "methods/common/convolution.h"
 
 static int kim2018_degree(int n, int rational_in)
 {

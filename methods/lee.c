@@ -45,12 +45,12 @@
  *    every piece interpolates the offset at its ends: same breakpoints, error
  *    at most the circle error under every metric (regular offsets).
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "bernstein.h"
+#include "methods/core/bernstein.h"
 
 enum { P_FRAC, P_ARC, P_ARCS_ON, P_START, P_CLIP, NPARAM };
 

@@ -22,12 +22,12 @@
  * negligible for smooth normals: on the whole liu2002_ex1 cubic (its normal
  * turns by 3 rad, the hardest piece the driver hands over) the coefficients
  * agree with a 1024-node rule to 1e-15 (32 nodes: 2e-10, 16: 1e-5; checked in
- * tests/test_normalfit.c).  f~ is only evaluated at the Gauss nodes, inside
+ * tests/methods/test_normalfit.c).  f~ is only evaluated at the Gauss nodes, inside
  * (0,1), so its end limits are never needed.  §2.3 states n > 3 but the
  * examples are cubic; the construction works for every n >= 2 (n = 1: D
  * interpolates the two ends).
  */
-#include "normalfit.h"
+#include "methods/common/normalfit.h"
 
 static const ob_param liu_params[] = {
     {"nodes", 64, "Gauss-Legendre nodes for the Legendre coefficients of f~ (1..1024). "

@@ -17,7 +17,7 @@
  * n - 1 unknowns of the pieces benchmarked (cubics), few enough to remain a
  * sampled fit.
  */
-#include "normalfit.h"
+#include "methods/common/normalfit.h"
 
 static const ob_param lstsq_params[] = {
     {"samples", 32, "uniform interior samples t_j = j/(M+1), j = 1..M, of the least-squares "

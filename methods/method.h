@@ -15,7 +15,7 @@
 #define OB_METHOD_H
 
 #include <stddef.h>
-#include "curve.h"
+#include "methods/core/curve.h"
 
 /* Job and fit status.  The first four are the CSV `status` column.  A fit
  * may also return OB_RETRY_SMALLER: its output for this piece does not fit in
@@ -110,7 +110,7 @@ typedef struct ob_method {
     int (*out_degree)(int n, int rational_in);
     /* Median thread time per job (ms) in the nightly baseline's random set
      * (hausdorff, mid, five tolerances: results/plots/
-     * nightly_time_per_job.png): the cost model of --shard (host/shard.c);
+     * nightly_time_per_job.png): the cost model of --shard (host/run/shard.c);
      * 0 counts as 2 ms. */
     double cost_ms;
     size_t work_size;       /* bytes of scratch per fit call */

@@ -1,7 +1,7 @@
 /*
  * registry.c - the list of all methods.  Adding a method is one line here.
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <stdarg.h>
 #include <stdio.h>

@@ -13,7 +13,7 @@
  *  - s1360(curve, d, tol, enorm, max_step, 2, &offset, &status) with the job's
  *    tolerance (ob_fit_args.tol).  enorm only matters in 3D.
  *  - Orientation: in 2D SISL offsets a positive distance towards (-y', x'),
- *    the left normal, which is ours (checked in tests/test_sisl.c), so d is
+ *    the left normal, which is ours (checked in tests/methods/test_sisl.c), so d is
  *    passed unchanged.
  *  - The result is a polynomial cubic B-spline (order 4, ikind 1) for every
  *    input seen, rational input included: s1360 samples the exact offset
@@ -36,7 +36,7 @@
  *    control points (DESIGN: B-spline outputs count their control points).
  *    More spans than OB_SPLIT_PIECES: OB_RETRY_SMALLER (the driver splits the
  *    piece and SISL starts again on each half).
- *  - SISL's tolerance is not a bound under our metrics (tests/test_sisl.c
+ *  - SISL's tolerance is not a bound under our metrics (tests/methods/test_sisl.c
  *    prints the measurement): on liu2002_ex1 the hausdorff error of its
  *    whole-curve result reaches 18x the tolerance at the cusps of the d = 1
  *    offset and about 3x on the smooth d = -1 offset (in the last span), so
@@ -60,7 +60,7 @@
  * s1360-s1362, s6*, sh1992, sh6*, tstcyclknt) have empty .data and .bss: no
  * static mutable state (the library's only statics are in s1613bez and sh1762,
  * which s1360 does not reach), and they call only malloc/free and libm.  So no
- * lock is taken around s1360.  tests/test_sisl.c also compares fits made on
+ * lock is taken around s1360.  tests/methods/test_sisl.c also compares fits made on
  * several threads at once with serial ones.
  *
  * Printing: SISL reports every error through s6err, which writes three lines
@@ -92,7 +92,7 @@
  * liu2002_ex1 (d 1, tol 1e-3): amax 0, 1, 3, 10 give 49 vertices, 0.5 gives
  * 43, 0.1 gives 85, 1e-4 gives 7375 (so amax <= tol is not ignored).
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <errno.h>
 #include <math.h>

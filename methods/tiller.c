@@ -7,7 +7,7 @@
  * input gives rational output of the same degree.  Exact for straight segments
  * (all legs parallel).
  */
-#include "method.h"
+#include "methods/method.h"
 
 #include <math.h>
 

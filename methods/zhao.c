@@ -92,18 +92,18 @@
  * pieces of a subdivided zhao / zhao-rational approximation are about the
  * error apart at their joints (measured on liu2002_ex1: up to 1.3 tol for
  * zhao, 0.8 tol for zhao-rational), and the driver counts both ends of each
- * such joint (methods/joints.h); the method does not claim any continuity
+ * such joint (methods/driver/joints.h); the method does not claim any continuity
  * at joints ("none" below).  Forcing the ends to interpolate would be
  * another method than the paper's, so it is not done here.
  */
-#include "method.h"
+#include "methods/method.h"
 
-#include "bernstein.h"
+#include "methods/core/bernstein.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "givens_ls.h"
+#include "methods/common/givens_ls.h"
 
 enum { ZP_ITER, ZP_NPFAC, ZP_WEIGHT, ZP_DEGREE, ZP_POLE, ZP_COUNT };
 

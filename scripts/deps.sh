@@ -7,7 +7,7 @@
 #   required to build:     a C11 compiler with OpenMP (gcc), make
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
-#   FLINT (methods/offdeg.c): libflint-dev (required: exact offset degrees)
+#   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 set -u

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "methods/driver.h"
+#include "methods/driver/driver.h"
 
 static const double fixture_liu_ex1[4][2] = {
     {-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};

@@ -8,9 +8,9 @@
 
 #include <math.h>
 
-#include "../methods/curve.h"
-#include "../methods/method.h"
-#include "../methods/metric.h"
+#include "methods/core/curve.h"
+#include "methods/method.h"
+#include "methods/metrics/metric.h"
 
 /* Largest error over the pieces of f (fit of base C at offset d) under mt,
  * S samples per piece. */

@@ -28,7 +28,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "methods/curve.h"
+#include "methods/core/curve.h"
 #include "methods/method.h"
 
 /* ---- random numbers -------------------------------------------------------- */

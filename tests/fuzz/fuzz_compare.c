@@ -1,7 +1,7 @@
 /*
  * fuzz_compare.c - libFuzzer target: the readers of `compare` (a run's
- * results.csv, its samples.csv and meta.json: host/results_csv.c,
- * host/metajson.c) on arbitrary bytes must return 0 or -1 with a NAME:LINE
+ * results.csv, its samples.csv and meta.json: host/io/results_csv.c,
+ * host/io/metajson.c) on arbitrary bytes must return 0 or -1 with a NAME:LINE
  * message, never crash, overrun or leak.  The input is read as all three;
  * when it parses as a results table it is also attached to itself as
  * samples (the key lookups run on whatever parsed).
@@ -10,8 +10,8 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "host/metajson.h"
-#include "host/results_csv.h"
+#include "host/io/metajson.h"
+#include "host/io/results_csv.h"
 
 static void check_message(const char *err, const char *name)
 {

@@ -1,5 +1,5 @@
 /*
- * fuzz_curves.c - libFuzzer target: the curve-file reader (host/curvefile.c)
+ * fuzz_curves.c - libFuzzer target: the curve-file reader (host/io/curvefile.c)
  * on arbitrary bytes must return 0 or -1 with a FILE:LINE message, never
  * crash, overrun or leak (built with ASan + UBSan by `make fuzz`).  Each
  * parsed set is also cleared and parsed again into a non-empty set, so the
@@ -9,7 +9,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "host/curvefile.h"
+#include "host/io/curvefile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

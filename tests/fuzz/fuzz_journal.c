@@ -1,6 +1,6 @@
 /*
  * fuzz_journal.c - libFuzzer target: what `--resume` reads of a journal or
- * of a finished run (host/journal.c, host/results_csv.c) on arbitrary bytes.
+ * of a finished run (host/run/journal.c, host/io/results_csv.c) on arbitrary bytes.
  * The input's first line is taken as a recorded fingerprint and compared
  * with itself and with a real one both ways (ob_fingerprint_diff must return
  * 0 or 1 with a terminated message, never crash or overrun); the rest as the
@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "host/journal.h"
-#include "host/results_csv.h"
+#include "host/run/journal.h"
+#include "host/io/results_csv.h"
 
 static const char real_fp[] = /* a finished run's results.fingerprint */
     "samples=256 max_depth=40 max_segments=20000 inflections=1 job_timeout=0 data=datasets "

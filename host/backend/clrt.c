@@ -1,0 +1,566 @@
+/*
+ * clrt.c - OpenCL runtime.  See clrt.h.
+ *
+ * Every OpenCL call goes through CL_CHECK, which names the call and its error
+ * code; a failed build prints its log.  The entry points are looked up with
+ * dlsym from libOpenCL.so.1 (the ICD loader), once.
+ */
+#define _GNU_SOURCE
+#include "host/diag.h"
+#include "host/backend/clrt.h"
+
+#include <dlfcn.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "methods/metrics/metric.h"
+
+#if defined(__has_include)
+#if __has_include(<CL/cl.h>)
+#define OB_HAVE_CL 1
+#endif
+#endif
+
+#ifndef OB_HAVE_CL
+
+int ob_cl_compiled(void) { return 0; }
+int ob_cl_loader_status(char *msg, size_t len)
+{
+    snprintf(msg, len, "not compiled in (the OpenCL headers were missing at build time)");
+    return -1;
+}
+int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
+{
+    (void)device_substr;
+    *out = NULL;
+    snprintf(err, errlen, "this build has no OpenCL backend (the OpenCL headers were missing at build time)");
+    return -1;
+}
+void ob_cl_close(ob_cl *cl) { (void)cl; }
+const char *ob_cl_platform(const ob_cl *cl) { (void)cl; return ""; }
+const char *ob_cl_device(const ob_cl *cl) { (void)cl; return ""; }
+const char *ob_cl_driver(const ob_cl *cl) { (void)cl; return ""; }
+const char *ob_cl_source(const ob_cl *cl) { (void)cl; return ""; }
+double ob_cl_build_seconds(const ob_cl *cl) { (void)cl; return 0.0; }
+int ob_cl_list_devices(FILE *f)
+{
+    fprintf(f, "# no OpenCL backend in this build (OpenCL headers missing at build time)\n");
+    return -1;
+}
+int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
+{
+    (void)ctx, (void)recs, (void)n, (void)samples, (void)out;
+    return -1;
+}
+
+#else
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+/* ---- the loader ------------------------------------------------------ */
+
+#define CL_FUNCS(X)                                                                            \
+    X(clGetPlatformIDs) X(clGetPlatformInfo) X(clGetDeviceIDs) X(clGetDeviceInfo)             \
+    X(clCreateContext) X(clCreateCommandQueue) X(clCreateProgramWithSource) X(clBuildProgram) \
+    X(clGetProgramBuildInfo) X(clCreateKernel) X(clCreateBuffer) X(clSetKernelArg)            \
+    X(clEnqueueWriteBuffer) X(clEnqueueNDRangeKernel) X(clEnqueueReadBuffer) X(clFinish)      \
+    X(clReleaseMemObject) X(clReleaseKernel) X(clReleaseProgram) X(clReleaseCommandQueue)     \
+    X(clReleaseContext)
+
+static struct {
+#define X(f) __typeof__(&f) f;
+    CL_FUNCS(X)
+#undef X
+} cl;
+static int cl_loaded = 0;  /* 0 not tried, 1 loaded, -1 failed */
+
+static int load_cl(char *err, size_t errlen)
+{
+    if (cl_loaded)
+        return cl_loaded > 0 ? 0 : (snprintf(err, errlen, "no OpenCL loader (libOpenCL.so.1)"), -1);
+    void *lib = dlopen("libOpenCL.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!lib)
+        lib = dlopen("libOpenCL.so", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        cl_loaded = -1;
+        snprintf(err, errlen, "no OpenCL loader (libOpenCL.so.1): install ocl-icd-libopencl1 and an ICD such as pocl-opencl-icd");
+        return -1;
+    }
+#define X(f)                                                              \
+    if (!(*(void **)&cl.f = dlsym(lib, #f))) {                            \
+        cl_loaded = -1;                                                   \
+        snprintf(err, errlen, "libOpenCL lacks %s", #f);                  \
+        return -1;                                                        \
+    }
+    CL_FUNCS(X)
+#undef X
+    cl_loaded = 1;
+    return 0;
+}
+
+static const char *cl_errname(cl_int e)
+{
+    switch (e) {
+#define E(x) case x: return #x;
+    E(CL_DEVICE_NOT_FOUND) E(CL_DEVICE_NOT_AVAILABLE) E(CL_COMPILER_NOT_AVAILABLE)
+    E(CL_MEM_OBJECT_ALLOCATION_FAILURE) E(CL_OUT_OF_RESOURCES) E(CL_OUT_OF_HOST_MEMORY)
+    E(CL_BUILD_PROGRAM_FAILURE) E(CL_INVALID_VALUE) E(CL_INVALID_PLATFORM) E(CL_INVALID_DEVICE)
+    E(CL_INVALID_CONTEXT) E(CL_INVALID_COMMAND_QUEUE) E(CL_INVALID_MEM_OBJECT) E(CL_INVALID_PROGRAM)
+    E(CL_INVALID_KERNEL_NAME) E(CL_INVALID_KERNEL) E(CL_INVALID_ARG_INDEX) E(CL_INVALID_ARG_VALUE)
+    E(CL_INVALID_ARG_SIZE) E(CL_INVALID_KERNEL_ARGS) E(CL_INVALID_WORK_DIMENSION)
+    E(CL_INVALID_WORK_GROUP_SIZE) E(CL_INVALID_GLOBAL_WORK_SIZE) E(CL_INVALID_BUFFER_SIZE)
+#undef E
+    default: return "unknown error";
+    }
+}
+
+/* Names the failing call and its error; jumps to `fail`. */
+#define CL_CHECK(call)                                                                      \
+    do {                                                                                    \
+        cl_int cl_e_ = (call);                                                              \
+        if (cl_e_ != CL_SUCCESS) {                                                          \
+            snprintf(err, errlen, "%s failed: %s (%d)", #call, cl_errname(cl_e_), (int)cl_e_); \
+            goto fail;                                                                      \
+        }                                                                                   \
+    } while (0)
+
+/* ---- the runtime ------------------------------------------------------ */
+
+struct ob_cl {
+    cl_context ctx;
+    cl_command_queue q;
+    cl_program prog;
+    cl_kernel k;
+    char platform[256], device[256], driver[128], source[512];
+    double build_s;
+    /* batch buffers, grown on demand */
+    size_t cap_rec, cap_ctrl, cap_scr;
+    cl_mem metric, d, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
+    /* host staging */
+    int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff;
+    double *h_d, *h_ctrl, *h_err, *h_tpar, *h_work;
+};
+
+int ob_cl_compiled(void) { return 1; }
+int ob_cl_loader_status(char *msg, size_t len)
+{
+    if (load_cl(msg, len) != 0)
+        return -1;
+    snprintf(msg, len, "compiled in; loader libOpenCL found");
+    return 0;
+}
+const char *ob_cl_platform(const ob_cl *c) { return c ? c->platform : ""; }
+const char *ob_cl_device(const ob_cl *c) { return c ? c->device : ""; }
+const char *ob_cl_driver(const ob_cl *c) { return c ? c->driver : ""; }
+const char *ob_cl_source(const ob_cl *c) { return c ? c->source : ""; }
+double ob_cl_build_seconds(const ob_cl *c) { return c ? c->build_s : 0.0; }
+
+struct ob_embedded_file {
+    const char *name;
+    const char *text;
+};
+extern const struct ob_embedded_file ob_embedded_kernels[];
+
+static char *read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        long n = ftell(f);
+        if (n >= 0 && n < (1L << 24) && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n + 1))) {
+            if (fread(buf, 1, (size_t)n, f) != (size_t)n) {
+                free(buf);
+                buf = NULL;
+            } else {
+                buf[n] = '\0';
+            }
+        }
+    }
+    fclose(f);
+    return buf;
+}
+
+static int is_dir(const char *p)
+{
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* The kernel text: metric_core.h then measure.cl, from the first kernels
+ * directory found, else the copies compiled in. */
+static char *kernel_source(char *where, size_t wlen)
+{
+    char dir[4096] = "";
+    const char *env = getenv("OFFBENCH_KERNELS");
+    if (env && *env)
+        snprintf(dir, sizeof dir, "%s", env);
+    else if (is_dir("kernels"))
+        snprintf(dir, sizeof dir, "kernels");
+    else {
+        ssize_t n = readlink("/proc/self/exe", dir, sizeof dir - 16);
+        dir[n > 0 ? n : 0] = '\0';
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            strcpy(slash + 1, "kernels");
+        if (!is_dir(dir))
+            dir[0] = '\0';
+    }
+    char *core = NULL, *body = NULL;
+    if (dir[0]) {
+        char p1[4200], p2[4200];
+        snprintf(p1, sizeof p1, "%s/metric_core.h", dir);
+        snprintf(p2, sizeof p2, "%s/measure.cl", dir);
+        core = read_file(p1);
+        body = read_file(p2);
+        /* a long path is cut: it only names the source in meta.json */
+        const size_t n = strlen(dir) < wlen ? strlen(dir) : wlen - 1;
+        memcpy(where, dir, n);
+        where[n] = '\0';
+    }
+    if (!core || !body) {
+        free(core);
+        free(body);
+        core = body = NULL;
+        for (int i = 0; ob_embedded_kernels[i].name; i++) {
+            const char *nm = ob_embedded_kernels[i].name;
+            if (strstr(nm, "metric_core.h"))
+                core = strdup(ob_embedded_kernels[i].text);
+            else if (strstr(nm, "measure.cl"))
+                body = strdup(ob_embedded_kernels[i].text);
+        }
+        snprintf(where, wlen, "embedded copy of kernels/");
+    }
+    char *src = NULL;
+    if (core && body && (src = malloc(strlen(core) + strlen(body) + 2)))
+        sprintf(src, "%s\n%s", core, body);
+    free(core);
+    free(body);
+    return src;
+}
+
+static int has_fp64(cl_device_id dev)
+{
+    cl_device_fp_config fp = 0;
+    if (cl.clGetDeviceInfo(dev, CL_DEVICE_DOUBLE_FP_CONFIG, sizeof fp, &fp, NULL) != CL_SUCCESS)
+        return 0;
+    return fp != 0;
+}
+
+/* One launch of each shape a run makes (radial records in groups of 32, the
+ * others one per group), so that a driver that compiles a kernel at its
+ * first launch (PoCL does, per group size) does it here, outside the time
+ * charged to the first jobs.  Its results are not used. */
+static void warm_up(ob_cl *c)
+{
+    ob_bez base, approx;
+    const double line[2][2] = {{0.0, 0.0}, {1.0, 0.0}}, shifted[2][2] = {{0.0, 0.1}, {1.0, 0.1}};
+    ob_bez_from_points(&base, 1, line);
+    ob_bez_from_points(&approx, 1, shifted);
+    const ob_metric mets[2] = {OB_METRIC_RADIAL, OB_METRIC_HAUSDORFF};
+    for (int i = 0; i < 2; i++) {
+        ob_measure_rec r = {&base, &approx, 0.1, mets[i]};
+        ob_errval out;
+        ob_cl_measure_batch(c, &r, 1, OB_MIN_SAMPLES, &out);
+    }
+}
+
+int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
+{
+    *out = NULL;
+    if (load_cl(err, errlen))
+        return -1;
+    ob_cl *c = calloc(1, sizeof *c);
+    char *src = NULL;
+    if (!c) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    cl_uint np = 0;
+    cl_platform_id plats[16];
+    cl_int e = cl.clGetPlatformIDs(16, plats, &np);
+    if (e != CL_SUCCESS || np == 0) {
+        snprintf(err, errlen, "no OpenCL platform (clGetPlatformIDs: %s); install an ICD such as pocl-opencl-icd",
+                 cl_errname(e));
+        goto fail;
+    }
+    cl_device_id dev = NULL;
+    int saw_match = 0;
+    for (cl_uint p = 0; p < np && !dev; p++) {
+        cl_uint nd = 0;
+        cl_device_id devs[16];
+        if (cl.clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 16, devs, &nd) != CL_SUCCESS)
+            continue;
+        for (cl_uint k = 0; k < nd && !dev; k++) {
+            char pn[256] = "", dn[256] = "", full[520];
+            cl.clGetPlatformInfo(plats[p], CL_PLATFORM_NAME, sizeof pn, pn, NULL);
+            cl.clGetDeviceInfo(devs[k], CL_DEVICE_NAME, sizeof dn, dn, NULL);
+            snprintf(full, sizeof full, "%s %s", pn, dn);
+            if (device_substr && *device_substr && !strstr(full, device_substr))
+                continue;
+            saw_match = 1;
+            if (!has_fp64(devs[k]))
+                continue;
+            dev = devs[k];
+            snprintf(c->platform, sizeof c->platform, "%s", pn);
+            snprintf(c->device, sizeof c->device, "%s", dn);
+            cl.clGetDeviceInfo(dev, CL_DRIVER_VERSION, sizeof c->driver, c->driver, NULL);
+        }
+    }
+    if (!dev) {
+        if (device_substr && *device_substr && !saw_match)
+            snprintf(err, errlen, "--device: no OpenCL device matches '%s' (see './offbench list devices')",
+                     device_substr);
+        else
+            snprintf(err, errlen, "no OpenCL device with double precision (cl_khr_fp64)");
+        goto fail;
+    }
+    c->ctx = cl.clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
+    CL_CHECK(e);
+    c->q = cl.clCreateCommandQueue(c->ctx, dev, 0, &e);
+    CL_CHECK(e);
+    src = kernel_source(c->source, sizeof c->source);
+    if (!src) {
+        snprintf(err, errlen, "cannot read the kernel sources (kernels/metric_core.h, kernels/measure.cl)");
+        goto fail;
+    }
+    const char *srcs[1] = {src};
+    c->prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
+    CL_CHECK(e);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    e = cl.clBuildProgram(c->prog, 1, &dev, "-cl-std=CL1.2", NULL, NULL);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    c->build_s = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+    if (e != CL_SUCCESS) {
+        char log[8192] = "";
+        cl.clGetProgramBuildInfo(c->prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
+        snprintf(err, errlen, "clBuildProgram failed: %s (%d); build log of %s:\n%s", cl_errname(e), (int)e,
+                 c->source, log);
+        goto fail;
+    }
+    c->k = cl.clCreateKernel(c->prog, "ob_measure_batch", &e);
+    CL_CHECK(e);
+    free(src);
+    warm_up(c);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    c->build_s = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+    *out = c;
+    return 0;
+fail:
+    free(src);
+    ob_cl_close(c);
+    return -1;
+}
+
+static void release_buffers(ob_cl *c)
+{
+    cl_mem *bufs[] = {&c->metric, &c->d, &c->bdeg, &c->boff, &c->adeg, &c->aoff,
+                      &c->ctrl, &c->soff, &c->scratch, &c->err, &c->tpar, &c->work};
+    for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++)
+        if (*bufs[i]) {
+            cl.clReleaseMemObject(*bufs[i]);
+            *bufs[i] = NULL;
+        }
+}
+
+void ob_cl_close(ob_cl *c)
+{
+    if (!c)
+        return;
+    release_buffers(c);
+    if (c->k)
+        cl.clReleaseKernel(c->k);
+    if (c->prog)
+        cl.clReleaseProgram(c->prog);
+    if (c->q)
+        cl.clReleaseCommandQueue(c->q);
+    if (c->ctx)
+        cl.clReleaseContext(c->ctx);
+    free(c->h_metric);
+    free(c->h_bdeg);
+    free(c->h_boff);
+    free(c->h_adeg);
+    free(c->h_aoff);
+    free(c->h_soff);
+    free(c->h_d);
+    free(c->h_ctrl);
+    free(c->h_err);
+    free(c->h_tpar);
+    free(c->h_work);
+    free(c);
+}
+
+/* Grows a device buffer and its host staging array to hold n elements. */
+#define GROW(buf, host, type, n, flags)                                                 \
+    do {                                                                                \
+        void *nh_ = realloc(c->host, (n) * sizeof(type));                               \
+        if (!nh_) {                                                                     \
+            snprintf(err, errlen, "out of memory");                                     \
+            goto fail;                                                                  \
+        }                                                                               \
+        c->host = nh_;                                                                  \
+        if (c->buf)                                                                     \
+            cl.clReleaseMemObject(c->buf);                                              \
+        c->buf = cl.clCreateBuffer(c->ctx, flags, (n) * sizeof(type), NULL, &e);         \
+        CL_CHECK(e);                                                                    \
+    } while (0)
+
+static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, char *err, size_t errlen)
+{
+    cl_int e;
+    if (nrec > c->cap_rec) {
+        size_t n = nrec + nrec / 2;
+        GROW(metric, h_metric, int, n, CL_MEM_READ_ONLY);
+        GROW(bdeg, h_bdeg, int, n, CL_MEM_READ_ONLY);
+        GROW(boff, h_boff, int, n, CL_MEM_READ_ONLY);
+        GROW(adeg, h_adeg, int, n, CL_MEM_READ_ONLY);
+        GROW(aoff, h_aoff, int, n, CL_MEM_READ_ONLY);
+        GROW(soff, h_soff, int, n, CL_MEM_READ_ONLY);
+        GROW(d, h_d, double, n, CL_MEM_READ_ONLY);
+        GROW(err, h_err, double, n, CL_MEM_WRITE_ONLY);
+        GROW(tpar, h_tpar, double, n, CL_MEM_WRITE_ONLY);
+        GROW(work, h_work, double, n, CL_MEM_WRITE_ONLY);
+        c->cap_rec = n;
+    }
+    if (nctrl > c->cap_ctrl) {
+        size_t n = nctrl + nctrl / 2;
+        GROW(ctrl, h_ctrl, double, n, CL_MEM_READ_ONLY);
+        c->cap_ctrl = n;
+    }
+    if (nscr > c->cap_scr || !c->scratch) {
+        size_t n = nscr > 0 ? nscr + nscr / 2 : 1;
+        if (c->scratch)
+            cl.clReleaseMemObject(c->scratch);
+        c->scratch = cl.clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, n * sizeof(double), NULL, &e);
+        CL_CHECK(e);
+        c->cap_scr = n;
+    }
+    return 0;
+fail:
+    c->cap_rec = c->cap_ctrl = c->cap_scr = 0;
+    release_buffers(c);
+    return -1;
+}
+
+int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
+{
+    ob_cl *c = ctx;
+    char err[512];
+    const size_t errlen = sizeof err;
+    if (!c || n <= 0)
+        return -1;
+    const int S = ob_clamp_samples(samples);
+    size_t nctrl = 0, nscr = 0;
+    for (int i = 0; i < n; i++) {
+        nctrl += 3 * (size_t)(recs[i].base->deg + 1) + 3 * (size_t)(recs[i].approx->deg + 1);
+        if (recs[i].metric == OB_METRIC_HAUSDORFF)
+            nscr += ob_metric_scratch(S);
+    }
+    if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2)
+        return -1;
+    if (ensure_capacity(c, (size_t)n, nctrl, nscr, err, errlen))
+        return -1;
+    size_t pc = 0, ps = 0;
+    for (int i = 0; i < n; i++) {
+        const ob_bez *b = recs[i].base, *a = recs[i].approx;
+        c->h_metric[i] = (int)recs[i].metric;
+        c->h_d[i] = recs[i].d;
+        c->h_bdeg[i] = b->deg;
+        c->h_boff[i] = (int)pc;
+        memcpy(c->h_ctrl + pc, &b->h[0][0], 3 * (size_t)(b->deg + 1) * sizeof(double));
+        pc += 3 * (size_t)(b->deg + 1);
+        c->h_adeg[i] = a->deg;
+        c->h_aoff[i] = (int)pc;
+        memcpy(c->h_ctrl + pc, &a->h[0][0], 3 * (size_t)(a->deg + 1) * sizeof(double));
+        pc += 3 * (size_t)(a->deg + 1);
+        c->h_soff[i] = (int)ps;
+        if (recs[i].metric == OB_METRIC_HAUSDORFF)
+            ps += ob_metric_scratch(S);
+    }
+    const size_t ni = (size_t)n * sizeof(int), nd = (size_t)n * sizeof(double);
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->metric, CL_FALSE, 0, ni, c->h_metric, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->d, CL_FALSE, 0, nd, c->h_d, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->bdeg, CL_FALSE, 0, ni, c->h_bdeg, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->boff, CL_FALSE, 0, ni, c->h_boff, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->adeg, CL_FALSE, 0, ni, c->h_adeg, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->aoff, CL_FALSE, 0, ni, c->h_aoff, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->soff, CL_FALSE, 0, ni, c->h_soff, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->ctrl, CL_FALSE, 0, pc * sizeof(double), c->h_ctrl, 0, NULL, NULL));
+    cl_mem args[] = {c->metric, c->d, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->scratch, c->err, c->tpar,
+                     c->work};
+    CL_CHECK(cl.clSetKernelArg(c->k, 0, sizeof(int), &n));
+    CL_CHECK(cl.clSetKernelArg(c->k, 1, sizeof(int), &S));
+    for (cl_uint k = 0; k < sizeof args / sizeof *args; k++)
+        CL_CHECK(cl.clSetKernelArg(c->k, 2 + k, sizeof(cl_mem), &args[k]));
+    /* A hausdorff or normal record is heavy (thousands of evaluations): one
+     * per work-group, so the device spreads them over all its compute units (a
+     * NULL local size let PoCL put a whole batch in one group, on one thread).
+     * A radial record is light: groups of 32 amortize the group overhead. */
+    int light = 1;
+    for (int i = 0; i < n && light; i++)
+        light = recs[i].metric == OB_METRIC_RADIAL;
+    const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
+    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->err, CL_FALSE, 0, nd, c->h_err, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->tpar, CL_FALSE, 0, nd, c->h_tpar, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->work, CL_FALSE, 0, nd, c->h_work, 0, NULL, NULL));
+    CL_CHECK(cl.clFinish(c->q));
+    for (int i = 0; i < n; i++) {
+        out[i].err = c->h_err[i];
+        out[i].t = c->h_tpar[i];
+        out[i].work = c->h_work[i];
+    }
+    return 0;
+fail:
+    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", n, err);
+    return -1;
+}
+
+int ob_cl_list_devices(FILE *f)
+{
+    char err[256];
+    if (load_cl(err, sizeof err)) {
+        fprintf(f, "# %s\n", err);
+        return -1;
+    }
+    cl_uint np = 0;
+    cl_platform_id plats[16];
+    if (cl.clGetPlatformIDs(16, plats, &np) != CL_SUCCESS || np == 0) {
+        fprintf(f, "# no OpenCL platform\n");
+        return 0;
+    }
+    int count = 0;
+    fprintf(f, "%-28s %-44s %-6s %-4s %-5s %s\n", "platform", "device", "type", "CUs", "fp64", "driver");
+    for (cl_uint p = 0; p < np; p++) {
+        char pn[256] = "";
+        cl.clGetPlatformInfo(plats[p], CL_PLATFORM_NAME, sizeof pn, pn, NULL);
+        cl_uint nd = 0;
+        cl_device_id devs[16];
+        if (cl.clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 16, devs, &nd) != CL_SUCCESS)
+            continue;
+        for (cl_uint k = 0; k < nd; k++) {
+            char dn[256] = "", dv[128] = "";
+            cl_device_type ty = 0;
+            cl_uint cu = 0;
+            cl.clGetDeviceInfo(devs[k], CL_DEVICE_NAME, sizeof dn, dn, NULL);
+            cl.clGetDeviceInfo(devs[k], CL_DRIVER_VERSION, sizeof dv, dv, NULL);
+            cl.clGetDeviceInfo(devs[k], CL_DEVICE_TYPE, sizeof ty, &ty, NULL);
+            cl.clGetDeviceInfo(devs[k], CL_DEVICE_MAX_COMPUTE_UNITS, sizeof cu, &cu, NULL);
+            fprintf(f, "%-28s %-44s %-6s %-4u %-5s %s\n", pn, dn,
+                    (ty & CL_DEVICE_TYPE_GPU) ? "gpu" : (ty & CL_DEVICE_TYPE_CPU) ? "cpu" : "other", cu,
+                    has_fp64(devs[k]) ? "yes" : "no", dv);
+            count++;
+        }
+    }
+    return count;
+}
+
+#endif

@@ -1,0 +1,54 @@
+/*
+ * clrt.h - the OpenCL runtime: device choice, the measure kernel built once
+ * per run, and batches of records measured in one launch.
+ *
+ * libOpenCL is loaded at run time (dlopen), so the program runs, on the CPU
+ * path, where no OpenCL loader or platform exists; it is compiled in when the
+ * OpenCL headers were present at build time (the deps step installs them).
+ */
+#ifndef OB_CLRT_H
+#define OB_CLRT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "methods/driver/driver.h"
+
+typedef struct ob_cl ob_cl;
+
+/* 1 if this build has the OpenCL backend compiled in. */
+int ob_cl_compiled(void);
+
+/* Whether the backend can be used at all: compiled in and the OpenCL loader
+ * found (dlopen; no platform or device is opened).  0, or -1; msg says which. */
+int ob_cl_loader_status(char *msg, size_t len);
+
+/* Purpose: open the first OpenCL device that supports double precision and
+ *          whose "PLATFORM DEVICE" name contains device_substr (NULL: any),
+ *          load kernels/measure.cl with kernels/metric_core.h prepended (from
+ *          $OFFBENCH_KERNELS, ./kernels, kernels/ beside the program, or the
+ *          copy compiled in) and build it.
+ * Errors:  returns 0; -1 with the reason in err: no loader, no platform, no
+ *          matching device, no fp64, a failing call (named), or the build log
+ *          of a failed build. */
+int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen);
+
+/* Always safe to call (NULL included). */
+void ob_cl_close(ob_cl *cl);
+
+/* Descriptions for meta.json and messages. */
+const char *ob_cl_platform(const ob_cl *cl);
+const char *ob_cl_device(const ob_cl *cl);
+const char *ob_cl_driver(const ob_cl *cl);
+const char *ob_cl_source(const ob_cl *cl);   /* where the kernel text came from */
+double ob_cl_build_seconds(const ob_cl *cl);
+
+/* Purpose: print one line per OpenCL device (platform, device, type, compute
+ * units, fp64, driver).  Returns the number of devices, -1 if there is no
+ * loader or the backend is not compiled in (a line says so). */
+int ob_cl_list_devices(FILE *f);
+
+/* The driver's batch backend (ob_batch_fn): ctx is an ob_cl*. */
+int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
+
+#endif

@@ -1,0 +1,188 @@
+/*
+ * cliopts.c - the table-driven option parser.  See cliopts.h.
+ *
+ * getopt_long (glibc) does the lexing: "--opt value", "--opt=value",
+ * abbreviations, and, with "-" leading the short-option string, positional
+ * arguments returned in place (as option 1).  What it cannot know, the
+ * tables say: which command takes an option, whether it may repeat, and the
+ * help text.
+ */
+#define _GNU_SOURCE
+#include "host/cli/cliopts.h"
+
+#include <getopt.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/diag.h"
+
+/* Whether the space-ended list names `name`. */
+static int listed(const char *list, const char *name)
+{
+    const size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)) != NULL; p += n)
+        if ((p == list || p[-1] == ' ') && p[n] == ' ')
+            return 1;
+    return 0;
+}
+
+/* Whether set s takes its flag f. */
+static int takes(const ob_flagset *s, const ob_flag *f)
+{
+    return (!s->only || listed(s->only, f->name)) && !(s->skip && listed(s->skip, f->name));
+}
+
+int ob_cli_apply_dir(void *ctx, int id, const char *opt, const char *value)
+{
+    (void)id;
+    if (!*value) {
+        ob_error("%s: empty directory name", opt);
+        return -1;
+    }
+    *(const char **)ctx = value;
+    return 0;
+}
+
+void ob_cli_help(FILE *f, const char *cmd, const char *synopsis, const ob_flagset *sets, int nsets)
+{
+    fprintf(f, "usage: ./offbench %s %s\n", cmd, synopsis);
+    for (int k = 0; k < nsets; k++) {
+        fprintf(f, "\n%s:\n", sets[k].title);
+        for (int i = 0; i < sets[k].nflags; i++) {
+            const ob_flag *g = &sets[k].flags[i];
+            if (!takes(&sets[k], g))
+                continue;
+            char lhs[64];
+            snprintf(lhs, sizeof lhs, "--%s%s%s", g->name, g->value ? " " : "", g->value ? g->value : "");
+            fprintf(f, "  %-26s %s%s\n", lhs, g->help, g->rule == OB_FLAG_REPEAT ? " (repeatable)" : "");
+        }
+    }
+    fputs("\nEvery option also takes the form --name=value.  See README.md for more.\n", f);
+}
+
+/* The flags the command takes, in table order, with where each came from. */
+typedef struct {
+    struct option *lo;   /* getopt_long's table, terminated by a zero entry */
+    const ob_flag **flag;
+    int *set, *seen;
+    int n;
+} flagindex;
+
+static int index_flags(const ob_flagset *sets, int nsets, flagindex *x)
+{
+    int total = 0;
+    for (int k = 0; k < nsets; k++)
+        total += sets[k].nflags;
+    x->lo = calloc((size_t)total + 2, sizeof *x->lo);
+    x->flag = calloc((size_t)total + 1, sizeof *x->flag);
+    x->set = calloc((size_t)total + 1, sizeof *x->set);
+    x->seen = calloc((size_t)total + 1, sizeof *x->seen);
+    x->n = 0;
+    if (!x->lo || !x->flag || !x->set || !x->seen)
+        return -1;
+    for (int k = 0; k < nsets; k++)
+        for (int i = 0; i < sets[k].nflags; i++) {
+            const ob_flag *g = &sets[k].flags[i];
+            if (!takes(&sets[k], g))
+                continue;
+            x->lo[x->n] = (struct option){g->name, g->value ? required_argument : no_argument, NULL, 256 + x->n};
+            x->flag[x->n] = g;
+            x->set[x->n] = k;
+            x->n++;
+        }
+    x->lo[x->n] = (struct option){"help", no_argument, NULL, 'h'};
+    return 0;
+}
+
+static void free_index(flagindex *x)
+{
+    free(x->lo);
+    free(x->flag);
+    free(x->set);
+    free(x->seen);
+}
+
+/* The option as written on the command line, up to any '=', for messages. */
+static void written(const char *arg, char *buf, size_t len)
+{
+    const char *eq = strchr(arg, '=');
+    snprintf(buf, len, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
+}
+
+/* An option getopt_long did not take: unknown, or an abbreviation of several. */
+static void report_unknown(const char *cmd, const char *opt, const flagindex *x)
+{
+    char which[512] = "";
+    int n = 0;
+    const size_t len = strlen(opt) > 2 ? strlen(opt) - 2 : 0;
+    for (int i = 0; i < x->n && len > 0; i++)
+        if (strncmp(x->flag[i]->name, opt + 2, len) == 0 && n++ < 8)
+            snprintf(which + strlen(which), sizeof which - strlen(which), "%s--%s", n > 1 ? ", " : "",
+                     x->flag[i]->name);
+    if (strncmp(opt, "--", 2) == 0 && n > 1)
+        ob_error("%s: '%s' is ambiguous: %s", cmd, opt, which);
+    else
+        ob_error("%s: unknown option '%s'", cmd, opt);
+}
+
+/* Applies option c (getopt_long's return) of x; 0, or OB_CLI_ERROR. */
+static int apply_one(const ob_flagset *sets, flagindex *x, int c)
+{
+    const int i = c - 256;
+    const ob_flag *g = x->flag[i];
+    char opt[80];
+    snprintf(opt, sizeof opt, "--%s", g->name);
+    if (x->seen[i]++ && g->rule != OB_FLAG_REPEAT) {
+        ob_error("%s: given twice (give each option once%s)", opt,
+                 g->rule == OB_FLAG_LIST ? "; list all values in one comma list" : "");
+        return OB_CLI_ERROR;
+    }
+    const ob_flagset *s = &sets[x->set[i]];
+    return s->apply(s->ctx, g->id, opt, g->value ? optarg : NULL) ? OB_CLI_ERROR : OB_CLI_OK;
+}
+
+int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int argc, char **argv, int npos_max,
+                 char **pos, int *npos)
+{
+    const char *cmd = argv[0];
+    flagindex x;
+    if (index_flags(sets, nsets, &x) != 0) {
+        free_index(&x);
+        ob_error("%s: out of memory", cmd);
+        return OB_CLI_ERROR;
+    }
+    int rc = OB_CLI_OK, np = 0, c;
+    char buf[256];
+    opterr = 0;
+    optind = 0; /* glibc: a full restart (the parser may run more than once) */
+    while (rc == OB_CLI_OK && (c = getopt_long(argc, argv, "-:h", x.lo, NULL)) != -1) {
+        if (c == 'h') {
+            ob_cli_help(stdout, cmd, synopsis, sets, nsets);
+            rc = OB_CLI_HELP;
+        } else if (c == 1) {
+            if (np >= npos_max) {
+                ob_error("%s: unexpected argument '%s' (options are --NAME VALUE)", cmd, optarg);
+                rc = OB_CLI_ERROR;
+            } else {
+                pos[np++] = optarg;
+            }
+        } else if (c == ':') {
+            written(argv[optind - 1], buf, sizeof buf);
+            ob_error("%s: missing value", buf);
+            rc = OB_CLI_ERROR;
+        } else if (c == '?') {
+            written(argv[optind - 1], buf, sizeof buf);
+            if (optopt >= 256) /* a flag without value given one */
+                ob_error("%s: takes no value", buf);
+            else
+                report_unknown(cmd, buf, &x);
+            rc = OB_CLI_ERROR;
+        } else {
+            rc = apply_one(sets, &x, c);
+        }
+    }
+    free_index(&x);
+    if (npos)
+        *npos = np;
+    return rc;
+}

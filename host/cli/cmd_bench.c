@@ -1,0 +1,504 @@
+/*
+ * cmd_bench.c - `./offbench bench [--out DIR] [--quick]`: the sampling engine
+ * and whole runs, every figure measured in this one run and reported as
+ * ratios (OpenCL vs CPU, 1 vs N threads), never compared with numbers from
+ * elsewhere.  Writes DIR/bench.csv: what,backend,threads,items,seconds,rate,unit.
+ *
+ * Measurements:
+ *   fma_peak         a dependency-free multiply-add loop: the machine's peak
+ *                    double-precision rate, 1 thread and all threads
+ *   fma_vector       the same with the widest vector FMA the CPU has (AVX-512
+ *                    or AVX2): the machine's peak
+ *   samples/<metric> a fixed batch of records (random convex cubics and their
+ *                    Cobb approximations at d = +-0.1), S samples each, measured
+ *                    by the CPU path with 1 and N threads and by the OpenCL
+ *                    kernel (after a warm-up launch, build time reported apart)
+ *   gflops/<metric>  the same as double-precision operations per second: the
+ *                    curve evaluations the metric makes (counted on the CPU
+ *                    pass; the kernel runs the same code) times their operation
+ *                    count 4.5 n(n+1) + 30 (de Casteljau on homogeneous points,
+ *                    derivatives, quotient rule).  A lower bound: the rest of
+ *                    the metric's arithmetic is not counted.
+ *   run              a whole run (published curves, tiller/cobb/ahn, hausdorff,
+ *                    4 tolerances) with 1 and N threads: jobs per second
+ *   random_run       all methods at 5 tolerances on a fixed random set (--random
+ *                    24:1; 1000 curves would not fit the bench's time), CPU
+ *                    and OpenCL: jobs per second
+ *   fit_per_job/M,   per method of that run (CPU): the median over its jobs
+ *   eval_per_job/M   of the fit time (its own thread CPU time) and of the
+ *                    measuring time, seconds (rate: jobs/s of that work)
+ */
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "kernels/metric_core.h"
+#include "methods/driver/driver.h"
+#include "host/backend/clrt.h"
+#include "host/cli/commands.h"
+#include "host/io/curvefile.h"
+#include "host/io/datadir.h"
+#include "host/cli/cliopts.h"
+#include "host/diag.h"
+#include "host/io/random.h"
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+typedef struct {
+    FILE *csv;
+} bench_out;
+
+static void row(bench_out *b, const char *what, const char *backend, int threads, double items, double seconds,
+                const char *unit)
+{
+    double rate = seconds > 0 ? items / seconds : 0.0;
+    fprintf(b->csv, "%s,%s,%d,%.0f,%.6f,%.6g,%s\n", what, backend, threads, items, seconds, rate, unit);
+}
+
+/* ---- FMA peak ---------------------------------------------------------- */
+
+/* 8 independent chains of a*x + y per lane so the loop is bound by the
+ * multiply-add units, not by latency. */
+static double fma_loop(long iters)
+{
+    double x[8] = {1, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7}, a = 0.999999, c = 1e-7;
+    for (long i = 0; i < iters; i++)
+        for (int k = 0; k < 8; k++)
+            x[k] = a * x[k] + c;
+    return x[0] + x[1] + x[2] + x[3] + x[4] + x[5] + x[6] + x[7];
+}
+
+/* The same with 8 independent vector accumulators of the widest FMA unit. */
+typedef double v8d __attribute__((vector_size(64)));
+typedef double v4d __attribute__((vector_size(32)));
+
+/* fp-contract=fast: -std=c11 turns contraction off, and this loop must be FMAs
+ * (gcc's attribute; clang, used by `make fuzz`, contracts within statements
+ * by default) */
+#if defined(__clang__)
+#define OB_CONTRACT
+#else
+#define OB_CONTRACT optimize("fp-contract=fast"),
+#endif
+__attribute__((OB_CONTRACT target("avx512f,fma"))) static double fma_avx512(long iters)
+{
+    v8d x[8], a = {0}, c = {0};
+    for (int k = 0; k < 8; k++)
+        for (int l = 0; l < 8; l++) {
+            x[k][l] = 1.0 + 0.01 * (8 * k + l);
+            a[l] = 0.999999;
+            c[l] = 1e-7;
+        }
+    for (long i = 0; i < iters; i++)
+        for (int k = 0; k < 8; k++)
+            x[k] = a * x[k] + c;
+    double s = 0;
+    for (int k = 0; k < 8; k++)
+        for (int l = 0; l < 8; l++)
+            s += x[k][l];
+    return s;
+}
+
+__attribute__((OB_CONTRACT target("avx2,fma"))) static double fma_avx2(long iters)
+{
+    v4d x[10], a = {0.999999, 0.999999, 0.999999, 0.999999}, c = {1e-7, 1e-7, 1e-7, 1e-7};
+    for (int k = 0; k < 10; k++)
+        for (int l = 0; l < 4; l++)
+            x[k][l] = 1.0 + 0.01 * (4 * k + l);
+    for (long i = 0; i < iters; i++)
+        for (int k = 0; k < 10; k++)
+            x[k] = a * x[k] + c;
+    double s = 0;
+    for (int k = 0; k < 10; k++)
+        for (int l = 0; l < 4; l++)
+            s += x[k][l];
+    return s;
+}
+
+/* Peak of the widest vector FMA: flops, or 0 if the CPU has none. */
+static double fma_vector_peak(int threads, double *seconds, const char **isa)
+{
+    const long iters = 20000000;
+    double per = 0.0, sink = 0.0;
+    *isa = "none";
+    __builtin_cpu_init();
+    int w = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma") ? 512
+            : __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? 256 : 0;
+    if (!w)
+        return 0.0;
+    *isa = w == 512 ? "avx512" : "avx2";
+    per = w == 512 ? 2.0 * 64 * iters : 2.0 * 40 * iters;
+    double t0 = now_s();
+#pragma omp parallel num_threads(threads) reduction(+ : sink)
+    sink += w == 512 ? fma_avx512(iters) : fma_avx2(iters);
+    *seconds = now_s() - t0;
+    if (sink == 42.0)
+        fputs("", stderr);
+    return per * threads;
+}
+
+static double fma_peak(int threads, double *seconds)
+{
+    const long iters = 40000000;
+    double sink = 0.0, t0 = now_s();
+#pragma omp parallel num_threads(threads) reduction(+ : sink)
+    sink += fma_loop(iters);
+    *seconds = now_s() - t0;
+    if (sink == 42.0)  /* keep the loop */
+        fputs("", stderr);
+    return 2.0 * 8 * iters * threads;  /* flops */
+}
+
+/* ---- the record batch --------------------------------------------------- */
+
+static unsigned long long rng_next(unsigned long long *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+static double urand(unsigned long long *s) { return (rng_next(s) >> 11) * (1.0 / 9007199254740992.0); }
+
+/* Random convex cubics (control polygon turning left by less than pi). */
+static void make_batch(int n, ob_bez *base, ob_bez *approx, ob_measure_rec *recs, ob_metric metric)
+{
+    unsigned long long s = 0x9E3779B97F4A7C15ULL;
+    const ob_method *cobb = ob_method_find("cobb");
+    double par[OB_MAX_PARAMS];
+    ob_param_defaults(cobb, par);
+    for (int i = 0; i < n; i++) {
+        double ang = 2 * OB_PI * urand(&s), turn = 0.3 + 1.2 * urand(&s), xy[4][2];
+        double p[2] = {0, 0};
+        for (int k = 0; k < 4; k++) {
+            xy[k][0] = p[0];
+            xy[k][1] = p[1];
+            double a = ang + turn * k / 3.0, len = 0.5 + urand(&s);
+            p[0] += len * cos(a);
+            p[1] += len * sin(a);
+        }
+        ob_bez_from_points(&base[i], 3, (const double (*)[2])xy);
+        const ob_fit_args args = {i % 2 ? 0.1 : -0.1, 1e-3, par};
+        ob_fit fit;
+        char msg[64];
+        cobb->fit(&base[i], &args, NULL, &fit, msg, sizeof msg);
+        approx[i] = fit.seg[0];
+        recs[i] = (ob_measure_rec){&base[i], &approx[i], args.d, metric};
+    }
+}
+
+static void cpu_batch(const ob_measure_rec *recs, int n, int S, ob_errval *out, int threads)
+{
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
+    for (int i = 0; i < n; i++)
+        ob_measure(recs[i].metric, recs[i].base, recs[i].approx, recs[i].d, S, &out[i]);
+}
+
+/* ---- whole runs --------------------------------------------------------- */
+
+/* Every method at 5 tolerances on the curves of set, hausdorff, mid split.
+ * keep: NULL, or where the jobs go (with their timings; the caller frees). */
+static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njobs, ob_job **keep)
+{
+    static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
+    const int nm = ob_method_count();
+    size_t n = 0;
+    for (int c = 0; c < set->n; c++)
+        n += (size_t)set->v[c].nd * nm * 5;
+    ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
+    if (!jobs)
+        return -1.0;
+    size_t k = 0;
+    for (int c = 0; c < set->n; c++)
+        for (int di = 0; di < set->v[c].nd; di++)
+            for (int m = 0; m < nm; m++)
+                for (int t = 0; t < 5; t++) {
+                    ob_job *j = &jobs[k++];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = ob_methods[m];
+                    j->metric = OB_METRIC_HAUSDORFF;
+                    j->split = OB_SPLIT_MID;
+                    j->tol = tols[t];
+                }
+    double t0 = now_s();
+    ob_driver_run(jobs, n, o);
+    double dt = now_s() - t0;
+    if (keep)
+        *keep = jobs;
+    else
+        free(jobs);
+    *njobs = n;
+    return dt;
+}
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Per method, the median over its jobs of the fit time (fit_ns: the
+ * method's own thread CPU time) and of the measuring time (eval_ns), as
+ * bench.csv rows fit_per_job/NAME and eval_per_job/NAME (items 1: rate is
+ * jobs per second of that work) and one printed line. */
+static void per_method_times(bench_out *b, const ob_job *jobs, size_t n, int threads)
+{
+    double *v = malloc((n ? n : 1) * sizeof *v), *w = malloc((n ? n : 1) * sizeof *w);
+    if (!v || !w) {
+        free(v);
+        free(w);
+        return;
+    }
+    printf("median per job, fit / measure (ms):");
+    for (int m = 0; ob_methods[m]; m++) {
+        size_t k = 0;
+        for (size_t i = 0; i < n; i++)
+            if (jobs[i].method == ob_methods[m]) {
+                v[k] = jobs[i].fit_ns * 1e-9;
+                w[k++] = jobs[i].eval_ns * 1e-9;
+            }
+        if (k == 0)
+            continue;
+        qsort(v, k, sizeof *v, cmp_dbl);
+        qsort(w, k, sizeof *w, cmp_dbl);
+        char what[96];
+        snprintf(what, sizeof what, "fit_per_job/%s", ob_methods[m]->name);
+        row(b, what, "cpu", threads, 1.0, v[k / 2], "jobs/s");
+        snprintf(what, sizeof what, "eval_per_job/%s", ob_methods[m]->name);
+        row(b, what, "cpu", threads, 1.0, w[k / 2], "jobs/s");
+        printf(" %s %.3g / %.3g", ob_methods[m]->name, v[k / 2] * 1e3, w[k / 2] * 1e3);
+    }
+    printf("\n");
+    free(v);
+    free(w);
+}
+
+static double whole_run(int threads, const ob_curveset *set, ob_driver_opts *o, size_t *njobs)
+{
+    static const char *methods[] = {"tiller", "cobb", "ahn"};
+    static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4};
+    size_t n = 0;
+    for (int c = 0; c < set->n; c++)
+        n += (size_t)set->v[c].nd * 3 * 4;
+    ob_job *jobs = calloc(n, sizeof *jobs);
+    if (!jobs)
+        return -1.0;
+    size_t k = 0;
+    for (int c = 0; c < set->n; c++)
+        for (int di = 0; di < set->v[c].nd; di++)
+            for (int m = 0; m < 3; m++)
+                for (int t = 0; t < 4; t++) {
+                    ob_job *j = &jobs[k++];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = ob_method_find(methods[m]);
+                    j->metric = OB_METRIC_HAUSDORFF;
+                    j->split = OB_SPLIT_MID;
+                    j->tol = tols[t];
+                }
+    omp_set_num_threads(threads);
+    double t0 = now_s();
+    ob_driver_run(jobs, n, o);
+    double dt = now_s() - t0;
+    free(jobs);
+    *njobs = n;
+    return dt;
+}
+
+typedef struct {
+    const char *out;
+    int quick;
+} bench_args;
+
+static const ob_flag bench_flags[] = {
+    {"out", "DIR", "output directory (default out/bench)", 0, OB_FLAG_ONCE},
+    {"quick", NULL, "a tenth of the records (a smoke test of the figures)", 1, OB_FLAG_ONCE},
+};
+
+static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    bench_args *a = ctx;
+    if (id == 1) {
+        a->quick = 1;
+        return 0;
+    }
+    return ob_cli_apply_dir(&a->out, id, opt, v);
+}
+
+int ob_cmd_bench(int argc, char **argv)
+{
+    bench_args a = {"out/bench", 0};
+    const ob_flagset flags = {bench_flags, 2, NULL, NULL, "options", apply_bench_flag, &a};
+    const int prc = ob_cli_parse("[--out DIR] [--quick]", &flags, 1, argc, argv, 0, NULL, NULL);
+    if (prc != OB_CLI_OK)
+        return prc == OB_CLI_HELP ? 0 : 2;
+    const char *out_dir = a.out;
+    const int quick = a.quick;
+    if (ob_mkdir_p(out_dir) != 0) {
+        ob_error("--out: cannot create '%s': %s", out_dir, strerror(errno));
+        return 1;
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/bench.csv", out_dir);
+    bench_out b = {fopen(path, "w")};
+    if (!b.csv) {
+        ob_error("%s: cannot write: %s", path, strerror(errno));
+        return 1;
+    }
+    fprintf(b.csv, "what,backend,threads,items,seconds,rate,unit\n");
+    const int N = omp_get_num_procs();
+    const int S = OB_DEFAULT_SAMPLES;
+    const int R = quick ? 200 : 2000;
+
+    /* FMA peak */
+    double peak[2], secs;
+    for (int k = 0; k < 2; k++) {
+        int th = k ? N : 1;
+        double fl = fma_peak(th, &secs);
+        peak[k] = fl / secs;
+        row(&b, "fma_peak", "cpu", th, fl, secs, "flop/s");
+    }
+    printf("FMA peak, scalar code as the CPU path is built: %.2f GFLOP/s on 1 thread, %.2f on %d (x%.2f)\n",
+           peak[0] / 1e9, peak[1] / 1e9, N, peak[1] / peak[0]);
+    const char *isa;
+    double vfl = fma_vector_peak(N, &secs, &isa), vpeak = vfl > 0 ? vfl / secs : 0.0;
+    if (vfl > 0) {
+        row(&b, "fma_vector", isa, N, vfl, secs, "flop/s");
+        printf("FMA peak, %s vector: %.2f GFLOP/s on %d threads: the machine's peak\n", isa, vpeak / 1e9, N);
+    }
+
+    /* OpenCL */
+    ob_cl *cl = NULL;
+    char err[8192];
+    if (ob_cl_open(NULL, &cl, err, sizeof err) != 0) {
+        printf("OpenCL: not available (%s); its rows are missing\n", err);
+        cl = NULL;
+    } else {
+        printf("OpenCL: %s / %s, kernel built in %.2f s (not in any timing below)\n", ob_cl_platform(cl),
+               ob_cl_device(cl), ob_cl_build_seconds(cl));
+        row(&b, "kernel_build", "opencl", 0, 1, ob_cl_build_seconds(cl), "builds/s");
+    }
+
+    /* the sampling engine, per metric */
+    ob_bez *base = malloc((size_t)R * sizeof *base), *approx = malloc((size_t)R * sizeof *approx);
+    ob_measure_rec *recs = malloc((size_t)R * sizeof *recs);
+    ob_errval *o1 = malloc((size_t)R * sizeof *o1), *o2 = malloc((size_t)R * sizeof *o2);
+    if (!base || !approx || !recs || !o1 || !o2) {
+        ob_error("bench: out of memory");
+        fclose(b.csv);
+        return 1;
+    }
+    const ob_metric mets[3] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF};
+    for (int mi = 0; mi < 3; mi++) {
+        const ob_metric m = mets[mi];
+        char what[64];
+        snprintf(what, sizeof what, "samples/%s", ob_metric_name(m));
+        make_batch(R, base, approx, recs, m);
+        cpu_batch(recs, 8, S, o1, 1);  /* warm-up */
+        double t0 = now_s();
+        cpu_batch(recs, R, S, o1, 1);
+        double c1 = now_s() - t0;
+        double flops = 0.0;  /* as the metric core counts them */
+        for (int i = 0; i < R; i++)
+            flops += o1[i].work;
+        t0 = now_s();
+        cpu_batch(recs, R, S, o1, N);
+        double cN = now_s() - t0;
+        row(&b, what, "cpu", 1, (double)R * S, c1, "samples/s");
+        row(&b, what, "cpu", N, (double)R * S, cN, "samples/s");
+        printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", what, R * S / c1, R * S / cN, N,
+               c1 / cN);
+        char gw[64];
+        snprintf(gw, sizeof gw, "gflops/%s", ob_metric_name(m));
+        row(&b, gw, "cpu", N, flops, cN, "flop/s");
+        double gbest = flops / cN;
+        if (cl) {
+            ob_cl_measure_batch(cl, recs, 8, S, o2);  /* warm-up: buffers, first launch */
+            t0 = now_s();
+            int rc = ob_cl_measure_batch(cl, recs, R, S, o2);
+            double g = now_s() - t0;
+            if (rc == 0) {
+                row(&b, what, "opencl", 0, (double)R * S, g, "samples/s");
+                double worst = 0.0;
+                for (int i = 0; i < R; i++)
+                    worst = fmax(worst, fabs(o1[i].err - o2[i].err) / fmax(fabs(o1[i].err), 1e-300));
+                printf("; OpenCL %9.0f (x%.2f vs CPU on %d threads; max rel. difference %.1e)", R * S / g, cN / g, N,
+                       worst);
+                row(&b, gw, "opencl", 0, flops, g, "flop/s");
+                gbest = fmax(gbest, flops / g);
+            }
+        }
+        printf("\n%-18s >= %.2f GFLOP/s at best (as the metric core counts them), %.1f%% of the scalar peak%s",
+               "", gbest / 1e9, 100.0 * gbest / peak[1], vpeak > 0 ? "" : "\n");
+        if (vpeak > 0)
+            printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
+    }
+
+    /* whole runs, 1 vs N threads, on the CPU path */
+    ob_curveset set = {0};
+    char where[4096], cerr[1024];
+    if (ob_load_default_curves(&set, where, sizeof where, cerr, sizeof cerr) == 0) {
+        ob_driver_opts o;
+        ob_driver_defaults(&o);
+        size_t nj = 0;
+        double r1 = whole_run(1, &set, &o, &nj), rN = whole_run(N, &set, &o, &nj);
+        row(&b, "run", "cpu", 1, (double)nj, r1, "jobs/s");
+        row(&b, "run", "cpu", N, (double)nj, rN, "jobs/s");
+        printf("whole run (%zu jobs, hausdorff): %.2f s on 1 thread, %.2f s on %d: speedup x%.2f\n", nj, r1, rN, N,
+               r1 / rN);
+        if (cl) {
+            o.batch = ob_cl_measure_batch;
+            o.batch_ctx = cl;
+            double g = whole_run(N, &set, &o, &nj);
+            row(&b, "run", "opencl", N, (double)nj, g, "jobs/s");
+            printf("whole run with the OpenCL backend: %.2f s (x%.2f vs CPU on %d threads)\n", g, rN / g, N);
+        }
+    }
+    ob_curveset_free(&set);
+
+    /* all methods on a fixed random set */
+    ob_curveset rset = {0};
+    if (ob_random_append(&rset, 1, quick ? 8 : 24, NULL, 0, cerr, sizeof cerr) == 0) {
+        ob_driver_opts o;
+        ob_driver_defaults(&o);
+        omp_set_num_threads(N);
+        size_t nj = 0;
+        ob_job *kept = NULL;
+        double c = random_run(&rset, &o, &nj, &kept);
+        row(&b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
+        printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
+               rset.n, ob_method_count(), nj, nj / c);
+        if (cl) {
+            o.batch = ob_cl_measure_batch;
+            o.batch_ctx = cl;
+            double g = random_run(&rset, &o, &nj, NULL);
+            row(&b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
+            printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);
+        }
+        printf("\n");
+        if (kept)
+            per_method_times(&b, kept, nj, N);
+        free(kept);
+    }
+    ob_curveset_free(&rset);
+    ob_cl_close(cl);
+    free(base);
+    free(approx);
+    free(recs);
+    free(o1);
+    free(o2);
+    fclose(b.csv);
+    printf("wrote %s\n", path);
+    return 0;
+}

@@ -1,0 +1,284 @@
+/*
+ * cmd_compare.c - ./offbench compare BASE NEW [options]: compare two runs,
+ * for nightly regression checks.
+ *
+ * Inputs.  BASE and NEW are each a results.csv or a run directory DIR
+ * (DIR/results.csv); meta.json and samples.csv are taken from the same
+ * directory when they exist (readers: results_csv.h, metajson.h).
+ *
+ * Exit status: 0 no regression; 1 a regression (quality, timing, or a row of
+ * BASE missing from NEW); 2 an error (unreadable or missing file, malformed
+ * CSV or JSON, missing column, duplicate job, bad option: the message names
+ * FILE:LINE or the option); 3 not comparable.
+ *
+ * Comparability (exit 3; every reason is printed, on stderr and in the
+ * report).  When both meta.json exist: samples_per_segment, max_depth,
+ * max_segments, inflection_split and seed must be equal (absent on one side
+ * counts as different), and so must every method_params.M.* and
+ * method_versions.M key of each method M that has rows on both sides (a key
+ * on one side only counts as different).  Keys of methods that only one side
+ * ran, or neither, are not checked (a note says how many differ); a group
+ * missing from one meta.json entirely is not checked (a note says so).
+ * From the rows: when both runs have rows and their sets of metrics (or of
+ * splits) share no value: "metric differs: hausdorff vs radial".  Without a
+ * meta.json on a side, quality and timings are compared and a note says that
+ * comparability could not be checked.
+ *
+ * Timing context: when compiler, cflags, backend, opencl.device,
+ * opencl.driver, omp_threads or cpu_model differ, timings are not compared (the report
+ * lists the differing values); quality still is.
+ *
+ * Join: rows are matched on (curve, d, method, metric, split, tol), d and tol
+ * as doubles.  A row of BASE missing from NEW is a regression (a lost job); a
+ * row only in NEW is reported as new, not a regression.
+ *
+ * Quality of a joined row (exact rules, first that applies):
+ *   1. status changed: ok -> anything else is a regression, anything else ->
+ *      ok an improvement, any other change (limit -> fail, skip -> fail,
+ *      fail -> limit, ...) a regression;
+ *   2. both fail or both skip: nothing to compare;
+ *   3. both ok or both limit: more ctrl_points is a regression, fewer an
+ *      improvement - ctrl_points decides whenever it changed, so fewer
+ *      control points with a larger max_err (which still met the tolerance:
+ *      the status is the same) is an improvement;
+ *   4. same ctrl_points: max_err > base*(1+rtol)+atol is a regression,
+ *      base > new*(1+rtol)+atol an improvement (--err-rtol, --err-atol;
+ *      a max_err that becomes nan is a regression, one that stops being nan
+ *      an improvement).
+ *
+ * Timing of a joined row: t = fit_ns + eval_ns (the medians of the
+ * repetitions when the run had --reps).  Judged only when timings are
+ * compared, the statuses are equal and both t >= --time-floor-ns (shorter
+ * jobs are timer noise).  A regression when new/base > 1 + --time-threshold
+ * and, when both sides have at least 2 repetitions of the row in
+ * samples.csv, the two-sided Mann–Whitney U test (ranktest.h) of the
+ * per-repetition t values gives p < --alpha; without those samples the
+ * threshold alone decides (the report counts such rows).  An improvement
+ * symmetrically (base/new > 1 + threshold, same test).  Note: with 3
+ * repetitions per side the smallest exact two-sided p is 0.1, so at least 4
+ * per side are needed to reject at 0.05; the report says so when fewer.
+ *
+ * Per method: geometric means over its joined rows of new/base of
+ * ctrl_points (rows where both > 0), of max_err (both finite and > 0) and of
+ * t (rows judged for timing).  A method is slower (a regression, exit 1) when
+ * its time mean > 1 + threshold and, with repetitions on both sides, the
+ * Mann–Whitney test on its per-repetition totals gives p < alpha; a total is
+ * the sum of t over the method's rows judged for timing (the rows its time
+ * mean covers), for each repetition that all those rows have.  Faster
+ * symmetrically (reported, not a regression).
+ *
+ * Options: --format md|csv (md), --out FILE (stdout; written through
+ * FILE.tmp and a rename), --err-rtol R (1e-9), --err-atol A (1e-15),
+ * --time-threshold F (0.10), --time-floor-ns N (1e6), --alpha A (0.05),
+ * --max-rows N (50 per Markdown table), --no-timing, --method-timing-only
+ * (row-level timing changes are listed but only the per-method verdicts
+ * count for the exit status: with thousands of rows, a few pass the rank
+ * test by chance and a nightly would fail on noise; the per-method totals
+ * do not have that multiplicity).  "--opt=value" works too.
+ *
+ * Markdown report: the two inputs, a verdict line with the counts (joined
+ * rows, regressions: quality / timing / missing rows, improvements, new and
+ * missing rows, methods slower / faster), the context (comparability, timing
+ * context, how timings were judged, notes), then the tables Regressions,
+ * Missing rows, Improvements, New rows (each capped at --max-rows, saying how
+ * many were left out) and the per-method table (method, joined rows,
+ * geometric means of new/base of ctrl_points, max_err and time, p of the
+ * method test, row regressions, row improvements, verdict).  When not
+ * comparable: the inputs and the reasons only.
+ *
+ * CSV report (long format, one line per change, header
+ * kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value):
+ *   regression|improvement  a row's change: field status, ctrl_points,
+ *                           max_err or time (t in ns); base and new values;
+ *                           ratio new/base (not for status); p_value when
+ *                           the rank test was run.  A method's timing
+ *                           verdict: curve, d, metric, split, tol empty,
+ *                           field time_gm, ratio the geometric mean.
+ *   missing                 a row of BASE not in NEW: field status, base its status
+ *   new                     a row only in NEW: field status, new its status
+ *   method                  per method: fields ctrl_points_gm, max_err_gm and
+ *                           time_gm with the geometric mean in ratio (empty
+ *                           when there is none) and, for time_gm, the p-value
+ *   context                 field not_comparable, timing_not_compared or
+ *                           note; the text in base
+ * d and tol are written as in the input file; numbers in full precision.
+ * When not comparable only the context lines follow the header.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/cli/commands.h"
+#include "host/compare/compare.h"
+#include "host/cli/cliopts.h"
+#include "host/diag.h"
+#include "host/io/numfmt.h"
+
+
+typedef struct {
+    ob_cmp_opts c;
+    const char *in[2];
+    int csv;
+    const char *out;
+} cmd_opts;
+
+/* A finite number for option opt in [lo, hi] (lo excluded when open_lo);
+ * `what` describes the range for the message. */
+static int num_opt(const char *opt, const char *v, double lo, double hi, int open_lo, const char *what, double *out)
+{
+    double x;
+    if (ob_parse_double(v, &x) || x < lo || (open_lo && x == lo) || x > hi) {
+        ob_error("%s: expected %s, got '%s'", opt, what, v);
+        return -1;
+    }
+    *out = x;
+    return 0;
+}
+
+enum { CO_FORMAT, CO_OUT, CO_ERR_RTOL, CO_ERR_ATOL, CO_TIME_THRESHOLD, CO_TIME_FLOOR, CO_ALPHA, CO_MAX_ROWS,
+       CO_NO_TIMING, CO_METHOD_TIMING };
+
+static const ob_flag compare_flags[] = {
+    {"format", "md|csv", "the report's format (default md)", CO_FORMAT, OB_FLAG_ONCE},
+    {"out", "FILE", "write the report there (default: standard output)", CO_OUT, OB_FLAG_ONCE},
+    {"err-rtol", "R", "max_err may grow by this factor before it is a regression", CO_ERR_RTOL, OB_FLAG_ONCE},
+    {"err-atol", "A", "... or by this much", CO_ERR_ATOL, OB_FLAG_ONCE},
+    {"time-threshold", "F", "a timing ratio past 1 + F is slower", CO_TIME_THRESHOLD, OB_FLAG_ONCE},
+    {"time-floor-ns", "N", "timings below N ns are not judged", CO_TIME_FLOOR, OB_FLAG_ONCE},
+    {"alpha", "A", "significance level of the rank test", CO_ALPHA, OB_FLAG_ONCE},
+    {"max-rows", "N", "rows of each table in the report", CO_MAX_ROWS, OB_FLAG_ONCE},
+    {"no-timing", NULL, "judge the results only", CO_NO_TIMING, OB_FLAG_ONCE},
+    {"method-timing-only", NULL, "judge timing per method only, not per job", CO_METHOD_TIMING, OB_FLAG_ONCE},
+};
+
+static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
+{
+    cmd_opts *o = ctx;
+    double x;
+    switch (id) {
+    case CO_FORMAT:
+        if (strcmp(v, "md") != 0 && strcmp(v, "csv") != 0) {
+            ob_error("--format: expected md or csv, got '%s'", v);
+            return -1;
+        }
+        o->csv = strcmp(v, "csv") == 0;
+        return 0;
+    case CO_OUT:
+        if (!*v) {
+            ob_error("--out: expected a file name");
+            return -1;
+        }
+        o->out = v;
+        return 0;
+    case CO_ERR_RTOL: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.err_rtol);
+    case CO_ERR_ATOL: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.err_atol);
+    case CO_TIME_THRESHOLD: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.time_threshold);
+    case CO_TIME_FLOOR: return num_opt(opt, v, 0, HUGE_VAL, 0, "a number >= 0", &o->c.time_floor_ns);
+    case CO_ALPHA: return num_opt(opt, v, 0, 1, 1, "a number > 0 and <= 1", &o->c.alpha);
+    case CO_MAX_ROWS:
+        if (num_opt(opt, v, 0, 1e9, 0, "a whole number >= 0", &x) || x != floor(x)) {
+            ob_error("--max-rows: expected a whole number >= 0, got '%s'", v);
+            return -1;
+        }
+        o->c.max_rows = (int)x;
+        return 0;
+    case CO_NO_TIMING: o->c.no_timing = 1; return 0;
+    default: o->c.method_timing_only = 1; return 0;
+    }
+}
+
+/* Returns 0, 1 after printing the help (--help), or -1 after ob_error(). */
+static int parse_opts(int argc, char **argv, cmd_opts *o)
+{
+    o->c = ob_cmp_defaults();
+    o->csv = 0;
+    o->out = NULL;
+    const ob_flagset flags = {compare_flags, (int)(sizeof compare_flags / sizeof compare_flags[0]), NULL, NULL,
+                              "options", apply_compare_flag, o};
+    char *pos[2];
+    int npos = 0;
+    const int rc = ob_cli_parse("BASE NEW [options]   (results.csv files or run directories; exit 0 no regression, "
+                                "1 regression, 2 error, 3 not comparable)",
+                                &flags, 1, argc, argv, 2, pos, &npos);
+    if (rc != OB_CLI_OK)
+        return rc == OB_CLI_HELP ? 1 : -1;
+    if (npos != 2) {
+        ob_error("compare: expected BASE NEW (results.csv files or run directories)");
+        return -1;
+    }
+    o->in[0] = pos[0];
+    o->in[1] = pos[1];
+    return 0;
+}
+
+typedef struct {
+    const cmd_opts *o;
+    const ob_cmp_side *b, *n;
+    const ob_cmp_result *r;
+} report_ctx;
+
+static int write_report(FILE *f, void *ctx)
+{
+    const report_ctx *c = ctx;
+    return c->o->csv ? ob_cmp_write_csv(f, c->b, c->n, &c->o->c, c->r) : ob_cmp_write_md(f, c->b, c->n, &c->o->c, c->r);
+}
+
+/* To stdout, or to --out FILE through FILE.tmp and a rename. */
+static int emit(const cmd_opts *o, report_ctx *ctx)
+{
+    if (!o->out) {
+        int rc = write_report(stdout, ctx);
+        if (fflush(stdout) != 0 || rc != 0) {
+            ob_error("compare: cannot write the report to stdout");
+            return -1;
+        }
+        return 0;
+    }
+    const char *slash = strrchr(o->out, '/');
+    if (slash && !slash[1]) {
+        ob_error("--out: '%s' is a directory name, expected a file", o->out);
+        return -1;
+    }
+    char dir[4096];
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == o->out ? 1 : (int)(slash - o->out), o->out);
+    return ob_write_atomically(dir, slash ? slash + 1 : o->out, write_report, ctx);
+}
+
+int ob_cmd_compare(int argc, char **argv)
+{
+    cmd_opts o;
+    int prc = parse_opts(argc, argv, &o);
+    if (prc)
+        return prc > 0 ? 0 : 2;
+    ob_cmp_side b, n;
+    ob_cmp_result r;
+    memset(&b, 0, sizeof b);
+    memset(&n, 0, sizeof n);
+    memset(&r, 0, sizeof r);
+    char err[1024];
+    int status = 2;
+    if (ob_cmp_load_side(o.in[0], "BASE", &b, err, sizeof err) ||
+        ob_cmp_load_side(o.in[1], "NEW", &n, err, sizeof err) || ob_cmp_context(&b, &n, &o.c, &r, err, sizeof err) ||
+        (r.incomparable.n == 0 && ob_cmp_rows(&b, &n, &o.c, &r, err, sizeof err))) {
+        ob_error("compare: %s", err);
+        goto done;
+    }
+    for (int i = 0; i < r.incomparable.n; i++)
+        ob_error("not comparable: %s", r.incomparable.v[i]);
+    const char *const inputs[] = {o.in[0], o.in[1], b.results_path, b.meta_path, b.samples_path,
+                                  n.results_path, n.meta_path, n.samples_path};
+    if (o.out && ob_check_out_not_input("compare", o.out, 0, inputs, sizeof inputs / sizeof inputs[0]) != 0)
+        goto done;  /* status 2 */
+    report_ctx ctx = {&o, &b, &n, &r};
+    if (emit(&o, &ctx) == 0)
+        status = ob_cmp_status(&r);
+done:
+    ob_cmp_side_free(&b);
+    ob_cmp_side_free(&n);
+    ob_cmp_result_free(&r);
+    return status;
+}

@@ -1,0 +1,310 @@
+/*
+ * compare.c - the join and the verdicts of `compare` (the rules are spelled
+ * out in cmd_compare.c; loading and comparability: compare_context.c).
+ */
+#include "host/compare/compare.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/compare/ranktest.h"
+
+/* ---- join and verdicts ---- */
+
+typedef struct {
+    const ob_res_row *b, *n;
+    int judged; /* for timing */
+    int m;      /* index in r->ms */
+} pair;
+
+static int add_change(ob_cmp_result *r, ob_ch_kind kind, const char *field, const ob_res_row *b, const ob_res_row *n,
+                      double ratio, double p)
+{
+    if (r->nch == r->capch) {
+        int cap = r->capch ? 2 * r->capch : 64;
+        ob_change *nv = realloc(r->ch, (size_t)cap * sizeof *nv);
+        if (!nv)
+            return -1;
+        r->ch = nv;
+        r->capch = cap;
+    }
+    r->ch[r->nch++] = (ob_change){kind, field, b, n, ratio, p};
+    return 0;
+}
+
+static int method_index(ob_cmp_result *r, const char *m)
+{
+    for (int i = 0; i < r->nms; i++)
+        if (strcmp(r->ms[i].method, m) == 0)
+            return i;
+    ob_method_sum *nv = realloc(r->ms, (size_t)(r->nms + 1) * sizeof *nv);
+    if (!nv)
+        return -1;
+    r->ms = nv;
+    memset(&r->ms[r->nms], 0, sizeof *r->ms);
+    r->ms[r->nms].method = m;
+    r->ms[r->nms].p = NAN;
+    return r->nms++;
+}
+
+static int is_ok(const char *s) { return strcmp(s, "ok") == 0; }
+
+static double ratio_of(double n, double b) { return b > 0 && isfinite(b) && isfinite(n) ? n / b : NAN; }
+
+/* Quality of a joined row: status, then ctrl_points, then max_err. */
+static int judge_quality(const ob_res_row *b, const ob_res_row *n, const ob_cmp_opts *o, ob_cmp_result *r,
+                         ob_method_sum *m)
+{
+    ob_ch_kind k;
+    const char *field;
+    double ratio = NAN;
+    if (strcmp(b->status, n->status) != 0) {
+        field = "status";
+        k = !is_ok(b->status) && is_ok(n->status) ? OB_CH_IMPROVEMENT : OB_CH_REGRESSION;
+    } else if (!is_ok(b->status) && strcmp(b->status, "limit") != 0) {
+        return 0; /* both fail or both skip: nothing to measure */
+    } else if (n->ctrl_points != b->ctrl_points) {
+        field = "ctrl_points";
+        k = n->ctrl_points > b->ctrl_points ? OB_CH_REGRESSION : OB_CH_IMPROVEMENT;
+        ratio = ratio_of((double)n->ctrl_points, (double)b->ctrl_points);
+    } else {
+        double eb = b->max_err, en = n->max_err;
+        field = "max_err";
+        if (isnan(eb) && isnan(en))
+            return 0;
+        if (isnan(en) || (!isnan(eb) && en > eb * (1 + o->err_rtol) + o->err_atol))
+            k = OB_CH_REGRESSION;
+        else if (isnan(eb) || eb > en * (1 + o->err_rtol) + o->err_atol)
+            k = OB_CH_IMPROVEMENT;
+        else
+            return 0;
+        ratio = ratio_of(en, eb);
+    }
+    if (k == OB_CH_REGRESSION)
+        r->q_reg++, m->regressions++;
+    else
+        r->q_imp++, m->improvements++;
+    return add_change(r, k, field, b, n, ratio, NAN);
+}
+
+/* The repetitions of a row present in samples.csv, into x; their count. */
+static int rep_values(const ob_res_row *row, int maxrep, double *x)
+{
+    int k = 0;
+    for (int i = 0; row->rep_t && i < maxrep; i++)
+        if (!isnan(row->rep_t[i]))
+            x[k++] = row->rep_t[i];
+    return k;
+}
+
+/* Timing of a joined row; *judged = 1 when it was judged. */
+static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res_row *b, const ob_res_row *n,
+                      const ob_cmp_opts *o, ob_cmp_result *r, ob_method_sum *m, double *xb, double *xn,
+                      int *judged)
+{
+    const double tb = b->fit_ns + b->eval_ns, tn = n->fit_ns + n->eval_ns;
+    *judged = r->timing && strcmp(b->status, n->status) == 0 && tb >= o->time_floor_ns &&
+              tn >= o->time_floor_ns && tb > 0 && tn > 0;
+    if (!*judged)
+        return 0;
+    r->t_judged++;
+    int kb = rep_values(b, bs->res.maxrep, xb), kn = rep_values(n, ns->res.maxrep, xn);
+    const int tested = kb >= 2 && kn >= 2;
+    if (tested)
+        r->t_tested++;
+    else
+        r->t_threshold_only++;
+    const double ratio = tn / tb;
+    ob_ch_kind k;
+    if (ratio > 1 + o->time_threshold)
+        k = OB_CH_REGRESSION;
+    else if (1 / ratio > 1 + o->time_threshold)
+        k = OB_CH_IMPROVEMENT;
+    else
+        return 0;
+    double p = NAN;
+    if (tested) {
+        p = ob_mann_whitney(xn, kn, xb, kb).p;
+        if (!(p < o->alpha))
+            return 0;
+    }
+    if (k == OB_CH_REGRESSION)
+        r->t_reg++, m->regressions++;
+    else
+        r->t_imp++, m->improvements++;
+    return add_change(r, k, "time", b, n, ratio, p);
+}
+
+/* Per-repetition totals over the judged rows of method mi on one side
+ * (a repetition counts when every one of those rows has it); their count. */
+static int method_totals(const pair *pr, int np, int mi, int new_side, int maxrep, double *tot)
+{
+    int k = 0;
+    for (int rep = 0; rep < maxrep; rep++) {
+        double sum = 0;
+        int complete = 1, rows = 0;
+        for (int i = 0; i < np && complete; i++) {
+            if (pr[i].m != mi || !pr[i].judged)
+                continue;
+            const ob_res_row *row = new_side ? pr[i].n : pr[i].b;
+            complete = row->rep_t && !isnan(row->rep_t[rep]);
+            sum += complete ? row->rep_t[rep] : 0;
+            rows++;
+        }
+        if (complete && rows)
+            tot[k++] = sum;
+    }
+    return k;
+}
+
+static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, int np,
+                          const ob_cmp_opts *o, ob_cmp_result *r, double *xb, double *xn)
+{
+    for (int mi = 0; mi < r->nms; mi++) {
+        ob_method_sum *m = &r->ms[mi];
+        if (!(m->n_t > 0) || !r->timing)
+            continue;
+        m->reps_base = method_totals(pr, np, mi, 0, bs->res.maxrep, xb);
+        m->reps_new = method_totals(pr, np, mi, 1, ns->res.maxrep, xn);
+        const int tested = m->reps_base >= 2 && m->reps_new >= 2;
+        if (tested)
+            m->p = ob_mann_whitney(xn, m->reps_new, xb, m->reps_base).p;
+        if (tested && !(m->p < o->alpha))
+            continue;
+        if (m->gm_t > 1 + o->time_threshold)
+            m->verdict = 1, r->m_reg++;
+        else if (1 / m->gm_t > 1 + o->time_threshold)
+            m->verdict = -1, r->m_imp++;
+    }
+}
+
+/* The joint columns (max_gap, max_kink, continuity) are informational: a
+ * note says how many joined rows reach another measured continuity, or that
+ * one side has no such columns (an older build).  Never judged: an open
+ * joint already shows in ctrl_points.  0, or -1 without memory. */
+static int joints_note(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, int np, ob_cmp_result *r)
+{
+    if (!bs->res.has_joints || !ns->res.has_joints) {
+        if (bs->res.has_joints == ns->res.has_joints)
+            return 0;
+        return ob_strlist_addf(&r->notes,
+                               "%s has no joint columns (max_gap, max_kink, continuity: written by an older offbench): "
+                               "joints not compared; ctrl_points now counts both ends of a joint that does not "
+                               "close", bs->res.has_joints ? ns->label : bs->label);
+    }
+    int n = 0;
+    const pair *first = NULL;
+    for (int i = 0; i < np; i++)
+        if (strcmp(pr[i].b->continuity, pr[i].n->continuity) != 0) {
+            if (!n++)
+                first = &pr[i];
+        }
+    if (!n)
+        return 0;
+    return ob_strlist_addf(&r->notes, "%d joined row(s) reach another measured continuity (informational), e.g. "
+                           "%s d=%s %s tol=%s: '%s' -> '%s'", n, first->b->curve, first->b->d_text, first->b->method,
+                           first->b->tol_text, first->b->continuity, first->n->continuity);
+}
+
+int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, char *err,
+                size_t errlen)
+{
+    const ob_res_table *bt = &bs->res, *nt = &ns->res;
+    const int maxrep = bt->maxrep > nt->maxrep ? bt->maxrep : nt->maxrep;
+    pair *pr = malloc((size_t)(bt->n ? bt->n : 1) * sizeof *pr);
+    char *matched = calloc((size_t)(nt->n ? nt->n : 1), 1);
+    double *xb = malloc((size_t)(maxrep ? maxrep : 1) * sizeof *xb);
+    double *xn = malloc((size_t)(maxrep ? maxrep : 1) * sizeof *xn);
+    int np = 0, rc = -1;
+    r->t_rows_count = !o->method_timing_only;
+    if (!pr || !matched || !xb || !xn)
+        goto done;
+    for (int i = 0; i < bt->n; i++) {
+        const ob_res_row *b = &bt->v[i], *n = ob_res_find(nt, b);
+        int mi = method_index(r, b->method);
+        if (mi < 0)
+            goto done;
+        if (!n) {
+            r->n_missing++;
+            r->ms[mi].regressions++;
+            if (add_change(r, OB_CH_MISSING, "status", b, NULL, NAN, NAN))
+                goto done;
+            continue;
+        }
+        matched[n - nt->v] = 1;
+        r->joined++;
+        ob_method_sum *m = &r->ms[mi];
+        m->rows++;
+        int judged;
+        if (judge_quality(b, n, o, r, m) || judge_time(bs, ns, b, n, o, r, m, xb, xn, &judged))
+            goto done;
+        pr[np++] = (pair){b, n, judged, mi};
+    }
+    for (int j = 0; j < nt->n; j++)
+        if (!matched[j]) {
+            r->n_new++;
+            if (add_change(r, OB_CH_NEW, "status", NULL, &nt->v[j], NAN, NAN))
+                goto done;
+        }
+    /* geometric means of new/base per method */
+    for (int mi = 0; mi < r->nms; mi++) {
+        ob_method_sum *m = &r->ms[mi];
+        double s[3] = {0, 0, 0};
+        int c[3] = {0, 0, 0};
+        for (int i = 0; i < np; i++) {
+            if (pr[i].m != mi)
+                continue;
+            const ob_res_row *b = pr[i].b, *n = pr[i].n;
+            if (b->ctrl_points > 0 && n->ctrl_points > 0)
+                s[0] += log((double)n->ctrl_points / (double)b->ctrl_points), c[0]++;
+            if (isfinite(b->max_err) && isfinite(n->max_err) && b->max_err > 0 && n->max_err > 0)
+                s[1] += log(n->max_err / b->max_err), c[1]++;
+            if (pr[i].judged)
+                s[2] += log((n->fit_ns + n->eval_ns) / (b->fit_ns + b->eval_ns)), c[2]++;
+        }
+        m->n_cp = c[0], m->n_err = c[1], m->n_t = c[2];
+        m->gm_cp = c[0] ? exp(s[0] / c[0]) : NAN;
+        m->gm_err = c[1] ? exp(s[1] / c[1]) : NAN;
+        m->gm_t = c[2] ? exp(s[2] / c[2]) : NAN;
+    }
+    judge_methods(bs, ns, pr, np, o, r, xb, xn);
+    rc = joints_note(bs, ns, pr, np, r);
+    if (rc == 0 && r->timing && bs->has_samples && ns->has_samples) {
+        int reps = bt->maxrep < nt->maxrep ? bt->maxrep : nt->maxrep, need = 2;
+        while (need < OB_MW_EXACT_MAX && !(ob_mw_min_p(need, need) < o->alpha))
+            need++;
+        if (reps < need)
+            rc = ob_strlist_addf(&r->notes,
+                                 "with %d repetition(s) per side the smallest exact two-sided p is %.3g, so no "
+                                 "timing change can reach alpha %g: at least %d per side are needed (run --reps %d)",
+                                 reps, ob_mw_min_p(reps, reps), o->alpha, need, need);
+    }
+done:
+    free(pr);
+    free(matched);
+    free(xb);
+    free(xn);
+    if (rc)
+        snprintf(err, errlen, "out of memory");
+    return rc;
+}
+
+int ob_cmp_status(const ob_cmp_result *r)
+{
+    if (r->incomparable.n)
+        return 3;
+    return r->q_reg || (r->t_rows_count && r->t_reg) || r->m_reg || r->n_missing ? 1 : 0;
+}
+
+void ob_cmp_result_free(ob_cmp_result *r)
+{
+    if (!r)
+        return;
+    ob_strlist_free(&r->incomparable);
+    ob_strlist_free(&r->timing_diffs);
+    ob_strlist_free(&r->notes);
+    free(r->ch);
+    free(r->ms);
+    memset(r, 0, sizeof *r);
+}

@@ -1,0 +1,126 @@
+/*
+ * compare.h - the comparison behind `./offbench compare BASE NEW` (see
+ * cmd_compare.c for the command line, the exact rules and the report).
+ *
+ *   ob_cmp_load_side()  a run: results.csv, and meta.json / samples.csv when present
+ *   ob_cmp_context()    can the two runs be compared, and their timings?
+ *   ob_cmp_rows()       join on the job key; quality, timing and per-method verdicts
+ *   ob_cmp_write_md() / ob_cmp_write_csv()   the report
+ */
+#ifndef OB_COMPARE_H
+#define OB_COMPARE_H
+
+#include <stdio.h>
+
+#include "host/io/metajson.h"
+#include "host/io/results_csv.h"
+
+typedef struct {
+    double err_rtol, err_atol;   /* max_err changes: beyond base*(1+rtol)+atol */
+    double time_threshold;       /* timing changes: ratio beyond 1 + this */
+    double time_floor_ns;        /* both times at least this to be judged */
+    double alpha;                /* Mann–Whitney significance level */
+    int max_rows;                /* rows per report table */
+    int no_timing;               /* --no-timing */
+    int method_timing_only;      /* --method-timing-only: row-level timing
+                                    changes are reported but only per-method
+                                    verdicts count for the exit status */
+} ob_cmp_opts;
+
+/* The defaults: 1e-9, 1e-15, 0.10, 1e6 ns, 0.05, 50, timings on. */
+ob_cmp_opts ob_cmp_defaults(void);
+
+typedef struct {
+    const char *label;             /* "BASE" / "NEW" */
+    char results_path[4096], meta_path[4096], samples_path[4096];
+    ob_res_table res;
+    ob_json_flat meta;
+    int has_meta, has_samples;
+    char samples_note[512];        /* why samples.csv was ignored, or "" */
+} ob_cmp_side;
+
+/* Purpose: load one side: arg is a results.csv file or a run directory
+ *          (DIR/results.csv); meta.json and samples.csv are taken from the
+ *          same directory when they exist.
+ * Errors:  returns 0; -1 with the reason in err ("PATH: cannot open: ...",
+ *          "FILE:LINE: ...").  *s is always safe for ob_cmp_side_free(). */
+int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, char *err, size_t errlen);
+
+void ob_cmp_side_free(ob_cmp_side *s);
+
+typedef struct {
+    char **v;
+    int n, cap;
+} ob_strlist;
+
+typedef enum { OB_CH_REGRESSION, OB_CH_IMPROVEMENT, OB_CH_NEW, OB_CH_MISSING } ob_ch_kind;
+
+typedef struct {
+    ob_ch_kind kind;
+    const char *field;              /* status, ctrl_points, max_err, time */
+    const ob_res_row *base, *nw;    /* nw NULL: missing; base NULL: new */
+    double ratio;                   /* new/base (NAN when meaningless) */
+    double p;                       /* Mann–Whitney p, NAN when not tested */
+} ob_change;
+
+typedef struct {
+    const char *method;
+    int rows;                       /* joined rows */
+    int n_cp, n_err, n_t;           /* rows in each geometric mean */
+    double gm_cp, gm_err, gm_t;     /* NAN when no row */
+    double p;                       /* of the per-repetition totals; NAN: not tested */
+    int reps_base, reps_new;        /* totals tested */
+    int regressions, improvements;  /* row-level changes of this method */
+    int verdict;                    /* timing: 1 regression, -1 improvement, 0 neither */
+} ob_method_sum;
+
+typedef struct {
+    ob_strlist incomparable;        /* reasons: exit 3 */
+    ob_strlist timing_diffs;        /* "compiler: A vs B": timings not compared */
+    ob_strlist notes;               /* everything else the reader should know */
+    int checked;                    /* both meta.json present */
+    int timing;                     /* timings compared */
+    ob_change *ch;
+    int nch, capch;
+    ob_method_sum *ms;
+    int nms;
+    int joined, n_new, n_missing;
+    int q_reg, q_imp, t_reg, t_imp; /* row-level changes */
+    int t_rows_count;               /* row-level timing regressions count for
+                                       the exit status (not --method-timing-only) */
+    int m_reg, m_imp;               /* method-level timing verdicts */
+    int t_judged, t_tested, t_threshold_only;
+} ob_cmp_result;
+
+/* Purpose: the comparability checks (meta.json keys, method parameters and
+ *          versions, metric and split sets) and the timing context; fills
+ *          r->incomparable, r->timing_diffs, r->notes, r->checked, r->timing.
+ * Errors:  returns 0, or -1 with "out of memory" in err. */
+int ob_cmp_context(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
+                   char *err, size_t errlen);
+
+/* Purpose: join the rows and judge them (after ob_cmp_context); fills the
+ *          changes (regressions and improvements in BASE order, then new
+ *          rows in NEW order), the counts and the per-method summary.
+ * Errors:  returns 0, or -1 with "out of memory" in err. */
+int ob_cmp_rows(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
+                char *err, size_t errlen);
+
+/* Exit status of a finished comparison: 3 not comparable, 1 a regression
+ * (quality, timing of a row or a method, a missing row), else 0. */
+int ob_cmp_status(const ob_cmp_result *r);
+
+void ob_cmp_result_free(ob_cmp_result *r);
+
+/* Purpose: write the Markdown / CSV report (formats: cmd_compare.c).
+ * Errors:  returns 0, or -1 when the stream reports an error. */
+int ob_cmp_write_md(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o,
+                    const ob_cmp_result *r);
+int ob_cmp_write_csv(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o,
+                     const ob_cmp_result *r);
+
+/* Adds a formatted string to l; 0 or -1 (no memory). */
+int ob_strlist_addf(ob_strlist *l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void ob_strlist_free(ob_strlist *l);
+
+#endif

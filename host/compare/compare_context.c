@@ -1,0 +1,268 @@
+/*
+ * compare_context.c - loading the two runs of `compare` and the
+ * comparability checks (the rules are spelled out in cmd_compare.c).
+ */
+#include "host/compare/compare.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+ob_cmp_opts ob_cmp_defaults(void)
+{
+    ob_cmp_opts o = {.err_rtol = 1e-9, .err_atol = 1e-15, .time_threshold = 0.10, .time_floor_ns = 1e6,
+                     .alpha = 0.05, .max_rows = 50, .no_timing = 0, .method_timing_only = 0};
+    return o;
+}
+
+int ob_strlist_addf(ob_strlist *l, const char *fmt, ...)
+{
+    char buf[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    if (l->n == l->cap) {
+        int cap = l->cap ? 2 * l->cap : 8;
+        char **nv = realloc(l->v, (size_t)cap * sizeof *nv);
+        if (!nv)
+            return -1;
+        l->v = nv;
+        l->cap = cap;
+    }
+    char *s = malloc(strlen(buf) + 1);
+    if (!s)
+        return -1;
+    strcpy(s, buf);
+    l->v[l->n++] = s;
+    return 0;
+}
+
+void ob_strlist_free(ob_strlist *l)
+{
+    for (int i = 0; l && i < l->n; i++)
+        free(l->v[i]);
+    if (l) {
+        free(l->v);
+        memset(l, 0, sizeof *l);
+    }
+}
+
+/* ---- loading ---- */
+
+void ob_cmp_side_free(ob_cmp_side *s)
+{
+    if (!s)
+        return;
+    ob_res_free(&s->res);
+    ob_json_free(&s->meta);
+    s->has_meta = s->has_samples = 0;
+}
+
+static void drop_samples(ob_res_table *t)
+{
+    free(t->rep_t);
+    t->rep_t = NULL;
+    t->maxrep = 0;
+    for (int i = 0; i < t->n; i++) {
+        t->v[i].rep_t = NULL;
+        t->v[i].nsamples = 0;
+    }
+}
+
+int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    s->label = label;
+    struct stat st;
+    if (stat(arg, &st) != 0) {
+        snprintf(err, errlen, "%s: cannot open: %s", arg, strerror(errno));
+        return -1;
+    }
+    char dir[4096];
+    int too_long;
+    if (S_ISDIR(st.st_mode)) {
+        too_long = snprintf(dir, sizeof dir, "%s", arg) >= (int)sizeof dir ||
+                   snprintf(s->results_path, sizeof s->results_path, "%s/results.csv", arg) >=
+                       (int)sizeof s->results_path;
+    } else {
+        const char *slash = strrchr(arg, '/');
+        too_long = snprintf(s->results_path, sizeof s->results_path, "%s", arg) >= (int)sizeof s->results_path;
+        if (!slash)
+            snprintf(dir, sizeof dir, ".");
+        else if (slash == arg)
+            snprintf(dir, sizeof dir, "/");
+        else
+            snprintf(dir, sizeof dir, "%.*s", (int)(slash - arg), arg);
+    }
+    too_long = too_long ||
+               snprintf(s->meta_path, sizeof s->meta_path, "%s/meta.json", dir) >= (int)sizeof s->meta_path ||
+               snprintf(s->samples_path, sizeof s->samples_path, "%s/samples.csv", dir) >=
+                   (int)sizeof s->samples_path;
+    if (too_long) {
+        snprintf(err, errlen, "%.200s...: path too long", arg);
+        return -1;
+    }
+    if (ob_res_load(s->results_path, &s->res, err, errlen))
+        return -1;
+    if (access(s->meta_path, F_OK) == 0) {
+        if (ob_json_load(s->meta_path, &s->meta, err, errlen)) {
+            ob_cmp_side_free(s);
+            return -1;
+        }
+        s->has_meta = 1;
+    }
+    if (access(s->samples_path, F_OK) == 0) {
+        if (ob_res_load_samples(&s->res, s->samples_path, err, errlen)) {
+            ob_cmp_side_free(s);
+            return -1;
+        }
+        s->has_samples = s->res.maxrep > 0;
+    }
+    /* a samples.csv left over from an earlier run into the same directory */
+    const ob_json_entry *reps = s->has_samples ? ob_json_get(&s->meta, "reps") : NULL;
+    if (reps && reps->type == OB_JSON_NUMBER && strtod(reps->value, NULL) != s->res.maxrep) {
+        snprintf(s->samples_note, sizeof s->samples_note,
+                 "%.300s: ignored, it has %d repetitions but meta.json says reps %.40s", s->samples_path, s->res.maxrep,
+                 reps->value);
+        drop_samples(&s->res);
+        s->has_samples = 0;
+    }
+    return 0;
+}
+
+/* ---- context ---- */
+
+static const char *shown(const ob_json_entry *e)
+{
+    return e ? e->value : "(absent)";
+}
+
+/* 1 when method m has rows in t. */
+static int ran(const ob_res_table *t, const char *m)
+{
+    for (int i = 0; i < t->n; i++)
+        if (strcmp(t->v[i].method, m) == 0)
+            return 1;
+    return 0;
+}
+
+/* "a, b, c": the distinct values of a column (metric or split) of t. */
+static void value_set(const ob_res_table *t, int metric, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    size_t used = 0;
+    for (int i = 0; i < t->n; i++) {
+        const char *v = metric ? t->v[i].metric : t->v[i].split;
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++)
+            seen = strcmp(v, metric ? t->v[j].metric : t->v[j].split) == 0;
+        if (!seen && used < len)
+            used += (size_t)snprintf(buf + used, len - used, "%s%s", used ? "," : "", v);
+    }
+}
+
+static int shares_value(const ob_res_table *a, const ob_res_table *b, int metric)
+{
+    for (int i = 0; i < a->n; i++)
+        for (int j = 0; j < b->n; j++)
+            if (strcmp(metric ? a->v[i].metric : a->v[i].split, metric ? b->v[j].metric : b->v[j].split) == 0)
+                return 1;
+    return 0;
+}
+
+/* method_params.* or method_versions.* (group): a key of a method both runs
+ * ran must be on both sides with the same value. */
+static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *group, ob_cmp_result *r)
+{
+    const size_t gl = strlen(group);
+    int on_b = 0, on_n = 0, ignored = 0;
+    for (int i = 0; i < b->meta.n; i++)
+        on_b += strncmp(b->meta.v[i].path, group, gl) == 0 && b->meta.v[i].path[gl] == '.';
+    for (int i = 0; i < n->meta.n; i++)
+        on_n += strncmp(n->meta.v[i].path, group, gl) == 0 && n->meta.v[i].path[gl] == '.';
+    if (!on_b && !on_n)
+        return 0;
+    if (!on_b || !on_n)
+        return ob_strlist_addf(&r->notes, "%s is not recorded in the meta.json of %s: not checked", group,
+                               on_b ? n->label : b->label);
+    for (int side = 0; side < 2; side++) {
+        const ob_cmp_side *x = side ? n : b, *y = side ? b : n;
+        for (int i = 0; i < x->meta.n; i++) {
+            const ob_json_entry *e = &x->meta.v[i];
+            if (strncmp(e->path, group, gl) != 0 || e->path[gl] != '.')
+                continue;
+            const ob_json_entry *o = ob_json_get(&y->meta, e->path);
+            if (side == 1 && o)
+                continue; /* compared in the first pass */
+            if (ob_json_same(e, o))
+                continue;
+            char method[256];
+            const char *m = e->path + gl + 1, *dot = strchr(m, '.');
+            snprintf(method, sizeof method, "%.*s", (int)(dot ? (size_t)(dot - m) : strlen(m)), m);
+            if (!ran(&b->res, method) || !ran(&n->res, method)) {
+                ignored++;
+                continue;
+            }
+            const ob_json_entry *eb = side ? o : e, *en = side ? e : o;
+            if (ob_strlist_addf(&r->incomparable, "%s %s vs %s", e->path, shown(eb), shown(en)))
+                return -1;
+        }
+    }
+    if (ignored)
+        return ob_strlist_addf(&r->notes, "%d %s key(s) differ for methods not run on both sides (ignored)", ignored,
+                               group);
+    return 0;
+}
+
+int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, char *err,
+                   size_t errlen)
+{
+    static const char *const same[] = {"samples_per_segment", "max_depth", "max_segments", "inflection_split",
+                                       "seed"};
+    static const char *const timing[] = {"compiler", "cflags", "backend", "opencl.device", "opencl.driver",
+                                         "omp_threads", "cpu_model"};
+    char sb[512], sn[512];
+    int rc = 0;
+    r->checked = b->has_meta && n->has_meta;
+    r->timing = !o->no_timing;
+    if (r->checked) {
+        for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
+            const ob_json_entry *eb = ob_json_get(&b->meta, same[k]), *en = ob_json_get(&n->meta, same[k]);
+            if (!ob_json_same(eb, en))
+                rc |= ob_strlist_addf(&r->incomparable, "%s %s vs %s", same[k], shown(eb), shown(en));
+        }
+        rc |= check_group(b, n, "method_params", r);
+        rc |= check_group(b, n, "method_versions", r);
+        for (size_t k = 0; k < sizeof timing / sizeof timing[0]; k++) {
+            const ob_json_entry *eb = ob_json_get(&b->meta, timing[k]), *en = ob_json_get(&n->meta, timing[k]);
+            if (!ob_json_same(eb, en))
+                rc |= ob_strlist_addf(&r->timing_diffs, "%s: %s vs %s", timing[k], shown(eb), shown(en));
+        }
+        if (r->timing_diffs.n)
+            r->timing = 0;
+    } else {
+        rc |= ob_strlist_addf(&r->notes, "no meta.json beside %s%s%s: comparability could not be checked",
+                              b->has_meta ? "" : b->label, !b->has_meta && !n->has_meta ? " and " : "",
+                              n->has_meta ? "" : n->label);
+    }
+    for (int side = 0; side < 2; side++)
+        if ((side ? n : b)->samples_note[0])
+            rc |= ob_strlist_addf(&r->notes, "%s", (side ? n : b)->samples_note);
+    if (b->res.n && n->res.n) {
+        for (int metric = 1; metric >= 0; metric--)
+            if (!shares_value(&b->res, &n->res, metric)) {
+                value_set(&b->res, metric, sb, sizeof sb);
+                value_set(&n->res, metric, sn, sizeof sn);
+                rc |= ob_strlist_addf(&r->incomparable, "%s differs: %s vs %s", metric ? "metric" : "split", sb, sn);
+            }
+    }
+    if (rc) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    return 0;
+}

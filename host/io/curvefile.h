@@ -1,0 +1,48 @@
+/*
+ * curvefile.h - the line-based `.curves` format (see README "Curve files").
+ *
+ *   curve ID                  # letters, digits, '_', '-', '.', '/'
+ *     source TEXT
+ *     family NAME             # optional, default "published"
+ *     bezier DEGREE           # or: bspline DEGREE
+ *     knots K0 K1 ...         # bspline only (may span several `knots` lines)
+ *     point X Y [W]           # one per control point, W > 0 (default 1)
+ *     offset D [D ...]        # one or more signed distances, d != 0
+ *   end
+ *
+ * '#' starts a comment, blank lines are ignored, CRLF is accepted.
+ */
+#ifndef OB_CURVEFILE_H
+#define OB_CURVEFILE_H
+
+#include <stddef.h>
+#include "methods/core/curve.h"
+
+typedef struct {
+    ob_curve *v;
+    int n, cap;
+} ob_curveset;
+
+/* Always safe to call (also on a zeroed set). */
+void ob_curveset_free(ob_curveset *s);
+
+/* Purpose: parse curves from a text buffer and append them to *set.
+ * Inputs:  name, used in messages as "NAME:LINE: message".
+ * Errors:  returns 0, or -1 after writing one "NAME:LINE: message" line into
+ *          err (the first error; nothing is appended then).  Duplicate ids
+ *          against curves already in *set are errors.  Never crashes on any
+ *          input bytes. */
+int ob_curves_parse(const char *text, size_t len, const char *name,
+                    ob_curveset *set, char *err, size_t errlen);
+
+/* Same, reading the file at path (messages name the path). */
+int ob_curves_load_file(const char *path, ob_curveset *set, char *err, size_t errlen);
+
+/* Purpose: load every `*.curves` file in directory dir, in name order.
+ * Errors:  -1 with message as above; -1 with "DIR: ..." if unreadable. */
+int ob_curves_load_dir(const char *dir, ob_curveset *set, char *err, size_t errlen);
+
+/* Index of the curve with this id, or -1. */
+int ob_curveset_find(const ob_curveset *set, const char *id);
+
+#endif

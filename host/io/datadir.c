@@ -1,0 +1,80 @@
+/*
+ * datadir.c - see datadir.h.
+ */
+#include "host/io/datadir.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+struct ob_embedded_file {
+    const char *name;
+    const char *text;
+};
+extern const struct ob_embedded_file ob_embedded_files[];
+
+static int is_dir(const char *p)
+{
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, char *err, size_t errlen)
+{
+    char dir[4096];
+    const char *env = getenv("OFFBENCH_DATA");
+    if (env && *env) {
+        snprintf(where, wlen, "%s", env);
+        return ob_curves_load_dir(env, set, err, errlen);
+    }
+    if (is_dir("datasets")) {
+        snprintf(where, wlen, "datasets");
+        return ob_curves_load_dir("datasets", set, err, errlen);
+    }
+    ssize_t n = readlink("/proc/self/exe", dir, sizeof dir - 16);
+    if (n > 0) {
+        dir[n] = '\0';
+        char *slash = strrchr(dir, '/');
+        if (slash) {
+            strcpy(slash + 1, "datasets");
+            if (is_dir(dir)) {
+                snprintf(where, wlen, "%s", dir);
+                return ob_curves_load_dir(dir, set, err, errlen);
+            }
+        }
+    }
+    snprintf(where, wlen, "embedded copy of datasets/");
+    for (int i = 0; ob_embedded_files[i].name; i++) {
+        const char *t = ob_embedded_files[i].text;
+        if (ob_curves_parse(t, strlen(t), ob_embedded_files[i].name, set, err, errlen))
+            return -1;
+    }
+    return 0;
+}
+
+int ob_find_tree_file(const char *rel, const char *env, char *path, size_t len)
+{
+    const char *e = env ? getenv(env) : NULL;
+    if (e && *e) {
+        snprintf(path, len, "%s", e);
+        return 0;
+    }
+    if (access(rel, R_OK) == 0) {
+        snprintf(path, len, "%s", rel);
+        return 0;
+    }
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return -1;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return -1;
+    slash[1] = '\0';
+    if ((size_t)snprintf(path, len, "%s%s", exe, rel) >= len || access(path, R_OK) != 0)
+        return -1;
+    return 0;
+}

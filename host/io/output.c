@@ -1,0 +1,266 @@
+/*
+ * output.c - results.csv and meta.json writers.  Rows are written in job
+ * order, so a results.csv is identical (timing columns aside) for any thread
+ * count.
+ */
+#include "host/io/output.h"
+
+#include <inttypes.h>
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+#include <time.h>
+
+#include "buildinfo.h"
+#include "host/io/columns.h"
+#include "host/io/numfmt.h"
+
+#include <flint/flint.h>
+
+void ob_csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s == '\r' || *s == '\n' ? ' ' : *s, f);
+    }
+    fputc('"', f);
+}
+
+int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs)
+{
+    fprintf(f, "%s\n", ob_results_header());
+    for (size_t i = 0; i < njobs; i++)
+        ob_write_result_row(f, &jobs[i]);
+    return ferror(f) ? -1 : 0;
+}
+
+/* A number of the row in full precision; empty when NaN (none measured). */
+static void put_double(FILE *f, double v)
+{
+    char b[40] = "";
+    if (!isnan(v))
+        ob_fmt_double(b, sizeof b, v);
+    fputs(b, f);
+}
+
+/* Column c of job j's row (columns.h). */
+static void put_field(FILE *f, const ob_job *j, ob_col c)
+{
+    const ob_curve *cv = j->curve;
+    switch (c) {
+    case OB_COL_CURVE: ob_csv_field(f, cv->id); break;
+    case OB_COL_D: put_double(f, j->d); break;
+    case OB_COL_METHOD: fputs(j->method->name, f); break;
+    case OB_COL_METRIC: fputs(ob_metric_name(j->metric), f); break;
+    case OB_COL_SPLIT: fputs(ob_split_name(j->split), f); break;
+    case OB_COL_TOL: put_double(f, j->tol); break;
+    case OB_COL_CTRL_POINTS: fprintf(f, "%ld", j->ctrl_points); break;
+    case OB_COL_SEGMENTS: fprintf(f, "%d", j->segments); break;
+    case OB_COL_OUT_DEGREE: fprintf(f, "%d", j->out_degree); break;
+    case OB_COL_MAX_ERR: put_double(f, j->max_err); break;
+    case OB_COL_STATUS: fputs(ob_status_name(j->status), f); break;
+    case OB_COL_FIT_NS: fprintf(f, "%.0f", j->fit_ns); break;
+    case OB_COL_EVAL_NS: fprintf(f, "%.0f", j->eval_ns); break;
+    case OB_COL_MESSAGE: ob_csv_field(f, j->message); break;
+    case OB_COL_FAMILY: ob_csv_field(f, cv->family ? cv->family : ""); break;
+    case OB_COL_OFFSET_DEGREE:
+        if (cv->offset_known)
+            fprintf(f, "%d", cv->offset_degree);
+        break;
+    case OB_COL_OFFSET_RATIONAL:
+        if (cv->offset_known)
+            fputs(cv->offset_rational ? "yes" : "no", f);
+        break;
+    /* the joints (methods/driver/joints.h): empty when none was measured */
+    case OB_COL_MAX_GAP: put_double(f, j->max_gap); break;
+    case OB_COL_MAX_KINK: put_double(f, j->max_kink); break;
+    case OB_COL_CONTINUITY: fputs(ob_cont_name(j->continuity), f); break;
+    case OB_NCOLS: break;
+    }
+}
+
+int ob_write_result_row(FILE *f, const ob_job *j)
+{
+    for (int c = 0; c < OB_NCOLS; c++) {
+        if (c)
+            fputc(',', f);
+        put_field(f, j, (ob_col)c);
+    }
+    fputc('\n', f);
+    return ferror(f) ? -1 : 0;
+}
+
+const char OB_SAMPLES_HEADER[] = "curve,d,method,metric,split,tol,rep,fit_ns,eval_ns";
+
+int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const double *fit, const double *eval)
+{
+    fprintf(f, "%s\n", OB_SAMPLES_HEADER);
+    for (size_t i = 0; i < njobs; i++)
+        ob_write_job_samples(f, &jobs[i], reps, fit + i, eval + i, njobs);
+    return ferror(f) ? -1 : 0;
+}
+
+int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, const double *eval, size_t stride)
+{
+    char d[40], tol[40];
+    ob_fmt_double(d, sizeof d, j->d);
+    ob_fmt_double(tol, sizeof tol, j->tol);
+    for (int r = 0; r < reps; r++) {
+        ob_csv_field(f, j->curve->id);
+        fprintf(f, ",%s,%s,%s,%s,%s,%d,%.0f,%.0f\n", d, j->method->name, ob_metric_name(j->metric),
+                ob_split_name(j->split), tol, r + 1, fit[(size_t)r * stride], eval[(size_t)r * stride]);
+    }
+    return ferror(f) ? -1 : 0;
+}
+
+void ob_json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            fprintf(f, "\\%c", *p);
+        else if (*p < 0x20)
+            fprintf(f, "\\u%04x", *p);
+        else
+            fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+/* The CPU model (first "model name" of /proc/cpuinfo), or "unknown": timings
+ * of runs on different CPUs are not compared. */
+static void cpu_model(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10) != 0)
+            continue;
+        const char *p = strchr(line, ':');
+        if (!p)
+            break;
+        p++;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        snprintf(buf, len, "%s", p);
+        buf[strcspn(buf, "\r\n")] = '\0';
+        break;
+    }
+    fclose(f);
+}
+
+int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
+                  double wall_seconds)
+{
+    char ts[64];
+    time_t now = time(NULL);
+    struct tm tmv;
+    gmtime_r(&now, &tmv);
+    strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%SZ", &tmv);
+    fprintf(f, "{\n  \"program\": \"offbench\",\n  \"git_commit\": ");
+    ob_json_string(f, OB_GIT_COMMIT);
+    fprintf(f, ",\n  \"git_dirty\": %s,\n  \"compiler\": ", OB_GIT_DIRTY ? "true" : "false");
+    ob_json_string(f, "gcc " __VERSION__);
+    fprintf(f, ",\n  \"cflags\": ");
+    ob_json_string(f, OB_CFLAGS);
+    const ob_backend_info *b = &o->binfo;
+    fprintf(f, ",\n  \"backend\": \"%s\",\n  \"opencl\": ", b->opencl ? "opencl" : "cpu");
+    if (b->opencl) {
+        fprintf(f, "{\"platform\": ");
+        ob_json_string(f, b->platform);
+        fprintf(f, ", \"device\": ");
+        ob_json_string(f, b->device);
+        fprintf(f, ", \"driver\": ");
+        ob_json_string(f, b->driver);
+        fprintf(f, ", \"kernels\": ");
+        ob_json_string(f, b->kernels);
+        fprintf(f, ", \"build_seconds\": %.3f, \"cpu_fallback_batches\": %ld},\n", b->build_seconds, b->fallbacks);
+    } else {
+        fprintf(f, "null,\n  \"cpu_because\": ");
+        ob_json_string(f, b->why_cpu);
+        fprintf(f, ",\n");
+    }
+    char cpu[256];
+    cpu_model(cpu, sizeof cpu);
+    fprintf(f, "  \"cpu_model\": ");
+    ob_json_string(f, cpu);
+    fprintf(f, ",\n  \"omp_threads\": %d,\n", omp_get_max_threads());
+    if (o->random_n > 0)
+        fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"random_curves\": %ld,\n", o->random_seed, o->random_n);
+    else
+        fprintf(f, "  \"seed\": null,\n");
+    fprintf(f, "  \"samples_per_segment\": %d,\n", o->driver.samples);
+    if (o->driver.job_timeout_ns > 0)
+        fprintf(f, "  \"job_timeout_seconds\": %.6g,\n", o->driver.job_timeout_ns * 1e-9);
+    else
+        fprintf(f, "  \"job_timeout_seconds\": null,\n");
+    fprintf(f, "  \"max_depth\": %d,\n  \"max_segments\": %d,\n  \"inflection_split\": %s,\n",
+            o->driver.max_depth, o->driver.max_segments, o->driver.inflections ? "true" : "false");
+    fprintf(f, "  \"method_params\": {");
+    int first = 1;
+    for (int m = 0; ob_methods[m]; m++)
+        for (int k = 0; k < ob_methods[m]->nparams; k++) {
+            char key[128], num[40];
+            snprintf(key, sizeof key, "%s.%s", ob_methods[m]->name, ob_methods[m]->params[k].name);
+            ob_fmt_double(num, sizeof num, o->params[m * OB_MAX_PARAMS + k]);
+            fprintf(f, "%s", first ? "" : ", ");
+            ob_json_string(f, key);
+            fprintf(f, ": %s", num);
+            first = 0;
+        }
+    fprintf(f, "},\n  \"method_versions\": {");
+    for (int m = 0; ob_methods[m]; m++) {
+        fprintf(f, "%s", m ? ", " : "");
+        ob_json_string(f, ob_methods[m]->name);
+        fprintf(f, ": %d", ob_methods[m]->version);
+    }
+    fprintf(f, "},\n");
+    /* timings are medians over reps timed runs after a warm-up (1: one run) */
+    fprintf(f, "  \"timing\": {\"fit_ns\": \"CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID) in the "
+               "method's fit calls of the job, summed\", \"eval_ns\": \"measuring the job's pieces: on the CPU the "
+               "thread CPU time of each measurement, summed; with the OpenCL backend each launch's wall time shared "
+               "among its records by the floating-point operations each took (counted by the kernel), summed\", "
+               "\"with_reps\": \"the median over the timed repetitions; samples.csv has each\"},\n");
+    fprintf(f, "  \"reps\": %d,\n  \"warmup\": %s,\n  \"rep_mismatches\": %ld,\n", o->reps > 0 ? o->reps : 1,
+            o->reps > 0 ? "true" : "false", o->rep_mismatches);
+    fprintf(f, "  \"offset_degree\": \"exact (FLINT %s): 2n + 2tau - mu of each Bezier segment, the largest per curve, "
+               "on the control points as stored (each double is exactly the rational m 2^e)\",\n", FLINT_VERSION);
+    /* the thresholds of the joint columns (methods/driver/joints.h) */
+    fprintf(f, "  \"joints\": {\"open_gap_rel\": %.17g, \"size\": \"the diagonal of the base curve's control-point "
+               "bounding box grown by |d| on every side\", \"g1_kink_rad\": %.17g, \"doc\": \"max_gap: the largest "
+               "distance between the end of a piece and the start of the next; a joint farther apart than "
+               "open_gap_rel * size is open and counts two control points; max_kink: the largest angle between "
+               "their end tangents; continuity: open (a joint open), G0 (closed, a kink over g1_kink_rad), G1, or "
+               "empty (no joint); joints at a corner or gap of the base curve are not measured\"},\n",
+            OB_JOINT_GAP_REL, OB_JOINT_KINK_RAD);
+    fprintf(f, "  \"data\": ");
+    ob_json_string(f, data_source);
+    fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
+    /* the shard lines are rewritten by merge (cmd_merge.c): keep them one
+     * key per line */
+    if (o->mpi_ranks > 1)
+        fprintf(f, "  \"shard\": null,\n  \"mpi_ranks\": %d,\n", o->mpi_ranks);
+    else if (o->shard_n > 0)
+        fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
+    else
+        fprintf(f, "  \"shard\": null,\n");
+    fprintf(f, "  \"jobs_total\": %zu,\n  \"plan_hash\": \"%016" PRIx64 "\",\n  \"plan_seed\": \"%016" PRIx64 "\",\n",
+            o->jobs_total, o->plan_hash, o->plan_seed);
+    fprintf(f, "  \"wall_seconds\": %.3f,\n  \"argv\": [", wall_seconds);
+    for (int i = 0; i < o->argc; i++) {
+        if (i)
+            fputs(", ", f);
+        ob_json_string(f, o->argv[i]);
+    }
+    fprintf(f, "],\n  \"timestamp\": \"%s\"\n}\n", ts);
+    return ferror(f) ? -1 : 0;
+}

@@ -1,0 +1,42 @@
+/*
+ * output.h - results.csv and meta.json of a run.
+ */
+#ifndef OB_OUTPUT_H
+#define OB_OUTPUT_H
+
+#include <stdio.h>
+
+#include "methods/driver/driver.h"
+#include "host/run/options.h"
+
+/* Purpose: write one row per job, in job order, to f.  Returns 0 or -1 on a
+ * write error. */
+int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs);
+
+/* Purpose: write one job's row (no header) to f.  Returns 0 or -1. */
+int ob_write_result_row(FILE *f, const ob_job *j);
+
+/* The samples.csv header line (no newline). */
+extern const char OB_SAMPLES_HEADER[];
+
+/* Purpose: write samples.csv of a run with --reps: one row per job and
+ * repetition (job-major, rep = 1..reps), the key columns of results.csv and
+ * that repetition's fit_ns and eval_ns, taken from fit[r * njobs + i] and
+ * eval[r * njobs + i].  Returns 0 or -1 on a write error. */
+int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const double *fit, const double *eval);
+
+/* Purpose: one job's samples.csv rows (no header): repetition r's timings
+ *          at fit[r * stride], eval[r * stride].  Returns 0 or -1. */
+int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, const double *eval, size_t stride);
+
+/* Purpose: write meta.json: what makes two runs comparable (build, backend,
+ * threads, samples, limits, argv, time).  Returns 0 or -1. */
+int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
+                  double wall_seconds);
+
+/* Writes s as a CSV field (quoted when it holds a comma, quote or newline). */
+void ob_csv_field(FILE *f, const char *s);
+/* Writes s as a JSON string literal. */
+void ob_json_string(FILE *f, const char *s);
+
+#endif

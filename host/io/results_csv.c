@@ -1,0 +1,497 @@
+/*
+ * results_csv.c - see results_csv.h.
+ *
+ * The file is read into one buffer and split in place: a field's unquoted
+ * text is written back over its source (it is never longer) and
+ * NUL-terminated, so rows point into the buffer and freeing is one free().
+ */
+#include "host/io/results_csv.h"
+
+#include "host/io/columns.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/io/numfmt.h"
+#include "host/io/slurp.h"
+
+enum { MAX_REP = 100000 };
+
+typedef struct {
+    char *s, *end;      /* the unread rest of the buffer */
+    int line;           /* line number at s */
+    const char *name;
+    char **f;           /* field pointers, room for nmax */
+    int nmax;
+    char *err;
+    size_t errlen;
+} csv_reader;
+
+static int csv_fail(csv_reader *r, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static int csv_fail(csv_reader *r, int line, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    snprintf(r->err, r->errlen, "%s:%d: %s", r->name, line, msg);
+    return -1;
+}
+
+/* The next record (blank lines skipped) into r->f: returns its field count
+ * (fields past r->nmax are counted, not kept) with its first line in *line,
+ * 0 at the end of the text, -1 after csv_fail(). */
+static int csv_next(csv_reader *r, int *line)
+{
+    while (r->s < r->end && (*r->s == '\n' || *r->s == '\r')) {
+        if (*r->s == '\r' && r->s + 1 < r->end && r->s[1] == '\n')
+            r->s++;
+        r->s++;
+        r->line++;
+    }
+    if (r->s >= r->end)
+        return 0;
+    *line = r->line;
+    char *s = r->s, *w = r->s;
+    int nf = 0;
+    for (;;) {
+        if (nf < r->nmax)
+            r->f[nf] = w;
+        nf++;
+        if (s < r->end && *s == '"') {
+            s++;
+            for (;;) {
+                if (s >= r->end)
+                    return csv_fail(r, *line, "unterminated quote");
+                if (*s == '"') {
+                    if (s + 1 < r->end && s[1] == '"') {
+                        *w++ = '"';
+                        s += 2;
+                        continue;
+                    }
+                    s++;
+                    break;
+                }
+                if (*s == '\n')
+                    r->line++;
+                *w++ = *s++;
+            }
+            if (s < r->end && *s != ',' && *s != '\n' && *s != '\r')
+                return csv_fail(r, *line, "text after the closing quote of field %d", nf);
+        } else {
+            while (s < r->end && *s != ',' && *s != '\n' && *s != '\r') {
+                if (*s == '"')
+                    return csv_fail(r, *line, "a quote inside unquoted field %d", nf);
+                *w++ = *s++;
+            }
+        }
+        char c = s < r->end ? *s : '\n';
+        *w++ = '\0'; /* w <= s: at worst this overwrites the delimiter, read above */
+        if (s < r->end)
+            s++;
+        if (c == ',') {
+            w = s;
+            continue;
+        }
+        if (c == '\r' && s < r->end && *s == '\n')
+            s++;
+        r->line++;
+        r->s = s;
+        return nf;
+    }
+}
+
+/* Reads the header: at[c] = the index of column cols[c] (-1 when absent and
+ * optional, an error when required).  Returns the field count, or -1. */
+static int csv_header(csv_reader *r, const char *const *cols, int ncols, int nrequired, int *at)
+{
+    int line = r->line;
+    if (r->end - r->s >= 3 && memcmp(r->s, "\xef\xbb\xbf", 3) == 0)
+        r->s += 3;
+    /* count the header's fields first: they size r->f */
+    int n = 1, inq = 0;
+    for (const char *p = r->s; p < r->end && (inq || (*p != '\n' && *p != '\r')); p++) {
+        inq ^= *p == '"';
+        n += !inq && *p == ',';
+    }
+    r->f = malloc((size_t)(n + 1) * sizeof *r->f);
+    if (!r->f)
+        return csv_fail(r, r->line, "out of memory");
+    r->nmax = n + 1;
+    int nh = csv_next(r, &line);
+    if (nh < 0)
+        return -1;
+    if (nh == 0)
+        return csv_fail(r, line, "empty file, expected a header line");
+    if (nh > r->nmax)
+        return csv_fail(r, line, "malformed header");
+    for (int c = 0; c < ncols; c++) {
+        at[c] = -1;
+        for (int i = 0; i < nh; i++) {
+            if (strcmp(r->f[i], cols[c]) != 0)
+                continue;
+            if (at[c] >= 0)
+                return csv_fail(r, line, "column '%s' appears twice in the header", cols[c]);
+            at[c] = i;
+        }
+        if (at[c] < 0 && c < nrequired)
+            return csv_fail(r, line, "no column '%s' in the header", cols[c]);
+    }
+    return nh;
+}
+
+/* A whole number in [lo, hi]. */
+static int parse_long(const char *s, long lo, long hi, long *v)
+{
+    char *e;
+    errno = 0;
+    *v = strtol(s, &e, 10);
+    return !*s || *e || errno || *v < lo || *v > hi ? -1 : 0;
+}
+
+/* max_err: a number >= 0, inf, or nan / empty (NAN). */
+static int parse_err(const char *s, double *v)
+{
+    char *e;
+    if (!*s) {
+        *v = NAN;
+        return 0;
+    }
+    *v = strtod(s, &e);
+    return *e || *v < 0 ? -1 : 0;
+}
+
+static int parse_ns(const char *s, double *v)
+{
+    return ob_parse_double(s, v) || *v < 0 ? -1 : 0;
+}
+
+int ob_res_key_cmp(const ob_res_row *a, const ob_res_row *b)
+{
+    int c = strcmp(a->curve, b->curve);
+    if (c)
+        return c;
+    if (a->d != b->d)
+        return a->d < b->d ? -1 : 1;
+    if ((c = strcmp(a->method, b->method)) || (c = strcmp(a->metric, b->metric)) ||
+        (c = strcmp(a->split, b->split)))
+        return c;
+    if (a->tol != b->tol)
+        return a->tol < b->tol ? -1 : 1;
+    return 0;
+}
+
+static int cmp_ptr(const void *a, const void *b)
+{
+    const ob_res_row *x = *(const ob_res_row *const *)a, *y = *(const ob_res_row *const *)b;
+    int c = ob_res_key_cmp(x, y);
+    return c ? c : (x->line > y->line) - (x->line < y->line);
+}
+
+const ob_res_row *ob_res_find(const ob_res_table *t, const ob_res_row *key)
+{
+    size_t lo = 0, hi = (size_t)t->n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        int c = ob_res_key_cmp(t->sorted[mid], key);
+        if (c == 0)
+            return t->sorted[mid];
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return NULL;
+}
+
+void ob_res_free(ob_res_table *t)
+{
+    if (!t)
+        return;
+    free(t->text);
+    free(t->v);
+    free(t->sorted);
+    free(t->rep_t);
+    memset(t, 0, sizeof *t);
+}
+
+/* Fills the key fields of row from the fields f at the columns at[0..5]
+ * (curve, d, method, metric, split, tol); the reason, or NULL. */
+static const char *read_key(char **f, const int *at, ob_res_row *row)
+{
+    row->curve = f[at[0]];
+    row->d_text = f[at[1]];
+    row->method = f[at[2]];
+    row->metric = f[at[3]];
+    row->split = f[at[4]];
+    row->tol_text = f[at[5]];
+    if (!*row->curve || !*row->method || !*row->metric || !*row->split)
+        return "curve, method, metric and split must not be empty";
+    if (ob_parse_double(row->d_text, &row->d))
+        return "d is not a finite number";
+    if (ob_parse_double(row->tol_text, &row->tol))
+        return "tol is not a finite number";
+    return NULL;
+}
+
+/* The next data row, which must have the header's nh fields: 1, 0 at the
+ * end, or -1 after csv_fail(). */
+static int csv_row(csv_reader *r, int *line, int nh)
+{
+    const int nf = csv_next(r, line);
+    if (nf > 0 && nf != nh) {
+        csv_fail(r, *line, "%d fields, the header has %d", nf, nh);
+        return -1;
+    }
+    return nf > 0 ? 1 : nf;
+}
+
+/* Parses buf[0..len) (owned by t from here on, with room for a NUL). */
+static int parse_owned(char *buf, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
+                       size_t errlen)
+{
+    /* required, then the optional joint columns (NREQ on) */
+    /* the names from the column table (columns.h), in the order of at[] */
+    const char *const cols[] = {
+        ob_columns[OB_COL_CURVE].name,      ob_columns[OB_COL_D].name,          ob_columns[OB_COL_METHOD].name,
+        ob_columns[OB_COL_METRIC].name,     ob_columns[OB_COL_SPLIT].name,      ob_columns[OB_COL_TOL].name,
+        ob_columns[OB_COL_CTRL_POINTS].name, ob_columns[OB_COL_SEGMENTS].name,  ob_columns[OB_COL_OUT_DEGREE].name,
+        ob_columns[OB_COL_MAX_ERR].name,    ob_columns[OB_COL_STATUS].name,     ob_columns[OB_COL_FIT_NS].name,
+        ob_columns[OB_COL_EVAL_NS].name,    ob_columns[OB_COL_MESSAGE].name,    ob_columns[OB_COL_MAX_GAP].name,
+        ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name};
+    enum { NCOL = sizeof cols / sizeof cols[0], NREQ = 14 };
+    int at[NCOL];
+    memset(t, 0, sizeof *t);
+    t->text = buf;
+    csv_reader r = {buf, buf + len, first_line, name, NULL, 0, err, errlen};
+    int cap = 0, line = 0;
+    int nh = csv_header(&r, cols, NCOL, NREQ, at);
+    if (nh < 0)
+        goto fail;
+    const int njc = (at[14] >= 0) + (at[15] >= 0) + (at[16] >= 0);
+    if (njc != 0 && njc != 3) {
+        csv_fail(&r, first_line, "the joint columns max_gap, max_kink and continuity come together (this header has %d of them)",
+                 njc);
+        goto fail;
+    }
+    t->has_joints = njc == 3;
+    for (;;) {
+        const int got = csv_row(&r, &line, nh);
+        if (got == 0)
+            break;
+        if (got < 0)
+            goto fail;
+        if (t->n == cap) {
+            cap = cap ? 2 * cap : 256;
+            ob_res_row *nv = realloc(t->v, (size_t)cap * sizeof *nv);
+            if (!nv) {
+                csv_fail(&r, line, "out of memory");
+                goto fail;
+            }
+            t->v = nv;
+        }
+        ob_res_row *row = &t->v[t->n];
+        memset(row, 0, sizeof *row);
+        row->line = line;
+        char **f = r.f;
+        const char *bad = read_key(f, at, row);
+        row->status = f[at[10]];
+        row->message = f[at[13]];
+        row->max_err_text = f[at[9]];
+        row->max_gap = row->max_kink = NAN;
+        row->continuity = t->has_joints ? f[at[16]] : "";
+        if (bad)
+            ;
+        else if (parse_long(f[at[6]], 0, 1000000000L, &row->ctrl_points))
+            bad = "ctrl_points is not a whole number >= 0";
+        else if (parse_long(f[at[7]], 0, 1000000000L, &row->segments) ||
+                 parse_long(f[at[8]], 0, 1000000L, &row->out_degree))
+            bad = "segments and out_degree must be whole numbers >= 0";
+        else if (parse_err(row->max_err_text, &row->max_err))
+            bad = "max_err is not a number >= 0 (nan or empty for none)";
+        else if (t->has_joints && (parse_err(f[at[14]], &row->max_gap) || parse_err(f[at[15]], &row->max_kink)))
+            bad = "max_gap and max_kink must be numbers >= 0 (empty for none)";
+        else if (t->has_joints && strcmp(row->continuity, "") && strcmp(row->continuity, "open") &&
+                 strcmp(row->continuity, "G0") && strcmp(row->continuity, "G1"))
+            bad = "continuity is not empty, open, G0 or G1";
+        if (bad)
+            ;
+        else if (parse_ns(f[at[11]], &row->fit_ns) || parse_ns(f[at[12]], &row->eval_ns))
+            bad = "fit_ns and eval_ns must be finite numbers >= 0";
+        else if (strcmp(row->status, "ok") && strcmp(row->status, "limit") && strcmp(row->status, "fail") &&
+                 strcmp(row->status, "skip") && strcmp(row->status, "timeout"))
+            bad = "status is not ok, limit, fail, skip or timeout";
+        if (bad) {
+            csv_fail(&r, line, "%s", bad);
+            goto fail;
+        }
+        t->n++;
+    }
+    t->sorted = malloc((size_t)(t->n ? t->n : 1) * sizeof *t->sorted);
+    if (!t->sorted) {
+        csv_fail(&r, line, "out of memory");
+        goto fail;
+    }
+    for (int i = 0; i < t->n; i++)
+        t->sorted[i] = &t->v[i];
+    qsort(t->sorted, (size_t)t->n, sizeof *t->sorted, cmp_ptr);
+    for (int i = 1; i < t->n; i++)
+        if (ob_res_key_cmp(t->sorted[i - 1], t->sorted[i]) == 0) {
+            const ob_res_row *a = t->sorted[i - 1], *b = t->sorted[i];
+            csv_fail(&r, b->line, "duplicate job %s,%s,%s,%s,%s,%s (first on line %d)", b->curve, b->d_text,
+                     b->method, b->metric, b->split, b->tol_text, a->line);
+            goto fail;
+        }
+    free(r.f);
+    return 0;
+fail:
+    free(r.f);
+    ob_res_free(t);
+    return -1;
+}
+
+int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen)
+{
+    return ob_res_parse_at(text, len, name, 1, t, err, errlen);
+}
+
+int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
+                    size_t errlen)
+{
+    memset(t, 0, sizeof *t);
+    char *buf = malloc(len + 1);
+    if (!buf) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return -1;
+    }
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    return parse_owned(buf, len, name, first_line, t, err, errlen);
+}
+
+int ob_res_load(const char *path, ob_res_table *t, char *err, size_t errlen)
+{
+    char *buf;
+    size_t len;
+    memset(t, 0, sizeof *t);
+    if (ob_slurp(path, &buf, &len, err, errlen))
+        return -1;
+    return parse_owned(buf, len, path, 1, t, err, errlen);
+}
+
+typedef struct {
+    int row, rep, line;
+    double t;
+} sample;
+
+static int attach_owned(ob_res_table *t, char *buf, size_t len, const char *name, char *err, size_t errlen)
+{
+    static const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", "rep", "fit_ns", "eval_ns"};
+    enum { NCOL = sizeof cols / sizeof cols[0] };
+    int at[NCOL], line = 0, n = 0, cap = 0, maxrep = 0, rc = -1;
+    sample *s = NULL;
+    double *rep_t = NULL;
+    csv_reader r = {buf, buf + len, 1, name, NULL, 0, err, errlen};
+    int nh = csv_header(&r, cols, NCOL, NCOL, at);
+    if (nh < 0)
+        goto done;
+    for (;;) {
+        const int got = csv_row(&r, &line, nh);
+        if (got == 0)
+            break;
+        if (got < 0)
+            goto done;
+        ob_res_row key;
+        long rep;
+        double fit, eval;
+        const char *bad = read_key(r.f, at, &key);
+        const ob_res_row *row = NULL;
+        if (bad)
+            ;
+        else if (parse_long(r.f[at[6]], 1, MAX_REP, &rep))
+            bad = "rep is not a whole number from 1 to 100000";
+        else if (parse_ns(r.f[at[7]], &fit) || parse_ns(r.f[at[8]], &eval))
+            bad = "fit_ns and eval_ns must be finite numbers >= 0";
+        else if (!(row = ob_res_find(t, &key)))
+            bad = "this job is not in results.csv";
+        if (bad) {
+            csv_fail(&r, line, "%s", bad);
+            goto done;
+        }
+        if (n == cap) {
+            cap = cap ? 2 * cap : 1024;
+            sample *ns = realloc(s, (size_t)cap * sizeof *ns);
+            if (!ns) {
+                csv_fail(&r, line, "out of memory");
+                goto done;
+            }
+            s = ns;
+        }
+        s[n++] = (sample){(int)(row - t->v), (int)rep, line, fit + eval};
+        if (rep > maxrep)
+            maxrep = (int)rep;
+    }
+    if (maxrep > 0) {
+        size_t cells = (size_t)t->n * (size_t)maxrep;
+        if (cells / (size_t)maxrep != (size_t)t->n || cells > ((size_t)1 << 28) ||
+            !(rep_t = malloc(cells * sizeof *rep_t))) {
+            csv_fail(&r, line, "out of memory (%d rows x %d repetitions)", t->n, maxrep);
+            goto done;
+        }
+        for (size_t i = 0; i < cells; i++)
+            rep_t[i] = NAN;
+        for (int i = 0; i < n; i++) {
+            double *cell = &rep_t[(size_t)s[i].row * (size_t)maxrep + (size_t)(s[i].rep - 1)];
+            if (!isnan(*cell)) {
+                csv_fail(&r, s[i].line, "repetition %d of this job given twice", s[i].rep);
+                goto done;
+            }
+            *cell = s[i].t;
+        }
+    }
+    free(t->rep_t);
+    t->rep_t = rep_t;
+    t->maxrep = maxrep;
+    rep_t = NULL;
+    for (int i = 0; i < t->n; i++) {
+        ob_res_row *row = &t->v[i];
+        row->rep_t = maxrep ? &t->rep_t[(size_t)i * (size_t)maxrep] : NULL;
+        row->nsamples = 0;
+        for (int k = 0; k < maxrep; k++)
+            row->nsamples += !isnan(row->rep_t[k]);
+    }
+    rc = 0;
+done:
+    free(rep_t);
+    free(s);
+    free(r.f);
+    free(buf);
+    return rc;
+}
+
+int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const char *name, char *err,
+                          size_t errlen)
+{
+    char *buf = malloc(len + 1);
+    if (!buf) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return -1;
+    }
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    return attach_owned(t, buf, len, name, err, errlen);
+}
+
+int ob_res_load_samples(ob_res_table *t, const char *path, char *err, size_t errlen)
+{
+    char *buf;
+    size_t len;
+    if (ob_slurp(path, &buf, &len, err, errlen))
+        return -1;
+    return attach_owned(t, buf, len, path, err, errlen);
+}

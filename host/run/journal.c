@@ -1,0 +1,458 @@
+/*
+ * journal.c - rows saved as jobs finish, and resuming an interrupted run
+ * (see journal.h).
+ */
+#include "host/io/columns.h"
+#include "host/run/journal.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "buildinfo.h"
+#include "host/io/numfmt.h"
+#include "host/io/output.h"
+#include "host/io/slurp.h"
+
+static const char MAGIC[] = "#offbench-journal 1 ";
+
+static double mono_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+char *ob_run_fingerprint(const ob_run_opts *o, const char *where)
+{
+    size_t cap = 4096, n = 0;
+    char *s = malloc(cap);
+    if (!s)
+        return NULL;
+    n += (size_t)snprintf(s, cap, "samples=%d max_depth=%d max_segments=%d inflections=%d job_timeout=%.17g data=%s",
+                          o->driver.samples, o->driver.max_depth, o->driver.max_segments, o->driver.inflections,
+                          o->driver.job_timeout_ns, where);
+    for (int m = 0; ob_methods[m]; m++)
+        for (int k = 0; k < ob_methods[m]->nparams; k++) {
+            char num[40];
+            ob_fmt_double(num, sizeof num, o->params[m * OB_MAX_PARAMS + k]);
+            const size_t need = strlen(ob_methods[m]->name) + strlen(ob_methods[m]->params[k].name) + strlen(num) + 4;
+            if (n + need >= cap) {
+                char *ns = realloc(s, cap *= 2);
+                if (!ns) {
+                    free(s);
+                    return NULL;
+                }
+                s = ns;
+            }
+            n += (size_t)snprintf(s + n, cap - n, " %s.%s=%s", ob_methods[m]->name, ob_methods[m]->params[k].name,
+                                  num);
+        }
+    for (char *p = s; *p; p++)  /* one line, whatever the data path holds */
+        if (*p == '\n' || *p == '\r')
+            *p = ' ';
+    return s;
+}
+
+/* A growing string of " key=value" tokens; a value's spaces, '%' and line
+ * ends are %-escaped, so tokens split at spaces. */
+typedef struct {
+    char *s;
+    size_t n, cap;
+    int oom;
+} fpbuf;
+
+static void fp_putc(fpbuf *b, char c)
+{
+    if (b->oom)
+        return;
+    if (b->n + 2 > b->cap) {
+        size_t nc = b->cap ? 2 * b->cap : 1024;
+        char *ns = realloc(b->s, nc);
+        if (!ns) {
+            b->oom = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = nc;
+    }
+    b->s[b->n++] = c;
+    b->s[b->n] = '\0';
+}
+
+static void fp_tok(fpbuf *b, const char *key, const char *val)
+{
+    if (b->n)
+        fp_putc(b, ' ');
+    for (const char *p = key; *p; p++)
+        fp_putc(b, *p);
+    fp_putc(b, '=');
+    for (const unsigned char *p = (const unsigned char *)val; *p; p++) {
+        if (*p == ' ' || *p == '%' || *p < 0x20) {
+            char hex[4];
+            snprintf(hex, sizeof hex, "%%%02X", *p);
+            for (int k = 0; hex[k]; k++)
+                fp_putc(b, hex[k]);
+        } else {
+            fp_putc(b, (char)*p);
+        }
+    }
+}
+
+static void fp_num(fpbuf *b, const char *key, double v)
+{
+    char num[40];
+    ob_fmt_double(num, sizeof num, v);
+    fp_tok(b, key, num);
+}
+
+char *ob_resume_fingerprint(const ob_run_opts *o, const char *where)
+{
+    fpbuf b = {0};
+    char v[64];
+    fp_num(&b, "samples", o->driver.samples);
+    fp_num(&b, "max_depth", o->driver.max_depth);
+    fp_num(&b, "max_segments", o->driver.max_segments);
+    fp_num(&b, "inflections", o->driver.inflections);
+    fp_num(&b, "job_timeout", o->driver.job_timeout_ns);
+    fp_tok(&b, "data", where);
+    snprintf(v, sizeof v, "%016" PRIx64, o->data_hash);
+    fp_tok(&b, "data_hash", v);
+    if (!o->curve_ids) {
+        fp_tok(&b, "curves", "all");
+    } else {
+        fpbuf c = {0};
+        for (int i = 0; i < o->ncurve_ids; i++) {
+            if (i)
+                fp_putc(&c, ',');
+            for (const char *p = o->curve_ids[i]; *p; p++)
+                fp_putc(&c, *p);
+        }
+        b.oom |= c.oom;
+        fp_tok(&b, "curves", c.s ? c.s : "");
+        free(c.s);
+    }
+    {
+        fpbuf m = {0};
+        for (int i = 0; i < o->nmethods; i++) {
+            if (i)
+                fp_putc(&m, ',');
+            for (const char *p = o->methods[i]->name; *p; p++)
+                fp_putc(&m, *p);
+        }
+        b.oom |= m.oom;
+        fp_tok(&b, "methods", m.s ? m.s : "");
+        free(m.s);
+    }
+    {
+        fpbuf t = {0};
+        for (int i = 0; i < o->ntols; i++) {
+            char num[40];
+            ob_fmt_double(num, sizeof num, o->tols[i]);
+            if (i)
+                fp_putc(&t, ',');
+            for (const char *p = num; *p; p++)
+                fp_putc(&t, *p);
+        }
+        b.oom |= t.oom;
+        fp_tok(&b, "tols", t.s ? t.s : "");
+        free(t.s);
+    }
+    fp_tok(&b, "metric", ob_metric_name(o->metric));
+    fp_tok(&b, "split", ob_split_name(o->split));
+    snprintf(v, sizeof v, "%d/%d", o->shard_k, o->shard_n);
+    fp_tok(&b, "shard", o->shard_n > 0 ? v : "none");
+    fp_tok(&b, "git", OB_GIT_COMMIT);
+    fp_num(&b, "dirty", OB_GIT_DIRTY);
+    fp_tok(&b, "cflags", OB_CFLAGS);
+    for (int i = 0; i < o->nmethods; i++) {
+        char key[96];
+        snprintf(key, sizeof key, "version.%s", o->methods[i]->name);
+        fp_num(&b, key, o->methods[i]->version);
+    }
+    for (int m = 0; ob_methods[m]; m++)
+        for (int k = 0; k < ob_methods[m]->nparams; k++) {
+            char key[128];
+            snprintf(key, sizeof key, "%s.%s", ob_methods[m]->name, ob_methods[m]->params[k].name);
+            fp_num(&b, key, o->params[m * OB_MAX_PARAMS + k]);
+        }
+    if (b.oom || !b.s) {
+        free(b.s);
+        return NULL;
+    }
+    return b.s;
+}
+
+/* What a fingerprint key means to the user. */
+static void key_label(const char *key, size_t klen, char *out, size_t len)
+{
+    static const struct {
+        const char *key, *label;
+    } names[] = {
+        {"samples", "--samples"},
+        {"max_depth", "--max-depth"},
+        {"max_segments", "--max-segments"},
+        {"inflections", "--inflections"},
+        {"job_timeout", "--job-timeout"},
+        {"data", "the data source (--curves / --random)"},
+        {"data_hash", "the curve data (the content of the loaded curves changed)"},
+        {"curves", "--curve"},
+        {"methods", "--methods"},
+        {"tols", "--tols"},
+        {"metric", "--metric"},
+        {"split", "--split"},
+        {"shard", "--shard"},
+        {"git", "the build (git commit)"},
+        {"dirty", "the build (uncommitted changes: git dirty flag)"},
+        {"cflags", "the build (compiler flags)"},
+    };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strlen(names[i].key) == klen && memcmp(names[i].key, key, klen) == 0) {
+            snprintf(out, len, "%s", names[i].label);
+            return;
+        }
+    if (klen > 8 && memcmp(key, "version.", 8) == 0)
+        snprintf(out, len, "the build (method %.*s's version)", (int)(klen - 8), key + 8);
+    else
+        snprintf(out, len, "--param %.*s", (int)klen, key);
+}
+
+/* The value of key in fingerprint fp (its length in *vlen), or NULL. */
+static const char *fp_find(const char *fp, const char *key, size_t klen, size_t *vlen)
+{
+    for (const char *p = fp; *p;) {
+        const char *end = strchr(p, ' ');
+        if (!end)
+            end = p + strlen(p);
+        const char *eq = memchr(p, '=', (size_t)(end - p));
+        if (eq && (size_t)(eq - p) == klen && memcmp(p, key, klen) == 0) {
+            *vlen = (size_t)(end - eq - 1);
+            return eq + 1;
+        }
+        p = *end ? end + 1 : end;
+    }
+    return NULL;
+}
+
+int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
+{
+    out[0] = '\0';
+    if (strcmp(was, now) == 0)
+        return 0;
+    /* the first key of now that was has with another value, or lacks */
+    for (int pass = 0; pass < 2; pass++) {
+        const char *a = pass ? was : now, *b = pass ? now : was;
+        for (const char *p = a; *p;) {
+            const char *end = strchr(p, ' ');
+            if (!end)
+                end = p + strlen(p);
+            const char *eq = memchr(p, '=', (size_t)(end - p));
+            if (eq) {
+                const size_t klen = (size_t)(eq - p), alen = (size_t)(end - eq - 1);
+                size_t blen = 0;
+                const char *bv = fp_find(b, p, klen, &blen);
+                if (!bv || blen != alen || memcmp(bv, eq + 1, alen) != 0) {
+                    char label[160];
+                    key_label(p, klen, label, sizeof label);
+                    const char *wv = pass ? eq + 1 : bv, *nv = pass ? bv : eq + 1;
+                    const size_t wl = pass ? alen : blen, nl = pass ? blen : alen;
+                    snprintf(out, len, "%s differs (the run's %.*s, now %.*s)", label, wv ? (int)(wl > 80 ? 80 : wl) : 4,
+                             wv ? wv : "none", nv ? (int)(nl > 80 ? 80 : nl) : 4, nv ? nv : "none");
+                    return 1;
+                }
+            }
+            p = *end ? end + 1 : end;
+        }
+    }
+    snprintf(out, len, "the fingerprints differ");
+    return 1;
+}
+
+/* Creates the journal afresh: first line and header. */
+static int create(ob_journal *j, const char *fp, char *err, size_t errlen)
+{
+    j->f = fopen(j->path, "w");
+    if (!j->f) {
+        snprintf(err, errlen, "%s: cannot write: %s", j->path, strerror(errno));
+        return -1;
+    }
+    fprintf(j->f, "%s%s\n%s\n", MAGIC, fp, ob_results_header());
+    if (fflush(j->f) != 0) {
+        snprintf(err, errlen, "%s: write failed", j->path);
+        return -1;
+    }
+    return 0;
+}
+
+/* Reads an existing journal into *restored; cuts a partial last line. */
+static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *err, size_t errlen)
+{
+    char *text;
+    size_t len;
+    if (ob_slurp(j->path, &text, &len, err, errlen) != 0)
+        return -1;
+    const char *nl = memchr(text, '\n', len);
+    if (!nl) {  /* killed while the first line was written: nothing saved */
+        free(text);
+        return create(j, fp, err, errlen);
+    }
+    const size_t first = (size_t)(nl - text);
+    if (first < sizeof MAGIC - 1 || memcmp(text, MAGIC, sizeof MAGIC - 1) != 0) {
+        snprintf(err, errlen, "%s:1: not an offbench journal", j->path);
+        free(text);
+        return -1;
+    }
+    const size_t fplen = first - (sizeof MAGIC - 1);
+    if (fplen != strlen(fp) || memcmp(text + sizeof MAGIC - 1, fp, fplen) != 0) {
+        char *was = strndup(text + sizeof MAGIC - 1, fplen), diff[512];
+        ob_fingerprint_diff(was ? was : "", fp, diff, sizeof diff);
+        free(was);
+        snprintf(err, errlen, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
+                 "same options and build, or start afresh (another --out, or --force)", j->path, diff);
+        free(text);
+        return -1;
+    }
+    size_t keep = len;
+    while (keep > first + 1 && text[keep - 1] != '\n')
+        keep--;
+    if (keep < len && truncate(j->path, (off_t)keep) != 0) {
+        snprintf(err, errlen, "%s: cannot cut the partial last line: %s", j->path, strerror(errno));
+        free(text);
+        return -1;
+    }
+    const char *body = text + first + 1;
+    const size_t blen = keep - (first + 1);
+    const char *hend = memchr(body, '\n', blen);
+    if (hend && ((size_t)(hend - body) != strlen(ob_results_header()) ||
+                 memcmp(body, ob_results_header(), strlen(ob_results_header())) != 0)) {
+        /* rows of another build's columns cannot be continued or restored */
+        snprintf(err, errlen, "%s:2: written by another version of offbench (its columns differ): run again "
+                 "without --resume", j->path);
+        free(text);
+        return -1;
+    }
+    int rc = 0;
+    if (blen > 0 && memchr(body, '\n', blen)) {  /* a header line at least */
+        rc = ob_res_parse_at(body, blen, j->path, 2, restored, err, errlen);  /* body is line 2 on */
+        if (rc == 0) {
+            j->f = fopen(j->path, "a");
+            if (!j->f) {
+                snprintf(err, errlen, "%s: cannot append: %s", j->path, strerror(errno));
+                rc = -1;
+            }
+        }
+    } else {
+        rc = create(j, fp, err, errlen);
+    }
+    free(text);
+    return rc;
+}
+
+int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, ob_res_table *restored, char *err,
+                    size_t errlen)
+{
+    memset(j, 0, sizeof *j);
+    memset(restored, 0, sizeof *restored);
+    snprintf(j->path, sizeof j->path, "%s/results.journal.csv", dir);
+    j->last_sync = mono_s();
+    if (!resume)
+        return create(j, fp, err, errlen);
+    struct stat st;
+    if (stat(j->path, &st) == 0)
+        return reopen(j, fp, restored, err, errlen);
+    char res[4200];
+    snprintf(res, sizeof res, "%s/results.csv", dir);
+    if (stat(res, &st) != 0) {
+        snprintf(err, errlen, "--resume: %s has neither results.journal.csv nor results.csv: nothing to resume",
+                 dir);
+        return -1;
+    }
+    /* the run had finished: its rows are taken as they are */
+    if (ob_res_load(res, restored, err, errlen) != 0)
+        return -1;
+    if (!restored->has_joints) {
+        snprintf(err, errlen, "--resume: %s was written by an older offbench (no max_gap column): run again without "
+                 "--resume", res);
+        ob_res_free(restored);
+        return -1;
+    }
+    /* the finished run's fingerprint, written beside its results.csv */
+    char fpath[4200], *was = NULL, diff[512];
+    size_t wlen = 0;
+    snprintf(fpath, sizeof fpath, "%s/results.fingerprint", dir);
+    if (ob_slurp(fpath, &was, &wlen, diff, sizeof diff) != 0) {
+        snprintf(err, errlen, "--resume: %s has no results.fingerprint (the options, data and build of its run): "
+                 "it cannot be checked; run again without --resume", dir);
+        ob_res_free(restored);
+        return -1;
+    }
+    while (wlen > 0 && (was[wlen - 1] == '\n' || was[wlen - 1] == '\r'))
+        was[--wlen] = '\0';
+    if (ob_fingerprint_diff(was, fp, diff, sizeof diff) != 0) {
+        snprintf(err, errlen, "--resume: %s: the finished run had other options, data or build: %s; resume it with "
+                 "the same options and build, or run afresh (another --out)", fpath, diff);
+        free(was);
+        ob_res_free(restored);
+        return -1;
+    }
+    free(was);
+    j->from_results = 1;
+    return create(j, fp, err, errlen);
+}
+
+int ob_journal_add(ob_journal *j, const ob_job *job)
+{
+    if (!j->f)
+        return -1;
+    if (ob_write_result_row(j->f, job) != 0 || fflush(j->f) != 0)
+        return -1;
+    const double now = mono_s();
+    if (now - j->last_sync >= 1.0) {
+        fsync(fileno(j->f));
+        j->last_sync = now;
+    }
+    return 0;
+}
+
+void ob_journal_close(ob_journal *j, int remove_it)
+{
+    if (!j)
+        return;
+    if (j->f) {
+        fflush(j->f);
+        fsync(fileno(j->f));
+        fclose(j->f);
+        j->f = NULL;
+    }
+    if (remove_it && j->path[0])
+        remove(j->path);
+}
+
+int ob_job_from_row(ob_job *job, const ob_res_row *row)
+{
+    static const ob_status st[] = {OB_OK, OB_LIMIT, OB_FAIL, OB_SKIP, OB_TIMEOUT};
+    int k = -1;
+    for (int i = 0; i < (int)(sizeof st / sizeof st[0]); i++)
+        if (strcmp(row->status, ob_status_name(st[i])) == 0)
+            k = i;
+    if (k < 0)
+        return -1;
+    job->status = st[k];
+    job->ctrl_points = row->ctrl_points;
+    job->segments = (int)row->segments;
+    job->out_degree = (int)row->out_degree;
+    job->max_err = row->max_err;
+    job->fit_ns = row->fit_ns;
+    job->eval_ns = row->eval_ns;
+    snprintf(job->message, sizeof job->message, "%s", row->message);
+    job->max_gap = row->max_gap;
+    job->max_kink = row->max_kink;
+    if (ob_cont_parse(row->continuity ? row->continuity : "", &job->continuity) != 0)
+        job->continuity = OB_CONT_NONE;
+    return 0;
+}

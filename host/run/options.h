@@ -1,0 +1,105 @@
+/*
+ * options.h - the `run` command line (DESIGN.md "Command line").
+ */
+#ifndef OB_OPTIONS_H
+#define OB_OPTIONS_H
+
+#include <stdint.h>
+
+#include "methods/driver/driver.h"
+
+enum { OB_MAX_TOLS = 64, OB_MAX_PARAM_ARGS = 256 };
+
+typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backend;
+
+/* What measured the run, for meta.json (filled by the run command). */
+typedef struct {
+    int opencl;                  /* 0: the CPU reference path */
+    char platform[256], device[256], driver[128], kernels[512];
+    double build_seconds;
+    long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
+    char why_cpu[512];           /* with auto: why OpenCL was not used */
+} ob_backend_info;
+
+typedef struct {
+    const char *curves_file;     /* --curves FILE, or NULL: every curve file under
+                                    datasets/ (none with --random) */
+    char **curve_ids;            /* --curve ID,... (owned), NULL: all */
+    int ncurve_ids;
+    long random_n;               /* --random N[:SEED]: N curves (0: none) ... */
+    uint64_t random_seed;        /* ... of this seed (random.h) */
+    const ob_method **methods;   /* --methods (owned array) */
+    int nmethods;
+    double tols[OB_MAX_TOLS];
+    int ntols;
+    ob_metric metric;
+    ob_split split;
+    ob_backend backend;
+    const char *device;          /* --device NAME-SUBSTRING, or NULL */
+    double *params;              /* method parameters: OB_MAX_PARAMS values per
+                                    registered method, by registry index (owned) */
+    int threads;                 /* 0: OpenMP's default */
+    int reps;                    /* --reps N: timed repetitions after a warm-up
+                                    run (samples.csv); 0: one run, no samples */
+    long rep_mismatches;         /* for meta.json: job results that differed
+                                    between repetitions (nondeterminism) */
+    const char *out_dir;
+    const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
+    int force;                   /* --force: a fresh run over an interrupted
+                                    run's journal (which it removes) */
+    int out_given;               /* --out was given (parsing) */
+    const char *param_seen[OB_MAX_PARAM_ARGS]; /* the --param values so far (parsing) */
+    int nparam_seen;
+    uint64_t data_hash;          /* FNV-1a of the selected curves' content
+                                    (filled by the run command; journal.h) */
+    int shard_k, shard_n;        /* --shard K/N: this process runs shard K of N
+                                    (shard.h); shard_n 0: the whole run */
+    /* for meta.json, filled by the run command: the whole run's job count
+     * and plan hash (shard.h), equal in every shard of one run */
+    size_t jobs_total;
+    uint64_t plan_hash;
+    uint64_t plan_seed;          /* ob_plan_seed(): merge recomputes plan_hash */
+    int mpi_ranks;               /* > 1: run by that many MPI ranks (mpirun.h) */
+    ob_driver_opts driver;
+    ob_backend_info binfo;       /* for meta.json */
+    int argc;                    /* for meta.json */
+    char **argv;
+} ob_run_opts;
+
+#include "host/cli/cliopts.h"
+
+/* What `run --help` prints after the command's name. */
+#define OB_RUN_SYNOPSIS "[options]   (a benchmark run: every method on every curve at every tolerance)"
+
+/* The run options, for the commands that take some of them (draw, trace,
+ * tables) beside their own. */
+extern const ob_flag ob_run_flags[];
+extern const int ob_run_nflags;
+
+/* Purpose: apply one run option (an ob_flag_apply for ob_run_flags; ctx: the
+ *          ob_run_opts, set up by ob_run_opts_init). */
+int ob_run_flag_apply(void *ctx, int id, const char *opt, const char *value);
+
+/* Purpose: apply the run option --name value (what draw and trace turn
+ *          their --method and --tol into).  Returns 0, or -1 after ob_error(). */
+int ob_run_opt_set(ob_run_opts *o, const char *name, const char *value);
+
+/* Purpose: the defaults, before any option (argv: recorded for meta.json).
+ * Returns 0, or -1 when out of memory.  *o is then safe to free. */
+int ob_run_opts_init(ob_run_opts *o, int argc, char **argv);
+
+/* Purpose: the checks across options, once all are applied.  Returns 0, or
+ *          -1 after ob_error(). */
+int ob_run_opts_finish(ob_run_opts *o);
+
+/* Purpose: parse `run` options (argv[0] is "run").
+ * Returns: OB_CLI_OK; OB_CLI_HELP after printing the help (exit 0);
+ *          OB_CLI_ERROR after reporting through ob_error() an unknown
+ *          option, a missing or malformed value (naming the option).
+ *          Always leaves *o safe to pass to ob_run_opts_free(). */
+int ob_run_opts_parse(int argc, char **argv, ob_run_opts *o);
+
+/* Always safe to call. */
+void ob_run_opts_free(ob_run_opts *o);
+
+#endif

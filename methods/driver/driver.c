@@ -1,0 +1,1167 @@
+/*
+ * driver.c - adaptive subdivision, level by level over all jobs.  See driver.h.
+ */
+#include "methods/driver/driver.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy", "optimal"};
+
+const char *ob_split_name(ob_split s) { return (s >= 0 && s < OB_SPLIT_COUNT) ? split_names[s] : "?"; }
+
+int ob_split_parse(const char *name, ob_split *s)
+{
+    for (int i = 0; i < OB_SPLIT_COUNT; i++)
+        if (strcmp(name, split_names[i]) == 0) {
+            *s = (ob_split)i;
+            return 0;
+        }
+    return -1;
+}
+
+void ob_driver_defaults(ob_driver_opts *o)
+{
+    memset(o, 0, sizeof *o);  /* no batch backend: the CPU measures */
+    o->samples = OB_DEFAULT_SAMPLES;
+    o->max_depth = 40;
+    o->max_segments = 20000;
+    o->inflections = 1;
+    o->chunk = 512;
+}
+
+/* greedy bisection stops when the bracket on the end parameter is this
+ * fraction of the stretch still to cover */
+static const double GREEDY_EPS = 1e-4;
+/* optimal: the bisection on the common error level stops when its bracket
+ * is within this ratio, or after OPT_ROUNDS passes */
+static const double OPT_RATIO = 1.02;
+enum { OPT_ROUNDS = 12 };
+/* maxerr split keeps this fraction of the piece on either side */
+static const double MAXERR_MARGIN = 0.05;
+/* A piece whose error has not dropped below STALL_RATIO of its parent's over
+ * STALL_LEVELS successive splits cannot reach the tolerance by subdivision
+ * (an error floor of the method, e.g. Lee's circle approximation under the
+ * Hausdorff metric); it is accepted and the job ends with status limit.
+ * Convergent methods gain a factor 4 to 16 per split, so this never fires for
+ * them; slowly converging pieces (a factor 2) are not taken for stalled. */
+static const double STALL_RATIO = 0.9;
+enum { STALL_LEVELS = 4 };
+/* A method asks for a smaller piece when its output would not fit (too many
+ * arcs, spans or a pole); a few halvings cure that.  A piece still asking
+ * after this many halvings below its initial size never will: the job fails
+ * (instead of halving down to the segment limit). */
+enum { RETRY_LEVELS = 12 };
+
+/* What the joints need of one fit (joints.h): the start of its first piece,
+ * the end of its last, and the joints between its own pieces. */
+typedef struct {
+    ob_end first, last;
+    ob_joint_stats in;
+    int count_open;     /* open inner joints counted in ctrl_points (none for a
+                           method's own representation: it has its own count) */
+} fitjoints;
+
+/* One pending piece of one job. */
+typedef struct {
+    int job, seg, depth;
+    int grp;            /* the job's share group (share_groups) */
+    double a, b;        /* the piece fitted now: base parameters of segment seg */
+    double end;         /* greedy: end of the stretch being covered */
+    double lo, hi;      /* greedy: longest passing / shortest failing end so far */
+    double pass_err;    /* greedy: results of the candidate [a, lo] */
+    int pass_ctrl_add, pass_maxdeg, pass_n;
+    fitjoints pass_fj;  /* greedy: the joints of the candidate [a, lo] */
+    int final;          /* greedy: accept this fit whatever its error */
+    double parent_err;  /* mid/maxerr: the error of the piece this one was split from */
+    int stall;          /* successive splits without a real drop of the error */
+    int chain_to;       /* > 0: the leftmost piece of a chain of requests for a
+                           smaller piece, already fitted down to this depth
+                           (probe_retry_chain): not fitted again above it */
+    /* optimal (decide_optimal): greedy passes over the stretch [start, end]
+     * at an error level; phase 0 counts the pieces at tol, 1 bisects the
+     * level, 2 is the final pass (the greedy code, at the level) */
+    int phase, pieces, target, rounds;
+    double start, level, elo, ehi, pass_max;
+} item;
+
+typedef struct {
+    item *v;
+    size_t n, cap;
+} itemvec;
+
+static int push(itemvec *q, const item *it)
+{
+    if (q->n == q->cap) {
+        size_t nc = q->cap ? 2 * q->cap : 256;
+        item *nv = realloc(q->v, nc * sizeof *nv);
+        if (!nv)
+            return -1;
+        q->v = nv;
+        q->cap = nc;
+    }
+    q->v[q->n++] = *it;
+    return 0;
+}
+
+/* Per-job bookkeeping the caller does not see. */
+typedef struct {
+    long ctrl_add;  /* sum over accepted fits of the control points each adds
+                       beyond the shared start point */
+    long pending;   /* items of this job still queued */
+    int dead;       /* failed or skipped: drop its remaining items */
+    int finished;   /* counted as done for progress */
+    int floored;    /* a piece hit an error floor: keep the rest as they are */
+    ob_span_log *spans; /* NULL, or where accepted pieces go */
+    /* joints: the ends of every accepted fit until the job is finalized */
+    double gap_tol;     /* a joint is open past this (joints.h) */
+    struct fitends *ends;
+    int nends, capends;
+    int ends_oom;       /* an end could not be stored */
+    ob_joint_stats st;  /* inner joints of the accepted fits, then (finalized) all */
+    long open_count;    /* joints counted twice in ctrl_points */
+    int joined;         /* the joints between fits are measured, ends freed */
+} jstate;
+
+/* The ends of one accepted fit over [a, ...] of base segment seg. */
+typedef struct fitends {
+    int seg;
+    double a;
+    ob_end first, last;
+} fitends;
+
+static double clock_ns(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return ts.tv_sec * 1e9 + ts.tv_nsec;
+}
+
+/* Wall time: what a batch backend's launch costs the run. */
+static double wall_ns(void) { return clock_ns(CLOCK_MONOTONIC); }
+
+/* CPU time of the calling thread: what one fit or one CPU measurement cost,
+ * whatever else the machine was doing meanwhile (other threads, other
+ * processes, a thread descheduled mid-call). */
+static double thread_ns(void) { return clock_ns(CLOCK_THREAD_CPUTIME_ID); }
+
+static void job_end(ob_job *j, jstate *s, ob_status st, const char *msg)
+{
+    if (j->status == OB_OK || (j->status == OB_LIMIT && st != OB_LIMIT)) {
+        j->status = st;
+        snprintf(j->message, sizeof j->message, "%s", msg);
+    }
+    if (st == OB_FAIL || st == OB_SKIP || st == OB_TIMEOUT)
+        s->dead = 1;
+}
+
+/* Inputs a method or metric cannot take: the job is skipped before any work. */
+static int check_applicable(ob_job *j, jstate *s)
+{
+    const ob_method *m = j->method;
+    char msg[160];
+    for (int i = 0; i < j->curve->nseg; i++) {
+        const ob_bez *b = &j->curve->seg[i];
+        if (b->rational && !(m->caps & OB_CAP_RATIONAL_IN)) {
+            job_end(j, s, OB_SKIP, "rational input is not supported by this method");
+            return 0;
+        }
+        int od = m->out_degree(b->deg, b->rational);
+        if (od > OB_MAX_DEG) {
+            snprintf(msg, sizeof msg, "output degree %d exceeds the limit %d", od, OB_MAX_DEG);
+            job_end(j, s, OB_SKIP, msg);
+            return 0;
+        }
+    }
+    if (ob_metric_same_param(j->metric) && !(m->caps & OB_CAP_SAME_PARAM)) {
+        snprintf(msg, sizeof msg, "metric %s needs an approximation in the base's parameter",
+                 ob_metric_name(j->metric));
+        job_end(j, s, OB_SKIP, msg);
+        return 0;
+    }
+    return 1;
+}
+
+/* The offset's cusps of segment b (OB_CAP_CUSP_BREAKS) merged into the
+ * ascending cuts[1..nc-1] (room entries in all); returns the new nc. */
+static int add_cusp_cuts(const ob_bez *b, double d, double *cuts, int nc, int room)
+{
+    double ts[3 * OB_MAX_DEG];
+    int k = ob_bez_offset_cusps(b, d, ts, 3 * OB_MAX_DEG);
+    k = k > 3 * OB_MAX_DEG ? 3 * OB_MAX_DEG : k;  /* more: the method splits the rest itself */
+    for (int i = 0; i < k && nc < room; i++) {
+        int p = nc++;
+        while (p > 1 && cuts[p - 1] > ts[i]) {
+            cuts[p] = cuts[p - 1];
+            p--;
+        }
+        cuts[p] = ts[i];
+    }
+    return nc;
+}
+
+/* Initial pieces of one job: inflections (and the offset's cusps when the
+ * method asks), then the method's turning limit. */
+static int plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, itemvec *out)
+{
+    const ob_method *m = j->method;
+    int convex = o->inflections || (m->caps & OB_CAP_CONVEX);
+    for (int s = 0; s < j->curve->nseg; s++) {
+        const ob_bez *b = &j->curve->seg[s];
+        double cuts[2 * OB_MAX_DEG * 3 + 2];
+        int nc = 0;
+        cuts[nc++] = 0.0;
+        if (convex)
+            nc += ob_bez_inflections(b, cuts + 1, 3 * OB_MAX_DEG);
+        if (m->caps & OB_CAP_CUSP_BREAKS)
+            nc = add_cusp_cuts(b, j->d, cuts, nc, (int)(sizeof cuts / sizeof cuts[0]) - 1);
+        cuts[nc++] = 1.0;
+        for (int i = 0; i + 1 < nc; i++) {
+            double a = cuts[i], e = cuts[i + 1];
+            if (e - a < 1e-12)
+                continue;
+            int k = 1;
+            ob_bez sub;
+            double turn = 0.0;
+            if (m->max_turn > 0) {
+                ob_bez_subsegment(b, a, e, &sub);
+                turn = ob_bez_turn(&sub, 128);
+                if (turn >= m->max_turn)
+                    k = (int)floor(turn / m->max_turn) + 1;
+            }
+            double prev = a;
+            for (int p = 1; p <= k; p++) {
+                double next = p == k ? e : a + (e - a) * ob_bez_turn_param(&sub, turn * p / k);
+                item it = {.job = jobidx, .grp = grp, .seg = s, .depth = 0, .a = prev, .b = next,
+                           .end = next, .lo = prev, .hi = next, .parent_err = INFINITY,
+                           .start = prev, .level = j->tol};
+                if (push(out, &it))
+                    return -1;
+                prev = next;
+            }
+        }
+    }
+    return 0;
+}
+
+static void log_span(ob_span_log *L, int seg, double a, double b)
+{
+    if (!L)
+        return;
+    if (L->n == L->cap) {
+        int nc = L->cap ? 2 * L->cap : 16;
+        ob_span *nv = realloc(L->v, (size_t)nc * sizeof *nv);
+        if (!nv) {
+            L->oom = 1;
+            return;
+        }
+        L->v = nv;
+        L->cap = nc;
+    }
+    L->v[L->n++] = (ob_span){seg, a, b};
+}
+
+static int span_cmp(const void *x, const void *y)
+{
+    const ob_span *p = x, *q = y;
+    if (p->seg != q->seg)
+        return p->seg < q->seg ? -1 : 1;
+    return p->a < q->a ? -1 : p->a > q->a;
+}
+
+/* Keeps the ends of an accepted fit for the joints between fits. */
+static void keep_ends(jstate *s, int seg, double a, const fitjoints *fj)
+{
+    if (s->nends == s->capends) {
+        const int nc = s->capends ? 2 * s->capends : 16;
+        fitends *nv = realloc(s->ends, (size_t)nc * sizeof *nv);
+        if (!nv) {
+            s->ends_oom = 1;
+            return;
+        }
+        s->ends = nv;
+        s->capends = nc;
+    }
+    s->ends[s->nends++] = (fitends){seg, a, fj->first, fj->last};
+}
+
+/* Accept a finished segment (pieces with their degrees and error, the
+ * joints of its fit) covering [a, b] of base segment seg. */
+static void accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg,
+                   double err, const fitjoints *fj)
+{
+    log_span(s->spans, seg, a, b);
+    keep_ends(s, seg, a, fj);
+    ob_joint_merge(&s->st, &fj->in);
+    s->open_count += fj->count_open;
+    j->segments += npieces;
+    s->ctrl_add += ctrl_add;
+    if (maxdeg > j->out_degree)
+        j->out_degree = maxdeg;
+    if (!(err <= j->max_err))
+        j->max_err = err;
+}
+
+/* Results of fitting and measuring one item. */
+typedef struct {
+    ob_status st;
+    int ctrl_add, maxdeg, n;
+    double err, t;          /* t: base parameter of the largest error */
+    int chain_to;           /* > 0: asks for a smaller piece, and so do its
+                               leftmost descendants down to this depth, the
+                               retry or depth limit (probe_retry_chain) */
+    char msg[160];
+} itemres;
+
+/* Fit one item; returns the thread time spent in the method. */
+static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit, itemres *r)
+{
+    const ob_job *j = &jobs[it->job];
+    ob_bez sub;
+    ob_bez_subsegment(&j->curve->seg[it->seg], it->a, it->b, &sub);
+    r->msg[0] = '\0';
+    r->chain_to = 0;
+    r->err = 0.0;
+    r->t = 0.5 * (it->a + it->b);
+    r->ctrl_add = r->maxdeg = 0;
+    double defaults[OB_MAX_PARAMS];
+    const double *par = j->params;
+    if (!par) {
+        ob_param_defaults(j->method, defaults);
+        par = defaults;
+    }
+    double t0 = thread_ns();
+    const ob_fit_args args = {j->d, j->tol, par};
+    r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
+    double t1 = thread_ns();
+    r->n = r->st == OB_OK ? fit->n : 0;
+    if (r->st == OB_RETRY_SMALLER)
+        r->err = INFINITY;
+    if (r->st == OB_OK && (fit->n < 1 || fit->n > OB_MAX_PIECES)) {
+        r->st = OB_FAIL;
+        snprintf(r->msg, sizeof r->msg, "method returned %d pieces", fit->n);
+    }
+    return t1 - t0;
+}
+
+/* What decide() says of a piece that asks for a smaller piece (r: its fit's
+ * result) when none may be made: at the retry limit, or past the depth or
+ * segment limits. */
+static void retry_end_msg(const item *it, const itemres *r, int at_retry_limit, char *msg, size_t len)
+{
+    const char *why = r->msg[0] ? r->msg : "the method needs a smaller piece";
+    if (at_retry_limit)
+        snprintf(msg, len, "%.60s, still after %d halvings, at t in [%.6g, %.6g] of segment %d", why,
+                 RETRY_LEVELS, it->a, it->b, it->seg);
+    else
+        snprintf(msg, len, "%.60s; pieces that small are past the limits, at t in [%.6g, %.6g] of segment %d",
+                 why, it->a, it->b, it->seg);
+}
+
+/* Purpose: find out at once whether a piece that asked for a smaller piece
+ * (r->st == OB_RETRY_SMALLER, split mid or maxerr) heads a chain of such
+ * requests down to the retry limit.
+ * Method: such a piece is halved, and a descendant still asking at
+ * RETRY_LEVELS halvings (or at the depth limit) fails the job (decide).
+ * Where the method's request does not depend on the piece's size (a
+ * rational fit whose every iterate has a pole, at any scale), the
+ * breadth-first driver fitted all 2^(RETRY_LEVELS - depth) descendants
+ * before the first of them failed the job at the limit.  The leftmost chain
+ * of halvings is fitted here instead; if every piece on it asks again,
+ * r->chain_to gets the depth it reached, and decide() then carries only the
+ * leftmost descendant down, unfitted, to be fitted (and to fail the job, in
+ * its turn among the items of that level) at that depth: the first piece at
+ * that level the breadth-first driver would have failed the job on.  What is
+ * not fitted, the rest of the subtree, could change the outcome only by a
+ * terminal event of its own above that depth (a fit error, a limit).
+ * Returns the thread time spent.  fit: scratch, overwritten. */
+static double probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, void *work, ob_fit *fit,
+                                itemres *r)
+{
+    const ob_job *j = &jobs[it->job];
+    if (r->st != OB_RETRY_SMALLER || (j->split != OB_SPLIT_MID && j->split != OB_SPLIT_MAXERR) || it->chain_to > 0)
+        return 0.0;
+    item c = *it;
+    itemres cr;
+    double ns = 0.0;
+    while (c.depth < RETRY_LEVELS && c.depth < max_depth) {
+        c.b = 0.5 * (c.a + c.b);
+        c.depth++;
+        ns += fit_item(jobs, &c, work, fit, &cr);
+        if (cr.st != OB_RETRY_SMALLER)
+            return ns;
+    }
+    if (c.depth > it->depth)
+        r->chain_to = c.depth;
+    return ns;
+}
+
+/* The measurements of one batch: every piece of every fitted item. */
+typedef struct {
+    ob_bez *base;          /* base sub-piece of each record */
+    ob_measure_rec *rec;
+    ob_errval *out;
+    double *ns;
+    int *first;            /* first record of each item (nitems + 1 entries) */
+    int *sampled;          /* indices of the records a batch backend takes */
+    ob_measure_rec *srec;
+    ob_errval *sout;
+} batch;
+
+static int batch_alloc(batch *b, int chunk)
+{
+    const size_t n = (size_t)chunk * OB_MAX_PIECES;
+    b->base = malloc(n * sizeof *b->base);
+    b->rec = malloc(n * sizeof *b->rec);
+    b->out = malloc(n * sizeof *b->out);
+    b->ns = malloc(n * sizeof *b->ns);
+    b->first = malloc(((size_t)chunk + 1) * sizeof *b->first);
+    b->sampled = malloc(n * sizeof *b->sampled);
+    b->srec = malloc(n * sizeof *b->srec);
+    b->sout = malloc(n * sizeof *b->sout);
+    return b->base && b->rec && b->out && b->ns && b->first && b->sampled && b->srec && b->sout ? 0 : -1;
+}
+
+static void batch_free(batch *b)
+{
+    free(b->base);
+    free(b->rec);
+    free(b->out);
+    free(b->ns);
+    free(b->first);
+    free(b->sampled);
+    free(b->srec);
+    free(b->sout);
+}
+
+/* Measure all pieces of all fitted items of a chunk: one batch. */
+static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, itemres *res,
+                          double *eval_ns, const ob_driver_opts *o, batch *B)
+{
+    int n = 0;
+    for (long i = 0; i < cnt; i++) {
+        B->first[i] = n;
+        if (res[i].st == OB_OK)
+            n += fits[i].n;
+    }
+    B->first[cnt] = n;
+    /* the records: base sub-pieces cut in parallel (a level of one item, as
+     * greedy bisection often makes, runs without waking the other threads) */
+#pragma omp parallel for schedule(dynamic, 8) if (cnt > 1)
+    for (long i = 0; i < cnt; i++) {
+        if (res[i].st != OB_OK)
+            continue;
+        const ob_job *j = &jobs[its[i].job];
+        ob_bez sub;
+        ob_bez_subsegment(&j->curve->seg[its[i].seg], its[i].a, its[i].b, &sub);
+        for (int p = 0; p < fits[i].n; p++) {
+            const int r = B->first[i] + p;
+            ob_bez_subsegment(&sub, fits[i].t[p], fits[i].t[p + 1], &B->base[r]);
+            B->rec[r] = (ob_measure_rec){&B->base[r], &fits[i].seg[p], j->d, j->metric};
+        }
+    }
+    /* sampled records to the backend in one call, the rest on the CPU */
+    int ns = 0;
+    if (o->batch)
+        for (int r = 0; r < n; r++)
+            if (B->rec[r].metric != OB_METRIC_BOUND)
+                B->sampled[ns++] = r;
+    int backend_ok = 0;
+    if (ns > 0) {
+        for (int k = 0; k < ns; k++)
+            B->srec[k] = B->rec[B->sampled[k]];
+        const double t0 = wall_ns();
+        backend_ok = o->batch(o->batch_ctx, B->srec, ns, o->samples, B->sout) == 0;
+        const double wall = wall_ns() - t0;
+        if (backend_ok) {
+            /* one launch measured them all: each record's share of its wall
+             * time is its share of the work (the kernel counts it) */
+            double total = 0.0;
+            for (int k = 0; k < ns; k++)
+                total += B->sout[k].work;
+            for (int k = 0; k < ns; k++) {
+                B->out[B->sampled[k]] = B->sout[k];
+                B->ns[B->sampled[k]] = total > 0.0 ? wall * (B->sout[k].work / total) : wall / ns;
+            }
+        } else if (o->batch_fallbacks) {
+            (*o->batch_fallbacks)++;
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 4) if (n > 1)
+    for (int r = 0; r < n; r++) {
+        if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
+            continue;
+        const double t0 = thread_ns();
+        if (ob_measure(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, o->samples, &B->out[r]))
+            B->out[r].err = NAN;  /* cannot be measured: reported below */
+        B->ns[r] = thread_ns() - t0;
+    }
+    /* per item: the largest error over its pieces, at a base parameter */
+    for (long i = 0; i < cnt; i++) {
+        itemres *r = &res[i];
+        eval_ns[i] = 0.0;
+        if (r->st != OB_OK)
+            continue;
+        const item *it = &its[i];
+        const ob_fit *fit = &fits[i];
+        r->err = 0.0;
+        for (int p = 0; p < fit->n; p++) {
+            const ob_errval e = B->out[B->first[i] + p];
+            const double pa = fit->t[p], pb = fit->t[p + 1];
+            eval_ns[i] += B->ns[B->first[i] + p];
+            if (isnan(e.err)) {
+                r->st = OB_FAIL;
+                snprintf(r->msg, sizeof r->msg, "metric %s cannot measure a degree-%d approximation",
+                         ob_metric_name(jobs[it->job].metric), fit->seg[p].deg);
+                break;
+            }
+            r->ctrl_add += fit->seg[p].deg;  /* 1 + sum deg when the pieces are the output */
+            if (fit->seg[p].deg > r->maxdeg)
+                r->maxdeg = fit->seg[p].deg;
+            if (!(e.err <= r->err)) {
+                r->err = e.err;
+                r->t = it->a + (it->b - it->a) * (pa + (pb - pa) * e.t);
+            }
+        }
+        if (fit->ctrl_points > 0)  /* the method's own representation, e.g. a B-spline */
+            r->ctrl_add = (int)(fit->ctrl_points - 1);
+    }
+}
+
+/* The joints of one fit's pieces (joints.h); fit->n >= 1. */
+static void fit_joints(const ob_fit *fit, double gap_tol, fitjoints *fj)
+{
+    memset(fj, 0, sizeof *fj);
+    ob_bez_end(&fit->seg[0], 0, &fj->first);
+    ob_bez_end(&fit->seg[fit->n - 1], 1, &fj->last);
+    for (int p = 1; p < fit->n; p++) {
+        ob_end l, r;
+        ob_bez_end(&fit->seg[p - 1], 1, &l);
+        ob_bez_end(&fit->seg[p], 0, &r);
+        fj->count_open += ob_joint_measure(&fj->in, &l, &r, gap_tol);
+    }
+    if (fit->ctrl_points > 0)  /* the method's own representation has its own count */
+        fj->count_open = 0;
+}
+
+/* The joints of every fitted item of a chunk (items whose fit failed get
+ * none). */
+static void joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res,
+                         fitjoints *fj)
+{
+#pragma omp parallel for schedule(dynamic, 16) if (cnt > 64)
+    for (long i = 0; i < cnt; i++) {
+        if (res[i].st == OB_OK)
+            fit_joints(&fits[i], js[its[i].job].gap_tol, &fj[i]);
+        else
+            memset(&fj[i], 0, sizeof fj[i]);
+    }
+}
+
+/* The optimal rule at the end of one pass over its stretch: the next
+ * level, or the final pass.  Phase 0 (at tol) gives the target count; a
+ * pass of phase 1 is feasible when it covers the stretch in at most target
+ * pieces.  The upper level is always one whose pass was feasible, so the
+ * final pass at it (the same fits, the same decisions) takes that pass's
+ * pieces; the lower one starts at 1/64 of phase 0's largest error. */
+static void optimal_next_pass(item *g, int covered)
+{
+    if (g->phase == 0) {
+        g->target = g->pieces;
+        g->ehi = g->level;
+        g->elo = g->pass_max / 64;
+    } else if (covered && g->pieces <= g->target) {
+        g->ehi = g->level;
+    } else {
+        g->elo = g->level;
+    }
+    g->rounds++;
+    const int done = g->target <= 1 || g->ehi <= OPT_RATIO * g->elo || g->rounds > OPT_ROUNDS;
+    g->phase = done ? 2 : 1;
+    g->level = done ? g->ehi : sqrt(g->elo * g->ehi);
+    g->pieces = 0;
+    g->pass_max = 0.0;
+    g->a = g->lo = g->start;
+    g->hi = g->b = g->end;
+}
+
+/* Purpose: the optimal split rule's counting passes (phases 0 and 1): the
+ *          greedy bisection on the end of the prefix [a, b] at the item's
+ *          level, counting the pieces instead of accepting them.
+ * Method:  a pass that needs more than target pieces, or where not even a
+ *          sliver meets the level, is infeasible and ends early; phase 0
+ *          where not even a sliver passes goes straight to the final pass
+ *          at tol, which is greedy's (with its limit rules).  The level is
+ *          bisected geometrically between an infeasible and a feasible one;
+ *          the final pass (phase 2, in decide) accepts the pieces at the
+ *          lowest feasible level found.  Every pass fits the same pieces
+ *          as a greedy run at that tolerance would. */
+static int decide_optimal(const ob_job *j, jstate *s, const item *it, const itemres *r, int pass, itemvec *next)
+{
+    item g = *it;
+    if (pass) {
+        g.lo = it->b;
+        g.pass_err = r->err;
+    } else {
+        g.hi = it->b;
+    }
+    const int reached = pass && it->b >= it->end;
+    if (reached || g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
+        if (g.lo > g.a) {  /* a piece of this pass: [a, lo] */
+            g.pieces++;
+            g.pass_max = fmax(g.pass_max, g.pass_err);
+            g.a = g.lo;
+            g.hi = g.b = g.end;
+            if (g.a >= g.end || (g.phase == 1 && g.pieces > g.target))
+                optimal_next_pass(&g, g.a >= g.end);
+        } else if (g.phase == 0) {
+            g.phase = 2;  /* not even a sliver at tol: greedy decides */
+            g.level = j->tol;
+            g.a = g.lo = g.start;
+            g.hi = g.b = g.end;
+        } else {
+            optimal_next_pass(&g, 0);
+        }
+    } else {
+        g.b = 0.5 * (g.lo + g.hi);
+    }
+    s->pending++;
+    return push(next, &g);
+}
+
+/* Decide what becomes of one measured item (fj: the joints of its fit);
+ * children go to `next`. */
+static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
+                  const ob_driver_opts *o, itemvec *next)
+{
+    ob_job *j = &jobs[it->job];
+    jstate *s = &js[it->job];
+    char msg[160];
+    s->pending--;
+    if (s->dead)
+        return 0;
+    if (r->st != OB_OK && r->st != OB_RETRY_SMALLER) {
+        snprintf(msg, sizeof msg, "%.100s at t in [%.6g, %.6g] of segment %d", r->msg[0] ? r->msg : "fit failed",
+                 it->a, it->b, it->seg);
+        job_end(j, s, r->st, msg);
+        return 0;
+    }
+    /* a method that asks for a smaller piece is treated as too large an error;
+     * if no smaller piece may be made, there is nothing to accept */
+    const int retry = r->st == OB_RETRY_SMALLER;
+    if (retry)
+        retry_end_msg(it, r, 0, msg, sizeof msg);
+    /* the optimal rule's passes are greedy at their own error level */
+    const int pass = !retry && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
+    const int full = j->segments + s->pending + 1 >= o->max_segments;
+
+    if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
+        return decide_optimal(j, s, it, r, pass, next);
+    if (j->split == OB_SPLIT_MID || j->split == OB_SPLIT_MAXERR) {
+        if (pass) {
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            return 0;
+        }
+        const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
+        if (retry && it->depth >= RETRY_LEVELS) {
+            retry_end_msg(it, r, 1, msg, sizeof msg);
+            job_end(j, s, OB_FAIL, msg);
+            return 0;
+        }
+        if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            return 0;
+        }
+        if (stall >= STALL_LEVELS && !(it->depth >= o->max_depth || full)) {
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            snprintf(msg, sizeof msg, "error stalls at %.3g > tol under subdivision at t in [%.6g, %.6g] "
+                     "of segment %d (%d splits without a 10%% drop); the rest kept as it was", r->err, it->a,
+                     it->b, it->seg, STALL_LEVELS);
+            job_end(j, s, OB_LIMIT, msg);
+            s->floored = 1;
+            return 0;
+        }
+        if (it->depth >= o->max_depth || full) {
+            if (retry) {
+                job_end(j, s, OB_FAIL, msg);
+                return 0;
+            }
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            if (full)
+                snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
+            else
+                snprintf(msg, sizeof msg, "depth limit %d reached at t in [%.6g, %.6g] of segment %d (error %.3g)",
+                         o->max_depth, it->a, it->b, it->seg, r->err);
+            job_end(j, s, OB_LIMIT, msg);
+            return 0;
+        }
+        double cut = 0.5 * (it->a + it->b);
+        if (j->split == OB_SPLIT_MAXERR && !retry) {
+            double w = it->b - it->a;
+            cut = fmin(it->b - MAXERR_MARGIN * w, fmax(it->a + MAXERR_MARGIN * w, r->t));
+        }
+        item l = *it, rr = *it;
+        l.b = cut;
+        rr.a = cut;
+        l.depth = rr.depth = it->depth + 1;
+        l.parent_err = rr.parent_err = retry ? INFINITY : r->err;
+        l.stall = rr.stall = stall;
+        l.end = l.hi = l.b;
+        l.lo = l.a;
+        rr.end = rr.hi = rr.b;
+        rr.lo = rr.a;
+        l.chain_to = retry ? (it->chain_to > 0 ? it->chain_to : r->chain_to) : 0;
+        if (l.chain_to > 0) {  /* a chain of requests down to the limit: its leftmost piece alone */
+            s->pending += 1;
+            return push(next, &l);
+        }
+        s->pending += 2;
+        return push(next, &l) || push(next, &rr) ? -1 : 0;
+    }
+
+    /* greedy (and the optimal rule's final pass): bisection on the end of
+     * the prefix [a, b] */
+    item g = *it;
+    if (it->final) {
+        if (retry) {
+            job_end(j, s, OB_FAIL, msg);
+            return 0;
+        }
+        accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+        if (!pass) {
+            snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
+            job_end(j, s, OB_LIMIT, msg);
+        }
+        return 0;
+    }
+    if (pass) {
+        if (it->b >= it->end) {
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            return 0;
+        }
+        g.lo = it->b;
+        g.pass_err = r->err;
+        g.pass_ctrl_add = r->ctrl_add;
+        g.pass_maxdeg = r->maxdeg;
+        g.pass_n = r->n;
+        g.pass_fj = *fj;
+    } else {
+        g.hi = it->b;
+    }
+    if (g.hi - g.lo <= GREEDY_EPS * (g.end - g.a)) {
+        if (g.lo > g.a) {
+            accept(j, s, it->seg, it->a, g.lo, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err, &g.pass_fj);
+            g.a = g.lo;
+        } else if (retry) {
+            job_end(j, s, OB_FAIL, msg);
+            return 0;
+        } else {
+            /* not even a sliver passes: an error floor subdivision cannot get
+             * under; keep the sliver, fit the rest of the stretch once and keep
+             * it too, and end the job with status limit */
+            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
+                     it->b - it->a, it->a, it->seg, r->err);
+            job_end(j, s, OB_LIMIT, msg);
+            g.a = it->b;
+            g.final = 1;
+        }
+        if (g.a >= g.end)
+            return 0;
+        g.lo = g.a;
+        g.hi = g.b = g.end;
+        /* out of segments: the rest is fitted once and kept whatever its error */
+        g.final = g.final || j->segments + 1 >= o->max_segments;
+    } else {
+        g.b = 0.5 * (g.lo + g.hi);
+    }
+    s->pending++;
+    return push(next, &g);
+}
+
+static int ends_cmp(const void *x, const void *y)
+{
+    const fitends *p = x, *q = y;
+    if (p->seg != q->seg)
+        return p->seg < q->seg ? -1 : 1;
+    return p->a < q->a ? -1 : p->a > q->a;
+}
+
+/* The joints between consecutive accepted fits, in curve order (once: the
+ * ends are freed). */
+static void join_fits(ob_job *j, jstate *s)
+{
+    if (s->joined)
+        return;
+    s->joined = 1;
+    if (s->nends > 1)
+        qsort(s->ends, (size_t)s->nends, sizeof *s->ends, ends_cmp);
+    for (int i = 1; i < s->nends; i++)
+        s->open_count += ob_joint_between(&s->st, j->curve, s->gap_tol, s->ends[i - 1].seg, &s->ends[i - 1].last,
+                                          s->ends[i].seg, &s->ends[i].first);
+    free(s->ends);
+    s->ends = NULL;
+    s->nends = s->capends = 0;
+}
+
+/* A finished job's outputs: the control points of what was accepted (one
+ * more for each joint whose ends are apart) and its joints, or none for a
+ * job that failed, was skipped or timed out.  Called again for a finished
+ * job, it gives the same outputs. */
+static void finalize(ob_job *j, jstate *s)
+{
+    if ((j->status == OB_OK || j->status == OB_LIMIT) && s->ends_oom)
+        job_end(j, s, OB_FAIL, "out of memory keeping the ends of the accepted pieces");
+    if (j->status == OB_OK || j->status == OB_LIMIT) {
+        join_fits(j, s);
+        j->ctrl_points = j->segments > 0 ? 1 + s->ctrl_add + s->open_count : 0;
+        j->joints = s->st.joints;
+        j->open_joints = (int)s->open_count;
+        j->max_gap = s->st.joints > 0 ? s->st.max_gap : NAN;
+        j->max_kink = s->st.joints > 0 ? s->st.max_kink : NAN;
+        j->continuity = ob_joint_continuity(&s->st);
+    } else {
+        free(s->ends);
+        s->ends = NULL;
+        s->nends = s->capends = 0;
+        j->ctrl_points = 0;
+        j->segments = 0;
+        j->out_degree = 0;
+        j->max_err = NAN;
+        j->max_gap = j->max_kink = NAN;
+        j->continuity = OB_CONT_NONE;
+        j->joints = j->open_joints = 0;
+    }
+}
+
+/* ---- shared pieces -------------------------------------------------------
+ * Jobs that differ only in their tolerance (same curve, d, method,
+ * parameters, metric and split) of a method whose fit ignores the tolerance
+ * (ob_method_fit_uses_tol) fit and measure the same piece to the same
+ * result, and their mid and maxerr trees of a coarser tolerance lie inside
+ * a finer one's.  Such jobs form a share group.  Each level is sorted by
+ * (group, segment, piece, job), so that the items of a group on one piece
+ * are adjacent; the first live one is fitted and measured, the others take
+ * its results.  A job's decisions see exactly what they would alone (its own
+ * items keep their order: (segment, piece) within a job), and every job is
+ * charged the piece's full cost (fit_ns, eval_ns say what the job costs
+ * run alone). */
+
+typedef struct {
+    const ob_job *j;
+    size_t i;
+} jobref;
+
+static int ptr_cmp(const void *p, const void *q) { return (uintptr_t)p < (uintptr_t)q ? -1 : (uintptr_t)p > (uintptr_t)q; }
+
+static int job_share_cmp(const void *x, const void *y)
+{
+    const ob_job *a = ((const jobref *)x)->j, *b = ((const jobref *)y)->j;
+    int c;
+    if ((c = ptr_cmp(a->curve, b->curve)) || (c = ptr_cmp(a->method, b->method)) ||
+        (c = ptr_cmp(a->params, b->params)))
+        return c;
+    if (a->d != b->d)
+        return a->d < b->d ? -1 : 1;
+    if (a->metric != b->metric)
+        return a->metric < b->metric ? -1 : 1;
+    if (a->split != b->split)
+        return a->split < b->split ? -1 : 1;
+    const size_t i = ((const jobref *)x)->i, k = ((const jobref *)y)->i;
+    return i < k ? -1 : i > k;
+}
+
+/* Purpose: the share group of every job (grp[i]), or NULL when memory ran out. */
+static int *share_groups(const ob_job *jobs, size_t njobs)
+{
+    int *grp = malloc((njobs ? njobs : 1) * sizeof *grp);
+    jobref *r = malloc((njobs ? njobs : 1) * sizeof *r);
+    if (!grp || !r) {
+        free(grp);
+        free(r);
+        return NULL;
+    }
+    for (size_t i = 0; i < njobs; i++)
+        r[i] = (jobref){&jobs[i], i};
+    qsort(r, njobs, sizeof *r, job_share_cmp);
+    int id = -1;
+    for (size_t k = 0; k < njobs; k++) {
+        const ob_job *j = r[k].j, *p = k ? r[k - 1].j : NULL;
+        const int same = p && p->curve == j->curve && p->method == j->method && p->params == j->params &&
+                         p->d == j->d && p->metric == j->metric && p->split == j->split;
+        if (!same || ob_method_fit_uses_tol(j->method, j->params))
+            id++;
+        grp[r[k].i] = id;
+    }
+    free(r);
+    return grp;
+}
+
+/* 1 when items x and y fit the same piece for the same share group. */
+static int same_piece(const item *x, const item *y)
+{
+    return x->grp == y->grp && x->seg == y->seg && x->a == y->a && x->b == y->b;
+}
+
+static int item_share_cmp(const void *x, const void *y)
+{
+    const item *p = x, *q = y;
+    if (p->grp != q->grp)
+        return p->grp < q->grp ? -1 : 1;
+    if (p->seg != q->seg)
+        return p->seg < q->seg ? -1 : 1;
+    if (p->a != q->a)
+        return p->a < q->a ? -1 : 1;
+    if (p->b != q->b)
+        return p->b < q->b ? -1 : 1;
+    return p->job < q->job ? -1 : p->job > q->job;
+}
+
+/* Items in a chunk: how many of the n items from start to take (at most
+ * chunk), ending before a run of one piece that the chunk would cut (unless
+ * the run fills it). */
+static long chunk_count(const itemvec *cur, size_t start, int chunk)
+{
+    size_t n = cur->n - start < (size_t)chunk ? cur->n - start : (size_t)chunk;
+    size_t end = start + n;
+    if (end < cur->n) {
+        size_t r = end;
+        while (r > start && same_piece(&cur->v[r - 1], &cur->v[end]))
+            r--;
+        if (r > start)
+            end = r;
+    }
+    return (long)(end - start);
+}
+
+/* rep[i]: the item of the chunk whose fit item i takes (i itself: its own). */
+static void chunk_reps(const item *its, long cnt, const jstate *js, int *rep)
+{
+    long first = -1; /* the run's first live item */
+    for (long i = 0; i < cnt; i++) {
+        if (i == 0 || !same_piece(&its[i - 1], &its[i]))
+            first = -1;
+        rep[i] = (int)i;
+        if (js[its[i].job].dead)
+            continue;
+        if (first < 0)
+            first = i;
+        else
+            rep[i] = (int)first;
+    }
+}
+
+/* Items that take another's fit get its results (and are charged its cost). */
+static void copy_shared(long cnt, const int *rep, itemres *res, fitjoints *fj, double *fit_ns, double *eval_ns)
+{
+    for (long i = 0; i < cnt; i++) {
+        const int r = rep[i];
+        if (r == i)
+            continue;
+        res[i] = res[r];
+        fj[i] = fj[r];
+        fit_ns[i] = fit_ns[r];
+        eval_ns[i] = eval_ns[r];
+    }
+}
+
+int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
+{
+    ob_driver_opts o;
+    if (opts)
+        o = *opts;
+    else
+        ob_driver_defaults(&o);
+    if (o.chunk < 1)
+        o.chunk = 1;
+    int rc = 0;
+    batch B = {0};
+    jstate *js = calloc(njobs ? njobs : 1, sizeof *js);
+    itemvec cur = {0}, next = {0};
+    itemvec *plans = calloc(njobs ? njobs : 1, sizeof *plans);
+    const int nthreads = omp_get_max_threads();
+    size_t wsize = 1;
+    for (size_t i = 0; i < njobs; i++)
+        if (jobs[i].method->work_size > wsize)
+            wsize = jobs[i].method->work_size;
+    char *work = malloc(wsize * (size_t)nthreads);
+    ob_fit *fits = malloc((size_t)o.chunk * sizeof *fits);
+    itemres *res = malloc((size_t)o.chunk * sizeof *res);
+    double *fit_ns = malloc((size_t)o.chunk * sizeof *fit_ns);
+    double *eval_ns = malloc((size_t)o.chunk * sizeof *eval_ns);
+    fitjoints *fj = NULL;
+    int *grp = share_groups(jobs, njobs), *rep = malloc((size_t)o.chunk * sizeof *rep);
+    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns || !grp || !rep ||
+        batch_alloc(&B, o.chunk)) {
+        rc = -1;
+        goto out;
+    }
+    fj = malloc((size_t)o.chunk * sizeof *fj);
+    if (!fj) {
+        rc = -1;
+        goto out;
+    }
+
+    for (size_t i = 0; i < njobs; i++) {
+        ob_job *j = &jobs[i];
+        j->status = OB_OK;
+        j->ctrl_points = 0;
+        j->segments = 0;
+        j->out_degree = 0;
+        j->max_err = 0.0;
+        j->fit_ns = j->eval_ns = 0.0;
+        j->message[0] = '\0';
+        js[i].spans = o.spans ? &o.spans[i] : NULL;
+        j->max_gap = j->max_kink = NAN;
+        j->continuity = OB_CONT_NONE;
+        j->joints = j->open_joints = 0;
+        js[i].gap_tol = ob_joint_gap_tol(j->curve, j->d);
+    }
+    int plan_fail = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : plan_fail)
+    for (long i = 0; i < (long)njobs; i++) {
+        if (!check_applicable(&jobs[i], &js[i]))
+            continue;
+        plan_fail |= plan_job(&jobs[i], (int)i, grp[i], &o, &plans[i]) != 0;
+    }
+    if (plan_fail) {
+        rc = -1;
+        goto out;
+    }
+    size_t done = 0;
+    for (size_t i = 0; i < njobs; i++) {
+        if (plans[i].n == 0) {  /* skipped before any work */
+            js[i].finished = 1;
+            done++;
+            finalize(&jobs[i], &js[i]);
+            if (o.job_done)
+                o.job_done(o.job_done_ctx, i);
+        }
+        for (size_t k = 0; k < plans[i].n; k++)
+            if (push(&cur, &plans[i].v[k])) {
+                rc = -1;
+                goto out;
+            }
+        js[i].pending = (long)plans[i].n;
+        free(plans[i].v);
+        plans[i].v = NULL;
+    }
+
+    while (cur.n > 0) {
+        next.n = 0;
+        /* the items of one share group on one piece side by side */
+        qsort(cur.v, cur.n, sizeof *cur.v, item_share_cmp);
+        long cnt;
+        for (size_t start = 0; start < cur.n; start += (size_t)cnt) {
+            cnt = chunk_count(&cur, start, o.chunk);
+            const item *its = cur.v + start;
+            chunk_reps(its, cnt, js, rep);
+            /* fit every pending piece (once per share group) */
+#pragma omp parallel for schedule(dynamic, 4) if (cnt > 1)
+            for (long i = 0; i < cnt; i++) {
+                void *w = work + wsize * (size_t)omp_get_thread_num();
+                if (its[i].chain_to > its[i].depth) {  /* its fit asked for a smaller piece (the probe) */
+                    memset(&res[i], 0, sizeof res[i]);
+                    res[i].st = OB_RETRY_SMALLER;
+                    res[i].err = INFINITY;
+                    fit_ns[i] = 0.0;
+                    continue;
+                }
+                if (js[its[i].job].dead || rep[i] != i) {
+                    res[i].st = OB_SKIP;  /* dead, or takes its representative's fit below */
+                    fit_ns[i] = 0.0;
+                    continue;
+                }
+                fit_ns[i] = fit_item(jobs, &its[i], w, &fits[i], &res[i]);
+                fit_ns[i] += probe_retry_chain(jobs, &its[i], o.max_depth, w, &fits[i], &res[i]);
+            }
+
+            /* the ends and inner joints of every fit (joints.h) */
+            joints_chunk(js, its, cnt, fits, res, fj);
+            /* measure every fit: one batch */
+            measure_chunk(jobs, its, cnt, fits, res, eval_ns, &o, &B);
+            copy_shared(cnt, rep, res, fj, fit_ns, eval_ns);
+            /* decide, in job order */
+            for (long i = 0; i < cnt; i++) {
+                ob_job *jj = &jobs[its[i].job];
+                jj->fit_ns += fit_ns[i];
+                jj->eval_ns += eval_ns[i];
+                if (decide(jobs, js, &its[i], &res[i], &fj[i], &o, &next)) {
+                    rc = -1;
+                    goto out;
+                }
+                if (o.job_timeout_ns > 0 && !js[its[i].job].dead && js[its[i].job].pending > 0 &&
+                    jj->fit_ns + jj->eval_ns > o.job_timeout_ns) {
+                    char msg[160];
+                    snprintf(msg, sizeof msg, "job timeout: %.3g s of thread time used, limit %.3g s (%d segments "
+                             "accepted so far)", (jj->fit_ns + jj->eval_ns) * 1e-9, o.job_timeout_ns * 1e-9,
+                             jj->segments);
+                    job_end(jj, &js[its[i].job], OB_TIMEOUT, msg);
+                }
+                jstate *s = &js[its[i].job];
+                if (!s->finished && (s->pending == 0 || s->dead)) {
+                    s->finished = 1;
+                    done++;
+                    finalize(jj, s);
+                    if (o.job_done)
+                        o.job_done(o.job_done_ctx, (size_t)its[i].job);
+                    if (o.test_oom_after > 0 && done >= (size_t)o.test_oom_after) {
+                        rc = -1;
+                        goto out;
+                    }
+                }
+            }
+            if (o.progress)
+                o.progress(o.progress_ctx, done, njobs);
+            if (o.stop && *o.stop) {
+                rc = 1;
+                goto out;
+            }
+        }
+        itemvec tmp = cur;
+        cur = next;
+        next = tmp;
+    }
+
+out:
+    for (size_t i = 0; i < njobs; i++) {
+        ob_job *j = &jobs[i];
+        if (rc != 0 && (!js || !js[i].finished)) {
+            j->status = OB_FAIL;
+            snprintf(j->message, sizeof j->message, "%s", rc > 0 ? "interrupted" : "out of memory");
+        }
+        if (js)
+            finalize(j, &js[i]);
+        else {
+            j->ctrl_points = 0;
+            j->segments = j->out_degree = 0;
+            j->max_err = NAN;
+            j->max_gap = j->max_kink = NAN;
+            j->continuity = OB_CONT_NONE;
+            j->joints = j->open_joints = 0;
+        }
+        if (plans)
+            free(plans[i].v);
+        if (o.spans && o.spans[i].n > 1)
+            qsort(o.spans[i].v, (size_t)o.spans[i].n, sizeof *o.spans[i].v, span_cmp);
+    }
+    free(plans);
+    free(cur.v);
+    free(next.v);
+    free(js);
+    free(work);
+    free(fits);
+    free(res);
+    free(fit_ns);
+    free(eval_ns);
+    batch_free(&B);
+    free(fj);
+    free(grp);
+    free(rep);
+    return rc;
+}

@@ -1,0 +1,73 @@
+/*
+ * metric.h - how far an approximation is from the exact offset.
+ *
+ * All metrics compare one approximating segment A with the exact offset
+ * O(t) = C(t) + d N(t) of one base segment C over t in [0,1]:
+ *   bound      Elber-Lee-Kim's symbolic measure: the Bernstein coefficients of
+ *              D(t) = ||A(t) - C(t)||^2 (rational: of its numerator over its
+ *              denominator) bound D; error = max(|sqrt(max(Dmin,0)) - |d||,
+ *              |sqrt(Dmax) - |d||).  No sampling.  Assumes A shares C's parameter.
+ *   radial     max_t | ||A(t) - C(t)|| - |d| |, sampled (same parameter).
+ *   normal     Zhao-Zhou: along the normal line C(t) + s N(t), the signed
+ *              distance s to its intersection with A near t; error |s - d|.
+ *              Independent of A's parameterization.
+ *   hausdorff  two-sided Hausdorff distance between A and the untrimmed offset
+ *              O over [0,1]; nearest points by a global coarse scan of the
+ *              samples, local descent and Gauss-Newton projection.
+ * Sampled metrics use S parameters t_k = k/(S-1) and refine the largest sample
+ * by golden-section search between its neighbours.
+ *
+ * This file is the CPU reference; the OpenCL kernels implement the same
+ * formulas and are checked against it.
+ */
+#ifndef OB_METRIC_H
+#define OB_METRIC_H
+
+#include "methods/core/curve.h"
+
+/* The sampled metrics' codes are shared with kernels/metric_core.h. */
+typedef enum {
+    OB_METRIC_BOUND = 0,
+    OB_METRIC_RADIAL,
+    OB_METRIC_NORMAL,
+    OB_METRIC_HAUSDORFF,
+    OB_METRIC_COUNT
+} ob_metric;
+
+const char *ob_metric_name(ob_metric m);
+/* Returns 0 and sets *m, or -1 for an unknown name. */
+int ob_metric_parse(const char *name, ob_metric *m);
+/* 1 if the metric assumes that A is parameterized like C (bound, radial). */
+int ob_metric_same_param(ob_metric m);
+
+enum { OB_DEFAULT_SAMPLES = 256, OB_MIN_SAMPLES = 8, OB_MAX_SAMPLES = 4096 };
+
+typedef struct {
+    double err;  /* the error, >= 0 (+inf when it cannot be measured) */
+    double t;    /* base parameter in [0,1] where it is largest */
+    double work; /* floating-point operations the measurement took, as
+                    kernels/metric_core.h counts them (OBC_OPS_*); 0 for bound */
+} ob_errval;
+
+/* Purpose: error of `approx` against the exact d-offset of `base`.
+ * Inputs:  samples S (ignored by bound), clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES].
+ * Returns: 0; -1 if the metric cannot be applied (bound with a degree past
+ *          OB_BERN_MAX; no memory for the sample tables past S = 512), with
+ *          out->err = +inf. */
+int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
+               int samples, ob_errval *out);
+
+/* The sample count actually used: S clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES]. */
+int ob_clamp_samples(int samples);
+
+/* Doubles of working space one sampled measurement needs at S samples (the
+ * OpenCL host sizes its scratch buffer with it). */
+size_t ob_metric_scratch(int samples);
+
+/* The individual metrics (same contract, S clamped likewise). */
+int ob_metric_bound(const ob_bez *base, const ob_bez *approx, double d, ob_errval *out);
+int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+
+#endif
