@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/io/fsutil.h"
 #include "methods/core/offdeg.h"
 #include "host/cli/commands.h"
 #include "host/io/datadir.h"

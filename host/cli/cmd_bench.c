@@ -36,6 +36,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "host/io/fsutil.h"
 #include "kernels/metric_core.h"
 #include "methods/driver/driver.h"
 #include "host/backend/clrt.h"
@@ -208,7 +209,8 @@ static void cpu_batch(const ob_measure_rec *recs, int n, int S, ob_errval *out, 
 
 /* Every method at 5 tolerances on the curves of set, hausdorff, mid split.
  * keep: NULL, or where the jobs go (with their timings; the caller frees). */
-static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njobs, ob_job **keep)
+static double random_run(const ob_curveset *set, const ob_driver_opts *o, const ob_driver_hooks *h, size_t *njobs,
+                         ob_job **keep)
 {
     static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
     const int nm = ob_method_count();
@@ -232,7 +234,7 @@ static double random_run(const ob_curveset *set, ob_driver_opts *o, size_t *njob
                     j->tol = tols[t];
                 }
     double t0 = now_s();
-    ob_driver_run(jobs, n, o);
+    ob_driver_run(jobs, n, o, h);
     double dt = now_s() - t0;
     if (keep)
         *keep = jobs;
@@ -284,7 +286,8 @@ static void per_method_times(bench_out *b, const ob_job *jobs, size_t n, int thr
     free(w);
 }
 
-static double whole_run(int threads, const ob_curveset *set, ob_driver_opts *o, size_t *njobs)
+static double whole_run(int threads, const ob_curveset *set, const ob_driver_opts *o, const ob_driver_hooks *h,
+                        size_t *njobs)
 {
     static const char *methods[] = {"tiller", "cobb", "ahn"};
     static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4};
@@ -309,7 +312,7 @@ static double whole_run(int threads, const ob_curveset *set, ob_driver_opts *o, 
                 }
     omp_set_num_threads(threads);
     double t0 = now_s();
-    ob_driver_run(jobs, n, o);
+    ob_driver_run(jobs, n, o, h);
     double dt = now_s() - t0;
     free(jobs);
     *njobs = n;
@@ -452,15 +455,14 @@ int ob_cmd_bench(int argc, char **argv)
         ob_driver_opts o;
         ob_driver_defaults(&o);
         size_t nj = 0;
-        double r1 = whole_run(1, &set, &o, &nj), rN = whole_run(N, &set, &o, &nj);
+        double r1 = whole_run(1, &set, &o, NULL, &nj), rN = whole_run(N, &set, &o, NULL, &nj);
         row(&b, "run", "cpu", 1, (double)nj, r1, "jobs/s");
         row(&b, "run", "cpu", N, (double)nj, rN, "jobs/s");
         printf("whole run (%zu jobs, hausdorff): %.2f s on 1 thread, %.2f s on %d: speedup x%.2f\n", nj, r1, rN, N,
                r1 / rN);
         if (cl) {
-            o.batch = ob_cl_measure_batch;
-            o.batch_ctx = cl;
-            double g = whole_run(N, &set, &o, &nj);
+            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
+            double g = whole_run(N, &set, &o, &clh, &nj);
             row(&b, "run", "opencl", N, (double)nj, g, "jobs/s");
             printf("whole run with the OpenCL backend: %.2f s (x%.2f vs CPU on %d threads)\n", g, rN / g, N);
         }
@@ -475,14 +477,13 @@ int ob_cmd_bench(int argc, char **argv)
         omp_set_num_threads(N);
         size_t nj = 0;
         ob_job *kept = NULL;
-        double c = random_run(&rset, &o, &nj, &kept);
+        double c = random_run(&rset, &o, NULL, &nj, &kept);
         row(&b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
         printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
                rset.n, ob_method_count(), nj, nj / c);
         if (cl) {
-            o.batch = ob_cl_measure_batch;
-            o.batch_ctx = cl;
-            double g = random_run(&rset, &o, &nj, NULL);
+            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
+            double g = random_run(&rset, &o, &clh, &nj, NULL);
             row(&b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
             printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);
         }

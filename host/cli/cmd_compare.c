@@ -109,6 +109,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/io/fsutil.h"
 #include "host/cli/commands.h"
 #include "host/compare/compare.h"
 #include "host/cli/cliopts.h"

@@ -45,6 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/io/fsutil.h"
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
 #include "host/diag.h"

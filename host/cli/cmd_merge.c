@@ -29,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/io/fsutil.h"
 #include "host/io/columns.h"
 #include "host/cli/commands.h"
 #include "host/cli/cliopts.h"

@@ -17,6 +17,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "host/io/fsutil.h"
 #include "host/cli/commands.h"
 #include "host/io/datadir.h"
 #include "host/cli/cliopts.h"
@@ -234,7 +235,7 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
 }
 
 /* Runs every slot, one driver run per group of driver options. */
-static int run_slots(ob_tab_plan *pl, const ob_run_opts *o)
+static int run_slots(ob_tab_plan *pl, const ob_run_opts *o, const ob_driver_hooks *base)
 {
     ob_job *jobs = malloc((size_t)(pl->nslots ? pl->nslots : 1) * sizeof *jobs);
     long *idx = malloc((size_t)(pl->nslots ? pl->nslots : 1) * sizeof *idx);
@@ -261,9 +262,10 @@ static int run_slots(ob_tab_plan *pl, const ob_run_opts *o)
             d.max_depth = 0;
         ob_progress bar;
         ob_progress_init(&bar);
-        d.progress = ob_progress_cb;
-        d.progress_ctx = &bar;
-        int drc = ob_driver_run(jobs, n, &d);
+        ob_driver_hooks h = *base;
+        h.progress = ob_progress_cb;
+        h.progress_ctx = &bar;
+        int drc = ob_driver_run(jobs, n, &d, &h);
         ob_progress_end(&bar);
         for (size_t k = 0; k < n; k++) {
             const double *keep = pl->slots[idx[k]].job.params;
@@ -402,7 +404,8 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
         ob_error("--table %s: no such table in %s (tables are SOURCE:TABLE, e.g. liu2002:1)", only, pub.where);
         goto done;
     }
-    if (ob_open_backend(&o, &cl) != 0)  /* before --out: a run that cannot start creates nothing */
+    ob_backend_info binfo = {0};
+    if (ob_open_backend(o.backend, o.device, &binfo, &cl) != 0)  /* before --out: a run that cannot start creates nothing */
         goto done;
     if (ob_mkdir_p(o.out_dir) != 0) {
         ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
@@ -411,7 +414,9 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     }
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    int rrc = run_slots(&pl, &o);
+    ob_driver_hooks hooks = {0};
+    ob_backend_hooks(cl, &binfo, &hooks);
+    int rrc = run_slots(&pl, &o, &hooks);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
     ob_tab_out out = {&pl, &pub, where, &o, wall};

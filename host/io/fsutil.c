@@ -1,6 +1,6 @@
 /*
  * fsutil.c - output directories and files a reader never sees half-written
- * (declared in commands.h).
+ * (fsutil.h).
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "host/cli/commands.h"
+#include "host/io/fsutil.h"
 #include "host/diag.h"
 
 int ob_mkdir_p(const char *dir)

@@ -158,7 +158,7 @@ static void cpu_model(char *buf, size_t len)
     fclose(f);
 }
 
-int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
+int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
                   double wall_seconds)
 {
     char ts[64];
@@ -172,7 +172,7 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     ob_json_string(f, "gcc " __VERSION__);
     fprintf(f, ",\n  \"cflags\": ");
     ob_json_string(f, OB_CFLAGS);
-    const ob_backend_info *b = &o->binfo;
+    const ob_backend_info *b = &rec->binfo;
     fprintf(f, ",\n  \"backend\": \"%s\",\n  \"opencl\": ", b->opencl ? "opencl" : "cpu");
     if (b->opencl) {
         fprintf(f, "{\"platform\": ");
@@ -231,7 +231,7 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
                "among its records by the floating-point operations each took (counted by the kernel), summed\", "
                "\"with_reps\": \"the median over the timed repetitions; samples.csv has each\"},\n");
     fprintf(f, "  \"reps\": %d,\n  \"warmup\": %s,\n  \"rep_mismatches\": %ld,\n", o->reps > 0 ? o->reps : 1,
-            o->reps > 0 ? "true" : "false", o->rep_mismatches);
+            o->reps > 0 ? "true" : "false", rec->rep_mismatches);
     fprintf(f, "  \"offset_degree\": \"exact (FLINT %s): 2n + 2tau - mu of each Bezier segment, the largest per curve, "
                "on the control points as stored (each double is exactly the rational m 2^e)\",\n", FLINT_VERSION);
     /* the thresholds of the joint columns (methods/driver/joints.h) */
@@ -247,14 +247,14 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
     /* the shard lines are rewritten by merge (cmd_merge.c): keep them one
      * key per line */
-    if (o->mpi_ranks > 1)
-        fprintf(f, "  \"shard\": null,\n  \"mpi_ranks\": %d,\n", o->mpi_ranks);
+    if (rec->mpi_ranks > 1)
+        fprintf(f, "  \"shard\": null,\n  \"mpi_ranks\": %d,\n", rec->mpi_ranks);
     else if (o->shard_n > 0)
         fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
     else
         fprintf(f, "  \"shard\": null,\n");
     fprintf(f, "  \"jobs_total\": %zu,\n  \"plan_hash\": \"%016" PRIx64 "\",\n  \"plan_seed\": \"%016" PRIx64 "\",\n",
-            o->jobs_total, o->plan_hash, o->plan_seed);
+            rec->jobs_total, rec->plan_hash, rec->plan_seed);
     fprintf(f, "  \"wall_seconds\": %.3f,\n  \"argv\": [", wall_seconds);
     for (int i = 0; i < o->argc; i++) {
         if (i)

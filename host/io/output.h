@@ -8,6 +8,7 @@
 
 #include "methods/driver/driver.h"
 #include "host/run/options.h"
+#include "host/run/record.h"
 
 /* Purpose: write one row per job, in job order, to f.  Returns 0 or -1 on a
  * write error. */
@@ -30,8 +31,9 @@ int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const 
 int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, const double *eval, size_t stride);
 
 /* Purpose: write meta.json: what makes two runs comparable (build, backend,
- * threads, samples, limits, argv, time).  Returns 0 or -1. */
-int ob_write_meta(FILE *f, const ob_run_opts *o, const char *data_source, size_t njobs,
+ * threads, samples, limits, argv, time): the configuration o and what the
+ * run recorded in rec.  Returns 0 or -1. */
+int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
                   double wall_seconds);
 
 /* Writes s as a CSV field (quoted when it holds a comma, quote or newline). */

@@ -111,7 +111,7 @@ static void fp_num(fpbuf *b, const char *key, double v)
     fp_tok(b, key, num);
 }
 
-char *ob_resume_fingerprint(const ob_run_opts *o, const char *where)
+char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, const char *where)
 {
     fpbuf b = {0};
     char v[64];
@@ -121,7 +121,7 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const char *where)
     fp_num(&b, "inflections", o->driver.inflections);
     fp_num(&b, "job_timeout", o->driver.job_timeout_ns);
     fp_tok(&b, "data", where);
-    snprintf(v, sizeof v, "%016" PRIx64, o->data_hash);
+    snprintf(v, sizeof v, "%016" PRIx64, rec->data_hash);
     fp_tok(&b, "data_hash", v);
     if (!o->curve_ids) {
         fp_tok(&b, "curves", "all");

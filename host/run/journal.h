@@ -22,6 +22,7 @@
 
 #include "methods/driver/driver.h"
 #include "host/run/options.h"
+#include "host/run/record.h"
 #include "host/io/results_csv.h"
 
 typedef struct {
@@ -40,12 +41,12 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where);
 /* Purpose: everything that decides a resumed run's results and job set, as
  *          one line of " key=value" tokens (values %-escaped): the options
  *          of ob_run_fingerprint, the selected curves' content hash
- *          (o->data_hash), --curve, --methods, --tols, --metric, --split,
+ *          (rec->data_hash), --curve, --methods, --tols, --metric, --split,
  *          --shard, the build (git commit, dirty flag, compiler flags) and
  *          the versions of the run's methods.  Kept in the journal's first
  *          line and, once the run has finished, in DIR/results.fingerprint.
  *          malloc'd; NULL without memory. */
-char *ob_resume_fingerprint(const ob_run_opts *o, const char *where);
+char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, const char *where);
 
 /* Purpose: 0 when fingerprints was and now agree; else 1 with the first
  *          difference in out, named as the user knows it ("--samples differs

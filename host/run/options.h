@@ -6,21 +6,13 @@
 
 #include <stdint.h>
 
+#include "host/backend/select.h"
 #include "methods/driver/driver.h"
 
 enum { OB_MAX_TOLS = 64, OB_MAX_PARAM_ARGS = 256 };
 
-typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backend;
-
-/* What measured the run, for meta.json (filled by the run command). */
-typedef struct {
-    int opencl;                  /* 0: the CPU reference path */
-    char platform[256], device[256], driver[128], kernels[512];
-    double build_seconds;
-    long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
-    char why_cpu[512];           /* with auto: why OpenCL was not used */
-} ob_backend_info;
-
+/* What the command line asked for: set by parsing (ob_run_opts_parse), then
+ * read only.  What the run finds out goes to an ob_run_record (record.h). */
 typedef struct {
     const char *curves_file;     /* --curves FILE, or NULL: every curve file under
                                     datasets/ (none with --random) */
@@ -41,8 +33,6 @@ typedef struct {
     int threads;                 /* 0: OpenMP's default */
     int reps;                    /* --reps N: timed repetitions after a warm-up
                                     run (samples.csv); 0: one run, no samples */
-    long rep_mismatches;         /* for meta.json: job results that differed
-                                    between repetitions (nondeterminism) */
     const char *out_dir;
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
     int force;                   /* --force: a fresh run over an interrupted
@@ -50,19 +40,10 @@ typedef struct {
     int out_given;               /* --out was given (parsing) */
     const char *param_seen[OB_MAX_PARAM_ARGS]; /* the --param values so far (parsing) */
     int nparam_seen;
-    uint64_t data_hash;          /* FNV-1a of the selected curves' content
-                                    (filled by the run command; journal.h) */
     int shard_k, shard_n;        /* --shard K/N: this process runs shard K of N
                                     (shard.h); shard_n 0: the whole run */
-    /* for meta.json, filled by the run command: the whole run's job count
-     * and plan hash (shard.h), equal in every shard of one run */
-    size_t jobs_total;
-    uint64_t plan_hash;
-    uint64_t plan_seed;          /* ob_plan_seed(): merge recomputes plan_hash */
-    int mpi_ranks;               /* > 1: run by that many MPI ranks (mpirun.h) */
     ob_driver_opts driver;
-    ob_backend_info binfo;       /* for meta.json */
-    int argc;                    /* for meta.json */
+    int argc;                    /* the command line, for meta.json */
     char **argv;
 } ob_run_opts;
 

@@ -3,6 +3,7 @@
  * error.  See jobview.h.
  */
 #include "host/view/jobview.h"
+#include "host/run/plan.h"
 
 #include <math.h>
 #include <omp.h>
@@ -110,13 +111,13 @@ static int refit_span(ob_jobview *v, const ob_span *sp, void *work, int *cap, in
 
 int ob_jobview_run(ob_jobview *v)
 {
-    if (ob_open_backend(&v->o, &v->cl) != 0)
+    if (ob_open_backend(v->o.backend, v->o.device, &v->binfo, &v->cl) != 0)
         return 2;
     if (v->o.threads > 0)
         omp_set_num_threads(v->o.threads);
-    v->o.driver.spans = &v->spans;
-    v->o.driver.progress = NULL;
-    if (ob_driver_run(&v->job, 1, &v->o.driver) != 0 || v->spans.oom) {
+    ob_driver_hooks h = {.spans = &v->spans};
+    ob_backend_hooks(v->cl, &v->binfo, &h);
+    if (ob_driver_run(&v->job, 1, &v->o.driver, &h) != 0 || v->spans.oom) {
         ob_error("%s: out of memory running the job", v->cmd);
         return 1;
     }

@@ -36,6 +36,7 @@ typedef struct {
     ob_run_opts o;
     ob_curveset set;
     ob_cl *cl;
+    ob_backend_info binfo;  /* what measures (ob_open_backend) */
     const ob_curve *curve;
     ob_job job;
     ob_span_log spans;

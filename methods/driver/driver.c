@@ -441,7 +441,7 @@ static void batch_free(batch *b)
 
 /* Measure all pieces of all fitted items of a chunk: one batch. */
 static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, itemres *res,
-                          double *eval_ns, const ob_driver_opts *o, batch *B)
+                          double *eval_ns, int samples, const ob_driver_hooks *h, batch *B)
 {
     int n = 0;
     for (long i = 0; i < cnt; i++) {
@@ -467,7 +467,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
     }
     /* sampled records to the backend in one call, the rest on the CPU */
     int ns = 0;
-    if (o->batch)
+    if (h->batch)
         for (int r = 0; r < n; r++)
             if (B->rec[r].metric != OB_METRIC_BOUND)
                 B->sampled[ns++] = r;
@@ -476,7 +476,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
         for (int k = 0; k < ns; k++)
             B->srec[k] = B->rec[B->sampled[k]];
         const double t0 = wall_ns();
-        backend_ok = o->batch(o->batch_ctx, B->srec, ns, o->samples, B->sout) == 0;
+        backend_ok = h->batch(h->batch_ctx, B->srec, ns, samples, B->sout) == 0;
         const double wall = wall_ns() - t0;
         if (backend_ok) {
             /* one launch measured them all: each record's share of its wall
@@ -488,8 +488,8 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
                 B->out[B->sampled[k]] = B->sout[k];
                 B->ns[B->sampled[k]] = total > 0.0 ? wall * (B->sout[k].work / total) : wall / ns;
             }
-        } else if (o->batch_fallbacks) {
-            (*o->batch_fallbacks)++;
+        } else if (h->batch_fallbacks) {
+            (*h->batch_fallbacks)++;
         }
     }
 #pragma omp parallel for schedule(dynamic, 4) if (n > 1)
@@ -497,7 +497,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
         if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
             continue;
         const double t0 = thread_ns();
-        if (ob_measure(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, o->samples, &B->out[r]))
+        if (ob_measure(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, samples, &B->out[r]))
             B->out[r].err = NAN;  /* cannot be measured: reported below */
         B->ns[r] = thread_ns() - t0;
     }
@@ -970,45 +970,68 @@ static void copy_shared(long cnt, const int *rep, itemres *res, fitjoints *fj, d
     }
 }
 
-int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
-{
+/* One driver run: its jobs, settings, hooks and the buffers of one chunk. */
+typedef struct {
+    ob_job *jobs;
+    size_t njobs;
     ob_driver_opts o;
-    if (opts)
-        o = *opts;
-    else
-        ob_driver_defaults(&o);
-    if (o.chunk < 1)
-        o.chunk = 1;
-    int rc = 0;
-    batch B = {0};
-    jstate *js = calloc(njobs ? njobs : 1, sizeof *js);
-    itemvec cur = {0}, next = {0};
-    itemvec *plans = calloc(njobs ? njobs : 1, sizeof *plans);
-    const int nthreads = omp_get_max_threads();
-    size_t wsize = 1;
-    for (size_t i = 0; i < njobs; i++)
-        if (jobs[i].method->work_size > wsize)
-            wsize = jobs[i].method->work_size;
-    char *work = malloc(wsize * (size_t)nthreads);
-    ob_fit *fits = malloc((size_t)o.chunk * sizeof *fits);
-    itemres *res = malloc((size_t)o.chunk * sizeof *res);
-    double *fit_ns = malloc((size_t)o.chunk * sizeof *fit_ns);
-    double *eval_ns = malloc((size_t)o.chunk * sizeof *eval_ns);
-    fitjoints *fj = NULL;
-    int *grp = share_groups(jobs, njobs), *rep = malloc((size_t)o.chunk * sizeof *rep);
-    if (!js || !plans || !work || !fits || !res || !fit_ns || !eval_ns || !grp || !rep ||
-        batch_alloc(&B, o.chunk)) {
-        rc = -1;
-        goto out;
-    }
-    fj = malloc((size_t)o.chunk * sizeof *fj);
-    if (!fj) {
-        rc = -1;
-        goto out;
-    }
+    ob_driver_hooks h;
+    jstate *js;
+    itemvec cur, next;
+    size_t wsize;       /* the largest work area a method asks for */
+    char *work;         /* wsize bytes per thread */
+    ob_fit *fits;       /* chunk entries each, from here to rep */
+    itemres *res;
+    double *fit_ns, *eval_ns;
+    fitjoints *fj;
+    int *rep;
+    int *grp;           /* njobs: each job's share group */
+    batch B;
+    size_t done;        /* jobs finished */
+} drun;
 
-    for (size_t i = 0; i < njobs; i++) {
-        ob_job *j = &jobs[i];
+static int drun_alloc(drun *R)
+{
+    const size_t nj = R->njobs ? R->njobs : 1, nc = (size_t)R->o.chunk;
+    R->js = calloc(nj, sizeof *R->js);
+    R->wsize = 1;
+    for (size_t i = 0; i < R->njobs; i++)
+        if (R->jobs[i].method->work_size > R->wsize)
+            R->wsize = R->jobs[i].method->work_size;
+    R->work = malloc(R->wsize * (size_t)omp_get_max_threads());
+    R->fits = malloc(nc * sizeof *R->fits);
+    R->res = malloc(nc * sizeof *R->res);
+    R->fit_ns = malloc(nc * sizeof *R->fit_ns);
+    R->eval_ns = malloc(nc * sizeof *R->eval_ns);
+    R->fj = malloc(nc * sizeof *R->fj);
+    R->rep = malloc(nc * sizeof *R->rep);
+    R->grp = share_groups(R->jobs, R->njobs);
+    const int bad = batch_alloc(&R->B, R->o.chunk);
+    return !bad && R->js && R->work && R->fits && R->res && R->fit_ns && R->eval_ns && R->fj && R->rep && R->grp
+               ? 0 : -1;
+}
+
+static void drun_free(drun *R)
+{
+    free(R->cur.v);
+    free(R->next.v);
+    free(R->js);
+    free(R->work);
+    free(R->fits);
+    free(R->res);
+    free(R->fit_ns);
+    free(R->eval_ns);
+    batch_free(&R->B);
+    free(R->fj);
+    free(R->grp);
+    free(R->rep);
+}
+
+/* Every job's outputs cleared, its bookkeeping started. */
+static void init_jobs(drun *R)
+{
+    for (size_t i = 0; i < R->njobs; i++) {
+        ob_job *j = &R->jobs[i];
         j->status = OB_OK;
         j->ctrl_points = 0;
         j->segments = 0;
@@ -1016,128 +1039,149 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts)
         j->max_err = 0.0;
         j->fit_ns = j->eval_ns = 0.0;
         j->message[0] = '\0';
-        js[i].spans = o.spans ? &o.spans[i] : NULL;
+        R->js[i].spans = R->h.spans ? &R->h.spans[i] : NULL;
         j->max_gap = j->max_kink = NAN;
         j->continuity = OB_CONT_NONE;
         j->joints = j->open_joints = 0;
-        js[i].gap_tol = ob_joint_gap_tol(j->curve, j->d);
+        R->js[i].gap_tol = ob_joint_gap_tol(j->curve, j->d);
     }
-    int plan_fail = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : plan_fail)
-    for (long i = 0; i < (long)njobs; i++) {
-        if (!check_applicable(&jobs[i], &js[i]))
+}
+
+/* Job i is done: its outputs final, the caller told.  Returns -1 when the
+ * out-of-memory test hook fires. */
+static int job_finished(drun *R, size_t i)
+{
+    R->js[i].finished = 1;
+    R->done++;
+    finalize(&R->jobs[i], &R->js[i]);
+    if (R->h.job_done)
+        R->h.job_done(R->h.job_done_ctx, i);
+    return R->o.test_oom_after > 0 && R->done >= (size_t)R->o.test_oom_after ? -1 : 0;
+}
+
+/* The first pieces of every job (in parallel), queued in job order; jobs
+ * that are skipped before any work finish here.  0, or -1 (memory). */
+static int plan_all(drun *R)
+{
+    itemvec *plans = calloc(R->njobs ? R->njobs : 1, sizeof *plans);
+    if (!plans)
+        return -1;
+    int fail = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : fail)
+    for (long i = 0; i < (long)R->njobs; i++) {
+        if (!check_applicable(&R->jobs[i], &R->js[i]))
             continue;
-        plan_fail |= plan_job(&jobs[i], (int)i, grp[i], &o, &plans[i]) != 0;
+        fail |= plan_job(&R->jobs[i], (int)i, R->grp[i], &R->o, &plans[i]) != 0;
     }
-    if (plan_fail) {
-        rc = -1;
-        goto out;
+    for (size_t i = 0; i < R->njobs && !fail; i++) {
+        if (plans[i].n == 0)  /* skipped before any work (the hook cannot fire: nothing ran) */
+            job_finished(R, i);
+        for (size_t k = 0; k < plans[i].n && !fail; k++)
+            fail = push(&R->cur, &plans[i].v[k]) != 0;
+        R->js[i].pending = (long)plans[i].n;
     }
-    size_t done = 0;
-    for (size_t i = 0; i < njobs; i++) {
-        if (plans[i].n == 0) {  /* skipped before any work */
-            js[i].finished = 1;
-            done++;
-            finalize(&jobs[i], &js[i]);
-            if (o.job_done)
-                o.job_done(o.job_done_ctx, i);
-        }
-        for (size_t k = 0; k < plans[i].n; k++)
-            if (push(&cur, &plans[i].v[k])) {
-                rc = -1;
-                goto out;
-            }
-        js[i].pending = (long)plans[i].n;
+    for (size_t i = 0; i < R->njobs; i++)
         free(plans[i].v);
-        plans[i].v = NULL;
-    }
+    free(plans);
+    return fail ? -1 : 0;
+}
 
-    while (cur.n > 0) {
-        next.n = 0;
-        /* the items of one share group on one piece side by side */
-        qsort(cur.v, cur.n, sizeof *cur.v, item_share_cmp);
-        long cnt;
-        for (size_t start = 0; start < cur.n; start += (size_t)cnt) {
-            cnt = chunk_count(&cur, start, o.chunk);
-            const item *its = cur.v + start;
-            chunk_reps(its, cnt, js, rep);
-            /* fit every pending piece (once per share group) */
+/* Fit every pending piece of a chunk (once per share group). */
+static void fit_chunk(drun *R, const item *its, long cnt)
+{
 #pragma omp parallel for schedule(dynamic, 4) if (cnt > 1)
-            for (long i = 0; i < cnt; i++) {
-                void *w = work + wsize * (size_t)omp_get_thread_num();
-                if (its[i].chain_to > its[i].depth) {  /* its fit asked for a smaller piece (the probe) */
-                    memset(&res[i], 0, sizeof res[i]);
-                    res[i].st = OB_RETRY_SMALLER;
-                    res[i].err = INFINITY;
-                    fit_ns[i] = 0.0;
-                    continue;
-                }
-                if (js[its[i].job].dead || rep[i] != i) {
-                    res[i].st = OB_SKIP;  /* dead, or takes its representative's fit below */
-                    fit_ns[i] = 0.0;
-                    continue;
-                }
-                fit_ns[i] = fit_item(jobs, &its[i], w, &fits[i], &res[i]);
-                fit_ns[i] += probe_retry_chain(jobs, &its[i], o.max_depth, w, &fits[i], &res[i]);
-            }
-
-            /* the ends and inner joints of every fit (joints.h) */
-            joints_chunk(js, its, cnt, fits, res, fj);
-            /* measure every fit: one batch */
-            measure_chunk(jobs, its, cnt, fits, res, eval_ns, &o, &B);
-            copy_shared(cnt, rep, res, fj, fit_ns, eval_ns);
-            /* decide, in job order */
-            for (long i = 0; i < cnt; i++) {
-                ob_job *jj = &jobs[its[i].job];
-                jj->fit_ns += fit_ns[i];
-                jj->eval_ns += eval_ns[i];
-                if (decide(jobs, js, &its[i], &res[i], &fj[i], &o, &next)) {
-                    rc = -1;
-                    goto out;
-                }
-                if (o.job_timeout_ns > 0 && !js[its[i].job].dead && js[its[i].job].pending > 0 &&
-                    jj->fit_ns + jj->eval_ns > o.job_timeout_ns) {
-                    char msg[160];
-                    snprintf(msg, sizeof msg, "job timeout: %.3g s of thread time used, limit %.3g s (%d segments "
-                             "accepted so far)", (jj->fit_ns + jj->eval_ns) * 1e-9, o.job_timeout_ns * 1e-9,
-                             jj->segments);
-                    job_end(jj, &js[its[i].job], OB_TIMEOUT, msg);
-                }
-                jstate *s = &js[its[i].job];
-                if (!s->finished && (s->pending == 0 || s->dead)) {
-                    s->finished = 1;
-                    done++;
-                    finalize(jj, s);
-                    if (o.job_done)
-                        o.job_done(o.job_done_ctx, (size_t)its[i].job);
-                    if (o.test_oom_after > 0 && done >= (size_t)o.test_oom_after) {
-                        rc = -1;
-                        goto out;
-                    }
-                }
-            }
-            if (o.progress)
-                o.progress(o.progress_ctx, done, njobs);
-            if (o.stop && *o.stop) {
-                rc = 1;
-                goto out;
-            }
+    for (long i = 0; i < cnt; i++) {
+        void *w = R->work + R->wsize * (size_t)omp_get_thread_num();
+        if (its[i].chain_to > its[i].depth) {  /* its fit asked for a smaller piece (the probe) */
+            memset(&R->res[i], 0, sizeof R->res[i]);
+            R->res[i].st = OB_RETRY_SMALLER;
+            R->res[i].err = INFINITY;
+            R->fit_ns[i] = 0.0;
+            continue;
         }
-        itemvec tmp = cur;
-        cur = next;
-        next = tmp;
+        if (R->js[its[i].job].dead || R->rep[i] != i) {
+            R->res[i].st = OB_SKIP;  /* dead, or takes its representative's fit below */
+            R->fit_ns[i] = 0.0;
+            continue;
+        }
+        R->fit_ns[i] = fit_item(R->jobs, &its[i], w, &R->fits[i], &R->res[i]);
+        R->fit_ns[i] += probe_retry_chain(R->jobs, &its[i], R->o.max_depth, w, &R->fits[i], &R->res[i]);
     }
+}
 
-out:
-    for (size_t i = 0; i < njobs; i++) {
-        ob_job *j = &jobs[i];
-        if (rc != 0 && (!js || !js[i].finished)) {
+/* A job past its --job-timeout ends with status timeout. */
+static void check_timeout(drun *R, int job)
+{
+    ob_job *j = &R->jobs[job];
+    jstate *s = &R->js[job];
+    if (R->o.job_timeout_ns > 0 && !s->dead && s->pending > 0 && j->fit_ns + j->eval_ns > R->o.job_timeout_ns) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "job timeout: %.3g s of thread time used, limit %.3g s (%d segments "
+                 "accepted so far)", (j->fit_ns + j->eval_ns) * 1e-9, R->o.job_timeout_ns * 1e-9, j->segments);
+        job_end(j, s, OB_TIMEOUT, msg);
+    }
+}
+
+/* One chunk of a level: fit, joints, measure, then decide in job order.
+ * 0, or -1 (memory, or the test hook). */
+static int run_chunk(drun *R, const item *its, long cnt)
+{
+    chunk_reps(its, cnt, R->js, R->rep);
+    fit_chunk(R, its, cnt);
+    joints_chunk(R->js, its, cnt, R->fits, R->res, R->fj);  /* the ends and inner joints (joints.h) */
+    measure_chunk(R->jobs, its, cnt, R->fits, R->res, R->eval_ns, R->o.samples, &R->h, &R->B);
+    copy_shared(cnt, R->rep, R->res, R->fj, R->fit_ns, R->eval_ns);
+    for (long i = 0; i < cnt; i++) {
+        const int job = its[i].job;
+        R->jobs[job].fit_ns += R->fit_ns[i];
+        R->jobs[job].eval_ns += R->eval_ns[i];
+        if (decide(R->jobs, R->js, &its[i], &R->res[i], &R->fj[i], &R->o, &R->next))
+            return -1;
+        check_timeout(R, job);
+        const jstate *s = &R->js[job];
+        if (!s->finished && (s->pending == 0 || s->dead) && job_finished(R, (size_t)job) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* Level after level until no piece is pending.  0, -1 (memory), 1 (stop). */
+static int run_levels(drun *R)
+{
+    while (R->cur.n > 0) {
+        R->next.n = 0;
+        /* the items of one share group on one piece side by side */
+        qsort(R->cur.v, R->cur.n, sizeof *R->cur.v, item_share_cmp);
+        long cnt;
+        for (size_t start = 0; start < R->cur.n; start += (size_t)cnt) {
+            cnt = chunk_count(&R->cur, start, R->o.chunk);
+            if (run_chunk(R, R->cur.v + start, cnt) != 0)
+                return -1;
+            if (R->h.progress)
+                R->h.progress(R->h.progress_ctx, R->done, R->njobs);
+            if (R->h.stop && *R->h.stop)
+                return 1;
+        }
+        itemvec tmp = R->cur;
+        R->cur = R->next;
+        R->next = tmp;
+    }
+    return 0;
+}
+
+/* Every job's outputs, whatever happened: jobs not finished when the run
+ * ended early (rc != 0) fail with the reason. */
+static void end_jobs(drun *R, int rc)
+{
+    for (size_t i = 0; i < R->njobs; i++) {
+        ob_job *j = &R->jobs[i];
+        if (rc != 0 && (!R->js || !R->js[i].finished)) {
             j->status = OB_FAIL;
             snprintf(j->message, sizeof j->message, "%s", rc > 0 ? "interrupted" : "out of memory");
         }
-        if (js)
-            finalize(j, &js[i]);
-        else {
+        if (R->js) {
+            finalize(j, &R->js[i]);
+        } else {
             j->ctrl_points = 0;
             j->segments = j->out_degree = 0;
             j->max_err = NAN;
@@ -1145,23 +1189,33 @@ out:
             j->continuity = OB_CONT_NONE;
             j->joints = j->open_joints = 0;
         }
-        if (plans)
-            free(plans[i].v);
-        if (o.spans && o.spans[i].n > 1)
-            qsort(o.spans[i].v, (size_t)o.spans[i].n, sizeof *o.spans[i].v, span_cmp);
+        if (R->h.spans && R->h.spans[i].n > 1)
+            qsort(R->h.spans[i].v, (size_t)R->h.spans[i].n, sizeof *R->h.spans[i].v, span_cmp);
     }
-    free(plans);
-    free(cur.v);
-    free(next.v);
-    free(js);
-    free(work);
-    free(fits);
-    free(res);
-    free(fit_ns);
-    free(eval_ns);
-    batch_free(&B);
-    free(fj);
-    free(grp);
-    free(rep);
+}
+
+int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks)
+{
+    drun R;
+    memset(&R, 0, sizeof R);
+    R.jobs = jobs;
+    R.njobs = njobs;
+    if (opts)
+        R.o = *opts;
+    else
+        ob_driver_defaults(&R.o);
+    if (hooks)
+        R.h = *hooks;
+    if (R.o.chunk < 1)
+        R.o.chunk = 1;
+    int rc = drun_alloc(&R);
+    if (rc == 0) {
+        init_jobs(&R);
+        rc = plan_all(&R);
+    }
+    if (rc == 0)
+        rc = run_levels(&R);
+    end_jobs(&R, rc);
+    drun_free(&R);
     return rc;
 }

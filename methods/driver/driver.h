@@ -121,6 +121,8 @@ typedef struct {
     int oom;            /* a span could not be stored: the log is incomplete */
 } ob_span_log;
 
+/* How the driver works: settings that decide results (samples, limits) and
+ * the run's budgets.  A plain value: a run configuration holds one. */
 typedef struct {
     int samples;        /* per segment, for the sampled metrics */
     int max_depth;      /* pieces are not split below 2^-max_depth */
@@ -134,6 +136,17 @@ typedef struct {
      * deadline).  Timeouts depend on the machine: a run where any job times
      * out is not reproducible across thread counts or machines. */
     double job_timeout_ns;
+    /* test hook (0: off): after this many jobs have finished the driver
+     * returns -1 as if memory had run out; set by `run` from the environment
+     * variable OFFBENCH_TEST_OOM_AFTER (README "Testing"), read once before
+     * any work, checked between jobs, never inside a timed section */
+    long test_oom_after;
+} ob_driver_opts;
+
+/* What the caller plugs into one driver run: where the measurements go and
+ * what it is told as the run goes.  Every member may be NULL (zeroed: none);
+ * none of them changes a result. */
+typedef struct {
     ob_batch_fn batch;  /* NULL: measure on the CPU with OpenMP */
     void *batch_ctx;
     long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */
@@ -153,22 +166,18 @@ typedef struct {
      * it) the driver stops, and jobs not finished get status fail with the
      * message "interrupted" (job_done is not called for them) */
     const volatile sig_atomic_t *stop;
-    /* test hook (0: off): after this many jobs have finished the driver
-     * returns -1 as if memory had run out; set by `run` from the environment
-     * variable OFFBENCH_TEST_OOM_AFTER (README "Testing"), read once before
-     * any work, checked between jobs, never inside a timed section */
-    long test_oom_after;
-} ob_driver_opts;
+} ob_driver_hooks;
 
 void ob_driver_defaults(ob_driver_opts *o);
 
 /* Purpose: run every job to completion, filling its outputs.
- * Inputs:  jobs with their input fields set; opts (NULL for defaults).
+ * Inputs:  jobs with their input fields set; opts (NULL for defaults);
+ *          hooks (NULL: none: the CPU measures, nothing is told).
  * Returns: 0; -1 if memory ran out (jobs not finished get status fail and
- *          the message "out of memory"); 1 if stopped through opts->stop.  Per-job problems never fail the run:
+ *          the message "out of memory"); 1 if stopped through hooks->stop.  Per-job problems never fail the run:
  *          they end that job with status fail / skip / limit and a message.
  * Deterministic: outputs other than the timings do not depend on the number of
  * threads.  Timings: see ob_job's fit_ns and eval_ns. */
-int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts);
+int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks);
 
 #endif

@@ -395,8 +395,8 @@ static void test_cusp_breaks(void)
     ob_driver_opts o;
     ob_driver_defaults(&o);
     ob_span_log log = {0};
-    o.spans = &log;
-    CHECK(ob_driver_run(&j, 1, &o) == 0 && j.status == OB_OK && j.max_err <= 1e-4, "driver: %s, max_err %g (%s)",
+    ob_driver_hooks h = {.spans = &log};
+    CHECK(ob_driver_run(&j, 1, &o, &h) == 0 && j.status == OB_OK && j.max_err <= 1e-4, "driver: %s, max_err %g (%s)",
           ob_status_name(j.status), j.max_err, j.message);
     for (int i = 0; i < 2; i++) {
         int found = 0;

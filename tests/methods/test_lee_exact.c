@@ -77,7 +77,7 @@ static ob_job run_job(const ob_curve *c, const ob_method *m, ob_metric mt, doubl
     j.metric = mt;
     j.split = OB_SPLIT_MID;
     j.tol = tol;
-    ob_driver_run(&j, 1, NULL);
+    ob_driver_run(&j, 1, NULL, NULL);
     return j;
 }
 
@@ -716,7 +716,7 @@ static void test_lee(void)
             j.metric = OB_METRIC_HAUSDORFF;
             j.split = (ob_split)sp;
             j.tol = 1e-3;
-            ob_driver_run(&j, 1, NULL);
+            ob_driver_run(&j, 1, NULL, NULL);
             CHECK(j.status == OB_OK && j.max_err <= 1e-3 && j.segments < 20,
                   "lee clip=1 hausdorff %s: %s %d segments err %g (%s)",
                   ob_split_name((ob_split)sp), ob_status_name(j.status), j.segments, j.max_err,

@@ -642,7 +642,7 @@ static void test_runaway(void)
     j.tol = 1e-2;
     ob_driver_opts o;
     ob_driver_defaults(&o);
-    CHECK(ob_driver_run(&j, 1, &o) == 0, "driver run");
+    CHECK(ob_driver_run(&j, 1, &o, NULL) == 0, "driver run");
     CHECK(j.status == OB_FAIL && strstr(j.message, "did not finish in 0.5 s within"),
           "runaway s1360 is stopped: status %s, '%s'", ob_status_name(j.status), j.message);
     /* the same thread's next fit gets a fresh SISL process */

@@ -43,7 +43,7 @@ static void run_one(ob_job *j, const ob_curve *c, const char *method, ob_metric 
     j->metric = metric;
     j->split = split;
     j->tol = tol;
-    ob_driver_run(j, 1, o);
+    ob_driver_run(j, 1, o, NULL);
 }
 
 /* Liu-Wang Table 1 (Til, Cob) and Ahn Table 1: the protocols of METHODS.md. */
@@ -231,7 +231,7 @@ static void test_failures_are_contained(void)
     }
     ob_driver_opts o = fast_opts();
     o.max_segments = 64;
-    CHECK(ob_driver_run(jobs, 3, &o) == 0, "run completes");
+    CHECK(ob_driver_run(jobs, 3, &o, NULL) == 0, "run completes");
     CHECK(jobs[0].status == OB_FAIL && strstr(jobs[0].message, "singular test system"), "fail: %s '%s'",
           ob_status_name(jobs[0].status), jobs[0].message);
     CHECK(jobs[0].ctrl_points == 0 && isnan(jobs[0].max_err), "fail row has no counts");
@@ -295,21 +295,21 @@ static void test_retry_and_counts(void)
     j.split = OB_SPLIT_MID;
     j.tol = 1e3;
     const ob_driver_opts fo = fast_opts();
-    ob_driver_run(&j, 1, &fo);
+    ob_driver_run(&j, 1, &fo, NULL);
     CHECK(j.status == OB_OK && j.segments >= 4, "pieces with chords over 1 are split: %s, %d segments",
           ob_status_name(j.status), j.segments);
     CHECK(j.ctrl_points == 1 + 3L * j.segments, "counted from degrees: %ld", j.ctrl_points);
     par[0] = 7;
     int k = j.segments;
-    ob_driver_run(&j, 1, NULL);
+    ob_driver_run(&j, 1, NULL, NULL);
     CHECK(j.ctrl_points == 1 + 6L * k, "own representation of 7 points per fit: %ld for %d fits", j.ctrl_points, k);
     ob_driver_opts o = fast_opts();
     o.max_depth = 1;
-    ob_driver_run(&j, 1, &o);
+    ob_driver_run(&j, 1, &o, NULL);
     CHECK(j.status == OB_FAIL && strstr(j.message, "chord longer than 1"), "retry past the depth limit fails: %s '%s'",
           ob_status_name(j.status), j.message);
     j.split = OB_SPLIT_GREEDY;
-    ob_driver_run(&j, 1, NULL);
+    ob_driver_run(&j, 1, NULL, NULL);
     CHECK(j.status == OB_OK && j.segments >= 4, "greedy with retries: %s, %d", ob_status_name(j.status), j.segments);
     ob_curve_free(&c);
 }
@@ -353,7 +353,7 @@ static void test_retry_chains(void)
         par[0] = 1;
         pole_calls = 0;
         const ob_driver_opts o = fast_opts();
-        ob_driver_run(&j, 1, &o);
+        ob_driver_run(&j, 1, &o, NULL);
         CHECK(j.status == OB_FAIL && strstr(j.message, "pole, still after 12 halvings, at t in [0, 0.000244141]"),
               "%s: everywhere: %s '%s'", ob_split_name(splits[k]), ob_status_name(j.status), j.message);
         CHECK(pole_calls <= 2 * 13, "%s: everywhere: %ld fits for a failure at 12 halvings (breadth first: 4607)",
@@ -362,7 +362,7 @@ static void test_retry_chains(void)
          * its left at the same level, as the breadth-first order has it */
         par[0] = 0;
         pole_calls = 0;
-        ob_driver_run(&j, 1, &o);
+        ob_driver_run(&j, 1, &o, NULL);
         CHECK(j.status == OB_FAIL && strstr(j.message, "pole, still after 12 halvings, at t in [0.259766, 0.26001]"),
               "%s: the leftmost failure at the limit: %s '%s'", ob_split_name(splits[k]), ob_status_name(j.status),
               j.message);
@@ -395,10 +395,10 @@ static void test_determinism(void)
     memcpy(got, ref, sizeof ref);
     ob_driver_opts o = fast_opts();
     omp_set_num_threads(1);
-    ob_driver_run(ref, (size_t)n, &o);
+    ob_driver_run(ref, (size_t)n, &o, NULL);
     omp_set_num_threads(2);
     o.chunk = 7;
-    ob_driver_run(got, (size_t)n, &o);
+    ob_driver_run(got, (size_t)n, &o, NULL);
     int same = 1;
     for (int i = 0; i < n; i++)
         same &= ref[i].ctrl_points == got[i].ctrl_points && ref[i].segments == got[i].segments &&
@@ -427,8 +427,8 @@ static void test_span_log(void)
             j.tol = 1e-3;
             ob_span_log log = {0};
             ob_driver_opts o = fast;
-            o.spans = &log;
-            ob_driver_run(&j, 1, &o);
+            ob_driver_hooks h = {.spans = &log};
+            ob_driver_run(&j, 1, &o, &h);
             const char *name = driver_methods[m], *spn = ob_split_name((ob_split)sp);
             CHECK(j.status == OB_OK && log.n > 0 && !log.oom, "%s/%s: spans logged (%d)", name, spn, log.n);
             int tiled = log.n > 0 && log.v[0].a == 0.0 && log.v[log.n - 1].b == 1.0;
@@ -483,7 +483,7 @@ static void test_job_timeout(void)
     }
     j[0].tol = 1e-5;  /* hundreds of segments */
     j[1].tol = 1e3;   /* passes at once */
-    CHECK(ob_driver_run(j, 2, &o) == 0, "driver run");
+    CHECK(ob_driver_run(j, 2, &o, NULL) == 0, "driver run");
     CHECK(j[0].status == OB_TIMEOUT && j[0].ctrl_points == 0 && isnan(j[0].max_err) &&
               strstr(j[0].message, "job timeout"),
           "tiller 1e-5 with a 1 ns budget: %s, %ld points, '%s'", ob_status_name(j[0].status), j[0].ctrl_points,

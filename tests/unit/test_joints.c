@@ -129,8 +129,8 @@ static void run_job(ob_job *j, const ob_curve *c, const ob_method *m, ob_metric 
     ob_driver_defaults(&o);
     fixture_job(j, c, m, metric, split, tol);
     memset(L, 0, sizeof *L);
-    o.spans = L;
-    ob_driver_run(j, 1, &o);
+    ob_driver_hooks h = {.spans = L};
+    ob_driver_run(j, 1, &o, &h);
 }
 
 /* ---- a test-only method whose pieces do not meet ------------------------------
@@ -421,10 +421,10 @@ static void test_joints_deterministic(void)
     o.samples = 64;
     const int nt = omp_get_max_threads();
     omp_set_num_threads(1);
-    ob_driver_run(ref, (size_t)n, &o);
+    ob_driver_run(ref, (size_t)n, &o, NULL);
     omp_set_num_threads(2);
     o.chunk = 5;
-    ob_driver_run(got, (size_t)n, &o);
+    ob_driver_run(got, (size_t)n, &o, NULL);
     omp_set_num_threads(nt);
     int same = 1;
     for (int i = 0; i < n; i++)

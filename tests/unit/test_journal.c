@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "host/io/fsutil.h"
 #include "tests/check.h"
 #include "host/cli/commands.h"
 #include "host/diag.h"
@@ -25,8 +26,8 @@ static char *fp_of(char **args, int n, uint64_t hash)
     ob_run_opts o;
     char *fp = NULL;
     if (ob_run_opts_parse(n, args, &o) == 0) {
-        o.data_hash = hash;
-        fp = ob_resume_fingerprint(&o, "random 4:5");
+        const ob_run_record rec = {.data_hash = hash};
+        fp = ob_resume_fingerprint(&o, &rec, "random 4:5");
     }
     ob_run_opts_free(&o);
     return fp;

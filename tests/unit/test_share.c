@@ -44,12 +44,12 @@ static void check_split(const ob_curve *c, const ob_method *m, ob_split sp, int 
     fit_calls = 0;
     for (int k = 0; k < 5; k++)
         setup(&together[k], c, m, sp, tols[k]);
-    CHECK(ob_driver_run(together, 5, &o) == 0, "shared run");
+    CHECK(ob_driver_run(together, 5, &o, NULL) == 0, "shared run");
     const long shared_calls = fit_calls;
     fit_calls = 0;
     for (int k = 0; k < 5; k++) {
         setup(&alone[k], c, m, sp, tols[k]);
-        CHECK(ob_driver_run(&alone[k], 1, &o) == 0, "job alone");
+        CHECK(ob_driver_run(&alone[k], 1, &o, NULL) == 0, "job alone");
     }
     const long alone_calls = fit_calls;
     for (int k = 0; k < 5; k++)
@@ -94,9 +94,9 @@ int main(void)
             setup(&together[k], &c, ob_methods[i], OB_SPLIT_MID, tols[k]);
             setup(&alone[k], &c, ob_methods[i], OB_SPLIT_MID, tols[k]);
         }
-        ob_driver_run(together, 3, &o);
+        ob_driver_run(together, 3, &o, NULL);
         for (int k = 0; k < 3; k++) {
-            ob_driver_run(&alone[k], 1, &o);
+            ob_driver_run(&alone[k], 1, &o, NULL);
             CHECK(same_result(&together[k], &alone[k]), "%s tol %g: shared and alone differ", ob_methods[i]->name,
                   tols[k]);
         }

@@ -48,7 +48,7 @@ static void test_fit_is_cpu_time(ob_curve *c)
     ob_driver_opts o;
     ob_driver_defaults(&o);
     o.samples = 16;
-    CHECK(ob_driver_run(&j, 1, &o) == 0 && j.status == OB_OK, "sleepy job runs: %s", ob_status_name(j.status));
+    CHECK(ob_driver_run(&j, 1, &o, NULL) == 0 && j.status == OB_OK, "sleepy job runs: %s", ob_status_name(j.status));
     CHECK(j.fit_ns < 10e6, "a fit that sleeps 30 ms used %.3g ms of thread CPU time (wall time counted?)",
           j.fit_ns * 1e-6);
 }
@@ -78,9 +78,9 @@ static void test_batch_shares_by_work(ob_curve *c)
     setup(&j[1], c, ob_method_find("ahn"), 1e3);
     ob_driver_opts o;
     ob_driver_defaults(&o);
-    o.batch = slow_batch;
+    const ob_driver_hooks h = {.batch = slow_batch};
     launch_ns = 0.0;
-    CHECK(ob_driver_run(j, 2, &o) == 0 && j[0].status == OB_OK && j[1].status == OB_OK, "two jobs run");
+    CHECK(ob_driver_run(j, 2, &o, &h) == 0 && j[0].status == OB_OK && j[1].status == OB_OK, "two jobs run");
     CHECK(j[0].segments == 1 && j[1].segments == 1, "one piece each (%d, %d)", j[0].segments, j[1].segments);
     /* the work each record took, as the kernel would report it */
     ob_errval e[2];

@@ -1,0 +1,45 @@
+/*
+ * select.c - which backend measures a run (see select.h).
+ */
+#include <stdio.h>
+
+#include "host/backend/select.h"
+#include "host/diag.h"
+
+/* --backend: opencl must work (exit 2 with the reason otherwise), auto uses it
+ * when it works and says why not in meta.json, cpu never tries.  The kernel
+ * is built here, once, before any timed work. */
+int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_cl **cl)
+{
+    if (kind == OB_BACKEND_CPU) {
+        snprintf(b->why_cpu, sizeof b->why_cpu, "--backend cpu");
+        return 0;
+    }
+    char err[8192];
+    if (ob_cl_open(device, cl, err, sizeof err) != 0) {
+        if (kind == OB_BACKEND_OPENCL || device) {
+            ob_error("--backend opencl: %s", err);
+            return -1;
+        }
+        snprintf(b->why_cpu, sizeof b->why_cpu, "%.500s", err);
+        return 0;
+    }
+    b->opencl = 1;
+    snprintf(b->platform, sizeof b->platform, "%s", ob_cl_platform(*cl));
+    snprintf(b->device, sizeof b->device, "%s", ob_cl_device(*cl));
+    snprintf(b->driver, sizeof b->driver, "%s", ob_cl_driver(*cl));
+    snprintf(b->kernels, sizeof b->kernels, "%s", ob_cl_source(*cl));
+    b->build_seconds = ob_cl_build_seconds(*cl);
+    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s", b->platform, b->device,
+            b->kernels, b->build_seconds);
+    return 0;
+}
+
+void ob_backend_hooks(ob_cl *cl, ob_backend_info *b, ob_driver_hooks *h)
+{
+    if (!cl)
+        return;
+    h->batch = ob_cl_measure_batch;
+    h->batch_ctx = cl;
+    h->batch_fallbacks = &b->fallbacks;
+}

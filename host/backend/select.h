@@ -1,0 +1,37 @@
+/*
+ * select.h - which backend measures a run's sampled metrics: the OpenCL
+ * kernel (clrt.h) when one is asked for or found, otherwise the CPU
+ * reference path; what was chosen and why, for meta.json.
+ */
+#ifndef OB_SELECT_H
+#define OB_SELECT_H
+
+#include "host/backend/clrt.h"
+#include "methods/driver/driver.h"
+
+typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backend;
+
+/* What measured the run, for meta.json (filled by ob_open_backend). */
+typedef struct {
+    int opencl;                  /* 0: the CPU reference path */
+    char platform[256], device[256], driver[128], kernels[512];
+    double build_seconds;
+    long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
+    char why_cpu[512];           /* with auto: why OpenCL was not used */
+} ob_backend_info;
+
+/* Purpose: open the backend a run asks for (--backend kind, --device
+ *          substring or NULL); the kernel is built here, once, before any
+ *          timed work.
+ * Outputs: *cl, or NULL when the CPU measures; *b: what and why.
+ * Returns: 0; -1 after ob_error() when OpenCL was required (kind opencl, or
+ *          a device named) and cannot start.  auto falls back to the CPU and
+ *          says why in b->why_cpu. */
+int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_cl **cl);
+
+/* Purpose: plug an opened OpenCL backend into a driver run's hooks (the
+ *          batch measurer; batches given back counted in b->fallbacks).
+ *          cl NULL: the CPU measures, h unchanged. */
+void ob_backend_hooks(ob_cl *cl, ob_backend_info *b, ob_driver_hooks *h);
+
+#endif

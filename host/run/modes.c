@@ -1,0 +1,207 @@
+/*
+ * modes.c - the ways a run runs its jobs: once, journaled (resumable), with
+ * timed repetitions; and the signals that stop it (see modes.h).
+ */
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "host/diag.h"
+#include "host/run/modes.h"
+#include "host/run/progress.h"
+
+/* SIGINT / SIGTERM: the driver stops at the next batch; a second signal
+ * acts as usual (SA_RESETHAND). */
+static volatile sig_atomic_t stop_signal = 0;
+
+static void on_stop_signal(int sig)
+{
+    stop_signal = sig;
+}
+
+void ob_catch_stop_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sa.sa_flags = SA_RESETHAND | SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+const volatile sig_atomic_t *ob_stop_flag(void) { return &stop_signal; }
+
+int ob_stop_signal(void) { return (int)stop_signal; }
+
+void ob_note_stop(int sig)
+{
+    if (!stop_signal)
+        stop_signal = sig;
+}
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Median of v[0], v[stride], ... (n values); sorts a copy in tmp. */
+static double median_strided(const double *v, size_t stride, int n, double *tmp)
+{
+    for (int r = 0; r < n; r++)
+        tmp[r] = v[(size_t)r * stride];
+    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
+    return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+}
+
+static int same_result(const ob_job *a, const ob_job *b)
+{
+    return a->status == b->status && a->ctrl_points == b->ctrl_points && a->segments == b->segments &&
+           a->out_degree == b->out_degree &&
+           (a->max_err == b->max_err || (isnan(a->max_err) && isnan(b->max_err))) &&
+           (a->max_gap == b->max_gap || (isnan(a->max_gap) && isnan(b->max_gap))) &&
+           a->continuity == b->continuity;
+}
+
+int ob_run_plain(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char *what, double *wall)
+{
+    ob_driver_hooks h = c->hooks;
+    ob_progress bar;
+    ob_progress_init(&bar);
+    if (what)
+        ob_info("%s", what);
+    h.progress = ob_progress_cb;
+    h.progress_ctx = &bar;
+    double t0 = now_s();
+    int rc = ob_driver_run(jobs, njobs, &c->o->driver, &h);
+    *wall = now_s() - t0;
+    ob_progress_end(&bar);
+    return rc;
+}
+
+int ob_run_reps(const ob_run_ctx *c, ob_job *jobs, size_t njobs, double *fit, double *eval, double *wall)
+{
+    const int reps = c->o->reps;
+    ob_job *ref = malloc(njobs * sizeof *ref);
+    double *walls = malloc((size_t)reps * sizeof *walls), *tmp = malloc((size_t)reps * sizeof *tmp);
+    int rc = 0;
+    if (!ref || !walls || !tmp) {
+        rc = -1;
+        goto out;
+    }
+    memcpy(ref, jobs, njobs * sizeof *ref);
+    for (int r = 0; r < reps && rc == 0; r++) {
+        char what[64];
+        snprintf(what, sizeof what, "timed repetition %d of %d", r + 1, reps);
+        rc = ob_run_plain(c, jobs, njobs, what, &walls[r]);
+        for (size_t i = 0; i < njobs; i++) {
+            fit[(size_t)r * njobs + i] = jobs[i].fit_ns;
+            eval[(size_t)r * njobs + i] = jobs[i].eval_ns;
+            if (!same_result(&jobs[i], &ref[i])) {
+                if (c->rec->rep_mismatches++ < 5)
+                    ob_warn("repetition %d of %s d=%g %s tol=%g differs from the "
+                            "warm-up (%s, %ld points vs %s, %ld): nondeterministic", r + 1, jobs[i].curve->id,
+                            jobs[i].d, jobs[i].method->name, jobs[i].tol, ob_status_name(jobs[i].status),
+                            jobs[i].ctrl_points, ob_status_name(ref[i].status), ref[i].ctrl_points);
+            }
+        }
+    }
+    memcpy(jobs, ref, njobs * sizeof *ref);
+    if (rc == 0) {
+        for (size_t i = 0; i < njobs; i++) {
+            jobs[i].fit_ns = median_strided(fit + i, njobs, reps, tmp);
+            jobs[i].eval_ns = median_strided(eval + i, njobs, reps, tmp);
+        }
+        *wall = median_strided(walls, 1, reps, tmp);
+    }
+    if (c->rec->rep_mismatches > 0)
+        ob_warn("%ld job results differed between repetitions", c->rec->rep_mismatches);
+out:
+    free(ref);
+    free(walls);
+    free(tmp);
+    return rc;
+}
+
+typedef struct {
+    ob_journal *jr;
+    const ob_job *jobs;
+    int failed;
+} journal_ctx;
+
+static void journal_job_done(void *ctx, size_t i)
+{
+    journal_ctx *c = ctx;
+    if (!c->failed && ob_journal_add(c->jr, &c->jobs[i]) != 0) {
+        c->failed = 1;
+        ob_error("%s: cannot write: rows are no longer saved as jobs finish", c->jr->path);
+    }
+}
+
+int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char *where, ob_journal *jr, double *wall,
+                     size_t *restored_n)
+{
+    const ob_run_opts *o = c->o;
+    ob_driver_hooks h = c->hooks;
+    char err[1024];
+    ob_res_table prev;
+    char *fp = ob_resume_fingerprint(o, c->rec, where);
+    size_t *idx = malloc((njobs ? njobs : 1) * sizeof *idx);
+    ob_job *pend = malloc((njobs ? njobs : 1) * sizeof *pend);
+    int rc = 2;
+    *restored_n = 0;
+    if (!fp || !idx || !pend) {
+        ob_error("out of memory");
+        memset(&prev, 0, sizeof prev);
+        goto out;
+    }
+    if (ob_journal_open(jr, o->out_dir, fp, o->resume_dir != NULL, &prev, err, sizeof err) != 0) {
+        ob_error("%s", err);
+        goto out;
+    }
+    size_t np = 0;
+    for (size_t i = 0; i < njobs; i++) {
+        ob_job *j = &jobs[i];
+        const ob_res_row key = {.curve = j->curve->id, .method = j->method->name,
+                                .metric = ob_metric_name(j->metric), .split = ob_split_name(j->split), .d = j->d,
+                                .tol = j->tol};
+        const ob_res_row *row = prev.n ? ob_res_find(&prev, &key) : NULL;
+        if (row && ob_job_from_row(j, row) == 0) {
+            ++*restored_n;
+            if (jr->from_results && ob_journal_add(jr, j) != 0) {
+                ob_error("%s: cannot write", jr->path);
+                goto out;
+            }
+        } else {
+            idx[np] = i;
+            pend[np++] = *j;
+        }
+    }
+    if (*restored_n)
+        ob_info("resuming %s: %zu of %zu jobs restored, %zu to run", o->out_dir, *restored_n,
+                njobs, np);
+    journal_ctx jc = {jr, pend, 0};
+    h.job_done = journal_job_done;
+    h.job_done_ctx = &jc;
+    ob_run_ctx cj = *c;
+    cj.hooks = h;
+    rc = ob_run_plain(&cj, pend, np, NULL, wall);
+    for (size_t k = 0; k < np; k++)
+        jobs[idx[k]] = pend[k];
+out:
+    ob_res_free(&prev);
+    free(fp);
+    free(idx);
+    free(pend);
+    return rc;
+}

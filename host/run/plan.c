@@ -1,0 +1,147 @@
+/*
+ * plan.c - what a run runs: its curves, its jobs, the hashes that identify
+ * them, this process's shard (see plan.h).
+ */
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/diag.h"
+#include "host/io/datadir.h"
+#include "host/io/random.h"
+#include "host/run/plan.h"
+#include "host/run/shard.h"
+#include "methods/core/offdeg.h"
+
+int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
+{
+    char err[1024];
+    int rc = 0;
+    where[0] = '\0';
+    if (o->curves_file) {
+        snprintf(where, wlen, "%s", o->curves_file);
+        rc = ob_curves_load_file(o->curves_file, set, err, sizeof err);
+    } else if (o->random_n == 0) {
+        rc = ob_load_default_curves(set, where, wlen, err, sizeof err);
+    }
+    if (rc == 0 && o->random_n > 0) {
+        size_t k = strlen(where);
+        snprintf(where + k, wlen - k, "%srandom %ld:%" PRIu64, k ? " + " : "", o->random_n, o->random_seed);
+        /* with --curve, only the selected random curves are generated */
+        rc = ob_random_append(set, o->random_seed, o->random_n, o->curve_ids, o->ncurve_ids, err, sizeof err);
+    }
+    if (rc != 0) {
+        ob_error("%s", err);
+        return -1;
+    }
+    for (int i = 0; i < o->ncurve_ids; i++)
+        if (ob_curveset_find(set, o->curve_ids[i]) < 0) {
+            ob_error("--curve: no curve '%s' in %s (see './offbench list curves')", o->curve_ids[i], where);
+            return -1;
+        }
+    return 0;
+}
+
+int ob_run_selects(const ob_run_opts *o, const char *id)
+{
+    if (!o->curve_ids)
+        return 1;
+    for (int i = 0; i < o->ncurve_ids; i++)
+        if (strcmp(o->curve_ids[i], id) == 0)
+            return 1;
+    return 0;
+}
+
+static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t i = 0; i < n; i++) {
+        h ^= c[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+/* FNV-1a over the content of the curves the run uses (id, segments' degrees
+ * and homogeneous control points, offsets). */
+uint64_t ob_curves_hash(const ob_run_opts *o, const ob_curveset *set)
+{
+    uint64_t h = 14695981039346656037ull;
+    for (int c = 0; c < set->n; c++) {
+        const ob_curve *cv = &set->v[c];
+        if (!ob_run_selects(o, cv->id))
+            continue;
+        h = fnv1a(h, cv->id, strlen(cv->id) + 1);
+        h = fnv1a(h, &cv->nseg, sizeof cv->nseg);
+        for (int s = 0; s < cv->nseg; s++) {
+            h = fnv1a(h, &cv->seg[s].deg, sizeof cv->seg[s].deg);
+            h = fnv1a(h, cv->seg[s].h, (size_t)(cv->seg[s].deg + 1) * sizeof cv->seg[s].h[0]);
+        }
+        h = fnv1a(h, &cv->nd, sizeof cv->nd);
+        h = fnv1a(h, cv->d, (size_t)cv->nd * sizeof *cv->d);
+    }
+    return h;
+}
+
+void ob_offset_degrees(const ob_run_opts *o, ob_curveset *set)
+{
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int c = 0; c < set->n; c++) {
+        ob_curve *cv = &set->v[c];
+        char msg[160];
+        if (ob_run_selects(o, cv->id) &&
+            ob_curve_offset_degree(cv, &cv->offset_degree, &cv->offset_rational, msg, sizeof msg) == 0)
+            cv->offset_known = 1;
+    }
+}
+
+ob_job *ob_plan_jobs(const ob_run_opts *o, const ob_curveset *set, size_t *njobs)
+{
+    size_t n = 0;
+    for (int c = 0; c < set->n; c++)
+        if (ob_run_selects(o, set->v[c].id))
+            n += (size_t)set->v[c].nd * (size_t)o->nmethods * (size_t)o->ntols;
+    ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
+    if (!jobs)
+        return NULL;
+    size_t k = 0;
+    for (int c = 0; c < set->n; c++) {
+        if (!ob_run_selects(o, set->v[c].id))
+            continue;
+        for (int di = 0; di < set->v[c].nd; di++)
+            for (int m = 0; m < o->nmethods; m++)
+                for (int t = 0; t < o->ntols; t++) {
+                    ob_job *j = &jobs[k++];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = o->methods[m];
+                    j->params = o->params + ob_method_index(o->methods[m]) * OB_MAX_PARAMS;
+                    j->metric = o->metric;
+                    j->split = o->split;
+                    j->tol = o->tols[t];
+                }
+    }
+    *njobs = n;
+    return jobs;
+}
+
+int ob_select_shard(int shard_k, int shard_n, ob_job **jobs, size_t *njobs, size_t **idx)
+{
+    int *of = malloc((*njobs ? *njobs : 1) * sizeof *of);
+    *idx = malloc((*njobs ? *njobs : 1) * sizeof **idx);
+    if (!of || !*idx || ob_shard_assign(*jobs, *njobs, shard_n, of) != 0) {
+        free(of);
+        ob_error("out of memory");
+        return -1;
+    }
+    size_t n = 0;
+    for (size_t i = 0; i < *njobs; i++)
+        if (of[i] == shard_k) {
+            (*jobs)[n] = (*jobs)[i];
+            (*idx)[n++] = i;
+        }
+    free(of);
+    *njobs = n;
+    return 0;
+}

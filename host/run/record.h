@@ -1,0 +1,30 @@
+/*
+ * record.h - what one run finds out and does as it goes, kept apart from its
+ * configuration (options.h: what the command line asked for, unchanged once
+ * parsed).  The run command fills a record; meta.json and the resume
+ * fingerprint read it.
+ */
+#ifndef OB_RECORD_H
+#define OB_RECORD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "host/backend/select.h"
+
+typedef struct {
+    uint64_t data_hash;          /* FNV-1a of the selected curves' content
+                                    (journal.h: a resume over changed data is refused) */
+    /* the whole run's job count and plan hash (shard.h), equal in every
+     * shard of one run; plan_seed: ob_plan_seed(), merge recomputes plan_hash */
+    size_t jobs_total;
+    uint64_t plan_hash, plan_seed;
+    int shard_k, shard_n;        /* the shard this process runs: --shard K/N, or
+                                    its MPI rank of mpi_ranks; shard_n 0: all */
+    int mpi_ranks;               /* > 1: run by that many MPI ranks (mpirun.h) */
+    long rep_mismatches;         /* job results that differed between
+                                    repetitions (nondeterminism) */
+    ob_backend_info binfo;
+} ob_run_record;
+
+#endif
