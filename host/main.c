@@ -16,7 +16,7 @@
 
 static const char usage[] =
     "usage:\n"
-    "  ./offbench run    [--curves FILE] [--curve ID,...] [--methods LIST|all]\n"
+    "  ./offbench run    [--curves FILE] [--curve ID,...] [--random N[:SEED]] [--methods LIST|all]\n"
     "                    [--tols 1e-1,1e-2,...] [--metric bound|radial|normal|hausdorff]\n"
     "                    [--split mid|maxerr|greedy|optimal] [--backend auto|opencl|cpu] [--device NAME]\n"
     "                    [--threads N]\n"
@@ -29,7 +29,7 @@ static const char usage[] =
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
     "  ./offbench atlas  [--out DIR]        (the Offset Atlas: exact offset degrees)\n"
-    "  ./offbench tables [--out DIR] [--backend auto|opencl|cpu] [--device NAME] [--threads N]\n"
+    "  ./offbench tables [--out DIR] [--table SOURCE:TABLE,...] [--protocols LIST] [run options]\n"
     "  ./offbench list   methods|curves|columns|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
     "  ./offbench --version   (the build: version, git commit, flags, OpenCL loader)\n"

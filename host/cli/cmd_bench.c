@@ -339,49 +339,33 @@ static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
     return ob_cli_apply_dir(&a->out, id, opt, v);
 }
 
-int ob_cmd_bench(int argc, char **argv)
+/* The machine's FMA peaks: scalar on 1 and N threads (peak[0], peak[1]) and
+ * vector on N (*vpeak, 0 when unknown), in flop/s. */
+static void bench_peaks(bench_out *b, int N, double peak[2], double *vpeak)
 {
-    bench_args a = {"out/bench", 0};
-    const ob_flagset flags = {bench_flags, 2, NULL, NULL, "options", apply_bench_flag, &a};
-    const int prc = ob_cli_parse("[--out DIR] [--quick]", &flags, 1, argc, argv, 0, NULL, NULL);
-    if (prc != OB_CLI_OK)
-        return prc == OB_CLI_HELP ? 0 : 2;
-    const char *out_dir = a.out;
-    const int quick = a.quick;
-    if (ob_mkdir_p(out_dir) != 0) {
-        ob_error("--out: cannot create '%s': %s", out_dir, strerror(errno));
-        return 1;
-    }
-    char path[4200];
-    snprintf(path, sizeof path, "%s/bench.csv", out_dir);
-    bench_out b = {fopen(path, "w")};
-    if (!b.csv) {
-        ob_error("%s: cannot write: %s", path, strerror(errno));
-        return 1;
-    }
-    fprintf(b.csv, "what,backend,threads,items,seconds,rate,unit\n");
-    const int N = omp_get_num_procs();
-    const int S = OB_DEFAULT_SAMPLES;
-    const int R = quick ? 200 : 2000;
-
     /* FMA peak */
-    double peak[2], secs;
+    double secs;
     for (int k = 0; k < 2; k++) {
         int th = k ? N : 1;
         double fl = fma_peak(th, &secs);
         peak[k] = fl / secs;
-        row(&b, "fma_peak", "cpu", th, fl, secs, "flop/s");
+        row(b, "fma_peak", "cpu", th, fl, secs, "flop/s");
     }
     printf("FMA peak, scalar code as the CPU path is built: %.2f GFLOP/s on 1 thread, %.2f on %d (x%.2f)\n",
            peak[0] / 1e9, peak[1] / 1e9, N, peak[1] / peak[0]);
     const char *isa;
-    double vfl = fma_vector_peak(N, &secs, &isa), vpeak = vfl > 0 ? vfl / secs : 0.0;
+    double vfl = fma_vector_peak(N, &secs, &isa);
+    *vpeak = vfl > 0 ? vfl / secs : 0.0;
     if (vfl > 0) {
-        row(&b, "fma_vector", isa, N, vfl, secs, "flop/s");
-        printf("FMA peak, %s vector: %.2f GFLOP/s on %d threads: the machine's peak\n", isa, vpeak / 1e9, N);
+        row(b, "fma_vector", isa, N, vfl, secs, "flop/s");
+        printf("FMA peak, %s vector: %.2f GFLOP/s on %d threads: the machine's peak\n", isa, *vpeak / 1e9, N);
     }
 
-    /* OpenCL */
+}
+
+/* The OpenCL backend, or NULL (said on stdout). */
+static ob_cl *bench_open_cl(bench_out *b)
+{
     ob_cl *cl = NULL;
     char err[8192];
     if (ob_cl_open(NULL, &cl, err, sizeof err) != 0) {
@@ -390,17 +374,24 @@ int ob_cmd_bench(int argc, char **argv)
     } else {
         printf("OpenCL: %s / %s, kernel built in %.2f s (not in any timing below)\n", ob_cl_platform(cl),
                ob_cl_device(cl), ob_cl_build_seconds(cl));
-        row(&b, "kernel_build", "opencl", 0, 1, ob_cl_build_seconds(cl), "builds/s");
+        row(b, "kernel_build", "opencl", 0, 1, ob_cl_build_seconds(cl), "builds/s");
     }
 
-    /* the sampling engine, per metric */
+    return cl;
+}
+
+/* The sampling engine, per metric: R records of S samples on the CPU (1 and
+ * N threads) and with OpenCL (cl, or NULL); 0, or -1 after ob_error(). */
+static int bench_metrics(bench_out *b, ob_cl *cl, int R, int S, int N, const double peak[2], double vpeak)
+{
     ob_bez *base = malloc((size_t)R * sizeof *base), *approx = malloc((size_t)R * sizeof *approx);
     ob_measure_rec *recs = malloc((size_t)R * sizeof *recs);
     ob_errval *o1 = malloc((size_t)R * sizeof *o1), *o2 = malloc((size_t)R * sizeof *o2);
+    int rc = 0;
     if (!base || !approx || !recs || !o1 || !o2) {
         ob_error("bench: out of memory");
-        fclose(b.csv);
-        return 1;
+        rc = -1;
+        goto out;
     }
     const ob_metric mets[3] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF};
     for (int mi = 0; mi < 3; mi++) {
@@ -418,27 +409,27 @@ int ob_cmd_bench(int argc, char **argv)
         t0 = now_s();
         cpu_batch(recs, R, S, o1, N);
         double cN = now_s() - t0;
-        row(&b, what, "cpu", 1, (double)R * S, c1, "samples/s");
-        row(&b, what, "cpu", N, (double)R * S, cN, "samples/s");
+        row(b, what, "cpu", 1, (double)R * S, c1, "samples/s");
+        row(b, what, "cpu", N, (double)R * S, cN, "samples/s");
         printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", what, R * S / c1, R * S / cN, N,
                c1 / cN);
         char gw[64];
         snprintf(gw, sizeof gw, "gflops/%s", ob_metric_name(m));
-        row(&b, gw, "cpu", N, flops, cN, "flop/s");
+        row(b, gw, "cpu", N, flops, cN, "flop/s");
         double gbest = flops / cN;
         if (cl) {
             ob_cl_measure_batch(cl, recs, 8, S, o2);  /* warm-up: buffers, first launch */
             t0 = now_s();
-            int rc = ob_cl_measure_batch(cl, recs, R, S, o2);
+            int crc = ob_cl_measure_batch(cl, recs, R, S, o2);
             double g = now_s() - t0;
-            if (rc == 0) {
-                row(&b, what, "opencl", 0, (double)R * S, g, "samples/s");
+            if (crc == 0) {
+                row(b, what, "opencl", 0, (double)R * S, g, "samples/s");
                 double worst = 0.0;
                 for (int i = 0; i < R; i++)
                     worst = fmax(worst, fabs(o1[i].err - o2[i].err) / fmax(fabs(o1[i].err), 1e-300));
                 printf("; OpenCL %9.0f (x%.2f vs CPU on %d threads; max rel. difference %.1e)", R * S / g, cN / g, N,
                        worst);
-                row(&b, gw, "opencl", 0, flops, g, "flop/s");
+                row(b, gw, "opencl", 0, flops, g, "flop/s");
                 gbest = fmax(gbest, flops / g);
             }
         }
@@ -448,7 +439,19 @@ int ob_cmd_bench(int argc, char **argv)
             printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
     }
 
-    /* whole runs, 1 vs N threads, on the CPU path */
+out:
+    free(base);
+    free(approx);
+    free(recs);
+    free(o1);
+    free(o2);
+    return rc;
+}
+
+/* Whole runs of the default job, 1 vs N threads on the CPU path, and with
+ * OpenCL (cl, or NULL). */
+static void bench_whole_runs(bench_out *b, ob_cl *cl, int N)
+{
     ob_curveset set = {0};
     char where[4096], cerr[1024];
     if (ob_load_default_curves(&set, where, sizeof where, cerr, sizeof cerr) == 0) {
@@ -456,20 +459,26 @@ int ob_cmd_bench(int argc, char **argv)
         ob_driver_defaults(&o);
         size_t nj = 0;
         double r1 = whole_run(1, &set, &o, NULL, &nj), rN = whole_run(N, &set, &o, NULL, &nj);
-        row(&b, "run", "cpu", 1, (double)nj, r1, "jobs/s");
-        row(&b, "run", "cpu", N, (double)nj, rN, "jobs/s");
+        row(b, "run", "cpu", 1, (double)nj, r1, "jobs/s");
+        row(b, "run", "cpu", N, (double)nj, rN, "jobs/s");
         printf("whole run (%zu jobs, hausdorff): %.2f s on 1 thread, %.2f s on %d: speedup x%.2f\n", nj, r1, rN, N,
                r1 / rN);
         if (cl) {
             const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
             double g = whole_run(N, &set, &o, &clh, &nj);
-            row(&b, "run", "opencl", N, (double)nj, g, "jobs/s");
+            row(b, "run", "opencl", N, (double)nj, g, "jobs/s");
             printf("whole run with the OpenCL backend: %.2f s (x%.2f vs CPU on %d threads)\n", g, rN / g, N);
         }
     }
     ob_curveset_free(&set);
 
-    /* all methods on a fixed random set */
+}
+
+/* All methods at 5 tolerances on a fixed random set, on the CPU and with
+ * OpenCL (cl, or NULL); then each method's median times per job. */
+static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
+{
+    char cerr[1024];
     ob_curveset rset = {0};
     if (ob_random_append(&rset, 1, quick ? 8 : 24, NULL, 0, cerr, sizeof cerr) == 0) {
         ob_driver_opts o;
@@ -478,28 +487,55 @@ int ob_cmd_bench(int argc, char **argv)
         size_t nj = 0;
         ob_job *kept = NULL;
         double c = random_run(&rset, &o, NULL, &nj, &kept);
-        row(&b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
+        row(b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
         printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
                rset.n, ob_method_count(), nj, nj / c);
         if (cl) {
             const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
             double g = random_run(&rset, &o, &clh, &nj, NULL);
-            row(&b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
+            row(b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
             printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);
         }
         printf("\n");
         if (kept)
-            per_method_times(&b, kept, nj, N);
+            per_method_times(b, kept, nj, N);
         free(kept);
     }
     ob_curveset_free(&rset);
+}
+
+int ob_cmd_bench(int argc, char **argv)
+{
+    bench_args a = {"out/bench", 0};
+    const ob_flagset flags = {bench_flags, 2, NULL, NULL, "options", apply_bench_flag, &a};
+    const int prc = ob_cli_parse("[--out DIR] [--quick]", &flags, 1, argc, argv, 0, NULL, NULL);
+    if (prc != OB_CLI_OK)
+        return prc == OB_CLI_HELP ? 0 : 2;
+    if (ob_mkdir_p(a.out) != 0) {
+        ob_error("--out: cannot create '%s': %s", a.out, strerror(errno));
+        return 1;
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/bench.csv", a.out);
+    bench_out b = {fopen(path, "w")};
+    if (!b.csv) {
+        ob_error("%s: cannot write: %s", path, strerror(errno));
+        return 1;
+    }
+    fprintf(b.csv, "what,backend,threads,items,seconds,rate,unit\n");
+    const int N = omp_get_num_procs();
+    double peak[2], vpeak;
+    bench_peaks(&b, N, peak, &vpeak);
+    ob_cl *cl = bench_open_cl(&b);
+    int rc = bench_metrics(&b, cl, a.quick ? 200 : 2000, OB_DEFAULT_SAMPLES, N, peak, vpeak);
+    if (rc == 0) {
+        bench_whole_runs(&b, cl, N);
+        bench_random(&b, cl, N, a.quick);
+    }
     ob_cl_close(cl);
-    free(base);
-    free(approx);
-    free(recs);
-    free(o1);
-    free(o2);
     fclose(b.csv);
+    if (rc != 0)
+        return 1;
     printf("wrote %s\n", path);
     return 0;
 }

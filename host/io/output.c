@@ -158,21 +158,15 @@ static void cpu_model(char *buf, size_t len)
     fclose(f);
 }
 
-int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
-                  double wall_seconds)
+/* meta.json: the build and what measured. */
+static void meta_build(FILE *f, const ob_backend_info *b)
 {
-    char ts[64];
-    time_t now = time(NULL);
-    struct tm tmv;
-    gmtime_r(&now, &tmv);
-    strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%SZ", &tmv);
     fprintf(f, "{\n  \"program\": \"offbench\",\n  \"git_commit\": ");
     ob_json_string(f, OB_GIT_COMMIT);
     fprintf(f, ",\n  \"git_dirty\": %s,\n  \"compiler\": ", OB_GIT_DIRTY ? "true" : "false");
     ob_json_string(f, "gcc " __VERSION__);
     fprintf(f, ",\n  \"cflags\": ");
     ob_json_string(f, OB_CFLAGS);
-    const ob_backend_info *b = &rec->binfo;
     fprintf(f, ",\n  \"backend\": \"%s\",\n  \"opencl\": ", b->opencl ? "opencl" : "cpu");
     if (b->opencl) {
         fprintf(f, "{\"platform\": ");
@@ -194,6 +188,12 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
     fprintf(f, "  \"cpu_model\": ");
     ob_json_string(f, cpu);
     fprintf(f, ",\n  \"omp_threads\": %d,\n", omp_get_max_threads());
+}
+
+/* meta.json: the settings that decide results (seed, samples, limits,
+ * method parameters and versions). */
+static void meta_settings(FILE *f, const ob_run_opts *o)
+{
     if (o->random_n > 0)
         fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"random_curves\": %ld,\n", o->random_seed, o->random_n);
     else
@@ -224,6 +224,11 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
         fprintf(f, ": %d", ob_methods[m]->version);
     }
     fprintf(f, "},\n");
+}
+
+/* meta.json: what the timing columns, offset degrees and joints mean. */
+static void meta_definitions(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
+{
     /* timings are medians over reps timed runs after a warm-up (1: one run) */
     fprintf(f, "  \"timing\": {\"fit_ns\": \"CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID) in the "
                "method's fit calls of the job, summed\", \"eval_ns\": \"measuring the job's pieces: on the CPU the "
@@ -242,6 +247,19 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
                "their end tangents; continuity: open (a joint open), G0 (closed, a kink over g1_kink_rad), G1, or "
                "empty (no joint); joints at a corner or gap of the base curve are not measured\"},\n",
             OB_JOINT_GAP_REL, OB_JOINT_KINK_RAD);
+}
+
+int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
+                  double wall_seconds)
+{
+    char ts[64];
+    time_t now = time(NULL);
+    struct tm tmv;
+    gmtime_r(&now, &tmv);
+    strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%SZ", &tmv);
+    meta_build(f, &rec->binfo);
+    meta_settings(f, o);
+    meta_definitions(f, o, rec);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
