@@ -145,11 +145,10 @@ static const char *meta_str(const shard_in *s, const char *key)
 }
 
 /* Reads one shard directory; 0, or -1 after ob_error(). */
-static int load_shard(shard_in *s, const char *dir)
+/* A finished shard's meta.json (no journal beside it): its K/N and reps. */
+static int shard_meta(shard_in *s, const char *dir)
 {
     char path[4200], err[1024];
-    memset(s, 0, sizeof *s);
-    s->dir = dir;
     snprintf(path, sizeof path, "%s/results.journal.csv", dir);
     FILE *jf = fopen(path, "r");
     if (jf || errno != ENOENT) {
@@ -172,6 +171,13 @@ static int load_shard(shard_in *s, const char *dir)
     }
     const ob_json_entry *reps = ob_json_get(&s->meta, "reps");
     s->reps = reps ? atoi(reps->value) : 1;
+    return 0;
+}
+
+/* Its results.csv, whole lines as run writes them. */
+static int shard_results(shard_in *s, const char *dir)
+{
+    char path[4200], err[1024], *hdr;
     snprintf(path, sizeof path, "%s/results.csv", dir);
     ob_res_table t;
     if (ob_res_load(path, &t, err, sizeof err) != 0) {
@@ -180,7 +186,6 @@ static int load_shard(shard_in *s, const char *dir)
     }
     const int nrows = t.n;
     ob_res_free(&t);
-    char *hdr;
     if (ob_slurp(path, &s->res_text, &s->res_len, err, sizeof err) != 0 ||
         split_lines(s->res_text, s->res_len, &hdr, &s->lines, &s->nlines) != 0) {
         ob_error("merge: %s", err[0] ? err : "out of memory");
@@ -190,8 +195,16 @@ static int load_shard(shard_in *s, const char *dir)
         ob_error("merge: %s: not results.csv as run writes it (header, or a row over several lines)", path);
         return -1;
     }
+    return 0;
+}
+
+/* Its shard.csv: each row's index in the run and key hash, checked against
+ * the row. */
+static int shard_index(shard_in *s, const char *dir)
+{
+    char path[4200], err[1024];
     snprintf(path, sizeof path, "%s/shard.csv", dir);
-    char **il;
+    char *hdr, **il;
     size_t ni;
     if (ob_slurp(path, &s->idx_text, &s->idx_len, err, sizeof err) != 0) {
         ob_error("merge: %s", err);
@@ -236,6 +249,14 @@ static int load_shard(shard_in *s, const char *dir)
             return -1;
         }
     }
+    return 0;
+}
+
+/* Its samples.csv, when there is one (--reps). */
+static int shard_samples(shard_in *s, const char *dir)
+{
+    char path[4200], err[1024];
+    char *hdr;
     snprintf(path, sizeof path, "%s/samples.csv", dir);
     FILE *probe = fopen(path, "r");
     if (probe) {
@@ -248,6 +269,13 @@ static int load_shard(shard_in *s, const char *dir)
         }
     }
     return 0;
+}
+
+static int load_shard(shard_in *s, const char *dir)
+{
+    memset(s, 0, sizeof *s);
+    s->dir = dir;
+    return shard_meta(s, dir) || shard_results(s, dir) || shard_index(s, dir) || shard_samples(s, dir) ? -1 : 0;
 }
 
 /* What every shard of one run has in common. */
@@ -360,6 +388,91 @@ static int apply_merge_flag(void *ctx, int id, const char *opt, const char *v)
     return 0;
 }
 
+/* Every shard K of N given exactly once. */
+static int check_complete_set(const shard_in *sh, int nin, const char *const *in)
+{
+    const int n = sh[0].n;
+    int *have = calloc((size_t)n, sizeof *have);
+    if (!have)
+        return -1;
+    for (int i = 0; i < nin; i++) {
+        if (have[sh[i].k]) {
+            ob_error("merge: shard %d/%d given twice (%s and %s)", sh[i].k, n, in[have[sh[i].k] - 1], in[i]);
+            free(have);
+            return -1;
+        }
+        have[sh[i].k] = i + 1;
+    }
+    for (int k = 0; k < n; k++)
+        if (!have[k]) {
+            ob_error("merge: shard %d/%d is missing: an incomplete set", k, n);
+            free(have);
+            return -1;
+        }
+    free(have);
+    return 0;
+}
+
+/* Where each of the run's total jobs is: shard who[j], line row[j]; every
+ * job in exactly one shard.  *wall: the slowest shard's wall time. */
+static int map_rows(const shard_in *sh, int nin, const char *const *in, size_t total, int *who, size_t *row,
+                    double *wall)
+{
+    *wall = 0.0;
+    for (int i = 0; i < nin; i++) {
+        const ob_json_entry *w = ob_json_get(&sh[i].meta, "wall_seconds");
+        if (w && atof(w->value) > *wall)
+            *wall = atof(w->value);
+        for (size_t r = 0; r < sh[i].nlines; r++) {
+            const size_t j = sh[i].idx[r];
+            if (j >= total) {
+                ob_error("merge: %s/shard.csv:%zu: job %zu, but the run has %zu jobs", in[i], r + 2, j, total);
+                return -1;
+            }
+            if (who[j] >= 0) {
+                ob_error("merge: job %zu is in %s and in %s: overlapping shards", j, in[who[j]], in[i]);
+                return -1;
+            }
+            who[j] = i;
+            row[j] = r;
+        }
+    }
+    for (size_t j = 0; j < total; j++)
+        if (who[j] < 0) {
+            ob_error("merge: job %zu is in no shard: a gap (of %zu jobs)", j, total);
+            return -1;
+        }
+    return 0;
+}
+
+/* The rows' keys in job order must give the plan's hash: each row is the
+ * job its shard.csv names (checked above), and these are the run's jobs
+ * at those indices */
+static int check_plan_hash(const shard_in *sh, const char *const *in, size_t total, const int *who, const size_t *row)
+{
+    const ob_json_entry *ps = ob_json_get(&sh[0].meta, "plan_seed"), *ph = ob_json_get(&sh[0].meta, "plan_hash");
+    if (!ps || !ph || ps->type != OB_JSON_STRING || ph->type != OB_JSON_STRING) {
+        ob_error("merge: %s/meta.json: no plan_seed or plan_hash (written by an older offbench?)", in[0]);
+        return -1;
+    }
+    uint64_t h = (uint64_t)strtoull(ps->value, NULL, 16);
+    for (size_t j = 0; j < total; j++) {
+        char buf[4096];
+        const char *key[6];
+        row_key(sh[who[j]].lines[row[j]], buf, sizeof buf, key);  /* parsed in load_shard */
+        h = ob_key_step(h, key);
+    }
+    char hex[20];
+    snprintf(hex, sizeof hex, "%016" PRIx64, h);
+    if (strcmp(hex, ph->value) != 0) {
+        ob_error("merge: the rows in job order are not the run's jobs (their keys hash to %s, plan_hash is %s): "
+                 "job indices in shard.csv edited?",
+                 hex, ph->value);
+        return -1;
+    }
+    return 0;
+}
+
 int ob_cmd_merge(int argc, char **argv)
 {
     const char *out = NULL;
@@ -393,25 +506,8 @@ int ob_cmd_merge(int argc, char **argv)
     for (int i = 1; i < nin; i++)
         if (check_same(&sh[0], &sh[i]) != 0)
             goto done;
-    const int n = sh[0].n;
-    int *have = calloc((size_t)n, sizeof *have);
-    if (!have)
+    if (check_complete_set(sh, nin, in) != 0)
         goto done;
-    for (int i = 0; i < nin; i++) {
-        if (have[sh[i].k]) {
-            ob_error("merge: shard %d/%d given twice (%s and %s)", sh[i].k, n, in[have[sh[i].k] - 1], in[i]);
-            free(have);
-            goto done;
-        }
-        have[sh[i].k] = i + 1;
-    }
-    for (int k = 0; k < n; k++)
-        if (!have[k]) {
-            ob_error("merge: shard %d/%d is missing: an incomplete set", k, n);
-            free(have);
-            goto done;
-        }
-    free(have);
     const ob_json_entry *te = ob_json_get(&sh[0].meta, "jobs_total");
     const size_t total = te ? (size_t)strtoull(te->value, NULL, 10) : 0;
     who = malloc((total ? total : 1) * sizeof *who);
@@ -420,55 +516,9 @@ int ob_cmd_merge(int argc, char **argv)
         goto done;
     for (size_t j = 0; j < total; j++)
         who[j] = -1;
-    double wall = 0.0;
-    for (int i = 0; i < nin; i++) {
-        const ob_json_entry *w = ob_json_get(&sh[i].meta, "wall_seconds");
-        if (w && atof(w->value) > wall)
-            wall = atof(w->value);
-        for (size_t r = 0; r < sh[i].nlines; r++) {
-            const size_t j = sh[i].idx[r];
-            if (j >= total) {
-                ob_error("merge: %s/shard.csv:%zu: job %zu, but the run has %zu jobs", in[i], r + 2, j, total);
-                goto done;
-            }
-            if (who[j] >= 0) {
-                ob_error("merge: job %zu is in %s and in %s: overlapping shards", j, in[who[j]], in[i]);
-                goto done;
-            }
-            who[j] = i;
-            row[j] = r;
-        }
-    }
-    for (size_t j = 0; j < total; j++)
-        if (who[j] < 0) {
-            ob_error("merge: job %zu is in no shard: a gap (of %zu jobs)", j, total);
-            goto done;
-        }
-    /* the rows' keys in job order must give the plan's hash: each row is the
-     * job its shard.csv names (checked above), and these are the run's jobs
-     * at those indices */
-    {
-        const ob_json_entry *ps = ob_json_get(&sh[0].meta, "plan_seed"), *ph = ob_json_get(&sh[0].meta, "plan_hash");
-        if (!ps || !ph || ps->type != OB_JSON_STRING || ph->type != OB_JSON_STRING) {
-            ob_error("merge: %s/meta.json: no plan_seed or plan_hash (written by an older offbench?)", in[0]);
-            goto done;
-        }
-        uint64_t h = (uint64_t)strtoull(ps->value, NULL, 16);
-        for (size_t j = 0; j < total; j++) {
-            char buf[4096];
-            const char *key[6];
-            row_key(sh[who[j]].lines[row[j]], buf, sizeof buf, key);  /* parsed in load_shard */
-            h = ob_key_step(h, key);
-        }
-        char hex[20];
-        snprintf(hex, sizeof hex, "%016" PRIx64, h);
-        if (strcmp(hex, ph->value) != 0) {
-            ob_error("merge: the rows in job order are not the run's jobs (their keys hash to %s, plan_hash is %s): "
-                     "job indices in shard.csv edited?",
-                     hex, ph->value);
-            goto done;
-        }
-    }
+    double wall;
+    if (map_rows(sh, nin, in, total, who, row, &wall) != 0 || check_plan_hash(sh, in, total, who, row) != 0)
+        goto done;
     if (ob_mkdir_p(out) != 0) {
         ob_error("merge: --out: cannot create '%s': %s", out, strerror(errno));
         status = 1;

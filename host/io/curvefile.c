@@ -379,11 +379,10 @@ static int kw_text(parser *P, const char *kw, int fam, char *rest)
 }
 
 /* `end`: checks the block as a whole and turns it into a curve. */
-static int kw_end(parser *P, char *rest)
+/* The block's kind, points, knots and offsets agree with each other. */
+static int check_block_shape(parser *P)
 {
-    block *b = &P->b;
-    if (next_tok(&rest))
-        return perr(P, P->line, "'end' takes no arguments");
+    const block *b = &P->b;
     const int L = b->line, npts = (int)(b->pts.n / 3), nk = (int)b->knots.n;
     if (!b->kind)
         return perr(P, L, "curve '%s' has no 'bezier DEGREE' or 'bspline DEGREE' line", b->id);
@@ -411,6 +410,15 @@ static int kw_end(parser *P, char *rest)
             return perr(P, b->knots_line, "empty domain: knots[%d] = knots[%d] = %.17g", b->deg,
                         npts, b->knots.v[b->deg]);
     }
+    return 0;
+}
+
+/* The control polygon moves, spans enough to be measured, and every offset
+ * is above round-off; *M: the largest coordinate. */
+static int check_block_scale(parser *P, double *M_out)
+{
+    const block *b = &P->b;
+    const int L = b->line, npts = (int)(b->pts.n / 3);
     const double *pt = b->pts.v;
     int moves = 0;
     for (int i = 1; i < npts && !moves; i++)
@@ -434,17 +442,17 @@ static int kw_end(parser *P, char *rest)
         if (!(fabs(b->offs.v[k]) >= SCALE_REL * M))
             return perr(P, L, "curve '%s': offset %.17g is below 1e-12 times its largest coordinate %.3g", b->id,
                         b->offs.v[k], M);
+    *M_out = M;
+    return 0;
+}
 
-    if (P->n == P->cap) {
-        int cap = P->cap ? 2 * P->cap : 8;
-        ob_curve *v = P->cap < INT_MAX / 4 ? realloc(P->v, (size_t)cap * sizeof *v) : NULL;
-        if (!v)
-            return perr(P, L, "out of memory");
-        P->v = v;
-        P->cap = cap;
-    }
-    ob_curve *c = &P->v[P->n];
-    memset(c, 0, sizeof *c);
+/* The block's Bezier segments into c (a B-spline split at its knots, each
+ * segment spanning enough to be measured; M: the largest coordinate). */
+static int block_segments(parser *P, ob_curve *c, double M)
+{
+    const block *b = &P->b;
+    const int L = b->line, npts = (int)(b->pts.n / 3);
+    const double *pt = b->pts.v;
     if (b->kind == 'z') {
         if ((c->seg = calloc(1, sizeof *c->seg))) {
             c->nseg = 1;
@@ -481,6 +489,30 @@ static int kw_end(parser *P, char *rest)
             }
         }
     }
+    return 0;
+}
+
+static int kw_end(parser *P, char *rest)
+{
+    block *b = &P->b;
+    if (next_tok(&rest))
+        return perr(P, P->line, "'end' takes no arguments");
+    const int L = b->line;
+    double M = 0.0;
+    if (check_block_shape(P) || check_block_scale(P, &M))
+        return -1;
+    if (P->n == P->cap) {
+        int cap = P->cap ? 2 * P->cap : 8;
+        ob_curve *v = P->cap < INT_MAX / 4 ? realloc(P->v, (size_t)cap * sizeof *v) : NULL;
+        if (!v)
+            return perr(P, L, "out of memory");
+        P->v = v;
+        P->cap = cap;
+    }
+    ob_curve *c = &P->v[P->n];
+    memset(c, 0, sizeof *c);
+    if (block_segments(P, c, M))
+        return -1;
     c->d = malloc(b->offs.n * sizeof *c->d);
     c->source = strdup(b->source ? b->source : "");
     c->family = strdup(b->family ? b->family : "published");

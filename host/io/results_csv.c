@@ -252,6 +252,61 @@ static int csv_row(csv_reader *r, int *line, int nh)
 }
 
 /* Parses buf[0..len) (owned by t from here on, with room for a NUL). */
+/* The fields of one row (f, at[]: the header's column of each name) into
+ * row.  Returns NULL, or what is wrong with the row. */
+static const char *read_row(char **f, const int *at, int has_joints, ob_res_row *row)
+{
+    const char *bad = read_key(f, at, row);
+    row->status = f[at[10]];
+    row->message = f[at[13]];
+    row->max_err_text = f[at[9]];
+    row->max_gap = row->max_kink = NAN;
+    row->continuity = has_joints ? f[at[16]] : "";
+    if (bad)
+        ;
+    else if (parse_long(f[at[6]], 0, 1000000000L, &row->ctrl_points))
+        bad = "ctrl_points is not a whole number >= 0";
+    else if (parse_long(f[at[7]], 0, 1000000000L, &row->segments) ||
+             parse_long(f[at[8]], 0, 1000000L, &row->out_degree))
+        bad = "segments and out_degree must be whole numbers >= 0";
+    else if (parse_err(row->max_err_text, &row->max_err))
+        bad = "max_err is not a number >= 0 (nan or empty for none)";
+    else if (has_joints && (parse_err(f[at[14]], &row->max_gap) || parse_err(f[at[15]], &row->max_kink)))
+        bad = "max_gap and max_kink must be numbers >= 0 (empty for none)";
+    else if (has_joints && strcmp(row->continuity, "") && strcmp(row->continuity, "open") &&
+             strcmp(row->continuity, "G0") && strcmp(row->continuity, "G1"))
+        bad = "continuity is not empty, open, G0 or G1";
+    if (bad)
+        ;
+    else if (parse_ns(f[at[11]], &row->fit_ns) || parse_ns(f[at[12]], &row->eval_ns))
+        bad = "fit_ns and eval_ns must be finite numbers >= 0";
+    else if (strcmp(row->status, "ok") && strcmp(row->status, "limit") && strcmp(row->status, "fail") &&
+             strcmp(row->status, "skip") && strcmp(row->status, "timeout"))
+        bad = "status is not ok, limit, fail, skip or timeout";
+    return bad;
+}
+
+/* t->sorted: the rows by job key; two rows of one job are refused. */
+static int index_rows(ob_res_table *t, csv_reader *r, int line)
+{
+    t->sorted = malloc((size_t)(t->n ? t->n : 1) * sizeof *t->sorted);
+    if (!t->sorted) {
+        csv_fail(r, line, "out of memory");
+        return -1;
+    }
+    for (int i = 0; i < t->n; i++)
+        t->sorted[i] = &t->v[i];
+    qsort(t->sorted, (size_t)t->n, sizeof *t->sorted, cmp_ptr);
+    for (int i = 1; i < t->n; i++)
+        if (ob_res_key_cmp(t->sorted[i - 1], t->sorted[i]) == 0) {
+            const ob_res_row *a = t->sorted[i - 1], *b = t->sorted[i];
+            csv_fail(r, b->line, "duplicate job %s,%s,%s,%s,%s,%s (first on line %d)", b->curve, b->d_text,
+                     b->method, b->metric, b->split, b->tol_text, a->line);
+            return -1;
+        }
+    return 0;
+}
+
 static int parse_owned(char *buf, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
                        size_t errlen)
 {
@@ -298,55 +353,15 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         ob_res_row *row = &t->v[t->n];
         memset(row, 0, sizeof *row);
         row->line = line;
-        char **f = r.f;
-        const char *bad = read_key(f, at, row);
-        row->status = f[at[10]];
-        row->message = f[at[13]];
-        row->max_err_text = f[at[9]];
-        row->max_gap = row->max_kink = NAN;
-        row->continuity = t->has_joints ? f[at[16]] : "";
-        if (bad)
-            ;
-        else if (parse_long(f[at[6]], 0, 1000000000L, &row->ctrl_points))
-            bad = "ctrl_points is not a whole number >= 0";
-        else if (parse_long(f[at[7]], 0, 1000000000L, &row->segments) ||
-                 parse_long(f[at[8]], 0, 1000000L, &row->out_degree))
-            bad = "segments and out_degree must be whole numbers >= 0";
-        else if (parse_err(row->max_err_text, &row->max_err))
-            bad = "max_err is not a number >= 0 (nan or empty for none)";
-        else if (t->has_joints && (parse_err(f[at[14]], &row->max_gap) || parse_err(f[at[15]], &row->max_kink)))
-            bad = "max_gap and max_kink must be numbers >= 0 (empty for none)";
-        else if (t->has_joints && strcmp(row->continuity, "") && strcmp(row->continuity, "open") &&
-                 strcmp(row->continuity, "G0") && strcmp(row->continuity, "G1"))
-            bad = "continuity is not empty, open, G0 or G1";
-        if (bad)
-            ;
-        else if (parse_ns(f[at[11]], &row->fit_ns) || parse_ns(f[at[12]], &row->eval_ns))
-            bad = "fit_ns and eval_ns must be finite numbers >= 0";
-        else if (strcmp(row->status, "ok") && strcmp(row->status, "limit") && strcmp(row->status, "fail") &&
-                 strcmp(row->status, "skip") && strcmp(row->status, "timeout"))
-            bad = "status is not ok, limit, fail, skip or timeout";
+        const char *bad = read_row(r.f, at, t->has_joints, row);
         if (bad) {
             csv_fail(&r, line, "%s", bad);
             goto fail;
         }
         t->n++;
     }
-    t->sorted = malloc((size_t)(t->n ? t->n : 1) * sizeof *t->sorted);
-    if (!t->sorted) {
-        csv_fail(&r, line, "out of memory");
+    if (index_rows(t, &r, line) != 0)
         goto fail;
-    }
-    for (int i = 0; i < t->n; i++)
-        t->sorted[i] = &t->v[i];
-    qsort(t->sorted, (size_t)t->n, sizeof *t->sorted, cmp_ptr);
-    for (int i = 1; i < t->n; i++)
-        if (ob_res_key_cmp(t->sorted[i - 1], t->sorted[i]) == 0) {
-            const ob_res_row *a = t->sorted[i - 1], *b = t->sorted[i];
-            csv_fail(&r, b->line, "duplicate job %s,%s,%s,%s,%s,%s (first on line %d)", b->curve, b->d_text,
-                     b->method, b->metric, b->split, b->tol_text, a->line);
-            goto fail;
-        }
     free(r.f);
     return 0;
 fail:
