@@ -1,6 +1,6 @@
 /*
  * ahn.c - Ahn 2023, "G2/C1 Hermite interpolation of offset curves of
- * parametric regular curves", AIMS Press (seed 002).
+ * parametric regular curves", AIMS Mathematics (AIMS Press), 2023.
  *
  * The unit normal N is approximated by N^a(t) = N(0) + int_0^t C'(u) alpha(u) du
  * with alpha a cubic in Bernstein form (eq. 3.1).  Since (N^a)' is parallel to C',

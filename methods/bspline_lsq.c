@@ -1,7 +1,7 @@
 /*
  * bspline_lsq.c - the "Lst" method of Lee, Kim & Elber 1996 ("Planar curve
  * offset based on circle approximation", CAD 28(8) 617-630, §6 comparisons),
- * as Ahn 2023 describes it (seed 002, §5: "The Lst method was proposed by Lee
+ * as Ahn 2023 describes it (AIMS Mathematics, §5: "The Lst method was proposed by Lee
  * et al. [11] and they explained that it is an extension of Hoschek and
  * Wissel [2] while adapting the global error bounding technique of the method
  * in [36]", [36] = Elber & Cohen 1991).  Lee et al.'s paper is not among the

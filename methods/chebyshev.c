@@ -1,5 +1,5 @@
 /*
- * chebyshev.c - the "Che" column of Liu & Wang 2002 (seed 004, §3): their
+ * chebyshev.c - the "Che" column of Liu & Wang 2002 (J. Software 13(3), §3): their
  * control-point shifting with the normal curve approximated by Chebyshev
  * polynomials instead of Legendre ones.  The paper only names the variant;
  * here it is the construction of liu.c (§2.3, eq. 6-7: D interpolates

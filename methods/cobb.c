@@ -3,7 +3,8 @@
  * comparison (IEEE CG&A 17(1), 1997): move each control point P_j by d N(t*_j)
  * at its Greville abscissa t*_j = j/n.  (Liu & Wang describe the parameter of
  * the curve point nearest to P_j; the Greville form is the one behind the
- * published Cob column, see METHODS.md.)  Rational input: the Euclidean point is
+ * published Cob column of Liu & Wang 2002, Table 1, which Lee, Kim & Elber
+ * 1996 measured: README "Published figures this version reproduces exactly".)  Rational input: the Euclidean point is
  * moved and its weight kept, i.e. w_j (P_j + d N) in homogeneous form.
  */
 #include "methods/method.h"

@@ -1,6 +1,6 @@
 /*
  * coquillart.c - Coquillart 1987, "Computing offsets of B-spline curves",
- * CAD 19(6):305-309, as Liu & Wang 2002 describe it (seed 004, section 1):
+ * CAD 19(6):305-309, as Liu & Wang 2002 describe it (§1):
  * Cobb's method improved by the curvature: each control point P_j is moved
  * along N(xi_j) by the distance d (1 + kappa_j D_j), where xi_j is the
  * parameter of the curve point nearest to P_j, D_j the distance from P_j to
@@ -30,8 +30,8 @@
  *   3  d (1 - |kappa| |D|)  unsigned, opposite sign (the same as 1 there)
  * Foot point (parameter `foot`): 0 = the nearest point, as Liu-Wang describe
  * it (default); 1 = the Greville abscissa xi_j = j/n, the form in which cobb
- * reproduces the Cob column of Lee, Kim & Elber 1996 (Liu-Wang's [13];
- * METHODS.md), for comparison.
+ * reproduces the Cob column of Lee, Kim & Elber 1996 (Liu-Wang's [13]),
+ * for comparison.
  * No combination of foot and sign readings reproduces the published Coq
  * columns (Liu-Wang Table 1: 10, 28, 88, 295, 817 under bound/mid, a little
  * below Cob): on liu2002_ex1 the readings 0/2 give 10, 13, 28, 52, 106 (foot

@@ -3,8 +3,8 @@
  * (issue 19).  Not from a paper of 1984-2023: the construction used by
  * today's vector-graphics and font tools (kurbo 0.11, 2022: area and moment
  * matching; kurbo 0.13, 2025: refinement of the handles against the error
- * along normals), implemented here from its description in the issue
- * (METHODS.md "State of the art outside the papers"), with one step of our
+ * along normals; R. Levien, "Parallel curves of cubic Béziers", 2022,
+ * raphlinus.github.io), implemented here from that description, with one step of our
  * own: the handles are driven to the minimax (equioscillation) of the error
  * along the normals, not only matched to two integrals.
  *

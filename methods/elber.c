@@ -1,10 +1,10 @@
 /*
  * elber.c - Elber & Cohen 1992, "Offset approximation improvement by control
  * points perturbation" (Mathematical Methods in CAGD II, 229-237), as Liu &
- * Wang 2002 describe it (seed 004, section 1): start from Cobb's control
+ * Wang 2002 describe it (§1): start from Cobb's control
  * polygon and use the error at the curve points associated with the control
  * points to adjust the offset at P_j, iterating so that the approximation
- * converges to the true offset.  (The paper itself is not in the seeds.)
+ * converges to the true offset.  (The paper itself was not at hand.)
  *
  * Update rule.  Nodes t*_j = j/n (the Greville abscissae: the curve points of
  * Cobb's form, see cobb.c), exact offset points O_j = C(t*_j) + d N(t*_j):
@@ -23,13 +23,14 @@
  * Update 1 reads "adjust the offset amount at P_j" literally: only the
  * displacement along N(t*_j) is corrected, by the error along that normal.
  *
- * Iteration count (parameter `iterations`): neither Liu-Wang nor the seeds give
+ * Iteration count (parameter `iterations`): neither Liu-Wang nor the other papers we follow give
  * Elber-Cohen's count.  Default 5: a few passes, after which every node-error
  * mode of a cubic but the slowest is reduced below 0.5 % (the factors per pass
  * are 0, 0, 1/3, 7/9), while the method stays a perturbation of Cobb's polygon
  * rather than its limit (for large counts it becomes interp).  0 gives cobb.
  *
- * Adaptive variant (parameter variant = 1; METHODS.md, Elber's own scheme):
+ * Adaptive variant (parameter variant = 1; Elber's own scheme, Elber & Cohen
+ * 1991, IJCGA 1(1) 67-78, as Elber, Lee & Kim 1997, IEEE CG&A 17(3), compare it):
  * the base segment is a B-spline of degree n (knots 0^(n+1), 1^(n+1)); its
  * offset approximation A moves each control point by d N at its Greville
  * abscissa (Cobb); D(t) = ||A(t) - C(t)||^2 is a spline of degree 2n whose
@@ -50,7 +51,7 @@
 static const ob_param elber_params[] = {
     {"iterations", 5.0,
      "perturbation passes after Cobb's polygon (integer 0..100000; 0 = cobb).  Default 5: "
-     "the seeds give no count; 5 passes reduce all node-error modes of a cubic but the "
+     "the papers we follow give no count; 5 passes reduce all node-error modes of a cubic but the "
      "slowest (7/9 per pass) below 0.5 %, large counts converge to interp", 0, 100000, 1},
     {"update", 0.0,
      "0 = move Q_j by the node error vector O_j - A(j/n) (Jacobi step for the node "
@@ -58,12 +59,12 @@ static const ob_param elber_params[] = {
      "along that normal (adjust only the offset amount)", 0, 1, 1},
     {"variant", 0.0,
      "0 = control point perturbation of one Bezier segment (Liu-Wang's description of "
-     "Elber-Cohen 1992: the default); 1 = Elber's adaptive variant (METHODS.md): refine the "
+     "Elber-Cohen 1992: the default); 1 = Elber's adaptive variant (Elber & Cohen 1991): refine the "
      "base as a B-spline by knot insertion where the node errors of ||A - C||^2 exceed the "
      "tolerance, re-offset (Cobb at the Greville abscissae), repeat; one B-spline, counted by "
      "its control points", 0, 1, 1},
     {"rounds", 20.0,
-     "variant 1: most refinement rounds (integer 1..100); default 20 (METHODS.md: at most "
+     "variant 1: most refinement rounds (integer 1..100); default 20 (the scheme as described: at most "
      "~20 rounds)", 1, 100, 1},
 };
 

@@ -1,6 +1,6 @@
 /*
  * exact.c - exact rational offsets where they exist (San Segundo & Sendra,
- * "Algorithms for offset curves and surfaces", ICM 2006 poster, seed 003: if
+ * "Algorithms for offset curves and surfaces", ICM 2006 poster: if
  * ||N(t)|| is rational in t, the offset P +- d N/||N|| is rational).
  *
  * Recognised inputs, each offset written as one rational Bézier segment that

@@ -1,9 +1,10 @@
 /*
  * hoschek.c - Hoschek 1988, "Spline approximation of offset curves", CAGD
- * 5(1) 33-40 (METHODS.md "Least squares and interpolation with knot
- * removal"; the kind of method behind the "Lst" column of Ahn 2023, Tables 1-2,
- * which is Lee et al.'s extension of Hoschek-Wissel).  The paper itself is not
- * among the seeds; this follows METHODS.md's description.
+ * 5(1) 33-40 (the kind of method behind the "Lst" column of Ahn 2023, Tables 1-2,
+ * which is Lee et al.'s extension of Hoschek-Wissel).  The paper itself was
+ * not at hand; this follows its usual description (Ahn 2023, §5; Elber, Lee
+ * & Kim 1997, IEEE CG&A 17(3)): sample the exact offset, fit by least squares
+ * with the end points fixed, iterate parameter correction.
  *
  * The exact offset O(t) = C(t) + d N(t) is sampled at M points Q_j = O(t_j),
  * t_j = j/(M-1) (uniform in the base's parameter, both ends included).  A
@@ -26,11 +27,11 @@
  *    for hundreds), so any count is a cost compromise; 20 is where the first
  *    fast phase is over on the test curves (it takes 2-5 corrections on
  *    well-parameterized pieces) at about 20x the cost of one fit.
- *  - tangents: 0 (default, METHODS.md: end points fixed); 1 also fixes the
+ *  - tangents: 0 (default, that description: end points fixed); 1 also fixes the
  *    end tangent directions to the offset's (A'(0) = alpha T_0,
  *    A'(1) = beta T_1, alpha, beta >= 0 (a negative least-squares value is
  *    set to 0 and the rest refitted): G1 Hermite ends), which needs m >= 3.
- *  - degree: 0 = the base's degree (METHODS.md: "a cubic (or degree-n)").
+ *  - degree: 0 = the base's degree (a cubic for a cubic base, or degree n).
  * The output is polynomial; rational bases are sampled like any other.  The
  * parameter correction decouples A's parameter from the base's, so A is not
  * in the base's parameter (no OB_CAP_SAME_PARAM: measure it with the normal
@@ -71,7 +72,7 @@ static const ob_param hoschek_params[HP_COUNT] = {
      "least squares in the base parameter. Default 20: a cost compromise, the correction "
      "converges linearly and slowly (see hoschek.c)", 0, HOSCHEK_MAX_ITER, 1},
     {"tangents", 0,
-     "0: only the end points are fixed to the offset's (METHODS.md); 1: also the end tangent "
+     "0: only the end points are fixed to the offset's (Hoschek 1988 as usually described); 1: also the end tangent "
      "directions (G1 ends, needs degree >= 3)", 0, 1, 1},
     {"degree", 0, "output degree; 0 = the base's degree", 0, OB_MAX_DEG, 1},
 };

@@ -16,7 +16,7 @@
  * segment with any parameterization.
  * Readings: Klass fits cubic Hermite pieces and Pham a cubic B-spline through
  * sampled offset points; the per-segment node interpolation at t*_j = j/n is
- * METHODS.md's form of the family.
+ * the form of the Klass / Pham interpolation family we take.
  */
 #include "methods/method.h"
 

@@ -1,7 +1,7 @@
 /*
  * kim2018.c - Kim, Lee & Ahn 2018, "A new method approximating offset curve by
  * Bézier curve using parallel derivative curves", Comp. Appl. Math. 37:2053-2064
- * (reference [26] of Ahn 2023, seed 002; the paper itself is not in the seeds).
+ * (reference [26] of Ahn 2023, AIMS Mathematics; the paper itself was not at hand).
  *
  * As Ahn 2023 describes it (section 3, "a special case of our method"): the unit
  * normal N is approximated by

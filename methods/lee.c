@@ -76,7 +76,7 @@ static const ob_param lee_params[NPARAM] = {
      "(0 = the positive x direction; our choice)", -1e3, 1e3, 0},
     {"clip", 0.0,
      "arcs_on=0: 0: each part is convolved with its whole arc of the circle approximation "
-     "(the circle approximated once: the reading of METHODS.md, default); 1: with the interpolating quadratic of the sub-arc that the part's normals "
+     "(the circle approximated once: Lee, Kim & Elber 1996 as Ahn 2023 describes it, default); 1: with the interpolating quadratic of the sub-arc that the part's normals "
      "cover, so every piece interpolates the offset at its ends (with 0 a piece end inside an "
      "arc is off the offset's end by O(h^3) along the tangent, which the per-piece hausdorff "
      "metric sees and no subdivision removes)", 0, 1, 1},

@@ -1,6 +1,6 @@
 /*
  * liu.c - Liu & Wang 2002, "Optimal approximation to curve offset based on
- * shifting control points", J. Software (seed 004, in Chinese), §2.2-2.4.
+ * shifting control points", J. Software 13(3), 2002 (in Chinese), §2.2-2.4.
  *
  * Shift every control point P_i of the base segment by D_i, the Bernstein
  * coefficients of a degree-n polynomial D(t) that approximates the normal

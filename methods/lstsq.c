@@ -1,5 +1,5 @@
 /*
- * lstsq.c - the "Lst" column of Liu & Wang 2002 (seed 004, §3): their
+ * lstsq.c - the "Lst" column of Liu & Wang 2002 (J. Software 13(3), §3): their
  * control-point shifting with the normal curve approximated by least squares
  * on sampled normals.  The paper only names the variant; here it is the
  * end-constrained construction of §2.3 (D(0) = N_d(0), D(1) = N_d(1), fixed)

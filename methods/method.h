@@ -39,8 +39,8 @@ enum { OB_MAX_PIECES = 64, OB_SPLIT_PIECES = 16 };
  * pieces themselves (they count 1 + sum of degrees, plus one for each joint
  * whose ends are apart: driver.h, joints.h); otherwise the number of control
  * points of the method's own representation of the same curve, e.g. a
- * B-spline whose Bézier pieces these are (DESIGN: B-splines count their
- * control points). */
+ * B-spline whose Bézier pieces these are (README "Output": B-splines count
+ * their control points). */
 typedef struct {
     int n;
     long ctrl_points;

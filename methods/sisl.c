@@ -33,7 +33,7 @@
  *  - Output pieces: one Bezier cubic per non-empty knot span, extracted by
  *    blossoming (de Boor's algorithm with the span's end knots as arguments),
  *    in fixed-size local arrays.  ctrl_points = the B-spline's own number of
- *    control points (DESIGN: B-spline outputs count their control points).
+ *    control points (README "Output": a B-spline counts its control points).
  *    More spans than OB_SPLIT_PIECES: OB_RETRY_SMALLER (the driver splits the
  *    piece and SISL starts again on each half).
  *  - SISL's tolerance is not a bound under our metrics (tests/methods/test_sisl.c

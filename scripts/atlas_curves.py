@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """atlas_curves.py - writes datasets/atlas.curves: the rational curves of San
-Segundo & Sendra's Offset Atlas (seed 003) as exact Bézier segments.
+Segundo, Sendra & Sendra's Offset Atlas ("Algorithms for offset curves and
+surfaces", ICM 2006 poster) as exact Bézier segments.
 
 Each curve is given here by a rational parameterization (X(t), Y(t), W(t))
 with integer coefficients (its derivation in `derivation`), restricted to a

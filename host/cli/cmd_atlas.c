@@ -1,6 +1,7 @@
 /*
  * cmd_atlas.c - ./offbench atlas [--out DIR]: the Offset Atlas of San
- * Segundo & Sendra (seed 003) against our exact offset degrees.
+ * Segundo, Sendra & Sendra ("Algorithms for offset curves and surfaces", ICM
+ * 2006 poster, its table of curves) against our exact offset degrees.
  *
  * The atlas' figures come from results/published/offset_atlas.csv (found like
  * the published tables: $OFFBENCH_ATLAS, ./results/published, beside the

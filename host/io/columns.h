@@ -3,7 +3,7 @@
  * each holds.  The header line, the row writer (output.c), the reader
  * (results_csv.c), the journal and `./offbench list columns` all take them
  * from this table, so a column added here is added everywhere (new columns
- * go at the end: DESIGN.md's contract).
+ * go at the end: other tools read results.csv, README "Output").
  */
 #ifndef OB_COLUMNS_H
 #define OB_COLUMNS_H

@@ -8,7 +8,7 @@
  * appended to the set only when the whole text parsed, so a failed parse
  * leaves the set untouched.
  *
- * Limits (beyond the ones in DESIGN.md), to keep hostile input bounded:
+ * Limits (beyond the format's own, README "Curve files"), to keep hostile input bounded:
  * lines <= 4096 bytes, |numbers| <= 1e12, <= 10000 control points and
  * <= 1000 offsets per curve, files <= 64 MiB.
  *

@@ -1,5 +1,5 @@
 /*
- * options.h - the `run` command line (DESIGN.md "Command line").
+ * options.h - the `run` command line (README "Command line").
  */
 #ifndef OB_OPTIONS_H
 #define OB_OPTIONS_H

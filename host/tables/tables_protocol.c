@@ -1,7 +1,8 @@
 /*
  * tables_protocol.c - the measurement protocol of every published column.
  *
- * Evidence for the `paper` readings (../shared/METHODS.md, the seeds):
+ * Evidence for the `paper` readings, from the papers' own text (each quoted
+ * with its paper and section):
  * - Liu-Wang Tables 1-2, Til Cob Coq Elb: these columns come from Lee, Kim &
  *   Elber 1996 (Planar curve offset based on circle approximation, CAD 28(8);
  *   Liu-Wang's [13]), Liu-Wang §3: "例 1 和例 2 中的数据取自文献[13]. 文献[13]

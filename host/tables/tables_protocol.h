@@ -3,7 +3,7 @@
  *
  * Three protocols per cell (issue 5):
  *   paper     the paper's own error measure, split rule and counting, as far
- *             as the seeds establish it (the evidence is in tables_protocol.c
+ *             as the papers' text establishes it (the evidence is in tables_protocol.c
  *             and in the README);
  *   rigorous  the two-sided Hausdorff metric, dense, midpoint split, for every
  *             method alike;

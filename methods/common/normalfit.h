@@ -1,5 +1,5 @@
 /*
- * normalfit.h - the normal-curve approximations of Liu & Wang 2002 (seed 004),
+ * normalfit.h - the normal-curve approximations of Liu & Wang 2002, §2,
  * shared by methods/liu.c, methods/chebyshev.c and methods/lstsq.c.
  *
  * Liu-Wang §2.1: shifting the control points P_i of a Bézier segment by D_i

@@ -1,6 +1,7 @@
 /*
  * offdeg.h - the exact algebraic degree of a rational curve's offset, and
- * whether the offset is rational (San Segundo & Sendra, seed 003).
+ * whether the offset is rational (San Segundo, Sendra & Sendra, "Algorithms
+ * for offset curves and surfaces", ICM 2006 poster).
  *
  * For a parameterization (X/W, Y/W) with gcd(X, Y, W) = 1:
  *   N1 = W X' - W' X,  N2 = W Y' - W' Y,  N = N1^2 + N2^2,

@@ -145,7 +145,8 @@ static double fit_error(ob_metric metric, const ob_bez *base, const ob_fit *f, d
     return worst;
 }
 
-/* Methods documented (METHODS.md) to interpolate the offset end points. */
+/* Methods whose construction interpolates the offset's end points (README
+ * "Methods"). */
 static int interpolates_ends(const ob_method *m)
 {
     static const char *const names[] = {"tiller", "cobb", "ahn", "kim2018", "liu", "interp", "cubic-opt", NULL};

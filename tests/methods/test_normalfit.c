@@ -2,7 +2,7 @@
  * test_normalfit.c - the Liu & Wang 2002 normal-curve family: liu (Legendre),
  * chebyshev and lstsq (methods/liu.c, chebyshev.c, lstsq.c, normalfit.c).
  *
- * What must hold (seed 004, §2.1-2.4):
+ * What must hold (Liu & Wang 2002, §2.1-2.4):
  *  - the Gauss-Legendre rule integrates polynomials of degree <= 2M-1 exactly;
  *  - the end-constrained construction (eq. 6-7) reproduces every polynomial
  *    target of degree <= n (then f~ has degree <= n-2), for all three fits;

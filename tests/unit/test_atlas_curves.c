@@ -1,7 +1,7 @@
 /*
  * test_atlas_curves.c - every curve of datasets/atlas.curves lies on the
- * implicit curve its source line names (San Segundo & Sendra's Offset Atlas,
- * seed 003): F(X(u), Y(u), W(u)) = 0 identically, F homogenized with W, in
+ * implicit curve its source line names (the Offset Atlas of San Segundo,
+ * Sendra & Sendra, ICM 2006 poster): F(X(u), Y(u), W(u)) = 0 identically, F homogenized with W, in
  * exact integer polynomial arithmetic (FLINT) on the file's integer
  * homogeneous control points.  Each equation's degree and number of terms
  * are checked against the atlas' columns (results/published/offset_atlas.csv),

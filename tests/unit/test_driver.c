@@ -46,7 +46,8 @@ static void run_one(ob_job *j, const ob_curve *c, const char *method, ob_metric 
     ob_driver_run(j, 1, o, NULL);
 }
 
-/* Liu-Wang Table 1 (Til, Cob) and Ahn Table 1: the protocols of METHODS.md. */
+/* Liu-Wang Table 1 (Til, Cob) and Ahn Table 1: the protocols under which they
+ * reproduce exactly (README "Published figures this version reproduces exactly"). */
 static void test_published_protocols(void)
 {
     ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);

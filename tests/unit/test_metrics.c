@@ -630,7 +630,7 @@ static void test_measure(void)
     CHECK(strcmp(ob_metric_name(OB_METRIC_BOUND), "bound") == 0 && strcmp(ob_metric_name(OB_METRIC_RADIAL), "radial") == 0 &&
               strcmp(ob_metric_name(OB_METRIC_NORMAL), "normal") == 0 &&
               strcmp(ob_metric_name(OB_METRIC_HAUSDORFF), "hausdorff") == 0,
-          "metric names as in DESIGN.md");
+          "metric names as in the README (the contract)");
     CHECK(ob_metric_same_param(OB_METRIC_BOUND) && ob_metric_same_param(OB_METRIC_RADIAL) &&
               !ob_metric_same_param(OB_METRIC_NORMAL) && !ob_metric_same_param(OB_METRIC_HAUSDORFF),
           "same-parameter metrics are bound and radial");

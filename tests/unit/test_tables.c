@@ -61,7 +61,7 @@ static void test_parser(void)
           "missing column: %s", err);
     CHECK(ob_pub_parse("", 0, "e.csv", &s, err, sizeof err) == -1 && strstr(err, "e.csv:1"), "empty: %s", err);
 
-    /* the real file: every table of the seeds */
+    /* the real file: every published table */
     CHECK(ob_pub_load(&s, err, sizeof err) == 0, "load: %s", err);
     CHECK(s.n == 237, "237 published cells, got %d", s.n);
     int liu1 = 0, ahn1 = 0, zhao = 0;

@@ -1,5 +1,5 @@
 /*
- * test_timing.c - what the timing columns measure (DESIGN: fit_ns is the
+ * test_timing.c - what the timing columns measure (README "Output": fit_ns is the
  * thread CPU time of the job's fits; eval_ns is the job's own measuring cost,
  * its share of a batch by the work it used when one launch measures many
  * jobs).  No assertion here depends on how fast or loaded the machine is:
