@@ -1,6 +1,6 @@
 /*
  * zhao.c - Zhao & Zhou 2017, "A Novel Method of Offset Approximation along the
- * Normal Direction with High Precision" (Symmetry 9(9), MDPI, 2017), sections 2-3:
+ * Normal Direction with High Precision" (Algorithms 10(3), MDPI, 2017), sections 2-3:
  * polynomial ("zhao") or rational ("zhao-rational") approximation R(A,t)
  * of degree n of the offset C_r(t) = C(t) + r N(t) whose error along the
  * normal, e(t) = (R(t) - C_r(t)) . N(t), is driven towards equioscillation.

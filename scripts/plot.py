@@ -38,7 +38,11 @@ import textwrap
 
 import csvrows  # scripts/csvrows.py, beside this file
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit(f"{os.path.basename(sys.argv[0])}: matplotlib is not installed: apt-get install python3-matplotlib "
+             "(or run 'make deps')")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -134,6 +138,15 @@ def exact_num(v):
     """The shortest text that reads back as v ("1", "-0.2158", "1e-05")."""
     text = repr(float(v))
     return text[:-2] if text.endswith(".0") else text
+
+
+def short_num(text):
+    """A number for a file name: 6 significant digits, not the 17 of an exact
+    offset (two offsets that print alike are told apart by Writer.name)."""
+    try:
+        return f"{float(text):.6g}"
+    except ValueError:
+        return text
 
 
 def sanitize(text):
@@ -292,7 +305,7 @@ def plot_ctrl(curve, d, rows, style, keyof, meta_line, writer):
     legend(ax, handles, len(keys))
     if dropped:
         footnote(fig, ["Not plotted: " + dropped[0]] + ["  " + s for s in dropped[1:]])
-    writer.save(fig, f"ctrl_{curve}_d{d}")
+    writer.save(fig, f"ctrl_{curve}_d{short_num(d)}")
     return True
 
 

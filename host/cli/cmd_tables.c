@@ -127,6 +127,36 @@ static long slot_for(ob_tab_plan *pl, const ob_curve *curve, double d, const ob_
 }
 
 /* --table SOURCE:TABLE,...: is the cell's table selected (all when none)? */
+/* Every name of --table (SOURCE:TABLE,...) is a published table; a typo is
+ * refused with the list of valid names.  0, or -1 after ob_error(). */
+static int check_table_names(const char *only, const ob_pub_set *pub)
+{
+    for (const char *p = only; p && *p;) {
+        const char *e = strchr(p, ',');
+        const int len = e ? (int)(e - p) : (int)strlen(p);
+        int found = 0;
+        for (int i = 0; i < pub->n && !found; i++) {
+            char key[80];
+            snprintf(key, sizeof key, "%s:%s", pub->v[i].source, pub->v[i].table);
+            found = (int)strlen(key) == len && strncmp(p, key, (size_t)len) == 0;
+        }
+        if (!found) {
+            char names[2048] = "";
+            size_t k = 0;
+            for (int i = 0; i < pub->n; i++) {
+                char key[80];
+                snprintf(key, sizeof key, "%s:%s", pub->v[i].source, pub->v[i].table);
+                if (!strstr(names, key) && k + strlen(key) + 3 < sizeof names)
+                    k += (size_t)snprintf(names + k, sizeof names - k, "%s%s", k ? ", " : "", key);
+            }
+            ob_error("--table: no table '%.*s' in %s; the tables are: %s", len, p, pub->where, names);
+            return -1;
+        }
+        p = e ? e + 1 : p + len;
+    }
+    return 0;
+}
+
 static int selected(const char *only, const char *source, const char *table)
 {
     if (!only)
@@ -392,6 +422,8 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
         ob_error("%s", err);
         goto done;
     }
+    if (check_table_names(only, &pub) != 0)
+        goto done;
     if (ob_load_default_curves(&set, where, sizeof where, err, sizeof err) != 0) {
         ob_error("%s", err);
         goto done;
@@ -423,8 +455,13 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     status = rrc ? 1 : 0;
     if (ob_write_atomically(o.out_dir, "tables.csv", ob_tab_write_csv, &out) != 0 ||
         ob_write_atomically(o.out_dir, "tables.md", ob_tab_write_md, &out) != 0 ||
-        ob_write_atomically(o.out_dir, "zhao_sweep.csv", ob_tab_write_sweep, &out) != 0)
+        (pl.nsweep > 0 && ob_write_atomically(o.out_dir, "zhao_sweep.csv", ob_tab_write_sweep, &out) != 0))
         status = 1;
+    if (pl.nsweep == 0) {  /* --table without Zhao-Zhou's Table 1: no sweep, and none of an earlier run */
+        char sp[4200];
+        snprintf(sp, sizeof sp, "%s/zhao_sweep.csv", o.out_dir);
+        remove(sp);
+    }
     int cnt[OB_TAB_NSTATUS] = {0};
     for (int i = 0; i < pl.nrows; i++)
         cnt[ob_tab_row_status(&pl, &pl.rows[i], NULL)]++;

@@ -515,7 +515,7 @@ static int kw_end(parser *P, char *rest)
         return -1;
     c->d = malloc(b->offs.n * sizeof *c->d);
     c->source = strdup(b->source ? b->source : "");
-    c->family = strdup(b->family ? b->family : "published");
+    c->family = strdup(b->family ? b->family : OB_DEFAULT_FAMILY);
     if (!c->seg || !c->d || !c->source || !c->family) {
         ob_curve_free(c);
         return perr(P, L, "out of memory");

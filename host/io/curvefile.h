@@ -3,7 +3,7 @@
  *
  *   curve ID                  # letters, digits, '_', '-', '.', '/'
  *     source TEXT
- *     family NAME             # optional, default "published"
+ *     family NAME             # optional, default "user" (OB_DEFAULT_FAMILY)
  *     bezier DEGREE           # or: bspline DEGREE
  *     knots K0 K1 ...         # bspline only (may span several `knots` lines)
  *     point X Y [W]           # one per control point, W > 0 (default 1)
@@ -14,6 +14,10 @@
  */
 #ifndef OB_CURVEFILE_H
 #define OB_CURVEFILE_H
+
+/* The family of a curve whose file gives none: the user's own curves (the
+ * published ones say `family published`, the Offset Atlas `family atlas`). */
+#define OB_DEFAULT_FAMILY "user"
 
 #include <stddef.h>
 #include "methods/core/curve.h"

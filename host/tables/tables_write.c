@@ -324,7 +324,10 @@ int ob_tab_write_md(FILE *f, void *ctx)
         int seen = 0;
         for (int q = 0; q < i && !seen; q++)
             seen = same_table(&t->pub->v[q], first);
-        if (seen)
+        int planned = 0;  /* --table: only the tables asked for */
+        for (int q = 0; q < pl->nrows && !planned; q++)
+            planned = same_table(pl->rows[q].cell, first);
+        if (seen || !planned)
             continue;
         strlist rows = {0}, cols = {0};
         for (int q = i; q < t->pub->n; q++)

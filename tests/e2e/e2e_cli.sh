@@ -253,6 +253,11 @@ check '[ "$(tab4 Til)" = "25:match 67:match 202:match 640:match 1918:match " ]' 
 check '[ "$(tab4 Cob)" = "28:match 73:match 208:match 637:match 1846:match " ]' "Liu-Wang T2 Cob under paper: $(tab4 Cob)"
 $OB tables --table nosuch:1 --out "$T/tab2" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--table" "$T/e.txt"' "tables --table of an unknown table exits 2"
+$OB tables --table liu2002:2,liu2002:7 --out "$T/tab2" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "no table .liu2002:7.*the tables are: liu2002:1, liu2002:2" "$T/e.txt"' \
+    "a typo in one --table name is refused with the valid names: $(cat "$T/e.txt")"
+check '[ "$(grep -c "^## " "$T/tab4/tables.md")" -eq 1 ] && grep -q "^## Liu & Wang 2002.*Table 2" "$T/tab4/tables.md" && [ ! -e "$T/tab4/zhao_sweep.csv" ]' \
+    "tables --table liu2002:2 writes that table's section only, and no Zhao-Zhou sweep"
 $OB tables --protocols fast --out "$T/tab2" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--protocols" "$T/e.txt"' "tables --protocols of an unknown protocol exits 2"
 printf 'source,table,curve,d,tol,method,label,value,unit\nliu2002,1,liu2002_ex1,1,1e-1,tiller,Til,"10,ctrl_points\n' > "$T/badpub.csv"

@@ -8,7 +8,7 @@
 PLOT=$(cd "$(dirname "$0")/../.." && pwd)/scripts/plot.py
 PY=/usr/bin/python3
 
-NCHECKS=28
+NCHECKS=30
 if ! "$PY" -c 'import matplotlib' >/dev/null 2>&1; then
     echo "e2e_plot: $PY cannot import matplotlib (apt-get install python3-matplotlib): skipped"
     echo "0 passed, 0 failed, $NCHECKS skipped"
@@ -44,6 +44,12 @@ check '[ $? -eq 0 ] && is_png "$T/qp/summary_families.png" && is_png "$T/qp/time
 curves=$(ls "$T/qp" | sed -n 's/^ctrl_\(rnd3_[0-9]*\)_d.*\.png$/\1/p' | sort -u | tr '\n' ' ')
 check '[ "$curves" = "rnd3_000000 " ]' "--max-curves 1 plots one curve: '$curves'"
 check '[ -z "$(ls "$T/qp" | grep -v "\.png$")" ] && same_list "$T/q.out" "$T/qp"' "--formats png writes only PNGs, all listed"
+check '[ -z "$(ls "$T/qp" | grep -E "_d-?[0-9]*\.[0-9]{7,}")" ]' "file names carry d to 6 digits, not 17: $(ls "$T/qp" | grep ^ctrl_ | head -n 2 | tr '\n' ' ')"
+# without matplotlib: a clear message and a non-zero exit, not a traceback
+mkdir -p "$T/nompl/matplotlib" && echo 'raise ImportError("matplotlib hidden by the test")' > "$T/nompl/matplotlib/__init__.py"
+PYTHONPATH="$T/nompl" "$PY" "$PLOT" "$T/q/results.csv" --out "$T/nm" >/dev/null 2>"$T/nm.err"
+check '[ $? -ne 0 ] && grep -q "matplotlib is not installed: apt-get install python3-matplotlib" "$T/nm.err" && ! grep -q Traceback "$T/nm.err"' \
+    "plot.py without matplotlib says what to install: $(head -c 200 "$T/nm.err")"
 plot "$T/q/results.csv" --out "$T/qc" --curve rnd3_000005 --formats svg >/dev/null 2>&1
 check '[ $? -eq 0 ] && [ "$(ls "$T/qc" | grep ^ctrl_ | grep -vc ^ctrl_rnd3_000005_d)" -eq 0 ] && ls "$T/qc" | grep -q "^ctrl_rnd3_000005_d.*\.svg$" && is_svg "$T/qc/summary_families.svg"' \
     "--curve selects the curve"
