@@ -58,7 +58,8 @@ def fmt(x):
     """A double as the shortest text that reads back to it (C strtod)."""
     if x == 0:
         return "0"
-    return repr(float(x))
+    s = repr(float(x))
+    return s[:-2] if s.endswith(".0") else s
 
 
 # ---- 2x3 affine maps (a, b, c, d, e, f): x' = a x + c y + e, y' = b x + d y + f
@@ -91,11 +92,36 @@ def mat_inverse(m):
 
 # ---- segments: (letter, [(x, y, w), ...]) rational Bezier control points
 
+def arc_center(seg, u, v):
+    """The centre of the ellipse of axes u, v (orthogonal) through the arc's
+    two ends, the one nearer svgelements' centre.  svgelements computes it
+    with sqrt(1 - lambda), which after its scaling of too-small radii (SVG
+    1.1, Appendix F.6.6) is the square root of round-off: centres 1e-8 of
+    the radius off the chord's midpoint.  Here, in the frame where the
+    ellipse is the unit circle, lambda within 1e-12 of 1 is that case and
+    puts the centre on the midpoint."""
+    rx, ry = math.hypot(*u), math.hypot(*v)
+    eu, ev = (u[0] / rx, u[1] / rx), (v[0] / ry, v[1] / ry)
+    mx, my = (seg.start.x + seg.end.x) / 2, (seg.start.y + seg.end.y) / 2
+    hx, hy = (seg.start.x - seg.end.x) / 2, (seg.start.y - seg.end.y) / 2
+    dx, dy = (hx * eu[0] + hy * eu[1]) / rx, (hx * ev[0] + hy * ev[1]) / ry  # unit-circle frame
+    lam = dx * dx + dy * dy
+    k = math.sqrt((1 - lam) / lam) if 0 < lam < 1 - 1e-12 else 0.0
+    best = None
+    for sgn in (1.0, -1.0):  # centre m + k perp(d), back from the unit-circle frame
+        px, py = -sgn * k * dy * rx, sgn * k * dx * ry
+        c = (mx + px * eu[0] + py * ev[0], my + px * eu[1] + py * ev[1])
+        dist = math.hypot(c[0] - seg.center.x, c[1] - seg.center.y)
+        if best is None or dist < best[0]:
+            best = (dist, c)
+    return best[1]
+
+
 def arc_pieces(seg):
     """An svgelements Arc (local coordinates) as rational quadratics of at
     most 90 degrees each, or [] when it has no extent.  The ellipse is
-    E(t) = c + u cos t + v sin t, u = prx - c, v = pry - c (any two independent
-    axes); a piece [a, b] of half-angle h = (b - a)/2 has the end points
+    E(t) = c + u cos t + v sin t, u = prx - c, v = pry - c (svgelements'
+    axes, orthogonal in the path's own coordinates; c from arc_center); a piece [a, b] of half-angle h = (b - a)/2 has the end points
     E(a), E(b) and the middle point c + (u cos m + v sin m)/cos h with weight
     cos h, m = (a + b)/2: the standard circle-arc form (Piegl & Tiller, The
     NURBS Book, 1997, Section 7.5) mapped by the affine map of the unit circle
@@ -107,6 +133,7 @@ def arc_pieces(seg):
     sweep = float(seg.sweep or 0.0)
     if det == 0 or sweep == 0 or not math.isfinite(sweep):
         return []
+    c = arc_center(seg, u, v)
     sx, sy = seg.start.x - c[0], seg.start.y - c[1]
     cos0 = (sx * v[1] - sy * v[0]) / det  # solve (sx, sy) = u cos t0 + v sin t0
     sin0 = (u[0] * sy - u[1] * sx) / det
