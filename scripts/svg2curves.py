@@ -324,6 +324,9 @@ class Converter:
         """The text of one curve block (raises Refused)."""
         deg = max(len(p) - 1 for _, _, p in pieces)
         segs = [elevate(p, deg) for _, _, p in pieces]
+        for k in range(1, len(segs)):
+            if segs[k][0][:2] != segs[k - 1][-1][:2]:
+                raise Refused(f"its segments {k - 1} and {k} do not join")
         pts = [segs[0][0]] + [q for s in segs for q in s[1:]]
         check_curve(pts, segs, self.a.d)
         if len(pts) > MAX_POINTS:
@@ -340,7 +343,8 @@ class Converter:
             knots = [0] * (deg + 1) + [i for i in range(1, len(segs)) for _ in range(deg)] \
                 + [len(segs)] * (deg + 1)
             lines.append(f"  bspline {deg}")
-            lines.append("  knots " + " ".join(str(u) for u in knots))
+            for i in range(0, len(knots), 32):  # the reader's lines are <= 4096 bytes
+                lines.append("  knots " + " ".join(str(u) for u in knots[i:i + 32]))
         for x, y, w in pts:
             lines.append(f"  point {fmt(x)} {fmt(y)}" + ("" if w == 1.0 else f" {fmt(w)}"))
         lines.append("  offset " + " ".join(fmt(d) for d in self.a.d))
@@ -452,8 +456,8 @@ def main(argv):
         print(f"{PROG}: cannot import svgelements: install python3-svgelements "
               f"(apt-get install python3-svgelements)", file=sys.stderr)
         return 2
-    if a.prefix and safe_id(a.prefix) != a.prefix:
-        print(f"{PROG}: --prefix '{a.prefix}': allowed are letters, digits, '_', '-', '.', '/'",
+    if a.prefix and (safe_id(a.prefix) != a.prefix or len(a.prefix) > 40):
+        print(f"{PROG}: --prefix '{a.prefix[:50]}': at most 40 of letters, digits, '_', '-', '.', '/'",
               file=sys.stderr)
         return 2
     def note(msg):
@@ -478,7 +482,7 @@ def main(argv):
     for i, e in enumerate(shapes, 1):
         try:
             conv.element(e, i, root_inv)
-        except (ValueError, ZeroDivisionError, OverflowError, TypeError, AttributeError) as ex:
+        except Exception as ex:  # whatever svgelements hands over: named, never a crash
             conv.skip(f"{element_name(e, tag_of(e, se), i)}: cannot convert ({ex}); left out")
     bad = xml_report(a.svg, {e.id for e in shapes if e.id}, conv.skip)
     if bad:

@@ -15,7 +15,7 @@ CONV=$ROOT/scripts/svg2curves.py
 CHECK=$ROOT/tests/e2e/svgcheck.py
 HAND=$ROOT/tests/data/svg/hand.svg
 
-NCHECKS=50
+NCHECKS=53
 if ! "$PY" -c 'import svgelements' >/dev/null 2>&1; then
     echo "e2e_svg2curves: $PY cannot import svgelements (apt-get install python3-svgelements): skipped"
     echo "0 passed, 0 failed, $NCHECKS skipped"
@@ -98,6 +98,7 @@ cat > "$T/shapes.svg" <<'EOF'
  <text id="words" x="0" y="0">hi</text>
  <image id="pic" x="0" y="0" width="5" height="5" href="x.png"/>
  <blob xmlns="http://www.w3.org/2000/svg" id="what"/>
+ <circle id="nil" cx="1" cy="1" r="0"/>
 </svg>
 EOF
 conv "$T/shapes.svg" --d 0.5 --out "$T/shapes.curves" 2>"$T/shapes.err"
@@ -123,6 +124,7 @@ check 'grep -Eq "^flat +svg +1 +1 " "$T/shapes.list"' "an arc with a zero radius
 check 'grep -q "<text id=\"words\">: unsupported element (text)" "$T/shapes.err" &&
        grep -q "<image id=\"pic\">: unsupported element (image)" "$T/shapes.err" &&
        grep -q "<blob id=\"what\">: unknown element" "$T/shapes.err"' "unsupported and unknown elements named"
+check 'grep -q "<circle id=\"nil\">: the SVG parser dropped it" "$T/shapes.err"' "a circle of radius 0 is named"
 check 'runs_ok "$T/shapes.curves" "$T/shrun" 8' "run over shapes.curves: 8 jobs ok"
 conv "$T/shapes.svg" --d 0.5 --closed skip --out "$T/skip.curves" 2>"$T/skip.err"
 check '[ "$(ids "$T/skip.curves")" = "zero bad_id_1 dup dup-2 path8 flat " ] &&
@@ -149,6 +151,20 @@ check 'grep -q "<path id=\"tiny\">: left out, the .curves reader would refuse it
 conv "$T/refuse.svg" --d 1e-20 --out "$T/small.curves" 2>"$T/small.err"
 check '[ $? -eq 2 ] && grep -q "<path id=\"fine\">: .*offset 1e-20 is below 1e-12 times" "$T/small.err" &&
        grep -q "no curve to write" "$T/small.err"' "--d below the curve's scale: named; no curve: exit 2"
+
+# --- long paths: knots split over lines (<= 4096 bytes each); past the
+# reader's 10000 control points a curve is left out, named
+"$PY" -c 'import sys
+n = int(sys.argv[1])
+d = "M 0 0 " + " ".join("C %d 1 %d -1 %d 0" % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(n))
+print("<svg xmlns=\"http://www.w3.org/2000/svg\"><path id=\"long\" d=\"%s\"/></svg>" % d)' 3333 > "$T/long.svg"
+conv "$T/long.svg" --d 0.1 --out "$T/long.curves" 2>"$T/long.err"
+check '[ $? -eq 0 ] && $OB list curves --curves "$T/long.curves" 2>&1 | grep -Eq "^long +svg +3333 +3 "' \
+      "a path of 3333 cubics (10000 control points) reads back: $(head -c 300 "$T/long.err")"
+sed 's/"\/>/ L 0 0"\/>/' "$T/long.svg" > "$T/long2.svg"
+conv "$T/long2.svg" --d 0.1 --out "$T/long2.curves" 2>"$T/long2.err"
+check '[ $? -eq 2 ] && grep -q "<path id=\"long\">: left out, .*10003 control points (the reader takes at most 10000" "$T/long2.err"' \
+      "one segment more (10003 points): left out, named: $(cat "$T/long2.err")"
 
 # --- bad input and options: exit 2, a message, no traceback ---
 conv "$T/mix.svg" --out "$T/x.curves" 2>"$T/e1"
