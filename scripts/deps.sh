@@ -10,6 +10,7 @@
 #   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
+#   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
 set -u
 
 missing=""
@@ -34,27 +35,32 @@ if [ "${MPI:-0}" = 1 ]; then
     command -v mpirun >/dev/null 2>&1 || missing="$missing openmpi-bin"
 fi
 
-# Optional: python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py,
-# run as /usr/bin/python3).  Installed when missing and possible; never fails
-# the build: the C build and the tests do not need it.
-if ! /usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1; then
+# Optional: Python modules of the scripts, run as /usr/bin/python3:
+# python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py),
+# python3-svgelements for scripts/svg2curves.py (SVG paths to .curves).
+# Installed when missing and possible; never fail the build: the C build does
+# not need them, and their tests count as skipped without them.
+optional_py() { # MODULE PACKAGE WHAT
+    /usr/bin/python3 -c "import $1" >/dev/null 2>&1 && return 0
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-        echo "deps: installing (optional, for the plots): python3-matplotlib"
-        if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends python3-matplotlib \
+        echo "deps: installing (optional, for $3): $2"
+        if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "$2" \
                 >>/tmp/offbench-deps.log 2>&1 \
            || { apt-get update >>/tmp/offbench-deps.log 2>&1 \
                 && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-                       python3-matplotlib >>/tmp/offbench-deps.log 2>&1; }; then
-            echo "deps: installed: python3-matplotlib"
+                       "$2" >>/tmp/offbench-deps.log 2>&1; }; then
+            echo "deps: installed: $2"
         else
-            echo "deps: could not install python3-matplotlib (see /tmp/offbench-deps.log);" \
-                 "optional: only the plots need it" >&2
+            echo "deps: could not install $2 (see /tmp/offbench-deps.log);" \
+                 "optional: only $3 uses it" >&2
         fi
     else
-        echo "deps: optional: python3-matplotlib (for the plots):" \
-             "sudo apt-get install python3-matplotlib" >&2
+        echo "deps: optional: $2 (for $3):" \
+             "sudo apt-get install $2" >&2
     fi
-fi
+}
+optional_py matplotlib python3-matplotlib "the plots"
+optional_py svgelements python3-svgelements "scripts/svg2curves.py"
 
 [ -z "$missing" ] && exit 0
 
