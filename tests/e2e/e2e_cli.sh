@@ -227,6 +227,13 @@ $OB frobnicate >/dev/null 2>&1
 check '[ $? -eq 2 ]' "unknown command exits 2"
 $OB list nothing >/dev/null 2>&1
 check '[ $? -eq 2 ]' "list of an unknown subject exits 2"
+$OB list metrics >"$T/metrics.txt" 2>&1
+check '[ $? -eq 0 ] && [ "$(cut -d" " -f1 "$T/metrics.txt" | tr "\n" " ")" = "bound radial normal hausdorff param " ]' \
+    "list metrics: the five metrics in order"
+$OB run --curve liu2002_ex1 --methods tiller,hoschek --tols 1e-2 --metric param --threads 1 --out "$T/param" 2>/dev/null
+check '[ $? -eq 0 ] && [ "$(rcols "$T/param/results.csv" method metric status | sort -u | tr "\n" " ")" = "hoschek:param:ok tiller:param:ok " ]' \
+    "--metric param runs every method (hoschek too), rows say param"
+check 'grep -q "\"param\": \"max |(A(t) - C(t) - d N(t)) . N(t)|" "$T/param/meta.json"' "meta.json defines the param metric"
 
 # --- tables: the published cells under the paper protocol ---
 $OB tables --table liu2002:1,ahn2023:1,ahn2023:3-left,zhao2017:1 --protocols paper --out "$T/tab" 2>"$T/tab.err"
