@@ -15,6 +15,9 @@
  *              nearest sample (coarse global scan + local descent), then
  *              Newton projection with the target's curvature vector, golden
  *              section where Newton cannot settle.
+ *   param      Zhao-Zhou's error at the given parameter, |(A(t) - O(t)) . N(t)|
+ *              with O(t) = C(t) + d N(t) (| |A - C| - |d| | where the base has
+ *              no normal: a point-like segment).
  * Each samples S parameters t_k = k/(S-1), takes the largest error and refines
  * it by golden-section search between its neighbours.
  *
@@ -55,12 +58,14 @@
 #define OBC_RADIAL 1
 #define OBC_NORMAL 2
 #define OBC_HAUSDORFF 3
+#define OBC_PARAM 4
 
 /* internal error kinds for sample-and-refine */
 #define OBC_K_RADIAL 0
 #define OBC_K_NORMAL 1
 #define OBC_K_H_APPROX 2         /* from points of A to the offset O */
 #define OBC_K_H_OFFSET 3         /* from points of O to A */
+#define OBC_K_PARAM 4
 
 /* ---- curves ---------------------------------------------------------- */
 
@@ -435,6 +440,24 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
     return fabs(s - d);
 }
 
+/* Zhao & Zhou 2017, section 3: "The error e(t) is measured as the distance
+ * between the two parameter points R(A, t) and C_r(t), which are located on
+ * the same normal curve N(t), so it could be represented as
+ * e(t) = (R(A, t) - C_r(t)) . N(t)".  Here |e(t)| with R = A and C_r = the
+ * exact offset O = C + d N at the same t.  Where the base has no normal (a
+ * point-like segment, obc_normal fails) the radial error stands in. */
+OBC_FN double obc_param_err(OBC_ARGS, double t)
+{
+    (void)S, (void)tgt, (void)qry;
+    double P[2], N[2], q[2];
+    obc_point(hb, nb, t, P, ops);
+    obc_point(ha, na, t, q, ops);
+    if (obc_normal(hb, nb, t, N, ops) != 0)
+        return fabs(obc_dist(q, P) - fabs(d));
+    const double r0 = q[0] - (P[0] + d * N[0]), r1 = q[1] - (P[1] + d * N[1]);
+    return fabs(r0 * N[0] + r1 * N[1]);
+}
+
 /* Distance from Q to the target curve (hc, nc, dc: a segment, or its offset
  * when dc != 0) near t0 within [lo,hi]; *tp gets the foot parameter.  Newton on
  * f(t) = (P - Q).P', whose derivative near the foot is |P'|^2 (1 - K.(Q - P)):
@@ -689,6 +712,7 @@ OBC_FN double obc_err_at(int kind, OBC_ARGS, double t, int k, double cut, int *h
     switch (kind) {
     case OBC_K_RADIAL: return obc_radial_err(OBC_PASS, t);
     case OBC_K_NORMAL: return obc_normal_err(OBC_PASS, t);
+    case OBC_K_PARAM: return obc_param_err(OBC_PASS, t);
     default: return obc_side_dist(kind, OBC_PASS, t, k, cut, hint, &tf);
     }
 }
@@ -784,6 +808,10 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
     }
     if (metric == OBC_NORMAL) {
         obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
+        return;
+    }
+    if (metric == OBC_PARAM) {
+        obc_sample_refine(OBC_K_PARAM, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
         return;
     }
     if (metric != OBC_HAUSDORFF) {

@@ -503,10 +503,11 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     /* A hausdorff or normal record is heavy (thousands of evaluations): one
      * per work-group, so the device spreads them over all its compute units (a
      * NULL local size let PoCL put a whole batch in one group, on one thread).
-     * A radial record is light: groups of 32 amortize the group overhead. */
+     * A radial or param record is light: groups of 32 amortize the group
+     * overhead. */
     int light = 1;
     for (int i = 0; i < n && light; i++)
-        light = recs[i].metric == OB_METRIC_RADIAL;
+        light = recs[i].metric == OB_METRIC_RADIAL || recs[i].metric == OB_METRIC_PARAM;
     const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
     CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->err, CL_FALSE, 0, nd, c->h_err, 0, NULL, NULL));

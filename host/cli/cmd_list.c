@@ -1,5 +1,5 @@
 /*
- * cmd_list.c - `./offbench list methods|curves|devices`.
+ * cmd_list.c - `./offbench list methods|metrics|curves|columns|devices`.
  */
 #include <inttypes.h>
 #include <stdio.h>
@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "methods/method.h"
+#include "methods/metrics/metric.h"
 #include "host/backend/clrt.h"
 #include "host/cli/commands.h"
 #include "host/io/curvefile.h"
@@ -111,6 +112,14 @@ static int list_columns(void)
     return fflush(stdout) == 0 ? 0 : 1;
 }
 
+/* list metrics: every --metric name with its definition (metric.h). */
+static int list_metrics(void)
+{
+    for (int m = 0; m < OB_METRIC_COUNT; m++)
+        printf("%-10s %s\n", ob_metric_name((ob_metric)m), ob_metric_doc((ob_metric)m));
+    return fflush(stdout) == 0 ? 0 : 1;
+}
+
 /* list curves [--curves FILE] [--random N[:SEED]]: as `run` loads them (the
  * file first); the random curves are generated one at a time, not stored. */
 static int list_curves(int argc, char **argv)
@@ -179,12 +188,13 @@ static int list_curves(int argc, char **argv)
 int ob_cmd_list(int argc, char **argv)
 {
     if (argc < 2) {
-        ob_error("list: what? methods, curves, columns or devices");
+        ob_error("list: what? methods, metrics, curves, columns or devices");
         return 2;
     }
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-        puts("usage: ./offbench list methods|curves|columns|devices\n"
+        puts("usage: ./offbench list methods|metrics|curves|columns|devices\n"
              "  methods   every method: citation, claimed continuity, parameters with defaults and ranges\n"
+             "  metrics   every error metric (--metric) with its definition\n"
              "  curves    the curves a run loads (list curves --help for its options)\n"
              "  columns   the columns of results.csv, in order, with what each holds\n"
              "  devices   the OpenCL devices found");
@@ -192,6 +202,8 @@ int ob_cmd_list(int argc, char **argv)
     }
     if (strcmp(argv[1], "methods") == 0)
         return list_methods();
+    if (strcmp(argv[1], "metrics") == 0)
+        return list_metrics();
     if (strcmp(argv[1], "curves") == 0)
         return list_curves(argc, argv);
     if (strcmp(argv[1], "columns") == 0)
@@ -201,6 +213,6 @@ int ob_cmd_list(int argc, char **argv)
         printf("# --backend cpu: the C reference path with OpenMP (always available)\n");
         return 0;
     }
-    ob_error("list: unknown subject '%s' (methods, curves, columns, devices)", argv[1]);
+    ob_error("list: unknown subject '%s' (methods, metrics, curves, columns, devices)", argv[1]);
     return 2;
 }

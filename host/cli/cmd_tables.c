@@ -26,9 +26,12 @@
 #include "host/tables/published.h"
 #include "host/tables/tables.h"
 
-/* The radii swept for Zhao-Zhou's quintic (its radius is not published). */
-static const double sweep_d[] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.25, 1.5, 2.0};
+/* The radii swept for Zhao-Zhou's quintic (its radius is not published),
+ * and the points where C1 and C2 may have been cut (nor is that). */
+static const double sweep_d[] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0};
 enum { NSWEEP = sizeof sweep_d / sizeof sweep_d[0] };
+static const double sweep_cut[] = {0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8};
+enum { NCUTS = sizeof sweep_cut / sizeof sweep_cut[0] };
 
 static int group_of(const ob_tab_spec *s) { return 2 * s->single_piece + s->inflections; }
 
@@ -219,30 +222,46 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                 return -1;
             }
         }
-    /* Zhao-Zhou's quintic: its radius is not published, so sweep it */
-    /* nor where it was cut into C1 and C2: t = 1/2 (tables.md) and others (zhao_sweep.csv) */
-    static const char *pieces[] = {"zhao2017_quintic/C",      "zhao2017_quintic/C1",     "zhao2017_quintic/C2",
-                                   "zhao2017_quintic/C1@0.3", "zhao2017_quintic/C2@0.3", "zhao2017_quintic/C1@0.4",
-                                   "zhao2017_quintic/C2@0.4", "zhao2017_quintic/C1@0.6", "zhao2017_quintic/C2@0.6",
-                                   "zhao2017_quintic/C1@0.7", "zhao2017_quintic/C2@0.7"};
-    enum { NPIECES = sizeof pieces / sizeof pieces[0] };
-    static const char *methods[] = {"lee", "zhao-rational"};
+    /* Zhao-Zhou's quintic: its radius is not published, so sweep it; nor
+     * where it was cut into C1 and C2: t = 1/2 (tables.md) and others */
     if (!selected(only, "zhao2017", "1"))
         return 0;
+    static char pieces[1 + 2 * NCUTS][40];
+    int npieces = 0;
+    snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C");
+    for (int k = 0; k < NCUTS; k++)
+        for (int h = 1; h <= 2; h++) {
+            if (sweep_cut[k] == 0.5)
+                snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C%d", h);
+            else
+                snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C%d@%g", h, sweep_cut[k]);
+        }
+    static const char *methods[] = {"lee", "zhao-rational"};
     ob_pub_cell cell;
     memset(&cell, 0, sizeof cell);
     snprintf(cell.source, sizeof cell.source, "zhao2017");
     snprintf(cell.table, sizeof cell.table, "1");
     snprintf(cell.unit, sizeof cell.unit, "max_err");
-    for (int k = 0; k < NPIECES; k++)
+    /* paper (its metric), paper's former reading (normal), rigorous, and
+     * paper with zhao-rational unweighted (the paper's steps as written) */
+    for (int k = 0; k < npieces; k++)
         for (int m = 0; m < 2; m++)
-            for (int p = 0; p < 2; p++)
-                for (int i = 0; i < NSWEEP && (protos & (1u << p)); i++) {
-                    snprintf(cell.curve, sizeof cell.curve, "%s", pieces[k]);
+            for (int v = 0; v < 4; v++)
+                for (int i = 0; i < NSWEEP; i++) {
+                    const ob_proto p = v == 2 ? OB_PROTO_RIGOROUS : OB_PROTO_PAPER;
+                    if (!(protos & (1u << p)) || (v == 3 && m == 0))
+                        continue;
+                    snprintf(cell.curve, sizeof cell.curve, "%.39s", pieces[k]);
                     snprintf(cell.method, sizeof cell.method, "%s", methods[m]);
                     ob_tab_spec s;
-                    if (ob_tab_resolve(&cell, (ob_proto)p, &s, err, sizeof err) || !s.method)
+                    if (ob_tab_resolve(&cell, p, &s, err, sizeof err) || !s.method)
                         continue;
+                    if (v == 1)
+                        s.metric = OB_METRIC_NORMAL;
+                    if (v == 3 && s.nset < OB_TAB_MAX_SET) {
+                        s.set_name[s.nset] = "weighted";
+                        s.set_value[s.nset++] = 0.0;
+                    }
                     const ob_curve *curve = find_curve(pl, set, &s, err, sizeof err);
                     if (!curve)
                         continue;
@@ -253,8 +272,9 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                     ob_tab_sweep *w = &pl->sweep[pl->nsweep++];
                     w->piece = pieces[k] + strlen("zhao2017_quintic/");
                     w->method = methods[m];
-                    w->proto = (ob_proto)p;
+                    w->proto = p;
                     w->metric = s.metric;
+                    w->variant = v == 3 ? "zhao-rational.weighted=0" : "";
                     w->d = sweep_d[i];
                     if ((w->slot = slot_for(pl, curve, sweep_d[i], &s)) < 0) {
                         ob_error("out of memory planning the tables");

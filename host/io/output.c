@@ -247,6 +247,15 @@ static void meta_definitions(FILE *f, const ob_run_opts *o, const ob_run_record 
                "their end tangents; continuity: open (a joint open), G0 (closed, a kink over g1_kink_rad), G1, or "
                "empty (no joint); joints at a corner or gap of the base curve are not measured\"},\n",
             OB_JOINT_GAP_REL, OB_JOINT_KINK_RAD);
+    /* the error metrics a run may use (--metric; each row's metric column) */
+    fprintf(f, "  \"metrics\": {");
+    for (int m = 0; m < OB_METRIC_COUNT; m++) {
+        fprintf(f, "%s", m ? ", " : "");
+        ob_json_string(f, ob_metric_name((ob_metric)m));
+        fprintf(f, ": ");
+        ob_json_string(f, ob_metric_doc((ob_metric)m));
+    }
+    fprintf(f, "},\n");
 }
 
 int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,

@@ -12,7 +12,7 @@
 #include "host/tables/published.h"
 #include "host/tables/tables_protocol.h"
 
-enum { OB_TAB_MAX_PIECES = 32, OB_TAB_MAX_SWEEP = 512 };
+enum { OB_TAB_MAX_PIECES = 32, OB_TAB_MAX_SWEEP = 4096 };
 
 /* One distinct job (cells that need the same run share it). */
 typedef struct {
@@ -37,6 +37,7 @@ typedef struct {
     const char *method;
     ob_proto proto;
     ob_metric metric;
+    const char *variant;    /* "" for the protocol's reading, else the parameter set (zhao-rational.weighted=0) */
     double d;
     long slot;
 } ob_tab_sweep;

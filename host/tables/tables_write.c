@@ -248,64 +248,138 @@ static void write_counts(FILE *f, const ob_tab_plan *pl, const ob_pub_cell *firs
     fputc('\n', f);
 }
 
-static void write_sweep_md(FILE *f, const ob_tab_plan *pl)
+/* The sweep job of (method, piece, metric, d), or NULL. */
+static const ob_job *sweep_job(const ob_tab_plan *pl, const char *method, const char *piece, ob_metric metric,
+                               const char *variant, double d)
 {
-    if (pl->nsweep == 0)
-        return;
-    fputs("## Zhao & Zhou 2017, Table 1: the quintic's radius\n\n"
-          "The radius of the quintic example is not published. Errors of one fit per piece (C: the whole "
-          "curve; C1, C2: its halves at t = 1/2) for a range of d, under the paper's normal-direction "
-          "error and under the Hausdorff distance (rigorous). Published: Lee's 1.24 / 0.0443 / 0.0256, "
-          "Our Algorithm 0.0033 / 2.9199e-5 / 4.9096e-5. Nor is the cut point published: zhao_sweep.csv "
-          "also has C1 and C2 cut at t = 0.3, 0.4, 0.6 and 0.7 (pieces C1@X, C2@X).\n\n| d |",
-          f);
-    strlist cols = {0};
-    char names[64][48];
     for (int i = 0; i < pl->nsweep; i++) {
         const ob_tab_sweep *w = &pl->sweep[i];
-        if (strchr(w->piece, '@'))  /* the other cut points: zhao_sweep.csv only */
-            continue;
-        snprintf(names[cols.n < 64 ? cols.n : 63], 48, "%s %s (%s)", w->method, w->piece,
-                 w->proto == OB_PROTO_PAPER ? "normal" : "hausdorff");
-        int before = cols.n;
-        int k = strlist_add(&cols, names[cols.n < 64 ? cols.n : 63]);
-        if (k == before && cols.n > before)
-            continue;
+        if (w->metric == metric && w->d == d && strcmp(w->method, method) == 0 && strcmp(w->piece, piece) == 0 &&
+            strcmp(w->variant, variant) == 0)
+            return &pl->slots[w->slot].job;
     }
-    for (int k = 0; k < cols.n; k++)
-        fprintf(f, " %s |", cols.v[k]);
+    return NULL;
+}
+
+static int sweep_ok(const ob_job *j) { return j && (j->status == OB_OK || j->status == OB_LIMIT); }
+
+/* The distinct values of the sweep, in plan order: radii (what = 0) or cut
+ * points of the C1@X pieces (what = 1, 0.5 for plain C1). */
+static int sweep_values(const ob_tab_plan *pl, int what, double *v, int cap)
+{
+    int n = 0;
+    for (int i = 0; i < pl->nsweep; i++) {
+        const ob_tab_sweep *w = &pl->sweep[i];
+        double x = w->d;
+        if (what) {
+            if (strncmp(w->piece, "C1", 2) != 0)
+                continue;
+            x = w->piece[2] == '@' ? atof(w->piece + 3) : 0.5;
+        }
+        int seen = 0;
+        for (int k = 0; k < n && !seen; k++)
+            seen = v[k] == x;
+        if (!seen && n < cap)
+            v[n++] = x;
+    }
+    return n;
+}
+
+/* One table per metric (and variant): the halves at t = 1/2, by radius. */
+static void write_sweep_radius(FILE *f, const ob_tab_plan *pl, ob_metric metric, const char *variant,
+                               const char *what)
+{
+    static const char *methods[2] = {"lee", "zhao-rational"}, *pieces[3] = {"C", "C1", "C2"};
+    double ds[64];
+    const int nd = sweep_values(pl, 0, ds, 64);
+    int any = 0;
+    for (int r = 0; r < nd && !any; r++)
+        any = sweep_job(pl, "zhao-rational", "C", metric, variant, ds[r]) != NULL;
+    if (!any)
+        return;
+    fprintf(f, "`%s`%s%s (%s):\n\n| d |", ob_metric_name(metric), variant[0] ? ", " : "", variant, what);
+    for (int m = 0; m < 2; m++)
+        for (int k = 0; k < 3; k++)
+            fprintf(f, " %s %s |", methods[m], pieces[k]);
+    fputs("\n|---|---|---|---|---|---|---|\n", f);
+    for (int r = 0; r < nd; r++) {
+        fprintf(f, "| %g |", ds[r]);
+        for (int m = 0; m < 2; m++)
+            for (int k = 0; k < 3; k++) {
+                const ob_job *j = sweep_job(pl, methods[m], pieces[k], metric, variant, ds[r]);
+                if (sweep_ok(j))
+                    fprintf(f, " %.3g |", j->max_err);
+                else
+                    fprintf(f, " %s |", j ? ob_status_name(j->status) : "");
+            }
+        fputc('\n', f);
+    }
+    fputc('\n', f);
+}
+
+/* Under the paper's metric, per method: C1 and C2 as ratios ours / published
+ * for every cut point (rows) and radius (columns); ** where both are within
+ * 10 %. */
+static void write_sweep_cuts(FILE *f, const ob_tab_plan *pl, ob_metric metric, const char *method, double pub1,
+                             double pub2)
+{
+    double ds[64], cuts[64];
+    const int nd = sweep_values(pl, 0, ds, 64), nc = sweep_values(pl, 1, cuts, 64);
+    if (nc < 2)
+        return;
+    fprintf(f, "`%s`, %s: C1 / published %g, C2 / published %g, by cut point (rows) and d (columns)\n\n| cut |",
+            ob_metric_name(metric), method, pub1, pub2);
+    for (int r = 0; r < nd; r++)
+        fprintf(f, " %g |", ds[r]);
     fputs("\n|---|", f);
-    for (int k = 0; k < cols.n; k++)
+    for (int r = 0; r < nd; r++)
         fputs("---|", f);
     fputc('\n', f);
-    strlist ds = {0};
-    char dtext[64][24];
-    for (int i = 0; i < pl->nsweep; i++) {
-        snprintf(dtext[ds.n < 64 ? ds.n : 63], 24, "%g", pl->sweep[i].d);
-        strlist_add(&ds, dtext[ds.n < 64 ? ds.n : 63]);
-    }
-    for (int r = 0; r < ds.n; r++) {
-        fprintf(f, "| %s |", ds.v[r]);
-        for (int k = 0; k < cols.n; k++) {
-            const ob_tab_sweep *hit = NULL;
-            for (int i = 0; i < pl->nsweep && !hit; i++) {
-                const ob_tab_sweep *w = &pl->sweep[i];
-                char nm[48], dt[24];
-                snprintf(nm, sizeof nm, "%s %s (%s)", w->method, w->piece,
-                         w->proto == OB_PROTO_PAPER ? "normal" : "hausdorff");
-                snprintf(dt, sizeof dt, "%g", w->d);
-                if (strcmp(nm, cols.v[k]) == 0 && strcmp(dt, ds.v[r]) == 0)
-                    hit = w;
+    for (int c = 0; c < nc; c++) {
+        char p1[24], p2[24];
+        if (cuts[c] == 0.5) {
+            snprintf(p1, sizeof p1, "C1");
+            snprintf(p2, sizeof p2, "C2");
+        } else {
+            snprintf(p1, sizeof p1, "C1@%g", cuts[c]);
+            snprintf(p2, sizeof p2, "C2@%g", cuts[c]);
+        }
+        fprintf(f, "| %g |", cuts[c]);
+        for (int r = 0; r < nd; r++) {
+            const ob_job *a = sweep_job(pl, method, p1, metric, "", ds[r]);
+            const ob_job *b = sweep_job(pl, method, p2, metric, "", ds[r]);
+            if (!sweep_ok(a) || !sweep_ok(b)) {
+                fprintf(f, " %s |", !sweep_ok(a) ? (a ? ob_status_name(a->status) : "") : ob_status_name(b->status));
+                continue;
             }
-            const ob_job *j = hit ? &pl->slots[hit->slot].job : NULL;
-            if (j && (j->status == OB_OK || j->status == OB_LIMIT))
-                fprintf(f, " %.3g |", j->max_err);
-            else
-                fprintf(f, " %s |", j ? ob_status_name(j->status) : "");
+            const double r1 = a->max_err / pub1, r2 = b->max_err / pub2;
+            const int both = fabs(r1 - 1.0) <= 0.1 && fabs(r2 - 1.0) <= 0.1;
+            fprintf(f, " %s%.2g / %.2g%s |", both ? "**" : "", r1, r2, both ? "**" : "");
         }
         fputc('\n', f);
     }
     fputc('\n', f);
+}
+
+static void write_sweep_md(FILE *f, const ob_tab_plan *pl)
+{
+    if (pl->nsweep == 0)
+        return;
+    fputs("## Zhao & Zhou 2017, Table 1: the quintic's radius and cut point\n\n"
+          "The radius of the quintic example is not published, nor where it was cut into C1 and C2. Errors of "
+          "one fit per piece (C: the whole curve; C1, C2: its halves at t = 1/2) for a range of d, under the "
+          "paper's error at the given parameter (`param`, the paper protocol), the normal-line error (`normal`, "
+          "the reading before) and the Hausdorff distance (rigorous); then, under `param`, C1 and C2 cut at other "
+          "points, as ratios to the published figures. Published: Lee's 1.24 / 0.0443 / 0.0256, Our Algorithm "
+          "0.0033 / 2.9199e-5 / 4.9096e-5. Every figure is in zhao_sweep.csv.\n\n",
+          f);
+    write_sweep_radius(f, pl, OB_METRIC_PARAM, "", "paper");
+    write_sweep_radius(f, pl, OB_METRIC_NORMAL, "", "the paper protocol's reading before");
+    write_sweep_radius(f, pl, OB_METRIC_HAUSDORFF, "", "rigorous");
+    write_sweep_radius(f, pl, OB_METRIC_PARAM, "zhao-rational.weighted=0",
+                       "paper, with the unweighted solves of the paper's steps as written: tried, not adopted");
+    write_sweep_cuts(f, pl, OB_METRIC_PARAM, "zhao-rational", 2.9199e-5, 4.9096e-5);
+    write_sweep_cuts(f, pl, OB_METRIC_PARAM, "lee", 0.0443, 0.0256);
 }
 
 int ob_tab_write_md(FILE *f, void *ctx)
@@ -359,7 +433,7 @@ int ob_tab_write_sweep(FILE *f, void *ctx)
 {
     const ob_tab_out *t = ctx;
     const ob_tab_plan *pl = t->pl;
-    fputs("curve,piece,d,method,protocol,metric,max_err,status\n", f);
+    fputs("curve,piece,d,method,protocol,metric,max_err,status,variant\n", f);
     for (int i = 0; i < pl->nsweep; i++) {
         const ob_tab_sweep *w = &pl->sweep[i];
         const ob_job *j = &pl->slots[w->slot].job;
@@ -367,7 +441,7 @@ int ob_tab_write_sweep(FILE *f, void *ctx)
         put_num(f, w->d);
         fprintf(f, ",%s,%s,%s,", w->method, ob_proto_name(w->proto), ob_metric_name(w->metric));
         put_num(f, j->max_err);
-        fprintf(f, ",%s\n", ob_status_name(j->status));
+        fprintf(f, ",%s,%s\n", ob_status_name(j->status), w->variant);
     }
     return ferror(f) ? -1 : 0;
 }

@@ -6,7 +6,23 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const names[OB_METRIC_COUNT] = {"bound", "radial", "normal", "hausdorff"};
+static const char *const names[OB_METRIC_COUNT] = {"bound", "radial", "normal", "hausdorff", "param"};
+
+/* One line per metric, for meta.json (the definitions are metric.h's). */
+static const char *const docs[OB_METRIC_COUNT] = {
+    "symbolic Bernstein bound of | |A(t) - C(t)| - |d| | (Elber, Lee & Kim 1997), no sampling",
+    "max | |A(t) - C(t)| - |d| |, same parameter, sampled",
+    "max |s - d| where the normal line C(t) + s N(t) meets A (Zhao & Zhou 2017), sampled",
+    "two-sided Hausdorff distance between A and the exact offset, sampled",
+    "max |(A(t) - C(t) - d N(t)) . N(t)|, the error at the given parameter (Zhao & Zhou 2017, section 3), "
+    "sampled; defined for every method, but for one whose output is not in the base's parameter it is the "
+    "normal component at the same t, not the geometric distance",
+};
+
+const char *ob_metric_doc(ob_metric m)
+{
+    return (m >= 0 && m < OB_METRIC_COUNT) ? docs[m] : "?";
+}
 
 const char *ob_metric_name(ob_metric m)
 {
@@ -28,6 +44,11 @@ int ob_metric_same_param(ob_metric m)
     return m == OB_METRIC_BOUND || m == OB_METRIC_RADIAL;
 }
 
+int ob_metric_reads_param(ob_metric m)
+{
+    return ob_metric_same_param(m) || m == OB_METRIC_PARAM;
+}
+
 int ob_clamp_samples(int samples)
 {
     return samples < OB_MIN_SAMPLES ? OB_MIN_SAMPLES : samples > OB_MAX_SAMPLES ? OB_MAX_SAMPLES : samples;
@@ -42,6 +63,7 @@ int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
     case OB_METRIC_RADIAL: return ob_metric_radial(base, approx, d, samples, out);
     case OB_METRIC_NORMAL: return ob_metric_normal(base, approx, d, samples, out);
     case OB_METRIC_HAUSDORFF: return ob_metric_hausdorff(base, approx, d, samples, out);
+    case OB_METRIC_PARAM: return ob_metric_param(base, approx, d, samples, out);
     default: break;
     }
     out->err = INFINITY;

@@ -14,6 +14,12 @@
  *   hausdorff  two-sided Hausdorff distance between A and the untrimmed offset
  *              O over [0,1]; nearest points by a global coarse scan of the
  *              samples, local descent and Gauss-Newton projection.
+ *   param      Zhao-Zhou's error at the given parameter (Zhao & Zhou 2017,
+ *              section 3): max_t |(A(t) - O(t)) . N(t)|, sampled.  It reads A
+ *              at the base's parameter like radial, but the driver does not
+ *              refuse other methods: for them it is the normal component of
+ *              A(t) - O(t), blind to a drift of A along the offset to first
+ *              order, neither the geometric distance nor a bound of it.
  * Sampled metrics use S parameters t_k = k/(S-1) and refine the largest sample
  * by golden-section search between its neighbours.
  *
@@ -31,14 +37,23 @@ typedef enum {
     OB_METRIC_RADIAL,
     OB_METRIC_NORMAL,
     OB_METRIC_HAUSDORFF,
+    OB_METRIC_PARAM,
     OB_METRIC_COUNT
 } ob_metric;
 
 const char *ob_metric_name(ob_metric m);
+/* One-line definition of metric m (for meta.json); "?" if unknown. */
+const char *ob_metric_doc(ob_metric m);
 /* Returns 0 and sets *m, or -1 for an unknown name. */
 int ob_metric_parse(const char *name, ob_metric *m);
-/* 1 if the metric assumes that A is parameterized like C (bound, radial). */
+/* 1 if the metric is only run on methods whose output is parameterized like
+ * the base (bound, radial: the driver skips the others).  param reads A at the
+ * base's parameter too but is defined for any A (see above): 0. */
 int ob_metric_same_param(ob_metric m);
+/* 1 if the metric reads A at the base's parameter t, so that it changes when
+ * A is reparameterized (bound, radial, param); 0 for the geometric ones
+ * (normal, hausdorff). */
+int ob_metric_reads_param(ob_metric m);
 
 enum { OB_DEFAULT_SAMPLES = 256, OB_MIN_SAMPLES = 8, OB_MAX_SAMPLES = 4096 };
 
@@ -69,5 +84,6 @@ int ob_metric_bound(const ob_bez *base, const ob_bez *approx, double d, ob_errva
 int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+int ob_metric_param(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 
 #endif

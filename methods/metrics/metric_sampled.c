@@ -1,5 +1,5 @@
 /*
- * metric_sampled.c - the sampled metrics radial, normal and hausdorff on the
+ * metric_sampled.c - the sampled metrics radial, normal, hausdorff and param on the
  * CPU.  The formulas live in kernels/metric_core.h, shared word for word with
  * the OpenCL kernel; see metric.h for the definitions.
  */
@@ -8,6 +8,10 @@
 #include "kernels/metric_core.h"
 
 #include <stdlib.h>
+
+_Static_assert(OBC_RADIAL == OB_METRIC_RADIAL && OBC_NORMAL == OB_METRIC_NORMAL &&
+                   OBC_HAUSDORFF == OB_METRIC_HAUSDORFF && OBC_PARAM == OB_METRIC_PARAM,
+               "kernels/metric_core.h's metric codes are ob_metric's");
 
 size_t ob_metric_scratch(int S) { return 2 * (size_t)OBC_TABLE_SIZE(ob_clamp_samples(S)); }
 
@@ -47,4 +51,9 @@ int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, 
 int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
     return measure_core(OBC_HAUSDORFF, base, approx, d, S, out);
+}
+
+int ob_metric_param(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
+{
+    return measure_core(OBC_PARAM, base, approx, d, S, out);
 }

@@ -227,6 +227,13 @@ $OB frobnicate >/dev/null 2>&1
 check '[ $? -eq 2 ]' "unknown command exits 2"
 $OB list nothing >/dev/null 2>&1
 check '[ $? -eq 2 ]' "list of an unknown subject exits 2"
+$OB list metrics >"$T/metrics.txt" 2>&1
+check '[ $? -eq 0 ] && [ "$(cut -d" " -f1 "$T/metrics.txt" | tr "\n" " ")" = "bound radial normal hausdorff param " ]' \
+    "list metrics: the five metrics in order"
+$OB run --curve liu2002_ex1 --methods tiller,hoschek --tols 1e-2 --metric param --threads 1 --out "$T/param" 2>/dev/null
+check '[ $? -eq 0 ] && [ "$(rcols "$T/param/results.csv" method metric status | sort -u | tr "\n" " ")" = "hoschek:param:ok tiller:param:ok " ]' \
+    "--metric param runs every method (hoschek too), rows say param"
+check 'grep -q "\"param\": \"max |(A(t) - C(t) - d N(t)) . N(t)|" "$T/param/meta.json"' "meta.json defines the param metric"
 
 # --- tables: the published cells under the paper protocol ---
 $OB tables --table liu2002:1,ahn2023:1,ahn2023:3-left,zhao2017:1 --protocols paper --out "$T/tab" 2>"$T/tab.err"
@@ -246,6 +253,13 @@ check '[ "$(awk -F, '"'"'NR>1 && $6=="cl" && $12!="no-method"'"'"' "$T/tab/table
 check '[ "$(awk -F, '"'"'NR>1 && $2=="3-left" && $6=="ahn" && $12=="no-data"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 5 ]' "the S is no-data"
 check '[ "$(grep -c "" "$T/tab/tables.csv")" -eq $((1 + 35 + 35 + 25 + 9)) ]' "one row per published cell"
 check 'grep -q "^## Liu & Wang 2002" "$T/tab/tables.md" && grep -q "Per column, match / close / differs" "$T/tab/tables.md"' "tables.md lays out the tables"
+# Zhao-Zhou under their error at the given parameter; the sweep of radius and cut point
+check '[ "$(awk -F, '"'"'NR>1 && $1=="zhao2017" && $6!="ahn2004" && $15!="param"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 0 ]' \
+    "Zhao-Zhou Table 1 under paper: metric param"
+sw=$T/tab/zhao_sweep.csv
+check '[ "$(head -n 1 "$sw")" = "curve,piece,d,method,protocol,metric,max_err,status,variant" ]' "zhao_sweep.csv header"
+check '[ "$(awk -F, '"'"'$2=="C1@0.45" && $3=="4" && $4=="zhao-rational" && $6=="param" && $9==""'"'"' "$sw" | wc -l)" -eq 1 ] && [ "$(awk -F, '"'"'$9=="zhao-rational.weighted=0" && $2=="C"'"'"' "$sw" | wc -l)" -eq 14 ]' \
+    "the sweep reaches d = 4, cut 0.45, and has the unweighted variant"
 # Example 2 on the clamped reading without the pre-split: Liu-Wang's Til and Cob
 $OB tables --table liu2002:2 --protocols paper --out "$T/tab4" 2>/dev/null
 tab4() { awk -F, -v l="$1" 'NR>1 && $7==l {printf "%s:%s ", $10, $12}' "$T/tab4/tables.csv"; }

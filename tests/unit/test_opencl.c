@@ -6,6 +6,7 @@
  * the three sampled metrics) are measured by the kernel in one batch and by the
  * CPU path one by one: errors must agree to a relative 1e-9 (or 1e-15
  * absolute), and so must the parameters of the maxima where the errors do.
+ * The same records under param must agree bit for bit.
  * Without an OpenCL platform every check here is skipped (and counted so).
  */
 #include <math.h>
@@ -107,6 +108,28 @@ int main(void)
     CHECK(agree == n, "%d of %d records agree (worst relative difference %.3g)", agree, n, worst);
     CHECK(tagree == n, "%d of %d maxima at the same parameter", tagree, n);
     CHECK(compared > n / 2, "%d finite comparisons", compared);
+
+    /* param (Zhao-Zhou's error at the given parameter): the same records
+     * under it, bit for bit the CPU's error and parameter */
+    static ob_measure_rec prec[NREC];
+    for (int i = 0; i < n; i++) {
+        prec[i] = recs[i];
+        prec[i].metric = OB_METRIC_PARAM;
+    }
+    CHECK(ob_cl_measure_batch(cl, prec, n, S, gpu) == 0, "param launch");
+    int same = 0, finite = 0;
+    for (int i = 0; i < n; i++) {
+        ob_measure(OB_METRIC_PARAM, prec[i].base, prec[i].approx, prec[i].d, S, &cpu[i]);
+        const int eq = memcmp(&cpu[i].err, &gpu[i].err, sizeof(double)) == 0 &&
+                       memcmp(&cpu[i].t, &gpu[i].t, sizeof(double)) == 0 && cpu[i].work == gpu[i].work;
+        same += eq;
+        finite += isfinite(cpu[i].err) && cpu[i].err > 0.0;
+        if (!eq)
+            fprintf(stderr, "param record %d (deg %d/%d): cpu %a at %a, gpu %a at %a\n", i, prec[i].base->deg,
+                    prec[i].approx->deg, cpu[i].err, cpu[i].t, gpu[i].err, gpu[i].t);
+    }
+    CHECK(same == n, "param: %d of %d records bit for bit (error, parameter, work)", same, n);
+    CHECK(finite > n / 2, "param: %d positive finite errors", finite);
 
     /* the batch buffers are reused and grown: a second, larger S and batch */
     CHECK(ob_cl_measure_batch(cl, recs, n, 300, gpu) == 0, "second launch with more samples");

@@ -158,16 +158,16 @@ static void test_protocols(void)
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.method == NULL, "CL: no method");
     c = cell("zhao2017", "1", "zhao2017_quintic/C1", "zhao-rational", "Ours", "max_err", NAN);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.single_piece && s.piece_a == 0.0 &&
-              s.piece_b == 0.5 && strcmp(s.curve, "zhao2017_quintic") == 0 && s.metric == OB_METRIC_NORMAL &&
+              s.piece_b == 0.5 && strcmp(s.curve, "zhao2017_quintic") == 0 && s.metric == OB_METRIC_PARAM &&
               s.nset == 1 && s.set_value[0] == 4,
-          "Zhao C1: one piece, first half, normal metric, four iterations");
+          "Zhao C1: one piece, first half, the error at the given parameter, four iterations");
     CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, err, sizeof err) == 0 && s.split == OB_SPLIT_MID &&
               s.metric == OB_METRIC_HAUSDORFF,
           "error tables: best = rigorous");
     c = cell("zhao2017", "text", "zhao2017_septic", "zhao-rational/iter2", "2nd", "max_err", NAN);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.nset == 1 &&
-              strcmp(s.set_name[0], "iterations") == 0 && s.set_value[0] == 2,
-          "iter2 variant");
+              strcmp(s.set_name[0], "iterations") == 0 && s.set_value[0] == 2 && s.metric == OB_METRIC_PARAM,
+          "iter2 variant, the error at the given parameter");
     c = cell("zhao2017", "1", "zhao2017_quintic/C1@0.4", "lee", "Lee", "max_err", NAN);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.0 && s.piece_b == 0.4,
           "C1@0.4: the first part cut at t = 0.4 (%s)", err);
