@@ -10,6 +10,8 @@
 #   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
+#   DXF read-back test (tests/e2e/e2e_export.sh) and results/export's figure:
+#                          python3-ezdxf (optional: the test is skipped without it)
 set -u
 
 missing=""
@@ -32,6 +34,29 @@ fi
 if [ "${MPI:-0}" = 1 ]; then
     command -v mpicc >/dev/null 2>&1 || missing="$missing libopenmpi-dev"
     command -v mpirun >/dev/null 2>&1 || missing="$missing openmpi-bin"
+fi
+
+# Optional: python3-ezdxf, which reads the DXF files of `run --export` back in
+# tests/e2e/e2e_export.sh (skipped and counted so without it) and draws
+# results/export/*.png (scripts/dxf_png.py).  Installed when missing and
+# possible; never fails the build.
+if ! /usr/bin/python3 -c 'import ezdxf' >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "deps: installing (optional, for the DXF test): python3-ezdxf"
+        if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends python3-ezdxf \
+                >>/tmp/offbench-deps.log 2>&1 \
+           || { apt-get update >>/tmp/offbench-deps.log 2>&1 \
+                && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+                       python3-ezdxf >>/tmp/offbench-deps.log 2>&1; }; then
+            echo "deps: installed: python3-ezdxf"
+        else
+            echo "deps: could not install python3-ezdxf (see /tmp/offbench-deps.log);" \
+                 "optional: only the DXF read-back test needs it" >&2
+        fi
+    else
+        echo "deps: optional: python3-ezdxf (the DXF read-back test):" \
+             "sudo apt-get install python3-ezdxf" >&2
+    fi
 fi
 
 # Optional: python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py,
