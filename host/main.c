@@ -23,11 +23,14 @@ static const char usage[] =
     "                    [--samples S] [--max-depth N] [--max-segments N] [--inflections yes|no]\n"
     "                    [--param METHOD.NAME=VALUE]\n"
     "                    [--job-timeout S] [--reps N] [--shard K/N] [--out DIR | --resume DIR]\n"
+    "                    [--export DIR]   (each job's approximation: JSON, .curves, DXF, SVG)\n"
     "  ./offbench merge  DIR... --out DIR   (the shards of one run into its results.csv)\n"
     "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
+    "  ./offbench measure --curve ID --d D --approx FILE [--curves FILE] [--metric M|all] [--samples S]\n"
+    "                    (the error of an approximation in a .curves, JSON or DXF file)\n"
     "  ./offbench atlas  [--out DIR]        (the Offset Atlas: exact offset degrees)\n"
     "  ./offbench tables [--out DIR] [--table SOURCE:TABLE,...] [--protocols LIST] [run options]\n"
     "  ./offbench list   methods|curves|columns|devices\n"
@@ -58,6 +61,8 @@ static int dispatch(int argc, char **argv)
         return ob_cmd_draw(argc - 1, argv + 1);
     if (strcmp(cmd, "trace") == 0)
         return ob_cmd_trace(argc - 1, argv + 1);
+    if (strcmp(cmd, "measure") == 0)
+        return ob_cmd_measure(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {

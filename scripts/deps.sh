@@ -11,6 +11,8 @@
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 #   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
+#   DXF read-back test (tests/e2e/e2e_export.sh) and results/export's figure:
+#                          python3-ezdxf (optional: the test is skipped without it)
 set -u
 
 missing=""
@@ -37,7 +39,9 @@ fi
 
 # Optional: Python modules of the scripts, run as /usr/bin/python3:
 # python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py),
-# python3-svgelements for scripts/svg2curves.py (SVG paths to .curves).
+# python3-svgelements for scripts/svg2curves.py (SVG paths to .curves),
+# python3-ezdxf for the DXF read-back of `run --export` (tests/e2e/e2e_export.sh)
+# and results/export/*.png (scripts/dxf_png.py).
 # Installed when missing and possible; never fail the build: the C build does
 # not need them, and their tests count as skipped without them.
 optional_py() { # MODULE PACKAGE WHAT
@@ -61,6 +65,7 @@ optional_py() { # MODULE PACKAGE WHAT
 }
 optional_py matplotlib python3-matplotlib "the plots"
 optional_py svgelements python3-svgelements "scripts/svg2curves.py"
+optional_py ezdxf python3-ezdxf "the DXF read-back test"
 
 [ -z "$missing" ] && exit 0
 

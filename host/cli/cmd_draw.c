@@ -49,6 +49,7 @@
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
 #include "host/diag.h"
+#include "host/io/export.h"
 #include "host/view/jobview.h"
 #include "host/io/numfmt.h"
 #include "host/io/output.h"
@@ -545,6 +546,8 @@ static int run_cmd(int trace, int argc, char **argv)
             ob_error("%s: writing '%s' failed", cmd, to_stdout ? "standard output" : a.out);
             status = 1;
         }
+        if (status == 0 && v.o.export_dir)  /* --export DIR: the job's approximation (host/io/export.h) */
+            status = ob_export_single(v.o.export_dir, &v.job, v.samples, &v.spans);
     }
     if (f && !to_stdout && fclose(f) != 0 && status == 0) {
         ob_error("%s: writing '%s' failed: %s", cmd, a.out, strerror(errno));

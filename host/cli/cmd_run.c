@@ -19,6 +19,7 @@
 #include "host/backend/select.h"
 #include "host/cli/commands.h"
 #include "host/diag.h"
+#include "host/io/export.h"
 #include "host/io/fsutil.h"
 #include "host/run/files.h"
 #include "host/run/journal.h"
@@ -42,6 +43,7 @@ typedef struct {
     ob_cl *cl;
     ob_journal journal;
     int lock_fd;
+    ob_span_log *spans;          /* --export: the accepted pieces of each job (host/io/export.h) */
     double wall;
     double *rep_fit, *rep_eval;  /* --reps: reps x njobs timings */
 } run_cmd;
@@ -194,6 +196,7 @@ static int run_jobs(run_cmd *r)
     ob_catch_stop_signals();
     ob_run_ctx c = {o, &r->rec, {.stop = ob_stop_flag()}};
     ob_backend_hooks(r->cl, &r->rec.binfo, &c.hooks);
+    c.hooks.spans = r->spans;
     size_t restored = 0;
     int drc = o->reps > 0 || r->ranks > 1
                   ? ob_run_plain(&c, r->jobs, r->njobs, o->reps > 0 ? "warm-up run" : NULL, &r->wall)
@@ -226,7 +229,7 @@ static int write_files(run_cmd *r)
     const int written = ob_write_run_files(&w) == 0;
     ob_journal_close(&r->journal, written);  /* results.csv has every row now */
     ob_run_summary(&w, written);
-    return written ? 0 : 1;
+    return ob_export_finish(&r->o, r->spans, r->jobs, written ? 0 : 1);  /* --export, outside every timing */
 }
 
 static void run_cmd_free(run_cmd *r)
@@ -238,6 +241,7 @@ static void run_cmd_free(run_cmd *r)
     free(r->rep_fit);
     free(r->rep_eval);
     free(r->shard_idx);
+    ob_export_free(r->spans);
     free(r->jobs);
     ob_curveset_free(&r->set);
     ob_run_opts_free(&r->o);
@@ -260,6 +264,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     }
     if (st == GO_ON)
         st = plan_run(&r);
+    if (st == GO_ON && (st = ob_export_prepare(&r.o, r.rec.mpi_ranks, r.njobs, &r.spans)) == 0)
+        st = GO_ON;  /* --export: a span log per job */
     if (st == GO_ON && ob_open_backend(r.o.backend, r.o.device, &r.rec.binfo, &r.cl) != 0)
         st = 2;
     if (st == GO_ON)

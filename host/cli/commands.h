@@ -23,6 +23,10 @@ int ob_cmd_compare(int argc, char **argv);
 int ob_cmd_draw(int argc, char **argv);
 int ob_cmd_trace(int argc, char **argv);
 
+/* measure --curve ID --d D --approx FILE: an approximation's error (0; 2
+ * bad input; 1 output not writable). */
+int ob_cmd_measure(int argc, char **argv);
+
 /* merge DIR... --out DIR: shards of one run into its results.csv (0; 2 a
  * refused set or bad input; 1 output not writable). */
 int ob_cmd_merge(int argc, char **argv);

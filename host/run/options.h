@@ -34,6 +34,7 @@ typedef struct {
     int reps;                    /* --reps N: timed repetitions after a warm-up
                                     run (samples.csv); 0: one run, no samples */
     const char *out_dir;
+    const char *export_dir;      /* --export DIR: each job's approximation (host/io/export.h) */
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
     int force;                   /* --force: a fresh run over an interrupted
                                     run's journal (which it removes) */

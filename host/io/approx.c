@@ -1,0 +1,102 @@
+/*
+ * approx.c - a job's approximation as pieces (approx.h).
+ *
+ * Why refit the logged spans rather than keep the driver's fits: the driver
+ * keeps, per accepted fit, only its span (seg, a, b) and its two ends
+ * (driver.h), so that a run of millions of pieces never holds them all and
+ * its timed path is untouched; fits are deterministic (the method contract
+ * test checks it, and draw relies on it: host/view/jobview.c), so refitting
+ * the span gives the very pieces the run measured.  The refit runs after the
+ * results are final and outside every timing.
+ */
+#include "host/io/approx.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void ob_approx_free(ob_approx *a)
+{
+    if (!a)
+        return;
+    free(a->v);
+    memset(a, 0, sizeof *a);
+}
+
+ob_apiece *ob_approx_add(ob_approx *a)
+{
+    if (a->n == a->cap) {
+        const int cap = a->cap ? 2 * a->cap : 16;
+        ob_apiece *v = a->cap < (1 << 28) ? realloc(a->v, (size_t)cap * sizeof *v) : NULL;
+        if (!v)
+            return NULL;
+        a->v = v;
+        a->cap = cap;
+    }
+    ob_apiece *p = &a->v[a->n++];
+    memset(p, 0, sizeof *p);
+    return p;
+}
+
+int ob_apiece_base(const ob_curve *c, const ob_apiece *p, ob_bez *base)
+{
+    if (!p->has_base || p->seg < 0 || p->seg >= c->nseg)
+        return -1;
+    if (!(0.0 <= p->a && p->a < p->b && p->b <= 1.0 && 0.0 <= p->t0 && p->t0 < p->t1 && p->t1 <= 1.0))
+        return -1;
+    ob_bez sub;
+    ob_bez_subsegment(&c->seg[p->seg], p->a, p->b, &sub);
+    ob_bez_subsegment(&sub, p->t0, p->t1, base);
+    return 0;
+}
+
+/* Refits span sp of job j and appends its pieces; adds them to *segs.
+ * Returns 0 or -1 (reason in err). */
+static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx *out, int *segs, char *err,
+                      size_t errlen)
+{
+    ob_bez sub;
+    ob_fit fit;
+    char msg[160] = "";
+    ob_bez_subsegment(&j->curve->seg[sp->seg], sp->a, sp->b, &sub);
+    const ob_fit_args args = {j->d, j->tol, j->params};
+    const ob_status st = j->method->fit(&sub, &args, work, &fit, msg, sizeof msg);
+    if (st != OB_OK || fit.n < 1 || fit.n > OB_MAX_PIECES) {
+        snprintf(err, errlen, "refitting the accepted piece [%.17g, %.17g] of segment %d failed (%s)", sp->a, sp->b,
+                 sp->seg, msg[0] ? msg : ob_status_name(st));
+        return -1;
+    }
+    for (int k = 0; k < fit.n; k++) {
+        ob_apiece *p = ob_approx_add(out);
+        if (!p) {
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
+        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k]};
+    }
+    *segs += fit.n;
+    return 0;
+}
+
+int ob_approx_from_job(const ob_job *j, const ob_span_log *log, ob_approx *out, char *err, size_t errlen)
+{
+    if (log->oom) {
+        snprintf(err, errlen, "the run could not log the job's pieces (out of memory)");
+        return -1;
+    }
+    void *work = malloc(j->method->work_size ? j->method->work_size : 1);
+    if (!work) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    out->same_param = (j->method->caps & OB_CAP_SAME_PARAM) != 0;
+    int segs = 0, rc = 0;
+    for (int i = 0; i < log->n && rc == 0; i++)
+        rc = refit_span(j, &log->v[i], work, out, &segs, err, errlen);
+    free(work);
+    if (rc == 0 && segs != j->segments) {
+        snprintf(err, errlen, "refitting the accepted pieces gave %d segments, the run %d", segs, j->segments);
+        rc = -1;
+    }
+    return rc;
+}

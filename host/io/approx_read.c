@@ -1,0 +1,133 @@
+/*
+ * approx_read.c - the approximation readers' common part and the .curves
+ * reader (approx_read.h).  The .curves text goes through offbench's own
+ * reader (curvefile.c), so a file measure takes is a file run takes.
+ */
+#include "host/io/approx_read.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "host/io/curvefile.h"
+#include "host/io/slurp.h"
+
+static int ends_with(const char *s, const char *ext)
+{
+    const size_t n = strlen(s), k = strlen(ext);
+    return n >= k && strcasecmp(s + n - k, ext) == 0;
+}
+
+ob_afmt ob_approx_format(const char *path, const char *text, size_t len)
+{
+    if (ends_with(path, ".json"))
+        return OB_AFMT_JSON;
+    if (ends_with(path, ".dxf"))
+        return OB_AFMT_DXF;
+    if (ends_with(path, ".curves"))
+        return OB_AFMT_CURVES;
+    size_t i = 0;
+    while (i < len && isspace((unsigned char)text[i]))
+        i++;
+    if (i < len && text[i] == '{')
+        return OB_AFMT_JSON;
+    if (i + 1 < len && text[i] == '0' && (text[i + 1] == '\n' || text[i + 1] == '\r'))
+        return OB_AFMT_DXF;
+    if (i + 3 < len && !strncmp(text + i, "999", 3) && (text[i + 3] == '\n' || text[i + 3] == '\r'))
+        return OB_AFMT_DXF;
+    return OB_AFMT_CURVES;
+}
+
+int ob_approx_parse_link(const char *s, ob_apiece *p)
+{
+    const char *q = strstr(s, "base segment ");
+    int seg, n = 0;
+    double a, b, t0, t1;
+    if (!q || sscanf(q, "base segment %d span %lf %lf fit %lf %lf%n", &seg, &a, &b, &t0, &t1, &n) != 5 || n == 0)
+        return 0;
+    p->has_base = 1;
+    p->seg = seg;
+    p->a = a;
+    p->b = b;
+    p->t0 = t0;
+    p->t1 = t1;
+    return 1;
+}
+
+int ob_approx_check_piece(ob_apiece *p, int k, const char *name, char *err, size_t errlen)
+{
+    ob_bez *b = &p->approx;
+    if (b->deg < 1 || b->deg > OB_MAX_DEG) {
+        snprintf(err, errlen, "%s:%d: piece %d: degree %d (measure takes 1 to %d)", name, p->line, k, b->deg,
+                 OB_MAX_DEG);
+        return -1;
+    }
+    b->rational = 0;
+    for (int i = 0; i <= b->deg; i++) {
+        /* weights of any sign: rational fits may have negative interior
+         * weights (zhao-rational does), and the run measured them */
+        if (!isfinite(b->h[i][0]) || !isfinite(b->h[i][1]) || !isfinite(b->h[i][2])) {
+            snprintf(err, errlen, "%s:%d: piece %d: control point %d is not finite", name, p->line, k, i);
+            return -1;
+        }
+        b->rational |= b->h[i][2] != 1.0;
+    }
+    if (p->has_base && !(p->a < p->b && p->t0 < p->t1)) {
+        snprintf(err, errlen, "%s:%d: piece %d: its base piece (span %.17g %.17g, fit %.17g %.17g) is empty", name,
+                 p->line, k, p->a, p->b, p->t0, p->t1);
+        return -1;
+    }
+    return 0;
+}
+
+int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen)
+{
+    ob_curveset set = {0};
+    if (ob_curves_parse(text, len, name, &set, err, errlen) != 0)
+        return -1;
+    int rc = 0, linked = 0;
+    for (int c = 0; c < set.n && rc == 0; c++) {
+        const ob_curve *cv = &set.v[c];
+        for (int s = 0; s < cv->nseg && rc == 0; s++) {
+            ob_apiece *p = ob_approx_add(out);
+            if (!p) {
+                snprintf(err, errlen, "%s: out of memory", name);
+                rc = -1;
+                break;
+            }
+            p->line = cv->line;
+            p->approx = cv->seg[s];
+            p->fit_first = 1;
+            /* the link of an export: one Bézier segment per curve block */
+            if (cv->nseg == 1 && ob_approx_parse_link(cv->source, p))
+                linked += strstr(cv->source, "same_param yes") != NULL;
+            rc = ob_approx_check_piece(p, out->n - 1, name, err, errlen);
+        }
+    }
+    out->same_param = rc == 0 && out->n > 0 && linked == out->n;
+    ob_curveset_free(&set);
+    return rc;
+}
+
+int ob_approx_read(const char *path, ob_approx *out, char *err, size_t errlen)
+{
+    char *text = NULL;
+    size_t len = 0;
+    if (ob_slurp(path, &text, &len, err, errlen) != 0)
+        return -1;
+    int rc;
+    switch (ob_approx_format(path, text, len)) {
+    case OB_AFMT_JSON: rc = ob_approx_read_json(text, len, path, out, err, errlen); break;
+    case OB_AFMT_DXF: rc = ob_approx_read_dxf(text, len, path, out, err, errlen); break;
+    default: rc = ob_approx_read_curves(text, len, path, out, err, errlen); break;
+    }
+    free(text);
+    if (rc == 0 && out->n == 0) {
+        snprintf(err, errlen, "%s: no pieces (no Bézier segments or SPLINE entities) in the file", path);
+        rc = -1;
+    }
+    return rc;
+}

@@ -1,0 +1,41 @@
+/*
+ * measure.c - an approximation's error with the run's engine (measure.h).
+ */
+#include "host/measure/measure.h"
+
+#include <math.h>
+#include <stdio.h>
+
+int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric m, int samples, const char *name,
+                      ob_mres *r, char *err, size_t errlen)
+{
+    *r = (ob_mres){1, "", 0.0, -1, -1, NAN};
+    if (ob_metric_same_param(m) && !a->same_param) {
+        r->applies = 0;
+        r->why = "needs an approximation in the base's parameter (a file from --export of a method that keeps it)";
+        return 0;
+    }
+    for (int k = 0; k < a->n; k++) {
+        const ob_apiece *p = &a->v[k];
+        ob_bez base;
+        if (ob_apiece_base(c, p, &base) != 0) {
+            snprintf(err, errlen, "%s:%d: piece %d: its base segment %d (span %.17g %.17g, fit %.17g %.17g) is not a "
+                     "piece of curve '%s' (%d segments)", name, p->line, k, p->seg, p->a, p->b, p->t0, p->t1, c->id,
+                     c->nseg);
+            return -1;
+        }
+        ob_errval e;
+        if (ob_measure(m, &base, &p->approx, d, samples, &e) != 0 || isnan(e.err)) {
+            snprintf(err, errlen, "%s:%d: piece %d: metric %s cannot measure it (degree %d)", name, p->line, k,
+                     ob_metric_name(m), p->approx.deg);
+            return -1;
+        }
+        if (!(e.err <= r->err) || r->piece < 0) {  /* as the driver keeps a job's max_err */
+            r->err = e.err;
+            r->piece = k;
+            r->seg = p->seg;
+            r->t = p->a + (p->b - p->a) * (p->t0 + (p->t1 - p->t0) * e.t);
+        }
+    }
+    return 0;
+}

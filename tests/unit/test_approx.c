@@ -1,0 +1,211 @@
+/*
+ * test_approx.c - the export writers and the approximation readers of
+ * measure (host/io/export*.c, host/io/approx_read*.c) and the projection
+ * match (host/measure/match.c):
+ *   - pieces written as JSON and .curves read back bit for bit (homogeneous
+ *     points, base links), as DXF to the rounding of x = w x / w;
+ *   - a piece without a link on a straight base is matched to the range its
+ *     ends lie over (known by construction), reversed when it runs backwards,
+ *     and its error there is that of the exact offset line (0);
+ *   - mutated files never crash a reader, and every error names the file.
+ */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include <stdlib.h>
+#include <string.h>
+
+#include "tests/check.h"
+#include "host/io/approx_read.h"
+#include "host/io/export.h"
+#include "host/measure/measure.h"
+
+typedef int (*wfn)(FILE *, const ob_job *, const ob_approx *);
+static int w_json(FILE *f, const ob_job *j, const ob_approx *a) { return ob_export_write_json(f, j, 256, a); }
+
+/* The text a writer makes of a. */
+static char *write_mem(wfn w, const ob_job *j, const ob_approx *a, size_t *len)
+{
+    char *buf = NULL;
+    FILE *f = open_memstream(&buf, len);
+    w(f, j, a);
+    fclose(f);
+    return buf;
+}
+
+/* Two pieces: a cubic and a rational quadratic, linked to base segment 0. */
+static void sample_approx(ob_approx *a)
+{
+    memset(a, 0, sizeof *a);
+    ob_apiece *p = ob_approx_add(a);
+    const double xy[4][2] = {{0.1, 0.2}, {0.30000000000000004, 1.0 / 3.0}, {0.7, -2e-7}, {1.0, 0.5}};
+    ob_bez_from_points(&p->approx, 3, xy);
+    p->has_base = 1, p->seg = 0, p->a = 0.0, p->b = 0.5, p->t0 = 0.0, p->t1 = 0.3141592653589793;
+    p = ob_approx_add(a);
+    p->approx.deg = 2;
+    ob_bez_set(&p->approx, 0, 1.0, 0.5, 1.0);
+    ob_bez_set(&p->approx, 1, 1.5, 0.7, 0.7071067811865476);
+    ob_bez_set(&p->approx, 2, 2.0, 0.5, 1.0);
+    p->has_base = 1, p->seg = 0, p->a = 0.0, p->b = 0.5, p->t0 = 0.3141592653589793, p->t1 = 1.0;
+    a->same_param = 1;
+}
+
+static void test_round_trip(const ob_job *j)
+{
+    ob_approx a;
+    sample_approx(&a);
+    const struct { const char *name; wfn w; int exact; } fmts[] = {
+        {"t.json", w_json, 1}, {"t.curves", ob_export_write_curves, 1}, {"t.dxf", ob_export_write_dxf, 0}};
+    for (int f = 0; f < 3; f++) {
+        size_t len;
+        char *text = write_mem(fmts[f].w, j, &a, &len), err[512] = "";
+        ob_approx b = {0};
+        const ob_afmt fm = ob_approx_format(fmts[f].name, text, len);
+        const int rc = fm == OB_AFMT_JSON ? ob_approx_read_json(text, len, fmts[f].name, &b, err, sizeof err)
+                       : fm == OB_AFMT_DXF ? ob_approx_read_dxf(text, len, fmts[f].name, &b, err, sizeof err)
+                                           : ob_approx_read_curves(text, len, fmts[f].name, &b, err, sizeof err);
+        CHECK(rc == 0 && b.n == 2 && b.same_param == 1, "%s: rc %d, %d pieces: %s", fmts[f].name, rc, b.n, err);
+        for (int k = 0; k < b.n && k < 2; k++) {
+            const ob_apiece *p = &a.v[k], *q = &b.v[k];
+            CHECK(q->has_base && q->seg == p->seg && q->a == p->a && q->b == p->b && q->t0 == p->t0 && q->t1 == p->t1,
+                  "%s piece %d: the link did not come back exactly", fmts[f].name, k);
+            CHECK(q->approx.deg == p->approx.deg && q->approx.rational == p->approx.rational, "%s piece %d: degree",
+                  fmts[f].name, k);
+            double worst = 0.0;
+            for (int i = 0; i <= p->approx.deg; i++)
+                for (int c = 0; c < 3; c++)
+                    worst = fmax(worst, fabs(q->approx.h[i][c] - p->approx.h[i][c]));
+            CHECK(fmts[f].exact ? worst == 0.0 : worst <= 4e-16, "%s piece %d: points differ by %.3g", fmts[f].name,
+                  k, worst);
+        }
+        ob_approx_free(&b);
+        free(text);
+    }
+    ob_approx_free(&a);
+}
+
+/* A straight base from (0,0) to (2,0), d = 0.5: the exact offset is the line
+ * y = 0.5; a piece on it over x in [0.5, 1.5], given backwards. */
+static void test_match(void)
+{
+    ob_bez seg;
+    const double base[2][2] = {{0, 0}, {2, 0}};
+    ob_bez_from_points(&seg, 1, base);
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "line");
+    c.nseg = 1;
+    c.seg = &seg;
+    ob_approx a = {0};
+    ob_apiece *p = ob_approx_add(&a);
+    const double pts[3][2] = {{1.5, 0.5}, {1.0, 0.5}, {0.5, 0.5}};
+    ob_bez_from_points(&p->approx, 2, pts);
+    a.same_param = 1;
+    char err[512] = "";
+    const int rc = ob_approx_match(&c, 0.5, &a, "m.curves", err, sizeof err);
+    CHECK(rc == 0 && p->has_base && p->seg == 0, "match: %s", err);
+    CHECK_NEAR(p->a, 0.25, 1e-12, "matched start");
+    CHECK_NEAR(p->b, 0.75, 1e-12, "matched end");
+    CHECK(p->t0 == 0.0 && p->t1 == 1.0 && a.same_param == 0, "matched fit range [0, 1], no shared parameter");
+    double q[2];
+    ob_bez_point(&p->approx, 0.0, q);
+    CHECK(q[0] == 0.5 && q[1] == 0.5, "the piece was reversed to run with the base: starts at (%g, %g)", q[0], q[1]);
+    ob_mres r;
+    CHECK(ob_approx_measure(&c, 0.5, &a, OB_METRIC_HAUSDORFF, 256, "m.curves", &r, err, sizeof err) == 0 && r.applies &&
+              r.err <= 1e-15,
+          "hausdorff error of the exact offset line: %.3g (%s)", r.err, err);
+    CHECK(ob_approx_measure(&c, 0.5, &a, OB_METRIC_RADIAL, 256, "m.curves", &r, err, sizeof err) == 0 && !r.applies,
+          "radial does not apply to a matched piece");
+    /* both ends on one offset point */
+    const double dot[2][2] = {{1.0, 0.5}, {1.0, 0.5}};
+    p->has_base = 0;
+    ob_bez_from_points(&p->approx, 1, dot);
+    CHECK(ob_approx_match(&c, 0.5, &a, "m.curves", err, sizeof err) != 0 && strstr(err, "m.curves:0: piece 0"),
+          "a point-like piece is refused: %s", err);
+    ob_approx_free(&a);
+}
+
+static unsigned long long rng = 88172645463325252ull;
+static unsigned next_rand(void)
+{
+    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+    return (unsigned)(rng >> 16);
+}
+
+/* Mutated copies of every format: 0 or an error naming the file, no crash. */
+static void test_hostile(const ob_job *j)
+{
+    ob_approx a;
+    sample_approx(&a);
+    const wfn ws[3] = {w_json, ob_export_write_curves, ob_export_write_dxf};
+    const char *names[3] = {"h.json", "h.curves", "h.dxf"};
+    int bad_msgs = 0, runs = 0;
+    static const char alphabet[] = "{}[],:\"0123456789.-e \n\r\tabcnulltruefalse";
+    for (int f = 0; f < 3; f++) {
+        size_t len;
+        char *text = write_mem(ws[f], j, &a, &len);
+        for (int it = 0; it < 1500; it++) {
+            char *m = malloc(len + 1);
+            memcpy(m, text, len + 1);
+            const int edits = 1 + (int)(next_rand() % 4);
+            for (int e = 0; e < edits; e++)
+                m[next_rand() % len] = alphabet[next_rand() % (sizeof alphabet - 1)];
+            const size_t cut = next_rand() % 8 == 0 ? next_rand() % len : len;
+            ob_approx b = {0};
+            char err[512] = "";
+            const int rc = f == 0 ? ob_approx_read_json(m, cut, names[f], &b, err, sizeof err)
+                           : f == 1 ? ob_approx_read_curves(m, cut, names[f], &b, err, sizeof err)
+                                    : ob_approx_read_dxf(m, cut, names[f], &b, err, sizeof err);
+            bad_msgs += rc != 0 && strncmp(err, names[f], strlen(names[f])) != 0;
+            bad_msgs += rc == 0 && b.n > 0 && b.v[0].approx.deg < 1;
+            runs++;
+            ob_approx_free(&b);
+            free(m);
+        }
+        free(text);
+    }
+    CHECK(bad_msgs == 0, "%d of %d mutated files gave an error not naming the file", bad_msgs, runs);
+    ob_approx_free(&a);
+}
+
+/* Numbers out of every range where a count or degree is expected. */
+static void test_huge_numbers(void)
+{
+    const char *json = "{\"pieces\": [{\"degree\": 1e300, \"points\": [[0, 0], [1, 1]]}]}";
+    const char *json2 = "{\"pieces\": [{\"degree\": 1, \"points\": [[0, 0], [1, 1]], \"seg\": 1e300, "
+                        "\"span\": [0, 1], \"t\": [0, 1]}]}";
+    const char *dxf = "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n1e300\n0\nENDSEC\n0\nEOF\n";
+    char err[512];
+    ob_approx b = {0};
+    CHECK(ob_approx_read_json(json, strlen(json), "h.json", &b, err, sizeof err) != 0 && strstr(err, "h.json:1:"),
+          "degree 1e300: %s", err);
+    ob_approx_free(&b);
+    CHECK(ob_approx_read_json(json2, strlen(json2), "h.json", &b, err, sizeof err) != 0 && strstr(err, "base link"),
+          "seg 1e300: %s", err);
+    ob_approx_free(&b);
+    CHECK(ob_approx_read_dxf(dxf, strlen(dxf), "h.dxf", &b, err, sizeof err) != 0 && strstr(err, "h.dxf:8: group 71"),
+          "DXF degree 1e300: %s", err);
+    ob_approx_free(&b);
+}
+
+int main(void)
+{
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "a/b");
+    ob_job j;
+    memset(&j, 0, sizeof j);
+    j.curve = &c;
+    j.d = 0.25;
+    j.tol = 1e-3;
+    j.method = ob_method_find("tiller");
+    j.max_err = 0.000123;
+    char stem[400];
+    ob_export_stem(stem, sizeof stem, &j);
+    CHECK(strcmp(stem, "a~b__d0.25__tiller__tol0.001") == 0, "stem %s", stem);
+    test_round_trip(&j);
+    test_match();
+    test_hostile(&j);
+    test_huge_numbers();
+    return check_done();
+}
