@@ -265,9 +265,9 @@ int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, char *err, 
         s->set_value[i] = paper.set_value[i];
     }
     s->metric = OB_METRIC_HAUSDORFF;
-    s->split = (p == OB_PROTO_BEST && !errors) ? OB_SPLIT_GREEDY : OB_SPLIT_MID;
+    s->split = (p == OB_PROTO_BEST && !errors) ? OB_SPLIT_OPTIMAL : OB_SPLIT_MID;
     s->note = errors ? "two-sided Hausdorff distance of the same one-piece fit"
-                     : (p == OB_PROTO_BEST ? "two-sided Hausdorff, dense; greedy split (fewest segments)"
+                     : (p == OB_PROTO_BEST ? "two-sided Hausdorff, dense; optimal split (fewest pieces, errors equalized)"
                                            : "two-sided Hausdorff, dense; midpoint split");
     return 0;
 }

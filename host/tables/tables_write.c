@@ -391,7 +391,8 @@ int ob_tab_write_md(FILE *f, void *ctx)
                "then `=` match, `~` close (within 10 %%), `x` differs; `(limit)`: the job stopped at a "
                "limit before reaching the tolerance. Protocols: **paper** (the paper's own error measure "
                "and split rule), **rigorous** (two-sided Hausdorff distance, dense, midpoint split), "
-               "**best** (the same metric, greedy split: the fewest segments a method can reach).\n\n",
+               "**best** (the same metric, the `optimal` split: the fewest pieces a method can reach, their "
+               "errors equalized).\n\n",
             t->pub->where, t->curves_from);
     for (int i = 0; i < t->pub->n; i++) {
         const ob_pub_cell *first = &t->pub->v[i];

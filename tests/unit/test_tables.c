@@ -106,8 +106,8 @@ static void test_protocols(void)
               s.split == OB_SPLIT_MID,
           "rigorous: hausdorff, mid");
     CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_HAUSDORFF &&
-              s.split == OB_SPLIT_GREEDY,
-          "best: hausdorff, greedy");
+              s.split == OB_SPLIT_OPTIMAL,
+          "best: hausdorff, optimal (issue 19: the fewest pieces, errors equalized)");
     c = cell("ahn2023", "1", "liu2002_ex1", "ahn", "Our method", "ctrl_points", 1e-2);
     CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_RADIAL &&
               s.d_factor == -1.0,
