@@ -41,7 +41,7 @@
  * node fails or `rounds` rounds are done.  The result is one B-spline with
  * simple interior knots: its Bézier pieces are the output (over the knot
  * intervals of the base's parameter) and ob_fit.ctrl_points counts its
- * n + 1 + k control points.  More than OB_SPLIT_PIECES pieces: OB_RETRY_SMALLER.
+ * n + 1 + k control points.  More than OB_SPLIT_PIECES pieces: OB_FIT_RETRY_SMALLER.
  */
 #include "methods/method.h"
 
@@ -126,8 +126,8 @@ static void deboor(const double *U, const double (*P)[3], int p, int ncp, double
 
 /* Cobb on the refined base (w->U, w->H, ncp control points of degree p):
  * each control point moved by d N at its Greville abscissa, into w->Q.
- * OB_OK, or OB_FAIL where there is no normal. */
-static ob_status el_cobb(const ob_bez *base, double d, int p, int ncp, el_work *w, char *msg, size_t msglen)
+ * OB_FIT_OK, or OB_FIT_FAIL where there is no normal. */
+static ob_fit_status el_cobb(const ob_bez *base, double d, int p, int ncp, el_work *w, char *msg, size_t msglen)
 {
     for (int i = 0; i < ncp; i++) {
         double xi = 0.0, N[2];
@@ -136,13 +136,13 @@ static ob_status el_cobb(const ob_bez *base, double d, int p, int ncp, el_work *
         xi /= p;
         if (ob_bez_normal(base, xi, N) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", xi);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         w->Q[i][0] = w->H[i][0] + w->H[i][2] * d * N[0];
         w->Q[i][1] = w->H[i][1] + w->H[i][2] * d * N[1];
         w->Q[i][2] = w->H[i][2];
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The knots of D = ||A - C||^2 into w->V: the ends 2p+1 times, each of the
@@ -219,9 +219,9 @@ static int el_marks(const ob_bez *base, double d, double tol, int p, int ncp, el
 
 /* The offset B-spline w->U, w->Q (ncp control points) as its Bézier pieces
  * into out (every interior knot raised to multiplicity p), counted by its
- * ncp control points.  OB_OK, or OB_FAIL for non-finite control points. */
-static ob_status el_pieces(const ob_bez *base, int p, int ncp, el_work *w, ob_fit *out, char *msg,
-                           size_t msglen)
+ * ncp control points.  OB_FIT_OK, or OB_FIT_FAIL for non-finite control points. */
+static ob_fit_status el_pieces(const ob_bez *base, int p, int ncp, el_work *w, ob_fit *out, char *msg,
+                               size_t msglen)
 {
     const int k_int = ncp - p - 1;
     const long cp = ncp;
@@ -251,16 +251,16 @@ static ob_status el_pieces(const ob_bez *base, int p, int ncp, el_work *w, ob_fi
         for (int i = 0; i <= p; i++)
             if (!isfinite(out->seg[s].h[i][0]) || !isfinite(out->seg[s].h[i][1])) {
                 ob_method_msg(msg, msglen, "non-finite control points");
-                return OB_FAIL;
+                return OB_FIT_FAIL;
             }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The adaptive variant (see the top): refine, re-offset, repeat, for at most
- * `rounds` rounds; the offset B-spline's pieces into out.  OB_OK, OB_FAIL
- * or OB_RETRY_SMALLER (more than OB_SPLIT_PIECES pieces), reason in msg. */
-static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int rounds,
-                                el_work *w, ob_fit *out, char *msg, size_t msglen)
+ * `rounds` rounds; the offset B-spline's pieces into out.  OB_FIT_OK, OB_FIT_FAIL
+ * or OB_FIT_RETRY_SMALLER (more than OB_SPLIT_PIECES pieces), reason in msg. */
+static ob_fit_status elber_adaptive(const ob_bez *base, double d, double tol, int rounds,
+                                    el_work *w, ob_fit *out, char *msg, size_t msglen)
 {
     const int p = base->deg;
     int ncp = p + 1;
@@ -271,8 +271,8 @@ static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int ro
             w->H[i][c] = base->h[i][c];
     }
     for (int round = 1;; round++) {
-        const ob_status st = el_cobb(base, d, p, ncp, w, msg, msglen);
-        if (st != OB_OK)
+        const ob_fit_status st = el_cobb(base, d, p, ncp, w, msg, msglen);
+        if (st != OB_FIT_OK)
             return st;
         if (round > rounds)
             break;
@@ -282,7 +282,7 @@ static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int ro
         if (ncp - p - 1 + nins > EL_MAXK) {
             ob_method_msg(msg, msglen, "adaptive refinement needs more than %d pieces",
                           OB_SPLIT_PIECES);
-            return OB_RETRY_SMALLER;
+            return OB_FIT_RETRY_SMALLER;
         }
         for (int k = 0; k < nins; k++)
             insert_knot(w->U, w->H, p, &ncp, w->ins[k]);
@@ -290,8 +290,8 @@ static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int ro
     return el_pieces(base, p, ncp, w, out, msg, msglen);
 }
 
-static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                           char *msg, size_t msglen)
+static ob_fit_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                               char *msg, size_t msglen)
 {
     const double d = a->d;
     const int n = base->deg;
@@ -299,20 +299,20 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
     if (!(a->par[0] >= 0.0 && a->par[0] <= 100000.0) || a->par[0] != iters) {
         ob_method_msg(msg, msglen, "iterations must be an integer in 0..100000 (got %g)",
                       a->par[0]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if ((update != 0 && update != 1) || a->par[1] != update) {
         ob_method_msg(msg, msglen, "update must be 0 or 1 (got %g)", a->par[1]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     const int variant = (int)a->par[2], rounds = (int)a->par[3];
     if ((variant != 0 && variant != 1) || a->par[2] != variant) {
         ob_method_msg(msg, msglen, "variant must be 0 or 1 (got %g)", a->par[2]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (!(a->par[3] >= 1.0 && a->par[3] <= 100.0) || a->par[3] != rounds) {
         ob_method_msg(msg, msglen, "rounds must be an integer in 1..100 (got %g)", a->par[3]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (variant == 1)
         return elber_adaptive(base, d, a->tol, rounds, work, out, msg, msglen);
@@ -322,7 +322,7 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
         const double t = (double)j / n;
         if (ob_bez_normal(base, t, N[j]) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %d/%d (point-like segment)", j, n);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         ob_bez_point(base, t, O[j]);
         O[j][0] += d * N[j][0];
@@ -354,10 +354,10 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
     for (int j = 0; j <= n; j++)
         if (!isfinite(Q[j][0]) || !isfinite(Q[j][1])) {
             ob_method_msg(msg, msglen, "perturbation diverged (non-finite control points)");
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* Only the adaptive variant refines to the tolerance. */

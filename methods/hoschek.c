@@ -131,32 +131,32 @@ typedef struct {
     int m, M, iters, tangents, nfree, nunk;
 } hoschek_cfg;
 
-/* The parameters checked and read into h.  OB_OK, or OB_SKIP with the reason
+/* The parameters checked and read into h.  OB_FIT_OK, or OB_FIT_SKIP with the reason
  * in msg. */
-static ob_status hoschek_read(const ob_bez *base, const ob_fit_args *a, hoschek_cfg *h, char *msg, size_t msglen)
+static ob_fit_status hoschek_read(const ob_bez *base, const ob_fit_args *a, hoschek_cfg *h, char *msg, size_t msglen)
 {
     const double pd = a->par[HP_DEGREE], ps = a->par[HP_SAMPLES], pi = a->par[HP_ITER];
     const int m = pd >= 0.5 ? (int)lround(pd) : base->deg;
     const int tangents = a->par[HP_TANGENTS] != 0.0;
     if (!(pd < OB_MAX_DEG + 0.5) || m < 1 || m > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree out of range 1..%d", OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (tangents && m < 3) {
         ob_method_msg(msg, msglen, "fixed end tangents need degree >= 3 (degree %d)", m);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(ps >= 0.0 && ps <= HOSCHEK_MAX_SAMPLES) || !(pi >= 0.0 && pi <= HOSCHEK_MAX_ITER)) {
         ob_method_msg(msg, msglen, "parameters out of range: samples 0..%d, iterations 0..%d",
                       HOSCHEK_MAX_SAMPLES, HOSCHEK_MAX_ITER);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     const int M = ps >= 0.5 ? (int)lround(ps) : 8 * (m + 1);
     /* unknowns: P_1..P_{m-1} (x then y), or alpha, beta, P_2..P_{m-2} */
     const int nfree = tangents ? m - 3 : m - 1;
     if (M - 2 < (tangents ? nfree + 1 : nfree) || M < 2) {
         ob_method_msg(msg, msglen, "%d samples are too few for degree %d", M, m);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     h->m = m;
     h->M = M;
@@ -164,13 +164,13 @@ static ob_status hoschek_read(const ob_bez *base, const ob_fit_args *a, hoschek_
     h->tangents = tangents;
     h->nfree = nfree;
     h->nunk = 2 * nfree + (tangents ? 2 : 0);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The offset's unit tangent directions T0, T1 at the ends of base (C' (1 - d
- * kappa), direction only).  OB_OK, or OB_FAIL where there is none. */
-static ob_status hoschek_end_tangents(const ob_bez *base, double d, double T0[2], double T1[2], char *msg,
-                                      size_t msglen)
+ * kappa), direction only).  OB_FIT_OK, or OB_FIT_FAIL where there is none. */
+static ob_fit_status hoschek_end_tangents(const ob_bez *base, double d, double T0[2], double T1[2], char *msg,
+                                          size_t msglen)
 {
     for (int e = 0; e < 2; e++) {
         double o[2][2];
@@ -178,13 +178,13 @@ static ob_status hoschek_end_tangents(const ob_bez *base, double d, double T0[2]
         const double s = hypot(o[1][0], o[1][1]), g = 1.0 - d * ob_bez_curvature(base, e);
         if (!(s > 0.0) || g == 0.0) {
             ob_method_msg(msg, msglen, "no offset tangent at t = %d (C' = 0 or 1 - d kappa = 0)", e);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         double *T = e ? T1 : T0;
         T[0] = (g > 0 ? 1.0 : -1.0) * o[1][0] / s;
         T[1] = (g > 0 ? 1.0 : -1.0) * o[1][1] / s;
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The least-squares system of the interior samples at their parameters
@@ -270,14 +270,14 @@ static void hoschek_curve(const hoschek_cfg *h, const hoschek_work *W, const dou
         A->h[i][2] = 1.0;
 }
 
-static ob_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                             char *msg, size_t msglen)
+static ob_fit_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                 char *msg, size_t msglen)
 {
     hoschek_work *W = work;
     const double d = a->d;
     hoschek_cfg h;
-    ob_status st = hoschek_read(base, a, &h, msg, msglen);
-    if (st != OB_OK)
+    ob_fit_status st = hoschek_read(base, a, &h, msg, msglen);
+    if (st != OB_FIT_OK)
         return st;
     const int M = h.M;
     for (int j = 0; j < M; j++) {
@@ -286,7 +286,7 @@ static ob_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *wor
         W->u[j] = t;
     }
     double T0[2] = {0.0, 0.0}, T1[2] = {0.0, 0.0};
-    if (h.tangents && (st = hoschek_end_tangents(base, d, T0, T1, msg, msglen)) != OB_OK)
+    if (h.tangents && (st = hoschek_end_tangents(base, d, T0, T1, msg, msglen)) != OB_FIT_OK)
         return st;
     ob_bez A;
     memset(&A, 0, sizeof A);
@@ -298,14 +298,14 @@ static ob_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *wor
         if (hoschek_solve(&h, W, T0, T1) != 0) {
             if (it == 0) {
                 ob_method_msg(msg, msglen, "singular least-squares system (%d samples, degree %d)", M, h.m);
-                return OB_FAIL;
+                return OB_FIT_FAIL;
             }
             break;  /* keep the previous fit */
         }
         hoschek_curve(&h, W, T0, T1, &A);
     }
     ob_fit_single(out, &A);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_hoschek = {

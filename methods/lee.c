@@ -22,7 +22,7 @@
  * crosses an arc boundary (roots of C'(t) . u_j for the boundary direction
  * u_j, kept where d N points along +u_j) and writes one rational piece per
  * part, with its t breakpoints; more than OB_SPLIT_PIECES parts give
- * OB_RETRY_SMALLER.  The error does not depend on the size of the base piece,
+ * OB_FIT_RETRY_SMALLER.  The error does not depend on the size of the base piece,
  * only on the circle approximation, which depends on the tolerance.
  *
  * Readings (the paper itself is not among the sources here; see the params):
@@ -305,9 +305,9 @@ typedef struct {
     int straight;
 } lee_arcs;
 
-/* The parameters and inputs checked and read into L.  OB_OK, or OB_SKIP /
- * OB_FAIL with the reason in msg. */
-static ob_status lee_read(const ob_bez *base, const ob_fit_args *a, lee_in *L, char *msg, size_t msglen)
+/* The parameters and inputs checked and read into L.  OB_FIT_OK, or OB_FIT_SKIP /
+ * OB_FIT_FAIL with the reason in msg. */
+static ob_fit_status lee_read(const ob_bez *base, const ob_fit_args *a, lee_in *L, char *msg, size_t msglen)
 {
     const double d = a->d, r = fabs(d), sd = d > 0 ? 1.0 : -1.0;
     const int n = base->deg, outdeg = lee_degree(n, base->rational);
@@ -316,17 +316,17 @@ static ob_status lee_read(const ob_bez *base, const ob_fit_args *a, lee_in *L, c
     const int clip = !on_piece && a->par[P_CLIP] != 0.0;
     if (!(r > 0.0) || !isfinite(d)) {
         ob_method_msg(msg, msglen, "offset distance d = %g: no circle to approximate", d);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (n < 1 || outdeg > OB_MAX_DEG || outdeg > OB_BERN_MAX) {
         ob_method_msg(msg, msglen, "output degree %d for input degree %d exceeds %d", outdeg, n,
                       OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(a->tol > 0.0) || !(frac > 0.0) || !isfinite(start)) {
         ob_method_msg(msg, msglen, "needs tol > 0 and tol_frac > 0 (tol %g, tol_frac %g)",
                       a->tol, frac);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     L->r = r;
     L->sd = sd;
@@ -337,15 +337,15 @@ static ob_status lee_read(const ob_bez *base, const ob_fit_args *a, lee_in *L, c
     L->clip = clip;
     L->eps = frac * a->tol / r;
     L->mh = hodograph(base, L->H);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The arcs: the whole circle from `start` (arcs_on=0), or the piece's own
  * range of normal angles (arcs_on=1; a straight piece gets its translate in
- * out at once).  OB_OK, OB_RETRY_SMALLER (the normal turns by 2 pi or more)
- * or OB_FAIL (too many arcs), with the reason in msg. */
-static ob_status lee_plan_arcs(const ob_bez *base, double tol, const lee_in *L, lee_arcs *A, ob_fit *out,
-                               char *msg, size_t msglen)
+ * out at once).  OB_FIT_OK, OB_FIT_RETRY_SMALLER (the normal turns by 2 pi or more)
+ * or OB_FIT_FAIL (too many arcs), with the reason in msg. */
+static ob_fit_status lee_plan_arcs(const ob_bez *base, double tol, const lee_in *L, lee_arcs *A, ob_fit *out,
+                                   char *msg, size_t msglen)
 {
     const double (*H)[2] = (const double (*)[2])L->H;
     A->width = 2.0 * OB_PI;
@@ -361,7 +361,7 @@ static ob_status lee_plan_arcs(const ob_bez *base, double tol, const lee_in *L, 
         A->width = hi - lo;
         if (A->width >= 2.0 * OB_PI - 1e-9) {
             ob_method_msg(msg, msglen, "the normal turns by %.3g >= 2 pi in this piece", A->width);
-            return OB_RETRY_SMALLER;
+            return OB_FIT_RETRY_SMALLER;
         }
         A->psi0 = offset_angle(H, L->mh, 0.0, L->sd) + lo;
         if (A->width < 1e-12) {  /* straight: a zero-angle arc, the exact translate */
@@ -370,7 +370,7 @@ static ob_status lee_plan_arcs(const ob_bez *base, double tol, const lee_in *L, 
             translate(base, v, L->outdeg, &t);
             ob_fit_single(out, &t);
             A->straight = 1;
-            return OB_OK;
+            return OB_FIT_OK;
         }
         A->m = arc_count(A->width, L->eps, L->best, 1);
         A->jlo = 1;
@@ -378,17 +378,17 @@ static ob_status lee_plan_arcs(const ob_bez *base, double tol, const lee_in *L, 
     }
     if (A->m < 1) {
         ob_method_msg(msg, msglen, "tolerance %g too small for |d| = %g (2e6 arcs or more)", tol, L->r);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     A->delta = A->width / (double)A->m;
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The parameters in (0,1) where d N crosses a tested arc boundary (along
- * +u_j), ascending, into cut[0..*nc-1].  OB_OK, or OB_RETRY_SMALLER past
+ * +u_j), ascending, into cut[0..*nc-1].  OB_FIT_OK, or OB_FIT_RETRY_SMALLER past
  * MAXCROSS crossings. */
-static ob_status lee_crossings(const lee_in *L, const lee_arcs *A, double *cut, int *nc, char *msg,
-                               size_t msglen)
+static ob_fit_status lee_crossings(const lee_in *L, const lee_arcs *A, double *cut, int *nc, char *msg,
+                                   size_t msglen)
 {
     const double (*H)[2] = (const double (*)[2])L->H;
     const int mh = L->mh;
@@ -416,7 +416,7 @@ static ob_status lee_crossings(const lee_in *L, const lee_arcs *A, double *cut, 
             if (*nc == MAXCROSS) {
                 ob_method_msg(msg, msglen, "the normal crosses more than %d arc boundaries "
                               "(%ld arcs)", MAXCROSS, A->m);
-                return OB_RETRY_SMALLER;
+                return OB_FIT_RETRY_SMALLER;
             }
             int q = (*nc)++;  /* insertion, ascending */
             while (q > 0 && cut[q - 1] > rt[i]) {
@@ -426,7 +426,7 @@ static ob_status lee_crossings(const lee_in *L, const lee_arcs *A, double *cut, 
             cut[q] = rt[i];
         }
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* Breakpoints 0 = tb[0] < ... < tb[k] = 1 from the crossings cut[0..nc-1],
@@ -482,9 +482,9 @@ static int lee_clip_arc(const ob_bez *sub, const lee_in *L, double delta, double
 
 /* Piece i of np, over [tb[i], tb[i+1]]: the part of base convolved with the
  * arc that covers its normals (radius rr, middle control point at rm), into
- * seg.  OB_OK, or OB_RETRY_SMALLER where the normal leaves the arc. */
-static ob_status lee_piece(const ob_bez *base, const lee_in *L, const lee_arcs *A, const double *tb, int i,
-                           int np, double rr, double rm, ob_bez *seg, char *msg, size_t msglen)
+ * seg.  OB_FIT_OK, or OB_FIT_RETRY_SMALLER where the normal leaves the arc. */
+static ob_fit_status lee_piece(const ob_bez *base, const lee_in *L, const lee_arcs *A, const double *tb, int i,
+                               int np, double rr, double rm, ob_bez *seg, char *msg, size_t msglen)
 {
     const double tm = 0.5 * (tb[i] + tb[i + 1]);
     const long j = lee_arc_index(L, A, tm);
@@ -495,7 +495,7 @@ static ob_status lee_piece(const ob_bez *base, const lee_in *L, const lee_arcs *
     else
         ob_bez_subsegment(base, tb[i], tb[i + 1], &sub);
     if (L->clip && lee_clip_arc(&sub, L, A->delta, rr, &a0, &a1, &rmid, seg))
-        return OB_OK;
+        return OB_FIT_OK;
     const double am = 0.5 * (a0 + a1);
     const double q[3][2] = {{rr * cos(a0), rr * sin(a0)},
                             {rmid * cos(am), rmid * sin(am)},
@@ -503,33 +503,33 @@ static ob_status lee_piece(const ob_bez *base, const lee_in *L, const lee_arcs *
     if (convolve(&sub, q, seg) != 0) {
         ob_method_msg(msg, msglen, "the normal leaves arc %ld within t in [%.6g, %.6g] "
                       "(a cusp?)", j, tb[i], tb[i + 1]);
-        return OB_RETRY_SMALLER;
+        return OB_FIT_RETRY_SMALLER;
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                         char *msg, size_t msglen)
+static ob_fit_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                             char *msg, size_t msglen)
 {
     (void)work;
     lee_in L;
     lee_arcs A;
-    ob_status st = lee_read(base, a, &L, msg, msglen);
-    if (st != OB_OK)
+    ob_fit_status st = lee_read(base, a, &L, msg, msglen);
+    if (st != OB_FIT_OK)
         return st;
     st = lee_plan_arcs(base, a->tol, &L, &A, out, msg, msglen);
-    if (st != OB_OK || A.straight)
+    if (st != OB_FIT_OK || A.straight)
         return st;
     double cut[MAXCROSS + 2], tb[MAXCROSS + 2];
     int nc;
     st = lee_crossings(&L, &A, cut, &nc, msg, msglen);
-    if (st != OB_OK)
+    if (st != OB_FIT_OK)
         return st;
     const int np = lee_breakpoints(cut, nc, tb) - 1;
     if (np > OB_SPLIT_PIECES) {
         ob_method_msg(msg, msglen, "%d arcs of the circle meet this piece (at most %d pieces)",
                       np, OB_SPLIT_PIECES);
-        return OB_RETRY_SMALLER;
+        return OB_FIT_RETRY_SMALLER;
     }
     const double lam = L.best ? 2.0 / (2.0 + arc_error(0.5 * A.delta, 0)) : 1.0;
     const double rr = lam * L.r, rm = rr / cos(0.5 * A.delta);
@@ -539,10 +539,10 @@ static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
         out->t[i] = tb[i];
     for (int i = 0; i < np; i++) {
         st = lee_piece(base, &L, &A, tb, i, np, rr, rm, &out->seg[i], msg, msglen);
-        if (st != OB_OK)
+        if (st != OB_FIT_OK)
             return st;
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_lee = {

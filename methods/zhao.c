@@ -30,7 +30,7 @@
  *    "96 sample points" for the septic (n = 7, k = 12) and "less than
  *    4(3n+3)" sample points.  The 2 npt equations exceed the unknowns, so
  *    they are solved in the least-squares sense (ratlsq uses an SVD; here a
- *    Givens QR, which detects rank deficiency: then OB_FAIL).
+ *    Givens QR, which detects rank deficiency: then OB_FIT_FAIL).
  *  - The nodes are ratlsq's: t_j = sin^2(pi/2 j/(npt-1)), j = 0..npt-1 (the
  *    second half computed as 1 - sin^2(...) of the mirrored index, as in
  *    ratlsq), i.e. the Chebyshev-Gauss-Lobatto points (extrema of
@@ -51,12 +51,12 @@
  *    not ensure it, and on gentle curves it often returns a denominator with
  *    a root in [0,1] (a near pole-zero pair).  Such an iterate is never
  *    returned, but, as in ratlsq, its errors at the nodes still drive the next
- *    iterate.  No valid iterate at all: OB_RETRY_SMALLER, so the driver splits
- *    the piece (parameter on_pole = 0: OB_FAIL instead).  A singular rational
+ *    iterate.  No valid iterate at all: OB_FIT_RETRY_SMALLER, so the driver splits
+ *    the piece (parameter on_pole = 0: OB_FIT_FAIL instead).  A singular rational
  *    system on the first solve (the denominator undetermined: on small pieces
  *    the offset is nearly polynomial): the polynomial member of the family
  *    (denominator 1), which the paper counts as the degenerate rational case.
- *    A singular polynomial system: OB_FAIL on the first solve; on later solves
+ *    A singular polynomial system: OB_FIT_FAIL on the first solve; on later solves
  *    the loop ends (best valid iterate kept).
  *  - The normalization q(0) = 1 makes the least-squares solution, hence the
  *    rational result, depend on the direction of the parameter (the reversed
@@ -142,7 +142,7 @@ static const ob_param zhao_params[ZP_COUNT] = {
      "output degree; 0 = the base's degree (the paper's examples; 'an arbitrary degree' is allowed)", 0, OB_MAX_DEG, 1},
     {"on_pole", 1,
      "no iterate with a denominator positive on [0,1] (zhao-rational): 1 = ask the driver to split "
-     "the piece (OB_RETRY_SMALLER, as if the error were too large; default: the paper requires a "
+     "the piece (OB_FIT_RETRY_SMALLER, as if the error were too large; default: the paper requires a "
      "pole-free solution and says nothing of what to do without one, and a smaller piece usually "
      "has one), 0 = fail", 0, 1, 1},
 };
@@ -186,10 +186,10 @@ typedef struct {
     int k, npt, nunk;
 } zhao_cfg;
 
-/* The parameters checked and read into z.  OB_OK, or OB_SKIP with the reason
+/* The parameters checked and read into z.  OB_FIT_OK, or OB_FIT_SKIP with the reason
  * in msg. */
-static ob_status zhao_read(const ob_bez *base, const ob_fit_args *a, int rational, zhao_cfg *z, char *msg,
-                           size_t msglen)
+static ob_fit_status zhao_read(const ob_bez *base, const ob_fit_args *a, int rational, zhao_cfg *z, char *msg,
+                               size_t msglen)
 {
     const double pd = a->par[ZP_DEGREE], pi = a->par[ZP_ITER], pf = a->par[ZP_NPFAC];
     const int n = pd >= 0.5 ? (int)lround(pd) : base->deg;
@@ -198,12 +198,12 @@ static ob_status zhao_read(const ob_bez *base, const ob_fit_args *a, int rationa
     if (!(pd < OB_MAX_DEG + 0.5) || n < 1 || n > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree %g out of range 1..%d", n < 1 ? pd : (double)n,
                       OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(pi >= 0.5 && pi <= ZHAO_MAX_ITER) || !(pf >= 0.5 && pf <= ZHAO_MAX_NPFAC)) {
         ob_method_msg(msg, msglen, "parameters out of range: iterations 1..%d, npfac 1..%d",
                       ZHAO_MAX_ITER, ZHAO_MAX_NPFAC);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     z->n = n;
     z->iters = iters;
@@ -213,7 +213,7 @@ static ob_status zhao_read(const ob_bez *base, const ob_fit_args *a, int rationa
     z->k = rational ? (3 * n + 3) / 2 : n + 1;
     z->npt = npfac * z->k;
     z->nunk = 2 * (n + 1) + (rational ? n : 0);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* The origin v: the centroid of the base's control points; returns the scale
@@ -236,10 +236,10 @@ static double zhao_origin(const ob_bez *base, double r, double v[2])
 }
 
 /* ratlsq's npt nodes (Chebyshev-Gauss-Lobatto points on [0,1]) with C - v
- * and N there, errors 0, into W.  OB_OK, or OB_FAIL where there is no
+ * and N there, errors 0, into W.  OB_FIT_OK, or OB_FIT_FAIL where there is no
  * normal. */
-static ob_status zhao_nodes(const ob_bez *base, const double v[2], int npt, zhao_work *W, char *msg,
-                            size_t msglen)
+static ob_fit_status zhao_nodes(const ob_bez *base, const double v[2], int npt, zhao_work *W, char *msg,
+                                size_t msglen)
 {
     for (int j = 0; j < npt; j++) {
         double t;
@@ -257,11 +257,11 @@ static ob_status zhao_nodes(const ob_bez *base, const double v[2], int npt, zhao
         W->c[j][1] = o[0][1] - v[1];
         if (ob_bez_normal(base, t, W->nn[j]) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", t);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         W->e[j] = 0.0;
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* Eq. (2) at every node for solve `it` (1: e = 0, unweighted), the targets
@@ -385,19 +385,19 @@ static void zhao_result(const zhao_cfg *z, const double *x, const double v[2], o
     ob_fit_single(out, &res);
 }
 
-static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                              char *msg, size_t msglen, int rational)
+static ob_fit_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                  char *msg, size_t msglen, int rational)
 {
     zhao_work *W = work;
     const double r = a->d;
     zhao_cfg z;
-    ob_status st = zhao_read(base, a, rational, &z, msg, msglen);
-    if (st != OB_OK)
+    ob_fit_status st = zhao_read(base, a, rational, &z, msg, msglen);
+    if (st != OB_FIT_OK)
         return st;
     double v[2];
     const double scale = zhao_origin(base, r, v);
     st = zhao_nodes(base, v, z.npt, W, msg, msglen);
-    if (st != OB_OK)
+    if (st != OB_FIT_OK)
         return st;
     double bestdev;
     if (zhao_iterate(&z, W, r, scale, &bestdev) != 0) {
@@ -410,24 +410,24 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
         }
         ob_method_msg(msg, msglen, "singular least-squares system for eq. (2) (%d nodes, "
                       "%d unknowns)", z.npt, z.nunk);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (!(bestdev < INFINITY)) {
         ob_method_msg(msg, msglen, "no iterate with a denominator positive on [0,1] (%d iterations)", z.iters);
-        return a->par[ZP_POLE] != 0.0 ? OB_RETRY_SMALLER : OB_FAIL;
+        return a->par[ZP_POLE] != 0.0 ? OB_FIT_RETRY_SMALLER : OB_FIT_FAIL;
     }
     zhao_result(&z, W->best, v, out);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-static ob_status zhao_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                          char *msg, size_t msglen)
+static ob_fit_status zhao_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                              char *msg, size_t msglen)
 {
     return zhao_fit_any(base, a, work, out, msg, msglen, 0);
 }
 
-static ob_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                                   char *msg, size_t msglen)
+static ob_fit_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                       char *msg, size_t msglen)
 {
     return zhao_fit_any(base, a, work, out, msg, msglen, 1);
 }
