@@ -29,15 +29,15 @@ static int ahn_degree(int n, int rational_in)
     return n + 3;
 }
 
-static ob_status ahn_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                         char *msg, size_t msglen)
+static ob_fit_status ahn_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                             char *msg, size_t msglen)
 {
     (void)work;
     const double d = a->d;
     const int n = base->deg;
     double N0[2], N1[2];
-    const ob_status pre = ob_conv_prepare(base, n + 3, N0, N1, msg, msglen);
-    if (pre != OB_OK)
+    const ob_fit_status pre = ob_conv_prepare(base, n + 3, N0, N1, msg, msglen);
+    if (pre != OB_FIT_OK)
         return pre;
     double alpha[4];
     alpha[0] = -ob_bez_curvature(base, 0.0);
@@ -51,14 +51,14 @@ static ob_status ahn_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
     if (ob_conv_solve2(w[1], w[2], v, &alpha[1], &alpha[2]) != 0) {
         ob_method_msg(msg, msglen, "singular, inconsistent system for alpha_1, alpha_2 "
                       "(v1 x v2 = %g): the piece is not convex", w[1][0] * w[2][1] - w[1][1] * w[2][0]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
 
     /* C + d N^a, N^a = N(0) + int C' alpha: degree n+3 (section 3.2) */
     ob_bez up;
     ob_conv_offset(base, alpha, 3, N0, d, &up);
     ob_fit_single(out, &up);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_ahn = {

@@ -19,7 +19,7 @@
  * is the spline with the fewest control points, k = 4, 5, ..., whose largest
  * span bound is within the tolerance; its Bézier spans are the output and
  * ob_fit.ctrl_points counts its k B-spline control points.  No spline of at
- * most OB_MAX_PIECES spans meets it: OB_RETRY_SMALLER (the driver halves the
+ * most OB_MAX_PIECES spans meets it: OB_FIT_RETRY_SMALLER (the driver halves the
  * base piece and fits each part).
  *
  * Joints: the spans of one spline are C2; the spline interpolates nothing,
@@ -151,18 +151,18 @@ static double spans_and_bound(const ob_bez *base, double d, bl_work *W, int k, o
     return worst;
 }
 
-static ob_status bl_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
-                        size_t msglen)
+static ob_fit_status bl_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
+                            size_t msglen)
 {
     bl_work *W = work;
     const double fac = a->par[0];
     if (!(fac >= 2.0 && fac <= BL_MAXFAC) || fac != floor(fac)) {
         ob_method_msg(msg, msglen, "samples must be a whole number in 2..%d", BL_MAXFAC);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(a->tol > 0.0)) {
         ob_method_msg(msg, msglen, "the tolerance must be positive (got %g)", a->tol);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     double best = INFINITY;
     for (int k = BL_DEG + 1; k <= BL_MAXCP; k++) {
@@ -174,16 +174,16 @@ static ob_status bl_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob
         }
         if (lsq_fit(W, k, M) != 0) {
             ob_method_msg(msg, msglen, "singular least-squares system (%d control points, %d samples)", k, M);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         const double e = spans_and_bound(base, a->d, W, k, out);
         if (e <= a->tol)
-            return OB_OK;
+            return OB_FIT_OK;
         best = fmin(best, e);
     }
     ob_method_msg(msg, msglen, "no clamped cubic with at most %d control points meets %g (best bound %g)",
                   (int)BL_MAXCP, a->tol, best);
-    return OB_RETRY_SMALLER;
+    return OB_FIT_RETRY_SMALLER;
 }
 
 static int bl_out_degree(int n, int rational_in)

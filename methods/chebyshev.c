@@ -25,8 +25,8 @@ static const ob_param chebyshev_params[] = {
                   "truncated Chebyshev series); n-1 gives Chebyshev interpolation", 1, 1024, 1},
 };
 
-static ob_status chebyshev_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                               char *msg, size_t msglen)
+static ob_fit_status chebyshev_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                   char *msg, size_t msglen)
 {
     return ob_nf_method_fit(OB_NF_CHEBYSHEV, base, a, work, out, msg, msglen);
 }

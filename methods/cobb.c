@@ -9,8 +9,8 @@
  */
 #include "methods/method.h"
 
-static ob_status cobb_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                          char *msg, size_t msglen)
+static ob_fit_status cobb_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                              char *msg, size_t msglen)
 {
     (void)work;
     const double d = a->d;
@@ -21,12 +21,12 @@ static ob_status cobb_fit(const ob_bez *base, const ob_fit_args *a, void *work, 
         ob_bez_ctrl(base, j, P);
         if (ob_bez_normal(base, (double)j / n, N) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %d/%d (point-like segment)", j, n);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         ob_bez_set(&r, j, P[0] + d * N[0], P[1] + d * N[1], ob_bez_weight(base, j));
     }
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_cobb = {

@@ -106,8 +106,8 @@ static double nearest_param(const ob_bez *b, const double P[2])
     return t;
 }
 
-static ob_status coquillart_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                                char *msg, size_t msglen)
+static ob_fit_status coquillart_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                    char *msg, size_t msglen)
 {
     (void)work;
     const double d = a->d;
@@ -115,12 +115,12 @@ static ob_status coquillart_fit(const ob_bez *base, const ob_fit_args *a, void *
     const int reading = (int)a->par[0];
     if (reading < 0 || reading > 3 || a->par[0] != reading) {
         ob_method_msg(msg, msglen, "reading must be 0, 1, 2 or 3 (got %g)", a->par[0]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     const int foot = (int)a->par[1];
     if ((foot != 0 && foot != 1) || a->par[1] != foot) {
         ob_method_msg(msg, msglen, "foot must be 0 or 1 (got %g)", a->par[1]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     ob_bez r = *base;
     for (int j = 0; j <= n; j++) {
@@ -129,7 +129,7 @@ static ob_status coquillart_fit(const ob_bez *base, const ob_fit_args *a, void *
         const double xi = foot ? (double)j / n : nearest_param(base, P);
         if (ob_bez_normal(base, xi, N) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", xi);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         ob_bez_point(base, xi, C);
         const double v[2] = {P[0] - C[0], P[1] - C[1]};
@@ -146,7 +146,7 @@ static ob_status coquillart_fit(const ob_bez *base, const ob_fit_args *a, void *
         ob_bez_set(&r, j, P[0] + d * s * N[0], P[1] + d * s * N[1], ob_bez_weight(base, j));
     }
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_coquillart = {

@@ -46,7 +46,7 @@
  * while one that reaches it passes, and greedy bisection assumes the
  * error grows with the prefix.
  * Degenerate input: a point-like base fails; an offset whose end points
- * coincide (a closed piece) asks for a smaller piece (OB_RETRY_SMALLER); an
+ * coincide (a closed piece) asks for a smaller piece (OB_FIT_RETRY_SMALLER); an
  * offset that collapses to a point (a circle offset by its radius) is that
  * point.  Where no candidate can be scored (the base's tangent reverses
  * between two samples: a cusp of the base, where the offset jumps by 2d,
@@ -629,16 +629,16 @@ static int candidates(const ob_bez *base, double d, const co_cubic *c, double *a
 
 /* Purpose: the G1 cubic for the d-offset of a stretch without offset cusps.
  * Inputs:  hermite: 1 to skip the candidates (the fallback cubic).
- * Outputs: *out (a cubic Bézier).  Returns OB_OK, OB_RETRY_SMALLER or
- *          OB_FAIL with the reason in msg. */
-static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on, int hermite, co_work *W,
-                             ob_bez *out, char *msg, size_t msglen)
+ * Outputs: *out (a cubic Bézier).  Returns OB_FIT_OK, OB_FIT_RETRY_SMALLER or
+ *          OB_FIT_FAIL with the reason in msg. */
+static ob_fit_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on, int hermite, co_work *W,
+                                 ob_bez *out, char *msg, size_t msglen)
 {
     co_cubic c;
     const int reverses = base_size(base) > 0.0 ? sample_base(base, ns, W, msg, msglen) : -1;
     if (reverses < 0) {
         ob_method_msg(msg, msglen, "the base piece is a point");
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (offset_ends(base, d, &c)) {
         /* a closed stretch, or an offset that collapses to a point (a
@@ -651,7 +651,7 @@ static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on
         }
         if (worst > 1e-12 * (base_size(base) + fabs(d))) {
             ob_method_msg(msg, msglen, "the offset's end points coincide (a closed piece)");
-            return OB_RETRY_SMALLER;
+            return OB_FIT_RETRY_SMALLER;
         }
         c.L = 0.0;
     } else if (reverses || hermite) {
@@ -682,23 +682,23 @@ static ob_status fit_stretch(const ob_bez *base, double d, int ns, int refine_on
     for (int i = 0; i < 4; i++)
         if (!isfinite(P[i][0]) || !isfinite(P[i][1])) {
             ob_method_msg(msg, msglen, "non-finite control point");
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
     ob_bez_from_points(out, 3, (const double(*)[2])P);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
-                               size_t msglen)
+static ob_fit_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
+                                   size_t msglen)
 {
     const int ns = (int)lround(a->par[CP_SAMPLES]), refine_on = a->par[CP_REFINE] != 0.0;
     if (base->deg < 1) {
         ob_method_msg(msg, msglen, "degree %d: the base is a point", base->deg);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (ns < 8 || ns > CO_MAX_SAMPLES) {
         ob_method_msg(msg, msglen, "samples must be 8..%d", CO_MAX_SAMPLES);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     double tc[OB_MAX_PIECES];
     int nc = ob_bez_offset_cusps(base, a->d, tc, OB_MAX_PIECES - 1);
@@ -717,12 +717,12 @@ static ob_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, void *w
             sub = *base;
         else
             ob_bez_subsegment(base, out->t[out->n], t1, &sub);
-        ob_status st = fit_stretch(&sub, a->d, ns, refine_on, hermite, work, &out->seg[out->n], msg, msglen);
-        if (st != OB_OK)
+        ob_fit_status st = fit_stretch(&sub, a->d, ns, refine_on, hermite, work, &out->seg[out->n], msg, msglen);
+        if (st != OB_FIT_OK)
             return st;
         out->t[++out->n] = t1;
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_cubic_opt = {

@@ -42,7 +42,7 @@
  * node fails or `rounds` rounds are done.  The result is one B-spline with
  * simple interior knots: its Bézier pieces are the output (over the knot
  * intervals of the base's parameter) and ob_fit.ctrl_points counts its
- * n + 1 + k control points.  More than OB_SPLIT_PIECES pieces: OB_RETRY_SMALLER.
+ * n + 1 + k control points.  More than OB_SPLIT_PIECES pieces: OB_FIT_RETRY_SMALLER.
  */
 #include "methods/method.h"
 
@@ -125,96 +125,105 @@ static void deboor(const double *U, const double (*P)[3], int p, int ncp, double
     out[1] = d[p][1] / d[p][2];
 }
 
-static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int rounds,
-                                el_work *w, ob_fit *out, char *msg, size_t msglen)
+/* Cobb on the refined base (w->U, w->H, ncp control points of degree p):
+ * each control point moved by d N at its Greville abscissa, into w->Q.
+ * OB_FIT_OK, or OB_FIT_FAIL where there is no normal. */
+static ob_fit_status el_cobb(const ob_bez *base, double d, int p, int ncp, el_work *w, char *msg, size_t msglen)
 {
-    const int p = base->deg;
-    int ncp = p + 1;
-    for (int i = 0; i <= p; i++) {
-        w->U[i] = 0.0;
-        w->U[p + 1 + i] = 1.0;
-        for (int c = 0; c < 3; c++)
-            w->H[i][c] = base->h[i][c];
+    for (int i = 0; i < ncp; i++) {
+        double xi = 0.0, N[2];
+        for (int k = 1; k <= p; k++)
+            xi += w->U[i + k];
+        xi /= p;
+        if (ob_bez_normal(base, xi, N) != 0) {
+            ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", xi);
+            return OB_FIT_FAIL;
+        }
+        w->Q[i][0] = w->H[i][0] + w->H[i][2] * d * N[0];
+        w->Q[i][1] = w->H[i][1] + w->H[i][2] * d * N[1];
+        w->Q[i][2] = w->H[i][2];
     }
-    for (int round = 1;; round++) {
-        /* Cobb: each control point moved by d N at its Greville abscissa */
-        for (int i = 0; i < ncp; i++) {
-            double xi = 0.0, N[2];
-            for (int k = 1; k <= p; k++)
-                xi += w->U[i + k];
-            xi /= p;
-            if (ob_bez_normal(base, xi, N) != 0) {
-                ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", xi);
-                return OB_FAIL;
-            }
-            w->Q[i][0] = w->H[i][0] + w->H[i][2] * d * N[0];
-            w->Q[i][1] = w->H[i][1] + w->H[i][2] * d * N[1];
-            w->Q[i][2] = w->H[i][2];
-        }
-        if (round > rounds)
-            break;
-        /* knots of D: ends 2p+1 times, each interior knot p+1 times */
-        const int k_int = ncp - p - 1;
-        int nv = 0;
-        for (int r = 0; r <= 2 * p; r++)
-            w->V[nv++] = 0.0;
-        for (int k = 0; k < k_int; k++)
-            for (int r = 0; r <= p; r++)
-                w->V[nv++] = w->U[p + 1 + k];
-        for (int r = 0; r <= 2 * p; r++)
-            w->V[nv++] = 1.0;
-        /* nodes: Greville abscissae of degree 2p */
-        int nins = 0;
-        for (int i = 0; i + 2 * p + 1 < nv; i++) {
-            double ts = 0.0;
-            for (int k = 1; k <= 2 * p; k++)
-                ts += w->V[i + k];
-            ts /= 2 * p;
-            double A[2], C[2];
-            deboor(w->U, (const double(*)[3])w->Q, p, ncp, ts, A);
-            ob_bez_point(base, ts, C);
-            const double e = fabs(hypot(A[0] - C[0], A[1] - C[1]) - fabs(d));
-            if (!(e > tol))
-                continue;
-            /* where to insert: t* itself, or the midpoints to its neighbours */
-            int at = -1;
-            double lo = 0.0, hi = 1.0;
-            for (int k = 0; k < k_int; k++) {
-                const double u = w->U[p + 1 + k];
-                if (fabs(u - ts) <= 1e-12)
-                    at = k;
-                else if (u < ts)
-                    lo = u;
-                else if (u < hi)
-                    hi = u;
-            }
-            double cand[2];
-            int nc = 0;
-            if (at < 0 && ts > 1e-12 && ts < 1.0 - 1e-12) {
-                cand[nc++] = ts;
-            } else {
-                cand[nc++] = 0.5 * (lo + ts);
-                cand[nc++] = 0.5 * (ts + hi);
-            }
-            for (int c = 0; c < nc; c++) {
-                int dup = cand[c] - lo < 1e-9 || hi - cand[c] < 1e-9;
-                for (int k = 0; k < nins && !dup; k++)
-                    dup = fabs(w->ins[k] - cand[c]) < 1e-9;
-                if (!dup)
-                    w->ins[nins++] = cand[c];
-            }
-        }
-        if (nins == 0)
-            break;
-        if (k_int + nins > EL_MAXK) {
-            ob_method_msg(msg, msglen, "adaptive refinement needs more than %d pieces",
-                          OB_SPLIT_PIECES);
-            return OB_RETRY_SMALLER;
-        }
-        for (int k = 0; k < nins; k++)
-            insert_knot(w->U, w->H, p, &ncp, w->ins[k]);
+    return OB_FIT_OK;
+}
+
+/* The knots of D = ||A - C||^2 into w->V: the ends 2p+1 times, each of the
+ * k_int interior knots of the base p+1 times; returns their count. */
+static int el_d_knots(el_work *w, int p, int k_int)
+{
+    int nv = 0;
+    for (int r = 0; r <= 2 * p; r++)
+        w->V[nv++] = 0.0;
+    for (int k = 0; k < k_int; k++)
+        for (int r = 0; r <= p; r++)
+            w->V[nv++] = w->U[p + 1 + k];
+    for (int r = 0; r <= 2 * p; r++)
+        w->V[nv++] = 1.0;
+    return nv;
+}
+
+/* A failing node ts: the knots to insert for it (ts itself, or the
+ * midpoints to its neighbouring knots when it is already a knot or an end)
+ * appended to w->ins[0..*nins-1], leaving out those already there or at a
+ * knot. */
+static void el_mark(el_work *w, int p, int k_int, double ts, int *nins)
+{
+    int at = -1;
+    double lo = 0.0, hi = 1.0;
+    for (int k = 0; k < k_int; k++) {
+        const double u = w->U[p + 1 + k];
+        if (fabs(u - ts) <= 1e-12)
+            at = k;
+        else if (u < ts)
+            lo = u;
+        else if (u < hi)
+            hi = u;
     }
-    /* Bézier pieces: raise every interior knot of the offset to multiplicity p */
+    double cand[2];
+    int nc = 0;
+    if (at < 0 && ts > 1e-12 && ts < 1.0 - 1e-12) {
+        cand[nc++] = ts;
+    } else {
+        cand[nc++] = 0.5 * (lo + ts);
+        cand[nc++] = 0.5 * (ts + hi);
+    }
+    for (int c = 0; c < nc; c++) {
+        int dup = cand[c] - lo < 1e-9 || hi - cand[c] < 1e-9;
+        for (int k = 0; k < *nins && !dup; k++)
+            dup = fabs(w->ins[k] - cand[c]) < 1e-9;
+        if (!dup)
+            w->ins[(*nins)++] = cand[c];
+    }
+}
+
+/* The knots to insert after one round, into w->ins: those of every node of
+ * D (Greville abscissae of degree 2p) where | |A - C| - |d| | > tol.
+ * Returns their count. */
+static int el_marks(const ob_bez *base, double d, double tol, int p, int ncp, el_work *w)
+{
+    const int k_int = ncp - p - 1;
+    const int nv = el_d_knots(w, p, k_int);
+    int nins = 0;
+    for (int i = 0; i + 2 * p + 1 < nv; i++) {
+        double ts = 0.0;
+        for (int k = 1; k <= 2 * p; k++)
+            ts += w->V[i + k];
+        ts /= 2 * p;
+        double A[2], C[2];
+        deboor(w->U, (const double(*)[3])w->Q, p, ncp, ts, A);
+        ob_bez_point(base, ts, C);
+        const double e = fabs(hypot(A[0] - C[0], A[1] - C[1]) - fabs(d));
+        if (e > tol)
+            el_mark(w, p, k_int, ts, &nins);
+    }
+    return nins;
+}
+
+/* The offset B-spline w->U, w->Q (ncp control points) as its Bézier pieces
+ * into out (every interior knot raised to multiplicity p), counted by its
+ * ncp control points.  OB_FIT_OK, or OB_FIT_FAIL for non-finite control points. */
+static ob_fit_status el_pieces(const ob_bez *base, int p, int ncp, el_work *w, ob_fit *out, char *msg,
+                               size_t msglen)
+{
     const int k_int = ncp - p - 1;
     const long cp = ncp;
     double knots[EL_MAXK + 2];
@@ -243,13 +252,47 @@ static ob_status elber_adaptive(const ob_bez *base, double d, double tol, int ro
         for (int i = 0; i <= p; i++)
             if (!isfinite(out->seg[s].h[i][0]) || !isfinite(out->seg[s].h[i][1])) {
                 ob_method_msg(msg, msglen, "non-finite control points");
-                return OB_FAIL;
+                return OB_FIT_FAIL;
             }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                           char *msg, size_t msglen)
+/* The adaptive variant (see the top): refine, re-offset, repeat, for at most
+ * `rounds` rounds; the offset B-spline's pieces into out.  OB_FIT_OK, OB_FIT_FAIL
+ * or OB_FIT_RETRY_SMALLER (more than OB_SPLIT_PIECES pieces), reason in msg. */
+static ob_fit_status elber_adaptive(const ob_bez *base, double d, double tol, int rounds,
+                                    el_work *w, ob_fit *out, char *msg, size_t msglen)
+{
+    const int p = base->deg;
+    int ncp = p + 1;
+    for (int i = 0; i <= p; i++) {
+        w->U[i] = 0.0;
+        w->U[p + 1 + i] = 1.0;
+        for (int c = 0; c < 3; c++)
+            w->H[i][c] = base->h[i][c];
+    }
+    for (int round = 1;; round++) {
+        const ob_fit_status st = el_cobb(base, d, p, ncp, w, msg, msglen);
+        if (st != OB_FIT_OK)
+            return st;
+        if (round > rounds)
+            break;
+        const int nins = el_marks(base, d, tol, p, ncp, w);
+        if (nins == 0)
+            break;
+        if (ncp - p - 1 + nins > EL_MAXK) {
+            ob_method_msg(msg, msglen, "adaptive refinement needs more than %d pieces",
+                          OB_SPLIT_PIECES);
+            return OB_FIT_RETRY_SMALLER;
+        }
+        for (int k = 0; k < nins; k++)
+            insert_knot(w->U, w->H, p, &ncp, w->ins[k]);
+    }
+    return el_pieces(base, p, ncp, w, out, msg, msglen);
+}
+
+static ob_fit_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                               char *msg, size_t msglen)
 {
     const double d = a->d;
     const int n = base->deg;
@@ -257,20 +300,20 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
     if (!(a->par[0] >= 0.0 && a->par[0] <= 100000.0) || a->par[0] != iters) {
         ob_method_msg(msg, msglen, "iterations must be an integer in 0..100000 (got %g)",
                       a->par[0]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if ((update != 0 && update != 1) || a->par[1] != update) {
         ob_method_msg(msg, msglen, "update must be 0 or 1 (got %g)", a->par[1]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     const int variant = (int)a->par[2], rounds = (int)a->par[3];
     if ((variant != 0 && variant != 1) || a->par[2] != variant) {
         ob_method_msg(msg, msglen, "variant must be 0 or 1 (got %g)", a->par[2]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (!(a->par[3] >= 1.0 && a->par[3] <= 100.0) || a->par[3] != rounds) {
         ob_method_msg(msg, msglen, "rounds must be an integer in 1..100 (got %g)", a->par[3]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (variant == 1)
         return elber_adaptive(base, d, a->tol, rounds, work, out, msg, msglen);
@@ -280,7 +323,7 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
         const double t = (double)j / n;
         if (ob_bez_normal(base, t, N[j]) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %d/%d (point-like segment)", j, n);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         ob_bez_point(base, t, O[j]);
         O[j][0] += d * N[j][0];
@@ -312,10 +355,10 @@ static ob_status elber_fit(const ob_bez *base, const ob_fit_args *a, void *work,
     for (int j = 0; j <= n; j++)
         if (!isfinite(Q[j][0]) || !isfinite(Q[j][1])) {
             ob_method_msg(msg, msglen, "perturbation diverged (non-finite control points)");
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 /* Only the adaptive variant refines to the tolerance. */

@@ -23,7 +23,7 @@
  *  (c) rational straight segments (collinear control points, the point moving
  *      one way): the offset is the translate by d times the line's left
  *      normal, same degree and weights.
- * Everything else: OB_SKIP with the reason.
+ * Everything else: OB_FIT_SKIP with the reason.
  * Output degree: 2n-1 for polynomial input, n for rational input (2 for the
  * arcs of (a)).
  */
@@ -88,8 +88,8 @@ static int solve(double *M, double *y, int k)
 }
 
 /* (b) polynomial PH curve. */
-static ob_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char *msg,
-                          size_t msglen)
+static ob_fit_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char *msg,
+                              size_t msglen)
 {
     const int n = b->deg, m = n - 1, deg = 2 * n - 1;
     double hx[OB_MAX_DEG], hy[OB_MAX_DEG];
@@ -108,7 +108,7 @@ static ob_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char
     }
     if (!(smax > 0.0)) {
         ob_method_msg(msg, msglen, "the segment is a point (C' = 0)");
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     /* sigma: interpolate |C'| at m+1 Chebyshev nodes */
     double M[OB_MAX_DEG * OB_MAX_DEG], sig[OB_MAX_DEG];
@@ -123,7 +123,7 @@ static ob_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char
     }
     if (solve(M, sig, m + 1) != 0) {
         ob_method_msg(msg, msglen, "singular interpolation of |C'|");
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     double S2[2 * OB_MAX_DEG + 1], defect = 0.0;
     ob_bern_mul(sig, m, sig, m, S2);
@@ -133,7 +133,7 @@ static ob_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char
     if (!(defect <= tol)) {
         ob_method_msg(msg, msglen, "not a Pythagorean-hodograph curve: x'^2+y'^2 != sigma^2, "
                       "deg sigma %d (defect %.2g)", m, defect);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     /* sigma > 0 on [0,1] */
     double smin = INFINITY, sbig = 0.0;
@@ -149,7 +149,7 @@ static ob_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char
     if (!allpos && (smin <= 1e-9 * sbig || ob_bern_roots(sig, m, rts, OB_MAX_DEG) > 0)) {
         ob_method_msg(msg, msglen, "PH curve whose |C'| = sigma vanishes on [0,1] (a cusp or "
                       "a stationary point)");
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     /* [sigma C + d (-y', x')] / sigma, degree 2n-1 */
     double X[3][2 * OB_MAX_DEG + 1], P[OB_MAX_DEG + 1], e[2 * OB_MAX_DEG + 1];
@@ -171,10 +171,10 @@ static ob_status exact_ph(const ob_bez *b, double d, double tol, ob_bez *o, char
     for (int k = 0; k <= deg; k++)
         for (int c = 0; c < 3; c++)
             o->h[k][c] = X[c][k] / big;
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-/* (c) rational straight segment: returns OB_OK (o written), OB_SKIP with msg
+/* (c) rational straight segment: returns OB_FIT_OK (o written), OB_FIT_SKIP with msg
  * if it reverses, or -1 (as int) if the points are not collinear. */
 static int exact_line(const ob_bez *b, double d, double tol, ob_bez *o, char *msg, size_t msglen)
 {
@@ -211,7 +211,7 @@ static int exact_line(const ob_bez *b, double d, double tol, ob_bez *o, char *ms
         ob_bern_roots(f, m, rts, 2 * OB_MAX_DEG + 1) > 0) {
         ob_method_msg(msg, msglen, "straight segment whose point reverses direction: no "
                       "regular offset");
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     const double v[2] = {-d * u[1], d * u[0]};
     *o = *b;
@@ -219,12 +219,12 @@ static int exact_line(const ob_bez *b, double d, double tol, ob_bez *o, char *ms
         o->h[i][0] += b->h[i][2] * v[0];
         o->h[i][1] += b->h[i][2] * v[1];
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-/* (a) circular arc as a rational quadratic.  Returns OB_OK or OB_SKIP. */
-static ob_status exact_arc(const ob_bez *b, double d, double tol, ob_bez *o, char *msg,
-                           size_t msglen)
+/* (a) circular arc as a rational quadratic.  Returns OB_FIT_OK or OB_FIT_SKIP. */
+static ob_fit_status exact_arc(const ob_bez *b, double d, double tol, ob_bez *o, char *msg,
+                               size_t msglen)
 {
     double P[3][2];
     for (int i = 0; i < 3; i++)
@@ -242,7 +242,7 @@ static ob_status exact_arc(const ob_bez *b, double d, double tol, ob_bez *o, cha
         !(fabs(rho - cosa) <= tol) || !(sina > 0.0) || !(w0 > 0.0 && w1 > 0.0 && w2 > 0.0)) {
         ob_method_msg(msg, msglen, "not a circular arc: legs %.4g %.4g, w1/sqrt(w0 w2) %.6g vs "
                       "cos(half angle) %.6g", L0, L1, rho, cosa);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     /* centre: from P0 along the normal of the first leg, towards P2, at R = L0/tan(alpha) */
     const double R = L0 * cosa / sina, s = cr > 0.0 ? 1.0 : -1.0;
@@ -255,11 +255,11 @@ static ob_status exact_arc(const ob_bez *b, double d, double tol, ob_bez *o, cha
         o->h[i][0] = w * (c[0] + k * (P[i][0] - c[0]));
         o->h[i][1] = w * (c[1] + k * (P[i][1] - c[1]));
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-static ob_status exact_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                           char *msg, size_t msglen)
+static ob_fit_status exact_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                               char *msg, size_t msglen)
 {
     (void)work;
     const double d = a->d, tol = a->par[P_DETECT];
@@ -267,29 +267,29 @@ static ob_status exact_fit(const ob_bez *base, const ob_fit_args *a, void *work,
     ob_bez o;
     if (n < 1) {
         ob_method_msg(msg, msglen, "a segment of degree 0 is a point");
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (exact_degree(n, base->rational) > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree %d exceeds %d",
                       exact_degree(n, base->rational), OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
-    ob_status st;
+    ob_fit_status st;
     if (base->rational) {
         int r = exact_line(base, d, tol, &o, msg, msglen);
         if (r >= 0) {
-            st = (ob_status)r;
+            st = (ob_fit_status)r;
         } else if (n == 2) {
             st = exact_arc(base, d, tol, &o, msg, msglen);
         } else {
             ob_method_msg(msg, msglen, "rational degree %d: exact only for circular arcs "
                           "(quadratics) and straight segments", n);
-            st = OB_SKIP;
+            st = OB_FIT_SKIP;
         }
     } else {
         st = exact_ph(base, d, tol, &o, msg, msglen);
     }
-    if (st == OB_OK)
+    if (st == OB_FIT_OK)
         ob_fit_single(out, &o);
     return st;
 }

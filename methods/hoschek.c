@@ -125,130 +125,188 @@ static double project(const ob_bez *A, const double Q[2], double u)
     return u;
 }
 
-static ob_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                             char *msg, size_t msglen)
+/* What one fit reads of its parameters: output degree m, M samples,
+ * corrections, fixed end tangents; the free control points (nfree per
+ * coordinate) and the unknowns (nunk). */
+typedef struct {
+    int m, M, iters, tangents, nfree, nunk;
+} hoschek_cfg;
+
+/* The parameters checked and read into h.  OB_FIT_OK, or OB_FIT_SKIP with the reason
+ * in msg. */
+static ob_fit_status hoschek_read(const ob_bez *base, const ob_fit_args *a, hoschek_cfg *h, char *msg, size_t msglen)
 {
-    hoschek_work *W = work;
-    const double d = a->d;
     const double pd = a->par[HP_DEGREE], ps = a->par[HP_SAMPLES], pi = a->par[HP_ITER];
     const int m = pd >= 0.5 ? (int)lround(pd) : base->deg;
     const int tangents = a->par[HP_TANGENTS] != 0.0;
     if (!(pd < OB_MAX_DEG + 0.5) || m < 1 || m > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree out of range 1..%d", OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (tangents && m < 3) {
         ob_method_msg(msg, msglen, "fixed end tangents need degree >= 3 (degree %d)", m);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(ps >= 0.0 && ps <= HOSCHEK_MAX_SAMPLES) || !(pi >= 0.0 && pi <= HOSCHEK_MAX_ITER)) {
         ob_method_msg(msg, msglen, "parameters out of range: samples 0..%d, iterations 0..%d",
                       HOSCHEK_MAX_SAMPLES, HOSCHEK_MAX_ITER);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     const int M = ps >= 0.5 ? (int)lround(ps) : 8 * (m + 1);
-    const int iters = (int)lround(pi);
     /* unknowns: P_1..P_{m-1} (x then y), or alpha, beta, P_2..P_{m-2} */
     const int nfree = tangents ? m - 3 : m - 1;
-    const int nunk = 2 * nfree + (tangents ? 2 : 0);
     if (M - 2 < (tangents ? nfree + 1 : nfree) || M < 2) {
         ob_method_msg(msg, msglen, "%d samples are too few for degree %d", M, m);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
+    h->m = m;
+    h->M = M;
+    h->iters = (int)lround(pi);
+    h->tangents = tangents;
+    h->nfree = nfree;
+    h->nunk = 2 * nfree + (tangents ? 2 : 0);
+    return OB_FIT_OK;
+}
 
+/* The offset's unit tangent directions T0, T1 at the ends of base (C' (1 - d
+ * kappa), direction only).  OB_FIT_OK, or OB_FIT_FAIL where there is none. */
+static ob_fit_status hoschek_end_tangents(const ob_bez *base, double d, double T0[2], double T1[2], char *msg,
+                                          size_t msglen)
+{
+    for (int e = 0; e < 2; e++) {
+        double o[2][2];
+        ob_bez_eval(base, e, 1, o);
+        const double s = hypot(o[1][0], o[1][1]), g = 1.0 - d * ob_bez_curvature(base, e);
+        if (!(s > 0.0) || g == 0.0) {
+            ob_method_msg(msg, msglen, "no offset tangent at t = %d (C' = 0 or 1 - d kappa = 0)", e);
+            return OB_FIT_FAIL;
+        }
+        double *T = e ? T1 : T0;
+        T[0] = (g > 0 ? 1.0 : -1.0) * o[1][0] / s;
+        T[1] = (g > 0 ? 1.0 : -1.0) * o[1][1] / s;
+    }
+    return OB_FIT_OK;
+}
+
+/* The least-squares system of the interior samples at their parameters
+ * W->u, ends fixed to Q0, Q1 (and with tangents: P_1 = Q0 + alpha T0,
+ * P_{m-1} = Q1 - beta T1; fixa / fixb: alpha / beta held at 0), into g. */
+static void hoschek_system(const hoschek_cfg *h, hoschek_work *W, const double T0[2], const double T1[2],
+                           int fixa, int fixb, ob_gls *g)
+{
+    const int m = h->m, M = h->M, nfree = h->nfree, nunk = h->nunk;
+    const double *Q0 = W->q[0], *Q1 = W->q[M - 1];
+    ob_gls_init(g, nunk, W->gls);
+    for (int j = 1; j < M - 1; j++) {
+        double B[OB_MAX_DEG + 1];
+        ob_bern_basis(m, W->u[j], B);
+        for (int c = 0; c < 2; c++) {
+            double *row = W->row, rhs = W->q[j][c] - B[0] * Q0[c] - B[m] * Q1[c];
+            memset(row, 0, (size_t)nunk * sizeof *row);
+            if (h->tangents) {
+                /* P_1 = Q0 + alpha T0, P_{m-1} = Q1 - beta T1 */
+                rhs -= B[1] * Q0[c] + B[m - 1] * Q1[c];
+                row[2 * nfree] = fixa ? 0.0 : B[1] * T0[c];
+                row[2 * nfree + 1] = fixb ? 0.0 : -B[m - 1] * T1[c];
+                for (int i = 0; i < nfree; i++)
+                    row[c * nfree + i] = B[i + 2];
+            } else {
+                for (int i = 0; i < nfree; i++)
+                    row[c * nfree + i] = B[i + 1];
+            }
+            ob_gls_add(g, row, rhs, 1.0);
+        }
+    }
+    for (int e = 0; e < 2; e++)
+        if (e ? fixb : fixa) {
+            double *row = W->row;
+            memset(row, 0, (size_t)nunk * sizeof *row);
+            row[2 * nfree + e] = 1.0;
+            ob_gls_add(g, row, 0.0, 1.0);
+        }
+}
+
+/* One least-squares fit at the parameters W->u, into W->x: with fixed
+ * tangents, a negative alpha or beta (a reversed end tangent) is set to 0 and
+ * the rest fitted again (at most twice).  0, or -1 (singular system). */
+static int hoschek_solve(const hoschek_cfg *h, hoschek_work *W, const double T0[2], const double T1[2])
+{
+    const int nfree = h->nfree;
+    int fixa = 0, fixb = 0, solved = 0;
+    for (;;) {
+        ob_gls g;
+        hoschek_system(h, W, T0, T1, fixa, fixb, &g);
+        if (h->nunk > 0 && ob_gls_solve(&g, W->x, 1e-13) != 0)
+            return -1;
+        if (h->tangents && solved++ < 2 &&
+            ((W->x[2 * nfree] < 0.0 && !fixa) || (W->x[2 * nfree + 1] < 0.0 && !fixb))) {
+            fixa |= W->x[2 * nfree] < 0.0;
+            fixb |= W->x[2 * nfree + 1] < 0.0;
+            continue;
+        }
+        return 0;
+    }
+}
+
+/* The control points of A from the solution W->x and the fixed ends. */
+static void hoschek_curve(const hoschek_cfg *h, const hoschek_work *W, const double T0[2], const double T1[2],
+                          ob_bez *A)
+{
+    const int m = h->m, nfree = h->nfree;
+    const double *Q0 = W->q[0], *Q1 = W->q[h->M - 1];
+    for (int c = 0; c < 2; c++) {
+        A->h[0][c] = Q0[c];
+        A->h[m][c] = Q1[c];
+        if (h->tangents) {
+            A->h[1][c] = Q0[c] + W->x[2 * nfree] * T0[c];
+            A->h[m - 1][c] = Q1[c] - W->x[2 * nfree + 1] * T1[c];
+            for (int i = 0; i < nfree; i++)
+                A->h[i + 2][c] = W->x[c * nfree + i];
+        } else {
+            for (int i = 0; i < nfree; i++)
+                A->h[i + 1][c] = W->x[c * nfree + i];
+        }
+    }
+    for (int i = 0; i <= m; i++)
+        A->h[i][2] = 1.0;
+}
+
+static ob_fit_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                 char *msg, size_t msglen)
+{
+    hoschek_work *W = work;
+    const double d = a->d;
+    hoschek_cfg h;
+    ob_fit_status st = hoschek_read(base, a, &h, msg, msglen);
+    if (st != OB_FIT_OK)
+        return st;
+    const int M = h.M;
     for (int j = 0; j < M; j++) {
         const double t = j == M - 1 ? 1.0 : (double)j / (M - 1);
         ob_bez_offset_point(base, t, d, W->q[j]);
         W->u[j] = t;
     }
-    const double *Q0 = W->q[0], *Q1 = W->q[M - 1];
     double T0[2] = {0.0, 0.0}, T1[2] = {0.0, 0.0};
-    if (tangents) {
-        /* the offset's tangent: C' (1 - d kappa), direction only */
-        for (int e = 0; e < 2; e++) {
-            double o[2][2];
-            ob_bez_eval(base, e, 1, o);
-            const double s = hypot(o[1][0], o[1][1]), g = 1.0 - d * ob_bez_curvature(base, e);
-            if (!(s > 0.0) || g == 0.0) {
-                ob_method_msg(msg, msglen, "no offset tangent at t = %d (C' = 0 or 1 - d kappa = 0)", e);
-                return OB_FAIL;
-            }
-            double *T = e ? T1 : T0;
-            T[0] = (g > 0 ? 1.0 : -1.0) * o[1][0] / s;
-            T[1] = (g > 0 ? 1.0 : -1.0) * o[1][1] / s;
-        }
-    }
-
+    if (h.tangents && (st = hoschek_end_tangents(base, d, T0, T1, msg, msglen)) != OB_FIT_OK)
+        return st;
     ob_bez A;
     memset(&A, 0, sizeof A);
-    A.deg = m;
-    for (int it = 0; it <= iters; it++) {
+    A.deg = h.m;
+    for (int it = 0; it <= h.iters; it++) {
         if (it > 0)
             for (int j = 1; j < M - 1; j++)
                 W->u[j] = project(&A, W->q[j], W->u[j]);
-        /* with fixed tangents, a negative alpha or beta (a reversed end
-         * tangent) is set to 0 and the rest fitted again */
-        int fixa = 0, fixb = 0, solved = 0;
-    refit:;
-        ob_gls g;
-        ob_gls_init(&g, nunk, W->gls);
-        for (int j = 1; j < M - 1; j++) {
-            double B[OB_MAX_DEG + 1];
-            ob_bern_basis(m, W->u[j], B);
-            for (int c = 0; c < 2; c++) {
-                double *row = W->row, rhs = W->q[j][c] - B[0] * Q0[c] - B[m] * Q1[c];
-                memset(row, 0, (size_t)nunk * sizeof *row);
-                if (tangents) {
-                    /* P_1 = Q0 + alpha T0, P_{m-1} = Q1 - beta T1 */
-                    rhs -= B[1] * Q0[c] + B[m - 1] * Q1[c];
-                    row[2 * nfree] = fixa ? 0.0 : B[1] * T0[c];
-                    row[2 * nfree + 1] = fixb ? 0.0 : -B[m - 1] * T1[c];
-                    for (int i = 0; i < nfree; i++)
-                        row[c * nfree + i] = B[i + 2];
-                } else {
-                    for (int i = 0; i < nfree; i++)
-                        row[c * nfree + i] = B[i + 1];
-                }
-                ob_gls_add(&g, row, rhs, 1.0);
-            }
-        }
-        for (int e = 0; e < 2; e++)
-            if (e ? fixb : fixa) {
-                double *row = W->row;
-                memset(row, 0, (size_t)nunk * sizeof *row);
-                row[2 * nfree + e] = 1.0;
-                ob_gls_add(&g, row, 0.0, 1.0);
-            }
-        if (nunk > 0 && ob_gls_solve(&g, W->x, 1e-13) != 0) {
+        if (hoschek_solve(&h, W, T0, T1) != 0) {
             if (it == 0) {
-                ob_method_msg(msg, msglen, "singular least-squares system (%d samples, degree %d)", M, m);
-                return OB_FAIL;
+                ob_method_msg(msg, msglen, "singular least-squares system (%d samples, degree %d)", M, h.m);
+                return OB_FIT_FAIL;
             }
             break;  /* keep the previous fit */
         }
-        if (tangents && solved++ < 2 && ((W->x[2 * nfree] < 0.0 && !fixa) || (W->x[2 * nfree + 1] < 0.0 && !fixb))) {
-            fixa |= W->x[2 * nfree] < 0.0;
-            fixb |= W->x[2 * nfree + 1] < 0.0;
-            goto refit;
-        }
-        for (int c = 0; c < 2; c++) {
-            A.h[0][c] = Q0[c];
-            A.h[m][c] = Q1[c];
-            if (tangents) {
-                A.h[1][c] = Q0[c] + W->x[2 * nfree] * T0[c];
-                A.h[m - 1][c] = Q1[c] - W->x[2 * nfree + 1] * T1[c];
-                for (int i = 0; i < nfree; i++)
-                    A.h[i + 2][c] = W->x[c * nfree + i];
-            } else {
-                for (int i = 0; i < nfree; i++)
-                    A.h[i + 1][c] = W->x[c * nfree + i];
-            }
-        }
-        for (int i = 0; i <= m; i++)
-            A.h[i][2] = 1.0;
+        hoschek_curve(&h, W, T0, T1, &A);
     }
     ob_fit_single(out, &A);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_hoschek = {

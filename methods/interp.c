@@ -32,15 +32,15 @@ typedef struct {
     double b[IP_N][2];
 } ip_work;
 
-static ob_status interp_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                            char *msg, size_t msglen)
+static ob_fit_status interp_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                char *msg, size_t msglen)
 {
     ip_work *wk = work;
     const double d = a->d;
     const int n = base->deg;
     if (n < 1) {
         ob_method_msg(msg, msglen, "degree %d: nothing to interpolate", n);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     for (int j = 0; j <= n; j++) {
         const double t = (double)j / n;
@@ -48,7 +48,7 @@ static ob_status interp_fit(const ob_bez *base, const ob_fit_args *a, void *work
         double N[2];
         if (ob_bez_normal(base, t, N) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %d/%d (point-like segment)", j, n);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         ob_bez_point(base, t, O);
         O[0] += d * N[0];
@@ -80,7 +80,7 @@ static ob_status interp_fit(const ob_bez *base, const ob_fit_args *a, void *work
         const double piv = wk->A[perm[k]][k];
         if (!(fabs(piv) > 1e-300)) {
             ob_method_msg(msg, msglen, "singular collocation matrix at column %d", k);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         for (int r = k + 1; r <= n; r++) {
             double *row = wk->A[perm[r]];
@@ -109,10 +109,10 @@ static ob_status interp_fit(const ob_bez *base, const ob_fit_args *a, void *work
     for (int k = 0; k <= n; k++)
         if (!isfinite(r.h[k][0]) || !isfinite(r.h[k][1])) {
             ob_method_msg(msg, msglen, "collocation solve gave non-finite control points");
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_interp = {

@@ -36,15 +36,15 @@ static int kim2018_degree(int n, int rational_in)
     return n + 1;
 }
 
-static ob_status kim2018_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                             char *msg, size_t msglen)
+static ob_fit_status kim2018_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                 char *msg, size_t msglen)
 {
     (void)work;
     const double d = a->d;
     const int n = base->deg;
     double N0[2], N1[2];
-    const ob_status pre = ob_conv_prepare(base, n + 1, N0, N1, msg, msglen);
-    if (pre != OB_OK)
+    const ob_fit_status pre = ob_conv_prepare(base, n + 1, N0, N1, msg, msglen);
+    if (pre != OB_FIT_OK)
         return pre;
     double w[2][2], alpha[2];
     ob_conv_moments(base, 1, w);
@@ -53,15 +53,15 @@ static ob_status kim2018_fit(const ob_bez *base, const ob_fit_args *a, void *wor
         ob_method_msg(msg, msglen, "singular, inconsistent system for alpha_0, alpha_1 "
                       "(w0 x w1 = %g): the piece is not convex",
                       w[0][0] * w[1][1] - w[0][1] * w[1][0]);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     ob_bez r;
     if (ob_conv_offset(base, alpha, 1, N0, d, &r) != 0) {
         ob_method_msg(msg, msglen, "output degree %d exceeds %d", n + 1, OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_kim2018 = {

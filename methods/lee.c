@@ -22,7 +22,7 @@
  * crosses an arc boundary (roots of C'(t) . u_j for the boundary direction
  * u_j, kept where d N points along +u_j) and writes one rational piece per
  * part, with its t breakpoints; more than OB_SPLIT_PIECES parts give
- * OB_RETRY_SMALLER.  The error does not depend on the size of the base piece,
+ * OB_FIT_RETRY_SMALLER.  The error does not depend on the size of the base piece,
  * only on the circle approximation, which depends on the tolerance.
  *
  * Readings (the paper itself is not among the sources here; see the params):
@@ -284,10 +284,31 @@ static void angle_range(const ob_bez *b, const double (*H)[2], int mh, double sd
 
 enum { MAXCROSS = 4 * OB_SPLIT_PIECES };
 
-static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                         char *msg, size_t msglen)
+/* What one fit reads of its inputs, once: the distance, the parameters and
+ * the direction of C' (H, degree mh: hodograph). */
+typedef struct {
+    double r, sd;              /* |d|, sign(d) */
+    int outdeg;
+    double start, eps;         /* eps: the circle's error allowed, relative to r */
+    int best, on_piece, clip;
+    double H[2 * OB_MAX_DEG + 1][2];
+    int mh;
+} lee_in;
+
+/* The arcs of one fit: m arcs of angle delta from psi0; the boundaries
+ * psi0 + j delta, j = jlo..jhi-1, are the ones tested for crossings.
+ * straight: the piece's normal does not turn (arcs_on=1) and the fit, the
+ * exact translate, is already written. */
+typedef struct {
+    long m, jlo, jhi;
+    double psi0, delta, width;
+    int straight;
+} lee_arcs;
+
+/* The parameters and inputs checked and read into L.  OB_FIT_OK, or OB_FIT_SKIP /
+ * OB_FIT_FAIL with the reason in msg. */
+static ob_fit_status lee_read(const ob_bez *base, const ob_fit_args *a, lee_in *L, char *msg, size_t msglen)
 {
-    (void)work;
     const double d = a->d, r = fabs(d), sd = d > 0 ? 1.0 : -1.0;
     const int n = base->deg, outdeg = lee_degree(n, base->rational);
     const double frac = a->par[P_FRAC], start = a->par[P_START];
@@ -295,62 +316,85 @@ static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
     const int clip = !on_piece && a->par[P_CLIP] != 0.0;
     if (!(r > 0.0) || !isfinite(d)) {
         ob_method_msg(msg, msglen, "offset distance d = %g: no circle to approximate", d);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (n < 1 || outdeg > OB_MAX_DEG || outdeg > OB_BERN_MAX) {
         ob_method_msg(msg, msglen, "output degree %d for input degree %d exceeds %d", outdeg, n,
                       OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(a->tol > 0.0) || !(frac > 0.0) || !isfinite(start)) {
         ob_method_msg(msg, msglen, "needs tol > 0 and tol_frac > 0 (tol %g, tol_frac %g)",
                       a->tol, frac);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
-    const double eps = frac * a->tol / r;
-    double H[2 * OB_MAX_DEG + 1][2];
-    const int mh = hodograph(base, H);
+    L->r = r;
+    L->sd = sd;
+    L->outdeg = outdeg;
+    L->start = start;
+    L->best = best;
+    L->on_piece = on_piece;
+    L->clip = clip;
+    L->eps = frac * a->tol / r;
+    L->mh = hodograph(base, L->H);
+    return OB_FIT_OK;
+}
 
-    /* the arcs: boundaries psi0 + j delta, j = jlo..jhi-1 are tested */
-    long m, jlo, jhi;
-    double psi0, delta, width = 2.0 * OB_PI;
-    if (!on_piece) {
-        m = arc_count(2.0 * OB_PI, eps, best, 3);
-        psi0 = start;
-        jlo = 0;
-        jhi = m;
+/* The arcs: the whole circle from `start` (arcs_on=0), or the piece's own
+ * range of normal angles (arcs_on=1; a straight piece gets its translate in
+ * out at once).  OB_FIT_OK, OB_FIT_RETRY_SMALLER (the normal turns by 2 pi or more)
+ * or OB_FIT_FAIL (too many arcs), with the reason in msg. */
+static ob_fit_status lee_plan_arcs(const ob_bez *base, double tol, const lee_in *L, lee_arcs *A, ob_fit *out,
+                                   char *msg, size_t msglen)
+{
+    const double (*H)[2] = (const double (*)[2])L->H;
+    A->width = 2.0 * OB_PI;
+    A->straight = 0;
+    if (!L->on_piece) {
+        A->m = arc_count(2.0 * OB_PI, L->eps, L->best, 3);
+        A->psi0 = L->start;
+        A->jlo = 0;
+        A->jhi = A->m;
     } else {
         double lo, hi;
-        angle_range(base, (const double (*)[2])H, mh, sd, &lo, &hi);
-        width = hi - lo;
-        if (width >= 2.0 * OB_PI - 1e-9) {
-            ob_method_msg(msg, msglen, "the normal turns by %.3g >= 2 pi in this piece", width);
-            return OB_RETRY_SMALLER;
+        angle_range(base, H, L->mh, L->sd, &lo, &hi);
+        A->width = hi - lo;
+        if (A->width >= 2.0 * OB_PI - 1e-9) {
+            ob_method_msg(msg, msglen, "the normal turns by %.3g >= 2 pi in this piece", A->width);
+            return OB_FIT_RETRY_SMALLER;
         }
-        psi0 = offset_angle((const double (*)[2])H, mh, 0.0, sd) + lo;
-        if (width < 1e-12) {  /* straight: a zero-angle arc, the exact translate */
-            const double v[2] = {r * cos(psi0), r * sin(psi0)};
+        A->psi0 = offset_angle(H, L->mh, 0.0, L->sd) + lo;
+        if (A->width < 1e-12) {  /* straight: a zero-angle arc, the exact translate */
+            const double v[2] = {L->r * cos(A->psi0), L->r * sin(A->psi0)};
             ob_bez t;
-            translate(base, v, outdeg, &t);
+            translate(base, v, L->outdeg, &t);
             ob_fit_single(out, &t);
-            return OB_OK;
+            A->straight = 1;
+            return OB_FIT_OK;
         }
-        m = arc_count(width, eps, best, 1);
-        jlo = 1;
-        jhi = m;
+        A->m = arc_count(A->width, L->eps, L->best, 1);
+        A->jlo = 1;
+        A->jhi = A->m;
     }
-    if (m < 1) {
-        ob_method_msg(msg, msglen, "tolerance %g too small for |d| = %g (2e6 arcs or more)",
-                      a->tol, r);
-        return OB_FAIL;
+    if (A->m < 1) {
+        ob_method_msg(msg, msglen, "tolerance %g too small for |d| = %g (2e6 arcs or more)", tol, L->r);
+        return OB_FIT_FAIL;
     }
-    delta = width / (double)m;
+    A->delta = A->width / (double)A->m;
+    return OB_FIT_OK;
+}
 
-    /* where d N crosses an arc boundary */
-    double cut[MAXCROSS + 2];
-    int nc = 0;
-    for (long j = jlo; j < jhi; j++) {
-        const double ang = psi0 + (double)j * delta, u[2] = {cos(ang), sin(ang)};
+/* The parameters in (0,1) where d N crosses a tested arc boundary (along
+ * +u_j), ascending, into cut[0..*nc-1].  OB_FIT_OK, or OB_FIT_RETRY_SMALLER past
+ * MAXCROSS crossings. */
+static ob_fit_status lee_crossings(const lee_in *L, const lee_arcs *A, double *cut, int *nc, char *msg,
+                                   size_t msglen)
+{
+    const double (*H)[2] = (const double (*)[2])L->H;
+    const int mh = L->mh;
+    *nc = 0;
+    for (long j = A->jlo; j < A->jhi; j++) {
+        const double ang = A->psi0 + (double)j * A->delta, u[2] = {cos(ang), sin(ang)};
         double p[2 * OB_MAX_DEG + 1];
         int pos = 0, neg = 0;
         for (int k = 0; k <= mh; k++) {
@@ -366,15 +410,15 @@ static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
             if (rt[i] < 1e-9 || rt[i] > 1.0 - 1e-9)
                 continue;
             double v[2];
-            hod_eval((const double (*)[2])H, mh, rt[i], v);
-            if (sd * (v[0] * u[1] - v[1] * u[0]) <= 0.0)  /* d N = sd (-v_y, v_x)/|v| along -u */
+            hod_eval(H, mh, rt[i], v);
+            if (L->sd * (v[0] * u[1] - v[1] * u[0]) <= 0.0)  /* d N = sd (-v_y, v_x)/|v| along -u */
                 continue;
-            if (nc == MAXCROSS) {
+            if (*nc == MAXCROSS) {
                 ob_method_msg(msg, msglen, "the normal crosses more than %d arc boundaries "
-                              "(%ld arcs)", MAXCROSS, m);
-                return OB_RETRY_SMALLER;
+                              "(%ld arcs)", MAXCROSS, A->m);
+                return OB_FIT_RETRY_SMALLER;
             }
-            int q = nc++;  /* insertion, ascending */
+            int q = (*nc)++;  /* insertion, ascending */
             while (q > 0 && cut[q - 1] > rt[i]) {
                 cut[q] = cut[q - 1];
                 q--;
@@ -382,71 +426,123 @@ static ob_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, o
             cut[q] = rt[i];
         }
     }
-    /* breakpoints 0 = t_0 < ... < t_k = 1, dropping near duplicates */
-    double tb[MAXCROSS + 2];
+    return OB_FIT_OK;
+}
+
+/* Breakpoints 0 = tb[0] < ... < tb[k] = 1 from the crossings cut[0..nc-1],
+ * dropping near duplicates; returns k + 1. */
+static int lee_breakpoints(const double *cut, int nc, double *tb)
+{
     int nt = 0;
     tb[nt++] = 0.0;
     for (int i = 0; i < nc; i++)
         if (cut[i] - tb[nt - 1] > 1e-12 && 1.0 - cut[i] > 1e-12)
             tb[nt++] = cut[i];
     tb[nt++] = 1.0;
-    const int np = nt - 1;
+    return nt;
+}
+
+/* The index of the arc that holds the offset angle at tm. */
+static long lee_arc_index(const lee_in *L, const lee_arcs *A, double tm)
+{
+    double x = offset_angle((const double (*)[2])L->H, L->mh, tm, L->sd) - A->psi0;
+    x -= 2.0 * OB_PI * floor(x / (2.0 * OB_PI));   /* [0, 2 pi) */
+    if (L->on_piece && x > 0.5 * (A->width + 2.0 * OB_PI))
+        x -= 2.0 * OB_PI;                           /* just below the range */
+    long j = (long)floor(x / A->delta);
+    if (j < 0)
+        j = 0;
+    if (j > A->m - 1)
+        j = A->m - 1;
+    return j;
+}
+
+/* clip=1: the part [*a0, *a1] of the arc (radius rr at its ends, *rmid at
+ * its middle control point) that the normals of sub cover.  Returns 1 when
+ * that is a zero-angle arc, and then writes sub's translate into seg. */
+static int lee_clip_arc(const ob_bez *sub, const lee_in *L, double delta, double rr, double *a0, double *a1,
+                        double *rmid, ob_bez *seg)
+{
+    double Hs[2 * OB_MAX_DEG + 1][2], lo, hi;
+    const int ms = hodograph(sub, Hs);
+    angle_range(sub, (const double (*)[2])Hs, ms, L->sd, &lo, &hi);
+    double x0 = offset_angle((const double (*)[2])Hs, ms, 0.0, L->sd) - *a0;
+    x0 -= 2.0 * OB_PI * floor((x0 + OB_PI) / (2.0 * OB_PI));  /* [-pi, pi) */
+    const double b0 = fmax(0.0, x0 + lo), b1 = fmin(delta, x0 + hi);
+    if (!(b1 - b0 > 1e-12)) {  /* a zero-angle arc: the translate */
+        const double am = *a0 + 0.5 * (b0 + b1), v[2] = {rr * cos(am), rr * sin(am)};
+        translate(sub, v, L->outdeg, seg);
+        return 1;
+    }
+    *a1 = *a0 + b1;
+    *a0 += b0;
+    *rmid = rr / cos(0.5 * (*a1 - *a0));
+    return 0;
+}
+
+/* Piece i of np, over [tb[i], tb[i+1]]: the part of base convolved with the
+ * arc that covers its normals (radius rr, middle control point at rm), into
+ * seg.  OB_FIT_OK, or OB_FIT_RETRY_SMALLER where the normal leaves the arc. */
+static ob_fit_status lee_piece(const ob_bez *base, const lee_in *L, const lee_arcs *A, const double *tb, int i,
+                               int np, double rr, double rm, ob_bez *seg, char *msg, size_t msglen)
+{
+    const double tm = 0.5 * (tb[i] + tb[i + 1]);
+    const long j = lee_arc_index(L, A, tm);
+    double a0 = A->psi0 + (double)j * A->delta, a1 = a0 + A->delta, rmid = rm;
+    ob_bez sub;
+    if (np == 1)
+        sub = *base;
+    else
+        ob_bez_subsegment(base, tb[i], tb[i + 1], &sub);
+    if (L->clip && lee_clip_arc(&sub, L, A->delta, rr, &a0, &a1, &rmid, seg))
+        return OB_FIT_OK;
+    const double am = 0.5 * (a0 + a1);
+    const double q[3][2] = {{rr * cos(a0), rr * sin(a0)},
+                            {rmid * cos(am), rmid * sin(am)},
+                            {rr * cos(a1), rr * sin(a1)}};
+    if (convolve(&sub, q, seg) != 0) {
+        ob_method_msg(msg, msglen, "the normal leaves arc %ld within t in [%.6g, %.6g] "
+                      "(a cusp?)", j, tb[i], tb[i + 1]);
+        return OB_FIT_RETRY_SMALLER;
+    }
+    return OB_FIT_OK;
+}
+
+static ob_fit_status lee_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                             char *msg, size_t msglen)
+{
+    (void)work;
+    lee_in L;
+    lee_arcs A;
+    ob_fit_status st = lee_read(base, a, &L, msg, msglen);
+    if (st != OB_FIT_OK)
+        return st;
+    st = lee_plan_arcs(base, a->tol, &L, &A, out, msg, msglen);
+    if (st != OB_FIT_OK || A.straight)
+        return st;
+    double cut[MAXCROSS + 2], tb[MAXCROSS + 2];
+    int nc;
+    st = lee_crossings(&L, &A, cut, &nc, msg, msglen);
+    if (st != OB_FIT_OK)
+        return st;
+    const int np = lee_breakpoints(cut, nc, tb) - 1;
     if (np > OB_SPLIT_PIECES) {
         ob_method_msg(msg, msglen, "%d arcs of the circle meet this piece (at most %d pieces)",
                       np, OB_SPLIT_PIECES);
-        return OB_RETRY_SMALLER;
+        return OB_FIT_RETRY_SMALLER;
     }
-
-    const double lam = best ? 2.0 / (2.0 + arc_error(0.5 * delta, 0)) : 1.0;
-    const double rr = lam * r, rm = rr / cos(0.5 * delta);
+    const double lam = L.best ? 2.0 / (2.0 + arc_error(0.5 * A.delta, 0)) : 1.0;
+    const double rr = lam * L.r, rm = rr / cos(0.5 * A.delta);
     out->n = np;
     out->ctrl_points = 0;
     for (int i = 0; i <= np; i++)
         out->t[i] = tb[i];
     for (int i = 0; i < np; i++) {
-        const double tm = 0.5 * (tb[i] + tb[i + 1]);
-        double x = offset_angle((const double (*)[2])H, mh, tm, sd) - psi0;
-        x -= 2.0 * OB_PI * floor(x / (2.0 * OB_PI));   /* [0, 2 pi) */
-        if (on_piece && x > 0.5 * (width + 2.0 * OB_PI))
-            x -= 2.0 * OB_PI;                           /* just below the range */
-        long j = (long)floor(x / delta);
-        if (j < 0)
-            j = 0;
-        if (j > m - 1)
-            j = m - 1;
-        double a0 = psi0 + (double)j * delta, a1 = a0 + delta, rmid = rm;
-        ob_bez sub;
-        if (np == 1)
-            sub = *base;
-        else
-            ob_bez_subsegment(base, tb[i], tb[i + 1], &sub);
-        if (clip) {  /* the part of the arc that the part's normals cover */
-            double Hs[2 * OB_MAX_DEG + 1][2], lo, hi;
-            const int ms = hodograph(&sub, Hs);
-            angle_range(&sub, (const double (*)[2])Hs, ms, sd, &lo, &hi);
-            double x0 = offset_angle((const double (*)[2])Hs, ms, 0.0, sd) - a0;
-            x0 -= 2.0 * OB_PI * floor((x0 + OB_PI) / (2.0 * OB_PI));  /* [-pi, pi) */
-            const double b0 = fmax(0.0, x0 + lo), b1 = fmin(delta, x0 + hi);
-            if (!(b1 - b0 > 1e-12)) {  /* a zero-angle arc: the translate */
-                const double am = a0 + 0.5 * (b0 + b1), v[2] = {rr * cos(am), rr * sin(am)};
-                translate(&sub, v, outdeg, &out->seg[i]);
-                continue;
-            }
-            a1 = a0 + b1;
-            a0 += b0;
-            rmid = rr / cos(0.5 * (a1 - a0));
-        }
-        const double am = 0.5 * (a0 + a1);
-        const double q[3][2] = {{rr * cos(a0), rr * sin(a0)},
-                                {rmid * cos(am), rmid * sin(am)},
-                                {rr * cos(a1), rr * sin(a1)}};
-        if (convolve(&sub, q, &out->seg[i]) != 0) {
-            ob_method_msg(msg, msglen, "the normal leaves arc %ld within t in [%.6g, %.6g] "
-                          "(a cusp?)", j, tb[i], tb[i + 1]);
-            return OB_RETRY_SMALLER;
-        }
+        st = lee_piece(base, &L, &A, tb, i, np, rr, rm, &out->seg[i], msg, msglen);
+        if (st != OB_FIT_OK)
+            return st;
     }
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_lee = {

@@ -36,8 +36,8 @@ static const ob_param liu_params[] = {
                   "liu2002_ex1 cubic, whose normal turns by 3 rad)", 1, 1024, 1},
 };
 
-static ob_status liu_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                         char *msg, size_t msglen)
+static ob_fit_status liu_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                             char *msg, size_t msglen)
 {
     return ob_nf_method_fit(OB_NF_LEGENDRE, base, a, work, out, msg, msglen);
 }

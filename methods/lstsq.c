@@ -28,8 +28,8 @@ static const ob_param lstsq_params[] = {
                   "analogue of Liu-Wang's eq. (7)", 0, 1, 1},
 };
 
-static ob_status lstsq_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                           char *msg, size_t msglen)
+static ob_fit_status lstsq_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                               char *msg, size_t msglen)
 {
     return ob_nf_method_fit(OB_NF_LSTSQ, base, a, work, out, msg, msglen);
 }

@@ -6,7 +6,7 @@
  * approximating curve (usually one segment; a few pieces are allowed), written
  * into caller-owned storage.  Methods keep no static state, never allocate in
  * fit() (scratch space of work_size bytes is handed in by the driver) and never
- * print: they return a status and, on failure, a reason in msg.
+ * print: they return an ob_fit_status and, on failure, a reason in msg.
  *
  * Adding a method: write methods/NAME.c exporting `const ob_method
  * ob_method_NAME`, and add one line to methods/registry.c.
@@ -17,14 +17,17 @@
 #include <stddef.h>
 #include "methods/core/curve.h"
 
-/* Job and fit status.  The first four are the CSV `status` column.  A fit
- * may also return OB_RETRY_SMALLER: its output for this piece does not fit in
- * an ob_fit (e.g. more pieces than OB_MAX_PIECES); the driver then splits the
- * piece as if its error were too large. */
-/* OB_TIMEOUT: the job used more than the run's --job-timeout (set by the
- * driver, never returned by a method). */
-typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_TIMEOUT, OB_RETRY_SMALLER } ob_status;
-const char *ob_status_name(ob_status s);
+/* What a method's fit returns (the job's status, ob_status in
+ * methods/driver/driver.h, is the driver's: it maps these onto it in one
+ * place).  OB_FIT_FAIL: no approximation (a singular system, no convergence);
+ * OB_FIT_SKIP: the method does not apply to this input; both with the reason
+ * in msg, and both end the job (status fail / skip).  OB_FIT_RETRY_SMALLER:
+ * the method has no output for this piece that it may return (e.g. more
+ * pieces than OB_SPLIT_PIECES or OB_MAX_PIECES, a pole); the driver then
+ * splits the piece as if its error were too large. */
+typedef enum { OB_FIT_OK = 0, OB_FIT_FAIL, OB_FIT_SKIP, OB_FIT_RETRY_SMALLER } ob_fit_status;
+/* "ok", "fail", "skip", "retry-smaller" (messages; not a CSV column). */
+const char *ob_fit_status_name(ob_fit_status s);
 
 /* OB_MAX_PIECES: the most pieces one fit can hold (one B-spline of up to 64
  * spans, bspline-lsq, is returned whole).  OB_SPLIT_PIECES: the most pieces
@@ -125,11 +128,11 @@ typedef struct ob_method {
     int nparams;
     /* Purpose: approximate the d-offset of `base` over its whole [0,1].
      * Inputs:  a: distance, tolerance and parameter values.
-     * Returns OB_OK, OB_FAIL (singular system, no convergence; reason in msg),
-     * OB_SKIP (not applicable to this input; reason in msg) or
-     * OB_RETRY_SMALLER (see ob_status). */
-    ob_status (*fit)(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                     char *msg, size_t msglen);
+     * Returns OB_FIT_OK, OB_FIT_FAIL (singular system, no convergence; reason
+     * in msg), OB_FIT_SKIP (not applicable to this input; reason in msg) or
+     * OB_FIT_RETRY_SMALLER (see ob_fit_status). */
+    ob_fit_status (*fit)(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                         char *msg, size_t msglen);
 } ob_method;
 
 /* ---- registry (methods/registry.c) ------------------------------------ */

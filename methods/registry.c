@@ -89,15 +89,13 @@ int ob_method_count(void)
     return n;
 }
 
-const char *ob_status_name(ob_status s)
+const char *ob_fit_status_name(ob_fit_status s)
 {
     switch (s) {
-    case OB_OK: return "ok";
-    case OB_LIMIT: return "limit";
-    case OB_FAIL: return "fail";
-    case OB_SKIP: return "skip";
-    case OB_TIMEOUT: return "timeout";
-    case OB_RETRY_SMALLER: return "retry-smaller";
+    case OB_FIT_OK: return "ok";
+    case OB_FIT_FAIL: return "fail";
+    case OB_FIT_SKIP: return "skip";
+    case OB_FIT_RETRY_SMALLER: return "retry-smaller";
     }
     return "?";
 }

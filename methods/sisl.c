@@ -34,7 +34,7 @@
  *    blossoming (de Boor's algorithm with the span's end knots as arguments),
  *    in fixed-size local arrays.  ctrl_points = the B-spline's own number of
  *    control points (README "Output": a B-spline counts its control points).
- *    More spans than OB_SPLIT_PIECES: OB_RETRY_SMALLER (the driver splits the
+ *    More spans than OB_SPLIT_PIECES: OB_FIT_RETRY_SMALLER (the driver splits the
  *    piece and SISL starts again on each half).
  *  - SISL's tolerance is not a bound under our metrics (tests/methods/test_sisl.c
  *    prints the measurement): on liu2002_ex1 the hausdorff error of its
@@ -45,9 +45,9 @@
  *    tolerance, so a half piece gets about as large an error as the whole);
  *    OB_CAP_ORIENTED (s1360 marches from the start of the parameter, so the
  *    reversed curve gets other Hermite points and another error).
- *  - s1360's status < 0: OB_FAIL with that status in msg (e.g. -184 for a
+ *  - s1360's status < 0: OB_FIT_FAIL with that status in msg (e.g. -184 for a
  *    tolerance <= 0).  A result that is not a polynomial cubic B-spline on
- *    [0,1] would break the readings above: OB_FAIL saying so.
+ *    [0,1] would break the readings above: OB_FIT_FAIL saying so.
  *
  * Allocation: newCurve/s1360/freeCurve allocate inside the library (malloc);
  * the no-allocation rule is for our own code in the timed path, which here
@@ -376,8 +376,8 @@ static void span_bezier(const double *et, const double *ecoef, int p, int j, ob_
     }
 }
 
-static ob_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                          char *msg, size_t msglen)
+static ob_fit_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                              char *msg, size_t msglen)
 {
     (void)work;
     sisl_request q;
@@ -396,32 +396,32 @@ static ob_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, 
     if (!(timeout >= 0.1 && timeout <= 3600) || !(q.amax >= 0.0 && q.amax <= 1e12)) {
         /* --param refuses these; a caller that bypasses it gets no silent substitute */
         ob_method_msg(msg, msglen, "timeout %g (0.1..3600) or max_step %g (0..1e12) out of range", timeout, q.amax);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     if (guarded_s1360(&q, timeout, &res, msg, msglen) != 0)
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     const sisl_result *rc = &res;
     if (res.stat < 0 || !res.et) {
         ob_method_msg(msg, msglen, "SISL s1360 failed with status %d", res.stat);
         free(res.et);
         free(res.ecoef);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
 
-    ob_status st = OB_OK;
+    ob_fit_status st = OB_FIT_OK;
     const int p = rc->ik - 1, nv = rc->in;
     const double *et = rc->et;
     if (p != SISL_OUT_DEG || rc->idim != 2 || rc->ikind != 1 || nv < rc->ik) {
         ob_method_msg(msg, msglen, "SISL s1360 returned order %d, kind %d, dimension %d, %d "
                       "vertices: not a polynomial cubic B-spline", rc->ik, rc->ikind, rc->idim, nv);
-        st = OB_FAIL;
+        st = OB_FIT_FAIL;
         goto done;
     }
     const double lo = et[p], hi = et[nv];
     if (!(fabs(lo) <= 1e-12 && fabs(hi - 1.0) <= 1e-12)) {
         ob_method_msg(msg, msglen, "SISL s1360 returned the domain [%.17g, %.17g], not the "
                       "base's [0, 1]", lo, hi);
-        st = OB_FAIL;
+        st = OB_FIT_FAIL;
         goto done;
     }
     int spans = 0;
@@ -430,7 +430,7 @@ static ob_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *work, 
     if (spans > OB_SPLIT_PIECES) {
         ob_method_msg(msg, msglen, "SISL's offset has %d spans, more than %d pieces", spans,
                       OB_SPLIT_PIECES);
-        st = OB_RETRY_SMALLER;
+        st = OB_FIT_RETRY_SMALLER;
         goto done;
     }
     out->n = 0;

@@ -11,8 +11,8 @@
 
 #include <math.h>
 
-static ob_status tiller_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                            char *msg, size_t msglen)
+static ob_fit_status tiller_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                char *msg, size_t msglen)
 {
     (void)work;
     const double d = a->d;
@@ -38,7 +38,7 @@ static ob_status tiller_fit(const ob_bez *base, const ob_fit_args *a, void *work
     }
     if (have < 0) {
         ob_method_msg(msg, msglen, "control polygon collapses to a point");
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     for (int i = 0; i < n; i++) {
         nrm[i][0] = -u[i][1];
@@ -68,7 +68,7 @@ static ob_status tiller_fit(const ob_bez *base, const ob_fit_args *a, void *work
     Q[1] = P[n][1] + d * nrm[n - 1][1];
     ob_bez_set(&r, n, Q[0], Q[1], ob_bez_weight(base, n));
     ob_fit_single(out, &r);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 const ob_method ob_method_tiller = {

@@ -30,7 +30,7 @@
  *    "96 sample points" for the septic (n = 7, k = 12) and "less than
  *    4(3n+3)" sample points.  The 2 npt equations exceed the unknowns, so
  *    they are solved in the least-squares sense (ratlsq uses an SVD; here a
- *    Givens QR, which detects rank deficiency: then OB_FAIL).
+ *    Givens QR, which detects rank deficiency: then OB_FIT_FAIL).
  *  - The nodes are ratlsq's: t_j = sin^2(pi/2 j/(npt-1)), j = 0..npt-1 (the
  *    second half computed as 1 - sin^2(...) of the mirrored index, as in
  *    ratlsq), i.e. the Chebyshev-Gauss-Lobatto points (extrema of
@@ -51,12 +51,12 @@
  *    not ensure it, and on gentle curves it often returns a denominator with
  *    a root in [0,1] (a near pole-zero pair).  Such an iterate is never
  *    returned, but, as in ratlsq, its errors at the nodes still drive the next
- *    iterate.  No valid iterate at all: OB_RETRY_SMALLER, so the driver splits
- *    the piece (parameter on_pole = 0: OB_FAIL instead).  A singular rational
+ *    iterate.  No valid iterate at all: OB_FIT_RETRY_SMALLER, so the driver splits
+ *    the piece (parameter on_pole = 0: OB_FIT_FAIL instead).  A singular rational
  *    system on the first solve (the denominator undetermined: on small pieces
  *    the offset is nearly polynomial): the polynomial member of the family
  *    (denominator 1), which the paper counts as the degenerate rational case.
- *    A singular polynomial system: OB_FAIL on the first solve; on later solves
+ *    A singular polynomial system: OB_FIT_FAIL on the first solve; on later solves
  *    the loop ends (best valid iterate kept).
  *  - The normalization q(0) = 1 makes the least-squares solution, hence the
  *    rational result, depend on the direction of the parameter (the reversed
@@ -142,7 +142,7 @@ static const ob_param zhao_params[ZP_COUNT] = {
      "output degree; 0 = the base's degree (the paper's examples; 'an arbitrary degree' is allowed)", 0, OB_MAX_DEG, 1},
     {"on_pole", 1,
      "no iterate with a denominator positive on [0,1] (zhao-rational): 1 = ask the driver to split "
-     "the piece (OB_RETRY_SMALLER, as if the error were too large; default: the paper requires a "
+     "the piece (OB_FIT_RETRY_SMALLER, as if the error were too large; default: the paper requires a "
      "pole-free solution and says nothing of what to do without one, and a smaller piece usually "
      "has one), 0 = fail", 0, 1, 1},
 };
@@ -179,11 +179,18 @@ static void unpack(const double *x, int n, int rational, int i, double P[2], dou
     *beta = (!rational || i == 0) ? 1.0 : x[2 * n + 1 + i];
 }
 
-static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                              char *msg, size_t msglen, int rational)
+/* What one fit reads of its parameters: output degree n, solves, node
+ * multiplier, weights; k nodes per npfac, npt nodes, nunk unknowns. */
+typedef struct {
+    int n, iters, npfac, weighted, rational;
+    int k, npt, nunk;
+} zhao_cfg;
+
+/* The parameters checked and read into z.  OB_FIT_OK, or OB_FIT_SKIP with the reason
+ * in msg. */
+static ob_fit_status zhao_read(const ob_bez *base, const ob_fit_args *a, int rational, zhao_cfg *z, char *msg,
+                               size_t msglen)
 {
-    zhao_work *W = work;
-    const double r = a->d;
     const double pd = a->par[ZP_DEGREE], pi = a->par[ZP_ITER], pf = a->par[ZP_NPFAC];
     const int n = pd >= 0.5 ? (int)lround(pd) : base->deg;
     const int iters = (int)lround(pi), npfac = (int)lround(pf);
@@ -191,19 +198,30 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
     if (!(pd < OB_MAX_DEG + 0.5) || n < 1 || n > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree %g out of range 1..%d", n < 1 ? pd : (double)n,
                       OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (!(pi >= 0.5 && pi <= ZHAO_MAX_ITER) || !(pf >= 0.5 && pf <= ZHAO_MAX_NPFAC)) {
         ob_method_msg(msg, msglen, "parameters out of range: iterations 1..%d, npfac 1..%d",
                       ZHAO_MAX_ITER, ZHAO_MAX_NPFAC);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
-    const int k = rational ? (3 * n + 3) / 2 : n + 1;
-    const int npt = npfac * k;
-    const int nunk = 2 * (n + 1) + (rational ? n : 0);
+    z->n = n;
+    z->iters = iters;
+    z->npfac = npfac;
+    z->weighted = weighted;
+    z->rational = rational;
+    z->k = rational ? (3 * n + 3) / 2 : n + 1;
+    z->npt = npfac * z->k;
+    z->nunk = 2 * (n + 1) + (rational ? n : 0);
+    return OB_FIT_OK;
+}
 
-    /* origin: centroid of the control points; scale for the exactness test */
-    double v[2] = {0.0, 0.0}, lo[2], hi[2];
+/* The origin v: the centroid of the base's control points; returns the scale
+ * of the exactness test, |r| + the larger side of their bounding box. */
+static double zhao_origin(const ob_bez *base, double r, double v[2])
+{
+    double lo[2], hi[2];
+    v[0] = v[1] = 0.0;
     for (int i = 0; i <= base->deg; i++) {
         double p[2];
         ob_bez_ctrl(base, i, p);
@@ -214,9 +232,15 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
             hi[c] = i ? fmax(hi[c], p[c]) : p[c];
         }
     }
-    const double scale = fabs(r) + fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    return fabs(r) + fmax(hi[0] - lo[0], hi[1] - lo[1]);
+}
 
-    /* ratlsq's nodes: Chebyshev-Gauss-Lobatto points on [0,1] */
+/* ratlsq's npt nodes (Chebyshev-Gauss-Lobatto points on [0,1]) with C - v
+ * and N there, errors 0, into W.  OB_FIT_OK, or OB_FIT_FAIL where there is no
+ * normal. */
+static ob_fit_status zhao_nodes(const ob_bez *base, const double v[2], int npt, zhao_work *W, char *msg,
+                                size_t msglen)
+{
     for (int j = 0; j < npt; j++) {
         double t;
         if (2 * j < npt - 1) {
@@ -233,104 +257,125 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
         W->c[j][1] = o[0][1] - v[1];
         if (ob_bez_normal(base, t, W->nn[j]) != 0) {
             ob_method_msg(msg, msglen, "no normal at t = %.17g (point-like segment)", t);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         W->e[j] = 0.0;
     }
+    return OB_FIT_OK;
+}
 
-    double e = 0.0, bestdev = INFINITY;
-    for (int it = 1; it <= iters; it++) {
+/* Eq. (2) at every node for solve `it` (1: e = 0, unweighted), the targets
+ * at r + sigma_j e with the signs and weights of the errors in W->e, added to
+ * g. */
+static void zhao_system(const zhao_cfg *z, zhao_work *W, double r, int it, double e, ob_gls *g)
+{
+    const int n = z->n, rational = z->rational;
+    for (int j = 0; j < z->npt; j++) {
+        double B[OB_MAX_DEG + 1];
+        ob_bern_basis(n, W->t[j], B);
+        const double nx = W->nn[j][0], ny = W->nn[j][1];
+        const double cxn = W->c[j][0] * ny - W->c[j][1] * nx;
+        const double sig = it == 1 ? 0.0 : (W->e[j] >= 0.0 ? 1.0 : -1.0);
+        const double cdn = W->c[j][0] * nx + W->c[j][1] * ny + r + sig * e;
+        const double w = (it > 1 && z->weighted) ? fabs(W->e[j]) : 1.0;
+        const double q0 = rational ? B[0] : 1.0;
+        /* direction: P x N - (q - 1) (C x N) = C x N  (times B_0 for rational) */
+        double *row = W->row;
+        for (int i = 0; i <= n; i++) {
+            row[i] = B[i] * ny;
+            row[n + 1 + i] = -B[i] * nx;
+            if (rational && i > 0)
+                row[2 * n + 1 + i] = -B[i] * cxn;
+        }
+        ob_gls_add(g, row, q0 * cxn, w);
+        /* magnitude: P . N - (q - 1) (C . N + r + sigma e) = C . N + r + sigma e */
+        for (int i = 0; i <= n; i++) {
+            row[i] = B[i] * nx;
+            row[n + 1 + i] = B[i] * ny;
+            if (rational && i > 0)
+                row[2 * n + 1 + i] = -B[i] * cdn;
+        }
+        ob_gls_add(g, row, q0 * cdn, w);
+    }
+}
+
+/* 1 when the denominator of the rational iterate x is proved positive on
+ * [0,1]. */
+static int zhao_pole_free(const zhao_cfg *z, const double *x)
+{
+    const int n = z->n;
+    double beta[OB_MAX_DEG + 1];
+    beta[0] = 1.0;
+    for (int i = 1; i <= n; i++)
+        beta[i] = x[2 * n + 1 + i];
+    return bern_positive(beta, n, 0);
+}
+
+/* The error along the normal of the iterate W->x at every node, into W->e;
+ * returns the largest |error|, their sum in *sum. */
+static double zhao_node_errors(const zhao_cfg *z, zhao_work *W, double r, double *sum)
+{
+    const int n = z->n;
+    double dev = 0.0;
+    *sum = 0.0;
+    for (int j = 0; j < z->npt; j++) {
+        double B[OB_MAX_DEG + 1], P[2] = {0.0, 0.0}, q = 0.0;
+        ob_bern_basis(n, W->t[j], B);
+        for (int i = 0; i <= n; i++) {
+            double Pi[2], bi;
+            unpack(W->x, n, z->rational, i, Pi, &bi);
+            P[0] += B[i] * Pi[0];
+            P[1] += B[i] * Pi[1];
+            q += B[i] * bi;
+        }
+        const double ej = (P[0] / q - W->c[j][0]) * W->nn[j][0] +
+                          (P[1] / q - W->c[j][1]) * W->nn[j][1] - r;
+        W->e[j] = ej;
+        dev = fmax(dev, fabs(ej));
+        *sum += fabs(ej);
+    }
+    return dev;
+}
+
+/* The accelerated algorithm: up to z->iters solves, the valid iterate with
+ * the smallest largest error at the nodes into W->best (that error in
+ * *bestdev; INFINITY: none).  0, or -1 when the first system is singular. */
+static int zhao_iterate(const zhao_cfg *z, zhao_work *W, double r, double scale, double *bestdev)
+{
+    double e = 0.0;
+    *bestdev = INFINITY;
+    for (int it = 1; it <= z->iters; it++) {
         ob_gls g;
-        int valid = 1;
-        ob_gls_init(&g, nunk, W->gls);
-        for (int j = 0; j < npt; j++) {
-            double B[OB_MAX_DEG + 1];
-            ob_bern_basis(n, W->t[j], B);
-            const double nx = W->nn[j][0], ny = W->nn[j][1];
-            const double cxn = W->c[j][0] * ny - W->c[j][1] * nx;
-            const double sig = it == 1 ? 0.0 : (W->e[j] >= 0.0 ? 1.0 : -1.0);
-            const double cdn = W->c[j][0] * nx + W->c[j][1] * ny + r + sig * e;
-            const double w = (it > 1 && weighted) ? fabs(W->e[j]) : 1.0;
-            const double q0 = rational ? B[0] : 1.0;
-            /* direction: P x N - (q - 1) (C x N) = C x N  (times B_0 for rational) */
-            double *row = W->row;
-            for (int i = 0; i <= n; i++) {
-                row[i] = B[i] * ny;
-                row[n + 1 + i] = -B[i] * nx;
-                if (rational && i > 0)
-                    row[2 * n + 1 + i] = -B[i] * cxn;
-            }
-            ob_gls_add(&g, row, q0 * cxn, w);
-            /* magnitude: P . N - (q - 1) (C . N + r + sigma e) = C . N + r + sigma e */
-            for (int i = 0; i <= n; i++) {
-                row[i] = B[i] * nx;
-                row[n + 1 + i] = B[i] * ny;
-                if (rational && i > 0)
-                    row[2 * n + 1 + i] = -B[i] * cdn;
-            }
-            ob_gls_add(&g, row, q0 * cdn, w);
-        }
-        if (ob_gls_solve(&g, W->x, 1e-13) != 0) {
-            if (it == 1 && rational) {
-                /* the denominator is not determined: on a small piece the
-                 * offset is nearly polynomial and the beta columns become
-                 * dependent on the others.  The paper counts a polynomial as
-                 * the degenerate rational case (denominator 1): fit that. */
-                return zhao_fit_any(base, a, work, out, msg, msglen, 0);
-            }
-            if (it == 1) {
-                ob_method_msg(msg, msglen, "singular least-squares system for eq. (2) (%d nodes, "
-                              "%d unknowns)", npt, nunk);
-                return OB_FAIL;
-            }
-            break;
-        }
-        if (rational) {
-            double beta[OB_MAX_DEG + 1];
-            beta[0] = 1.0;
-            for (int i = 1; i <= n; i++)
-                beta[i] = W->x[2 * n + 1 + i];
-            valid = bern_positive(beta, n, 0);
-        }
-        /* the error along the normal at the nodes */
-        double dev = 0.0, sum = 0.0;
-        for (int j = 0; j < npt; j++) {
-            double B[OB_MAX_DEG + 1], P[2] = {0.0, 0.0}, q = 0.0;
-            ob_bern_basis(n, W->t[j], B);
-            for (int i = 0; i <= n; i++) {
-                double Pi[2], bi;
-                unpack(W->x, n, rational, i, Pi, &bi);
-                P[0] += B[i] * Pi[0];
-                P[1] += B[i] * Pi[1];
-                q += B[i] * bi;
-            }
-            const double ej = (P[0] / q - W->c[j][0]) * W->nn[j][0] +
-                              (P[1] / q - W->c[j][1]) * W->nn[j][1] - r;
-            W->e[j] = ej;
-            dev = fmax(dev, fabs(ej));
-            sum += fabs(ej);
-        }
+        ob_gls_init(&g, z->nunk, W->gls);
+        zhao_system(z, W, r, it, e, &g);
+        if (ob_gls_solve(&g, W->x, 1e-13) != 0)
+            return it == 1 ? -1 : 0;  /* later: the best valid iterate kept */
+        const int valid = z->rational ? zhao_pole_free(z, W->x) : 1;
+        double sum;
+        const double dev = zhao_node_errors(z, W, r, &sum);
         if (!isfinite(dev))
             break;
-        if (valid && dev < bestdev) {
-            bestdev = dev;
-            memcpy(W->best, W->x, (size_t)nunk * sizeof *W->x);
+        if (valid && dev < *bestdev) {
+            *bestdev = dev;
+            memcpy(W->best, W->x, (size_t)z->nunk * sizeof *W->x);
         }
-        e = sum / npt;
+        e = sum / z->npt;
         if (dev <= 1e-14 * scale)
             break;
     }
+    return 0;
+}
 
-    if (!(bestdev < INFINITY)) {
-        ob_method_msg(msg, msglen, "no iterate with a denominator positive on [0,1] (%d iterations)", iters);
-        return a->par[ZP_POLE] != 0.0 ? OB_RETRY_SMALLER : OB_FAIL;
-    }
+/* The iterate x as the output Bézier, back from the origin v. */
+static void zhao_result(const zhao_cfg *z, const double *x, const double v[2], ob_fit *out)
+{
+    const int n = z->n;
     ob_bez res;
     memset(&res, 0, sizeof res);
     res.deg = n;
     for (int i = 0; i <= n; i++) {
         double P[2], bi;
-        unpack(W->best, n, rational, i, P, &bi);
+        unpack(x, n, z->rational, i, P, &bi);
         res.h[i][0] = P[0] + bi * v[0];
         res.h[i][1] = P[1] + bi * v[1];
         res.h[i][2] = bi;
@@ -338,17 +383,51 @@ static ob_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *wo
             res.rational = 1;
     }
     ob_fit_single(out, &res);
-    return OB_OK;
 }
 
-static ob_status zhao_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                          char *msg, size_t msglen)
+static ob_fit_status zhao_fit_any(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                  char *msg, size_t msglen, int rational)
+{
+    zhao_work *W = work;
+    const double r = a->d;
+    zhao_cfg z;
+    ob_fit_status st = zhao_read(base, a, rational, &z, msg, msglen);
+    if (st != OB_FIT_OK)
+        return st;
+    double v[2];
+    const double scale = zhao_origin(base, r, v);
+    st = zhao_nodes(base, v, z.npt, W, msg, msglen);
+    if (st != OB_FIT_OK)
+        return st;
+    double bestdev;
+    if (zhao_iterate(&z, W, r, scale, &bestdev) != 0) {
+        if (rational) {
+            /* the denominator is not determined: on a small piece the
+             * offset is nearly polynomial and the beta columns become
+             * dependent on the others.  The paper counts a polynomial as
+             * the degenerate rational case (denominator 1): fit that. */
+            return zhao_fit_any(base, a, work, out, msg, msglen, 0);
+        }
+        ob_method_msg(msg, msglen, "singular least-squares system for eq. (2) (%d nodes, "
+                      "%d unknowns)", z.npt, z.nunk);
+        return OB_FIT_FAIL;
+    }
+    if (!(bestdev < INFINITY)) {
+        ob_method_msg(msg, msglen, "no iterate with a denominator positive on [0,1] (%d iterations)", z.iters);
+        return a->par[ZP_POLE] != 0.0 ? OB_FIT_RETRY_SMALLER : OB_FIT_FAIL;
+    }
+    zhao_result(&z, W->best, v, out);
+    return OB_FIT_OK;
+}
+
+static ob_fit_status zhao_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                              char *msg, size_t msglen)
 {
     return zhao_fit_any(base, a, work, out, msg, msglen, 0);
 }
 
-static ob_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
-                                   char *msg, size_t msglen)
+static ob_fit_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out,
+                                       char *msg, size_t msglen)
 {
     return zhao_fit_any(base, a, work, out, msg, msglen, 1);
 }

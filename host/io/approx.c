@@ -60,10 +60,10 @@ static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx 
     char msg[160] = "";
     ob_bez_subsegment(&j->curve->seg[sp->seg], sp->a, sp->b, &sub);
     const ob_fit_args args = {j->d, j->tol, j->params};
-    const ob_status st = j->method->fit(&sub, &args, work, &fit, msg, sizeof msg);
-    if (st != OB_OK || fit.n < 1 || fit.n > OB_MAX_PIECES) {
+    const ob_fit_status st = j->method->fit(&sub, &args, work, &fit, msg, sizeof msg);
+    if (st != OB_FIT_OK || fit.n < 1 || fit.n > OB_MAX_PIECES) {
         snprintf(err, errlen, "refitting the accepted piece [%.17g, %.17g] of segment %d failed (%s)", sp->a, sp->b,
-                 sp->seg, msg[0] ? msg : ob_status_name(st));
+                 sp->seg, msg[0] ? msg : ob_fit_status_name(st));
         return -1;
     }
     for (int k = 0; k < fit.n; k++) {

@@ -71,11 +71,11 @@ static int refit_span(ob_jobview *v, const ob_span *sp, void *work, int *cap, in
     char msg[160] = "";
     ob_bez_subsegment(&v->curve->seg[sp->seg], sp->a, sp->b, &sub);
     const ob_fit_args args = {j->d, j->tol, j->params};
-    const ob_status st = j->method->fit(&sub, &args, work, &fit, msg, sizeof msg);
-    if (st != OB_OK || fit.n < 1 || fit.n > OB_MAX_PIECES) {
+    const ob_fit_status st = j->method->fit(&sub, &args, work, &fit, msg, sizeof msg);
+    if (st != OB_FIT_OK || fit.n < 1 || fit.n > OB_MAX_PIECES) {
         ob_error("%s: refitting the accepted piece [%.6g, %.6g] of segment %d failed (%s): the method did not "
                  "repeat the run's fit",
-                 v->cmd, sp->a, sp->b, sp->seg, msg[0] ? msg : ob_status_name(st));
+                 v->cmd, sp->a, sp->b, sp->seg, msg[0] ? msg : ob_fit_status_name(st));
         return -1;
     }
     if (v->npieces + fit.n > *cap) {

@@ -100,26 +100,26 @@ int ob_conv_offset(const ob_bez *base, const double *alpha, int p, const double 
     return 0;
 }
 
-ob_status ob_conv_prepare(const ob_bez *base, int out_deg, double N0[2], double N1[2], char *msg,
-                          size_t msglen)
+ob_fit_status ob_conv_prepare(const ob_bez *base, int out_deg, double N0[2], double N1[2], char *msg,
+                              size_t msglen)
 {
     if (base->rational) {
         ob_method_msg(msg, msglen, "rational input is not supported (polynomial method)");
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     if (base->deg < 1 || out_deg > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "degree %d: output degree %d outside %d..%d", base->deg, out_deg,
                       out_deg - base->deg + 1, OB_MAX_DEG);
-        return OB_SKIP;
+        return OB_FIT_SKIP;
     }
     double e0[2][2], e1[2][2];
     ob_bez_eval(base, 0.0, 1, e0);
     ob_bez_eval(base, 1.0, 1, e1);
     if ((e0[1][0] == 0.0 && e0[1][1] == 0.0) || (e1[1][0] == 0.0 && e1[1][1] == 0.0)) {
         ob_method_msg(msg, msglen, "C' vanishes at an end of the piece (cusp)");
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     ob_bez_normal(base, 0.0, N0);
     ob_bez_normal(base, 1.0, N1);
-    return OB_OK;
+    return OB_FIT_OK;
 }

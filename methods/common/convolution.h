@@ -43,10 +43,10 @@ int ob_conv_offset(const ob_bez *base, const double *alpha, int p, const double 
 
 /* Purpose: the preconditions shared by the normal-field convolution methods
  *          (ahn, kim2018) and the end normals N(0), N(1).
- * Returns: OB_OK; OB_SKIP for rational input or an output degree out_deg
- *          past OB_MAX_DEG; OB_FAIL where C' vanishes at an end (a cusp); the
+ * Returns: OB_FIT_OK; OB_FIT_SKIP for rational input or an output degree out_deg
+ *          past OB_MAX_DEG; OB_FIT_FAIL where C' vanishes at an end (a cusp); the
  *          reason in msg. */
-ob_status ob_conv_prepare(const ob_bez *base, int out_deg, double N0[2], double N1[2], char *msg,
-                          size_t msglen);
+ob_fit_status ob_conv_prepare(const ob_bez *base, int out_deg, double N0[2], double N1[2], char *msg,
+                              size_t msglen);
 
 #endif

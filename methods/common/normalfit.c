@@ -286,8 +286,8 @@ int ob_nf_fit_lstsq(ob_nf_fn f, const void *ctx, int n, int M, int ftilde_rows, 
     return 0;
 }
 
-ob_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_args *a, void *work,
-                           ob_fit *out, char *msg, size_t msglen)
+ob_fit_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_args *a, void *work,
+                               ob_fit *out, char *msg, size_t msglen)
 {
     static const char *const what[] = {"Gauss-Legendre nodes", "Gauss-Chebyshev nodes", "samples"};
     const int n = base->deg;
@@ -295,23 +295,23 @@ ob_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_arg
     if (!(pm >= 1 && pm <= OB_NF_MAX_NODES && pm == floor(pm))) {
         ob_method_msg(msg, msglen, "%s = %g: must be an integer in 1..%d", what[kind], pm,
                       OB_NF_MAX_NODES);
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     const int M = (int)pm;
     if (n < 1) {
         ob_method_msg(msg, msglen, "degree 0 segment: no normal");
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     int ft = 0;
     if (kind == OB_NF_LSTSQ) {
         if (a->par[1] != 0.0 && a->par[1] != 1.0) {
             ob_method_msg(msg, msglen, "target = %g: must be 0 (normal) or 1 (f~)", a->par[1]);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
         ft = a->par[1] == 1.0;
         if (M < n - 1) {
             ob_method_msg(msg, msglen, "%d samples for %d unknowns: underdetermined", M, n - 1);
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         }
     }
     const ob_nf_target tg = {base, a->d};
@@ -323,7 +323,7 @@ ob_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_arg
         ob_method_msg(msg, msglen, kind == OB_NF_LSTSQ
                                        ? "no normal somewhere on the piece, or singular least-squares system"
                                        : "no normal somewhere on the piece (point-like segment)");
-        return OB_FAIL;
+        return OB_FIT_FAIL;
     }
     ob_bez res = *base;
     for (int i = 0; i <= n; i++) {
@@ -331,5 +331,5 @@ ob_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_arg
         res.h[i][1] += s[i][1];
     }
     ob_fit_single(out, &res);
-    return OB_OK;
+    return OB_FIT_OK;
 }

@@ -82,8 +82,8 @@ typedef enum { OB_NF_LEGENDRE = 0, OB_NF_CHEBYSHEV, OB_NF_LSTSQ } ob_nf_kind;
  *          (par[0] = node / sample count, par[1] = lstsq target), fit
  *          S_n to W d N of `base`, and write the segment with homogeneous
  *          control points w_i P_i + s_i (weights kept) into out.
- * Returns: OB_OK, or OB_FAIL with the reason in msg. */
-ob_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_args *a, void *work,
-                           ob_fit *out, char *msg, size_t msglen);
+ * Returns: OB_FIT_OK, or OB_FIT_FAIL with the reason in msg. */
+ob_fit_status ob_nf_method_fit(ob_nf_kind kind, const ob_bez *base, const ob_fit_args *a, void *work,
+                               ob_fit *out, char *msg, size_t msglen);
 
 #endif

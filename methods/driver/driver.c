@@ -15,6 +15,18 @@ static const char *const split_names[OB_SPLIT_COUNT] = {"mid", "maxerr", "greedy
 
 const char *ob_split_name(ob_split s) { return (s >= 0 && s < OB_SPLIT_COUNT) ? split_names[s] : "?"; }
 
+const char *ob_status_name(ob_status s)
+{
+    switch (s) {
+    case OB_OK: return "ok";
+    case OB_LIMIT: return "limit";
+    case OB_FAIL: return "fail";
+    case OB_SKIP: return "skip";
+    case OB_TIMEOUT: return "timeout";
+    }
+    return "?";
+}
+
 int ob_split_parse(const char *name, ob_split *s)
 {
     for (int i = 0; i < OB_SPLIT_COUNT; i++)
@@ -149,6 +161,20 @@ static double wall_ns(void) { return clock_ns(CLOCK_MONOTONIC); }
  * whatever else the machine was doing meanwhile (other threads, other
  * processes, a thread descheduled mid-call). */
 static double thread_ns(void) { return clock_ns(CLOCK_THREAD_CPUTIME_ID); }
+
+/* The job status that a fit status ends a job with: the one place where a
+ * method's fit status becomes a job's.  OB_FIT_OK and OB_FIT_RETRY_SMALLER
+ * end no job (decide accepts or splits the piece): OB_OK. */
+static ob_status job_status_of(ob_fit_status st)
+{
+    switch (st) {
+    case OB_FIT_FAIL: return OB_FAIL;
+    case OB_FIT_SKIP: return OB_SKIP;
+    case OB_FIT_OK:
+    case OB_FIT_RETRY_SMALLER: break;
+    }
+    return OB_OK;
+}
 
 static void job_end(ob_job *j, jstate *s, ob_status st, const char *msg)
 {
@@ -309,7 +335,8 @@ static void accept(ob_job *j, jstate *s, int seg, double a, double b, int npiece
 
 /* Results of fitting and measuring one item. */
 typedef struct {
-    ob_status st;
+    ob_fit_status st;       /* the method's, or OB_FIT_FAIL where its output
+                               is not usable (piece count, not measurable) */
     int ctrl_add, maxdeg, n;
     double err, t;          /* t: base parameter of the largest error */
     int chain_to;           /* > 0: asks for a smaller piece, and so do its
@@ -339,11 +366,11 @@ static double fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *f
     const ob_fit_args args = {j->d, j->tol, par};
     r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
     double t1 = thread_ns();
-    r->n = r->st == OB_OK ? fit->n : 0;
-    if (r->st == OB_RETRY_SMALLER)
+    r->n = r->st == OB_FIT_OK ? fit->n : 0;
+    if (r->st == OB_FIT_RETRY_SMALLER)
         r->err = INFINITY;
-    if (r->st == OB_OK && (fit->n < 1 || fit->n > OB_MAX_PIECES)) {
-        r->st = OB_FAIL;
+    if (r->st == OB_FIT_OK && (fit->n < 1 || fit->n > OB_MAX_PIECES)) {
+        r->st = OB_FIT_FAIL;
         snprintf(r->msg, sizeof r->msg, "method returned %d pieces", fit->n);
     }
     return t1 - t0;
@@ -364,7 +391,7 @@ static void retry_end_msg(const item *it, const itemres *r, int at_retry_limit, 
 }
 
 /* Purpose: find out at once whether a piece that asked for a smaller piece
- * (r->st == OB_RETRY_SMALLER, split mid or maxerr) heads a chain of such
+ * (r->st == OB_FIT_RETRY_SMALLER, split mid or maxerr) heads a chain of such
  * requests down to the retry limit.
  * Method: such a piece is halved, and a descendant still asking at
  * RETRY_LEVELS halvings (or at the depth limit) fails the job (decide).
@@ -384,7 +411,7 @@ static double probe_retry_chain(const ob_job *jobs, const item *it, int max_dept
                                 itemres *r)
 {
     const ob_job *j = &jobs[it->job];
-    if (r->st != OB_RETRY_SMALLER || (j->split != OB_SPLIT_MID && j->split != OB_SPLIT_MAXERR) || it->chain_to > 0)
+    if (r->st != OB_FIT_RETRY_SMALLER || (j->split != OB_SPLIT_MID && j->split != OB_SPLIT_MAXERR) || it->chain_to > 0)
         return 0.0;
     item c = *it;
     itemres cr;
@@ -393,7 +420,7 @@ static double probe_retry_chain(const ob_job *jobs, const item *it, int max_dept
         c.b = 0.5 * (c.a + c.b);
         c.depth++;
         ns += fit_item(jobs, &c, work, fit, &cr);
-        if (cr.st != OB_RETRY_SMALLER)
+        if (cr.st != OB_FIT_RETRY_SMALLER)
             return ns;
     }
     if (c.depth > it->depth)
@@ -446,7 +473,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
     int n = 0;
     for (long i = 0; i < cnt; i++) {
         B->first[i] = n;
-        if (res[i].st == OB_OK)
+        if (res[i].st == OB_FIT_OK)
             n += fits[i].n;
     }
     B->first[cnt] = n;
@@ -454,7 +481,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
      * greedy bisection often makes, runs without waking the other threads) */
 #pragma omp parallel for schedule(dynamic, 8) if (cnt > 1)
     for (long i = 0; i < cnt; i++) {
-        if (res[i].st != OB_OK)
+        if (res[i].st != OB_FIT_OK)
             continue;
         const ob_job *j = &jobs[its[i].job];
         ob_bez sub;
@@ -505,7 +532,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
     for (long i = 0; i < cnt; i++) {
         itemres *r = &res[i];
         eval_ns[i] = 0.0;
-        if (r->st != OB_OK)
+        if (r->st != OB_FIT_OK)
             continue;
         const item *it = &its[i];
         const ob_fit *fit = &fits[i];
@@ -515,7 +542,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
             const double pa = fit->t[p], pb = fit->t[p + 1];
             eval_ns[i] += B->ns[B->first[i] + p];
             if (isnan(e.err)) {
-                r->st = OB_FAIL;
+                r->st = OB_FIT_FAIL;
                 snprintf(r->msg, sizeof r->msg, "metric %s cannot measure a degree-%d approximation",
                          ob_metric_name(jobs[it->job].metric), fit->seg[p].deg);
                 break;
@@ -556,7 +583,7 @@ static void joints_chunk(const jstate *js, const item *its, long cnt, const ob_f
 {
 #pragma omp parallel for schedule(dynamic, 16) if (cnt > 64)
     for (long i = 0; i < cnt; i++) {
-        if (res[i].st == OB_OK)
+        if (res[i].st == OB_FIT_OK)
             fit_joints(&fits[i], js[its[i].job].gap_tol, &fj[i]);
         else
             memset(&fj[i], 0, sizeof fj[i]);
@@ -634,114 +661,123 @@ static int decide_optimal(const ob_job *j, jstate *s, const item *it, const item
     return push(next, &g);
 }
 
-/* Decide what becomes of one measured item (fj: the joints of its fit);
- * children go to `next`. */
-static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
-                  const ob_driver_opts *o, itemvec *next)
-{
-    ob_job *j = &jobs[it->job];
-    jstate *s = &js[it->job];
+/* What decide() found of one measured item: it asks for a smaller piece
+ * (msg then says why none may be made), it meets its error level, the job
+ * is at its segment limit; msg: the message of the job's end, if it ends. */
+typedef struct {
+    int retry, pass, full;
     char msg[160];
-    s->pending--;
-    if (s->dead)
-        return 0;
-    if (r->st != OB_OK && r->st != OB_RETRY_SMALLER) {
-        snprintf(msg, sizeof msg, "%.100s at t in [%.6g, %.6g] of segment %d", r->msg[0] ? r->msg : "fit failed",
-                 it->a, it->b, it->seg);
-        job_end(j, s, r->st, msg);
+} verdict;
+
+/* Accept the item's whole fit. */
+static void accept_item(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj)
+{
+    accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+}
+
+/* mid / maxerr: the two halves of a piece that is to be split (cut at the
+ * middle, or at the largest error kept MAXERR_MARGIN from the ends), or, for
+ * a chain of requests for a smaller piece down to the limit, its leftmost
+ * half alone. */
+static int split_children(jstate *s, const item *it, const itemres *r, int split, int retry, int stall,
+                          itemvec *next)
+{
+    double cut = 0.5 * (it->a + it->b);
+    if (split == OB_SPLIT_MAXERR && !retry) {
+        double w = it->b - it->a;
+        cut = fmin(it->b - MAXERR_MARGIN * w, fmax(it->a + MAXERR_MARGIN * w, r->t));
+    }
+    item l = *it, rr = *it;
+    l.b = cut;
+    rr.a = cut;
+    l.depth = rr.depth = it->depth + 1;
+    l.parent_err = rr.parent_err = retry ? INFINITY : r->err;
+    l.stall = rr.stall = stall;
+    l.end = l.hi = l.b;
+    l.lo = l.a;
+    rr.end = rr.hi = rr.b;
+    rr.lo = rr.a;
+    l.chain_to = retry ? (it->chain_to > 0 ? it->chain_to : r->chain_to) : 0;
+    if (l.chain_to > 0) {  /* a chain of requests down to the limit: its leftmost piece alone */
+        s->pending += 1;
+        return push(next, &l);
+    }
+    s->pending += 2;
+    return push(next, &l) || push(next, &rr) ? -1 : 0;
+}
+
+/* The mid and maxerr rules: accept a piece that passes; else end the job at
+ * the retry limit, keep the piece where the job has hit an error floor or
+ * the error stalls, or at the depth or segment limit; else split it. */
+static int decide_split(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj,
+                        const ob_driver_opts *o, verdict *v, itemvec *next)
+{
+    const int retry = v->retry, full = v->full;
+    if (v->pass) {
+        accept_item(j, s, it, r, fj);
         return 0;
     }
-    /* a method that asks for a smaller piece is treated as too large an error;
-     * if no smaller piece may be made, there is nothing to accept */
-    const int retry = r->st == OB_RETRY_SMALLER;
-    if (retry)
-        retry_end_msg(it, r, 0, msg, sizeof msg);
-    /* the optimal rule's passes are greedy at their own error level */
-    const int pass = !retry && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
-    const int full = j->segments + s->pending + 1 >= o->max_segments;
-
-    if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
-        return decide_optimal(j, s, it, r, pass, next);
-    if (j->split == OB_SPLIT_MID || j->split == OB_SPLIT_MAXERR) {
-        if (pass) {
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-            return 0;
-        }
-        const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
-        if (retry && it->depth >= RETRY_LEVELS) {
-            retry_end_msg(it, r, 1, msg, sizeof msg);
-            job_end(j, s, OB_FAIL, msg);
-            return 0;
-        }
-        if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-            return 0;
-        }
-        if (stall >= STALL_LEVELS && !(it->depth >= o->max_depth || full)) {
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-            snprintf(msg, sizeof msg, "error stalls at %.3g > tol under subdivision at t in [%.6g, %.6g] "
-                     "of segment %d (%d splits without a 10%% drop); the rest kept as it was", r->err, it->a,
-                     it->b, it->seg, STALL_LEVELS);
-            job_end(j, s, OB_LIMIT, msg);
-            s->floored = 1;
-            return 0;
-        }
-        if (it->depth >= o->max_depth || full) {
-            if (retry) {
-                job_end(j, s, OB_FAIL, msg);
-                return 0;
-            }
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-            if (full)
-                snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
-            else
-                snprintf(msg, sizeof msg, "depth limit %d reached at t in [%.6g, %.6g] of segment %d (error %.3g)",
-                         o->max_depth, it->a, it->b, it->seg, r->err);
-            job_end(j, s, OB_LIMIT, msg);
-            return 0;
-        }
-        double cut = 0.5 * (it->a + it->b);
-        if (j->split == OB_SPLIT_MAXERR && !retry) {
-            double w = it->b - it->a;
-            cut = fmin(it->b - MAXERR_MARGIN * w, fmax(it->a + MAXERR_MARGIN * w, r->t));
-        }
-        item l = *it, rr = *it;
-        l.b = cut;
-        rr.a = cut;
-        l.depth = rr.depth = it->depth + 1;
-        l.parent_err = rr.parent_err = retry ? INFINITY : r->err;
-        l.stall = rr.stall = stall;
-        l.end = l.hi = l.b;
-        l.lo = l.a;
-        rr.end = rr.hi = rr.b;
-        rr.lo = rr.a;
-        l.chain_to = retry ? (it->chain_to > 0 ? it->chain_to : r->chain_to) : 0;
-        if (l.chain_to > 0) {  /* a chain of requests down to the limit: its leftmost piece alone */
-            s->pending += 1;
-            return push(next, &l);
-        }
-        s->pending += 2;
-        return push(next, &l) || push(next, &rr) ? -1 : 0;
+    const int stall = !retry && r->err >= STALL_RATIO * it->parent_err ? it->stall + 1 : 0;
+    if (retry && it->depth >= RETRY_LEVELS) {
+        retry_end_msg(it, r, 1, v->msg, sizeof v->msg);
+        job_end(j, s, OB_FAIL, v->msg);
+        return 0;
     }
+    if (!retry && s->floored) {  /* the job cannot reach tol: no more splitting */
+        accept_item(j, s, it, r, fj);
+        return 0;
+    }
+    if (stall >= STALL_LEVELS && !(it->depth >= o->max_depth || full)) {
+        accept_item(j, s, it, r, fj);
+        snprintf(v->msg, sizeof v->msg, "error stalls at %.3g > tol under subdivision at t in [%.6g, %.6g] "
+                 "of segment %d (%d splits without a 10%% drop); the rest kept as it was", r->err, it->a,
+                 it->b, it->seg, STALL_LEVELS);
+        job_end(j, s, OB_LIMIT, v->msg);
+        s->floored = 1;
+        return 0;
+    }
+    if (it->depth >= o->max_depth || full) {
+        if (retry) {
+            job_end(j, s, OB_FAIL, v->msg);
+            return 0;
+        }
+        accept_item(j, s, it, r, fj);
+        if (full)
+            snprintf(v->msg, sizeof v->msg, "segment limit %d reached (error %.3g > tol)", o->max_segments,
+                     r->err);
+        else
+            snprintf(v->msg, sizeof v->msg, "depth limit %d reached at t in [%.6g, %.6g] of segment %d "
+                     "(error %.3g)", o->max_depth, it->a, it->b, it->seg, r->err);
+        job_end(j, s, OB_LIMIT, v->msg);
+        return 0;
+    }
+    return split_children(s, it, r, j->split, retry, stall, next);
+}
 
-    /* greedy (and the optimal rule's final pass): bisection on the end of
-     * the prefix [a, b] */
+/* The greedy rule (and the optimal rule's final pass): bisection on the end
+ * of the prefix [a, b]; the longest passing prefix is accepted once the
+ * bracket [lo, hi] is within GREEDY_EPS, and the rest of the stretch starts
+ * over. */
+static int decide_greedy(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj,
+                         const ob_driver_opts *o, verdict *v, itemvec *next)
+{
     item g = *it;
     if (it->final) {
-        if (retry) {
-            job_end(j, s, OB_FAIL, msg);
+        if (v->retry) {
+            job_end(j, s, OB_FAIL, v->msg);
             return 0;
         }
-        accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-        if (!pass) {
-            snprintf(msg, sizeof msg, "segment limit %d reached (error %.3g > tol)", o->max_segments, r->err);
-            job_end(j, s, OB_LIMIT, msg);
+        accept_item(j, s, it, r, fj);
+        if (!v->pass) {
+            snprintf(v->msg, sizeof v->msg, "segment limit %d reached (error %.3g > tol)", o->max_segments,
+                     r->err);
+            job_end(j, s, OB_LIMIT, v->msg);
         }
         return 0;
     }
-    if (pass) {
+    if (v->pass) {
         if (it->b >= it->end) {
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+            accept_item(j, s, it, r, fj);
             return 0;
         }
         g.lo = it->b;
@@ -757,17 +793,17 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
         if (g.lo > g.a) {
             accept(j, s, it->seg, it->a, g.lo, g.pass_n, g.pass_ctrl_add, g.pass_maxdeg, g.pass_err, &g.pass_fj);
             g.a = g.lo;
-        } else if (retry) {
-            job_end(j, s, OB_FAIL, msg);
+        } else if (v->retry) {
+            job_end(j, s, OB_FAIL, v->msg);
             return 0;
         } else {
             /* not even a sliver passes: an error floor subdivision cannot get
              * under; keep the sliver, fit the rest of the stretch once and keep
              * it too, and end the job with status limit */
-            accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-            snprintf(msg, sizeof msg, "no prefix longer than %.3g passes at t = %.6g of segment %d (error %.3g)",
-                     it->b - it->a, it->a, it->seg, r->err);
-            job_end(j, s, OB_LIMIT, msg);
+            accept_item(j, s, it, r, fj);
+            snprintf(v->msg, sizeof v->msg, "no prefix longer than %.3g passes at t = %.6g of segment %d "
+                     "(error %.3g)", it->b - it->a, it->a, it->seg, r->err);
+            job_end(j, s, OB_LIMIT, v->msg);
             g.a = it->b;
             g.final = 1;
         }
@@ -782,6 +818,39 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
     }
     s->pending++;
     return push(next, &g);
+}
+
+/* Decide what becomes of one measured item (fj: the joints of its fit);
+ * children go to `next`. */
+static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
+                  const ob_driver_opts *o, itemvec *next)
+{
+    ob_job *j = &jobs[it->job];
+    jstate *s = &js[it->job];
+    verdict v;
+    s->pending--;
+    if (s->dead)
+        return 0;
+    if (r->st != OB_FIT_OK && r->st != OB_FIT_RETRY_SMALLER) {
+        snprintf(v.msg, sizeof v.msg, "%.100s at t in [%.6g, %.6g] of segment %d",
+                 r->msg[0] ? r->msg : "fit failed", it->a, it->b, it->seg);
+        job_end(j, s, job_status_of(r->st), v.msg);
+        return 0;
+    }
+    /* a method that asks for a smaller piece is treated as too large an error;
+     * if no smaller piece may be made, there is nothing to accept */
+    v.retry = r->st == OB_FIT_RETRY_SMALLER;
+    if (v.retry)
+        retry_end_msg(it, r, 0, v.msg, sizeof v.msg);
+    /* the optimal rule's passes are greedy at their own error level */
+    v.pass = !v.retry && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
+    v.full = j->segments + s->pending + 1 >= o->max_segments;
+
+    if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
+        return decide_optimal(j, s, it, r, v.pass, next);
+    if (j->split == OB_SPLIT_MID || j->split == OB_SPLIT_MAXERR)
+        return decide_split(j, s, it, r, fj, o, &v, next);
+    return decide_greedy(j, s, it, r, fj, o, &v, next);
 }
 
 static int ends_cmp(const void *x, const void *y)
@@ -1094,13 +1163,13 @@ static void fit_chunk(drun *R, const item *its, long cnt)
         void *w = R->work + R->wsize * (size_t)omp_get_thread_num();
         if (its[i].chain_to > its[i].depth) {  /* its fit asked for a smaller piece (the probe) */
             memset(&R->res[i], 0, sizeof R->res[i]);
-            R->res[i].st = OB_RETRY_SMALLER;
+            R->res[i].st = OB_FIT_RETRY_SMALLER;
             R->res[i].err = INFINITY;
             R->fit_ns[i] = 0.0;
             continue;
         }
         if (R->js[its[i].job].dead || R->rep[i] != i) {
-            R->res[i].st = OB_SKIP;  /* dead, or takes its representative's fit below */
+            R->res[i].st = OB_FIT_SKIP;  /* dead, or takes its representative's fit below */
             R->fit_ns[i] = 0.0;
             continue;
         }

@@ -30,10 +30,10 @@
  * the job ends with status `limit` (its max_err then exceeds tol); after an
  * error floor the job's other pending pieces are kept as they are (the job
  * cannot reach tol); greedy ends likewise when not even a sliver passes.
- * A method that still asks for a smaller piece (OB_RETRY_SMALLER) 12 halvings
- * below the initial piece ends the job with status fail.  With a job timeout
- * (job_timeout_ns), a job that has used more thread time than that ends with
- * status timeout.
+ * A method that still asks for a smaller piece (OB_FIT_RETRY_SMALLER) 12
+ * halvings below the initial piece ends the job with status fail.  With a job
+ * timeout (job_timeout_ns), a job that has used more thread time than that
+ * ends with status timeout.
  *
  * Counting: k segments of degrees m_i joined end to end count 1 + sum m_i
  * control points (shared end points once), as the papers count, plus one for
@@ -61,6 +61,15 @@
 typedef enum { OB_SPLIT_MID = 0, OB_SPLIT_MAXERR, OB_SPLIT_GREEDY, OB_SPLIT_OPTIMAL, OB_SPLIT_COUNT } ob_split;
 const char *ob_split_name(ob_split s);
 int ob_split_parse(const char *name, ob_split *s);
+
+/* What a job ends with: results.csv's `status` column, by name
+ * (ob_status_name: "ok", "limit", "fail", "skip", "timeout").  OB_LIMIT: a
+ * limit was reached and what was accepted is kept (max_err may exceed tol);
+ * OB_FAIL / OB_SKIP: a fit failed or did not apply (the method's
+ * OB_FIT_FAIL / OB_FIT_SKIP), or the driver could not go on; OB_TIMEOUT: the
+ * job used more than the run's --job-timeout.  Set by the driver only. */
+typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_TIMEOUT } ob_status;
+const char *ob_status_name(ob_status s);
 
 typedef struct {
     /* inputs */

@@ -14,7 +14,7 @@
  *    cubics, a rational arc and both signs of d;
  *  - a spline of more than 16 spans comes back whole (one spline, not two);
  *    a piece it cannot fit with at most OB_MAX_PIECES spans asks for a smaller
- *    piece (OB_RETRY_SMALLER), and a tighter tolerance never gets fewer points.
+ *    piece (OB_FIT_RETRY_SMALLER), and a tighter tolerance never gets fewer points.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -31,7 +31,7 @@ static const ob_method *method(void)
 }
 
 typedef struct {
-    ob_status st;
+    ob_fit_status st;
     ob_fit f;
     char msg[200];
 } result;
@@ -152,17 +152,17 @@ static void test_random(const ob_method *m)
         snprintf(what, sizeof what, "curve %d (d %.3f, tol %g)", c, d, tol);
         const result r = run(m, &b, d, tol);
         tried++;
-        if (r.st == OB_RETRY_SMALLER)
+        if (r.st == OB_FIT_RETRY_SMALLER)
             continue;
-        CHECK(r.st == OB_OK, "%s: status %d: %s", what, r.st, r.msg);
-        if (r.st != OB_OK)
+        CHECK(r.st == OB_FIT_OK, "%s: status %d: %s", what, r.st, r.msg);
+        if (r.st != OB_FIT_OK)
             continue;
         ok++;
         check_structure(what, &r.f);
         check_normal_equations(what, &b, d, &r.f, factor);
         check_bound(what, &b, d, tol, &r.f);
         const result tight = run(m, &b, d, tol / 10.0);
-        CHECK(tight.st == OB_RETRY_SMALLER || tight.f.ctrl_points >= r.f.ctrl_points,
+        CHECK(tight.st == OB_FIT_RETRY_SMALLER || tight.f.ctrl_points >= r.f.ctrl_points,
               "%s: a tenth of the tolerance gets fewer control points (%ld < %ld)", what, tight.f.ctrl_points,
               r.f.ctrl_points);
     }
@@ -176,15 +176,15 @@ static void test_example1(const ob_method *m)
     const double xy[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
     const ob_bez b = make(3, xy, NULL);
     const result r = run(m, &b, 1.0, 1e-1);
-    CHECK(r.st == OB_OK && r.f.ctrl_points >= 4 && r.f.ctrl_points <= 10, "example 1 at 1e-1: status %d, %ld points",
+    CHECK(r.st == OB_FIT_OK && r.f.ctrl_points >= 4 && r.f.ctrl_points <= 10, "example 1 at 1e-1: status %d, %ld points",
           r.st, r.f.ctrl_points);
     /* one spline of more than 16 spans: returned whole, not split (the spans
      * fit in an ob_fit; splitting would make two splines of it) */
     const result f = run(m, &b, 1.0, 1e-5);
-    CHECK(f.st == OB_OK && f.f.n > 16 && f.f.n == f.f.ctrl_points - 3,
+    CHECK(f.st == OB_FIT_OK && f.f.n > 16 && f.f.n == f.f.ctrl_points - 3,
           "example 1 at 1e-5: one spline (status %d, %d spans, %ld points: %s)", f.st, f.f.n, f.f.ctrl_points, f.msg);
     const result t = run(m, &b, 1.0, 1e-9);
-    CHECK(t.st == OB_RETRY_SMALLER && strstr(t.msg, "control points"), "example 1 at 1e-9: status %d (%s)", t.st,
+    CHECK(t.st == OB_FIT_RETRY_SMALLER && strstr(t.msg, "control points"), "example 1 at 1e-9: status %d (%s)", t.st,
           t.msg);
 }
 

@@ -39,7 +39,7 @@ enum { MSGLEN = 160 };
 
 static const ob_method *M;
 
-static ob_status fit_with(const ob_bez *base, double d, int refine, ob_fit *f, char *msg)
+static ob_fit_status fit_with(const ob_bez *base, double d, int refine, ob_fit *f, char *msg)
 {
     double par[OB_MAX_PARAMS];
     ob_param_defaults(M, par);
@@ -50,12 +50,12 @@ static ob_status fit_with(const ob_bez *base, double d, int refine, ob_fit *f, c
     const ob_fit_args a = {d, 1e-3, par};
     msg[0] = '\0';
     memset(f, 0, sizeof *f);
-    ob_status st = M->fit(base, &a, work, f, msg, MSGLEN);
+    ob_fit_status st = M->fit(base, &a, work, f, msg, MSGLEN);
     free(work);
     return st;
 }
 
-static ob_status fit(const ob_bez *base, double d, ob_fit *f, char *msg) { return fit_with(base, d, 1, f, msg); }
+static ob_fit_status fit(const ob_bez *base, double d, ob_fit *f, char *msg) { return fit_with(base, d, 1, f, msg); }
 
 /* Exact offset point and unit offset tangent (testlib's reference
  * evaluation): O = C + d N, O' = C' (1 - d kappa). */
@@ -116,9 +116,9 @@ static void test_circles(void)
     static const double ds[] = {0.0, 0.5, -1.0, 1.5, 3.0};
     for (int i = 0; i < 5; i++) {
         const double d = ds[i], r = fabs(2.0 - d);
-        ob_status st = fit(&qc, d, &f, msg);
-        CHECK(st == OB_OK && f.n == 1, "circle d %g: %s (%s), %d pieces", d, ob_status_name(st), msg, f.n);
-        if (st != OB_OK || f.n != 1)
+        ob_fit_status st = fit(&qc, d, &f, msg);
+        CHECK(st == OB_FIT_OK && f.n == 1, "circle d %g: %s (%s), %d pieces", d, ob_fit_status_name(st), msg, f.n);
+        if (st != OB_FIT_OK || f.n != 1)
             continue;
         const double dev = radial_dev(&f.seg[0], r);
         CHECK(dev <= 2.0e-4 * r, "circle d %g: radius %g: deviation %.4g r, above the G1 minimax 1.96e-4 r", d, r,
@@ -130,16 +130,16 @@ static void test_circles(void)
             ob_bez_ctrl(&f.seg[0], k, p[k]);
         CHECK_NEAR(dist2d(p[0], p[1]), dist2d(p[2], p[3]), 1e-9 * r, "circle: symmetric handles");
         /* the area/moment candidate alone: close to the arc, not better */
-        if (fit_with(&qc, d, 0, &f, msg) == OB_OK) {
+        if (fit_with(&qc, d, 0, &f, msg) == OB_FIT_OK) {
             const double dev0 = radial_dev(&f.seg[0], r);
             CHECK(dev0 >= dev * (1 - 1e-9) && dev0 < 1e-3 * r, "circle d %g: candidate %.4g r, refined %.4g r", d,
                   dev0 / r, dev / r);
         }
     }
     /* offset by the radius: the centre itself */
-    ob_status st = fit(&qc, 2.0, &f, msg);
-    CHECK(st == OB_OK && f.n == 1, "circle d = r: %s (%s)", ob_status_name(st), msg);
-    if (st == OB_OK)
+    ob_fit_status st = fit(&qc, 2.0, &f, msg);
+    CHECK(st == OB_FIT_OK && f.n == 1, "circle d = r: %s (%s)", ob_fit_status_name(st), msg);
+    if (st == OB_FIT_OK)
         for (int k = 0; k < 4; k++)
             CHECK(hypot(f.seg[0].h[k][0], f.seg[0].h[k][1]) < 1e-12, "circle d = r: control point %d at the centre", k);
 }
@@ -150,11 +150,11 @@ static void check_ends(const char *name, const ob_bez *C, double d)
 {
     ob_fit f;
     char msg[MSGLEN];
-    ob_status st = fit(C, d, &f, msg);
-    CHECK(st == OB_OK && fit_finite(&f), "%s d %g: %s (%s) [%.17g %.17g; %.17g %.17g; %.17g %.17g; %.17g %.17g]", name,
-          d, ob_status_name(st), msg, C->h[0][0], C->h[0][1], C->h[1][0], C->h[1][1], C->h[2][0], C->h[2][1],
+    ob_fit_status st = fit(C, d, &f, msg);
+    CHECK(st == OB_FIT_OK && fit_finite(&f), "%s d %g: %s (%s) [%.17g %.17g; %.17g %.17g; %.17g %.17g; %.17g %.17g]", name,
+          d, ob_fit_status_name(st), msg, C->h[0][0], C->h[0][1], C->h[1][0], C->h[1][1], C->h[2][0], C->h[2][1],
           C->h[3][0], C->h[3][1]);
-    if (st != OB_OK || !fit_finite(&f))
+    if (st != OB_FIT_OK || !fit_finite(&f))
         return;
     for (int e = 0; e < 2; e++) {
         const ob_bez *A = &f.seg[e ? f.n - 1 : 0];
@@ -202,11 +202,11 @@ static void test_order(void)
         ob_bez sub;
         ob_bez_subsegment(&liu, t0, t0 + h, &sub);
         ob_fit f;
-        ob_status st = fit(&sub, d, &f, msg), st0;
-        err[k] = st == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &sub, &f, d, 1024) : NAN;
+        ob_fit_status st = fit(&sub, d, &f, msg), st0;
+        err[k] = st == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &sub, &f, d, 1024) : NAN;
         st0 = fit_with(&sub, d, 0, &f, msg);
-        err0[k] = st0 == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &sub, &f, d, 1024) : NAN;
-        CHECK(st == OB_OK && st0 == OB_OK, "order: h %g: %s / %s", h, ob_status_name(st), ob_status_name(st0));
+        err0[k] = st0 == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &sub, &f, d, 1024) : NAN;
+        CHECK(st == OB_FIT_OK && st0 == OB_FIT_OK, "order: h %g: %s / %s", h, ob_fit_status_name(st), ob_fit_status_name(st0));
         /* the estimate and the metric differ slightly: allow 2 % */
         CHECK(err[k] <= 1.02 * err0[k], "order: h %g: refined %.3g, candidate %.3g", h, err[k], err0[k]);
         printf("order: h %-8g refined %.4g  area/moment %.4g\n", h, err[k], err0[k]);
@@ -234,10 +234,10 @@ static void test_parameterization(void)
     static const double ds[] = {0.3, -0.5};
     for (int k = 0; k < 2; k++) {
         const double d = ds[k];
-        ob_status s1 = fit(&C, d, &f, msg), s2 = fit(&Cr, d, &g, msg);
-        CHECK(s1 == OB_OK && s2 == OB_OK && f.n == 1 && g.n == 1, "reparameterized d %g: %s %s", d,
-              ob_status_name(s1), ob_status_name(s2));
-        if (s1 != OB_OK || s2 != OB_OK || f.n != 1 || g.n != 1)
+        ob_fit_status s1 = fit(&C, d, &f, msg), s2 = fit(&Cr, d, &g, msg);
+        CHECK(s1 == OB_FIT_OK && s2 == OB_FIT_OK && f.n == 1 && g.n == 1, "reparameterized d %g: %s %s", d,
+              ob_fit_status_name(s1), ob_fit_status_name(s2));
+        if (s1 != OB_FIT_OK || s2 != OB_FIT_OK || f.n != 1 || g.n != 1)
             continue;
         const double e1 = fit_max_err(OB_METRIC_HAUSDORFF, &C, &f, d, 1024), e2 = fit_max_err(OB_METRIC_HAUSDORFF, &Cr, &g, d, 1024);
         double worst = 0.0;
@@ -252,7 +252,7 @@ static void test_parameterization(void)
         CHECK(worst <= 0.1 * e1, "reparameterized d %g: control points %.3g apart (error %.3g)", d, worst, e1);
         /* reversed: the same curve, its control points in reverse order */
         const ob_bez R = reversed(&C);
-        if (fit(&R, -d, &g, msg) == OB_OK && g.n == 1) {
+        if (fit(&R, -d, &g, msg) == OB_FIT_OK && g.n == 1) {
             worst = 0.0;
             for (int i = 0; i < 4; i++) {
                 double a[2], b[2];
@@ -267,15 +267,15 @@ static void test_parameterization(void)
 
 /* ---- 5. degenerate input ------------------------------------------------------ */
 
-static void expect(const char *name, const double (*xy)[2], int deg, double d, ob_status want, double maxerr)
+static void expect(const char *name, const double (*xy)[2], int deg, double d, ob_fit_status want, double maxerr)
 {
     ob_fit f;
     char msg[MSGLEN];
     const ob_bez C = make(deg, xy, NULL);
-    ob_status st = fit(&C, d, &f, msg);
-    CHECK(st == want, "%s: status %s (%s), expected %s", name, ob_status_name(st), msg, ob_status_name(want));
-    if (st != OB_OK) {
-        CHECK(msg[0] != '\0', "%s: %s without a reason", name, ob_status_name(st));
+    ob_fit_status st = fit(&C, d, &f, msg);
+    CHECK(st == want, "%s: status %s (%s), expected %s", name, ob_fit_status_name(st), msg, ob_fit_status_name(want));
+    if (st != OB_FIT_OK) {
+        CHECK(msg[0] != '\0', "%s: %s without a reason", name, ob_fit_status_name(st));
         return;
     }
     CHECK(fit_finite(&f), "%s: non-finite output", name);
@@ -292,28 +292,28 @@ static void test_degenerate(void)
     static const double handles0[4][2] = {{0, 0}, {0, 0}, {1, 0}, {1, 0.5}};
     static const double sshape[4][2] = {{0, 0}, {1, 1}, {2, -1}, {3, 0}};
     static const double line1[2][2] = {{0, 0}, {3, 1}};
-    expect("point", point, 3, 0.5, OB_FAIL, 0);
-    expect("closed loop, d = 0 (the offset's ends coincide)", loop, 3, 0.0, OB_RETRY_SMALLER, 0);
-    expect("closed loop, d = 0.1 (tangent reversed between samples: the fallback cubic)", loop, 3, 0.1, OB_OK, 10.0);
-    expect("cusp of the base (the offset jumps: the fallback cubic)", cusp, 3, 0.1, OB_OK, 1.0);
-    expect("straight with collapsed handles", flat, 3, 0.3, OB_OK, 1e-12);
-    expect("straight, degree 1", line1, 1, -0.7, OB_OK, 1e-12);
-    expect("zero-length handle at the start", handles0, 3, 0.05, OB_OK, 0.05);
-    expect("inflection", sshape, 3, 0.2, OB_OK, 0.1);
+    expect("point", point, 3, 0.5, OB_FIT_FAIL, 0);
+    expect("closed loop, d = 0 (the offset's ends coincide)", loop, 3, 0.0, OB_FIT_RETRY_SMALLER, 0);
+    expect("closed loop, d = 0.1 (tangent reversed between samples: the fallback cubic)", loop, 3, 0.1, OB_FIT_OK, 10.0);
+    expect("cusp of the base (the offset jumps: the fallback cubic)", cusp, 3, 0.1, OB_FIT_OK, 1.0);
+    expect("straight with collapsed handles", flat, 3, 0.3, OB_FIT_OK, 1e-12);
+    expect("straight, degree 1", line1, 1, -0.7, OB_FIT_OK, 1e-12);
+    expect("zero-length handle at the start", handles0, 3, 0.05, OB_FIT_OK, 0.05);
+    expect("inflection", sshape, 3, 0.2, OB_FIT_OK, 0.1);
 
     /* d = 0: the base cubic itself is a root of the quartic */
     ob_fit f;
     char msg[MSGLEN];
     const ob_bez liu = make(3, LIU, NULL);
-    ob_status st = fit(&liu, 0.0, &f, msg);
-    CHECK(st == OB_OK && f.n == 1 && fit_max_err(OB_METRIC_HAUSDORFF, &liu, &f, 0.0, 1024) < 1e-12, "d = 0: %s, error %g", ob_status_name(st),
-          st == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &liu, &f, 0.0, 1024) : NAN);
+    ob_fit_status st = fit(&liu, 0.0, &f, msg);
+    CHECK(st == OB_FIT_OK && f.n == 1 && fit_max_err(OB_METRIC_HAUSDORFF, &liu, &f, 0.0, 1024) < 1e-12, "d = 0: %s, error %g", ob_fit_status_name(st),
+          st == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &liu, &f, 0.0, 1024) : NAN);
 
     /* offset cusps: liu2002_ex1 at d = 1 has 1 - d kappa = 0 twice */
     st = fit(&liu, 1.0, &f, msg);
-    CHECK(st == OB_OK && f.n == 3 && fit_finite(&f), "offset cusps: %s (%s), %d pieces", ob_status_name(st), msg,
+    CHECK(st == OB_FIT_OK && f.n == 3 && fit_finite(&f), "offset cusps: %s (%s), %d pieces", ob_fit_status_name(st), msg,
           f.n);
-    if (st == OB_OK && f.n == 3) {
+    if (st == OB_FIT_OK && f.n == 3) {
         for (int i = 1; i < 3; i++)
             CHECK(fabs(1.0 - ref_curvature(&liu, f.t[i])) < 1e-9, "offset cusp %d at t = %.17g: 1 - d kappa = %g", i,
                   f.t[i], 1.0 - ref_curvature(&liu, f.t[i]));
@@ -333,8 +333,8 @@ static void test_degenerate(void)
         const double dk = k < 5 ? 1.0 : 0.1018;
         ob_bez_subsegment(k < 5 ? &liu : &r80, spans[k][0], spans[k][1], &sub);
         st = fit(&sub, dk, &f, msg);
-        CHECK(st == OB_OK, "next to a cusp [%g, %g]: %s (%s)", spans[k][0], spans[k][1], ob_status_name(st), msg);
-        if (st != OB_OK)
+        CHECK(st == OB_FIT_OK, "next to a cusp [%g, %g]: %s (%s)", spans[k][0], spans[k][1], ob_fit_status_name(st), msg);
+        if (st != OB_FIT_OK)
             continue;
         for (int e = 0; e < 2; e++) {
             const ob_bez *A = &f.seg[e ? f.n - 1 : 0];

@@ -14,7 +14,7 @@
  *   pieces cut where the normal crosses an arc boundary and joined end to
  *   end; degree 3n-2 (polynomial) and 5n-4 (rational); radial error at most
  *   the circle approximation error (+ round-off) and decreasing with tol; the
- *   parameters; OB_RETRY_SMALLER when more than OB_SPLIT_PIECES arcs are met.
+ *   parameters; OB_FIT_RETRY_SMALLER when more than OB_SPLIT_PIECES arcs are met.
  * Reference computations use tests/testlib.h (independent of the library).
  */
 #include <math.h>
@@ -40,8 +40,8 @@ static const double EX1[4][2] = {
 
 static double crs(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
 
-static ob_status fit(const ob_method *m, const ob_bez *C, double d, double tol, const double *par,
-                     ob_fit *out, char *msg)
+static ob_fit_status fit(const ob_method *m, const ob_bez *C, double d, double tol, const double *par,
+                         ob_fit *out, char *msg)
 {
     double def[OB_MAX_PARAMS];
     if (!par) {
@@ -187,9 +187,9 @@ static void check_exact(const char *what, const ob_bez *C, double d)
     static ob_fit f;
     char msg[MSGLEN];
     const ob_method *m = &ob_method_exact;
-    ob_status st = fit(m, C, d, 1e-3, NULL, &f, msg);
-    CHECK(st == OB_OK && f.n == 1, "exact %s d %g: %s (%s)", what, d, ob_status_name(st), msg);
-    if (st != OB_OK || f.n != 1)
+    ob_fit_status st = fit(m, C, d, 1e-3, NULL, &f, msg);
+    CHECK(st == OB_FIT_OK && f.n == 1, "exact %s d %g: %s (%s)", what, d, ob_fit_status_name(st), msg);
+    if (st != OB_FIT_OK || f.n != 1)
         return;
     CHECK(f.seg[0].deg == m->out_degree(C->deg, C->rational), "exact %s: degree %d vs %d", what,
           f.seg[0].deg, m->out_degree(C->deg, C->rational));
@@ -239,7 +239,7 @@ static void test_exact(void)
         char msg[MSGLEN];
         for (int k = 0; k < 2; k++) {
             double d = k ? -0.5 : 0.5, worst = 0.0;
-            if (fit(m, &a->seg[0], d, 1e-3, NULL, &f, msg) != OB_OK)
+            if (fit(m, &a->seg[0], d, 1e-3, NULL, &f, msg) != OB_FIT_OK)
                 continue;
             for (int s = 0; s <= 100; s++) {
                 double q[2];
@@ -323,37 +323,37 @@ static void test_exact(void)
     char msg[MSGLEN];
     ob_bez g;
     ob_bez_from_points(&g, 3, EX1);
-    ob_status st = fit(m, &g, 1.0, 1e-3, NULL, &f, msg);
-    CHECK(st == OB_SKIP && strstr(msg, "Pythagorean"), "exact on a generic cubic: %s (%s)",
-          ob_status_name(st), msg);
+    ob_fit_status st = fit(m, &g, 1.0, 1e-3, NULL, &f, msg);
+    CHECK(st == OB_FIT_SKIP && strstr(msg, "Pythagorean"), "exact on a generic cubic: %s (%s)",
+          ob_fit_status_name(st), msg);
     {
         double xy[3][2] = {{1, 0}, {1, 1}, {0, 1}}, w[3] = {1, 0.5, 1};  /* an ellipse arc */
         ob_bez e = make(2, (const double (*)[2])xy, w);
         st = fit(m, &e, 0.3, 1e-3, NULL, &f, msg);
-        CHECK(st == OB_SKIP && strstr(msg, "circular"), "exact on an ellipse arc: %s (%s)",
-              ob_status_name(st), msg);
+        CHECK(st == OB_FIT_SKIP && strstr(msg, "circular"), "exact on an ellipse arc: %s (%s)",
+              ob_fit_status_name(st), msg);
         double xy2[3][2] = {{1, 0}, {1, 1.2}, {0, 1}};  /* unequal legs */
         double w2[3] = {1, sqrt(2.0) / 2, 1};
         e = make(2, (const double (*)[2])xy2, w2);
         st = fit(m, &e, 0.3, 1e-3, NULL, &f, msg);
-        CHECK(st == OB_SKIP && msg[0], "exact on unequal legs: %s (%s)", ob_status_name(st), msg);
+        CHECK(st == OB_FIT_SKIP && msg[0], "exact on unequal legs: %s (%s)", ob_fit_status_name(st), msg);
         double xy3[4][2] = {{1, 0}, {1, 0.5}, {0.5, 1}, {0, 1}}, w3[4] = {1, 0.8, 0.8, 1};
         e = make(3, (const double (*)[2])xy3, w3);
         st = fit(m, &e, 0.3, 1e-3, NULL, &f, msg);
-        CHECK(st == OB_SKIP && msg[0], "exact on a rational cubic: %s (%s)", ob_status_name(st), msg);
+        CHECK(st == OB_FIT_SKIP && msg[0], "exact on a rational cubic: %s (%s)", ob_fit_status_name(st), msg);
         double xy4[3][2] = {{0, 0}, {2, 1}, {1, 0.5}}, w4[3] = {1, 1.5, 1};  /* goes back */
         e = make(2, (const double (*)[2])xy4, w4);
         st = fit(m, &e, 0.3, 1e-3, NULL, &f, msg);
-        CHECK(st == OB_SKIP && strstr(msg, "reverses"), "exact on a reversing segment: %s (%s)",
-              ob_status_name(st), msg);
+        CHECK(st == OB_FIT_SKIP && strstr(msg, "reverses"), "exact on a reversing segment: %s (%s)",
+              ob_fit_status_name(st), msg);
     }
     {
         /* PH with a stationary point: C' = ((1-2t)^2, 0), sigma = (1-2t)^2 */
         double xy[4][2] = {{0, 0}, {1.0 / 3, 0}, {0, 0}, {1.0 / 3, 0}};
         ob_bez c = make(3, (const double (*)[2])xy, NULL);
         st = fit(m, &c, 0.3, 1e-3, NULL, &f, msg);
-        CHECK(st == OB_SKIP && strstr(msg, "vanish"), "exact on a PH cubic with C'(1/2) = 0: %s (%s)",
-              ob_status_name(st), msg);
+        CHECK(st == OB_FIT_SKIP && strstr(msg, "vanish"), "exact on a PH cubic with C'(1/2) = 0: %s (%s)",
+              ob_fit_status_name(st), msg);
     }
 }
 
@@ -419,9 +419,9 @@ static void check_lee_construction(const char *what, const ob_bez *C, double d, 
     static ob_fit f;
     char msg[MSGLEN];
     const ob_method *m = &ob_method_lee;
-    ob_status st = fit(m, C, d, tol, NULL, &f, msg);
-    CHECK(st == OB_OK, "lee %s d %g tol %g: %s (%s)", what, d, tol, ob_status_name(st), msg);
-    if (st != OB_OK)
+    ob_fit_status st = fit(m, C, d, tol, NULL, &f, msg);
+    CHECK(st == OB_FIT_OK, "lee %s d %g tol %g: %s (%s)", what, d, tol, ob_fit_status_name(st), msg);
+    if (st != OB_FIT_OK)
         return;
     const int want = C->rational ? 5 * C->deg - 4 : 3 * C->deg - 2;
     int degok = 1;
@@ -510,7 +510,7 @@ static void test_lee(void)
             for (int i = 0; i < 4; i++)
                 xy[i][0] = 0.3 + s[i] * u[0], xy[i][1] = -0.2 + s[i] * u[1];
             ob_bez L = make(3, (const double (*)[2])xy, NULL);
-            if (fit(m, &L, d, tol, NULL, &f, msg) != OB_OK || f.n != 1) {
+            if (fit(m, &L, d, tol, NULL, &f, msg) != OB_FIT_OK || f.n != 1) {
                 CHECK(0, "lee on a line: %s", msg);
                 continue;
             }
@@ -562,7 +562,7 @@ static void test_lee(void)
         double prev = INFINITY;
         int prevn = 0, ok = 1;
         for (double tol = 1e-1; tol > 2e-5; tol /= 10) {
-            if (fit(m, &g, sg, tol, NULL, &f, msg) != OB_OK) {
+            if (fit(m, &g, sg, tol, NULL, &f, msg) != OB_FIT_OK) {
                 CHECK(0, "lee liu2002_ex1 tol %g: %s", tol, msg);
                 ok = 0;
                 break;
@@ -575,29 +575,29 @@ static void test_lee(void)
         CHECK(ok, "lee liu2002_ex1 d %d: radial error decreasing with tol, pieces not fewer", sg);
     }
 
-    /* 4. more arcs than pieces allowed: OB_RETRY_SMALLER */
-    ob_status st = fit(m, &g, 1.0, 1e-9, NULL, &f, msg);
-    CHECK(st == OB_RETRY_SMALLER && msg[0], "lee tol 1e-9: %s (%s)", ob_status_name(st), msg);
+    /* 4. more arcs than pieces allowed: OB_FIT_RETRY_SMALLER */
+    ob_fit_status st = fit(m, &g, 1.0, 1e-9, NULL, &f, msg);
+    CHECK(st == OB_FIT_RETRY_SMALLER && msg[0], "lee tol 1e-9: %s (%s)", ob_fit_status_name(st), msg);
     st = fit(m, &g, 0.0, 1e-3, NULL, &f, msg);
-    CHECK(st == OB_SKIP && msg[0], "lee d = 0: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_SKIP && msg[0], "lee d = 0: %s (%s)", ob_fit_status_name(st), msg);
 
     /* 5. the parameters */
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
     par[0] = 0.25;  /* tol_frac */
     st = fit(m, &g, -1.0, 1e-2, par, &f, msg);
-    CHECK(st == OB_OK && fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512) <= 0.25e-2,
+    CHECK(st == OB_FIT_OK && fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512) <= 0.25e-2,
           "lee tol_frac 0.25: radial %g", fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512));
     ob_param_defaults(m, par);
     par[1] = 1;  /* arc: the equioscillating scaled quadratic */
     for (int k = 0; k < 2; k++) {
         double tol = k ? 1e-3 : 1e-2, d = 0.7;
         static ob_fit f0;
-        ob_status s0 = fit(m, &g, d, tol, NULL, &f0, msg);
+        ob_fit_status s0 = fit(m, &g, d, tol, NULL, &f0, msg);
         st = fit(m, &g, d, tol, par, &f, msg);
-        CHECK(st == OB_OK && s0 == OB_OK && f.n <= f0.n, "lee arc=1 tol %g: %d pieces, arc=0 %d",
+        CHECK(st == OB_FIT_OK && s0 == OB_FIT_OK && f.n <= f0.n, "lee arc=1 tol %g: %d pieces, arc=0 %d",
               tol, f.n, f0.n);
-        if (st != OB_OK)
+        if (st != OB_FIT_OK)
             continue;
         double hi = -1, lo = 1;
         for (int i = 0; i < f.n; i++)
@@ -619,8 +619,8 @@ static void test_lee(void)
     for (int k = 0; k < 2; k++) {
         const double d = k ? 1.0 : -1.0;
         st = fit(m, &g, d, 1e-3, par, &f, msg);
-        CHECK(st == OB_OK, "lee arcs_on=1: %s", msg);
-        if (st != OB_OK)
+        CHECK(st == OB_FIT_OK, "lee arcs_on=1: %s", msg);
+        if (st != OB_FIT_OK)
             continue;
         double p[2], N[2], A[2];
         ref_offset_normal(&g, 0.0, d, p, N);
@@ -637,7 +637,7 @@ static void test_lee(void)
         static const double ln[4][2] = {{0.1, -0.2}, {0.31, -0.06}, {1.9, 1.0}, {3.1, 1.8}};
         ob_bez L = make(3, ln, NULL);
         st = fit(m, &L, 0.4, 1e-3, par, &f, msg);
-        CHECK(st == OB_OK && f.n == 1 && f.seg[0].deg == 7 &&
+        CHECK(st == OB_FIT_OK && f.n == 1 && f.seg[0].deg == 7 &&
                   fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.4, 512) < 1e-12,
               "lee arcs_on=1 on a straight cubic: the exact translate (%s)", msg);
     }
@@ -648,10 +648,10 @@ static void test_lee(void)
         ob_bez L = make(3, ln, NULL);
         par[3] = atan2(2.0, -1.0);  /* direction of the left normal (-1, 2) */
         st = fit(m, &L, 0.3, 1e-2, par, &f, msg);
-        double e1 = st == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : INFINITY;
+        double e1 = st == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : INFINITY;
         par[3] = atan2(2.0, -1.0) + OB_PI / 7;
         st = fit(m, &L, 0.3, 1e-2, par, &f, msg);
-        double e2 = st == OB_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : 0.0;
+        double e2 = st == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : 0.0;
         CHECK(e1 < 1e-12 && e2 > 1e-4, "lee start: boundary on the normal %g, off it %g", e1, e2);
     }
 
@@ -663,12 +663,12 @@ static void test_lee(void)
         const double d = k ? 1.0 : -1.0, tol = 1e-3;
         static ob_fit f0;
         ob_param_defaults(m, par);
-        ob_status s0 = fit(m, &g, d, tol, par, &f0, msg);
+        ob_fit_status s0 = fit(m, &g, d, tol, par, &f0, msg);
         par[4] = 1;
         st = fit(m, &g, d, tol, par, &f, msg);
-        CHECK(st == OB_OK && s0 == OB_OK && f.n == f0.n, "lee clip=1: %s, %d pieces vs %d", msg,
+        CHECK(st == OB_FIT_OK && s0 == OB_FIT_OK && f.n == f0.n, "lee clip=1: %s, %d pieces vs %d", msg,
               f.n, f0.n);
-        if (st != OB_OK || s0 != OB_OK || f.n != f0.n)
+        if (st != OB_FIT_OK || s0 != OB_FIT_OK || f.n != f0.n)
             continue;
         int same = 1;
         for (int i = 0; i <= f.n; i++)

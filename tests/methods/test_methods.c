@@ -78,8 +78,8 @@ static int guard_ok(const unsigned char *p, size_t n)
     return 1;
 }
 
-static ob_status run_fit_tol(const ob_method *m, const ob_bez *base, double d, double tol, ob_fit *out,
-                             char msg[MSGLEN])
+static ob_fit_status run_fit_tol(const ob_method *m, const ob_bez *base, double d, double tol, ob_fit *out,
+                                 char msg[MSGLEN])
 {
     guarded_fit *g = malloc(sizeof *g);
     unsigned char *work = malloc(m->work_size + GUARD);
@@ -96,7 +96,7 @@ static ob_status run_fit_tol(const ob_method *m, const ob_bez *base, double d, d
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
     const ob_fit_args args = {d, tol, par};
-    ob_status st = m->fit(base, &args, work, &g->fit, mbuf, MSGLEN);
+    ob_fit_status st = m->fit(base, &args, work, &g->fit, mbuf, MSGLEN);
     CHECK(guard_ok(g->pre, GUARD) && guard_ok(g->post, GUARD), "%s: wrote outside ob_fit", m->name);
     CHECK(guard_ok(work + m->work_size, GUARD), "%s: wrote past work_size %zu", m->name, m->work_size);
     CHECK(guard_ok((unsigned char *)mbuf + MSGLEN, GUARD) && memchr(mbuf, 0, MSGLEN),
@@ -110,7 +110,7 @@ static ob_status run_fit_tol(const ob_method *m, const ob_bez *base, double d, d
     return st;
 }
 
-static ob_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fit *out, char msg[MSGLEN])
+static ob_fit_status run_fit(const ob_method *m, const ob_bez *base, double d, ob_fit *out, char msg[MSGLEN])
 {
     return run_fit_tol(m, base, d, 1e-3, out, msg);
 }
@@ -258,26 +258,26 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
 {
     static ob_fit f, f2, h0, h1;
     char msg[MSGLEN];
-    ob_status st = run_fit(m, C, d, &f, msg);
-    CHECK(st == OB_OK || ((st == OB_SKIP || st == OB_RETRY_SMALLER) && msg[0]), "%s/%s/%g: status %s (%s)",
-          m->name, cn, d, ob_status_name(st), msg);
-    if (st != OB_OK)
+    ob_fit_status st = run_fit(m, C, d, &f, msg);
+    CHECK(st == OB_FIT_OK || ((st == OB_FIT_SKIP || st == OB_FIT_RETRY_SMALLER) && msg[0]), "%s/%s/%g: status %s (%s)",
+          m->name, cn, d, ob_fit_status_name(st), msg);
+    if (st != OB_FIT_OK)
         return;
     check_structure(m, cn, C, d, &f);
     if (f.n < 1 || f.n > OB_MAX_PIECES)
         return;
 
     /* determinism */
-    ob_status st2 = run_fit(m, C, d, &f2, msg);
-    CHECK(st2 == OB_OK && same_fit(&f, &f2), "%s/%s/%g: two fits differ", m->name, cn, d);
+    ob_fit_status st2 = run_fit(m, C, d, &f2, msg);
+    CHECK(st2 == OB_FIT_OK && same_fit(&f, &f2), "%s/%s/%g: two fits differ", m->name, cn, d);
 
     /* a fit that claims to ignore the tolerance gives the same bits at any
      * (the driver then shares it among the jobs that differ in tol only) */
     if (!ob_method_fit_uses_tol(m, NULL)) {
         const double tols[2] = {1e-1, 1e-6};
         for (int k = 0; k < 2; k++) {
-            ob_status st3 = run_fit_tol(m, C, d, tols[k], &f2, msg);
-            CHECK(st3 == OB_OK && same_fit(&f, &f2), "%s/%s/%g: the fit at tol %g differs from the fit at 1e-3 "
+            ob_fit_status st3 = run_fit_tol(m, C, d, tols[k], &f2, msg);
+            CHECK(st3 == OB_FIT_OK && same_fit(&f, &f2), "%s/%s/%g: the fit at tol %g differs from the fit at 1e-3 "
                   "(the method does not declare fit_uses_tol)", m->name, cn, d, tols[k]);
         }
     }
@@ -292,10 +292,10 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
         ob_bez L, R;
         ob_bez_subsegment(C, 0.0, 0.5, &L);
         ob_bez_subsegment(C, 0.5, 1.0, &R);
-        ob_status s0 = run_fit(m, &L, d, &h0, msg), s1 = run_fit(m, &R, d, &h1, msg);
-        CHECK((s0 == OB_OK || s0 == OB_RETRY_SMALLER) && (s1 == OB_OK || s1 == OB_RETRY_SMALLER),
-              "%s/%s/%g: halves: %s %s", m->name, cn, d, ob_status_name(s0), ob_status_name(s1));
-        if (s0 == OB_OK && s1 == OB_OK) {
+        ob_fit_status s0 = run_fit(m, &L, d, &h0, msg), s1 = run_fit(m, &R, d, &h1, msg);
+        CHECK((s0 == OB_FIT_OK || s0 == OB_FIT_RETRY_SMALLER) && (s1 == OB_FIT_OK || s1 == OB_FIT_RETRY_SMALLER),
+              "%s/%s/%g: halves: %s %s", m->name, cn, d, ob_fit_status_name(s0), ob_fit_status_name(s1));
+        if (s0 == OB_FIT_OK && s1 == OB_FIT_OK) {
             double e0 = fit_error(OB_METRIC_HAUSDORFF, &L, &h0, d);
             double e1 = fit_error(OB_METRIC_HAUSDORFF, &R, &h1, d);
             /* a fit of several pieces (split at offset cusps, say) may keep
@@ -308,12 +308,12 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
 
     /* symmetry: the reversed curve offset by -d is the same point set */
     ob_bez Cr = reversed(C);
-    ob_status sr = run_fit(m, &Cr, -d, &f2, msg);
-    CHECK(sr == OB_OK || sr == OB_RETRY_SMALLER, "%s/%s/%g: reversed: %s (%s)", m->name, cn, d,
-          ob_status_name(sr), msg);
+    ob_fit_status sr = run_fit(m, &Cr, -d, &f2, msg);
+    CHECK(sr == OB_FIT_OK || sr == OB_FIT_RETRY_SMALLER, "%s/%s/%g: reversed: %s (%s)", m->name, cn, d,
+          ob_fit_status_name(sr), msg);
     if (m->caps & OB_CAP_ORIENTED)
         SKIP("reversal symmetry: the method declares OB_CAP_ORIENTED");
-    else if (sr == OB_OK && f2.n >= 1 && f2.n <= OB_MAX_PIECES) {
+    else if (sr == OB_FIT_OK && f2.n >= 1 && f2.n <= OB_MAX_PIECES) {
         double er = fit_error(OB_METRIC_HAUSDORFF, &Cr, &f2, -d);
         CHECK_NEAR(er, whole, 1e-9, "reversed curve, -d: hausdorff error");
     }
@@ -343,9 +343,9 @@ static void test_tiller(void)
         ob_bez_from_points(&C, n, p);
         for (int k = 0; k < 2; k++) {
             double d = DS[k];
-            ob_status st = run_fit(m, &C, d, &f, msg);
-            CHECK(st == OB_OK && f.n == 1, "tiller line deg %d d %g: %s", n, d, msg);
-            if (st != OB_OK)
+            ob_fit_status st = run_fit(m, &C, d, &f, msg);
+            CHECK(st == OB_FIT_OK && f.n == 1, "tiller line deg %d d %g: %s", n, d, msg);
+            if (st != OB_FIT_OK)
                 continue;
             for (ob_metric mt = 0; mt < OB_METRIC_COUNT; mt++) {
                 ob_errval e;
@@ -366,7 +366,7 @@ static void test_tiller(void)
         const ob_bez *C = &curves[c];
         for (int k = 0; k < ND; k++) {
             double d = DS[k];
-            if (run_fit(m, C, d, &f, msg) != OB_OK)
+            if (run_fit(m, C, d, &f, msg) != OB_FIT_OK)
                 continue;
             int n = C->deg;
             for (int j = 0; j <= n; j++) {
@@ -392,9 +392,9 @@ static void check_cobb_points(const ob_method *m, const char *cn, const ob_bez *
 {
     static ob_fit f;
     char msg[MSGLEN];
-    ob_status st = run_fit(m, C, d, &f, msg);
-    CHECK(st == OB_OK && f.n == 1 && f.seg[0].deg == C->deg, "cobb %s %g: %s", cn, d, msg);
-    if (st != OB_OK || f.n != 1 || f.seg[0].deg != C->deg)
+    ob_fit_status st = run_fit(m, C, d, &f, msg);
+    CHECK(st == OB_FIT_OK && f.n == 1 && f.seg[0].deg == C->deg, "cobb %s %g: %s", cn, d, msg);
+    if (st != OB_FIT_OK || f.n != 1 || f.seg[0].deg != C->deg)
         return;
     for (int j = 0; j <= C->deg; j++) {
         double P[2], N[2], q[2];
@@ -433,9 +433,9 @@ static void check_ahn_hermite(const ob_method *m, const char *cn, const ob_bez *
     /* keep 1 - d kappa >= 0.5 at the ends, so the offset is regular there */
     double k0 = ob_bez_curvature(C, 0.0), k1 = ob_bez_curvature(C, 1.0);
     double d = d0 * fmin(1.0, 0.5 / fmax(fabs(k0), fabs(k1)));
-    ob_status st = run_fit(m, C, d, &f, msg);
-    CHECK(st == OB_OK && f.n == 1, "ahn %s %g: %s (%s)", cn, d, ob_status_name(st), msg);
-    if (st != OB_OK || f.n != 1)
+    ob_fit_status st = run_fit(m, C, d, &f, msg);
+    CHECK(st == OB_FIT_OK && f.n == 1, "ahn %s %g: %s (%s)", cn, d, ob_fit_status_name(st), msg);
+    if (st != OB_FIT_OK || f.n != 1)
         return;
     const ob_bez *A = &f.seg[0];
     CHECK(A->deg == n + 3 && !A->rational, "ahn %s %g: degree %d, rational %d", cn, d, A->deg,
@@ -491,7 +491,7 @@ static int count_mid_split(const ob_method *m, const ob_bez *C, double d, double
 {
     static ob_fit f;
     char msg[MSGLEN];
-    if (run_fit(m, C, d, &f, msg) != OB_OK)
+    if (run_fit(m, C, d, &f, msg) != OB_FIT_OK)
         return 1000;
     if (fit_error(OB_METRIC_RADIAL, C, &f, d) <= tol || depth >= 12)
         return 1;
@@ -514,8 +514,8 @@ static void test_ahn(void)
     static ob_fit f;
     char msg[MSGLEN];
     ob_bez qc = quarter_circle(1.0, 0);
-    ob_status st = run_fit(m, &qc, 0.3, &f, msg);
-    CHECK(st == OB_SKIP && msg[0], "ahn: rational input gives %s (%s)", ob_status_name(st), msg);
+    ob_fit_status st = run_fit(m, &qc, 0.3, &f, msg);
+    CHECK(st == OB_FIT_SKIP && msg[0], "ahn: rational input gives %s (%s)", ob_fit_status_name(st), msg);
 
     /* a straight segment: kappa = 0, N^a = N, the offset is exact */
     static const double line[4][2] = {{0.1, -0.2}, {0.31, -0.06}, {1.9, 1.0}, {3.1, 1.8}};
@@ -523,8 +523,8 @@ static void test_ahn(void)
     ob_bez_from_points(&L, 3, line);
     for (int k = 0; k < 2; k++) {
         st = run_fit(m, &L, DS[k], &f, msg);
-        CHECK(st == OB_OK, "ahn: straight cubic, d %g: %s (%s)", DS[k], ob_status_name(st), msg);
-        if (st == OB_OK)
+        CHECK(st == OB_FIT_OK, "ahn: straight cubic, d %g: %s (%s)", DS[k], ob_fit_status_name(st), msg);
+        if (st == OB_FIT_OK)
             CHECK(fit_error(OB_METRIC_HAUSDORFF, &L, &f, DS[k]) < 1e-12, "ahn: straight cubic, d "
                   "%g: error %g", DS[k], fit_error(OB_METRIC_HAUSDORFF, &L, &f, DS[k]));
     }
@@ -548,8 +548,8 @@ static void test_ahn(void)
         ob_bez H;
         ob_bez_subsegment(C, 0.5 * h, 0.5 * h + 0.5, &H);
         st = run_fit(m, &H, 1.0, &f, msg);
-        CHECK(st == OB_OK, "ahn liu2002_ex1 half %d: %s", h, msg);
-        if (st == OB_OK) {
+        CHECK(st == OB_FIT_OK, "ahn liu2002_ex1 half %d: %s", h, msg);
+        if (st == OB_FIT_OK) {
             double e = fit_error(OB_METRIC_RADIAL, &H, &f, 1.0);
             CHECK(e < 0.1, "ahn liu2002_ex1 d=1: radial error %g (half %d)", e, h);
         }
@@ -602,9 +602,9 @@ static void test_param_ranges(const ob_method *m)
             ob_fit f;
             msg[0] = '\0';
             const ob_fit_args a = {0.5, 1e-2, par};
-            ob_status st = m->fit(&curves[0], &a, work, &f, msg, sizeof msg);
+            ob_fit_status st = m->fit(&curves[0], &a, work, &f, msg, sizeof msg);
             free(work);
-            CHECK(st == OB_OK || st == OB_RETRY_SMALLER || !(strstr(msg, "range") || strstr(msg, "must be")),
+            CHECK(st == OB_FIT_OK || st == OB_FIT_RETRY_SMALLER || !(strstr(msg, "range") || strstr(msg, "must be")),
                   "%s.%s = %g: fit refuses a value inside the range: %s", m->name, p->name, par[k], msg);
         }
     }

@@ -128,8 +128,8 @@ static int solve(int k, double (*A)[OB_MAX_DEG + 1], double (*b)[2])
 
 /* ---- helpers ------------------------------------------------------------------- */
 
-static ob_status fit_with(const ob_method *m, const ob_bez *C, double d, const double *par,
-                          ob_fit *f, char *msg)
+static ob_fit_status fit_with(const ob_method *m, const ob_bez *C, double d, const double *par,
+                              ob_fit *f, char *msg)
 {
     double def[OB_MAX_PARAMS];
     ob_param_defaults(m, def);
@@ -319,9 +319,9 @@ static void test_exact_cases(void)
         for (int mi = 0; mi < 3; mi++)
             for (int sg = -1; sg <= 1; sg += 2) {
                 double d = 0.7 * sg;
-                ob_status st = fit_with(M3[mi], &C, d, NULL, &f, msg);
-                CHECK(st == OB_OK, "%s line deg %d: %s", NAMES[mi], n, msg);
-                if (st != OB_OK)
+                ob_fit_status st = fit_with(M3[mi], &C, d, NULL, &f, msg);
+                CHECK(st == OB_FIT_OK, "%s line deg %d: %s", NAMES[mi], n, msg);
+                if (st != OB_FIT_OK)
                     continue;
                 double worst = 0.0;
                 for (int i = 0; i <= n; i++) {
@@ -343,9 +343,9 @@ static void test_exact_cases(void)
         for (int mi = 0; mi < 3; mi++)
             for (int sg = -1; sg <= 1; sg += 2) {
                 double d = 0.8 * sg;
-                ob_status st = fit_with(M3[mi], &qc, d, NULL, &f, msg);
-                CHECK(st == OB_OK, "%s circle: %s", NAMES[mi], msg);
-                if (st != OB_OK)
+                ob_fit_status st = fit_with(M3[mi], &qc, d, NULL, &f, msg);
+                CHECK(st == OB_FIT_OK, "%s circle: %s", NAMES[mi], msg);
+                if (st != OB_FIT_OK)
                     continue;
                 CHECK(f.seg[0].rational && f.seg[0].deg == 2, "%s circle: rational quadratic", NAMES[mi]);
                 for (int i = 0; i <= 2; i++)
@@ -371,10 +371,10 @@ static void test_end_interpolation(void)
     for (int c = 0; c < 4; c++)
         for (int mi = 0; mi < 3; mi++)
             for (int k = 0; k < 4; k++) {
-                ob_status st = fit_with(M3[mi], &cs[c], ds[k], NULL, &f, msg);
-                CHECK(st == OB_OK && f.n == 1 && f.seg[0].deg == cs[c].deg, "%s curve %d: %s",
+                ob_fit_status st = fit_with(M3[mi], &cs[c], ds[k], NULL, &f, msg);
+                CHECK(st == OB_FIT_OK && f.n == 1 && f.seg[0].deg == cs[c].deg, "%s curve %d: %s",
                       NAMES[mi], c, msg);
-                if (st != OB_OK)
+                if (st != OB_FIT_OK)
                     continue;
                 for (int e = 0; e <= 1; e++) {
                     double o[2], a[2], N[2];
@@ -415,9 +415,9 @@ static void check_l2_optimal(const char *cn, const ob_bez *C, double d)
     static double g[FINE][2];
     char msg[MSGLEN];
     const int n = C->deg, m = n - 2;
-    ob_status st = fit_with(M3[0], C, d, NULL, &f, msg);
-    CHECK(st == OB_OK, "liu %s: %s", cn, msg);
-    if (st != OB_OK)
+    ob_fit_status st = fit_with(M3[0], C, d, NULL, &f, msg);
+    CHECK(st == OB_FIT_OK, "liu %s: %s", cn, msg);
+    if (st != OB_FIT_OK)
         return;
     double sl[OB_MAX_DEG + 1][2];
     interior(C, &f.seg[0], sl);
@@ -507,9 +507,9 @@ static void test_agreement_convergence(void)
         ob_bez P;
         ob_bez_subsegment(&C, a, a + h, &P);
         for (int mi = 0; mi < 3; mi++) {
-            ob_status st = fit_with(M3[mi], &P, d, NULL, &f, msg);
-            CHECK(st == OB_OK, "%s piece h %g: %s", NAMES[mi], h, msg);
-            err[mi][l] = st == OB_OK ? normal_fit_error(&P, &f.seg[0], d) : NAN;
+            ob_fit_status st = fit_with(M3[mi], &P, d, NULL, &f, msg);
+            CHECK(st == OB_FIT_OK, "%s piece h %g: %s", NAMES[mi], h, msg);
+            err[mi][l] = st == OB_FIT_OK ? normal_fit_error(&P, &f.seg[0], d) : NAN;
         }
     }
     for (int l = 0; l < 7; l++)
@@ -533,8 +533,8 @@ static void test_agreement_convergence(void)
         ob_bez P;
         ob_bez_subsegment(&Q, 0.3, 0.3 + 0.5 / (1 << l), &P);
         for (int mi = 0; mi < 3; mi++) {
-            ob_status st = fit_with(M3[mi], &P, 0.5, NULL, &f, msg);
-            eq[mi][l] = st == OB_OK ? normal_fit_error(&P, &f.seg[0], 0.5) : NAN;
+            ob_fit_status st = fit_with(M3[mi], &P, 0.5, NULL, &f, msg);
+            eq[mi][l] = st == OB_FIT_OK ? normal_fit_error(&P, &f.seg[0], 0.5) : NAN;
         }
     }
     for (int mi = 0; mi < 3; mi++) {
@@ -548,9 +548,9 @@ static void test_agreement_convergence(void)
     ob_bez P;
     ob_bez_subsegment(&Q, 0.1, 0.9, &P);
     double par[OB_MAX_PARAMS] = {4};
-    ob_status st = fit_with(M3[1], &P, 0.5, par, &f, msg);
-    CHECK(st == OB_OK, "chebyshev 4 nodes: %s", msg);
-    if (st == OB_OK) {
+    ob_fit_status st = fit_with(M3[1], &P, 0.5, par, &f, msg);
+    CHECK(st == OB_FIT_OK, "chebyshev 4 nodes: %s", msg);
+    if (st == OB_FIT_OK) {
         double sq[OB_MAX_DEG + 1][2], worst = 0.0;
         interior(&P, &f.seg[0], sq);
         for (int j = 0; j < 4; j++) {
@@ -570,7 +570,7 @@ static void test_agreement_convergence(void)
     for (int M = 16; M <= 1024; M *= 4) {
         double pl[OB_MAX_PARAMS] = {M, 1};
         st = fit_with(M3[2], &P, d, pl, &f, msg);
-        CHECK(st == OB_OK, "lstsq f~ %d samples: %s", M, msg);
+        CHECK(st == OB_FIT_OK, "lstsq f~ %d samples: %s", M, msg);
         double dv = 0.0;
         for (int i = 0; i <= 3; i++)
             dv = fmax(dv, hypot(f.seg[0].h[i][0] - fl.seg[0].h[i][0], f.seg[0].h[i][1] - fl.seg[0].h[i][1]));
@@ -586,7 +586,7 @@ static void test_agreement_convergence(void)
      * itself with the ends fixed: it beats liu there, and liu beats it on f~ */
     double pl[OB_MAX_PARAMS] = {1024, 0};
     st = fit_with(M3[2], &P, d, pl, &f, msg);
-    CHECK(st == OB_OK, "lstsq normal 1024: %s", msg);
+    CHECK(st == OB_FIT_OK, "lstsq normal 1024: %s", msg);
     double en_l = 0, en_s = 0;
     double cl[OB_MAX_DEG + 1][2], cs[OB_MAX_DEG + 1][2];
     shifts(&P, &fl.seg[0], cl);
@@ -625,9 +625,9 @@ static void test_rational(void)
     CHECK(R.rational, "rational cubic is rational");
     for (int mi = 0; mi < 3; mi++) {
         const double d = 0.25;
-        ob_status st = fit_with(M3[mi], &R, d, NULL, &f, msg);
-        CHECK(st == OB_OK, "%s rational cubic: %s", NAMES[mi], msg);
-        if (st != OB_OK)
+        ob_fit_status st = fit_with(M3[mi], &R, d, NULL, &f, msg);
+        CHECK(st == OB_FIT_OK, "%s rational cubic: %s", NAMES[mi], msg);
+        if (st != OB_FIT_OK)
             continue;
         int kept = f.seg[0].rational && f.seg[0].deg == 3;
         for (int i = 0; i <= 3; i++)
@@ -689,19 +689,19 @@ static void test_params(void)
             double par[OB_MAX_PARAMS];
             ob_param_defaults(M3[mi], par);
             par[0] = badn[k];
-            ob_status st = fit_with(M3[mi], &C, 1.0, par, &f, msg);
-            CHECK(st == OB_FAIL && msg[0], "%s: parameter %g: %s (%s)", NAMES[mi], badn[k],
-                  ob_status_name(st), msg);
+            ob_fit_status st = fit_with(M3[mi], &C, 1.0, par, &f, msg);
+            CHECK(st == OB_FIT_FAIL && msg[0], "%s: parameter %g: %s (%s)", NAMES[mi], badn[k],
+                  ob_fit_status_name(st), msg);
         }
     }
     double par[OB_MAX_PARAMS] = {32, 2};
-    CHECK(fit_with(M3[2], &C, 1.0, par, &f, msg) == OB_FAIL && msg[0], "lstsq target 2: %s", msg);
+    CHECK(fit_with(M3[2], &C, 1.0, par, &f, msg) == OB_FIT_FAIL && msg[0], "lstsq target 2: %s", msg);
     ob_bez Q = quintic();
     double p3[OB_MAX_PARAMS] = {3, 0};
-    CHECK(fit_with(M3[2], &Q, 1.0, p3, &f, msg) == OB_FAIL && msg[0],
+    CHECK(fit_with(M3[2], &Q, 1.0, p3, &f, msg) == OB_FIT_FAIL && msg[0],
           "lstsq: 3 samples for 4 unknowns: %s", msg);
     p3[0] = 4;
-    CHECK(fit_with(M3[2], &Q, 1.0, p3, &f, msg) == OB_OK, "lstsq: 4 samples for 4 unknowns: %s", msg);
+    CHECK(fit_with(M3[2], &Q, 1.0, p3, &f, msg) == OB_FIT_OK, "lstsq: 4 samples for 4 unknowns: %s", msg);
 }
 
 int main(void)

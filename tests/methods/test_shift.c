@@ -15,7 +15,7 @@
  *               Adaptive variant: one B-spline (simple knots, C1 joints checked,
  *               n + 1 + k control points), every node of ||A - C||^2 within
  *               the tolerance, Cobb's segment for a loose tolerance, refinement
- *               growing with the tolerance, OB_RETRY_SMALLER past 16 pieces.
+ *               growing with the tolerance, OB_FIT_RETRY_SMALLER past 16 pieces.
  *   interp      interpolates the exact offset at t*_j = j/n to 1e-12
  *               (polynomial and rational input), keeps the base's weights, is
  *               exact on a straight segment (any parameterization) and on a
@@ -45,7 +45,7 @@ enum { MSGLEN = 160 };
 /* ---- helpers ---------------------------------------------------------------- */
 
 /* Fit with the method's defaults, parameter k overridden by v when k >= 0. */
-static ob_status fitp(const ob_method *m, const ob_bez *C, double d, int k, double v, ob_fit *f)
+static ob_fit_status fitp(const ob_method *m, const ob_bez *C, double d, int k, double v, ob_fit *f)
 {
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
@@ -54,14 +54,14 @@ static ob_status fitp(const ob_method *m, const ob_bez *C, double d, int k, doub
     void *work = malloc(m->work_size ? m->work_size : 1);
     char msg[MSGLEN] = "";
     const ob_fit_args a = {d, 1e-3, par};
-    ob_status st = m->fit(C, &a, work, f, msg, MSGLEN);
-    if (st != OB_OK)
-        fprintf(stderr, "  (%s: %s: %s)\n", m->name, ob_status_name(st), msg);
+    ob_fit_status st = m->fit(C, &a, work, f, msg, MSGLEN);
+    if (st != OB_FIT_OK)
+        fprintf(stderr, "  (%s: %s: %s)\n", m->name, ob_fit_status_name(st), msg);
     free(work);
     return st;
 }
 
-static ob_status fit(const ob_method *m, const ob_bez *C, double d, ob_fit *f)
+static ob_fit_status fit(const ob_method *m, const ob_bez *C, double d, ob_fit *f)
 {
     return fitp(m, C, d, -1, 0.0, f);
 }
@@ -205,7 +205,7 @@ static void check_coquillart_rule(const char *cn, const ob_bez *C, double d, int
 {
     const ob_method *m = &ob_method_coquillart;
     static ob_fit f;
-    if (fitp(m, C, d, 1, foot, &f) != OB_OK || f.n != 1) {
+    if (fitp(m, C, d, 1, foot, &f) != OB_FIT_OK || f.n != 1) {
         CHECK(0, "coquillart %s %g: fit failed", cn, d);
         return;
     }
@@ -251,7 +251,7 @@ static void test_coquillart(void)
     ob_bez qc = quarter_circle(1.0, 0);
     for (int k = 0; k < 2; k++) {
         double d = DS[k];
-        if (fit(m, &qc, d, &f) != OB_OK) {
+        if (fit(m, &qc, d, &f) != OB_FIT_OK) {
             CHECK(0, "coquillart quarter circle %g: fit failed", d);
             continue;
         }
@@ -267,7 +267,7 @@ static void test_coquillart(void)
         CHECK(e < 1e-13 && er < 1e-13, "coquillart quarter circle %g: hausdorff %g radial %g", d, e,
               er);
         /* the literal-sign reading is not exact: the test can tell them apart */
-        if (fitp(m, &qc, d, 0, 1.0, &f) == OB_OK)
+        if (fitp(m, &qc, d, 0, 1.0, &f) == OB_FIT_OK)
             CHECK(hausdorff(&qc, &f.seg[0], d) > 1e-3, "coquillart reading 1 exact on a circle?");
     }
     /* other arcs: both orientations, off-centre, degree-elevated forms */
@@ -281,7 +281,7 @@ static void test_coquillart(void)
         for (int fm = 0; fm < 3; fm++)
             for (int k = 0; k < 2; k++) {
                 double d = DS[k] * arcs[a].r;
-                if (fit(m, forms[fm], d, &f) != OB_OK) {
+                if (fit(m, forms[fm], d, &f) != OB_FIT_OK) {
                     CHECK(0, "coquillart arc %zu: fit failed", a);
                     continue;
                 }
@@ -295,7 +295,7 @@ static void test_coquillart(void)
         ob_bez L = line(n);
         for (int reading = 0; reading < 4; reading++)
             for (int k = 0; k < 4; k++) {
-                if (fitp(m, &L, DS[k], 0, reading, &f) != OB_OK) {
+                if (fitp(m, &L, DS[k], 0, reading, &f) != OB_FIT_OK) {
                     CHECK(0, "coquillart line: fit failed");
                     continue;
                 }
@@ -304,9 +304,9 @@ static void test_coquillart(void)
                       reading, DS[k], e, er);
             }
     }
-    CHECK(fitp(m, &liu, 1.0, 0, 4.0, &f) == OB_FAIL, "coquillart: reading 4 rejected");
-    CHECK(fitp(m, &liu, 1.0, 0, 0.5, &f) == OB_FAIL, "coquillart: reading 0.5 rejected");
-    CHECK(fitp(m, &liu, 1.0, 1, 2.0, &f) == OB_FAIL, "coquillart: foot 2 rejected");
+    CHECK(fitp(m, &liu, 1.0, 0, 4.0, &f) == OB_FIT_FAIL, "coquillart: reading 4 rejected");
+    CHECK(fitp(m, &liu, 1.0, 0, 0.5, &f) == OB_FIT_FAIL, "coquillart: reading 0.5 rejected");
+    CHECK(fitp(m, &liu, 1.0, 1, 2.0, &f) == OB_FIT_FAIL, "coquillart: foot 2 rejected");
 }
 
 /* ---- elber ------------------------------------------------------------------------ */
@@ -328,13 +328,13 @@ static void test_elber(void)
         for (int k = 0; k < 4; k++) {
             double d = DS[k];
             /* iterations = 0 is Cobb's polygon, bit for bit */
-            if (fitp(m, cs[c], d, 0, 0.0, &f) == OB_OK && fit(&ob_method_cobb, cs[c], d, &g) == OB_OK)
+            if (fitp(m, cs[c], d, 0, 0.0, &f) == OB_FIT_OK && fit(&ob_method_cobb, cs[c], d, &g) == OB_FIT_OK)
                 CHECK(memcmp(f.seg[0].h, g.seg[0].h, sizeof f.seg[0].h) == 0,
                       "elber %s %g: 0 iterations is not cobb", cn[c], d);
             double e[NI];
             for (int i = 0; i < NI; i++) {
                 e[i] = INFINITY;
-                if (fitp(m, cs[c], d, 0, iters[i], &f) == OB_OK)
+                if (fitp(m, cs[c], d, 0, iters[i], &f) == OB_FIT_OK)
                     e[i] = node_error(cs[c], &f.seg[0], d);
             }
             for (int i = 1; i < NI; i++)
@@ -345,7 +345,7 @@ static void test_elber(void)
             CHECK(e[NI - 1] < 1e-12, "elber %s %g: not converged: node error %g", cn[c], d,
                   e[NI - 1]);
             /* the limit is the node interpolant */
-            if (fitp(m, cs[c], d, 0, 2000, &f) == OB_OK && fit(&ob_method_interp, cs[c], d, &g) == OB_OK)
+            if (fitp(m, cs[c], d, 0, 2000, &f) == OB_FIT_OK && fit(&ob_method_interp, cs[c], d, &g) == OB_FIT_OK)
                 for (int j = 0; j <= cs[c]->deg; j++) {
                     double a[2], b[2];
                     ctrl(&f.seg[0], j, a);
@@ -354,7 +354,7 @@ static void test_elber(void)
                           cn[c], d, j, dist2d(a, b));
                 }
             /* the default improves on Cobb at the nodes and on the whole */
-            if (fit(m, cs[c], d, &f) == OB_OK && fit(&ob_method_cobb, cs[c], d, &g) == OB_OK) {
+            if (fit(m, cs[c], d, &f) == OB_FIT_OK && fit(&ob_method_cobb, cs[c], d, &g) == OB_FIT_OK) {
                 CHECK(node_error(cs[c], &f.seg[0], d) < e[0], "elber %s %g: default no better at "
                       "the nodes", cn[c], d);
                 CHECK(f.seg[0].deg == cs[c]->deg, "elber: degree n");
@@ -366,7 +366,7 @@ static void test_elber(void)
             par[1] = 1;
             char msg[MSGLEN];
             const ob_fit_args a = {d, 1e-3, par};
-            if (m->fit(cs[c], &a, NULL, &f, msg, MSGLEN) == OB_OK) {
+            if (m->fit(cs[c], &a, NULL, &f, msg, MSGLEN) == OB_FIT_OK) {
                 double worst = 0.0;
                 for (int j = 0; j <= cs[c]->deg; j++) {
                     double t = (double)j / cs[c]->deg, O[2], P[2], N[2];
@@ -383,15 +383,15 @@ static void test_elber(void)
     for (int n = 1; n <= 6; n++) {
         ob_bez L = line(n);
         for (int k = 0; k < 4; k++)
-            if (fitp(m, &L, DS[k], 0, 20, &f) == OB_OK)
+            if (fitp(m, &L, DS[k], 0, 20, &f) == OB_FIT_OK)
                 CHECK(hausdorff(&L, &f.seg[0], DS[k]) < 1e-12, "elber: line deg %d d %g", n, DS[k]);
     }
-    CHECK(fitp(m, &liu, 1.0, 0, -1.0, &f) == OB_FAIL, "elber: iterations -1 rejected");
-    CHECK(fitp(m, &liu, 1.0, 1, 2.0, &f) == OB_FAIL, "elber: update 2 rejected");
+    CHECK(fitp(m, &liu, 1.0, 0, -1.0, &f) == OB_FIT_FAIL, "elber: iterations -1 rejected");
+    CHECK(fitp(m, &liu, 1.0, 1, 2.0, &f) == OB_FIT_FAIL, "elber: update 2 rejected");
 }
 
 /* Elber's adaptive variant: one B-spline with simple knots. */
-static ob_status fit_adaptive(const ob_bez *C, double d, double tol, int rounds, ob_fit *f)
+static ob_fit_status fit_adaptive(const ob_bez *C, double d, double tol, int rounds, ob_fit *f)
 {
     const ob_method *m = &ob_method_elber;
     double par[OB_MAX_PARAMS];
@@ -401,7 +401,7 @@ static ob_status fit_adaptive(const ob_bez *C, double d, double tol, int rounds,
     void *work = malloc(m->work_size);
     char msg[MSGLEN] = "";
     const ob_fit_args a = {d, tol, par};
-    ob_status st = m->fit(C, &a, work, f, msg, MSGLEN);
+    ob_fit_status st = m->fit(C, &a, work, f, msg, MSGLEN);
     free(work);
     return st;
 }
@@ -410,10 +410,10 @@ static void check_adaptive(const char *cn, const ob_bez *C, double d, double tol
 {
     static ob_fit f, g;
     const int p = C->deg;
-    ob_status st = fit_adaptive(C, d, tol, 100, &f);
-    CHECK(st == OB_OK || st == OB_RETRY_SMALLER, "elber adaptive %s %g %g: %s", cn, d, tol,
-          ob_status_name(st));
-    if (st != OB_OK)
+    ob_fit_status st = fit_adaptive(C, d, tol, 100, &f);
+    CHECK(st == OB_FIT_OK || st == OB_FIT_RETRY_SMALLER, "elber adaptive %s %g %g: %s", cn, d, tol,
+          ob_fit_status_name(st));
+    if (st != OB_FIT_OK)
         return;
     const int np = f.n, k = np - 1;
     CHECK(np >= 1 && np <= OB_SPLIT_PIECES && f.t[0] == 0.0 && f.t[np] == 1.0,
@@ -463,7 +463,7 @@ static void check_adaptive(const char *cn, const ob_bez *C, double d, double tol
     }
     CHECK(worst_ok, "elber adaptive %s %g %g: a node of D fails the tolerance", cn, d, tol);
     /* a tolerance the whole segment meets at its nodes: Cobb's segment */
-    if (fit_adaptive(C, d, 10.0, 20, &f) == OB_OK && fit(&ob_method_cobb, C, d, &g) == OB_OK) {
+    if (fit_adaptive(C, d, 10.0, 20, &f) == OB_FIT_OK && fit(&ob_method_cobb, C, d, &g) == OB_FIT_OK) {
         int same = f.n == 1 && f.ctrl_points == p + 1;
         for (int i = 0; same && i <= p; i++)
             for (int c = 0; c < 3; c++)
@@ -484,16 +484,16 @@ static void test_elber_adaptive(void)
     /* refinement grows as the tolerance shrinks, and runs out of pieces */
     int prev = 0, grows = 1;
     for (double tol = 1.0; tol >= 1e-3; tol /= 10) {
-        ob_status st = fit_adaptive(&liu, 1.0, tol, 20, &f);
-        int np = st == OB_OK ? f.n : st == OB_RETRY_SMALLER ? OB_SPLIT_PIECES + 1 : -1;
+        ob_fit_status st = fit_adaptive(&liu, 1.0, tol, 20, &f);
+        int np = st == OB_FIT_OK ? f.n : st == OB_FIT_RETRY_SMALLER ? OB_SPLIT_PIECES + 1 : -1;
         grows &= np >= prev;
         prev = np;
     }
     CHECK(grows && prev > 1, "elber adaptive: pieces %d do not grow with the tolerance", prev);
-    CHECK(fit_adaptive(&liu, 1.0, 1e-9, 20, &f) == OB_RETRY_SMALLER,
+    CHECK(fit_adaptive(&liu, 1.0, 1e-9, 20, &f) == OB_FIT_RETRY_SMALLER,
           "elber adaptive: a tolerance past 16 pieces asks for a smaller piece");
     ob_bez L = line(3);
-    CHECK(fit_adaptive(&L, 0.3, 1e-9, 20, &f) == OB_OK && f.n == 1 &&
+    CHECK(fit_adaptive(&L, 0.3, 1e-9, 20, &f) == OB_FIT_OK && f.n == 1 &&
           hausdorff(&L, &f.seg[0], 0.3) < 1e-12, "elber adaptive: a line is exact in one piece");
 }
 
@@ -517,7 +517,7 @@ static void test_interp(void)
     for (int c = 0; c < 5; c++)
         for (int k = 0; k < 4; k++) {
             double d = DS[k];
-            if (fit(m, cs[c], d, &f) != OB_OK || f.n != 1) {
+            if (fit(m, cs[c], d, &f) != OB_FIT_OK || f.n != 1) {
                 CHECK(0, "interp %s %g: fit failed", cn[c], d);
                 continue;
             }
@@ -539,19 +539,19 @@ static void test_interp(void)
     for (int n = 1; n <= 6; n++) {
         ob_bez L = line(n);
         for (int k = 0; k < 4; k++)
-            if (fit(m, &L, DS[k], &f) == OB_OK) {
+            if (fit(m, &L, DS[k], &f) == OB_FIT_OK) {
                 double e = hausdorff(&L, &f.seg[0], DS[k]), er = radial(&L, &f.seg[0], DS[k]);
                 CHECK(e < 1e-12 && er < 1e-12, "interp line deg %d d %g: %g %g", n, DS[k], e, er);
             }
     }
     for (int k = 0; k < 4; k++) {
         ob_bez A = arc(0.3, -0.7, 2.0, 2.1, 0.2);
-        if (fit(m, &A, DS[k], &f) == OB_OK)
+        if (fit(m, &A, DS[k], &f) == OB_FIT_OK)
             CHECK(hausdorff(&A, &f.seg[0], DS[k]) < 1e-12, "interp arc d %g: %g", DS[k],
                   hausdorff(&A, &f.seg[0], DS[k]));
     }
     /* a curved polynomial is not exact (the check can fail) */
-    if (fit(m, &liu, 1.0, &f) == OB_OK)
+    if (fit(m, &liu, 1.0, &f) == OB_FIT_OK)
         CHECK(hausdorff(&liu, &f.seg[0], 1.0) > 1e-3, "interp liu2002_ex1 exact?");
 }
 
@@ -566,7 +566,7 @@ static void check_kim(const char *cn, const ob_bez *C, double d0)
     ref_normal(C, 0.0, N0, &k0);
     ref_normal(C, 1.0, N1, &k1);
     double d = d0 * fmin(1.0, 0.5 / fmax(fabs(k0), fabs(k1)));
-    if (fit(m, C, d, &f) != OB_OK || f.n != 1) {
+    if (fit(m, C, d, &f) != OB_FIT_OK || f.n != 1) {
         CHECK(0, "kim2018 %s %g: fit failed", cn, d);
         return;
     }
@@ -658,7 +658,7 @@ static void test_kim2018(void)
     for (int n = 1; n <= 6; n++) {
         ob_bez L = line(n);
         for (int k = 0; k < 4; k++) {
-            if (fit(m, &L, DS[k], &f) != OB_OK) {
+            if (fit(m, &L, DS[k], &f) != OB_FIT_OK) {
                 CHECK(0, "kim2018 line deg %d: fit failed", n);
                 continue;
             }
@@ -670,14 +670,14 @@ static void test_kim2018(void)
     double par[OB_MAX_PARAMS] = {0};
     const ob_fit_args a = {0.3, 1e-3, par};
     ob_bez qc = quarter_circle(1.0, 0);
-    CHECK(m->fit(&qc, &a, NULL, &f, msg, MSGLEN) == OB_SKIP && msg[0],
+    CHECK(m->fit(&qc, &a, NULL, &f, msg, MSGLEN) == OB_FIT_SKIP && msg[0],
           "kim2018: rational input skipped");
     /* halving: the radial error of a degree n+1 G1 scheme falls fast */
-    if (fit(m, &liu, 1.0, &f) == OB_OK) {
+    if (fit(m, &liu, 1.0, &f) == OB_FIT_OK) {
         double whole = radial(&liu, &f.seg[0], 1.0);
         ob_bez L;
         ob_bez_subsegment(&liu, 0.0, 0.5, &L);
-        if (fit(m, &L, 1.0, &f) == OB_OK)
+        if (fit(m, &L, 1.0, &f) == OB_FIT_OK)
             CHECK(radial(&L, &f.seg[0], 1.0) < 0.25 * whole, "kim2018: halving %g -> %g", whole,
                   radial(&L, &f.seg[0], 1.0));
     }

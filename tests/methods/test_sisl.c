@@ -19,7 +19,7 @@
  *    liu2002_ex2_unclamped (d = 0.5) given to s1360 as one B-spline;
  *  - the result is not parameterized like the base inside a span (why the
  *    method does not claim OB_CAP_SAME_PARAM);
- *  - OB_RETRY_SMALLER past OB_SPLIT_PIECES spans; OB_FAIL with SISL's status for
+ *  - OB_FIT_RETRY_SMALLER past OB_SPLIT_PIECES spans; OB_FIT_FAIL with SISL's status for
  *    a bad tolerance, and nothing printed (s6err is silenced);
  *  - the parameter max_step reaches s1360;
  *  - fits made on several OpenMP threads at once equal the serial ones.
@@ -54,7 +54,7 @@ static const double EX2[7][2] = {{-3.01619, 2.34143},  {-3.97193, -2.20842}, {-1
                                  {0.319568, -2.77522}, {-0.152767, 2.299},   {2.92416, -0.939865},
                                  {2.8027, 3.02775}};
 
-static ob_status fit(const ob_bez *C, double d, double tol, double max_step, ob_fit *f, char *msg)
+static ob_fit_status fit(const ob_bez *C, double d, double tol, double max_step, ob_fit *f, char *msg)
 {
     double par[OB_MAX_PARAMS] = {max_step, 20.0}; /* timeout: the default */
     const ob_fit_args a = {d, tol, par};
@@ -159,8 +159,8 @@ static void split_fit(const ob_bez *C, double d, double tol, long *ctrl, double 
 {
     static ob_fit f;
     char msg[MSGLEN];
-    ob_status st = fit(C, d, tol, 0.0, &f, msg);
-    if (st == OB_RETRY_SMALLER && depth < 8) {
+    ob_fit_status st = fit(C, d, tol, 0.0, &f, msg);
+    if (st == OB_FIT_RETRY_SMALLER && depth < 8) {
         ob_bez L, R;
         ob_bez_split(C, 0.5, &L, &R);
         split_fit(&L, d, tol, ctrl, err, depth + 1);
@@ -168,8 +168,8 @@ static void split_fit(const ob_bez *C, double d, double tol, long *ctrl, double 
         (*ctrl)--;  /* the shared end point */
         return;
     }
-    CHECK(st == OB_OK, "split_fit: %s (%s)", ob_status_name(st), msg);
-    if (st != OB_OK) {
+    CHECK(st == OB_FIT_OK, "split_fit: %s (%s)", ob_fit_status_name(st), msg);
+    if (st != OB_FIT_OK) {
         *err = INFINITY;
         return;
     }
@@ -183,9 +183,9 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
 {
     static ob_fit f;
     char msg[MSGLEN];
-    ob_status st = fit(C, d, tol, 0.0, &f, msg);
-    CHECK(st == OB_OK, "%s d %g tol %g: %s (%s)", name, d, tol, ob_status_name(st), msg);
-    if (st != OB_OK)
+    ob_fit_status st = fit(C, d, tol, 0.0, &f, msg);
+    CHECK(st == OB_FIT_OK, "%s d %g tol %g: %s (%s)", name, d, tol, ob_fit_status_name(st), msg);
+    if (st != OB_FIT_OK)
         return;
     int stat = 0;
     SISLCurve *rc = sisl_direct(C, d, tol, 0.0, &stat);
@@ -311,7 +311,7 @@ static void test_structure(void)
     check_fit_against_sisl("reversed liu2002_ex1", &Cr, -1.0, 1e-3);
     static ob_fit f, fr;
     char msg[MSGLEN];
-    if (fit(&C, 1.0, 1e-3, 0.0, &f, msg) == OB_OK && fit(&Cr, -1.0, 1e-3, 0.0, &fr, msg) == OB_OK) {
+    if (fit(&C, 1.0, 1e-3, 0.0, &f, msg) == OB_FIT_OK && fit(&Cr, -1.0, 1e-3, 0.0, &fr, msg) == OB_FIT_OK) {
         double e = fit_max_err(OB_METRIC_HAUSDORFF, &C, &f, 1.0, OB_DEFAULT_SAMPLES), er = fit_max_err(OB_METRIC_HAUSDORFF, &Cr, &fr, -1.0, OB_DEFAULT_SAMPLES);
         CHECK(fabs(e - er) > 1e-6 || f.n != fr.n, "reversed: %g vs %g, %d vs %d spans: not oriented",
               e, er, f.n, fr.n);
@@ -340,9 +340,9 @@ static void test_lines(void)
         for (int k = 0; k < 4; k++)
             for (double tol = 1e-3; tol > 1e-7; tol /= 1000) {
                 const double d = ds[k];
-                ob_status st = fit(&C, d, tol, 0.0, &f, msg);
-                CHECK(st == OB_OK, "line deg %d d %g: %s (%s)", n, d, ob_status_name(st), msg);
-                if (st != OB_OK)
+                ob_fit_status st = fit(&C, d, tol, 0.0, &f, msg);
+                CHECK(st == OB_FIT_OK, "line deg %d d %g: %s (%s)", n, d, ob_fit_status_name(st), msg);
+                if (st != OB_FIT_OK)
                     continue;
                 double wd = 0.0;
                 for (int i = 0; i < f.n; i++)
@@ -377,9 +377,9 @@ static void test_rational(void)
     const double ds[] = {0.3, -1.0, 1.0};
     for (int k = 0; k < 3; k++) {
         const double d = ds[k], r = R - d;  /* counterclockwise: the left is inside */
-        ob_status st = fit(&qc, d, 1e-4, 0.0, &f, msg);
-        CHECK(st == OB_OK, "quarter circle d %g: %s (%s)", d, ob_status_name(st), msg);
-        if (st != OB_OK)
+        ob_fit_status st = fit(&qc, d, 1e-4, 0.0, &f, msg);
+        CHECK(st == OB_FIT_OK, "quarter circle d %g: %s (%s)", d, ob_fit_status_name(st), msg);
+        if (st != OB_FIT_OK)
             continue;
         double wk = 0.0, wr = 0.0;
         int poly = 1;
@@ -491,8 +491,8 @@ static int bad_tolerance_child(void)
     static ob_fit f;
     char msg[MSGLEN];
     ob_bez C = make(3, LIU, NULL);
-    ob_status st = fit(&C, 1.0, 0.0, 0.0, &f, msg);
-    return st == OB_FAIL && strstr(msg, "-184") ? 0 : 1;
+    ob_fit_status st = fit(&C, 1.0, 0.0, 0.0, &f, msg);
+    return st == OB_FIT_FAIL && strstr(msg, "-184") ? 0 : 1;
 }
 
 static void test_status(void)
@@ -500,13 +500,13 @@ static void test_status(void)
     static ob_fit f;
     char msg[MSGLEN];
     ob_bez C = make(3, LIU, NULL);
-    ob_status st = fit(&C, 1.0, 1e-4, 0.0, &f, msg);
-    CHECK(st == OB_RETRY_SMALLER && msg[0], "liu tol 1e-4 (103 SISL vertices): %s (%s)",
-          ob_status_name(st), msg);
+    ob_fit_status st = fit(&C, 1.0, 1e-4, 0.0, &f, msg);
+    CHECK(st == OB_FIT_RETRY_SMALLER && msg[0], "liu tol 1e-4 (103 SISL vertices): %s (%s)",
+          ob_fit_status_name(st), msg);
     st = fit(&C, 1.0, 0.0, 0.0, &f, msg);
-    CHECK(st == OB_FAIL && strstr(msg, "status -184"), "tol 0: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_FAIL && strstr(msg, "status -184"), "tol 0: %s (%s)", ob_fit_status_name(st), msg);
     st = fit(&C, 1.0, -1e-3, 0.0, &f, msg);
-    CHECK(st == OB_FAIL && strstr(msg, "status"), "tol < 0: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_FAIL && strstr(msg, "status"), "tol < 0: %s (%s)", ob_fit_status_name(st), msg);
 
     /* SISL's s6err would write to stderr: the method must print nothing */
     char path[] = "/tmp/test_sisl_stderrXXXXXX";
@@ -534,11 +534,11 @@ static void test_status(void)
     int stat = 0;
     SISLCurve *rc = sisl_direct(&C, 1.0, 1e-2, 0.5, &stat);
     st = fit(&C, 1.0, 1e-2, 0.5, &f, msg);
-    CHECK(rc && st == OB_OK && f.ctrl_points == rc->in, "max_step 0.5: %s, %ld vs %d", msg,
+    CHECK(rc && st == OB_FIT_OK && f.ctrl_points == rc->in, "max_step 0.5: %s, %ld vs %d", msg,
           f.ctrl_points, rc ? rc->in : -1);
-    long with_step = st == OB_OK ? f.ctrl_points : -1;
+    long with_step = st == OB_FIT_OK ? f.ctrl_points : -1;
     st = fit(&C, 1.0, 1e-2, 0.0, &f, msg);
-    CHECK(st == OB_OK && f.ctrl_points != with_step, "max_step 0.5 gives %ld, the default %ld",
+    CHECK(st == OB_FIT_OK && f.ctrl_points != with_step, "max_step 0.5 gives %ld, the default %ld",
           with_step, f.ctrl_points);
     if (rc)
         freeCurve(rc);
@@ -558,7 +558,7 @@ static void test_parameterization(void)
     char msg[MSGLEN];
     ob_bez C = make(3, LIU, NULL);
     const double d = 1.0, tol = 1e-3;
-    if (fit(&C, d, tol, 0.0, &f, msg) != OB_OK) {
+    if (fit(&C, d, tol, 0.0, &f, msg) != OB_FIT_OK) {
         CHECK(0, "liu tol 1e-3: %s", msg);
         return;
     }
@@ -580,7 +580,7 @@ static void test_parameterization(void)
 
 enum { NT = 48 };
 
-static void fit_case(int i, const ob_bez *C, const ob_bez *Q, ob_fit *out, ob_status *st)
+static void fit_case(int i, const ob_bez *C, const ob_bez *Q, ob_fit *out, ob_fit_status *st)
 {
     char msg[MSGLEN];
     const ob_bez *B = i % 3 == 2 ? Q : C;
@@ -593,7 +593,7 @@ static void fit_case(int i, const ob_bez *C, const ob_bez *Q, ob_fit *out, ob_st
 static void test_threads(void)
 {
     static ob_fit serial[NT], parallel[NT];
-    static ob_status s1[NT], s2[NT];
+    static ob_fit_status s1[NT], s2[NT];
     ob_bez C = make(3, LIU, NULL), Q = quarter_circle(2.5, 0);
     /* serially, then the same fits on 4 threads at once */
     for (int i = 0; i < NT; i++)
@@ -604,7 +604,7 @@ static void test_threads(void)
     int same = 1;
     for (int i = 0; i < NT; i++) {
         same &= s1[i] == s2[i];
-        if (s1[i] == OB_OK)
+        if (s1[i] == OB_FIT_OK)
             same &= serial[i].n == parallel[i].n &&
                     memcmp(serial[i].t, parallel[i].t, sizeof serial[i].t) == 0 &&
                     memcmp(serial[i].seg, parallel[i].seg, sizeof serial[i].seg[0] * (size_t)serial[i].n) == 0 &&
@@ -651,8 +651,8 @@ static void test_runaway(void)
     ob_fit f;
     char msg[160] = "";
     ob_fit_args a = {0.1077, 1e-1, par};
-    ob_status st = sm->fit(&seg, &a, NULL, &f, msg, sizeof msg);
-    CHECK(st == OB_OK && f.n >= 1, "fit after a killed server: %s %s", ob_status_name(st), msg);
+    ob_fit_status st = sm->fit(&seg, &a, NULL, &f, msg, sizeof msg);
+    CHECK(st == OB_FIT_OK && f.n >= 1, "fit after a killed server: %s %s", ob_fit_status_name(st), msg);
     ob_curveset_free(&set);
 }
 

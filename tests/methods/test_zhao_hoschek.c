@@ -18,7 +18,7 @@
  *    least k times (polynomial, k = n+1) or k-1 times (rational, k =
  *    floor((3n+3)/2)), and the iteration evens out the rational extrema;
  *  - polynomial zhao beats cobb on a circle-like cubic; rational outputs have a
- *    positive denominator; a denominator with a root is OB_FAIL;
+ *    positive denominator; a denominator with a root is OB_FIT_FAIL;
  *  - the septic of Zhao-Zhou section 4 is reported, not checked.
  * hoschek:
  *  - end points are the offset's end points; the sum of squared distances of
@@ -47,8 +47,8 @@ static void *work;
 
 /* Fit with the defaults, except the parameters named in `set` ("name=value"
  * pairs, NULL-terminated). */
-static ob_status fit_with(const ob_method *m, const ob_bez *b, double d, ob_fit *f, char *msg,
-                          const char *const *set)
+static ob_fit_status fit_with(const ob_method *m, const ob_bez *b, double d, ob_fit *f, char *msg,
+                              const char *const *set)
 {
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
@@ -70,7 +70,7 @@ static ob_status fit_with(const ob_method *m, const ob_bez *b, double d, ob_fit 
     return m->fit(b, &a, work, f, msg, MSGLEN);
 }
 
-static ob_status fit1(const ob_method *m, const ob_bez *b, double d, ob_fit *f, char *msg)
+static ob_fit_status fit1(const ob_method *m, const ob_bez *b, double d, ob_fit *f, char *msg)
 {
     return fit_with(m, b, d, f, msg, NULL);
 }
@@ -241,24 +241,24 @@ static void test_zhao_structure(void)
     CHECK(ZP->out_degree(3, 0) == 3 && ZR->out_degree(5, 1) == 5, "zhao: degree n");
     const ob_bez *bs[3] = {&CL, &QZ, &LH0};
     for (int i = 0; i < 3; i++) {
-        ob_status st = fit1(ZP, bs[i], 0.3, &f, msg);
-        CHECK(st == OB_OK && f.n == 1 && f.seg[0].deg == bs[i]->deg && !f.seg[0].rational,
-              "zhao: curve %d: %s (%s)", i, ob_status_name(st), msg);
+        ob_fit_status st = fit1(ZP, bs[i], 0.3, &f, msg);
+        CHECK(st == OB_FIT_OK && f.n == 1 && f.seg[0].deg == bs[i]->deg && !f.seg[0].rational,
+              "zhao: curve %d: %s (%s)", i, ob_fit_status_name(st), msg);
         int ones = 1;
         for (int j = 0; j <= f.seg[0].deg; j++)
             ones &= f.seg[0].h[j][2] == 1.0;
         CHECK(ones, "zhao: curve %d: weights not all 1", i);
         st = fit1(ZR, bs[i], 0.3, &f, msg);
-        CHECK(st == OB_OK && f.n == 1 && f.seg[0].deg == bs[i]->deg && f.seg[0].rational,
-              "zhao-rational: curve %d: %s (%s)", i, ob_status_name(st), msg);
+        CHECK(st == OB_FIT_OK && f.n == 1 && f.seg[0].deg == bs[i]->deg && f.seg[0].rational,
+              "zhao-rational: curve %d: %s (%s)", i, ob_fit_status_name(st), msg);
     }
     /* output degree as a parameter */
-    ob_status st = fit_with(ZP, &CL, 0.3, &f, msg, (const char *const[]){"degree=5", NULL});
-    CHECK(st == OB_OK && f.seg[0].deg == 5, "zhao degree=5: %s, degree %d", msg, f.seg[0].deg);
+    ob_fit_status st = fit_with(ZP, &CL, 0.3, &f, msg, (const char *const[]){"degree=5", NULL});
+    CHECK(st == OB_FIT_OK && f.seg[0].deg == 5, "zhao degree=5: %s, degree %d", msg, f.seg[0].deg);
     st = fit_with(ZP, &CL, 0.3, &f, msg, (const char *const[]){"degree=40", NULL});
-    CHECK(st == OB_SKIP && msg[0], "zhao degree=40: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_SKIP && msg[0], "zhao degree=40: %s (%s)", ob_fit_status_name(st), msg);
     st = fit_with(ZR, &CL, 0.3, &f, msg, (const char *const[]){"npfac=0", NULL});
-    CHECK(st == OB_SKIP && msg[0], "zhao npfac=0: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_SKIP && msg[0], "zhao npfac=0: %s (%s)", ob_fit_status_name(st), msg);
 }
 
 /* Offsets that lie in the approximation space come out exact. */
@@ -273,9 +273,9 @@ static void test_zhao_exact(void)
             for (int s = -1; s <= 1; s += 2) {
                 const ob_method *m = r ? ZR : ZP;
                 double d = 0.7 * s;
-                ob_status st = fit1(m, lines[l], d, &f, msg);
-                CHECK(st == OB_OK, "%s line %d d %g: %s", m->name, l, d, msg);
-                if (st != OB_OK)
+                ob_fit_status st = fit1(m, lines[l], d, &f, msg);
+                CHECK(st == OB_FIT_OK, "%s line %d d %g: %s", m->name, l, d, msg);
+                if (st != OB_FIT_OK)
                     continue;
                 osc o = oscillation(lines[l], &f.seg[0], d);
                 CHECK(o.emax < 1e-12 && o.crossmax < 1e-12, "%s line %d d %g: e %g cross %g",
@@ -290,9 +290,9 @@ static void test_zhao_exact(void)
             for (int s = -1; s <= 1; s += 2) {
                 ob_bez qc = quarter_circle(2.0, cw), b = i ? mobius(&qc, cs[i]) : qc;
                 double d = 0.6 * s;
-                ob_status st = fit1(ZR, &b, d, &f, msg);
-                CHECK(st == OB_OK, "zhao-rational circle c %g d %g: %s", cs[i], d, msg);
-                if (st != OB_OK)
+                ob_fit_status st = fit1(ZR, &b, d, &f, msg);
+                CHECK(st == OB_FIT_OK, "zhao-rational circle c %g d %g: %s", cs[i], d, msg);
+                if (st != OB_FIT_OK)
                     continue;
                 osc o = oscillation(&b, &f.seg[0], d);
                 double bd = measure(OB_METRIC_BOUND, &b, &f.seg[0], d);
@@ -315,11 +315,11 @@ static void test_zhao_elevation(void)
                 const ob_method *m = r ? ZR : ZP;
                 ob_bez E;
                 ob_bez_elevate(bs[i], bs[i]->deg + up, &E);
-                ob_status s0 = fit_with(m, bs[i], ds[i], &f0, msg, (const char *const[]){"degree=3", NULL});
-                ob_status s1 = fit_with(m, &E, ds[i], &f1, msg, (const char *const[]){"degree=3", NULL});
+                ob_fit_status s0 = fit_with(m, bs[i], ds[i], &f0, msg, (const char *const[]){"degree=3", NULL});
+                ob_fit_status s1 = fit_with(m, &E, ds[i], &f1, msg, (const char *const[]){"degree=3", NULL});
                 CHECK(s0 == s1, "%s curve %d elevated +%d: status %s vs %s", m->name, i, up,
-                      ob_status_name(s0), ob_status_name(s1));
-                if (s0 != OB_OK || s1 != OB_OK)
+                      ob_fit_status_name(s0), ob_fit_status_name(s1));
+                if (s0 != OB_FIT_OK || s1 != OB_FIT_OK)
                     continue;
                 double diff = 0.0, sz = size_of(&f0.seg[0]);
                 for (int j = 0; j <= 3; j++)
@@ -349,22 +349,22 @@ static void test_zhao_reparam(void)
         for (int r = 0; r < 2; r++) {
             const ob_method *m = r ? ZR : ZP;
             double e0 = NAN;
-            if (fit1(m, bs[i], ds[i], &f, msg) == OB_OK)
+            if (fit1(m, bs[i], ds[i], &f, msg) == OB_FIT_OK)
                 e0 = measure(OB_METRIC_NORMAL, bs[i], &f.seg[0], ds[i]);
             printf("  %-13s original %.4g", m->name, e0);
             for (double c = 0.5; c <= 2.0; c *= 4) {
                 ob_bez M = mobius(bs[i], c);
-                ob_status st = fit1(m, &M, ds[i], &f, msg);
-                double e = st == OB_OK ? measure(OB_METRIC_NORMAL, &M, &f.seg[0], ds[i]) : NAN;
+                ob_fit_status st = fit1(m, &M, ds[i], &f, msg);
+                double e = st == OB_FIT_OK ? measure(OB_METRIC_NORMAL, &M, &f.seg[0], ds[i]) : NAN;
                 printf("  Moebius w_i c^i, c = %g: %.4g", c, e);
                 if (r == 1 && i < 2) {
-                    CHECK(st == OB_OK && e < 2.0 * e0 && e > 0.5 * e0, "zhao-rational %s Moebius "
+                    CHECK(st == OB_FIT_OK && e < 2.0 * e0 && e > 0.5 * e0, "zhao-rational %s Moebius "
                           "c %g: %s, error %g vs %g", names[i], c, msg, e, e0);
                 }
             }
             ob_bez P = compose(bs[i]);
-            ob_status st = fit1(m, &P, ds[i], &f, msg);
-            double e = st == OB_OK ? measure(OB_METRIC_NORMAL, &P, &f.seg[0], ds[i]) : NAN;
+            ob_fit_status st = fit1(m, &P, ds[i], &f, msg);
+            double e = st == OB_FIT_OK ? measure(OB_METRIC_NORMAL, &P, &f.seg[0], ds[i]) : NAN;
             printf("  t=(s+s^2)/2 (degree %d): %.4g\n", P.deg, e);
         }
     }
@@ -387,9 +387,9 @@ static void test_zhao_iteration(void)
             for (int it = 1; it <= 8; it++) {
                 char set[32];
                 snprintf(set, sizeof set, "iterations=%d", it);
-                ob_status st = fit_with(m, bs[i], ds[i], &f, msg, (const char *const[]){set, NULL});
-                CHECK(st == OB_OK, "%s curve %d it %d: %s", m->name, i, it, msg);
-                if (st != OB_OK)
+                ob_fit_status st = fit_with(m, bs[i], ds[i], &f, msg, (const char *const[]){set, NULL});
+                CHECK(st == OB_FIT_OK, "%s curve %d it %d: %s", m->name, i, it, msg);
+                if (st != OB_FIT_OK)
                     break;
                 double dev = 0.0;
                 for (int j = 0; j < npt; j++)
@@ -400,9 +400,9 @@ static void test_zhao_iteration(void)
                 if (it == 1)
                     first = oscillation(bs[i], &f.seg[0], ds[i]);
             }
-            ob_status st = fit_with(m, bs[i], ds[i], &f, msg, (const char *const[]){"iterations=30", NULL});
-            CHECK(st == OB_OK, "%s curve %d, 30 iterations: %s", m->name, i, msg);
-            if (st != OB_OK)
+            ob_fit_status st = fit_with(m, bs[i], ds[i], &f, msg, (const char *const[]){"iterations=30", NULL});
+            CHECK(st == OB_FIT_OK, "%s curve %d, 30 iterations: %s", m->name, i, msg);
+            if (st != OB_FIT_OK)
                 continue;
             conv = oscillation(bs[i], &f.seg[0], ds[i]);
             printf("%s curve %d d %g: k %d; iteration 1: %d sign runs, max %.4g, min/max extremum "
@@ -425,9 +425,9 @@ static void test_zhao_misc(void)
     /* polynomial zhao against cobb on a circle-like cubic, same degree */
     for (int s = -1; s <= 1; s += 2) {
         double d = 0.3 * s;
-        ob_status a = fit1(ZP, &CL, d, &f, msg), b = fit1(COBB, &CL, d, &g, msg);
-        CHECK(a == OB_OK && b == OB_OK, "zhao / cobb on the circle-like cubic");
-        if (a == OB_OK && b == OB_OK) {
+        ob_fit_status a = fit1(ZP, &CL, d, &f, msg), b = fit1(COBB, &CL, d, &g, msg);
+        CHECK(a == OB_FIT_OK && b == OB_FIT_OK, "zhao / cobb on the circle-like cubic");
+        if (a == OB_FIT_OK && b == OB_FIT_OK) {
             double ez = measure(OB_METRIC_NORMAL, &CL, &f.seg[0], d);
             double ec = measure(OB_METRIC_NORMAL, &CL, &g.seg[0], d);
             printf("circle-like cubic d %g: zhao %.4g, cobb %.4g (normal metric)\n", d, ez, ec);
@@ -438,9 +438,9 @@ static void test_zhao_misc(void)
     const ob_bez *bs[5] = {&CL, &LH0, &QZ, &QZ, &RC};
     const double ds[5] = {-0.3, 1.0, 0.25, 1.0, 0.3};
     for (int i = 0; i < 5; i++) {
-        ob_status st = fit1(ZR, bs[i], ds[i], &f, msg);
-        CHECK(st == OB_OK, "zhao-rational curve %d: %s", i, msg);
-        if (st != OB_OK)
+        ob_fit_status st = fit1(ZR, bs[i], ds[i], &f, msg);
+        CHECK(st == OB_FIT_OK, "zhao-rational curve %d: %s", i, msg);
+        if (st != OB_FIT_OK)
             continue;
         double qmin = INFINITY;
         for (int j = 0; j <= 2000; j++) {
@@ -454,16 +454,16 @@ static void test_zhao_misc(void)
     /* a denominator with a root in [0,1] on every iterate: by default the
      * piece goes back to the driver to be split, on_pole=0 fails with a reason:
      * liu2002_ex1 as a whole (d = 1) */
-    ob_status st = fit1(ZR, &LIU, 1.0, &f, msg);
-    CHECK(st == OB_RETRY_SMALLER && strstr(msg, "denominator"), "zhao-rational liu2002_ex1: %s (%s)",
-          ob_status_name(st), msg);
+    ob_fit_status st = fit1(ZR, &LIU, 1.0, &f, msg);
+    CHECK(st == OB_FIT_RETRY_SMALLER && strstr(msg, "denominator"), "zhao-rational liu2002_ex1: %s (%s)",
+          ob_fit_status_name(st), msg);
     st = fit_with(ZR, &LIU, 1.0, &f, msg, (const char *const[]){"on_pole=0", NULL});
-    CHECK(st == OB_FAIL && strstr(msg, "denominator"), "zhao-rational liu2002_ex1, "
-          "on_pole=0: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_FAIL && strstr(msg, "denominator"), "zhao-rational liu2002_ex1, "
+          "on_pole=0: %s (%s)", ob_fit_status_name(st), msg);
     /* the polynomial form: symmetric under reversal (no normalization) */
     ob_bez rv = reversed(&LH0);
-    ob_status s0 = fit1(ZP, &LH0, 1.0, &f, msg), s1 = fit1(ZP, &rv, -1.0, &g, msg);
-    if (s0 == OB_OK && s1 == OB_OK) {
+    ob_fit_status s0 = fit1(ZP, &LH0, 1.0, &f, msg), s1 = fit1(ZP, &rv, -1.0, &g, msg);
+    if (s0 == OB_FIT_OK && s1 == OB_FIT_OK) {
         double diff = 0.0;
         for (int j = 0; j <= 3; j++)
             for (int c = 0; c < 2; c++)
@@ -485,9 +485,9 @@ static void report_septic(void)
             for (int it = 1; it <= 2; it++) {
                 char set[32];
                 snprintf(set, sizeof set, "iterations=%d", it);
-                ob_status st = fit_with(m, &SEPTIC, 0.5 * s, &f, msg, (const char *const[]){set, NULL});
-                if (st != OB_OK) {
-                    printf("  iteration %d: %s (%s)", it, ob_status_name(st), msg);
+                ob_fit_status st = fit_with(m, &SEPTIC, 0.5 * s, &f, msg, (const char *const[]){set, NULL});
+                if (st != OB_FIT_OK) {
+                    printf("  iteration %d: %s (%s)", it, ob_fit_status_name(st), msg);
                     continue;
                 }
                 double dev = 0.0;
@@ -555,15 +555,15 @@ static void test_hoschek(void)
     const double ds[6] = {0.3, 1.0, 1.0, 0.5, -0.3, 0.6};
     for (int i = 0; i < 6; i++)
         for (int tg = 0; tg < 2; tg++) {
-            ob_status st = fit_with(HO, bs[i], ds[i], &f, msg,
-                                    (const char *const[]){tg ? "tangents=1" : "tangents=0", NULL});
+            ob_fit_status st = fit_with(HO, bs[i], ds[i], &f, msg,
+                                        (const char *const[]){tg ? "tangents=1" : "tangents=0", NULL});
             if (tg && bs[i]->deg < 3) {
-                CHECK(st == OB_SKIP && msg[0], "hoschek tangents=1, degree %d: %s", bs[i]->deg,
-                      ob_status_name(st));
+                CHECK(st == OB_FIT_SKIP && msg[0], "hoschek tangents=1, degree %d: %s", bs[i]->deg,
+                      ob_fit_status_name(st));
                 continue;
             }
-            CHECK(st == OB_OK && f.n == 1, "hoschek curve %d tangents %d: %s", i, tg, msg);
-            if (st != OB_OK)
+            CHECK(st == OB_FIT_OK && f.n == 1, "hoschek curve %d tangents %d: %s", i, tg, msg);
+            if (st != OB_FIT_OK)
                 continue;
             const ob_bez *A = &f.seg[0];
             CHECK(A->deg == bs[i]->deg && !A->rational, "hoschek curve %d: degree %d", i, A->deg);
@@ -603,9 +603,9 @@ static void test_hoschek(void)
         for (size_t k = 0; k < sizeof its / sizeof its[0]; k++) {
             char set[32];
             snprintf(set, sizeof set, "iterations=%d", its[k]);
-            ob_status st = fit_with(HO, rs[i], rd[i], &f, msg, (const char *const[]){set, NULL});
-            CHECK(st == OB_OK, "hoschek curve %d iterations %d: %s", i, its[k], msg);
-            if (st != OB_OK)
+            ob_fit_status st = fit_with(HO, rs[i], rd[i], &f, msg, (const char *const[]){set, NULL});
+            CHECK(st == OB_FIT_OK, "hoschek curve %d iterations %d: %s", i, its[k], msg);
+            if (st != OB_FIT_OK)
                 break;
             double r = resid(rs[i], rd[i], &f.seg[0], M);
             printf(" %d:%.4g", its[k], r);
@@ -623,24 +623,24 @@ static void test_hoschek(void)
     for (int tg = 0; tg < 2; tg++)
         for (int k = 0; k < 2; k++) {
             const char *set[3] = {tg ? "tangents=1" : "tangents=0", k ? "iterations=0" : "iterations=20", NULL};
-            ob_status st = fit_with(HO, &LINE, 0.7, &f, msg, set);
-            CHECK(st == OB_OK, "hoschek line: %s", msg);
-            if (st == OB_OK) {
+            ob_fit_status st = fit_with(HO, &LINE, 0.7, &f, msg, set);
+            CHECK(st == OB_FIT_OK, "hoschek line: %s", msg);
+            if (st == OB_FIT_OK) {
                 double h = measure(OB_METRIC_HAUSDORFF, &LINE, &f.seg[0], 0.7);
                 CHECK(h < 1e-12, "hoschek line tangents %d %s: hausdorff %g", tg, set[1], h);
             }
         }
     /* degree as a parameter: a quintic fit of a cubic's offset is closer */
-    ob_status st = fit_with(HO, &LH0, 1.0, &f, msg, (const char *const[]){"degree=5", NULL});
-    CHECK(st == OB_OK && f.seg[0].deg == 5, "hoschek degree=5: %s", msg);
-    if (st == OB_OK) {
+    ob_fit_status st = fit_with(HO, &LH0, 1.0, &f, msg, (const char *const[]){"degree=5", NULL});
+    CHECK(st == OB_FIT_OK && f.seg[0].deg == 5, "hoschek degree=5: %s", msg);
+    if (st == OB_FIT_OK) {
         double e5 = measure(OB_METRIC_HAUSDORFF, &LH0, &f.seg[0], 1.0);
         fit1(HO, &LH0, 1.0, &f, msg);
         double e3 = measure(OB_METRIC_HAUSDORFF, &LH0, &f.seg[0], 1.0);
         CHECK(e5 < e3, "hoschek: degree 5 error %g, degree 3 %g", e5, e3);
     }
     st = fit_with(HO, &LH0, 1.0, &f, msg, (const char *const[]){"samples=3", NULL});
-    CHECK(st == OB_SKIP && msg[0], "hoschek samples=3: %s (%s)", ob_status_name(st), msg);
+    CHECK(st == OB_FIT_SKIP && msg[0], "hoschek samples=3: %s (%s)", ob_fit_status_name(st), msg);
 }
 
 int main(void)

@@ -197,18 +197,18 @@ static void test_presplit(void)
 }
 
 /* Methods that fail, produce garbage, or cannot take the input. */
-static ob_status fail_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+static ob_fit_status fail_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
     (void)b, (void)a, (void)w, (void)out;
     snprintf(msg, len, "singular test system");
-    return OB_FAIL;
+    return OB_FIT_FAIL;
 }
-static ob_status nan_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+static ob_fit_status nan_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
     (void)a, (void)w, (void)msg, (void)len;
     ob_fit_single(out, b);
     out->seg[0].h[1][0] = NAN;
-    return OB_OK;
+    return OB_FIT_OK;
 }
 static int same_degree(int n, int r) { (void)r; return n; }
 
@@ -256,7 +256,7 @@ static void test_failures_are_contained(void)
 
 /* A method that asks for smaller pieces (its output would not fit) gets them;
  * one whose representation has its own control-point count is counted so. */
-static ob_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+static ob_fit_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
     (void)w;
     double p0[2], p1[2];
@@ -264,7 +264,7 @@ static ob_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fi
     ob_bez_ctrl(b, b->deg, p1);
     if (hypot(p1[0] - p0[0], p1[1] - p0[1]) > 1.0) {
         snprintf(msg, len, "chord longer than 1");
-        return OB_RETRY_SMALLER;
+        return OB_FIT_RETRY_SMALLER;
     }
     ob_bez t = *b;
     for (int i = 0; i <= t.deg; i++) {  /* Cobb's displacement, to have a real approximation */
@@ -275,7 +275,7 @@ static ob_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fi
     }
     ob_fit_single(out, &t);
     out->ctrl_points = (long)a->par[0];
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 static void test_retry_and_counts(void)
@@ -320,7 +320,7 @@ static void test_retry_and_counts(void)
  * found without fitting the whole binary tree of halvings below (the base
  * is the segment x = t, so a piece's x range is its parameter range). */
 static long pole_calls;
-static ob_status pole_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+static ob_fit_status pole_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
     (void)a, (void)w;
     __atomic_add_fetch(&pole_calls, 1, __ATOMIC_RELAXED);
@@ -331,10 +331,10 @@ static ob_status pole_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit
     const int always = a->par[0] != 0.0;
     if (always || (p0[0] <= 0.26 && p1[0] >= 0.26) || p1[0] > 0.5) {
         snprintf(msg, len, "pole");
-        return OB_RETRY_SMALLER;
+        return OB_FIT_RETRY_SMALLER;
     }
     ob_fit_single(out, b);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
 static void test_retry_chains(void)
@@ -447,7 +447,7 @@ static void test_span_log(void)
                 char msg[160];
                 ob_bez_subsegment(&c.seg[0], log.v[i].a, log.v[i].b, &sub);
                 const ob_fit_args args = {j.d, j.tol, par};
-                if (j.method->fit(&sub, &args, work, &fit, msg, sizeof msg) != OB_OK)
+                if (j.method->fit(&sub, &args, work, &fit, msg, sizeof msg) != OB_FIT_OK)
                     break;
                 pieces += fit.n;
                 if (fit.ctrl_points > 0)

@@ -96,7 +96,7 @@ static refit_t refit(const ob_job *j, const ob_span_log *L, double rel)
         char msg[160];
         ob_bez_subsegment(&j->curve->seg[L->v[i].seg], L->v[i].a, L->v[i].b, &sub);
         const ob_fit_args a = {j->d, j->tol, j->params ? j->params : par};
-        if (j->method->fit(&sub, &a, work, &fit, msg, sizeof msg) != OB_OK) {
+        if (j->method->fit(&sub, &a, work, &fit, msg, sizeof msg) != OB_FIT_OK) {
             r.pieces = -1;
             break;
         }
@@ -140,14 +140,14 @@ static void run_job(ob_job *j, const ob_curve *c, const ob_method *m, ob_metric 
  * two pieces as one representation of 4 control points (fit->ctrl_points,
  * like a B-spline output) and leaves its inside closed. */
 
-static ob_status gappy_any(const ob_bez *base, const ob_fit_args *a, ob_fit *out, int bs)
+static ob_fit_status gappy_any(const ob_bez *base, const ob_fit_args *a, ob_fit *out, int bs)
 {
     ob_bez s = *base;
     const int n = base->deg;
     for (int j = 0; j <= n; j++) {
         double nn[2];
         if (ob_bez_normal(base, (double)j / n, nn) != 0)
-            return OB_FAIL;
+            return OB_FIT_FAIL;
         s.h[j][0] += s.h[j][2] * a->d * nn[0];
         s.h[j][1] += s.h[j][2] * a->d * nn[1];
     }
@@ -158,18 +158,18 @@ static ob_status gappy_any(const ob_bez *base, const ob_fit_args *a, ob_fit *out
     for (int p = bs ? 0 : 1; p >= 0; p--)
         for (int k = 0; k < 2; k++)
             out->seg[p].h[0][k] += 1e-6 * (out->seg[p].h[1][k] - out->seg[p].h[0][k]);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 
-static ob_status gappy_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
-                           size_t msglen)
+static ob_fit_status gappy_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
+                               size_t msglen)
 {
     (void)work, (void)msg, (void)msglen;
     return gappy_any(base, a, out, 0);
 }
 
-static ob_status gappy_bs_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
-                              size_t msglen)
+static ob_fit_status gappy_bs_fit(const ob_bez *base, const ob_fit_args *a, void *work, ob_fit *out, char *msg,
+                                  size_t msglen)
 {
     (void)work, (void)msg, (void)msglen;
     return gappy_any(base, a, out, 1);

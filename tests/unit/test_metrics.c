@@ -678,10 +678,10 @@ static void test_normal_nearest_crossing(void)
         ob_fit fit;
         char msg[160];
         void *work = malloc(m->work_size ? m->work_size : 1);
-        const ob_status st = m->fit(&b, &args, work, &fit, msg, sizeof msg);
+        const ob_fit_status st = m->fit(&b, &args, work, &fit, msg, sizeof msg);
         free(work);
-        CHECK(st == OB_OK && fit.n == 1, "interp fits half %d: %s", half, msg);
-        if (st != OB_OK || fit.n != 1)
+        CHECK(st == OB_FIT_OK && fit.n == 1, "interp fits half %d: %s", half, msg);
+        if (st != OB_FIT_OK || fit.n != 1)
             continue;
         a = fit.seg[0];
         for (int k = 0; k < 256; k++, n++) {

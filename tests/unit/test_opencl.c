@@ -56,8 +56,8 @@ static int build_records(void)
         void *work = malloc(ws);
         ob_fit *fit = malloc(sizeof *fit);
         char msg[160];
-        ob_status st = work && fit ? m->fit(&base[n], &a, work, fit, msg, sizeof msg) : OB_FAIL;
-        if (st == OB_OK && fit->n >= 1) {
+        ob_fit_status st = work && fit ? m->fit(&base[n], &a, work, fit, msg, sizeof msg) : OB_FIT_FAIL;
+        if (st == OB_FIT_OK && fit->n >= 1) {
             /* the first piece against its part of the base */
             ob_bez_subsegment(&base[n], fit->t[0], fit->t[1], &base[n]);
             approx[n] = fit->seg[0];

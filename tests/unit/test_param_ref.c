@@ -144,16 +144,16 @@ static void check_range(const ob_method *m, const ob_bez *C, const char *cname, 
     char msg[256] = "";
     ob_bez part;
     ob_bez_subsegment(C, a, b, &part);
-    const ob_status st = work && f ? m->fit(&part, &args, work, f, msg, sizeof msg) : OB_FAIL;
-    if (st == OB_OK)
+    const ob_fit_status st = work && f ? m->fit(&part, &args, work, f, msg, sizeof msg) : OB_FIT_FAIL;
+    if (st == OB_FIT_OK)
         check_pieces(m->name, C, cname, d, a, b, f);
     free(work);
     free(f);
-    if (st == OB_RETRY_SMALLER && depth < 4) {
+    if (st == OB_FIT_RETRY_SMALLER && depth < 4) {
         check_range(m, C, cname, d, tol, a, 0.5 * (a + b), depth + 1);
         check_range(m, C, cname, d, tol, 0.5 * (a + b), b, depth + 1);
-    } else if (st != OB_OK) {
-        printf("  %s on %s [%g, %g] d %g: %s (%s), not checked\n", m->name, cname, a, b, d, ob_status_name(st), msg);
+    } else if (st != OB_FIT_OK) {
+        printf("  %s on %s [%g, %g] d %g: %s (%s), not checked\n", m->name, cname, a, b, d, ob_fit_status_name(st), msg);
     }
 }
 

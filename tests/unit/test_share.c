@@ -16,7 +16,7 @@ static const double tols[5] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
 
 /* tiller's fit, counting its calls (a test method may keep state) */
 static long fit_calls;
-static ob_status counting_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+static ob_fit_status counting_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
 #pragma omp atomic
     fit_calls++;

@@ -24,12 +24,12 @@ static void sleep_ms(int ms)
 }
 
 /* A fit that waits 30 ms (as if blocked on I/O) and returns the base. */
-static ob_status sleepy_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+static ob_fit_status sleepy_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
 {
     (void)a, (void)w, (void)msg, (void)len;
     sleep_ms(30);
     ob_fit_single(out, b);
-    return OB_OK;
+    return OB_FIT_OK;
 }
 static int same_degree(int n, int r) { (void)r; return n; }
 
