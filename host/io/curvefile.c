@@ -37,6 +37,7 @@
 #include <sys/stat.h>
 
 #include "methods/core/bspline.h"
+#include "methods/core/grow.h"
 
 enum {
     LINE_MAX_BYTES = 4096,
@@ -57,14 +58,8 @@ typedef struct {
 
 static int dvec_push(dvec *a, double x)
 {
-    if (a->n == a->cap) {
-        size_t cap = a->cap ? 2 * a->cap : 16;
-        double *v = realloc(a->v, cap * sizeof *v);
-        if (!v)
-            return -1;
-        a->v = v;
-        a->cap = cap;
-    }
+    if (ob_grow(&a->v, &a->cap, a->n, sizeof *a->v, 16))
+        return -1;
     a->v[a->n++] = x;
     return 0;
 }
@@ -750,14 +745,9 @@ int ob_curves_load_dir(const char *dir, ob_curveset *set, char *err, size_t errl
         size_t k = strlen(de->d_name);
         if (de->d_name[0] == '.' || k <= 7 || strcmp(de->d_name + k - 7, ".curves"))
             continue;
-        if (n == cap) {
-            cap = cap ? 2 * cap : 16;
-            char **nn = realloc(names, cap * sizeof *nn);
-            if (!nn) {
-                rc = ferr(err, errlen, dir, "out of memory");
-                break;
-            }
-            names = nn;
+        if (ob_grow(&names, &cap, n, sizeof *names, 16)) {
+            rc = ferr(err, errlen, dir, "out of memory");
+            break;
         }
         if (!(names[n] = strdup(de->d_name))) {
             rc = ferr(err, errlen, dir, "out of memory");

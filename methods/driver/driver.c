@@ -2,6 +2,7 @@
  * driver.c - adaptive subdivision, level by level over all jobs.  See driver.h.
  */
 #include "methods/driver/driver.h"
+#include "methods/core/grow.h"
 
 #include <math.h>
 #include <omp.h>
@@ -109,14 +110,8 @@ typedef struct {
 
 static int push(itemvec *q, const item *it)
 {
-    if (q->n == q->cap) {
-        size_t nc = q->cap ? 2 * q->cap : 256;
-        item *nv = realloc(q->v, nc * sizeof *nv);
-        if (!nv)
-            return -1;
-        q->v = nv;
-        q->cap = nc;
-    }
+    if (ob_grow(&q->v, &q->cap, q->n, sizeof *q->v, 256))
+        return -1;
     q->v[q->n++] = *it;
     return 0;
 }
