@@ -53,33 +53,23 @@ int ob_run_selects(const ob_run_opts *o, const char *id)
     return 0;
 }
 
-static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *c = p;
-    for (size_t i = 0; i < n; i++) {
-        h ^= c[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
 /* FNV-1a over the content of the curves the run uses (id, segments' degrees
  * and homogeneous control points, offsets). */
 uint64_t ob_curves_hash(const ob_run_opts *o, const ob_curveset *set)
 {
-    uint64_t h = 14695981039346656037ull;
+    uint64_t h = OB_FNV_BASIS;
     for (int c = 0; c < set->n; c++) {
         const ob_curve *cv = &set->v[c];
         if (!ob_run_selects(o, cv->id))
             continue;
-        h = fnv1a(h, cv->id, strlen(cv->id) + 1);
-        h = fnv1a(h, &cv->nseg, sizeof cv->nseg);
+        h = ob_fnv1a(h, cv->id, strlen(cv->id) + 1);
+        h = ob_fnv1a(h, &cv->nseg, sizeof cv->nseg);
         for (int s = 0; s < cv->nseg; s++) {
-            h = fnv1a(h, &cv->seg[s].deg, sizeof cv->seg[s].deg);
-            h = fnv1a(h, cv->seg[s].h, (size_t)(cv->seg[s].deg + 1) * sizeof cv->seg[s].h[0]);
+            h = ob_fnv1a(h, &cv->seg[s].deg, sizeof cv->seg[s].deg);
+            h = ob_fnv1a(h, cv->seg[s].h, (size_t)(cv->seg[s].deg + 1) * sizeof cv->seg[s].h[0]);
         }
-        h = fnv1a(h, &cv->nd, sizeof cv->nd);
-        h = fnv1a(h, cv->d, (size_t)cv->nd * sizeof *cv->d);
+        h = ob_fnv1a(h, &cv->nd, sizeof cv->nd);
+        h = ob_fnv1a(h, cv->d, (size_t)cv->nd * sizeof *cv->d);
     }
     return h;
 }

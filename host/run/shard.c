@@ -80,7 +80,7 @@ int ob_shard_parse(const char *opt, const char *spec, int *k, int *n)
     return 0;
 }
 
-static uint64_t fnv(uint64_t h, const void *p, size_t len)
+uint64_t ob_fnv1a(uint64_t h, const void *p, size_t len)
 {
     const unsigned char *b = p;
     for (size_t i = 0; i < len; i++) {
@@ -92,12 +92,12 @@ static uint64_t fnv(uint64_t h, const void *p, size_t len)
 
 static uint64_t fnv_str(uint64_t h, const char *s)
 {
-    return fnv(h, s, strlen(s) + 1);  /* with the NUL: "ab","c" != "a","bc" */
+    return ob_fnv1a(h, s, strlen(s) + 1);  /* with the NUL: "ab","c" != "a","bc" */
 }
 
 uint64_t ob_plan_seed(const char *fp)
 {
-    return fnv_str(14695981039346656037ULL, fp);
+    return fnv_str(OB_FNV_BASIS, fp);
 }
 
 uint64_t ob_key_step(uint64_t h, const char *const key[6])

@@ -49,4 +49,8 @@ uint64_t ob_key_step(uint64_t h, const char *const key[6]);
 uint64_t ob_job_key_step(uint64_t h, const ob_job *j);
 #define OB_FNV_BASIS 14695981039346656037ULL
 
+/* One FNV-1a step over n bytes at p, from the hash h (OB_FNV_BASIS to
+ * start): the hash of every fingerprint and key above. */
+uint64_t ob_fnv1a(uint64_t h, const void *p, size_t n);
+
 #endif
