@@ -131,22 +131,26 @@ static void add_elevated(const double *b, int k, int m, const double a[2], const
     }
 }
 
-static int trivial(ob_nf_fn f, const void *ctx, int n, double (*s)[2])
-{
-    /* n = 1: no interior, S_1 interpolates the ends */
-    return n == 1 ? ends(f, ctx, s[0], s[1]) : -1;
-}
-
-int ob_nf_fit_legendre(ob_nf_fn f, const void *ctx, int n, int M, void *work, double (*s)[2])
+/* What both fits do first: check the sizes, and for n = 1 (no interior)
+ * interpolate the ends.  Returns -1 on an error, 1 when s is done (n = 1),
+ * 0 with the binomials and the ends f0, f1 ready for the projection. */
+static int begin_fit(ob_nf_fn f, const void *ctx, int n, int M, double (*s)[2], double bin[K][K],
+                     double f0[2], double f1[2])
 {
     if (n < 1 || n > OB_MAX_DEG || M < 1 || M > OB_NF_MAX_NODES)
         return -1;
     if (n == 1)
-        return trivial(f, ctx, n, s);
-    double bin[K][K], f0[2], f1[2];
+        return ends(f, ctx, s[0], s[1]) ? -1 : 1;
     pascal(bin);
-    if (ends(f, ctx, f0, f1))
-        return -1;
+    return ends(f, ctx, f0, f1) ? -1 : 0;
+}
+
+int ob_nf_fit_legendre(ob_nf_fn f, const void *ctx, int n, int M, void *work, double (*s)[2])
+{
+    double bin[K][K], f0[2], f1[2];
+    const int begun = begin_fit(f, ctx, n, M, s, bin, f0, f1);
+    if (begun != 0)
+        return begun < 0 ? -1 : 0;
     double *x = work, *w = x + M, (*g)[2] = (double (*)[2])(w + M);
     ob_nf_gauss_legendre(M, x, w);
     for (int j = 0; j < M; j++)
@@ -184,14 +188,10 @@ int ob_nf_fit_legendre(ob_nf_fn f, const void *ctx, int n, int M, void *work, do
 
 int ob_nf_fit_chebyshev(ob_nf_fn f, const void *ctx, int n, int M, void *work, double (*s)[2])
 {
-    if (n < 1 || n > OB_MAX_DEG || M < 1 || M > OB_NF_MAX_NODES)
-        return -1;
-    if (n == 1)
-        return trivial(f, ctx, n, s);
     double bin[K][K], f0[2], f1[2];
-    pascal(bin);
-    if (ends(f, ctx, f0, f1))
-        return -1;
+    const int begun = begin_fit(f, ctx, n, M, s, bin, f0, f1);
+    if (begun != 0)
+        return begun < 0 ? -1 : 0;
     double (*g)[2] = work;
     /* Gauss-Chebyshev nodes x_j = cos(theta_j), theta_j = (j + 1/2) pi / M, t = (1 + x)/2 */
     for (int j = 0; j < M; j++)
@@ -222,13 +222,10 @@ int ob_nf_fit_chebyshev(ob_nf_fn f, const void *ctx, int n, int M, void *work, d
 
 int ob_nf_fit_lstsq(ob_nf_fn f, const void *ctx, int n, int M, int ftilde_rows, double (*s)[2])
 {
-    if (n < 1 || n > OB_MAX_DEG || M < 1 || M > OB_NF_MAX_NODES)
-        return -1;
-    if (n == 1)
-        return trivial(f, ctx, n, s);
-    double f0[2], f1[2];
-    if (ends(f, ctx, f0, f1))
-        return -1;
+    double bin[K][K], f0[2], f1[2];
+    const int begun = begin_fit(f, ctx, n, M, s, bin, f0, f1);
+    if (begun != 0)
+        return begun < 0 ? -1 : 0;
     /* unknowns s_1..s_{n-1}; row j: sum_i s_i B_i^n(t_j) = f(t_j) - f0 B_0^n - f1 B_n^n,
      * times 1/(t(1-t)) for rows of f~.  Givens QR, one row at a time. */
     const int nu = n - 1;
