@@ -35,6 +35,18 @@ void ob_export_num(FILE *f, double x, int json)
     fputs(b, f);
 }
 
+void ob_export_span(FILE *f, const ob_apiece *p)
+{
+    fputs("span ", f);
+    ob_export_num(f, p->a, 0);
+    fputc(' ', f);
+    ob_export_num(f, p->b, 0);
+    fputs(" fit ", f);
+    ob_export_num(f, p->t0, 0);
+    fputc(' ', f);
+    ob_export_num(f, p->t1, 0);
+}
+
 typedef int (*writer_fn)(FILE *f, const ob_job *j, int samples, const ob_approx *a);
 
 static int w_json(FILE *f, const ob_job *j, int s, const ob_approx *a) { return ob_export_write_json(f, j, s, a); }

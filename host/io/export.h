@@ -32,6 +32,10 @@ void ob_export_stem(char *buf, size_t len, const ob_job *j);
  * for a non-finite one when json, else "nan"/"inf". */
 void ob_export_num(FILE *f, double x, int json);
 
+/* Where piece p sits, in the words `measure` reads back from a .curves
+ * source line or a DXF comment (approx.h): "span A B fit T0 T1". */
+void ob_export_span(FILE *f, const ob_apiece *p);
+
 /* The writers: each returns 0, or -1 when writing failed.  samples: what
  * the run's sampled metrics used (recorded in the JSON). */
 int ob_export_write_json(FILE *f, const ob_job *j, int samples, const ob_approx *a);

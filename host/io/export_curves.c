@@ -31,15 +31,9 @@ int ob_export_write_curves(FILE *f, const ob_job *j, const ob_approx *a)
             }
     for (int i = 0; i < a->n; i++) {
         const ob_apiece *p = &a->v[i];
-        fprintf(f, "curve %s.p%04d\n  source offbench export: %s; piece %d of %d; base segment %d span ",
+        fprintf(f, "curve %s.p%04d\n  source offbench export: %s; piece %d of %d; base segment %d ",
                 j->method->name, i, stem, i, a->n, p->seg);
-        ob_export_num(f, p->a, 0);
-        fputc(' ', f);
-        ob_export_num(f, p->b, 0);
-        fputs(" fit ", f);
-        ob_export_num(f, p->t0, 0);
-        fputc(' ', f);
-        ob_export_num(f, p->t1, 0);
+        ob_export_span(f, p);
         fprintf(f, "; same_param %s\n  family export\n  bezier %d\n", a->same_param ? "yes" : "no",
                 p->approx.deg);
         for (int k = 0; k <= p->approx.deg; k++) {

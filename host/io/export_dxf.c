@@ -18,6 +18,29 @@
 
 static void code(FILE *f, int c, const char *v) { fprintf(f, "%d\n%s\n", c, v); }
 
+/* A run of fixed group codes and values. */
+typedef struct {
+    int code;
+    const char *value;
+} dxf_pair;
+
+static void codes(FILE *f, const dxf_pair *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        code(f, v[i].code, v[i].value);
+}
+
+/* The HEADER (version, unitless) and the opening of ENTITIES. */
+static const dxf_pair file_head[] = {
+    {0, "SECTION"}, {2, "HEADER"}, {9, "$ACADVER"}, {1, "AC1015"}, {9, "$INSUNITS"}, {70, "0"},
+    {0, "ENDSEC"},  {0, "SECTION"}, {2, "ENTITIES"},
+};
+
+/* What follows a SPLINE's handle: its layer and the plane's normal (0,0,1). */
+static const dxf_pair spline_head[] = {
+    {100, "AcDbEntity"}, {8, "OFFBENCH"}, {100, "AcDbSpline"}, {210, "0"}, {220, "0"}, {230, "1"},
+};
+
 static void codenum(FILE *f, int c, double x)
 {
     fprintf(f, "%d\n", c);
@@ -28,23 +51,12 @@ static void codenum(FILE *f, int c, double x)
 static void spline(FILE *f, const ob_apiece *p, int k, int same_param, unsigned handle)
 {
     const ob_bez *b = &p->approx;
-    fprintf(f, "999\noffbench piece %d base segment %d span ", k, p->seg);
-    ob_export_num(f, p->a, 0);
-    fputc(' ', f);
-    ob_export_num(f, p->b, 0);
-    fputs(" fit ", f);
-    ob_export_num(f, p->t0, 0);
-    fputc(' ', f);
-    ob_export_num(f, p->t1, 0);
+    fprintf(f, "999\noffbench piece %d base segment %d ", k, p->seg);
+    ob_export_span(f, p);
     fprintf(f, " same_param %d\n", same_param);
     code(f, 0, "SPLINE");
     fprintf(f, "5\n%X\n", handle);
-    code(f, 100, "AcDbEntity");
-    code(f, 8, "OFFBENCH");
-    code(f, 100, "AcDbSpline");
-    code(f, 210, "0");
-    code(f, 220, "0");
-    code(f, 230, "1");
+    codes(f, spline_head, sizeof spline_head / sizeof spline_head[0]);
     fprintf(f, "70\n%d\n71\n%d\n72\n%d\n73\n%d\n74\n0\n", 8 | (b->rational ? 4 : 0), b->deg, 2 * (b->deg + 1),
             b->deg + 1);
     code(f, 42, "1e-10");
@@ -70,15 +82,7 @@ int ob_export_write_dxf(FILE *f, const ob_job *j, const ob_approx *a)
     fprintf(f, "999\noffbench export: the approximation of job %s, max_err ", stem);
     ob_export_num(f, j->max_err, 0);
     fputc('\n', f);
-    code(f, 0, "SECTION");
-    code(f, 2, "HEADER");
-    code(f, 9, "$ACADVER");
-    code(f, 1, "AC1015");
-    code(f, 9, "$INSUNITS");
-    code(f, 70, "0");
-    code(f, 0, "ENDSEC");
-    code(f, 0, "SECTION");
-    code(f, 2, "ENTITIES");
+    codes(f, file_head, sizeof file_head / sizeof file_head[0]);
     for (int i = 0; i < a->n; i++)
         spline(f, &a->v[i], i, a->same_param, 0x100u + (unsigned)i);
     code(f, 0, "ENDSEC");
