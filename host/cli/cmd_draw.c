@@ -266,25 +266,14 @@ static const char css_fmt[] =
     ".title{font-weight:bold}\n"
     ".message{fill:#8a1c1c}\n";
 
-static int write_svg(FILE *f, const ob_jobview *v)
+/* The picture's frame: the base curve and its exact offset, widened by the
+ * rest of the geometry (the approximation's points and control points) up
+ * to half their size; beyond that it is clipped.  Sets the plot area's
+ * height *ph and margin *pm in picture units (its width is PICTURE_W). */
+static xform picture_frame(const ob_jobview *v, int np, int ms, double *ph, double *pm)
 {
     const ob_curve *c = v->curve;
     const double d = v->job.d;
-    const int show = ob_jobview_has_approx(v);
-    const int np = show ? v->npieces : 0;
-    const int ms = approx_samples_per_piece(np);
-    const int cap = 2 * CURVE_SAMPLES + 2 > ms + 1 ? 2 * CURVE_SAMPLES + 2 : ms + 1;
-    double(*pts)[2] = malloc((size_t)cap * sizeof *pts);
-    double(*buf)[2] = malloc((size_t)(cap > OB_MAX_DEG + 1 ? cap : OB_MAX_DEG + 1) * sizeof *buf);
-    if (!pts || !buf) {
-        free(pts);
-        free(buf);
-        ob_error("draw: out of memory");
-        return -1;
-    }
-
-    /* the picture: the base curve and its exact offset, widened by the rest
-     * of the geometry up to half their size; beyond that it is clipped */
     ob_bbox core, plot;
     ob_bbox_init(&core);
     for (int s = 0; s < c->nseg; s++) {
@@ -306,17 +295,12 @@ static int write_svg(FILE *f, const ob_jobview *v)
     plot = core;
     for (int k = 0; k < np; k++) {
         const ob_bez *a = &v->pieces[k].approx;
-        for (int i = 0; i <= a->deg; i++) {
+        for (int i = 0; i <= a->deg + ms + 1; i++) { /* control points, then ms + 1 points */
             double p[2];
-            ob_bez_ctrl(a, i, p);
-            if (isfinite(p[0]) && isfinite(p[1])) {
-                ob_bbox_clamp(&limit, p);
-                ob_bbox_add(&plot, p[0], p[1]);
-            }
-        }
-        for (int i = 0; i <= ms; i++) {
-            double p[2];
-            ob_bez_point(a, (double)i / ms, p);
+            if (i <= a->deg)
+                ob_bez_ctrl(a, i, p);
+            else
+                ob_bez_point(a, (double)(i - a->deg - 1) / ms, p);
             if (isfinite(p[0]) && isfinite(p[1])) {
                 ob_bbox_clamp(&limit, p);
                 ob_bbox_add(&plot, p[0], p[1]);
@@ -324,139 +308,200 @@ static int write_svg(FILE *f, const ob_jobview *v)
         }
     }
     ob_bbox_aspect(&plot, 0.35, 0.8, size0 > 0 ? size0 : 1.0);
-    const double size = ob_bbox_size(&plot);
-    const double margin = 0.05 * size;
+    const double margin = 0.05 * ob_bbox_size(&plot);
     const double wx = plot.xmax - plot.xmin + 2 * margin, wy = plot.ymax - plot.ymin + 2 * margin;
-    xform X = {0.5 * (plot.xmin + plot.xmax), 0.5 * (plot.ymin + plot.ymax), PICTURE_W / wx, far};
-    const double pw = PICTURE_W, ph = X.k * wy; /* the plot area in picture units */
-    const double u = 1.0;                       /* one pixel at the natural size */
-    const double pm = X.k * margin;             /* the margin in picture units */
+    const xform X = {0.5 * (plot.xmin + plot.xmax), 0.5 * (plot.ymin + plot.ymax), PICTURE_W / wx, far};
+    *ph = X.k * wy;
+    *pm = X.k * margin;
+    return X;
+}
 
-    /* title lines */
-    char l1[512], l2[256], l3[256] = "";
-    ob_jobview_describe(v, l1, sizeof l1);
-    ob_jobview_summary(v, l2, sizeof l2);
+/* The title block: the job, its result, and the row's message if any, in
+ * a font size that fits the width pw. */
+typedef struct {
+    char l1[512], l2[256], l3[256];
+    double fs, fs3, h;
+} svg_title;
+
+static void title_layout(const ob_jobview *v, double pw, svg_title *t)
+{
+    t->l3[0] = '\0';
+    ob_jobview_describe(v, t->l1, sizeof t->l1);
+    ob_jobview_summary(v, t->l2, sizeof t->l2);
     if (v->job.message[0])
-        snprintf(l3, sizeof l3, "%s", v->job.message);
-    const double w1 = text_width(l1, 1.0) * 1.08, w2 = text_width(l2, 1.0);
-    double fs = 15 * u;
-    if (fs * (w1 > w2 ? w1 : w2) > 0.96 * pw)
-        fs = 0.96 * pw / (w1 > w2 ? w1 : w2);
-    double fs3 = 0.85 * fs;
-    if (l3[0] && fs3 * text_width(l3, 1.0) > 0.96 * pw)
-        fs3 = 0.96 * pw / text_width(l3, 1.0);
-    const double title_h = 0.6 * fs + 1.35 * fs * 2 + (l3[0] ? 1.35 * fs3 : 0.0) + 0.5 * fs;
+        snprintf(t->l3, sizeof t->l3, "%s", v->job.message);
+    const double w1 = text_width(t->l1, 1.0) * 1.08, w2 = text_width(t->l2, 1.0);
+    t->fs = 15.0;
+    if (t->fs * (w1 > w2 ? w1 : w2) > 0.96 * pw)
+        t->fs = 0.96 * pw / (w1 > w2 ? w1 : w2);
+    t->fs3 = 0.85 * t->fs;
+    if (t->l3[0] && t->fs3 * text_width(t->l3, 1.0) > 0.96 * pw)
+        t->fs3 = 0.96 * pw / text_width(t->l3, 1.0);
+    t->h = 0.6 * t->fs + 1.35 * t->fs * 2 + (t->l3[0] ? 1.35 * t->fs3 : 0.0) + 0.5 * t->fs;
+}
 
-    /* legend: symbols and labels, wrapped into rows */
+/* The legend: symbols and labels, wrapped into rows of the width pw - 2 pm.
+ * The items' labels point into the struct: fill it in place. */
+typedef struct {
     char lo[96], la[96], lj[96];
-    char dtxt[40];
-    ob_fmt_double(dtxt, sizeof dtxt, d);
-    snprintf(lo, sizeof lo, "exact offset, d = %s", dtxt);
-    snprintf(la, sizeof la, "approximation (%s)", v->job.method->name);
-    snprintf(lj, sizeof lj, "joints (%d)", np + (np > 0));
     legend_item items[5];
-    int ni = 0;
-    items[ni++] = (legend_item){"base", "base curve", 0};
-    items[ni++] = (legend_item){"offset", lo, 0};
+    int n, rows;
+    double lfs, sym, gap, x[5], y[5], h;
+} svg_legend;
+
+static void legend_layout(const ob_jobview *v, int np, double fs, double pw, double pm, svg_legend *g)
+{
+    char dtxt[40];
+    ob_fmt_double(dtxt, sizeof dtxt, v->job.d);
+    snprintf(g->lo, sizeof g->lo, "exact offset, d = %s", dtxt);
+    snprintf(g->la, sizeof g->la, "approximation (%s)", v->job.method->name);
+    snprintf(g->lj, sizeof g->lj, "joints (%d)", np + (np > 0));
+    g->n = 0;
+    g->items[g->n++] = (legend_item){"base", "base curve", 0};
+    g->items[g->n++] = (legend_item){"offset", g->lo, 0};
     if (np > 0) {
-        items[ni++] = (legend_item){"approx", la, 0};
-        items[ni++] = (legend_item){"jointkey", lj, 1};
-        items[ni++] = (legend_item){"ctrl", "control polygons", 2};
+        g->items[g->n++] = (legend_item){"approx", g->la, 0};
+        g->items[g->n++] = (legend_item){"jointkey", g->lj, 1};
+        g->items[g->n++] = (legend_item){"ctrl", "control polygons", 2};
     }
-    const double lfs = 0.85 * fs, sym = 2.6 * lfs, gap = 0.5 * lfs, sep = 1.6 * lfs;
-    double lx[5], ly[5];
-    int rows = 1;
-    {
-        double x = 0;
-        for (int i = 0; i < ni; i++) {
-            const double w = sym + gap + text_width(items[i].label, lfs);
-            if (x > 0 && x + w > pw - 2 * pm) {
-                rows++;
-                x = 0;
-            }
-            lx[i] = x;
-            ly[i] = rows - 1;
-            x += w + sep;
+    g->lfs = 0.85 * fs;
+    g->sym = 2.6 * g->lfs;
+    g->gap = 0.5 * g->lfs;
+    const double sep = 1.6 * g->lfs;
+    double x = 0;
+    g->rows = 1;
+    for (int i = 0; i < g->n; i++) {
+        const double w = g->sym + g->gap + text_width(g->items[i].label, g->lfs);
+        if (x > 0 && x + w > pw - 2 * pm) {
+            g->rows++;
+            x = 0;
         }
+        g->x[i] = x;
+        g->y[i] = g->rows - 1;
+        x += w + sep;
     }
-    const double legend_h = rows * 1.6 * lfs + 0.8 * lfs;
+    g->h = g->rows * 1.6 * g->lfs + 0.8 * g->lfs;
+}
 
-    /* the document: the plot area is centred on the origin */
-    const double x0 = -0.5 * pw, top = -0.5 * ph - title_h, H = ph + title_h + legend_h;
-    char title[sizeof l1 + sizeof l2 + sizeof l3 + 8];
-    snprintf(title, sizeof title, "%s; %s%s%s", l1, l2, l3[0] ? "; " : "", l3);
-    char css[2048];
-    snprintf(css, sizeof css, css_fmt, 1.7 * u, 1.1 * u, 5 * u, 3.5 * u, 1.7 * u, 0.7 * u, 0.8 * u, 0.8 * u,
-             0.8 * u);
-    ob_svg_begin(f, x0, top, pw, H, PICTURE_W, title, css);
-    char note[256];
-    snprintf(note, sizeof note, "offbench draw: picture coordinates are %.17g (x - %.17g, %.17g - y) of the curve's plane",
-             X.k, X.cx, X.cy);
-    ob_svg_comment(f, note);
-    ob_svg_rect(f, "bg", x0, top, pw, H);
-    ob_svg_clip_rect(f, "plot", -0.5 * pw, -0.5 * ph, pw, ph);
-    ob_svg_rect(f, "frame", -0.5 * pw, -0.5 * ph, pw, ph);
-
-    ob_svg_group(f, "figure", "plot");
-    for (int k = 0; k < np; k++) { /* control polygons, behind everything */
+/* The plot: control polygons behind everything, the base curve, the
+ * approximation, the exact offset dashed over it (both stay visible), and
+ * the joints (each piece's start, and the last one's end).  pts and buf
+ * hold ms + 1 and 2 CURVE_SAMPLES + 2 points at least. */
+static void draw_figure(FILE *f, const ob_jobview *v, const xform *X, int np, int ms, double (*pts)[2],
+                        double (*buf)[2])
+{
+    const ob_curve *c = v->curve;
+    const double u = 1.0; /* one pixel at the natural size */
+    for (int k = 0; k < np; k++) {
         const ob_bez *a = &v->pieces[k].approx;
         for (int i = 0; i <= a->deg; i++)
             ob_bez_ctrl(a, i, pts[i]);
-        polyline(f, "ctrl", &X, (const double(*)[2])pts, a->deg + 1, buf);
+        polyline(f, "ctrl", X, (const double(*)[2])pts, a->deg + 1, buf);
         for (int i = 0; i <= a->deg; i++) {
             double q[2];
             if (!isfinite(pts[i][0]) || !isfinite(pts[i][1]))
                 continue;
-            to_svg(&X, pts[i], q);
+            to_svg(X, pts[i], q);
             ob_svg_rect(f, "ctrlpt", q[0] - 1.4 * u, q[1] - 1.4 * u, 2.8 * u, 2.8 * u);
         }
     }
     for (int s = 0; s < c->nseg; s++) {
         for (int i = 0; i <= CURVE_SAMPLES; i++)
             ob_bez_point(&c->seg[s], (double)i / CURVE_SAMPLES, pts[i]);
-        polyline(f, "base", &X, (const double(*)[2])pts, CURVE_SAMPLES + 1, buf);
+        polyline(f, "base", X, (const double(*)[2])pts, CURVE_SAMPLES + 1, buf);
     }
     for (int k = 0; k < np; k++) {
         for (int i = 0; i <= ms; i++)
             ob_bez_point(&v->pieces[k].approx, (double)i / ms, pts[i]);
-        polyline(f, "approx", &X, (const double(*)[2])pts, ms + 1, buf);
+        polyline(f, "approx", X, (const double(*)[2])pts, ms + 1, buf);
     }
-    for (int s = 0; s < c->nseg; s++) { /* dashed over the approximation: both stay visible */
-        const int n = offset_samples(&c->seg[s], d, CURVE_SAMPLES, pts);
-        polyline(f, "offset", &X, (const double(*)[2])pts, n, buf);
+    for (int s = 0; s < c->nseg; s++) {
+        const int n = offset_samples(&c->seg[s], v->job.d, CURVE_SAMPLES, pts);
+        polyline(f, "offset", X, (const double(*)[2])pts, n, buf);
     }
-    for (int k = 0; k <= np && np > 0; k++) { /* each piece's start, and the last one's end */
+    for (int k = 0; k <= np && np > 0; k++) {
         double p[2], q[2];
         ob_bez_point(&v->pieces[k < np ? k : np - 1].approx, k < np ? 0.0 : 1.0, p);
-        to_svg(&X, p, q);
+        to_svg(X, p, q);
         ob_svg_circle(f, "joint", q[0], q[1], 2.6 * u);
     }
-    ob_svg_group_end(f);
+}
 
-    /* title */
-    double y = top + 0.6 * fs + fs;
-    ob_svg_text(f, "title", x0 + pm, y, fs, "start", l1);
-    y += 1.35 * fs;
-    ob_svg_text(f, "summary", x0 + pm, y, fs, "start", l2);
-    if (l3[0])
-        ob_svg_text(f, "message", x0 + pm, y + 1.35 * fs3, fs3, "start", l3);
-
-    /* legend */
-    ob_svg_group(f, "legend", NULL);
+/* The legend's rows below the plot area (of height ph), from x0 + pm. */
+static void draw_legend(FILE *f, const svg_legend *g, double x0, double pm, double ph)
+{
+    const double u = 1.0, lfs = g->lfs, sym = g->sym;
     const double ly0 = 0.5 * ph + 0.8 * lfs;
-    for (int i = 0; i < ni; i++) {
-        const double sx = x0 + pm + lx[i], sy = ly0 + ly[i] * 1.6 * lfs + 0.5 * lfs;
-        if (items[i].kind == 0) {
-            ob_svg_line(f, items[i].cls, sx, sy, sx + sym, sy);
-        } else if (items[i].kind == 1) {
-            ob_svg_circle(f, items[i].cls, sx + 0.5 * sym, sy, 2.6 * u);
+    for (int i = 0; i < g->n; i++) {
+        const double sx = x0 + pm + g->x[i], sy = ly0 + g->y[i] * 1.6 * lfs + 0.5 * lfs;
+        if (g->items[i].kind == 0) {
+            ob_svg_line(f, g->items[i].cls, sx, sy, sx + sym, sy);
+        } else if (g->items[i].kind == 1) {
+            ob_svg_circle(f, g->items[i].cls, sx + 0.5 * sym, sy, 2.6 * u);
         } else {
             ob_svg_line(f, "ctrl", sx, sy + 0.25 * lfs, sx + sym, sy - 0.25 * lfs);
             ob_svg_rect(f, "ctrlpt", sx - 1.4 * u, sy + 0.25 * lfs - 1.4 * u, 2.8 * u, 2.8 * u);
             ob_svg_rect(f, "ctrlpt", sx + sym - 1.4 * u, sy - 0.25 * lfs - 1.4 * u, 2.8 * u, 2.8 * u);
         }
-        ob_svg_text(f, "label", sx + sym + gap, sy + 0.35 * lfs, lfs, "start", items[i].label);
+        ob_svg_text(f, "label", sx + sym + g->gap, sy + 0.35 * lfs, lfs, "start", g->items[i].label);
     }
+}
+
+/* The document's head: size, title, style, the coordinate note, the
+ * background, the plot area's clip path and frame. */
+static void begin_document(FILE *f, const xform *X, const svg_title *t, double x0, double top, double pw,
+                           double ph, double H)
+{
+    const double u = 1.0;
+    char title[sizeof t->l1 + sizeof t->l2 + sizeof t->l3 + 8];
+    snprintf(title, sizeof title, "%s; %s%s%s", t->l1, t->l2, t->l3[0] ? "; " : "", t->l3);
+    char css[2048];
+    snprintf(css, sizeof css, css_fmt, 1.7 * u, 1.1 * u, 5 * u, 3.5 * u, 1.7 * u, 0.7 * u, 0.8 * u, 0.8 * u,
+             0.8 * u);
+    ob_svg_begin(f, x0, top, pw, H, PICTURE_W, title, css);
+    char note[256];
+    snprintf(note, sizeof note, "offbench draw: picture coordinates are %.17g (x - %.17g, %.17g - y) of the curve's plane",
+             X->k, X->cx, X->cy);
+    ob_svg_comment(f, note);
+    ob_svg_rect(f, "bg", x0, top, pw, H);
+    ob_svg_clip_rect(f, "plot", -0.5 * pw, -0.5 * ph, pw, ph);
+    ob_svg_rect(f, "frame", -0.5 * pw, -0.5 * ph, pw, ph);
+}
+
+static int write_svg(FILE *f, const ob_jobview *v)
+{
+    const int np = ob_jobview_has_approx(v) ? v->npieces : 0;
+    const int ms = approx_samples_per_piece(np);
+    const int cap = 2 * CURVE_SAMPLES + 2 > ms + 1 ? 2 * CURVE_SAMPLES + 2 : ms + 1;
+    double(*pts)[2] = malloc((size_t)cap * sizeof *pts);
+    double(*buf)[2] = malloc((size_t)(cap > OB_MAX_DEG + 1 ? cap : OB_MAX_DEG + 1) * sizeof *buf);
+    svg_title t;
+    svg_legend g;
+    if (!pts || !buf) {
+        free(pts);
+        free(buf);
+        ob_error("draw: out of memory");
+        return -1;
+    }
+    double ph, pm;
+    const xform X = picture_frame(v, np, ms, &ph, &pm);
+    const double pw = PICTURE_W;
+    title_layout(v, pw, &t);
+    legend_layout(v, np, t.fs, pw, pm, &g);
+    /* the document: the plot area is centred on the origin */
+    const double x0 = -0.5 * pw, top = -0.5 * ph - t.h, H = ph + t.h + g.h;
+    begin_document(f, &X, &t, x0, top, pw, ph, H);
+    ob_svg_group(f, "figure", "plot");
+    draw_figure(f, v, &X, np, ms, pts, buf);
+    ob_svg_group_end(f);
+    double y = top + 0.6 * t.fs + t.fs;
+    ob_svg_text(f, "title", x0 + pm, y, t.fs, "start", t.l1);
+    y += 1.35 * t.fs;
+    ob_svg_text(f, "summary", x0 + pm, y, t.fs, "start", t.l2);
+    if (t.l3[0])
+        ob_svg_text(f, "message", x0 + pm, y + 1.35 * t.fs3, t.fs3, "start", t.l3);
+    ob_svg_group(f, "legend", NULL);
+    draw_legend(f, &g, x0, pm, ph);
     ob_svg_group_end(f);
     ob_svg_end(f);
     free(pts);
