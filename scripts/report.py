@@ -202,8 +202,8 @@ def index_page(store, runs, series, sets, site, copy):
     head = ('<h1>offbench nightly history</h1><p id="summary">%d runs in <code>%s</code>%s.</p>'
             % (len(runs), escape(os.path.abspath(store)),
                (", %s to %s" % (escape(runs[0].date), escape(runs[-1].date))) if runs else ""))
-    rule = '<h2>Step rule</h2><p class="rule" id="step-rule">%s</p>' % escape(report_steps.rule_text())
-    body = [head, rule, '<h2>Steps</h2>', step_rows(runs, series), '<h2>Methods</h2>',
+    rule = '<p class="rule" id="step-rule"><b>Step rule.</b> %s</p>' % escape(report_steps.rule_text())
+    body = [head, '<h2>Steps</h2>', step_rows(runs, series), rule, '<h2>Methods</h2>',
             '<p>Latest run\'s figures per method; ctrl is the summed control points, fail counts status fail '
             'and timeout, time the method total fit_ns + eval_ns (ms), its IQR that of the per-repetition '
             'totals (samples.csv). Charts: one point per run in run order; red bands mark steps, grey '

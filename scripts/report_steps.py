@@ -11,7 +11,7 @@ random) change from the runs before it:
 - time: the method's total time T (fit_ns + eval_ns summed over its rows;
   with --reps each row holds the median of its repetitions) is compared
   with the previous K = 5 runs on the same machine (host, CPU model, thread
-  count) with the same jobs, once there are at least 3 of them: a step when
+  count, backend) with the same jobs, once there are at least 3 of them: a step when
   |T - median| > 10 % of their median AND T lies outside their range
   (min..max), so that one noisy run in the window does not mark the next.
 - the jobs themselves (curves, offsets, tolerances, metric, split of the
@@ -92,6 +92,6 @@ def rule_text():
             "with the same jobs. Time: the method total (fit_ns + eval_ns over its rows; with "
             "--reps the rows hold the median of the repetitions) is a step when it differs by "
             "more than %d %% from the median of the previous %d runs on the same machine "
-            "(host, CPU, threads) with the same jobs, needs at least %d of them, and lies "
+            "(host, CPU, threads, backend) with the same jobs, needs at least %d of them, and lies "
             "outside their range. A change of the jobs themselves is marked 'jobs' and not "
             "compared across." % (round(100 * TIME_THRESHOLD), TIME_WINDOW, TIME_MIN_PREVIOUS))
