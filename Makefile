@@ -5,6 +5,8 @@
 #   make tables     reproduce the published tables into results/, plots, README
 #   make nightly    the nightly run compared with results/baseline/ (report in out/nightly)
 #   make accept-baseline  run the nightly configuration and make it the baseline
+#   make report     the HTML report of the nightly history (out/history/site/index.html)
+#   make report-screenshot  results/report.png from the test's synthetic history (Chromium)
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
 #   make MPI=1      ./offbench built with Open MPI (mpirun -n P ./offbench run ...)
 #   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
@@ -50,7 +52,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test soak run deps clean bench tables nightly accept-baseline fuzz fuzz-run FORCE
+.PHONY: all test soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -136,6 +138,15 @@ nightly:
 
 accept-baseline:
 	sh scripts/nightly.sh --accept --out out/nightly
+
+# The nightly history's HTML report (nightly.sh rebuilds it after each run;
+# NIGHTLY_HISTORY as there), and the README's screenshot of it.
+NIGHTLY_HISTORY ?= out/history
+report:
+	/usr/bin/python3 scripts/report.py $(NIGHTLY_HISTORY) --out $(NIGHTLY_HISTORY)/site
+
+report-screenshot: $(BIN)
+	sh scripts/report_screenshot.sh $(abspath $(BIN)) results/report.png
 
 # Fuzzing (needs clang with libFuzzer: Debian's clang): each target runs
 # FUZZ_SECONDS (default 60) from its seed corpus; a crash stops it, leaves

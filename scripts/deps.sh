@@ -13,6 +13,10 @@
 #   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
 #   DXF read-back test (tests/e2e/e2e_export.sh) and results/export's figure:
 #                          python3-ezdxf (optional: the test is skipped without it)
+#   browser test of the nightly report (tests/e2e/e2e_report.sh) and
+#   results/report.png:    chromium-headless-shell, only with OB_DEPS_BROWSER=1
+#                          (optional: never fails the build; the browser
+#                          checks are skipped without it)
 set -u
 
 missing=""
@@ -44,28 +48,40 @@ fi
 # and results/export/*.png (scripts/dxf_png.py).
 # Installed when missing and possible; never fail the build: the C build does
 # not need them, and their tests count as skipped without them.
-optional_py() { # MODULE PACKAGE WHAT
-    /usr/bin/python3 -c "import $1" >/dev/null 2>&1 && return 0
+optional_apt() { # PACKAGE WHAT: installs PACKAGE when root with apt-get, else says how
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-        echo "deps: installing (optional, for $3): $2"
-        if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "$2" \
+        echo "deps: installing (optional, for $2): $1"
+        if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "$1" \
                 >>/tmp/offbench-deps.log 2>&1 \
            || { apt-get update >>/tmp/offbench-deps.log 2>&1 \
                 && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-                       "$2" >>/tmp/offbench-deps.log 2>&1; }; then
-            echo "deps: installed: $2"
+                       "$1" >>/tmp/offbench-deps.log 2>&1; }; then
+            echo "deps: installed: $1"
         else
-            echo "deps: could not install $2 (see /tmp/offbench-deps.log);" \
-                 "optional: only $3 uses it" >&2
+            echo "deps: could not install $1 (see /tmp/offbench-deps.log);" \
+                 "optional: only $2 uses it" >&2
         fi
     else
-        echo "deps: optional: $2 (for $3):" \
-             "sudo apt-get install $2" >&2
+        echo "deps: optional: $1 (for $2):" \
+             "sudo apt-get install $1" >&2
     fi
+}
+optional_py() { # MODULE PACKAGE WHAT
+    /usr/bin/python3 -c "import $1" >/dev/null 2>&1 && return 0
+    optional_apt "$2" "$3"
 }
 optional_py matplotlib python3-matplotlib "the plots"
 optional_py svgelements python3-svgelements "scripts/svg2curves.py"
 optional_py ezdxf python3-ezdxf "the DXF read-back test"
+
+# Optional, asked for with OB_DEPS_BROWSER=1 (about 100 MB): a headless
+# Chromium for the nightly report's browser test and its screenshot.
+optional_browser() {
+    [ "${OB_DEPS_BROWSER:-0}" = 1 ] || return 0
+    command -v chromium-headless-shell >/dev/null 2>&1 || command -v chromium >/dev/null 2>&1 && return 0
+    optional_apt chromium-headless-shell "the report's browser test (tests/e2e/e2e_report.sh)"
+}
+optional_browser
 
 [ -z "$missing" ] && exit 0
 

@@ -14,12 +14,27 @@
 #              only (compare --no-timing): one run per row cannot tell a
 #              speed change from noise, the published run's repetitions can
 #
+# History: every run, failed or not, is then copied into a store that the
+# next night does not overwrite (scripts/nightly_history.sh), one directory
+# per run, DIR/STAMP_COMMIT_HOST/ (published/ and random/ with results.csv,
+# samples.csv and meta.json; report.md, compare-*.err, logs, run.json with
+# the exit status), old runs are pruned (never the newest), and when python3
+# is there scripts/report.py rebuilds the HTML report of the store in
+# SITE/index.html (a failed report is said on stderr and leaves the exit
+# status alone).
+#
 # Usage:
 #   scripts/nightly.sh [--out DIR]      run and compare (default out/nightly)
 #   scripts/nightly.sh --accept [--out DIR]
 #                                       run, then make this run the baseline
 #                                       (copies it into results/baseline/;
 #                                       review `git diff --stat` and commit)
+# History options (each also an environment variable):
+#   --history DIR   NIGHTLY_HISTORY    the store (default out/history;
+#                                      'none': no store, no report)
+#   --keep N        NIGHTLY_KEEP       keep the N newest runs (default 0: all)
+#   --keep-days D   NIGHTLY_KEEP_DAYS  drop runs older than D days (0: never)
+#   --site DIR      NIGHTLY_SITE       the report (default HISTORY/site)
 # Environment: NIGHTLY_RANDOM=N:SEED overrides the random set (a baseline
 # made with another set is not comparable: compare exits 3), OFFBENCH_THREADS
 # the thread count (default: OpenMP's).
@@ -27,22 +42,57 @@ set -u
 cd "$(dirname "$0")/.."
 out=out/nightly
 accept=0
+history=${NIGHTLY_HISTORY:-out/history}
+keep=${NIGHTLY_KEEP:-0}
+keep_days=${NIGHTLY_KEEP_DAYS:-0}
+site=${NIGHTLY_SITE:-}
 while [ $# -gt 0 ]; do
     case "$1" in
-        --out) [ $# -ge 2 ] || { echo "nightly: --out needs a directory" >&2; exit 2; }; out=$2; shift 2 ;;
+        --out|--history|--keep|--keep-days|--site)
+            [ $# -ge 2 ] || { echo "nightly: $1 needs a value" >&2; exit 2; }
+            case "$1" in
+                --out) out=$2 ;; --history) history=$2 ;; --keep) keep=$2 ;;
+                --keep-days) keep_days=$2 ;; --site) site=$2 ;;
+            esac
+            shift 2 ;;
         --accept) accept=1; shift ;;
-        -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,42p' "$0"; exit 0 ;;
         *) echo "nightly: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
+done
+for v in "$keep" "$keep_days"; do
+    case "$v" in ''|*[!0-9]*) echo "nightly: --keep and --keep-days need a whole number, not '$v'" >&2; exit 2 ;; esac
 done
 random=${NIGHTLY_RANDOM:-250:2026}
 threads=${OFFBENCH_THREADS:+--threads $OFFBENCH_THREADS}
 base=results/baseline
 start=$(date +%s)
 
+# finish STATUS STAGE: records the run in the history store, prunes it,
+# rebuilds the report, and exits with STATUS (the store and the report
+# never change it: their failures are said on stderr)
+finish() {
+    if [ "$history" != none ]; then
+        run_dir=$(sh scripts/nightly_history.sh record --out "$out" --history "$history" --status "$1" \
+                  --stage "$2" --started "$start" --random "$random") \
+            && echo "nightly: recorded in $run_dir" >&2 \
+            || echo "nightly: could not record this run in $history (see above)" >&2
+        sh scripts/nightly_history.sh prune --history "$history" --keep "$keep" --keep-days "$keep_days" \
+            || echo "nightly: pruning $history failed (see above)" >&2
+        if [ -x /usr/bin/python3 ]; then
+            /usr/bin/python3 scripts/report.py "$history" --out "${site:-$history/site}" \
+                && echo "nightly: report in ${site:-$history/site}/index.html" >&2 \
+                || echo "nightly: scripts/report.py failed (see above); the exit status is the run's" >&2
+        else
+            echo "nightly: no /usr/bin/python3: no HTML report" >&2
+        fi
+    fi
+    exit "$1"
+}
+
 mkdir -p "$(dirname "$out")" || exit 2
 make >"$out.build.log" 2>&1 || { mkdir -p "$out"; mv "$out.build.log" "$out/build.log" 2>/dev/null;
-    echo "nightly: the build failed (see $out/build.log)" >&2; exit 2; }
+    echo "nightly: the build failed (see $out/build.log)" >&2; finish 2 build; }
 rm -rf "$out"
 mkdir -p "$out"
 mv "$out.build.log" "$out/build.log"
@@ -55,7 +105,7 @@ run() {  # name, then run options
         $threads "$@" --out "$out/$name" 2>"$out/$name.log"
     rc=$?
     echo "nightly: $name: exit $rc in $(($(date +%s) - t0)) s ($(tail -n 1 "$out/$name.log"))" >&2
-    [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; exit 2; }
+    [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; finish 2 "run $name"; }
 }
 run published --reps 5
 run random --random "$random"
@@ -104,4 +154,4 @@ for name in published random; do
 done
 echo "Exit status $status (0 no regression, 1 regression, 2 error, 3 not comparable); $(($(date +%s) - start)) s in all." >>"$report"
 echo "nightly: report in $report; exit $status" >&2
-exit $status
+finish $status compare

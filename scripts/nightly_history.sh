@@ -1,0 +1,178 @@
+#!/bin/sh
+# nightly_history.sh - the store of past nightly runs (README "Nightly
+# history and report"): scripts/nightly.sh records each run here before its
+# output directory is overwritten the next night, and prunes old runs.
+#
+#   sh scripts/nightly_history.sh record --out OUT --history DIR --status N
+#        [--stage STAGE] [--started EPOCH] [--random N:SEED]
+#        [--commit SHA] [--time EPOCH]
+#       copies the nightly output OUT into DIR/STAMP_COMMIT_HOST/ (STAMP the
+#       UTC time, e.g. 2026-12-02T031205Z; COMMIT the short commit; HOST the
+#       machine's name) and prints that directory.  Per run set (published,
+#       random): results.csv, samples.csv, meta.json, the run's log; beside
+#       them report.md, compare-*.err, build.log and run.json (status N, its
+#       meaning, the stage that ended the run, commit, dirty flag, host,
+#       time).  STAGE "build" copies only build.log: OUT then still holds the
+#       previous night's files.  A failed run is recorded all the same.
+#       --commit and --time record a run made elsewhere or earlier (default:
+#       the checkout's HEAD and now).
+#   sh scripts/nightly_history.sh prune --history DIR [--keep N] [--keep-days D]
+#       removes the oldest runs beyond the N newest, and runs older than D
+#       days (by the time in the name); 0 (the default) keeps all.  The
+#       newest run is never removed; only directories named like a run and
+#       holding a run.json are touched.
+# Exit status: 0 done, 2 bad usage or a copy that failed (said on stderr).
+set -u
+
+die() { echo "nightly_history: $*" >&2; exit 2; }
+need() { [ "$2" -ge 2 ] || die "$1 needs a value"; }
+is_count() { case "$1" in ''|*[!0-9]*) return 1 ;; esac; }
+
+# json_str TEXT: TEXT as a JSON string (backslashes, quotes and control
+# characters escaped; the values here are short single-line texts)
+json_str() { printf '"%s"' "$(printf '%s' "$1" | tr '\n\r\t' '   ' | sed 's/\\/\\\\/g; s/"/\\"/g')"; }
+
+status_text() {
+    case "$1" in
+        0) echo "no regression" ;; 1) echo "regression" ;; 2) echo "error" ;;
+        3) echo "not comparable" ;; *) echo "exit $1" ;;
+    esac
+}
+
+# copy_run OUT DEST STAGE: the nightly's files that exist, into DEST
+copy_run() {
+    o=$1 d=$2
+    [ -f "$o/build.log" ] && { cp "$o/build.log" "$d/" || return 1; }
+    [ "$3" = build ] && return 0
+    for f in "$o"/report.md "$o"/compare-*.err "$o"/*.log; do
+        [ -f "$f" ] && { cp "$f" "$d/" || return 1; }
+    done
+    for set in "$o"/*/; do
+        set=${set%/}
+        [ -d "$set" ] || continue
+        [ -f "$set/results.csv" ] || [ -f "$set/meta.json" ] || continue
+        mkdir -p "$d/${set##*/}" || return 1
+        for f in results.csv samples.csv meta.json; do
+            [ -f "$set/$f" ] && { cp "$set/$f" "$d/${set##*/}/" || return 1; }
+        done
+    done
+    return 0
+}
+
+# write_meta FILE NAME STATUS STAGE STARTED RANDOM: the run's run.json
+# (uses $commit, $dirty, $when and $host of record)
+write_meta() {
+    secs=null
+    is_count "$5" && secs=$((when - $5))
+    {
+        echo "{"
+        echo "  \"name\": $(json_str "$2"),"
+        echo "  \"date\": $(json_str "$(date -u -d "@$when" +%Y-%m-%dT%H:%M:%SZ)"),"
+        echo "  \"commit\": $(json_str "$commit"),"
+        echo "  \"commit_short\": $(json_str "$(printf '%s' "$commit" | cut -c1-7)"),"
+        echo "  \"dirty\": $dirty,"
+        echo "  \"host\": $(json_str "$host"),"
+        echo "  \"status\": $3,"
+        echo "  \"status_text\": $(json_str "$(status_text "$3")"),"
+        echo "  \"stage\": $(json_str "$4"),"
+        echo "  \"seconds\": $secs,"
+        echo "  \"random\": $(json_str "$6")"
+        echo "}"
+    } >"$1"
+}
+
+record() {
+    out="" hist="" status="" stage=done started="" random="" commit="" when=""
+    while [ $# -gt 0 ]; do
+        case "$1" in
+            --out) need "$1" $#; out=$2; shift 2 ;;
+            --history) need "$1" $#; hist=$2; shift 2 ;;
+            --status) need "$1" $#; status=$2; shift 2 ;;
+            --stage) need "$1" $#; stage=$2; shift 2 ;;
+            --started) need "$1" $#; started=$2; shift 2 ;;
+            --random) need "$1" $#; random=$2; shift 2 ;;
+            --commit) need "$1" $#; commit=$2; shift 2 ;;
+            --time) need "$1" $#; when=$2; shift 2 ;;
+            *) die "record: unknown option '$1'" ;;
+        esac
+    done
+    [ -n "$out" ] && [ -n "$hist" ] || die "record needs --out OUT and --history DIR"
+    is_count "$status" || die "record: --status needs a number, not '$status'"
+    [ -z "$when" ] && when=$(date +%s)
+    is_count "$when" || die "record: --time needs seconds since 1970, not '$when'"
+    dirty=false
+    if [ -z "$commit" ]; then
+        commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
+        [ "$commit" != unknown ] && ! git diff --quiet HEAD -- 2>/dev/null && dirty=true
+    fi
+    case "$commit" in *[!0-9a-zA-Z]*|'') die "record: --commit needs a commit id, not '$commit'" ;; esac
+    mkdir -p "$hist" || die "cannot create the history directory $hist"
+    host=$(hostname 2>/dev/null || uname -n)
+    hname=$(printf '%s' "$host" | tr -c 'A-Za-z0-9.-' '-' | cut -c1-40)
+    short=$(printf '%s' "$commit" | cut -c1-7)
+    base="$(date -u -d "@$when" +%Y-%m-%dT%H%M%SZ)_${short}_${hname:-host}"
+    name=$base n=1
+    while [ -e "$hist/$name" ]; do n=$((n + 1)); name="$base-$n"; done
+    # copied under a dot name, then renamed: a store never shows half a run
+    tmp="$hist/.tmp-$name"
+    rm -rf "$tmp"
+    mkdir -p "$tmp" || die "cannot create $tmp"
+    copy_run "$out" "$tmp" "$stage" || { rm -rf "$tmp"; die "copying $out into $hist failed"; }
+    write_meta "$tmp/run.json" "$name" "$status" "$stage" "$started" "$random" \
+        || { rm -rf "$tmp"; die "cannot write $tmp/run.json"; }
+    mv "$tmp" "$hist/$name" || { rm -rf "$tmp"; die "cannot rename $tmp"; }
+    echo "$hist/$name"
+}
+
+# runs DIR: the run directories of the store, oldest first (names begin
+# with the UTC time, so the name order is the time order)
+runs() {
+    for r in "$1"/*/; do
+        r=${r%/}
+        [ -f "$r/run.json" ] || continue
+        case "${r##*/}" in
+            [0-9][0-9][0-9][0-9]-[0-9][0-9]-[0-9][0-9]T[0-9][0-9][0-9][0-9][0-9][0-9]Z_*) echo "${r##*/}" ;;
+        esac
+    done | LC_ALL=C sort
+}
+
+prune() {
+    hist="" keep=0 days=0
+    while [ $# -gt 0 ]; do
+        case "$1" in
+            --history) need "$1" $#; hist=$2; shift 2 ;;
+            --keep) need "$1" $#; keep=$2; shift 2 ;;
+            --keep-days) need "$1" $#; days=$2; shift 2 ;;
+            *) die "prune: unknown option '$1'" ;;
+        esac
+    done
+    [ -n "$hist" ] || die "prune needs --history DIR"
+    is_count "$keep" || die "--keep needs a count of runs (0: all), not '$keep'"
+    is_count "$days" || die "--keep-days needs a number of days (0: no age limit), not '$days'"
+    [ -d "$hist" ] || return 0
+    list=$(runs "$hist")
+    total=$(printf '%s\n' "$list" | grep -c .)
+    [ "$total" -le 1 ] && return 0
+    newest=$(printf '%s\n' "$list" | tail -n 1)
+    cutoff=""
+    [ "$days" -gt 0 ] && cutoff=$(date -u -d "@$(($(date +%s) - days * 86400))" +%Y-%m-%dT%H%M%SZ)
+    i=0
+    for r in $list; do
+        i=$((i + 1))
+        [ "$r" = "$newest" ] && continue
+        old=0
+        [ "$keep" -gt 0 ] && [ $((total - i)) -ge "$keep" ] && old=1
+        [ -n "$cutoff" ] && [ "$(printf '%s\n%s\n' "${r%%_*}" "$cutoff" | LC_ALL=C sort | head -n 1)" = "${r%%_*}" ] \
+            && [ "${r%%_*}" != "$cutoff" ] && old=1
+        [ $old -eq 1 ] || continue
+        rm -rf "${hist:?}/$r" && echo "nightly_history: pruned $r" >&2
+    done
+    return 0
+}
+
+case "${1:-}" in
+    record) shift; record "$@" ;;
+    prune) shift; prune "$@" ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    *) die "usage: nightly_history.sh record|prune ... (see --help)" ;;
+esac
