@@ -56,17 +56,26 @@ while [ $# -gt 0 ]; do
             esac
             shift 2 ;;
         --accept) accept=1; shift ;;
-        -h|--help) sed -n '2,42p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,40p' "$0"; exit 0 ;;
         *) echo "nightly: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
 for v in "$keep" "$keep_days"; do
     case "$v" in ''|*[!0-9]*) echo "nightly: --keep and --keep-days need a whole number, not '$v'" >&2; exit 2 ;; esac
 done
+# the store must outlive the next night's rm -rf of the output directory
+case "${history%/}/" in "${out%/}/"*)
+    echo "nightly: the history store $history lies inside the output directory $out, which each run removes" >&2; exit 2 ;;
+esac
 random=${NIGHTLY_RANDOM:-250:2026}
 threads=${OFFBENCH_THREADS:+--threads $OFFBENCH_THREADS}
 base=results/baseline
 start=$(date +%s)
+# the commit the run is built from, kept for the history (HEAD may move
+# while the run goes on)
+commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
+dirty=false
+[ "$commit" != unknown ] && ! git diff --quiet HEAD -- 2>/dev/null && dirty=true
 
 # finish STATUS STAGE: records the run in the history store, prunes it,
 # rebuilds the report, and exits with STATUS (the store and the report
@@ -74,7 +83,7 @@ start=$(date +%s)
 finish() {
     if [ "$history" != none ]; then
         run_dir=$(sh scripts/nightly_history.sh record --out "$out" --history "$history" --status "$1" \
-                  --stage "$2" --started "$start" --random "$random") \
+                  --stage "$2" --started "$start" --random "$random" --commit "$commit" --dirty $dirty) \
             && echo "nightly: recorded in $run_dir" >&2 \
             || echo "nightly: could not record this run in $history (see above)" >&2
         sh scripts/nightly_history.sh prune --history "$history" --keep "$keep" --keep-days "$keep_days" \

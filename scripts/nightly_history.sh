@@ -5,7 +5,7 @@
 #
 #   sh scripts/nightly_history.sh record --out OUT --history DIR --status N
 #        [--stage STAGE] [--started EPOCH] [--random N:SEED]
-#        [--commit SHA] [--time EPOCH]
+#        [--commit SHA [--dirty true|false]] [--time EPOCH]
 #       copies the nightly output OUT into DIR/STAMP_COMMIT_HOST/ (STAMP the
 #       UTC time, e.g. 2026-12-02T031205Z; COMMIT the short commit; HOST the
 #       machine's name) and prints that directory.  Per run set (published,
@@ -14,8 +14,8 @@
 #       meaning, the stage that ended the run, commit, dirty flag, host,
 #       time).  STAGE "build" copies only build.log: OUT then still holds the
 #       previous night's files.  A failed run is recorded all the same.
-#       --commit and --time record a run made elsewhere or earlier (default:
-#       the checkout's HEAD and now).
+#       --commit, --dirty and --time record a run made elsewhere or earlier
+#       (default: the checkout's HEAD, whether it has changes, and now).
 #   sh scripts/nightly_history.sh prune --history DIR [--keep N] [--keep-days D]
 #       removes the oldest runs beyond the N newest, and runs older than D
 #       days (by the time in the name); 0 (the default) keeps all.  The
@@ -82,7 +82,7 @@ write_meta() {
 }
 
 record() {
-    out="" hist="" status="" stage=done started="" random="" commit="" when=""
+    out="" hist="" status="" stage="done" started="" random="" commit="" when="" dirty=false
     while [ $# -gt 0 ]; do
         case "$1" in
             --out) need "$1" $#; out=$2; shift 2 ;;
@@ -92,16 +92,18 @@ record() {
             --started) need "$1" $#; started=$2; shift 2 ;;
             --random) need "$1" $#; random=$2; shift 2 ;;
             --commit) need "$1" $#; commit=$2; shift 2 ;;
+            --dirty) need "$1" $#; dirty=$2; shift 2 ;;
             --time) need "$1" $#; when=$2; shift 2 ;;
             *) die "record: unknown option '$1'" ;;
         esac
     done
-    [ -n "$out" ] && [ -n "$hist" ] || die "record needs --out OUT and --history DIR"
+    if [ -z "$out" ] || [ -z "$hist" ]; then die "record needs --out OUT and --history DIR"; fi
     is_count "$status" || die "record: --status needs a number, not '$status'"
     [ -z "$when" ] && when=$(date +%s)
     is_count "$when" || die "record: --time needs seconds since 1970, not '$when'"
-    dirty=false
+    case "$dirty" in true|false) ;; *) die "record: --dirty needs true or false, not '$dirty'" ;; esac
     if [ -z "$commit" ]; then
+        dirty=false
         commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
         [ "$commit" != unknown ] && ! git diff --quiet HEAD -- 2>/dev/null && dirty=true
     fi

@@ -81,8 +81,9 @@ def time_steps(points, window=TIME_WINDOW, min_previous=TIME_MIN_PREVIOUS,
 
 
 def fmt_ms(ns):
-    """ns as milliseconds with 3 significant digits."""
-    return "%.3g" % (ns / 1e6)
+    """ns as milliseconds: 3 significant digits, whole ones from 100 ms."""
+    ms = ns / 1e6
+    return "%.0f" % ms if abs(ms) >= 100 else "%.3g" % ms
 
 
 def rule_text():

@@ -54,6 +54,10 @@ d3=$($HIST record --out "$O" --history "$T/h" --status 2 --stage build --commit 
 check '[ -f "$d3/build.log" ] && [ ! -e "$d3/report.md" ] && [ ! -e "$d3/published" ]' \
     "record --stage build: only build.log (the rest is last night's)"
 check '[ -z "$(ls -A "$T/h" | grep "^\.")" ]' "record: no temporary directory left"
+d4=$($HIST record --out "$O" --history "$T/h" --status 0 --commit abc --dirty true --time 1795000200)
+check 'grep -q "\"dirty\": true," "$d4/run.json"' "record --dirty true: in run.json"
+$HIST record --out "$O" --history "$T/h" --status 0 --commit abc --dirty maybe >/dev/null 2>"$T/err"
+check '[ $? -eq 2 ] && grep -q -- "--dirty" "$T/err"' "record --dirty maybe: exit 2"
 $HIST record --out "$O" --history "$T/h" --status x >/dev/null 2>"$T/err"
 check '[ $? -eq 2 ] && grep -q -- "--status" "$T/err"' "record --status x: exit 2"
 $HIST record --history "$T/h" --status 0 >/dev/null 2>"$T/err"
@@ -82,6 +86,9 @@ $HIST prune --history "$P" --keep x >/dev/null 2>"$T/err"
 check '[ $? -eq 2 ] && grep -q -- "--keep" "$T/err"' "prune --keep x: exit 2"
 sh "$ROOT/scripts/nightly.sh" --keep-days -1 --out "$T/nn" >/dev/null 2>"$T/err"
 check '[ $? -eq 2 ] && grep -q "keep" "$T/err" && [ ! -e "$T/nn.build.log" ]' "nightly.sh --keep-days -1: exit 2 before building"
+sh "$ROOT/scripts/nightly.sh" --out "$T/nn" --history "$T/nn/h" >/dev/null 2>"$T/err"
+check '[ $? -eq 2 ] && grep -q "inside the output directory" "$T/err" && [ ! -e "$T/nn.build.log" ]' \
+    "nightly.sh: a store inside --out (removed each night) refused"
 sh "$ROOT/scripts/nightly.sh" --history >/dev/null 2>"$T/err"
 check '[ $? -eq 2 ] && grep -q -- "--history needs" "$T/err"' "nightly.sh --history without a value: exit 2"
 sh "$ROOT/scripts/nightly.sh" --help > "$T/help" 2>&1
