@@ -68,7 +68,10 @@ $(BUILD)/buildinfo.h: FORCE
 	@{ echo "#define OB_GIT_COMMIT \"$$(git rev-parse --verify -q HEAD 2>/dev/null || echo unknown)\""; \
 	   echo "#define OB_GIT_DIRTY $$(if git diff --quiet HEAD -- 2>/dev/null; then echo 0; else echo 1; fi)"; \
 	   echo "#define OB_CFLAGS \"$(strip $(CFLAGS))\""; \
-	   echo "#define OB_GIT_DATE \"$$(git log -1 --format=%cd --date=format:%Y.%m.%d 2>/dev/null || echo unknown)\""; } > $@.tmp
+	   echo "#define OB_GIT_DATE \"$$(git log -1 --format=%cd --date=format:%Y.%m.%d 2>/dev/null || echo unknown)\""; \
+	   for p in SISL:libsisl-dev FLINT:libflint-dev OCL_ICD:ocl-icd-libopencl1; do \
+	     echo "#define OB_PKG_$${p%%:*} \"$$(dpkg-query -W -f='$${Version}' $${p#*:} 2>/dev/null | head -n 1 | tr -d '"\\' || true)\""; \
+	   done; } > $@.tmp
 	@cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
 
 $(BUILD)/embedded_data.c: $(DATASETS) scripts/embed_data.sh

@@ -198,6 +198,7 @@ static int run_jobs(run_cmd *r)
     ob_backend_hooks(r->cl, &r->rec.binfo, &c.hooks);
     c.hooks.spans = r->spans;
     size_t restored = 0;
+    ob_loadavg_sample(&r->rec.load);  /* before the first job (hostinfo.h) */
     int drc = o->reps > 0 || r->ranks > 1
                   ? ob_run_plain(&c, r->jobs, r->njobs, o->reps > 0 ? "warm-up run" : NULL, &r->wall)
                   : ob_run_journaled(&c, r->jobs, r->njobs, r->where, &r->journal, &r->wall, &restored);
@@ -212,6 +213,10 @@ static int run_jobs(run_cmd *r)
         r->rep_eval = malloc((size_t)o->reps * r->njobs * sizeof *r->rep_eval);
         drc = !r->rep_fit || !r->rep_eval ? -1 : ob_run_reps(&c, r->jobs, r->njobs, r->rep_fit, r->rep_eval, &r->wall);
     }
+    ob_loadavg_sample(&r->rec.load);
+    char warn[512];
+    if (drc == 0 && ob_mpi_rank() == 0 && ob_load_warning(&r->rec.load, o->reps, ob_cores_used(), warn, sizeof warn))
+        ob_warn("%s", warn);  /* meta.json's "warnings" has it too */
     if (r->ranks > 1) {
         ob_info("rank %d: %zu jobs in %.2f s", ob_mpi_rank(), r->njobs, r->wall);
         const ob_run_files w = {o, &r->rec, r->jobs, r->njobs, r->shard_idx, r->where, ob_mpi_max(r->wall),

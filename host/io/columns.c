@@ -27,6 +27,9 @@ const ob_column ob_columns[OB_NCOLS] = {
     [OB_COL_MAX_GAP] = {"max_gap", "largest distance between consecutive pieces' ends (empty: no joint)"},
     [OB_COL_MAX_KINK] = {"max_kink", "largest tangent angle at a closed joint, rad (empty: none)"},
     [OB_COL_CONTINUITY] = {"continuity", "the weakest joint: open, G0 or G1 (empty: one piece)"},
+    [OB_COL_TIME_IQR_NS] = {"time_iqr_ns", "--reps N >= 2: interquartile range of the repetitions' fit_ns + eval_ns, whole ns "
+                                           "(empty without)"},
+    [OB_COL_TIME_CV] = {"time_cv", "--reps N >= 2: their coefficient of variation, sd / mean (empty without)"},
 };
 
 static char header[512];

@@ -14,6 +14,7 @@
 #include "buildinfo.h"
 #include "host/io/columns.h"
 #include "host/io/numfmt.h"
+#include "host/run/hostinfo.h"
 
 #include <flint/flint.h>
 
@@ -81,6 +82,15 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
     case OB_COL_MAX_GAP: put_double(f, j->max_gap); break;
     case OB_COL_MAX_KINK: put_double(f, j->max_kink); break;
     case OB_COL_CONTINUITY: fputs(ob_cont_name(j->continuity), f); break;
+    /* the spread of the repetitions (host/run/spread.h): empty without --reps N >= 2 */
+    case OB_COL_TIME_IQR_NS:
+        if (j->time_reps >= 2)
+            fprintf(f, "%.0f", j->time_iqr_ns);  /* whole ns, as fit_ns and eval_ns */
+        break;
+    case OB_COL_TIME_CV:
+        if (j->time_reps >= 2)
+            put_double(f, j->time_cv);
+        break;
     case OB_NCOLS: break;
     }
 }
@@ -133,31 +143,6 @@ void ob_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-/* The CPU model (first "model name" of /proc/cpuinfo), or "unknown": timings
- * of runs on different CPUs are not compared. */
-static void cpu_model(char *buf, size_t len)
-{
-    snprintf(buf, len, "unknown");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return;
-    char line[512];
-    while (fgets(line, sizeof line, f)) {
-        if (strncmp(line, "model name", 10) != 0)
-            continue;
-        const char *p = strchr(line, ':');
-        if (!p)
-            break;
-        p++;
-        while (*p == ' ' || *p == '\t')
-            p++;
-        snprintf(buf, len, "%s", p);
-        buf[strcspn(buf, "\r\n")] = '\0';
-        break;
-    }
-    fclose(f);
-}
-
 /* meta.json: the build and what measured. */
 static void meta_build(FILE *f, const ob_backend_info *b)
 {
@@ -184,7 +169,7 @@ static void meta_build(FILE *f, const ob_backend_info *b)
         fprintf(f, ",\n");
     }
     char cpu[256];
-    cpu_model(cpu, sizeof cpu);
+    ob_cpu_model(cpu, sizeof cpu);
     fprintf(f, "  \"cpu_model\": ");
     ob_json_string(f, cpu);
     fprintf(f, ",\n  \"omp_threads\": %d,\n", omp_get_max_threads());
@@ -258,6 +243,66 @@ static void meta_definitions(FILE *f, const ob_run_opts *o, const ob_run_record 
     fprintf(f, "},\n");
 }
 
+/* A number, or null when NaN (never read). */
+static void json_num(FILE *f, double v)
+{
+    if (isnan(v))
+        fputs("null", f);
+    else
+        fprintf(f, "%.2f", v);
+}
+
+/* A build-time package version (Makefile: dpkg-query), or null when the
+ * build had none (no dpkg, package not installed). */
+static void json_pkg(FILE *f, const char *v)
+{
+    if (*v)
+        ob_json_string(f, v);
+    else
+        fputs("null", f);
+}
+
+/* meta.json: the machine, the load during the run, the library versions and
+ * the run's warnings (README "Noise"). */
+static void meta_host(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
+{
+    char host[256], os[256], kernel[256], warn[512];
+    ob_host_names(host, sizeof host, os, sizeof os, kernel, sizeof kernel);
+    const int cores = ob_cores_used();
+    fprintf(f, "  \"host\": {\"hostname\": ");
+    ob_json_string(f, host);
+    fprintf(f, ", \"os\": ");
+    ob_json_string(f, os);
+    fprintf(f, ", \"kernel\": ");
+    ob_json_string(f, kernel);
+    fprintf(f, ", \"cores_used\": %d, \"loadavg_start\": ", cores);
+    json_num(f, rec->load.samples ? rec->load.start : NAN);
+    fprintf(f, ", \"loadavg_end\": ");
+    json_num(f, rec->load.samples ? rec->load.end : NAN);
+    fprintf(f, ", \"loadavg_max\": ");
+    json_num(f, rec->load.samples ? rec->load.max : NAN);
+    fprintf(f, ", \"loadavg_samples\": %d, \"loadavg_doc\": \"1-minute load average (/proc/loadavg) before the "
+               "first job, after each timed repetition and at the end; the run's own threads count in it\"},\n",
+            rec->load.samples);
+    /* SISL has no version macro or call: the Debian package versions come
+     * from dpkg-query when the binary was built (Makefile, buildinfo.h) */
+    fprintf(f, "  \"versions\": {\"sisl\": ");
+    json_pkg(f, OB_PKG_SISL);
+    fprintf(f, ", \"flint\": ");
+    ob_json_string(f, flint_version);
+    fprintf(f, ", \"flint_header\": \"%s\", \"flint_package\": ", FLINT_VERSION);
+    json_pkg(f, OB_PKG_FLINT);
+    fprintf(f, ", \"opencl_loader\": ");
+    json_pkg(f, OB_PKG_OCL_ICD);
+    fprintf(f, ", \"doc\": \"flint: the library's flint_version at run time, flint_header: FLINT_VERSION at build "
+               "time; sisl, flint_package and opencl_loader (ocl-icd-libopencl1): Debian package versions by "
+               "dpkg-query at build time, null without\"},\n");
+    fprintf(f, "  \"warnings\": [");
+    if (ob_load_warning(&rec->load, o->reps, cores, warn, sizeof warn))
+        ob_json_string(f, warn);
+    fprintf(f, "],\n");
+}
+
 int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
                   double wall_seconds)
 {
@@ -269,6 +314,7 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
     meta_build(f, &rec->binfo);
     meta_settings(f, o);
     meta_definitions(f, o, rec);
+    meta_host(f, o, rec);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);

@@ -12,6 +12,7 @@
 #include "host/run/modes.h"
 #include "host/run/progress.h"
 #include "host/run/shard.h"
+#include "host/run/spread.h"
 
 /* SIGINT / SIGTERM: the driver stops at the next batch; a second signal
  * acts as usual (SA_RESETHAND). */
@@ -119,8 +120,9 @@ int ob_run_reps(const ob_run_ctx *c, ob_job *jobs, size_t njobs, double *fit, do
     const int reps = c->o->reps;
     ob_job *ref = malloc(njobs * sizeof *ref);
     double *walls = malloc((size_t)reps * sizeof *walls), *tmp = malloc((size_t)reps * sizeof *tmp);
+    double *tot = malloc((size_t)reps * sizeof *tot);
     int rc = 0;
-    if (!ref || !walls || !tmp) {
+    if (!ref || !walls || !tmp || !tot) {
         rc = -1;
         goto out;
     }
@@ -129,6 +131,7 @@ int ob_run_reps(const ob_run_ctx *c, ob_job *jobs, size_t njobs, double *fit, do
         char what[64];
         snprintf(what, sizeof what, "timed repetition %d of %d", r + 1, reps);
         rc = ob_run_plain(c, jobs, njobs, what, &walls[r]);
+        ob_loadavg_sample(&c->rec->load);
         for (size_t i = 0; i < njobs; i++) {
             fit[(size_t)r * njobs + i] = jobs[i].fit_ns;
             eval[(size_t)r * njobs + i] = jobs[i].eval_ns;
@@ -146,6 +149,10 @@ int ob_run_reps(const ob_run_ctx *c, ob_job *jobs, size_t njobs, double *fit, do
         for (size_t i = 0; i < njobs; i++) {
             jobs[i].fit_ns = median_strided(fit + i, njobs, reps, tmp);
             jobs[i].eval_ns = median_strided(eval + i, njobs, reps, tmp);
+            for (int r = 0; r < reps; r++)
+                tot[r] = fit[(size_t)r * njobs + i] + eval[(size_t)r * njobs + i];
+            jobs[i].time_reps = reps;
+            ob_spread(tot, reps, 1, tmp, &jobs[i].time_iqr_ns, &jobs[i].time_cv);
         }
         *wall = median_strided(walls, 1, reps, tmp);
     }
@@ -155,6 +162,7 @@ out:
     free(ref);
     free(walls);
     free(tmp);
+    free(tot);
     return rc;
 }
 

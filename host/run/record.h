@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "host/backend/select.h"
+#include "host/run/hostinfo.h"
 
 typedef struct {
     uint64_t data_hash;          /* FNV-1a of the selected curves' content
@@ -25,6 +26,7 @@ typedef struct {
     long rep_mismatches;         /* job results that differed between
                                     repetitions (nondeterminism) */
     ob_backend_info binfo;
+    ob_loadavg load;             /* the load average during the run (hostinfo.h) */
 } ob_run_record;
 
 #endif

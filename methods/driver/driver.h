@@ -101,6 +101,10 @@ typedef struct {
     int joints;          /* joints measured */
     int open_joints;     /* joints counted twice in ctrl_points (measured open,
                             or not measured with their ends apart) */
+    /* set by the run command with --reps N (host/run/spread.h), not the driver: */
+    int time_reps;       /* repetitions the spread is over; < 2: none (empty columns) */
+    double time_iqr_ns;  /* IQR of the per-repetition fit_ns + eval_ns */
+    double time_cv;      /* their coefficient of variation, sd / mean */
 } ob_job;
 
 /* One measurement of a batch: an approximating piece against its base piece. */

@@ -10,15 +10,21 @@ pass=0 fail=0 skipped=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
 check() { if eval "$1"; then ok; else bad "$2"; fi; }
-# a results.csv without its timing columns (fit_ns, eval_ns), found by name
-# (they come before the message, the one field that may hold a comma)
+# a results.csv without its timing columns (fit_ns, eval_ns, and the spread
+# of --reps: time_iqr_ns, time_cv), found by name (fit_ns and eval_ns come
+# before the message, the one field that may hold a comma; the others are
+# counted from the end of the line)
 body() {
-    awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="fit_ns"||$i=="eval_ns") drop[i]=1}
-        {s=""; for(i=1;i<=NF;i++) if(!(i in drop)) s=s (s=="" ? "" : ",") $i; print s}' "$1"
+    awk -F, 'NR==1{n=NF; for(i=1;i<=NF;i++){if($i=="fit_ns"||$i=="eval_ns") drop[i]=1; if($i=="time_iqr_ns"||$i=="time_cv") dropend[n-i]=1}}
+        {s=""; for(i=1;i<=NF;i++) if(!(i in drop) && !((NF-i) in dropend)) s=s (s=="" ? "" : ",") $i; print s}' "$1"
 }
-# a results.csv as builds before the joint columns wrote it (the last three
-# dropped; they never hold commas)
-nojoints() { awk -F, 'BEGIN{OFS=","} {NF = NF - 3; print}' "$1"; }
+# a results.csv as builds before the joint columns wrote it (max_gap,
+# max_kink and continuity dropped, by name counted from the end of the
+# line: they never hold commas, and neither do the columns after them)
+nojoints() {
+    awk -F, 'BEGIN{OFS=","} NR==1{n=NF; for(i=1;i<=NF;i++) if($i=="max_gap"||$i=="max_kink"||$i=="continuity") drop[n-i]=1}
+        {s=""; for(i=1;i<=NF;i++) if(!((NF-i) in drop)) s=s (s=="" ? "" : ",") $i; print s}' "$1"
+}
 # columns of a results.csv by name, one line per row, values joined by ':'
 # (rcols FILE NAME...).  A quoted message may hold commas, the columns after
 # it never do: those are counted from the end of the line.

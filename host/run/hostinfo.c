@@ -1,0 +1,107 @@
+/*
+ * hostinfo.c - see hostinfo.h.
+ */
+#include "host/run/hostinfo.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+/* The 1-minute load average, or NAN. */
+static double read_loadavg(void)
+{
+    const char *path = getenv("OFFBENCH_LOADAVG");
+    FILE *f = fopen(path && *path ? path : "/proc/loadavg", "r");
+    double v = NAN;
+    if (!f)
+        return NAN;
+    if (fscanf(f, "%lf", &v) != 1 || !(v >= 0))
+        v = NAN;
+    fclose(f);
+    return v;
+}
+
+void ob_loadavg_sample(ob_loadavg *l)
+{
+    const double v = read_loadavg();
+    if (isnan(v))
+        return;
+    if (l->samples++ == 0)
+        l->start = l->max = v;
+    if (v > l->max)
+        l->max = v;
+    l->end = v;
+}
+
+int ob_cores_used(void)
+{
+    const long online = sysconf(_SC_NPROCESSORS_ONLN);
+    const int t = omp_get_max_threads();
+    return online > 0 && online < t ? (int)online : t;
+}
+
+int ob_load_warning(const ob_loadavg *l, int reps, int cores, char *buf, size_t len)
+{
+    if (reps <= 0 || l->samples == 0 || !(l->max > cores))
+        return 0;
+    snprintf(buf, len, "load average up to %.2f during the run, above the %d core%s it used: other work "
+             "competed for the CPUs, the timings are noisier than they would be on an idle machine",
+             l->max, cores, cores == 1 ? "" : "s");
+    return 1;
+}
+
+/* The value of the first line of path that starts with key, into buf:
+ * after key, blanks and one separator (':' or '=') and blanks are skipped,
+ * the line end dropped and one pair of matching quotes taken off.  "unknown"
+ * when the file or the key is missing.  Serves /etc/os-release (KEY="v")
+ * and /proc/cpuinfo (key<TAB>: v). */
+static void keyed_value(const char *path, const char *key, char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return;
+    const size_t klen = strlen(key);
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, key, klen) != 0)
+            continue;
+        char *v = line + klen;
+        v += strspn(v, " \t");
+        if (*v != ':' && *v != '=')
+            continue;
+        v++;
+        v += strspn(v, " \t");
+        v[strcspn(v, "\r\n")] = '\0';
+        size_t n = strlen(v);
+        if (n >= 2 && (v[0] == '"' || v[0] == '\'') && v[n - 1] == v[0]) {
+            v[n - 1] = '\0';
+            v++;
+        }
+        snprintf(buf, len, "%s", v);
+        break;
+    }
+    fclose(f);
+}
+
+void ob_cpu_model(char *buf, size_t len)
+{
+    keyed_value("/proc/cpuinfo", "model name", buf, len);
+}
+
+void ob_host_names(char *host, size_t hlen, char *os, size_t olen, char *kernel, size_t klen)
+{
+    if (gethostname(host, hlen) != 0 || !*host)
+        snprintf(host, hlen, "unknown");
+    host[hlen - 1] = '\0';
+    keyed_value("/etc/os-release", "PRETTY_NAME", os, olen);
+    struct utsname u;
+    if (uname(&u) == 0)
+        snprintf(kernel, klen, "%s", u.release);
+    else
+        snprintf(kernel, klen, "unknown");
+}
