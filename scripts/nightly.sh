@@ -119,6 +119,26 @@ run() {  # name, then run options
 run published --reps 5
 run random --random "$random"
 
+# Per-machine baselines (README "Nightly"): timings are judged only against
+# a baseline recorded on this CPU model (meta.json's cpu_model).  The
+# default baseline, results/baseline/{published,random}, is the one of the
+# CPU in its meta.json; another CPU's is results/baseline/cpu/KEY/ (KEY: the
+# model, each character outside [A-Za-z0-9._-] as '_').  Without either,
+# quality is compared with the default and the report says why timings were
+# not judged.  --accept writes the default when it is this CPU's (or there
+# is none), else this CPU's directory.
+cpu_of() { sed -n 's/^  "cpu_model": "\(.*\)",$/\1/p' "$1" 2>/dev/null | head -n 1; }
+cpu=$(cpu_of "$out/published/meta.json")
+base_cpu=$(cpu_of "$base/published/meta.json")
+cpu_dir=$base/cpu/$(printf '%s' "${cpu:-unknown}" | tr -c 'A-Za-z0-9._-' '_')
+timing_note=
+if [ -f "$base/published/results.csv" ] && [ "$base_cpu" != "$cpu" ]; then
+    if [ -f "$cpu_dir/published/results.csv" ] || [ $accept -eq 1 ]; then
+        base=$cpu_dir
+    else
+        timing_note="timings not judged: baseline recorded on CPU '${base_cpu:-unknown}', this machine is '${cpu:-unknown}' (no $cpu_dir/: scripts/nightly.sh --accept on this machine records one)"
+    fi
+fi
 if [ $accept -eq 1 ]; then
     for name in published random; do
         rm -rf "$base/$name"
@@ -141,14 +161,16 @@ report="$out/report.md"
 {
     echo "# offbench nightly, $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo
-    echo "Commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- 2>/dev/null || echo ' (dirty)'); random set $random."
+    echo "Commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- 2>/dev/null || echo ' (dirty)'); random set $random; baseline $base/ (CPU '${cpu:-unknown}')."
     echo
+    [ -z "$timing_note" ] || { echo "**$timing_note**"; echo; }
 } >"$report"
+[ -z "$timing_note" ] || echo "nightly: $timing_note" >&2
 for name in published random; do
     # speed: per-method verdicts only (a few of hundreds of rows pass a rank
     # test by chance; the per-method totals do not have that multiplicity)
     opts="--method-timing-only"
-    [ "$name" = random ] && opts="--no-timing"
+    [ "$name" = random ] || [ -n "$timing_note" ] && opts="--no-timing"
     {
         echo "## $name"
         echo

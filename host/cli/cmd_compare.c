@@ -67,14 +67,27 @@
  * mean covers), for each repetition that all those rows have.  Faster
  * symmetrically (reported, not a regression).
  *
- * Options: --format md|csv (md), --out FILE (stdout; written through
+ * Intervals: each timing ratio with repetitions on both sides (>= 2) gets a
+ * confidence interval at level 1 - alpha: the Hodges–Lehmann shift of the
+ * log times of NEW's repetitions against BASE's with its Moses interval
+ * (hlshift.h; not a bootstrap); per method the same on the per-repetition
+ * totals.  A row that is no change by the rules above is "not judged" when
+ * its interval is unbounded (few_reps: too few repetitions for alpha) or
+ * wider than hi / lo > (1 + --time-threshold)^2 (noisy); a method likewise
+ * (and no_samples when it has no 2 complete repetitions per side).
+ * --strict-timing: timings that could not be judged make the exit status 3
+ * (timings not compared for the timing context, rows judged by the threshold
+ * alone for want of repetitions, rows not judged, methods not judged; with
+ * --method-timing-only only the methods), the report lists each reason.
+ *
+ * Options: --format md|csv|json (md), --out FILE (stdout; written through
  * FILE.tmp and a rename), --err-rtol R (1e-9), --err-atol A (1e-15),
  * --time-threshold F (0.10), --time-floor-ns N (1e6), --alpha A (0.05),
  * --max-rows N (50 per Markdown table), --no-timing, --method-timing-only
  * (row-level timing changes are listed but only the per-method verdicts
  * count for the exit status: with thousands of rows, a few pass the rank
  * test by chance and a nightly would fail on noise; the per-method totals
- * do not have that multiplicity).  "--opt=value" works too.
+ * do not have that multiplicity), --strict-timing (not with --no-timing).  "--opt=value" works too.
  *
  * Markdown report: the two inputs, a verdict line with the counts (joined
  * rows, regressions: quality / timing / missing rows, improvements, new and
@@ -87,7 +100,9 @@
  * comparable: the inputs and the reasons only.
  *
  * CSV report (long format, one line per change, header
- * kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value):
+ * kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value,ci_lo,
+ * ci_hi,note; ci_lo, ci_hi the interval of a time ratio, "0" and "inf" when
+ * unbounded, empty without; note as below):
  *   regression|improvement  a row's change: field status, ctrl_points,
  *                           max_err or time (t in ns); base and new values;
  *                           ratio new/base (not for status); p_value when
@@ -99,10 +114,25 @@
  *   method                  per method: fields ctrl_points_gm, max_err_gm and
  *                           time_gm with the geometric mean in ratio (empty
  *                           when there is none) and, for time_gm, the p-value
- *   context                 field not_comparable, timing_not_compared or
- *                           note; the text in base
+ *   not_judged              a row's time not judged: field time, base and
+ *                           new, ratio, p_value, interval, note noisy or
+ *                           few_reps
+ *   context                 field not_comparable, timing_not_compared,
+ *                           timing_not_judged (--strict-timing) or note;
+ *                           the text in base
+ * A method's time_gm line has the note of its timing not judged (noisy,
+ * few_reps, no_samples) where it was not.
  * d and tol are written as in the input file; numbers in full precision.
  * When not comparable only the context lines follow the header.
+ *
+ * JSON report (compare_json.c): one object, keys program, status, verdict
+ * (ok, regression, not_comparable, timing_not_judged), base and new (results
+ * path, rows, meta, git_commit, git_dirty, timestamp, cpu_model,
+ * repetitions), options, context (checked, timing_compared, interval,
+ * noise_width, and the lists not_comparable, timing_not_compared,
+ * timing_not_judged, notes), counts, changes (the CSV's change lines as
+ * objects: d and tol as numbers, base and new typed, null for none) and
+ * methods; numbers that are not finite are null.
  */
 #include <math.h>
 #include <stdio.h>
@@ -120,7 +150,7 @@
 typedef struct {
     ob_cmp_opts c;
     const char *in[2];
-    int csv;
+    int format;  /* 0 md, 1 csv, 2 json */
     const char *out;
 } cmd_opts;
 
@@ -138,10 +168,10 @@ static int num_opt(const char *opt, const char *v, double lo, double hi, int ope
 }
 
 enum { CO_FORMAT, CO_OUT, CO_ERR_RTOL, CO_ERR_ATOL, CO_TIME_THRESHOLD, CO_TIME_FLOOR, CO_ALPHA, CO_MAX_ROWS,
-       CO_NO_TIMING, CO_METHOD_TIMING };
+       CO_NO_TIMING, CO_METHOD_TIMING, CO_STRICT_TIMING };
 
 static const ob_flag compare_flags[] = {
-    {"format", "md|csv", "the report's format (default md)", CO_FORMAT, OB_FLAG_ONCE},
+    {"format", "md|csv|json", "the report's format (default md)", CO_FORMAT, OB_FLAG_ONCE},
     {"out", "FILE", "write the report there (default: standard output)", CO_OUT, OB_FLAG_ONCE},
     {"err-rtol", "R", "max_err may grow by this factor before it is a regression", CO_ERR_RTOL, OB_FLAG_ONCE},
     {"err-atol", "A", "... or by this much", CO_ERR_ATOL, OB_FLAG_ONCE},
@@ -151,6 +181,8 @@ static const ob_flag compare_flags[] = {
     {"max-rows", "N", "rows of each table in the report", CO_MAX_ROWS, OB_FLAG_ONCE},
     {"no-timing", NULL, "judge the results only", CO_NO_TIMING, OB_FLAG_ONCE},
     {"method-timing-only", NULL, "judge timing per method only, not per job", CO_METHOD_TIMING, OB_FLAG_ONCE},
+    {"strict-timing", NULL, "exit 3 when timings could not be judged (no repetitions, too noisy)", CO_STRICT_TIMING,
+     OB_FLAG_ONCE},
 };
 
 static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
@@ -159,11 +191,11 @@ static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
     double x;
     switch (id) {
     case CO_FORMAT:
-        if (strcmp(v, "md") != 0 && strcmp(v, "csv") != 0) {
-            ob_error("--format: expected md or csv, got '%s'", v);
+        if (strcmp(v, "md") != 0 && strcmp(v, "csv") != 0 && strcmp(v, "json") != 0) {
+            ob_error("--format: expected md, csv or json, got '%s'", v);
             return -1;
         }
-        o->csv = strcmp(v, "csv") == 0;
+        o->format = strcmp(v, "csv") == 0 ? 1 : strcmp(v, "json") == 0 ? 2 : 0;
         return 0;
     case CO_OUT:
         if (!*v) {
@@ -185,6 +217,7 @@ static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
         o->c.max_rows = (int)x;
         return 0;
     case CO_NO_TIMING: o->c.no_timing = 1; return 0;
+    case CO_STRICT_TIMING: o->c.strict_timing = 1; return 0;
     default: o->c.method_timing_only = 1; return 0;
     }
 }
@@ -193,7 +226,7 @@ static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
 static int parse_opts(int argc, char **argv, cmd_opts *o)
 {
     o->c = ob_cmp_defaults();
-    o->csv = 0;
+    o->format = 0;
     o->out = NULL;
     const ob_flagset flags = {compare_flags, (int)(sizeof compare_flags / sizeof compare_flags[0]), NULL, NULL,
                               "options", apply_compare_flag, o};
@@ -206,6 +239,10 @@ static int parse_opts(int argc, char **argv, cmd_opts *o)
         return rc == OB_CLI_HELP ? 1 : -1;
     if (npos != 2) {
         ob_error("compare: expected BASE NEW (results.csv files or run directories)");
+        return -1;
+    }
+    if (o->c.strict_timing && o->c.no_timing) {
+        ob_error("compare: --strict-timing asks for timings to be judged, --no-timing for them not to be: pick one");
         return -1;
     }
     o->in[0] = pos[0];
@@ -222,7 +259,9 @@ typedef struct {
 static int write_report(FILE *f, void *ctx)
 {
     const report_ctx *c = ctx;
-    return c->o->csv ? ob_cmp_write_csv(f, c->b, c->n, &c->o->c, c->r) : ob_cmp_write_md(f, c->b, c->n, &c->o->c, c->r);
+    if (c->o->format == 2)
+        return ob_cmp_write_json(f, c->b, c->n, &c->o->c, c->r);
+    return c->o->format ? ob_cmp_write_csv(f, c->b, c->n, &c->o->c, c->r) : ob_cmp_write_md(f, c->b, c->n, &c->o->c, c->r);
 }
 
 /* To stdout, or to --out FILE through FILE.tmp and a rename. */
@@ -270,6 +309,8 @@ int ob_cmd_compare(int argc, char **argv)
     }
     for (int i = 0; i < r.incomparable.n; i++)
         ob_error("not comparable: %s", r.incomparable.v[i]);
+    for (int i = 0; i < r.strict.n; i++)
+        ob_error("timing not judged (--strict-timing): %s", r.strict.v[i]);
     const char *const inputs[] = {o.in[0], o.in[1], b.results_path, b.meta_path, b.samples_path,
                                   n.results_path, n.meta_path, n.samples_path};
     if (o.out && ob_check_out_not_input("compare", o.out, 0, inputs, sizeof inputs / sizeof inputs[0]) != 0)

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/compare/hlshift.h"
 #include "host/compare/ranktest.h"
 
 /* ---- join and verdicts ---- */
@@ -18,8 +19,8 @@ typedef struct {
     int m;      /* index in r->ms */
 } pair;
 
-static int add_change(ob_cmp_result *r, ob_ch_kind kind, const char *field, const ob_res_row *b, const ob_res_row *n,
-                      double ratio, double p)
+static int add_change_ci(ob_cmp_result *r, ob_ch_kind kind, const char *field, const ob_res_row *b,
+                         const ob_res_row *n, double ratio, double p, double lo, double hi, const char *note)
 {
     if (r->nch == r->capch) {
         int cap = r->capch ? 2 * r->capch : 64;
@@ -29,8 +30,39 @@ static int add_change(ob_cmp_result *r, ob_ch_kind kind, const char *field, cons
         r->ch = nv;
         r->capch = cap;
     }
-    r->ch[r->nch++] = (ob_change){kind, field, b, n, ratio, p};
+    r->ch[r->nch++] = (ob_change){kind, field, b, n, ratio, p, lo, hi, note};
     return 0;
+}
+
+static int add_change(ob_cmp_result *r, ob_ch_kind kind, const char *field, const ob_res_row *b, const ob_res_row *n,
+                      double ratio, double p)
+{
+    return add_change_ci(r, kind, field, b, n, ratio, p, NAN, NAN, "");
+}
+
+double ob_cmp_noise_width(const ob_cmp_opts *o)
+{
+    return (1 + o->time_threshold) * (1 + o->time_threshold);
+}
+
+/* The interval of new/base from the repetitions xn[0..kn), xb[0..kb): HL on
+ * log times (hlshift.h; a time under 1 ns counts as 1 ns, so that its log is
+ * finite).  Overwrites xn and xb with their logs.  Returns NULL when the
+ * interval is bounded and narrow enough to judge, else "few_reps" or
+ * "noisy". */
+static const char *time_interval(double *xn, int kn, double *xb, int kb, const ob_cmp_opts *o, double *lo,
+                                 double *hi)
+{
+    for (int i = 0; i < kn; i++)
+        xn[i] = log(xn[i] > 1 ? xn[i] : 1);
+    for (int j = 0; j < kb; j++)
+        xb[j] = log(xb[j] > 1 ? xb[j] : 1);
+    const ob_hl_result h = ob_hl_shift(xn, kn, xb, kb, o->alpha);
+    *lo = exp(h.lo);
+    *hi = exp(h.hi);
+    if (!h.k || !isfinite(h.lo) || !isfinite(h.hi))
+        return "few_reps";
+    return *hi / *lo > ob_cmp_noise_width(o) ? "noisy" : NULL;
 }
 
 static int method_index(ob_cmp_result *r, const char *m)
@@ -45,6 +77,7 @@ static int method_index(ob_cmp_result *r, const char *m)
     memset(&r->ms[r->nms], 0, sizeof *r->ms);
     r->ms[r->nms].method = m;
     r->ms[r->nms].p = NAN;
+    r->ms[r->nms].ci_lo = r->ms[r->nms].ci_hi = NAN;
     return r->nms++;
 }
 
@@ -98,7 +131,10 @@ static int rep_values(const ob_res_row *row, int maxrep, double *x)
     return k;
 }
 
-/* Timing of a joined row; *judged = 1 when it was judged. */
+/* Timing of a joined row; *judged = 1 when it was due to be judged (timings
+ * compared, same status, both above the floor).  With repetitions on both
+ * sides its interval is computed; a row that is no significant change and
+ * whose interval is unbounded or too wide is listed as not judged. */
 static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res_row *b, const ob_res_row *n,
                       const ob_cmp_opts *o, ob_cmp_result *r, ob_method_sum *m, double *xb, double *xn,
                       int *judged)
@@ -116,24 +152,30 @@ static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res
     else
         r->t_threshold_only++;
     const double ratio = tn / tb;
-    ob_ch_kind k;
-    if (ratio > 1 + o->time_threshold)
-        k = OB_CH_REGRESSION;
-    else if (1 / ratio > 1 + o->time_threshold)
-        k = OB_CH_IMPROVEMENT;
-    else
-        return 0;
-    double p = NAN;
+    double p = NAN, lo = NAN, hi = NAN;
+    const char *why = NULL;
     if (tested) {
         p = ob_mann_whitney(xn, kn, xb, kb).p;
-        if (!(p < o->alpha))
-            return 0;
+        why = time_interval(xn, kn, xb, kb, o, &lo, &hi);
     }
+    ob_ch_kind k;
+    if (ratio > 1 + o->time_threshold && !(tested && !(p < o->alpha)))
+        k = OB_CH_REGRESSION;
+    else if (1 / ratio > 1 + o->time_threshold && !(tested && !(p < o->alpha)))
+        k = OB_CH_IMPROVEMENT;
+    else if (why) {
+        if (strcmp(why, "noisy") == 0)
+            r->t_noisy++;
+        else
+            r->t_few_reps++;
+        return add_change_ci(r, OB_CH_NOT_JUDGED, "time", b, n, ratio, p, lo, hi, why);
+    } else
+        return 0;
     if (k == OB_CH_REGRESSION)
         r->t_reg++, m->regressions++;
     else
         r->t_imp++, m->improvements++;
-    return add_change(r, k, "time", b, n, ratio, p);
+    return add_change_ci(r, k, "time", b, n, ratio, p, lo, hi, "");
 }
 
 /* Per-repetition totals over the judged rows of method mi on one side
@@ -168,14 +210,20 @@ static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pa
         m->reps_base = method_totals(pr, np, mi, 0, bs->res.maxrep, xb);
         m->reps_new = method_totals(pr, np, mi, 1, ns->res.maxrep, xn);
         const int tested = m->reps_base >= 2 && m->reps_new >= 2;
-        if (tested)
+        if (tested) {
             m->p = ob_mann_whitney(xn, m->reps_new, xb, m->reps_base).p;
+            m->not_judged = time_interval(xn, m->reps_new, xb, m->reps_base, o, &m->ci_lo, &m->ci_hi);
+        } else {
+            m->not_judged = "no_samples";
+        }
         if (tested && !(m->p < o->alpha))
             continue;
         if (m->gm_t > 1 + o->time_threshold)
             m->verdict = 1, r->m_reg++;
         else if (1 / m->gm_t > 1 + o->time_threshold)
             m->verdict = -1, r->m_imp++;
+        if (m->verdict)
+            m->not_judged = NULL;  /* a significant change (or the threshold alone) was judged */
     }
 }
 
@@ -205,6 +253,35 @@ static int joints_note(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair 
     return ob_strlist_addf(&r->notes, "%d joined row(s) reach another measured continuity (informational), e.g. "
                            "%s d=%s %s tol=%s: '%s' -> '%s'", n, first->b->curve, first->b->d_text, first->b->method,
                            first->b->tol_text, first->b->continuity, first->n->continuity);
+}
+
+/* --strict-timing: what could not be judged, into r->strict (exit 3). */
+static int strict_reasons(const ob_cmp_opts *o, ob_cmp_result *r)
+{
+    int rc = 0;
+    if (!o->strict_timing || o->no_timing)
+        return 0;
+    if (!r->timing)
+        return ob_strlist_addf(&r->strict, "timings were not compared: the timing context differs");
+    if (!o->method_timing_only) {
+        if (r->t_threshold_only)
+            rc |= ob_strlist_addf(&r->strict, "%d row(s) without at least 2 repetitions on both sides "
+                                  "(samples.csv): judged by the threshold alone", r->t_threshold_only);
+        if (r->t_few_reps)
+            rc |= ob_strlist_addf(&r->strict, "%d row(s) with too few repetitions for a bounded interval at "
+                                  "alpha %g", r->t_few_reps, o->alpha);
+        if (r->t_noisy)
+            rc |= ob_strlist_addf(&r->strict, "%d row(s) too noisy to judge (interval wider than a factor %.4g)",
+                                  r->t_noisy, ob_cmp_noise_width(o));
+    }
+    for (int i = 0; i < r->nms; i++)
+        if (r->ms[i].not_judged)
+            rc |= ob_strlist_addf(&r->strict, "method %s: %s", r->ms[i].method,
+                                  strcmp(r->ms[i].not_judged, "noisy") == 0 ? "too noisy to judge"
+                                  : strcmp(r->ms[i].not_judged, "few_reps") == 0
+                                      ? "too few complete repetitions for a bounded interval"
+                                      : "fewer than 2 complete repetitions per side");
+    return rc;
 }
 
 int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, char *err,
@@ -269,7 +346,7 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
         m->gm_t = c[2] ? exp(s[2] / c[2]) : NAN;
     }
     judge_methods(bs, ns, pr, np, o, r, xb, xn);
-    rc = joints_note(bs, ns, pr, np, r);
+    rc = joints_note(bs, ns, pr, np, r) || strict_reasons(o, r) ? -1 : 0;
     if (rc == 0 && r->timing && bs->has_samples && ns->has_samples) {
         int reps = bt->maxrep < nt->maxrep ? bt->maxrep : nt->maxrep, need = 2;
         while (need < OB_MW_EXACT_MAX && !(ob_mw_min_p(need, need) < o->alpha))
@@ -292,7 +369,7 @@ done:
 
 int ob_cmp_status(const ob_cmp_result *r)
 {
-    if (r->incomparable.n)
+    if (r->incomparable.n || r->strict.n)
         return 3;
     return r->q_reg || (r->t_rows_count && r->t_reg) || r->m_reg || r->n_missing ? 1 : 0;
 }
@@ -304,6 +381,7 @@ void ob_cmp_result_free(ob_cmp_result *r)
     ob_strlist_free(&r->incomparable);
     ob_strlist_free(&r->timing_diffs);
     ob_strlist_free(&r->notes);
+    ob_strlist_free(&r->strict);
     free(r->ch);
     free(r->ms);
     memset(r, 0, sizeof *r);

@@ -25,9 +25,11 @@ typedef struct {
     int method_timing_only;      /* --method-timing-only: row-level timing
                                     changes are reported but only per-method
                                     verdicts count for the exit status */
+    int strict_timing;           /* --strict-timing: timings that could not be
+                                    judged make the comparison exit 3 */
 } ob_cmp_opts;
 
-/* The defaults: 1e-9, 1e-15, 0.10, 1e6 ns, 0.05, 50, timings on. */
+/* The defaults: 1e-9, 1e-15, 0.10, 1e6 ns, 0.05, 50, timings on, not strict. */
 ob_cmp_opts ob_cmp_defaults(void);
 
 typedef struct {
@@ -53,7 +55,9 @@ typedef struct {
     int n, cap;
 } ob_strlist;
 
-typedef enum { OB_CH_REGRESSION, OB_CH_IMPROVEMENT, OB_CH_NEW, OB_CH_MISSING } ob_ch_kind;
+/* OB_CH_NOT_JUDGED: a row whose timing was due to be judged but could not
+ * be (its interval is unbounded or too wide: ob_cmp_rows) */
+typedef enum { OB_CH_REGRESSION, OB_CH_IMPROVEMENT, OB_CH_NEW, OB_CH_MISSING, OB_CH_NOT_JUDGED } ob_ch_kind;
 
 typedef struct {
     ob_ch_kind kind;
@@ -61,6 +65,8 @@ typedef struct {
     const ob_res_row *base, *nw;    /* nw NULL: missing; base NULL: new */
     double ratio;                   /* new/base (NAN when meaningless) */
     double p;                       /* Mann–Whitney p, NAN when not tested */
+    double ci_lo, ci_hi;            /* time: interval of new/base (hlshift.h), NAN without */
+    const char *note;               /* NOT_JUDGED: "noisy" or "few_reps"; else "" */
 } ob_change;
 
 typedef struct {
@@ -72,6 +78,8 @@ typedef struct {
     int reps_base, reps_new;        /* totals tested */
     int regressions, improvements;  /* row-level changes of this method */
     int verdict;                    /* timing: 1 regression, -1 improvement, 0 neither */
+    double ci_lo, ci_hi;            /* interval of the ratio of the totals; NAN: not tested */
+    const char *not_judged;         /* why the method's timing was not judged, or NULL */
 } ob_method_sum;
 
 typedef struct {
@@ -90,6 +98,8 @@ typedef struct {
                                        the exit status (not --method-timing-only) */
     int m_reg, m_imp;               /* method-level timing verdicts */
     int t_judged, t_tested, t_threshold_only;
+    int t_noisy, t_few_reps;        /* tested rows not judged: interval too wide / unbounded */
+    ob_strlist strict;              /* --strict-timing: what could not be judged (exit 3) */
 } ob_cmp_result;
 
 /* Purpose: the comparability checks (meta.json keys, method parameters and
@@ -106,8 +116,9 @@ int ob_cmp_context(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_
 int ob_cmp_rows(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
                 char *err, size_t errlen);
 
-/* Exit status of a finished comparison: 3 not comparable, 1 a regression
- * (quality, timing of a row or a method, a missing row), else 0. */
+/* Exit status of a finished comparison: 3 not comparable (or, with
+ * --strict-timing, timings that could not be judged: r->strict), 1 a
+ * regression (quality, timing of a row or a method, a missing row), else 0. */
 int ob_cmp_status(const ob_cmp_result *r);
 
 void ob_cmp_result_free(ob_cmp_result *r);
@@ -118,6 +129,14 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, con
                     const ob_cmp_result *r);
 int ob_cmp_write_csv(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o,
                      const ob_cmp_result *r);
+/* The same content as one JSON document (compare_json.c). */
+int ob_cmp_write_json(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o,
+                      const ob_cmp_result *r);
+
+/* The timing interval's width limit: a row (or method) whose interval
+ * hi / lo exceeds (1 + time_threshold)^2 - wider than the band of ratios
+ * that count as unchanged - is too noisy to judge. */
+double ob_cmp_noise_width(const ob_cmp_opts *o);
 
 /* Adds a formatted string to l; 0 or -1 (no memory). */
 int ob_strlist_addf(ob_strlist *l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -14,7 +14,8 @@
 ob_cmp_opts ob_cmp_defaults(void)
 {
     ob_cmp_opts o = {.err_rtol = 1e-9, .err_atol = 1e-15, .time_threshold = 0.10, .time_floor_ns = 1e6,
-                     .alpha = 0.05, .max_rows = 50, .no_timing = 0, .method_timing_only = 0};
+                     .alpha = 0.05, .max_rows = 50, .no_timing = 0, .method_timing_only = 0,
+                     .strict_timing = 0};
     return o;
 }
 
@@ -249,9 +250,15 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
                               b->has_meta ? "" : b->label, !b->has_meta && !n->has_meta ? " and " : "",
                               n->has_meta ? "" : n->label);
     }
-    for (int side = 0; side < 2; side++)
-        if ((side ? n : b)->samples_note[0])
-            rc |= ob_strlist_addf(&r->notes, "%s", (side ? n : b)->samples_note);
+    for (int side = 0; side < 2; side++) {
+        const ob_cmp_side *sd = side ? n : b;
+        if (sd->samples_note[0])
+            rc |= ob_strlist_addf(&r->notes, "%s", sd->samples_note);
+        /* the run's own warnings (a load above its cores: README "Noise"), as written */
+        const ob_json_entry *w = ob_json_get(&sd->meta, "warnings");
+        if (w && w->type == OB_JSON_ARRAY && strcmp(w->value, "[]") != 0)
+            rc |= ob_strlist_addf(&r->notes, "%s's run warned (meta.json warnings): %.700s", sd->label, w->value);
+    }
     if (b->res.n && n->res.n) {
         for (int metric = 1; metric >= 0; metric--)
             if (!shares_value(&b->res, &n->res, metric)) {

@@ -56,8 +56,19 @@ static void side_line(FILE *f, const ob_cmp_side *s)
 
 static const char *kind_name(ob_ch_kind k)
 {
-    static const char *const n[] = {"regression", "improvement", "new", "missing"};
+    static const char *const n[] = {"regression", "improvement", "new", "missing", "not_judged"};
     return n[k];
+}
+
+/* A timing interval for the Markdown report: "[lo, hi]", "unbounded" or "-". */
+static void interval_text(char *buf, size_t len, double lo, double hi)
+{
+    if (isnan(lo) || isnan(hi))
+        snprintf(buf, len, "-");
+    else if (!isfinite(hi) || !(lo > 0))
+        snprintf(buf, len, "unbounded");
+    else
+        snprintf(buf, len, "[%.4g, %.4g]", lo, hi);
 }
 
 /* Rows of one kind: changes (field, base, new, ratio, p) or rows (new / missing). */
@@ -76,15 +87,15 @@ static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, const cha
     }
     const int rows_only = kind == OB_CH_NEW || kind == OB_CH_MISSING;
     fprintf(f, "| curve | d | method | metric | split | tol | %s |\n",
-            rows_only ? "status | ctrl_points | max_err" : "field | base | new | new/base | p");
-    fprintf(f, "|---|---:|---|---|---|---:|%s\n", rows_only ? "---|---:|---:|" : "---|---:|---:|---:|---:|");
+            rows_only ? "status | ctrl_points | max_err" : "field | base | new | new/base | p | interval");
+    fprintf(f, "|---|---:|---|---|---|---:|%s\n", rows_only ? "---|---:|---:|" : "---|---:|---:|---:|---:|---:|");
     int shown = 0;
     for (int i = 0; i < r->nch && shown < max_rows; i++) {
         const ob_change *c = &r->ch[i];
         if (c->kind != kind)
             continue;
         const ob_res_row *k = c->base ? c->base : c->nw;
-        char b[64], n[64], ratio[32], p[32];
+        char b[64], n[64], ratio[32], p[32], ci[64];
         fprintf(f, "| %s | %s | %s | %s | %s | %s | ", k->curve, k->d_text, k->method, k->metric, k->split,
                 k->tol_text);
         if (rows_only) {
@@ -96,7 +107,9 @@ static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, const cha
             value_text(n, sizeof n, c->nw, c->field, 1);
             num_text(ratio, sizeof ratio, c->ratio, 1, "%.4g");
             num_text(p, sizeof p, c->p, 1, "%.3g");
-            fprintf(f, "%s | %s | %s | %s | %s |\n", c->field, b, n, ratio, p);
+            interval_text(ci, sizeof ci, c->ci_lo, c->ci_hi);
+            fprintf(f, "%s%s%s | %s | %s | %s | %s | %s |\n", c->field, *c->note ? ": " : "", c->note, b, n, ratio,
+                    p, ci);
         }
         shown++;
     }
@@ -111,19 +124,22 @@ static void md_methods(FILE *f, const ob_cmp_result *r)
         fprintf(f, "None.\n");
         return;
     }
-    fprintf(f, "| method | rows | ctrl_points | max_err | time | p | regressions | improvements | verdict |\n"
-               "|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    fprintf(f, "| method | rows | ctrl_points | max_err | time | p | time interval | regressions | improvements | "
+               "verdict |\n"
+               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int i = 0; i < r->nms; i++) {
         const ob_method_sum *m = &r->ms[i];
-        char cp[32], er[32], t[32], p[32];
+        char cp[32], er[32], t[32], p[32], ci[64];
         num_text(cp, sizeof cp, m->gm_cp, 1, "%.4g");
         num_text(er, sizeof er, m->gm_err, 1, "%.4g");
         num_text(t, sizeof t, m->gm_t, 1, "%.4g");
         num_text(p, sizeof p, m->p, 1, "%.3g");
+        interval_text(ci, sizeof ci, m->ci_lo, m->ci_hi);
         const int reg = m->regressions > 0 || m->verdict > 0, imp = m->improvements > 0 || m->verdict < 0;
-        fprintf(f, "| %s | %d | %s | %s | %s | %s | %d | %d | %s%s |\n", m->method, m->rows, cp, er, t, p,
-                m->regressions, m->improvements, reg ? "regression" : imp ? "improvement" : "same",
-                m->verdict > 0 ? " (slower)" : m->verdict < 0 ? " (faster)" : "");
+        fprintf(f, "| %s | %d | %s | %s | %s | %s | %s | %d | %d | %s%s%s%s |\n", m->method, m->rows, cp, er, t, p,
+                ci, m->regressions, m->improvements, reg ? "regression" : imp ? "improvement" : "same",
+                m->verdict > 0 ? " (slower)" : m->verdict < 0 ? " (faster)" : "",
+                m->not_judged ? "; timing not judged: " : "", m->not_judged ? m->not_judged : "");
     }
 }
 
@@ -135,8 +151,9 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const o
     fprintf(f, "# offbench compare\n\n");
     side_line(f, b);
     side_line(f, n);
-    fprintf(f, "\n**%s** (exit %d)", verdict[st], st);
-    if (st == 3) {
+    fprintf(f, "\n**%s** (exit %d)", st == 3 && !r->incomparable.n ? "TIMINGS NOT JUDGED (--strict-timing)" : verdict[st],
+            st);
+    if (r->incomparable.n) {
         fprintf(f, "\n\n## Context\n\n");
         for (int i = 0; i < r->incomparable.n; i++)
             fprintf(f, "- not comparable: %s\n", r->incomparable.v[i]);
@@ -168,6 +185,11 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const o
                 o->time_floor_ns * 1e-6, o->time_threshold * 100);
         fprintf(f, " and, with at least 2 repetitions per side, significant by a two-sided Mann–Whitney U test "
                    "(alpha %g)\n", o->alpha);
+        fprintf(f, "- intervals: %g%% confidence intervals of new/base, Hodges–Lehmann with its rank-based (Moses) "
+                   "interval on the log times of the repetitions; a row that is no significant change is not judged "
+                   "when its interval is unbounded (too few repetitions) or wider than a factor %.4g "
+                   "((1 + time threshold)^2): %d too noisy, %d too few repetitions\n",
+                100 * (1 - o->alpha), ob_cmp_noise_width(o), r->t_noisy, r->t_few_reps);
         fprintf(f, "- %d rows judged for timing: %d tested on their repetitions, %d by the threshold alone%s\n",
                 r->t_judged, r->t_tested, r->t_threshold_only,
                 r->t_threshold_only && !(b->has_samples && n->has_samples)
@@ -176,10 +198,13 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const o
     }
     for (int i = 0; i < r->notes.n; i++)
         fprintf(f, "- note: %s\n", r->notes.v[i]);
+    for (int i = 0; i < r->strict.n; i++)
+        fprintf(f, "- not judged (--strict-timing: exit 3): %s\n", r->strict.v[i]);
     md_table(f, r, OB_CH_REGRESSION, "Regressions: quality and timing", o->max_rows, 1);
     md_table(f, r, OB_CH_MISSING, "Missing rows: regressions", o->max_rows, 0);
     md_table(f, r, OB_CH_IMPROVEMENT, "Improvements", o->max_rows, 1);
     md_table(f, r, OB_CH_NEW, "New rows", o->max_rows, 0);
+    md_table(f, r, OB_CH_NOT_JUDGED, "Timings not judged: interval unbounded or too wide", o->max_rows, 0);
     md_methods(f, r);
     return ferror(f) ? -1 : 0;
 }
@@ -187,11 +212,14 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const o
 /* ---- CSV ---- */
 
 static void csv_line(FILE *f, const char *kind, const ob_res_row *k, const char *method, const char *field,
-                     const char *base, const char *nw, double ratio, double p)
+                     const char *base, const char *nw, double ratio, double p, double lo, double hi,
+                     const char *note)
 {
-    char rt[40], pt[40];
+    char rt[40], pt[40], lt[40], ht[40];
     num_text(rt, sizeof rt, ratio, 0, NULL);
     num_text(pt, sizeof pt, p, 0, NULL);
+    num_text(lt, sizeof lt, lo, 0, NULL);
+    num_text(ht, sizeof ht, hi, 0, NULL);
     fprintf(f, "%s,", kind);
     if (k) {
         ob_csv_field(f, k->curve);
@@ -212,7 +240,9 @@ static void csv_line(FILE *f, const char *kind, const ob_res_row *k, const char 
     ob_csv_field(f, base);
     fputc(',', f);
     ob_csv_field(f, nw);
-    fprintf(f, ",%s,%s\n", rt, pt);
+    fprintf(f, ",%s,%s,%s,%s,", rt, pt, lt, ht);
+    ob_csv_field(f, note ? note : "");
+    fputc('\n', f);
 }
 
 int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
@@ -221,13 +251,15 @@ int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const 
     (void)b;
     (void)n;
     (void)o;
-    fprintf(f, "kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value\n");
+    fprintf(f, "kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value,ci_lo,ci_hi,note\n");
     for (int i = 0; i < r->incomparable.n; i++)
-        csv_line(f, "context", NULL, NULL, "not_comparable", r->incomparable.v[i], "", NAN, NAN);
+        csv_line(f, "context", NULL, NULL, "not_comparable", r->incomparable.v[i], "", NAN, NAN, NAN, NAN, "");
     for (int i = 0; i < r->timing_diffs.n; i++)
-        csv_line(f, "context", NULL, NULL, "timing_not_compared", r->timing_diffs.v[i], "", NAN, NAN);
+        csv_line(f, "context", NULL, NULL, "timing_not_compared", r->timing_diffs.v[i], "", NAN, NAN, NAN, NAN, "");
     for (int i = 0; i < r->notes.n; i++)
-        csv_line(f, "context", NULL, NULL, "note", r->notes.v[i], "", NAN, NAN);
+        csv_line(f, "context", NULL, NULL, "note", r->notes.v[i], "", NAN, NAN, NAN, NAN, "");
+    for (int i = 0; i < r->strict.n; i++)
+        csv_line(f, "context", NULL, NULL, "timing_not_judged", r->strict.v[i], "", NAN, NAN, NAN, NAN, "");
     if (r->incomparable.n)
         return ferror(f) ? -1 : 0;
     for (int i = 0; i < r->nch; i++) {
@@ -235,16 +267,18 @@ int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const 
         char bt[64], nt[64];
         value_text(bt, sizeof bt, c->base, c->field, 0);
         value_text(nt, sizeof nt, c->nw, c->field, 0);
-        csv_line(f, kind_name(c->kind), c->base ? c->base : c->nw, NULL, c->field, bt, nt, c->ratio, c->p);
+        csv_line(f, kind_name(c->kind), c->base ? c->base : c->nw, NULL, c->field, bt, nt, c->ratio, c->p, c->ci_lo,
+                 c->ci_hi, c->note);
     }
     for (int i = 0; i < r->nms; i++) {
         const ob_method_sum *m = &r->ms[i];
+        const char *nj = m->not_judged ? m->not_judged : "";
         if (m->verdict)
             csv_line(f, m->verdict > 0 ? "regression" : "improvement", NULL, m->method, "time_gm", "", "", m->gm_t,
-                     m->p);
-        csv_line(f, "method", NULL, m->method, "ctrl_points_gm", "", "", m->gm_cp, NAN);
-        csv_line(f, "method", NULL, m->method, "max_err_gm", "", "", m->gm_err, NAN);
-        csv_line(f, "method", NULL, m->method, "time_gm", "", "", m->gm_t, m->p);
+                     m->p, m->ci_lo, m->ci_hi, "");
+        csv_line(f, "method", NULL, m->method, "ctrl_points_gm", "", "", m->gm_cp, NAN, NAN, NAN, "");
+        csv_line(f, "method", NULL, m->method, "max_err_gm", "", "", m->gm_err, NAN, NAN, NAN, "");
+        csv_line(f, "method", NULL, m->method, "time_gm", "", "", m->gm_t, m->p, m->ci_lo, m->ci_hi, nj);
     }
     return ferror(f) ? -1 : 0;
 }

@@ -51,17 +51,24 @@ static void exact_tails(int n1, int n2, double u, double *lo, double *hi)
     *hi = above / total;
 }
 
+int ob_samples_usable(const double *x, int n1, const double *y, int n2)
+{
+    if (n1 <= 0 || n2 <= 0)
+        return 0;
+    for (int i = 0; i < n1; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    for (int j = 0; j < n2; j++)
+        if (!isfinite(y[j]))
+            return 0;
+    return 1;
+}
+
 ob_mw_result ob_mann_whitney(const double *x, int n1, const double *y, int n2)
 {
     ob_mw_result r = {NAN, NAN, 0};
-    if (n1 <= 0 || n2 <= 0)
+    if (!ob_samples_usable(x, n1, y, n2))
         return r;
-    for (int i = 0; i < n1; i++)
-        if (!isfinite(x[i]))
-            return r;
-    for (int j = 0; j < n2; j++)
-        if (!isfinite(y[j]))
-            return r;
     double u = 0;
     for (int i = 0; i < n1; i++)
         for (int j = 0; j < n2; j++)
@@ -97,6 +104,15 @@ ob_mw_result ob_mann_whitney(const double *x, int n1, const double *y, int n2)
         z = 0;
     r.p = fmin(1.0, erfc(z / sqrt(2.0)));
     return r;
+}
+
+double ob_mw_cdf(int n1, int n2, double u)
+{
+    if (n1 <= 0 || n2 <= 0 || n1 > OB_MW_EXACT_MAX || n2 > OB_MW_EXACT_MAX)
+        return NAN;
+    double lo, hi;
+    exact_tails(n1, n2, u, &lo, &hi);
+    return lo;
 }
 
 double ob_mw_min_p(int n1, int n2)

@@ -32,8 +32,16 @@ typedef struct {
  *          Never fails otherwise and allocates nothing on the heap. */
 ob_mw_result ob_mann_whitney(const double *x, int n1, const double *y, int n2);
 
+/* 1 when x[0..n1) and y[0..n2) are both non-empty and every value is
+ * finite: the precondition of the tests here and of hlshift.h. */
+int ob_samples_usable(const double *x, int n1, const double *y, int n2);
+
 /* The smallest two-sided p the exact test can give for sizes n1, n2
  * (2 / C(n1+n2, n1), at most 1); for the report's note about too few reps. */
 double ob_mw_min_p(int n1, int n2);
+
+/* P(U <= u) under the null for sizes n1, n2 (no ties), exactly; NAN when
+ * a size is 0 or above OB_MW_EXACT_MAX.  For the interval of hlshift.h. */
+double ob_mw_cdf(int n1, int n2, double u);
 
 #endif

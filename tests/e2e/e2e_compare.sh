@@ -92,15 +92,15 @@ check 'grep -q "^## New rows (1)" "$T/out"' "new row listed"
 
 # --- --format csv parses; --out writes the file ---
 cmp_rc 1 "$T/a" "$T/g" --format csv --no-timing
-check '[ "$(head -n 1 "$T/out")" = "kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value" ]' "csv header"
-check '[ -z "$(awk -F, "NR>1 && NF!=12" "$T/out")" ]' "every csv line has 12 fields"
+check '[ "$(head -n 1 "$T/out")" = "kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value,ci_lo,ci_hi,note" ]' "csv header"
+check '[ -z "$(awk -F, "NR>1 && NF!=15" "$T/out")" ]' "every csv line has 15 fields"
 check '[ -z "$(awk -F, "NR>1{print \$1}" "$T/out" | grep -vE "^(regression|improvement|new|missing|method|context)$")" ]' \
     "csv kinds"
-check 'grep -q "^regression,liu2002_ex1,1,tiller,hausdorff,mid,0.01,ctrl_points,$cp3,$((cp3 + 2)),[0-9.]*,$" "$T/out"' \
+check 'grep -q "^regression,liu2002_ex1,1,tiller,hausdorff,mid,0.01,ctrl_points,$cp3,$((cp3 + 2)),[0-9.]*,,,,$" "$T/out"' \
     "csv regression line: $(grep ^regression "$T/out")"
 check '[ $(grep -c "^method,,,tiller,,,,.*_gm," "$T/out") -eq 3 ]' "three per-method lines"
 if command -v python3 >/dev/null; then
-    check 'python3 -c "import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); assert len(r)>=7 and all(len(x)==12 for x in r)" "$T/out"' \
+    check 'python3 -c "import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); assert len(r)>=7 and all(len(x)==15 for x in r)" "$T/out"' \
         "python's csv module reads the report"
 fi
 cmp_rc 1 "$T/a" "$T/g" --out "$T/report.md" --no-timing
@@ -147,7 +147,7 @@ $OB run $RUN --samples 64 --out "$T/s64" 2>/dev/null
 cmp_rc 3 "$T/a" "$T/s64"
 check 'grep -q "not comparable: samples_per_segment 256 vs 64" "$T/err"' "samples differ: $(cat "$T/err")"
 cmp_rc 3 "$T/a" "$T/s64" --format csv
-check 'grep -q "^context,,,,,,,not_comparable,samples_per_segment 256 vs 64,,,$" "$T/out"' "csv context line"
+check 'grep -q "^context,,,,,,,not_comparable,samples_per_segment 256 vs 64,,,,,,$" "$T/out"' "csv context line"
 # without meta.json on a side: compared, with a note
 cp "$T/a/results.csv" "$T/nometa.csv"
 cmp_rc 0 "$T/a" "$T/nometa.csv" --no-timing
