@@ -8,6 +8,9 @@
  *   metric,status,max_err,piece,seg,t,message
  * status `ok`, or `n/a` with the reason (bound and radial need pieces in
  * the base's parameter: files exported from methods that keep it).
+ * A file that names the job that exported it (approx.h: have_job) and is
+ * measured against another curve or d gets a warning on stderr: its error
+ * is then not that job's max_err.
  * Exit status: 0; 2 bad input (an option, the file, an unknown curve), with
  * a message naming the option or FILE:LINE; 1 standard output not writable.
  */
@@ -137,6 +140,9 @@ static int measure(const measure_args *a, ob_run_opts *o)
         ob_error("%s", err);
         goto out;
     }
+    if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
+        ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
+                "d = %.17g: its error is not that job's max_err", a->approx, ap.job_curve, ap.job_d, c->id, a->d);
     const int samples = ob_clamp_samples(o->driver.samples);
     ob_mres res[OB_METRIC_COUNT];
     for (int m = 0; m < OB_METRIC_COUNT; m++)

@@ -36,6 +36,9 @@ typedef struct {
     int same_param;     /* 1: the pieces share the base's parameter (the
                            method has OB_CAP_SAME_PARAM; bound and radial
                            apply); 0 unknown or not */
+    int have_job;       /* 1: the file names the job that exported it */
+    char job_curve[64]; /* that job's curve id and offset distance d */
+    double job_d;
 } ob_approx;
 
 /* Always safe to call (also on a zeroed approximation). */

@@ -13,6 +13,7 @@
 #include <strings.h>
 
 #include "host/io/curvefile.h"
+#include "host/io/numfmt.h"
 #include "host/io/slurp.h"
 
 static int ends_with(const char *s, const char *ext)
@@ -54,6 +55,53 @@ int ob_approx_parse_link(const char *s, ob_apiece *p)
     p->b = b;
     p->t0 = t0;
     p->t1 = t1;
+    return 1;
+}
+
+/* The stem's characters: those of an id, '~' for its '/', and a number's. */
+static size_t stem_len(const char *s)
+{
+    return strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.~+");
+}
+
+/* The last occurrence of pat in s that starts before end, or NULL. */
+static char *last_before(char *s, const char *end, const char *pat)
+{
+    char *hit = NULL;
+    for (char *p = s; (p = strstr(p, pat)) != NULL && p < end; p++)
+        hit = p;
+    return hit;
+}
+
+int ob_approx_parse_job(const char *s, ob_approx *out)
+{
+    const char *q = strstr(s, "of job ");
+    q = q ? q + 7 : (q = strstr(s, "export: ")) ? q + 8 : NULL;
+    if (!q)
+        return 0;
+    char stem[256];
+    const size_t n = stem_len(q);
+    if (n == 0 || n >= sizeof stem)
+        return 0;
+    memcpy(stem, q, n);
+    stem[n] = '\0';
+    /* from the right: the tolerance, the method and d hold no "__" */
+    char *tol = last_before(stem, stem + n, "__tol");
+    char *meth = tol ? last_before(stem, tol, "__") : NULL;
+    char *d = meth ? last_before(stem, meth, "__d") : NULL;
+    if (!d || (size_t)(d - stem) >= sizeof out->job_curve)
+        return 0;
+    *meth = '\0';
+    double x;
+    if (ob_parse_double(d + 3, &x))
+        return 0;
+    *d = '\0';
+    for (char *p = stem; *p; p++)
+        if (*p == '~')
+            *p = '/';
+    memcpy(out->job_curve, stem, (size_t)(d - stem) + 1);
+    out->job_d = x;
+    out->have_job = 1;
     return 1;
 }
 
@@ -102,6 +150,8 @@ int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_app
             p->approx = cv->seg[s];
             p->fit_first = 1;
             /* the link of an export: one Bézier segment per curve block */
+            if (!out->have_job)
+                ob_approx_parse_job(cv->source, out);
             if (cv->nseg == 1 && ob_approx_parse_link(cv->source, p))
                 linked += strstr(cv->source, "same_param yes") != NULL;
             rc = ob_approx_check_piece(p, out->n - 1, name, err, errlen);

@@ -41,6 +41,12 @@ int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_app
  * p (has_base 1).  Returns 1 when found, else 0. */
 int ob_approx_parse_link(const char *s, ob_apiece *p);
 
+/* Parses the exporting job's name (the stem "ID__dD__METHOD__tolT" of
+ * export.h, found after "job " or "export: " in s; '~' in ID stands for '/')
+ * into out's job_curve and job_d (have_job 1).  Returns 1 when found,
+ * else 0 (out unchanged). */
+int ob_approx_parse_job(const char *s, ob_approx *out);
+
 /* Checks piece p read at line (finite homogeneous points, degree 1 ..
  * OB_MAX_DEG) and sets its rational flag; 0, or -1 with
  * "NAME:LINE: piece K: reason" in err. */

@@ -246,6 +246,8 @@ int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx
         if (rc || eof)
             break;
         if (r.code == 999) {
+            if (!out->have_job)
+                ob_approx_parse_job(r.val, out);
             memset(&link, 0, sizeof link);
             link_sp = ob_approx_parse_link(r.val, &link) && strstr(r.val, "same_param 1") != NULL;
         } else if (r.code == 2 && sect == 1) {

@@ -203,6 +203,18 @@ static int read_pieces(const char *arr, int line, const char *name, ob_approx *o
     return 0;
 }
 
+/* The exporting job's curve and d ("job": {"curve", "d", ...}), when both are there. */
+static void job_of(const ob_json_flat *f, ob_approx *out)
+{
+    const ob_json_entry *c = ob_json_get(f, "job.curve");
+    double d;
+    if (c && c->type == OB_JSON_STRING && strlen(c->value) < sizeof out->job_curve && get_num(f, "job.d", &d) == 0) {
+        snprintf(out->job_curve, sizeof out->job_curve, "%s", c->value);
+        out->job_d = d;
+        out->have_job = 1;
+    }
+}
+
 int ob_approx_read_json(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen)
 {
     ob_json_flat f = {0};
@@ -222,6 +234,7 @@ int ob_approx_read_json(const char *text, size_t len, const char *name, ob_appro
     } else {
         rc = read_pieces(pc->value, pc->line, name, out, err, errlen);
         out->same_param = rc == 0 && sp && sp->type == OB_JSON_BOOL && strcmp(sp->value, "true") == 0;
+        job_of(&f, out);
     }
     ob_json_free(&f);
     return rc;

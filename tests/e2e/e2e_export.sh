@@ -153,6 +153,20 @@ h=$(awk -F, '$1=="hausdorff" {print $3}' "$T/own.csv")
 check 'awk -v a="$h" -v b="$e" "BEGIN{exit !(a - b < 1e-12 * b && b - a < 1e-12 * b)}"' \
     "projection-matched hausdorff $h vs the run's $e"
 
+# --- measure warns when the file was exported for another curve or d -----------
+for ext in json curves dxf; do
+    "$OB" measure --curve liu2002_ex1 --d 1 --approx "$T/x/$stem.$ext" >/dev/null 2>"$T/err"
+    check '[ $? -eq 0 ] && ! grep -q warning "$T/err"' "$ext at the job's own d: $(cat "$T/err")"
+    "$OB" measure --curve liu2002_ex1 --d 0.5 --approx "$T/x/$stem.$ext" >/dev/null 2>"$T/err"
+    check '[ $? -eq 0 ] && grep -q "warning: .*exported by a job on curve liu2002_ex1 at d = 1, .* at d = 0.5" "$T/err"' \
+        "$ext measured at another d: $(cat "$T/err")"
+    "$OB" measure --curve liu2002_ex2 --d 1 --approx "$T/x/$stem.$ext" >/dev/null 2>"$T/err"
+    check 'grep -q "warning: .*curve liu2002_ex1 at d = 1, and is measured against curve liu2002_ex2" "$T/err"' \
+        "$ext measured against another curve: $(cat "$T/err")"
+done
+"$OB" measure --curve liu2002_ex1 --d 0.5 --approx "$T/own.curves" >/dev/null 2>"$T/err"
+check '! grep -q warning "$T/err"' "a file naming no job: no warning ($(cat "$T/err"))"
+
 # --- draw --export -------------------------------------------------------------
 "$OB" draw --curve liu2002_ex1 --method ahn --tol 1e-3 --d -1 --backend cpu --out "$T/d.svg" --export "$T/xd" 2>/dev/null
 check '[ $? -eq 0 ] && [ -s "$T/xd/liu2002_ex1__d-1__ahn__tol0.001.json" ]' "draw --export writes the job's files"

@@ -65,6 +65,9 @@ static void test_round_trip(const ob_job *j)
                        : fm == OB_AFMT_DXF ? ob_approx_read_dxf(text, len, fmts[f].name, &b, err, sizeof err)
                                            : ob_approx_read_curves(text, len, fmts[f].name, &b, err, sizeof err);
         CHECK(rc == 0 && b.n == 2 && b.same_param == 1, "%s: rc %d, %d pieces: %s", fmts[f].name, rc, b.n, err);
+        CHECK(b.have_job && strcmp(b.job_curve, j->curve->id) == 0 && b.job_d == j->d,
+              "%s: the exporting job (have %d, curve '%s', d %.17g) did not come back", fmts[f].name, b.have_job,
+              b.job_curve, b.job_d);
         for (int k = 0; k < b.n && k < 2; k++) {
             const ob_apiece *p = &a.v[k], *q = &b.v[k];
             CHECK(q->has_base && q->seg == p->seg && q->a == p->a && q->b == p->b && q->t0 == p->t0 && q->t1 == p->t1,
@@ -82,6 +85,29 @@ static void test_round_trip(const ob_job *j)
         free(text);
     }
     ob_approx_free(&a);
+}
+
+/* The job named in an export's text, read back from its stem: ids that
+ * hold "__d", "__" and '/', a method name starting with d, none at all. */
+static void test_parse_job(void)
+{
+    static const struct { const char *text, *curve; double d; } ok[] = {
+        {"offbench export: a__d1__x__d-1e-05__tiller__tol0.001; piece 0 of 2", "a__d1__x", -1e-05},
+        {"the approximation of job dir~c__d0.25__dummy__tol1e-3, max_err 1", "dir/c", 0.25},
+        {"offbench export: c__d3__d__tol0.1", "c", 3},
+    };
+    for (size_t i = 0; i < sizeof ok / sizeof ok[0]; i++) {
+        ob_approx a = {0};
+        const int r = ob_approx_parse_job(ok[i].text, &a);
+        CHECK(r == 1 && strcmp(a.job_curve, ok[i].curve) == 0 && a.job_d == ok[i].d,
+              "'%s': %d, curve '%s', d %.17g", ok[i].text, r, a.job_curve, a.job_d);
+    }
+    static const char *const bad[] = {"offbench piece 0 base segment 1", "offbench export: c__tiller__tol0.1",
+                                      "offbench export: c__dx__tiller__tol0.1", "of job c__d1__tiller"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ob_approx a = {0};
+        CHECK(ob_approx_parse_job(bad[i], &a) == 0 && !a.have_job, "'%s' named a job", bad[i]);
+    }
 }
 
 /* A straight base from (0,0) to (2,0), d = 0.5: the exact offset is the line
@@ -204,6 +230,7 @@ int main(void)
     ob_export_stem(stem, sizeof stem, &j);
     CHECK(strcmp(stem, "a~b__d0.25__tiller__tol0.001") == 0, "stem %s", stem);
     test_round_trip(&j);
+    test_parse_job();
     test_match();
     test_hostile(&j);
     test_huge_numbers();
