@@ -23,8 +23,9 @@
 
 #include "methods/common/convolution.h"
 
-static int ahn_degree(int n, int rational_in)
+static int ahn_degree(int n, int rational_in, const double *par)
 {
+    (void)par;
     (void)rational_in;
     return n + 3;
 }

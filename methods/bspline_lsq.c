@@ -186,8 +186,9 @@ static ob_fit_status bl_fit(const ob_bez *base, const ob_fit_args *a, void *work
     return OB_FIT_RETRY_SMALLER;
 }
 
-static int bl_out_degree(int n, int rational_in)
+static int bl_out_degree(int n, int rational_in, const double *par)
 {
+    (void)par;
     (void)n;
     (void)rational_in;
     return BL_DEG;

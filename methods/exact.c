@@ -43,8 +43,9 @@ static const ob_param exact_params[NPARAM] = {
      "sigma^2, coefficient-wise relative to the largest); round-off level, our choice", 0, 1e-2, 0},
 };
 
-static int exact_degree(int n, int rational_in)
+static int exact_degree(int n, int rational_in, const double *par)
 {
+    (void)par;
     return rational_in ? n : 2 * n - 1;
 }
 
@@ -269,9 +270,9 @@ static ob_fit_status exact_fit(const ob_bez *base, const ob_fit_args *a, void *w
         ob_method_msg(msg, msglen, "a segment of degree 0 is a point");
         return OB_FIT_SKIP;
     }
-    if (exact_degree(n, base->rational) > OB_MAX_DEG) {
+    if (exact_degree(n, base->rational, a->par) > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree %d exceeds %d",
-                      exact_degree(n, base->rational), OB_MAX_DEG);
+                      exact_degree(n, base->rational, a->par), OB_MAX_DEG);
         return OB_FIT_SKIP;
     }
     ob_fit_status st;

@@ -137,7 +137,7 @@ typedef struct {
 static ob_fit_status hoschek_read(const ob_bez *base, const ob_fit_args *a, hoschek_cfg *h, char *msg, size_t msglen)
 {
     const double pd = a->par[HP_DEGREE], ps = a->par[HP_SAMPLES], pi = a->par[HP_ITER];
-    const int m = pd >= 0.5 ? (int)lround(pd) : base->deg;
+    const int m = ob_degree_or_param(base->deg, pd);
     const int tangents = a->par[HP_TANGENTS] != 0.0;
     if (!(pd < OB_MAX_DEG + 0.5) || m < 1 || m > OB_MAX_DEG) {
         ob_method_msg(msg, msglen, "output degree out of range 1..%d", OB_MAX_DEG);
@@ -309,6 +309,13 @@ static ob_fit_status hoschek_fit(const ob_bez *base, const ob_fit_args *a, void 
     return OB_FIT_OK;
 }
 
+/* The degree parameter's, else the base's. */
+static int hoschek_degree(int n, int rational_in, const double *par)
+{
+    (void)rational_in;
+    return ob_degree_or_param(n, par[HP_DEGREE]);
+}
+
 const ob_method ob_method_hoschek = {
     .name = "hoschek",
     .version = 1,
@@ -316,7 +323,7 @@ const ob_method ob_method_hoschek = {
     .continuity = "G0",
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN,
     .max_turn = 0.0,
-    .out_degree = ob_degree_same,
+    .out_degree = hoschek_degree,
     .cost_ms = 9.03,
     .work_size = sizeof(hoschek_work),
     .params = hoschek_params,

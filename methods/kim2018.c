@@ -30,8 +30,9 @@
 
 #include "methods/common/convolution.h"
 
-static int kim2018_degree(int n, int rational_in)
+static int kim2018_degree(int n, int rational_in, const double *par)
 {
+    (void)par;
     (void)rational_in;
     return n + 1;
 }

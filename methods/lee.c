@@ -82,8 +82,9 @@ static const ob_param lee_params[NPARAM] = {
      "metric sees and no subdivision removes)", 0, 1, 1},
 };
 
-static int lee_degree(int n, int rational_in)
+static int lee_degree(int n, int rational_in, const double *par)
 {
+    (void)par;
     return rational_in ? 5 * n - 4 : 3 * n - 2;
 }
 
@@ -310,7 +311,7 @@ typedef struct {
 static ob_fit_status lee_read(const ob_bez *base, const ob_fit_args *a, lee_in *L, char *msg, size_t msglen)
 {
     const double d = a->d, r = fabs(d), sd = d > 0 ? 1.0 : -1.0;
-    const int n = base->deg, outdeg = lee_degree(n, base->rational);
+    const int n = base->deg, outdeg = lee_degree(n, base->rational, a->par);
     const double frac = a->par[P_FRAC], start = a->par[P_START];
     const int best = a->par[P_ARC] != 0.0, on_piece = a->par[P_ARCS_ON] != 0.0;
     const int clip = !on_piece && a->par[P_CLIP] != 0.0;

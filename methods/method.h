@@ -109,8 +109,13 @@ typedef struct ob_method {
     unsigned caps;
     /* >0: the driver splits pieces so the tangent turns by less than this (rad) */
     double max_turn;
-    /* degree of the output for an input of degree n (rational_in: weights != 1) */
-    int (*out_degree)(int n, int rational_in);
+    /* Degree of every output piece for an input of degree n (rational_in:
+     * weights != 1) under the parameter values par (never NULL: callers go
+     * through ob_method_out_degree, which supplies the defaults); a method
+     * with a degree parameter (zhao, hoschek) reads it here.  The method
+     * contract test checks every fit against it, at the defaults and at
+     * both ends of every parameter's range. */
+    int (*out_degree)(int n, int rational_in, const double *par);
     /* Median thread time per job (ms) in the nightly baseline's random set
      * (hausdorff, mid, five tolerances: results/plots/
      * nightly_time_per_job.png): the cost model of --shard (host/run/shard.c);
@@ -153,9 +158,16 @@ void ob_param_defaults(const ob_method *m, double *par);
 /* Helpers shared by method files. */
 void ob_fit_single(ob_fit *out, const ob_bez *seg);
 /* out_degree for methods whose output has the input's degree. */
-int ob_degree_same(int n, int rational_in);
+int ob_degree_same(int n, int rational_in, const double *par);
 /* out_degree for methods whose output is cubic whatever the input. */
-int ob_degree_three(int n, int rational_in);
+int ob_degree_three(int n, int rational_in, const double *par);
+/* The output degree of a method with a degree parameter: pd rounded when
+ * pd >= 0.5, else (0: "the base's degree") n.  The fit and out_degree read
+ * it through this one rule. */
+int ob_degree_or_param(int n, double pd);
+/* The degree of method m's output pieces for an input of degree n with
+ * parameter values par (NULL: the defaults). */
+int ob_method_out_degree(const ob_method *m, int n, int rational_in, const double *par);
 /* fit_uses_tol for methods that always read the tolerance. */
 int ob_fit_uses_tol_always(const double *par);
 /* 1 when method m's fit reads the tolerance with parameter values par (NULL:

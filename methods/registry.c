@@ -118,17 +118,34 @@ int ob_method_fit_uses_tol(const ob_method *m, const double *par)
     return m->fit_uses_tol(par) != 0;
 }
 
-int ob_degree_same(int n, int rational_in)
+int ob_degree_same(int n, int rational_in, const double *par)
 {
     (void)rational_in;
+    (void)par;
     return n;
 }
 
-int ob_degree_three(int n, int rational_in)
+int ob_degree_three(int n, int rational_in, const double *par)
 {
     (void)n;
     (void)rational_in;
+    (void)par;
     return 3;
+}
+
+int ob_degree_or_param(int n, double pd)
+{
+    return pd >= 0.5 ? (int)lround(pd) : n;
+}
+
+int ob_method_out_degree(const ob_method *m, int n, int rational_in, const double *par)
+{
+    double defaults[OB_MAX_PARAMS];
+    if (!par) {
+        ob_param_defaults(m, defaults);
+        par = defaults;
+    }
+    return m->out_degree(n, rational_in, par);
 }
 
 void ob_fit_single(ob_fit *out, const ob_bez *seg)

@@ -192,7 +192,7 @@ static ob_fit_status zhao_read(const ob_bez *base, const ob_fit_args *a, int rat
                                size_t msglen)
 {
     const double pd = a->par[ZP_DEGREE], pi = a->par[ZP_ITER], pf = a->par[ZP_NPFAC];
-    const int n = pd >= 0.5 ? (int)lround(pd) : base->deg;
+    const int n = ob_degree_or_param(base->deg, pd);
     const int iters = (int)lround(pi), npfac = (int)lround(pf);
     const int weighted = a->par[ZP_WEIGHT] != 0.0;
     if (!(pd < OB_MAX_DEG + 0.5) || n < 1 || n > OB_MAX_DEG) {
@@ -432,6 +432,13 @@ static ob_fit_status zhao_rational_fit(const ob_bez *base, const ob_fit_args *a,
     return zhao_fit_any(base, a, work, out, msg, msglen, 1);
 }
 
+/* The degree parameter's, else the base's. */
+static int zhao_degree(int n, int rational_in, const double *par)
+{
+    (void)rational_in;
+    return ob_degree_or_param(n, par[ZP_DEGREE]);
+}
+
 const ob_method ob_method_zhao = {
     .name = "zhao",
     .version = 1,
@@ -439,7 +446,7 @@ const ob_method ob_method_zhao = {
     .continuity = "none",  /* the ends are not interpolated: pieces do not meet (see the top) */
     .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM,
     .max_turn = 0.0,
-    .out_degree = ob_degree_same,
+    .out_degree = zhao_degree,
     .cost_ms = 2.33,
     .work_size = sizeof(zhao_work),
     .params = zhao_params,
@@ -454,7 +461,7 @@ const ob_method ob_method_zhao_rational = {
     .continuity = "none",  /* the ends are not interpolated: pieces do not meet (see the top) */
     .caps = OB_CAP_RATIONAL_OUT | OB_CAP_RATIONAL_IN | OB_CAP_SAME_PARAM | OB_CAP_ORIENTED,
     .max_turn = 0.0,
-    .out_degree = ob_degree_same,
+    .out_degree = zhao_degree,
     .cost_ms = 2.83,
     .work_size = sizeof(zhao_work),
     .params = zhao_params,

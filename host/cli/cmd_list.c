@@ -22,7 +22,7 @@
  * functions are linear in n: recover a*n + b from two evaluations). */
 static void degree_formula(const ob_method *m, char *buf, size_t len)
 {
-    int a = m->out_degree(4, 0) - m->out_degree(3, 0), b = m->out_degree(3, 0) - 3 * a;
+    const int d3 = ob_method_out_degree(m, 3, 0, NULL), a = ob_method_out_degree(m, 4, 0, NULL) - d3, b = d3 - 3 * a;
     char an[16] = "";
     if (a != 1)
         snprintf(an, sizeof an, "%d", a);

@@ -192,7 +192,7 @@ static int check_applicable(ob_job *j, jstate *s)
             job_end(j, s, OB_SKIP, "rational input is not supported by this method");
             return 0;
         }
-        int od = m->out_degree(b->deg, b->rational);
+        int od = ob_method_out_degree(m, b->deg, b->rational, j->params);
         if (od > OB_MAX_DEG) {
             snprintf(msg, sizeof msg, "output degree %d exceeds the limit %d", od, OB_MAX_DEG);
             job_end(j, s, OB_SKIP, msg);

@@ -414,7 +414,7 @@ int main(void)
     CHECK(M != NULL, "cubic-opt registered");
     if (!M)
         return check_done();
-    CHECK(M->out_degree(5, 1) == 3 && (M->caps & OB_CAP_POLY_OUT) && !(M->caps & OB_CAP_SAME_PARAM),
+    CHECK(ob_method_out_degree(M, 5, 1, NULL) == 3 && (M->caps & OB_CAP_POLY_OUT) && !(M->caps & OB_CAP_SAME_PARAM),
           "cubic-opt: cubic, polynomial output, not in the base's parameter");
     CHECK(!ob_method_fit_uses_tol(M, NULL), "cubic-opt: the fit ignores the tolerance (pieces are shared)");
     test_circles();

@@ -235,7 +235,7 @@ static void test_coquillart(void)
     CHECK(m->nparams == 2 && ob_param_find(m, "reading") == 0 && m->params[0].def == 0.0 &&
           ob_param_find(m, "foot") == 1 && m->params[1].def == 0.0,
           "coquillart: parameters reading and foot, defaults 0");
-    CHECK(m->out_degree(3, 0) == 3 && m->out_degree(2, 1) == 2, "coquillart: degree n");
+    CHECK(ob_method_out_degree(m, 3, 0, NULL) == 3 && ob_method_out_degree(m, 2, 1, NULL) == 2, "coquillart: degree n");
 
     /* the rule itself, against an independent nearest-point search */
     ob_bez liu = make(3, liu_pts, NULL), q5 = quintic();
@@ -632,7 +632,7 @@ static void test_kim2018(void)
 {
     const ob_method *m = &ob_method_kim2018;
     static ob_fit f;
-    CHECK(m->out_degree(3, 0) == 4 && m->out_degree(5, 0) == 6, "kim2018: out_degree n+1");
+    CHECK(ob_method_out_degree(m, 3, 0, NULL) == 4 && ob_method_out_degree(m, 5, 0, NULL) == 6, "kim2018: out_degree n+1");
     CHECK((m->caps & OB_CAP_CONVEX) && m->max_turn == OB_PI && !(m->caps & OB_CAP_RATIONAL_IN),
           "kim2018: convex pieces turning < pi, polynomial input");
     ob_bez liu = make(3, liu_pts, NULL), q5 = quintic();

@@ -543,7 +543,7 @@ static void test_status(void)
     if (rc)
         freeCurve(rc);
 
-    CHECK(M->out_degree(3, 0) == 3 && M->out_degree(5, 1) == 3, "out_degree 3");
+    CHECK(ob_method_out_degree(M, 3, 0, NULL) == 3 && ob_method_out_degree(M, 5, 1, NULL) == 3, "out_degree 3");
     CHECK(!(M->caps & OB_CAP_SAME_PARAM) && (M->caps & OB_CAP_POLY_OUT) &&
           (M->caps & OB_CAP_RATIONAL_IN) && !(M->caps & OB_CAP_RATIONAL_OUT) &&
           (M->caps & OB_CAP_TOL_DRIVEN) && (M->caps & OB_CAP_ORIENTED), "caps");

@@ -86,7 +86,7 @@ static void test_counting_and_tolerance(void)
                       ob_metric_name(metric), ob_split_name(split), ob_status_name(j.status), j.message);
                 CHECK(j.max_err <= 1e-3, "%s/%s/%s: max_err %g", m->name,
                       ob_metric_name(metric), ob_split_name(split), j.max_err);
-                int deg = m->out_degree(3, 0);
+                int deg = ob_method_out_degree(m, 3, 0, NULL);
                 CHECK(j.out_degree == deg, "%s out_degree %d", m->name, j.out_degree);
                 CHECK(j.ctrl_points == 1 + (long)j.segments * deg, "%s: %ld ctrl for %d segments",
                       m->name, j.ctrl_points, j.segments);
