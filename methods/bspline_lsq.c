@@ -53,7 +53,7 @@ enum {
 typedef struct {
     double U[BL_MAXCP + BL_DEG + 1];       /* knots */
     double P[BL_MAXCP][3];                 /* control points (x, y, w = 1) */
-    double gls[BL_MAXCP * (BL_MAXCP + 1) + BL_MAXCP];
+    double gls[BL_MAXCP * (BL_MAXCP + 2) + BL_MAXCP];  /* ob_gls_mem_rhs(BL_MAXCP, 2) */
     double row[BL_MAXCP];
     double t[BL_MAXS], q[BL_MAXS][2];      /* offset samples */
 } bl_work;
@@ -100,24 +100,26 @@ static int basis_funs(const double *U, int k, double t, double N[BL_DEG + 1])
 }
 
 /* Purpose: the least-squares control points of the k-point spline to the
- *          samples W->t, W->q (M of them), one coordinate at a time (both
- *          share the design matrix).
+ *          samples W->t, W->q (M of them): x and y as the two right-hand
+ *          sides of one banded Givens QR (each basis row has 4 nonzeros, and
+ *          the samples come in order of their span), which gives each
+ *          coordinate the bits of a QR of its own.
  * Returns: 0, or -1 when the system is rank deficient. */
 static int lsq_fit(bl_work *W, int k, int M)
 {
+    ob_gls g;
+    ob_gls_init_rhs(&g, k, 2, W->gls);
+    for (int j = 0; j < M; j++) {
+        double N[BL_DEG + 1];
+        const int s = basis_funs(W->U, k, W->t[j], N);
+        memset(W->row, 0, (size_t)k * sizeof W->row[0]);
+        for (int r = 0; r <= BL_DEG; r++)
+            W->row[s - BL_DEG + r] = N[r];
+        ob_gls_add_band(&g, W->row, s - BL_DEG, s, W->q[j], 1.0);
+    }
     for (int c = 0; c < 2; c++) {
-        ob_gls g;
-        ob_gls_init(&g, k, W->gls);
-        for (int j = 0; j < M; j++) {
-            double N[BL_DEG + 1];
-            const int s = basis_funs(W->U, k, W->t[j], N);
-            memset(W->row, 0, (size_t)k * sizeof W->row[0]);
-            for (int r = 0; r <= BL_DEG; r++)
-                W->row[s - BL_DEG + r] = N[r];
-            ob_gls_add(&g, W->row, W->q[j][c], 1.0);
-        }
         double x[BL_MAXCP];
-        if (ob_gls_solve(&g, x, 1e-13) != 0)
+        if (ob_gls_solve_rhs(&g, c, x, 1e-13) != 0)
             return -1;
         for (int i = 0; i < k; i++)
             W->P[i][c] = x[i];
