@@ -131,8 +131,12 @@ static int lsq_fit(bl_work *W, int k, int M)
 
 /* Purpose: the spline's Bézier spans into out (k - 3 pieces over the knots)
  *          and the largest Elber-Cohen bound of | |A - C| - |d| | over them.
- * Returns: the bound (+inf when a span overflowed or cannot be bounded). */
-static double spans_and_bound(const ob_bez *base, double d, bl_work *W, int k, ob_fit *out)
+ * Inputs:  stop: the caller needs the bound only while it is <= stop; a span
+ *          whose bound exceeds it ends the work (the rest of out is then not
+ *          filled: the spline is not kept).
+ * Returns: the bound, or the first span bound above stop (+inf when a span
+ *          overflowed or cannot be bounded). */
+static double spans_and_bound(const ob_bez *base, double d, bl_work *W, int k, ob_fit *out, double stop)
 {
     double worst = 0.0;
     out->n = k - BL_DEG;
@@ -149,6 +153,8 @@ static double spans_and_bound(const ob_bez *base, double d, bl_work *W, int k, o
         if (ob_metric_bound(&sub, &out->seg[i], d, &e) != 0)
             return INFINITY;
         worst = fmax(worst, e.err);
+        if (worst > stop)
+            return worst;
     }
     return worst;
 }
@@ -178,7 +184,10 @@ static ob_fit_status bl_fit(const ob_bez *base, const ob_fit_args *a, void *work
             ob_method_msg(msg, msglen, "singular least-squares system (%d control points, %d samples)", k, M);
             return OB_FIT_FAIL;
         }
-        const double e = spans_and_bound(base, a->d, W, k, out);
+        /* every k so far failed, so best > tol: a spline whose bound passes
+         * best neither meets tol nor lowers best (the message's figure),
+         * and its remaining spans need no bound */
+        const double e = spans_and_bound(base, a->d, W, k, out, best);
         if (e <= a->tol)
             return OB_FIT_OK;
         best = fmin(best, e);
