@@ -5,7 +5,7 @@
  * et al. [11] and they explained that it is an extension of Hoschek and
  * Wissel [2] while adapting the global error bounding technique of the method
  * in [36]", [36] = Elber & Cohen 1991).  Lee et al.'s paper is not among the
- * seeds; this is the construction that sentence names.
+ * papers offbench reproduces; this is the construction that sentence names.
  *
  * A clamped cubic B-spline A with k control points and uniform knots
  * (0^4, 1/(k-3), ..., (k-4)/(k-3), 1^4), in the base's parameter, is fitted

@@ -71,7 +71,7 @@ def bernstein(p, n):
 
 
 def main():
-    print("# The rational curves of San Segundo & Sendra's Offset Atlas (seed 003, ../shared/offset_atlas.csv)")
+    print("# The rational curves of San Segundo & Sendra's Offset Atlas (poster, ICM 2006; its table: results/published/offset_atlas.csv)")
     print("# as exact Bezier segments: written by scripts/atlas_curves.py (see there for each derivation).")
     print("# hpoint WX WY W: homogeneous integer control points, so each curve is exact, not rounded.")
     print("# Not here: x^4 + y^4 - y^2 (genus 1: a quartic with one tacnode; not rational), the quadrics")

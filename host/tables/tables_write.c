@@ -94,7 +94,7 @@ int ob_tab_write_csv(FILE *f, void *ctx)
             ob_csv_field(f, note);
         } else {
             fputs(",,,,", f);
-            ob_csv_field(f, r->fixed[3] == 'm' ? "offbench has no such method" : "the curve's data is not in the seeds");
+            ob_csv_field(f, r->fixed[3] == 'm' ? "offbench has no such method" : "the paper does not print the curve's data");
         }
         fputc('\n', f);
     }
