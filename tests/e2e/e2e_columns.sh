@@ -38,9 +38,13 @@ check '[ "$(csvcols "$W" curve message status | sed -n 2p)" = "liu2002_ex1,\"one
 check 'dropcols "$W" newer_column message | cmp -s - "$T/nomsg.csv"' "dropcols drops by name"
 check '[ "$(dropcols "$W" fit_ns eval_ns newer_column | sed -n 2p | cut -d, -f12-14)" = "\"one, two, three\"" ]' \
     "dropcols keeps the message whole"
-# a name that is not in the header is an error, not a silent $0
+# a name that is not in the header is an error, not a silent $0, and is
+# said on stdout too (a check for no output, or two equal ones, then fails)
 awkc 'NR>1{print $c["contiunity"]}' "$W" > "$T/typo.out" 2> "$T/typo.err"
-check '[ $? -eq 2 ] && [ ! -s "$T/typo.out" ] && grep -q "no column .contiunity." "$T/typo.err"' \
+check '[ $? -eq 2 ] && grep -q "awkc: a column named is not in" "$T/typo.out" && grep -q "no column .contiunity." "$T/typo.err"' \
     "a typo in a column name: exit 2 and a message: $(cat "$T/typo.err")"
+check '[ "$(dropcols "$W" nosuch 2>/dev/null)" != "$(dropcols "$R" nosuch 2>/dev/null)" ]' \
+    "dropcols of a missing column does not compare equal"
+check '[ "$(rcols "$W" status nosuch 2>/dev/null)" = "rcols: a column named is not in $W" ]' "rcols of a missing column says so"
 echo "$pass passed, $fail failed, $skipped skipped"
 [ $fail -eq 0 ]
