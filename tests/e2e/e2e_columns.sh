@@ -11,8 +11,8 @@
 check '[ $? -eq 0 ]' "run: exit 0"
 R=$T/r/results.csv
 # the fixture: row 2's message holds commas, and every line gains a last column
-awkc 'BEGIN{OFS=","} NR==2{$c["message"]="\"one, two, three\""} {print $0 "," (NR==1 ? "newer_column" : "x" NR)}' \
-    "$R" > "$T/wide.csv"
+awkc 'BEGIN{OFS=","} NR==2{$c["message"]="\"one, two, three\""} {print}' "$R" > "$T/msg.csv"
+awk '{print $0 "," (NR==1 ? "newer_column" : "x" NR)}' "$T/msg.csv" > "$T/wide.csv"
 W=$T/wide.csv
 dropcols "$R" message > "$T/nomsg.csv"
 nf() { sed -n 2p "$1" | awk -F, '{print NF}'; }
@@ -36,8 +36,7 @@ check '[ "$(csvcols "$W" $NAMES)" = "$(csvcols "$R" $NAMES)" ]' "csvcols reads t
 check '[ "$(csvcols "$W" curve message status | sed -n 2p)" = "liu2002_ex1,\"one, two, three\",ok" ]' \
     "csvcols keeps the message whole: $(csvcols "$W" curve message status | sed -n 2p)"
 check 'dropcols "$W" newer_column message | cmp -s - "$T/nomsg.csv"' "dropcols drops by name"
-check '[ "$(dropcols "$W" fit_ns eval_ns newer_column | sed -n 2p | cut -d, -f12-14)" = "\"one, two, three\"" ]' \
-    "dropcols keeps the message whole"
+check 'dropcols "$W" newer_column | cmp -s - "$T/msg.csv"' "dropcols keeps the message whole"
 # a name that is not in the header is an error, not a silent $0, and is
 # said on stdout too (a check for no output, or two equal ones, then fails)
 awkc 'NR>1{print $c["contiunity"]}' "$W" > "$T/typo.out" 2> "$T/typo.err"
