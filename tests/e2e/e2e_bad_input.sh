@@ -39,9 +39,9 @@ if [ $n -ge 50 ]; then ok; else bad "only $n malformed curve files (at least 50 
     --out "$T/hostile" >/dev/null 2>"$T/err"
 rc=$?
 rows=$(($(wc -l < "$T/hostile/results.csv") - 1))
-nm=$(awk -F, 'NR>1{print $3}' "$T/hostile/results.csv" | sort -u | wc -l)
-nomsg=$(awk -F, 'NR>1 && $11 != "ok" && $14 == ""' "$T/hostile/results.csv" | wc -l)
-badst=$(awk -F, 'NR>1 && $11 !~ /^(ok|limit|fail|skip)$/' "$T/hostile/results.csv" | wc -l)
+nm=$(rcols "$T/hostile/results.csv" method | sort -u | wc -l)
+nomsg=$(awkc 'NR>1 && $c["status"] != "ok" && $c["message"] == ""' "$T/hostile/results.csv" | wc -l)
+badst=$(awkc 'NR>1 && $c["status"] !~ /^(ok|limit|fail|skip)$/' "$T/hostile/results.csv" | wc -l)
 if [ $rc -eq 0 ] && [ $nm -ge 16 ] && [ $rows -eq $((7 * nm)) ] && [ $nomsg -eq 0 ] && [ $badst -eq 0 ]; then ok; else
     bad "hostile geometry: exit $rc, $rows rows (7 x $nm methods wanted), $nomsg non-ok rows without a message, $badst bad statuses"; fi
 if grep -q '^arc_d_is_radius,1,sisl,.*,fail,.*did not finish in 1 s' "$T/hostile/results.csv"; then ok; else

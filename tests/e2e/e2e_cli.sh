@@ -4,22 +4,24 @@
 # with exit status 2 on bad input.  Uses $OFFBENCH (set by make) or ./offbench.
 . "$(dirname "$0")/lib_e2e.sh"
 
-# column of results.csv by name
-col() { awk -F, -v c="$2" 'NR==1{for(i=1;i<=NF;i++)if($i==c)k=i;next}{print $k}' "$1" | tr '\n' ' ' | sed 's/ $//'; }
+# column of results.csv by name, the rows on one line
+col() { rcols "$1" "$2" | tr '\n' ' ' | sed 's/ $//'; }
+# the job keys and results: what results.csv's first 11 columns hold
+KR="curve d method metric split tol ctrl_points segments out_degree max_err status"
 
 # --- Liu-Wang Table 1 (Til, Cob) and Ahn Table 1 under their protocols ---
 $OB run --curve liu2002_ex1 --methods tiller,cobb --metric bound --split mid \
     --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --out "$T/a" 2>"$T/a.err"
 check '[ $? -eq 0 ] && [ -f "$T/a/results.csv" ] && [ -f "$T/a/meta.json" ]' "run exits 0 and writes both files"
-got=$(awk -F, 'NR>1 && $2==1 {printf "%s:%s ", $3, $7}' "$T/a/results.csv")
+got=$(awkc 'NR>1 && $c["d"]==1 {printf "%s:%s ", $c["method"], $c["ctrl_points"]}' "$T/a/results.csv")
 want="tiller:10 tiller:31 tiller:97 tiller:322 tiller:886 cobb:10 cobb:31 cobb:94 cobb:316 cobb:865 "
 check '[ "$got" = "$want" ]' "Liu-Wang Til/Cob d=1: got '$got'"
-got=$(awk -F, 'NR>1 && $2==-1 {printf "%s:%s ", $3, $7}' "$T/a/results.csv")
+got=$(awkc 'NR>1 && $c["d"]==-1 {printf "%s:%s ", $c["method"], $c["ctrl_points"]}' "$T/a/results.csv")
 check '[ "$got" = "$want" ]' "Liu-Wang Til/Cob d=-1: got '$got'"
 
 $OB run --curve liu2002_ex1 --methods ahn --metric radial --split mid \
     --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --out "$T/b" 2>/dev/null
-got=$(awk -F, 'NR>1 {printf "%s ", $7}' "$T/b/results.csv")
+got=$(awkc 'NR>1 {printf "%s ", $c["ctrl_points"]}' "$T/b/results.csv")
 check '[ "$got" = "13 19 31 43 61 13 19 31 43 61 " ]' "Ahn Table 1 'Our method': got '$got'"
 
 # --- the CSV contract ---
@@ -34,6 +36,7 @@ done
 check 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/a/meta.json" 2>/dev/null || ! command -v python3 >/dev/null' "meta.json is valid JSON"
 
 # --- the joint columns, then the spread of --reps: measured continuity and the largest gap ---
+# (the header check is by position: the column order is the contract)
 J="--curve liu2002_ex1 --methods ahn,cobb,zhao-rational --tols 1e-3"
 $OB run $J --backend cpu --out "$T/j" 2>/dev/null
 check '[ $? -eq 0 ] && [ "$(head -n 1 "$T/j/results.csv" | cut -d, -f18-)" = "max_gap,max_kink,continuity,time_iqr_ns,time_cv" ]' \
@@ -61,13 +64,13 @@ $OB run --methods $DM --tols 1e-1,1e-3 --threads 1 --out "$T/t1" 2>/dev/null
 r1=$?
 $OB run --methods $DM --tols 1e-1,1e-3 --threads 2 --out "$T/t2" 2>/dev/null
 check '[ $r1 -eq 0 ] && [ $? -eq 0 ]' "default runs exit 0"
-cut -d, -f1-11,14- "$T/t1/results.csv" > "$T/t1.cut"
-cut -d, -f1-11,14- "$T/t2/results.csv" > "$T/t2.cut"
+dropcols "$T/t1/results.csv" fit_ns eval_ns > "$T/t1.cut"
+dropcols "$T/t2/results.csv" fit_ns eval_ns > "$T/t2.cut"
 check 'cmp -s "$T/t1.cut" "$T/t2.cut"' "--threads 1 and 2 give identical results apart from timings"
 n=$(($(wc -l < "$T/t1/results.csv") - 1))
-pairs=$(awk -F, 'NR>1{print $1","$2}' "$T/t1/results.csv" | sort -u | wc -l)
+pairs=$(awkc 'NR>1{print $c["curve"]","$c["d"]}' "$T/t1/results.csv" | sort -u | wc -l)
 check '[ $pairs -ge 5 ] && [ $n -eq $((pairs * 5 * 2)) ]' "default run: $pairs (curve, d) pairs x 5 methods x 2 tols, got $n rows"
-per=$(awk -F, 'NR>1{print $1","$2}' "$T/t1/results.csv" | uniq -c | awk '{print $1}' | sort -u)
+per=$(awkc 'NR>1{print $c["curve"]","$c["d"]}' "$T/t1/results.csv" | uniq -c | awk '{print $1}' | sort -u)
 check '[ "$per" = "10" ]' "each (curve, d) has its 10 rows together: '$per'"
 check '[ -z "$(col "$T/t1/results.csv" status | tr " " "\n" | grep -vE "^(ok|limit|fail|skip)$")" ]' "status values"
 
@@ -75,19 +78,19 @@ check '[ "$(col "$T/a/results.csv" family | tr " " "\n" | sort -u)" = "published
 check 'grep -q "\"seed\": null" "$T/t1/meta.json"' "meta.json: seed null without --random"
 
 # --- random test families ---
-# (fields 12 and 13 are fit_ns and eval_ns; a quoted message may hold commas,
-# but only after them.  --max-segments bounds the time should a method grind
+# (dropcols finds fit_ns and eval_ns by name; a quoted message may hold
+# commas, the helpers keep it whole.  --max-segments bounds the time should a method grind
 # on a nearly degenerate curve: that shows as `limit`, not as a slow test.)
 $OB run --random 24:3 --tols 1e-1,1e-2 --max-segments 2000 --threads 1 --out "$T/r1" 2>/dev/null
 r1=$?
 $OB run --random 24:3 --tols 1e-1,1e-2 --max-segments 2000 --threads 2 --out "$T/r2" 2>/dev/null
 check '[ $r1 -eq 0 ] && [ $? -eq 0 ]' "--random 24:3 runs exit 0"
-cut -d, -f1-11,14- "$T/r1/results.csv" > "$T/r1.cut"
-cut -d, -f1-11,14- "$T/r2/results.csv" > "$T/r2.cut"
+dropcols "$T/r1/results.csv" fit_ns eval_ns > "$T/r1.cut"
+dropcols "$T/r2/results.csv" fit_ns eval_ns > "$T/r2.cut"
 check '[ -s "$T/r1.cut" ] && cmp -s "$T/r1.cut" "$T/r2.cut"' "--random 24:3: --threads 1 and 2 give identical results apart from timings"
 check '[ -z "$(col "$T/r1/results.csv" status | tr " " "\n" | grep -vE "^(ok|limit|fail|skip)$")" ]' "--random 24:3: status values"
 check '[ "$(col "$T/r1/results.csv" curve | tr " " "\n" | sort -u | wc -l)" -eq 24 ]' "--random 24:3: 24 curves in results.csv"
-check '[ "$(awk -F, "NR>1{print \$1}" "$T/r1/results.csv" | sort -u | head -n 1)" = "rnd3_000000" ]' "random ids: rnd3_000000 ..."
+check '[ "$(rcols "$T/r1/results.csv" curve | sort -u | head -n 1)" = "rnd3_000000" ]' "random ids: rnd3_000000 ..."
 fams=$(rcols "$T/r1/results.csv" family | sort -u | tr '\n' ' ')
 check '[ "$fams" = "cubic degenerate inflection loop quintic rational septic tight " ]' "every family in the family column: '$fams'"
 check 'grep -q "\"seed\": 3," "$T/r1/meta.json"' "meta.json records the seed"
@@ -116,8 +119,8 @@ cp "$OB" "$T/offbench-copy"
 check 'grep -q "^# curves from embedded" "$T/lc.txt"' "away from the tree the embedded curves are used: $(head -n 1 "$T/lc.txt")"
 (cd "$T" && unset OFFBENCH_DATA && ./offbench-copy run --methods cobb --tols 1e-1 --out emb >/dev/null 2>&1)
 $OB run --methods cobb --tols 1e-1 --out "$T/tree" >/dev/null 2>&1
-cut -d, -f1-11 "$T/emb/results.csv" > "$T/emb.cut"
-cut -d, -f1-11 "$T/tree/results.csv" > "$T/tree.cut"
+csvcols "$T/emb/results.csv" $KR > "$T/emb.cut"
+csvcols "$T/tree/results.csv" $KR > "$T/tree.cut"
 check '[ -s "$T/emb.cut" ] && cmp -s "$T/emb.cut" "$T/tree.cut"' "the embedded curves give the same rows as datasets/"
 for id in liu2002_ex1 liu2002_ex2 zhao2017_septic zhao2017_quintic; do
     check 'grep -q "^$id " "$T/lc.txt"' "curve $id is listed"
@@ -132,20 +135,21 @@ check '[ "$(head -n 1 "$T/reps/samples.csv")" = "curve,d,method,metric,split,tol
 njobs=$(($(wc -l < "$T/reps/results.csv") - 1))
 check '[ $(($(wc -l < "$T/reps/samples.csv") - 1)) -eq $((3 * njobs)) ] && [ $njobs -eq 8 ]' "samples.csv: 3 rows per job"
 # the timing columns are the medians of the repetitions (of 3: sum - min - max)
-med=$(awk -F, 'function m3(x,y,z){ return x+y+z-(x<y?(x<z?x:z):(y<z?y:z))-(x>y?(x>z?x:z):(y>z?y:z)) }
-     NR>1{k=$1","$2","$3","$4","$5","$6; n[k]++; f[k,n[k]]=$8; e[k,n[k]]=$9; if(n[k]==1) ks[++nk]=k}
+med=$(awkc 'function m3(x,y,z){ return x+y+z-(x<y?(x<z?x:z):(y<z?y:z))-(x>y?(x>z?x:z):(y>z?y:z)) }
+     NR>1{k=$c["curve"]","$c["d"]","$c["method"]","$c["metric"]","$c["split"]","$c["tol"]
+          n[k]++; f[k,n[k]]=$c["fit_ns"]; e[k,n[k]]=$c["eval_ns"]; if(n[k]==1) ks[++nk]=k}
      END{for(i=1;i<=nk;i++){k=ks[i]; print k","m3(f[k,1],f[k,2],f[k,3])","m3(e[k,1],e[k,2],e[k,3])}}' "$T/reps/samples.csv")
-got=$(awk -F, 'NR>1{print $1","$2","$3","$4","$5","$6","$12","$13}' "$T/reps/results.csv")
+got=$(csvcols "$T/reps/results.csv" curve d method metric split tol fit_ns eval_ns | sed 1d)
 check '[ -n "$med" ] && [ "$med" = "$got" ]' "results.csv timings are the per-job medians of samples.csv"
 $OB run --curve liu2002_ex1 --methods tiller,ahn --tols 1e-1,1e-3 --out "$T/noreps" 2>/dev/null
-check '[ "$(cut -d, -f1-11 "$T/reps/results.csv")" = "$(cut -d, -f1-11 "$T/noreps/results.csv")" ]' "--reps gives the same results as one run"
+check '[ "$(csvcols "$T/reps/results.csv" $KR)" = "$(csvcols "$T/noreps/results.csv" $KR)" ]' "--reps gives the same results as one run"
 check 'grep -q "\"reps\": 3" "$T/reps/meta.json" && grep -q "\"method_versions\": {\"tiller\": 1" "$T/reps/meta.json"' "meta.json: reps and method_versions"
 check 'grep -q "\"rep_mismatches\": 0" "$T/reps/meta.json"' "repetitions agree with the warm-up"
 
 # --- --job-timeout: a job past its budget ends with status timeout; the rest go on ---
 $OB run --curve liu2002_ex1 --methods tiller,ahn --tols 1e3,1e-5 --job-timeout 1e-6 --out "$T/jt" 2>"$T/jt.err"
 check '[ $? -eq 0 ]' "a run with timeouts exits 0"
-got=$(awk -F, 'NR>1 && $2==1 {printf "%s:%s:%s ", $3, $6, $11}' "$T/jt/results.csv")
+got=$(awkc 'NR>1 && $c["d"]==1 {printf "%s:%s:%s ", $c["method"], $c["tol"], $c["status"]}' "$T/jt/results.csv")
 check '[ "$got" = "tiller:1000:ok tiller:1e-05:timeout ahn:1000:ok ahn:1e-05:timeout " ]' "timeout rows: '$got'"
 check 'grep -q "job timeout: .* limit 1e-06 s" "$T/jt/results.csv" && grep -q "timeout 4;" "$T/jt.err"' \
     "timeout message in results.csv and the count on stderr"
@@ -241,28 +245,32 @@ check '[ $? -eq 0 ] && [ -s "$T/tab/tables.csv" ] && [ -s "$T/tab/tables.md" ] &
     "tables writes tables.csv, tables.md and zhao_sweep.csv"
 hdr=$(head -n 1 "$T/tab/tables.csv")
 check '[ "${hdr#source,table,curve,d,tol,method,label,protocol,published,ours,ratio,status}" != "$hdr" ]' "tables.csv header: $hdr"
-tab() { awk -F, -v l="$1" -v s="$2" 'NR>1 && $1==s && $7==l {printf "%s:%s ", $10, $12}' "$T/tab/tables.csv"; }
+tab() { awkc 'NR>1 && $c["source"]==s && $c["label"]==l {printf "%s:%s ", $c["ours"], $c["status"]}' l="$1" s="$2" "$T/tab/tables.csv"; }
 check '[ "$(tab Til liu2002)" = "10:match 31:match 97:match 322:match 886:match " ]' "Til under paper: $(tab Til liu2002)"
 check '[ "$(tab Cob liu2002)" = "10:match 31:match 94:match 316:match 865:match " ]' "Cob under paper: $(tab Cob liu2002)"
-got=$(awk -F, 'NR>1 && $1=="ahn2023" && $2=="1" && $6=="ahn" {printf "%s:%s ", $10, $12}' "$T/tab/tables.csv")
+got=$(awkc 'NR>1 && $c["source"]=="ahn2023" && $c["table"]=="1" && $c["method"]=="ahn" {printf "%s:%s ", $c["ours"], $c["status"]}' "$T/tab/tables.csv")
 check '[ "$got" = "13:match 19:match 31:match 43:match 61:match " ]' "Ahn 'Our method' under paper: $got"
 check '[ "$(tab Lst liu2002)" = "7:match 13:match 19:match 31:match 50:match " ]' "Liu-Wang T1 Lst (bspline-lsq) under paper: $(tab Lst liu2002)"
 check '[ "$(tab Lst ahn2023)" = "7:match 13:match 19:match 31:match 50:match " ]' "Ahn T1 Lst (bspline-lsq) under paper: $(tab Lst ahn2023)"
 check '[ "$(tab M2 ahn2023)" = "22:match 29:match 43:match 71:match 127:match " ]' "Ahn T1 M2 under paper: $(tab M2 ahn2023)"
-check '[ "$(awk -F, '"'"'NR>1 && $6=="cl" && $12!="no-method"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 0 ]' "CL is no-method"
-check '[ "$(awk -F, '"'"'NR>1 && $2=="3-left" && $6=="ahn" && $12=="no-data"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 5 ]' "the S is no-data"
+cnt=$(awkc 'NR>1 && $c["method"]=="cl" && $c["status"]!="no-method"' "$T/tab/tables.csv" | wc -l)
+check '[ "$cnt" -eq 0 ]' "CL is no-method"
+cnt=$(awkc 'NR>1 && $c["table"]=="3-left" && $c["method"]=="ahn" && $c["status"]=="no-data"' "$T/tab/tables.csv" | wc -l)
+check '[ "$cnt" -eq 5 ]' "the S is no-data"
 check '[ "$(grep -c "" "$T/tab/tables.csv")" -eq $((1 + 35 + 35 + 25 + 9)) ]' "one row per published cell"
 check 'grep -q "^## Liu & Wang 2002" "$T/tab/tables.md" && grep -q "Per column, match / close / differs" "$T/tab/tables.md"' "tables.md lays out the tables"
 # Zhao-Zhou under their error at the given parameter; the sweep of radius and cut point
-check '[ "$(awk -F, '"'"'NR>1 && $1=="zhao2017" && $6!="ahn2004" && $15!="param"'"'"' "$T/tab/tables.csv" | wc -l)" -eq 0 ]' \
-    "Zhao-Zhou Table 1 under paper: metric param"
+cnt=$(awkc 'NR>1 && $c["source"]=="zhao2017" && $c["method"]!="ahn2004" && $c["metric"]!="param"' "$T/tab/tables.csv" | wc -l)
+check '[ "$cnt" -eq 0 ]' "Zhao-Zhou Table 1 under paper: metric param"
 sw=$T/tab/zhao_sweep.csv
 check '[ "$(head -n 1 "$sw")" = "curve,piece,d,method,protocol,metric,max_err,status,variant" ]' "zhao_sweep.csv header"
-check '[ "$(awk -F, '"'"'$2=="C1@0.45" && $3=="4" && $4=="zhao-rational" && $6=="param" && $9==""'"'"' "$sw" | wc -l)" -eq 1 ] && [ "$(awk -F, '"'"'$9=="zhao-rational.weighted=0" && $2=="C"'"'"' "$sw" | wc -l)" -eq 14 ]' \
+cnt=$(awkc '$c["piece"]=="C1@0.45" && $c["d"]=="4" && $c["method"]=="zhao-rational" && $c["metric"]=="param" && $c["variant"]==""' "$sw" | wc -l)
+cnt2=$(awkc '$c["variant"]=="zhao-rational.weighted=0" && $c["piece"]=="C"' "$sw" | wc -l)
+check '[ "$cnt" -eq 1 ] && [ "$cnt2" -eq 14 ]' \
     "the sweep reaches d = 4, cut 0.45, and has the unweighted variant"
 # Example 2 on the clamped reading without the pre-split: Liu-Wang's Til and Cob
 $OB tables --table liu2002:2 --protocols paper --out "$T/tab4" 2>/dev/null
-tab4() { awk -F, -v l="$1" 'NR>1 && $7==l {printf "%s:%s ", $10, $12}' "$T/tab4/tables.csv"; }
+tab4() { awkc 'NR>1 && $c["label"]==l {printf "%s:%s ", $c["ours"], $c["status"]}' l="$1" "$T/tab4/tables.csv"; }
 check '[ "$(tab4 Til)" = "25:match 67:match 202:match 640:match 1918:match " ]' "Liu-Wang T2 Til under paper: $(tab4 Til)"
 check '[ "$(tab4 Cob)" = "28:match 73:match 208:match 637:match 1846:match " ]' "Liu-Wang T2 Cob under paper: $(tab4 Cob)"
 $OB tables --table nosuch:1 --out "$T/tab2" >/dev/null 2>"$T/e.txt"

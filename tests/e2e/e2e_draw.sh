@@ -29,7 +29,7 @@ for m in tiller ahn zhao-rational lee; do
     [ $m = lee ] && tol=1e-3   # a job that ends `limit`: drawn all the same
     $OB run --curve $C --methods $m --tols $tol --out "$T/run_$m" 2>/dev/null
     want=$(run_row "$T/run_$m" 1)
-    segs=$(awk -F, 'NR>1 && $2==1 {print $8}' "$T/run_$m/results.csv")
+    segs=$(awkc 'NR>1 && $c["d"]==1 {print $c["segments"]}' "$T/run_$m/results.csv")
     $OB draw --curve $C --method $m --tol $tol --out "$T/$m.svg" 2>"$T/$m.err"
     check '[ $? -eq 0 ] && [ -s "$T/$m.svg" ]' "draw $m exits 0 and writes the SVG"
     check 'wellformed "$T/$m.svg"' "draw $m: well-formed XML"
@@ -61,31 +61,39 @@ check '[ $rc -eq 0 ] && [ "$(svg_summary "$T/ex2.svg")" = "$want" ]' "draw liu20
 
 # --- trace -------------------------------------------------------------------
 HDR="curve,d,method,metric,split,tol,seg,piece,t,u,err,x,y"
+# trace.csv read by name: u never goes down; every row's piece in range, t in
+# [0,1], u = seg + t, and the job columns (trace_ok FILE SEGS CURVE METHOD METRIC)
+u_sorted() { awkc 'NR>2 && $c["u"] < u {exit 1} {u = $c["u"]}' "$1"; }
+trace_ok() {
+    awkc 'NR>1 && ($c["piece"] < 0 || $c["piece"] >= n || $c["t"] < 0 || $c["t"] > 1 || $c["seg"] + $c["t"] != $c["u"] ||
+                   $c["curve"] != cv || $c["method"] != me || $c["metric"] != mt) {exit 1}' n="$2" cv="$3" me="$4" mt="$5" "$1"
+}
 for m in tiller ahn zhao; do
     for me in hausdorff radial normal; do
         $OB run --curve $C --methods $m --tols $TOL --metric $me --out "$T/tr_$m$me" 2>/dev/null
-        maxerr=$(awk -F, 'NR>1 && $2==1 {print $10}' "$T/tr_$m$me/results.csv")
-        segs=$(awk -F, 'NR>1 && $2==1 {print $8}' "$T/tr_$m$me/results.csv")
+        maxerr=$(awkc 'NR>1 && $c["d"]==1 {print $c["max_err"]}' "$T/tr_$m$me/results.csv")
+        segs=$(awkc 'NR>1 && $c["d"]==1 {print $c["segments"]}' "$T/tr_$m$me/results.csv")
         $OB trace --curve $C --method $m --tol $TOL --metric $me --out "$T/tr_$m$me.csv" 2>/dev/null
         f="$T/tr_$m$me.csv"
         check '[ $? -eq 0 ] && [ "$(head -n 1 "$f")" = "$HDR" ]' "trace $m $me: exit 0, header"
         check '[ $(($(wc -l < "$f") - 1)) -eq $((segs * 64)) ]' "trace $m $me: 64 rows per piece ($segs pieces)"
-        mx=$(awk -F, 'NR>1 && $11>m {m=$11} END {printf "%.17g", m}' "$f")
+        mx=$(awkc 'NR>1 && $c["err"]>m {m=$c["err"]} END {printf "%.17g", m}' "$f")
         check 'awk -v a="$mx" -v b="$maxerr" "BEGIN{exit !(b > 0 && a <= b * (1 + 1e-9) && a >= 0.5 * b)}"' \
             "trace $m $me: max err $mx within [0.5, 1] x the run's max_err $maxerr"
-        check 'awk -F, "NR>2 && \$10 < u {exit 1} {u = \$10}" "$f"' "trace $m $me: u non-decreasing"
-        check 'awk -F, -v n="$segs" "NR>1 && (\$8 < 0 || \$8 >= n || \$9 < 0 || \$9 > 1 || \$7 + \$9 != \$10 || \$1 != \"$C\" || \$3 != \"$m\" || \$4 != \"$me\") {exit 1}" "$f"' \
+        check 'u_sorted "$f"' "trace $m $me: u non-decreasing"
+        check 'trace_ok "$f" "$segs" "$C" "$m" "$me"' \
             "trace $m $me: columns (piece in range, t in [0,1], u = seg + t, job columns)"
-        check '[ "$(awk -F, "NR>1 {print \$8}" "$f" | uniq | wc -l)" -eq "$segs" ]' "trace $m $me: pieces in order, each once"
+        check '[ "$(rcols "$f" piece | uniq | wc -l)" -eq "$segs" ]' "trace $m $me: pieces in order, each once"
     done
 done
 # the default output is stdout; --points; the job's columns as in results.csv
 $OB trace --curve $C --method tiller --tol 1e-1 --points 3 > "$T/p3.csv" 2>"$T/p3.err"
 rc=$?
 $OB run --curve $C --methods tiller --tols 1e-1 --out "$T/p3run" 2>/dev/null
-segs=$(awk -F, 'NR>1 && $2==1 {print $8}' "$T/p3run/results.csv")
+segs=$(awkc 'NR>1 && $c["d"]==1 {print $c["segments"]}' "$T/p3run/results.csv")
 check '[ $rc -eq 0 ] && [ $(($(wc -l < "$T/p3.csv") - 1)) -eq $((segs * 3)) ]' "trace --points 3 to stdout: 3 rows per piece"
-check '[ "$(sed -n 2p "$T/p3.csv" | cut -d, -f1-6)" = "$C,1,tiller,hausdorff,mid,0.1" ]' "trace job columns: $(sed -n 2p "$T/p3.csv" | cut -d, -f1-6)"
+jc=$(csvcols "$T/p3.csv" curve d method metric split tol | sed -n 2p)
+check '[ "$jc" = "$C,1,tiller,hausdorff,mid,0.1" ]' "trace job columns: $jc"
 check 'grep -q "x,y is the exact offset point" "$T/p3.err"' "trace says what x,y is"
 $OB trace --curve $C --method tiller --tol 1e-1 --metric bound --out "$T/bound.csv" 2>"$T/bound.err"
 check '[ $? -eq 0 ] && grep -q "radial" "$T/bound.err" && [ $(wc -l < "$T/bound.csv") -gt 1 ]' "trace under bound uses the radial error and says so"

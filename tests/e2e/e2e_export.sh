@@ -33,22 +33,22 @@ check '[ $(wc -l < "$T/x/index.csv") -eq $(wc -l < "$T/r/results.csv") ]' "index
 
 # every method of the registry has an approximation measured below
 methods=$("$OB" list methods 2>/dev/null | awk 'NR>1 && $1 != "" {print $1}')
-seen=$(cat "$T/x/index.csv" "$T/xp/index.csv" | awk -F, '$8 != "" {print $3}' | sort -u)
+seen=$(awkc '$c["stem"] != "" {print $c["method"]}' "$T/x/index.csv" "$T/xp/index.csv" | sort -u)
 for m in $methods; do
     case "$m" in -*|name|method) continue ;; esac
     check 'echo "$seen" | grep -qx "$m"' "method $m: no exported approximation"
 done
 
 # measure FILE METRIC CURVEFILE ID D: the max_err measure prints
-mval() { "$OB" measure --curves "$3" --curve "$4" --d "$5" --approx "$1" --metric "$2" 2>>"$T/merr" \
-         | awk -F, 'NR==2{print $3}'; }
+mval() { "$OB" measure --curves "$3" --curve "$4" --d "$5" --approx "$1" --metric "$2" >"$T/mval.csv" 2>>"$T/merr"
+         awkc 'NR==2{print $c["max_err"]}' "$T/mval.csv"; }
 n=0
 for dir in x xp xb; do
     metric=hausdorff; cf=$(cd "$(dirname "$0")/../.." && pwd)/datasets/published.curves
     [ $dir = xb ] && metric=bound
     [ $dir = xp ] && cf=$REF
-    tail -n +2 "$T/$dir/index.csv" > "$T/rows"
-    while IFS=, read -r c d m t st e segs stem; do
+    csvcols "$T/$dir/index.csv" curve d max_err stem | tail -n +2 > "$T/rows"
+    while IFS=, read -r c d e stem; do
         [ -n "$stem" ] || continue
         n=$((n + 1))
         for ext in json curves dxf; do
@@ -66,8 +66,8 @@ done
 check '[ $n -ge 35 ]' "only $n exported jobs measured"
 
 # --- the .curves files read back through offbench's reader --------------------
-stem=$(awk -F, '$3=="tiller" && $2=="1" {print $8}' "$T/x/index.csv")
-segs=$(awk -F, '$3=="tiller" && $2=="1" {print $7}' "$T/x/index.csv")
+stem=$(awkc '$c["method"]=="tiller" && $c["d"]=="1" {print $c["stem"]}' "$T/x/index.csv")
+segs=$(awkc '$c["method"]=="tiller" && $c["d"]=="1" {print $c["segments"]}' "$T/x/index.csv")
 "$OB" list curves --curves "$T/x/$stem.curves" > "$T/list" 2>&1
 check '[ $? -eq 0 ] && [ $(grep -c "^tiller.p" "$T/list") -eq $segs ]' ".curves: list curves reads $segs pieces back"
 "$OB" run --curves "$T/x/$stem.curves" --methods tiller --tols 1e-2 --backend cpu --out "$T/rr" >/dev/null 2>&1
@@ -86,7 +86,7 @@ ok = len(paths) == int(sys.argv[2]) and all(' C ' in p.get('d') and p.get('class
 sys.exit(0 if ok else 1)
 PYEOF
 check '[ $? -eq 0 ]' "tiller's SVG: $segs paths with native C commands"
-lst=$(awk -F, '$3=="lee" && $2=="1" {print $8}' "$T/x/index.csv")
+lst=$(awkc '$c["method"]=="lee" && $c["d"]=="1" {print $c["stem"]}' "$T/x/index.csv")
 check 'grep -q "class=\"sampled\"" "$T/x/$lst.svg"' "lee (rational) SVG: pieces as polylines"
 
 # --- DXF in ezdxf -------------------------------------------------------------
@@ -113,7 +113,7 @@ PYEOF
     # a CAD user's file: the pieces written by ezdxf itself (R2000, with its
     # tables and objects), no base links: measured by projection
     for m in tiller lee; do
-        st=$(awk -F, -v m=$m '$3==m && $2=="1" {print $8}' "$T/x/index.csv")
+        st=$(awkc '$c["method"]==m && $c["d"]=="1" {print $c["stem"]}' m=$m "$T/x/index.csv")
         "$PY" - "$T/x/$st.json" "$T/cad_$m.dxf" <<'PYEOF'
 import json, sys, ezdxf
 js = json.load(open(sys.argv[1]))
@@ -128,8 +128,8 @@ for p in js['pieces']:
 doc.saveas(sys.argv[2])
 PYEOF
         "$OB" measure --curve liu2002_ex1 --d 1 --approx "$T/cad_$m.dxf" --metric hausdorff > "$T/cad.csv" 2>"$T/err"
-        h=$(awk -F, 'NR==2 {print $3}' "$T/cad.csv")
-        e=$(awk -F, -v m=$m '$3==m && $2=="1" {print $6}' "$T/x/index.csv")
+        h=$(awkc 'NR==2 {print $c["max_err"]}' "$T/cad.csv")
+        e=$(awkc '$c["method"]==m && $c["d"]=="1" {print $c["max_err"]}' m=$m "$T/x/index.csv")
         # tiller's pieces interpolate the offset at their ends, so projection
         # finds the run's base pieces; lee's ends are off the offset by up to
         # the error, so the nearest points cut the offset elsewhere and each
@@ -148,8 +148,8 @@ grep -v '^  source' "$T/x/$stem.curves" > "$T/own.curves"
 "$OB" measure --curve liu2002_ex1 --d 1 --approx "$T/own.curves" > "$T/own.csv" 2>/dev/null
 check '[ $? -eq 0 ] && grep -q "^bound,n/a," "$T/own.csv" && grep -q "^radial,n/a," "$T/own.csv"' \
     "a file without base links: bound and radial do not apply"
-e=$(awk -F, '$3=="tiller" && $2=="1" {print $6}' "$T/x/index.csv")
-h=$(awk -F, '$1=="hausdorff" {print $3}' "$T/own.csv")
+e=$(awkc '$c["method"]=="tiller" && $c["d"]=="1" {print $c["max_err"]}' "$T/x/index.csv")
+h=$(awkc '$c["metric"]=="hausdorff" {print $c["max_err"]}' "$T/own.csv")
 check 'awk -v a="$h" -v b="$e" "BEGIN{exit !(a - b < 1e-12 * b && b - a < 1e-12 * b)}"' \
     "projection-matched hausdorff $h vs the run's $e"
 
@@ -170,8 +170,8 @@ check '! grep -q warning "$T/err"' "a file naming no job: no warning ($(cat "$T/
 # --- draw --export -------------------------------------------------------------
 "$OB" draw --curve liu2002_ex1 --method ahn --tol 1e-3 --d -1 --backend cpu --out "$T/d.svg" --export "$T/xd" 2>/dev/null
 check '[ $? -eq 0 ] && [ -s "$T/xd/liu2002_ex1__d-1__ahn__tol0.001.json" ]' "draw --export writes the job's files"
-e=$(awk -F, 'NR==2 {print $6}' "$T/xd/index.csv")
-r=$(awk -F, '$3=="ahn" && $2=="-1" {print $6}' "$T/x/index.csv")
+e=$(awkc 'NR==2 {print $c["max_err"]}' "$T/xd/index.csv")
+r=$(awkc '$c["method"]=="ahn" && $c["d"]=="-1" {print $c["max_err"]}' "$T/x/index.csv")
 check '[ -n "$e" ] && [ "$e" = "$r" ]' "draw --export: max_err $e, the run's $r"
 
 # --- refusals and bad input ------------------------------------------------------

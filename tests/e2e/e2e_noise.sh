@@ -16,13 +16,14 @@ printf '0.00 0.00 0.00 1/100 1\n' > "$T/idle"
 printf '99.00 50.00 20.00 9/100 1\n' > "$T/busy"
 OFFBENCH_LOADAVG=$T/idle $OB run $RUN --reps 4 --out "$T/r" 2>"$T/r.err"
 check '[ $? -eq 0 ]' "run --reps 4"
+# (by position: that they come last is the contract checked)
 check '[ "$(head -n 1 "$T/r/results.csv" | awk -F, "{print \$(NF-1) \",\" \$NF}")" = "time_iqr_ns,time_cv" ]' \
     "time_iqr_ns and time_cv are the last columns: $(head -n 1 "$T/r/results.csv")"
 bad_spread=$(rcols "$T/r/results.csv" time_iqr_ns time_cv | awk -F: '!($1 ~ /^[0-9]+$/ && $2 ~ /^[0-9.e+-]+$/ && $2 >= 0)')
 check '[ -z "$bad_spread" ] && [ "$(rcols "$T/r/results.csv" time_cv | wc -l)" -eq 8 ]' \
     "every row of a --reps 4 run has a whole-ns IQR and a CV >= 0: $bad_spread"
 # the IQR of one row, recomputed from samples.csv (type 7 quartiles of 4 totals)
-want=$(awk -F, 'NR>1 && $2==1 && $3=="tiller" && $6==0.1 {print $8+$9}' "$T/r/samples.csv" | sort -n |
+want=$(awkc 'NR>1 && $c["d"]==1 && $c["method"]=="tiller" && $c["tol"]==0.1 {print $c["fit_ns"]+$c["eval_ns"]}' "$T/r/samples.csv" | sort -n |
        awk '{v[NR]=$1} END{q1=v[1]+0.75*(v[2]-v[1]); q3=v[3]+0.25*(v[4]-v[3]); printf "%.0f", q3-q1}')
 got=$(rcols "$T/r/results.csv" curve d method tol time_iqr_ns | awk -F: '$2==1 && $3=="tiller" && $4==0.1 {print $5}')
 check '[ -n "$got" ] && [ "$got" = "$want" ]' "time_iqr_ns is the IQR of the repetitions' totals: $got vs $want"
@@ -72,8 +73,8 @@ fi
 mkset() {  # DIR AWK-EXPRESSION-FOR-eval_ns(rep)
     mkdir -p "$1"
     cp "$T/r/meta.json" "$1/"
-    awk -F, 'BEGIN{OFS=","} NR>1 {$12=0; $13=10000000} {print}' "$T/r/results.csv" > "$1/results.csv"
-    awk -F, -v OFS=, "NR>1 {r=\$7; \$8=0; \$9=$2} {print}" "$T/r/samples.csv" > "$1/samples.csv"
+    awkc 'BEGIN{OFS=","} NR>1 {$c["fit_ns"]=0; $c["eval_ns"]=10000000} {print}' "$T/r/results.csv" > "$1/results.csv"
+    awkc 'BEGIN{OFS=","} NR>1 {r=$c["rep"]; $c["fit_ns"]=0; $c["eval_ns"]='"$2"'} {print}' "$T/r/samples.csv" > "$1/samples.csv"
 }
 mkset "$T/tight" '10000000 + 10000 * r'
 mkset "$T/noisy" '(r % 2 ? 10000000 : 20000000)'

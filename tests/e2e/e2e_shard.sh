@@ -40,8 +40,8 @@ mkdir "$T/empty"
 refuse "not a finished shard" "$T/s0" "$T/s1" "$T/empty"
 refuse "not a run with --shard" "$T/s0" "$T/s1" "$T/all"
 cp -r "$T/s1" "$T/o1"
-first0=$(sed -n 2p "$T/s0/shard.csv" | cut -d, -f1)
-awk -F, -v OFS=, -v f="$first0" 'NR==2{$1=f} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+first0=$(rcols "$T/s0/shard.csv" job | head -n 1)
+awkc 'BEGIN{OFS=","} NR==2{$c["job"]=f} {print}' f="$first0" "$T/s1/shard.csv" > "$T/o1/shard.csv"
 refuse "overlapping shards" "$T/s0" "$T/o1" "$T/s2"
 head -n 3 "$T/s1/shard.csv" > "$T/o1/shard.csv"
 refuse "one index per row" "$T/s0" "$T/o1" "$T/s2"
@@ -49,18 +49,19 @@ refuse "usage"
 # merge checks every row's key against the plan's job index (exit 2 naming
 # the shard file and line), and takes no unfinished shard (a journal)
 rm -rf "$T/o1" && cp -r "$T/s1" "$T/o1"
-own=$(sed -n 3p "$T/s1/results.csv" | cut -d, -f1)
-other=$(tail -n +2 "$T/all/results.csv" | cut -d, -f1 | grep -v -x -F "$own" | head -n 1)
-awk -F, -v OFS=, -v c="$other" 'NR==3{$1=c} {print}' "$T/s1/results.csv" > "$T/o1/results.csv"
+own=$(rcols "$T/s1/results.csv" curve | sed -n 2p)
+other=$(rcols "$T/all/results.csv" curve | grep -v -x -F "$own" | head -n 1)
+awkc 'BEGIN{OFS=","} NR==3{$c["curve"]=o} {print}' o="$other" "$T/s1/results.csv" > "$T/o1/results.csv"
 refuse "o1/results.csv:3: " "$T/s0" "$T/o1" "$T/s2"
 { head -n 1 "$T/s1/results.csv"; tail -n +2 "$T/s1/results.csv" | sed -n '1!G;h;$p'; } > "$T/o1/results.csv"
 refuse "o1/results.csv:2: " "$T/s0" "$T/o1" "$T/s2"
 cp "$T/s1/results.csv" "$T/o1/results.csv"
 # job indices swapped in shard.csv alone: the rows no longer sit at their jobs
-awk -F, -v OFS=, 'NR==2{a=$0; next} NR==3{print; print a; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+awk 'NR==2{a=$0; next} NR==3{print; print a; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"  # (whole lines)
 refuse "o1/results.csv:2: " "$T/s0" "$T/o1" "$T/s2"
 # only the job indices swapped (each key kept with its row): the plan hash
-awk -F, -v OFS=, 'NR==2{a=$1; b=$2; next} NR==3{print $1, b; print a, $2; next} {print}' "$T/s1/shard.csv" > "$T/o1/shard.csv"
+awkc 'BEGIN{OFS=","} NR==2{a=$c["job"]; b=$c["key"]; next} NR==3{x=$c["key"]; $c["key"]=b; print; $c["job"]=a; $c["key"]=x; print; next} {print}' \
+    "$T/s1/shard.csv" > "$T/o1/shard.csv"
 refuse "not the run's jobs" "$T/s0" "$T/o1" "$T/s2"
 cp "$T/s1/shard.csv" "$T/o1/shard.csv"
 : > "$T/o1/results.journal.csv"

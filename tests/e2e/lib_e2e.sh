@@ -30,6 +30,53 @@ nojoints() {
 # it never do: those are counted from the end of the line.
 rcols() {
     f=$1; shift
+    hascols "$f" "$@" || { _colmiss rcols "$f"; return 2; }
     awk -F, -v cols="$*" 'NR==1{for(i=1;i<=NF;i++){at[$i]=i; if($i=="message")m=i}; n=NF; nc=split(cols,c," "); next}
         {s=""; for(j=1;j<=nc;j++){k=at[c[j]]; s=s (j>1?":":"") (k>m ? $(NF-(n-k)) : $k)}; print s}' "$f"
+}
+# true when every NAME is a column in FILE's header (hascols FILE NAME...);
+# else says which is missing, so that a typo fails loudly instead of reading
+# the wrong field
+hascols() {
+    _hf=$1; shift
+    _hh=$(head -n 1 "$_hf" 2>/dev/null | tr , '\n')
+    for _hn in "$@"; do
+        printf '%s\n' "$_hh" | grep -qxF -- "$_hn" || { echo "no column '$_hn' in $_hf" >&2; return 2; }
+    done
+}
+# a missing column said on stdout too: a test that expects no output, or
+# compares two outputs, then fails instead of passing on nothing
+_colmiss() { echo "$1: a column named is not in $2"; }
+# awk over offbench CSVs with the columns found by name (awkc PROGRAM
+# [VAR=VALUE]... FILE...): on every line, the header included, c[NAME] is
+# that column's field number, read from each file's header, so the program
+# says $c["status"] where it would say $11.  A quoted message may hold
+# commas, the columns after it never do: theirs are counted from the end of
+# the line.  v(NAME) is a column's text, the whole message included.
+# Every $c["NAME"] in the program must be in the first file's header;
+# the helper's own variables start with _ (the program's may not).
+awkc() {
+    _ap=$1; shift
+    for _af in "$@"; do case $_af in *=*) ;; *) break ;; esac; done
+    hascols "$_af" $(printf '%s\n' "$_ap" | grep -o '\$c\["[^"]*"\]' | sed 's/^\$c\["//; s/"\]$//' | sort -u) || { _colmiss awkc "$_af"; return 2; }
+    awk -F, 'function v(name,  s, i) { if (!_m || _at[name] != _m) return $c[name]
+                                       s = $_m; for (i = _m + 1; i <= _m + NF - _n; i++) s = s "," $i; return s }
+        FNR==1{delete _at; delete c; _n=NF; _m=0; for(_i=1;_i<=NF;_i++){_at[$_i]=_i; if($_i=="message") _m=_i}}
+        {for(_k in _at) c[_k] = (_m && _at[_k] > _m) ? NF - _n + _at[_k] : _at[_k]}
+        '"$_ap" "$@"
+}
+# the named columns of an offbench CSV, header included, joined by commas
+# (csvcols FILE NAME...): what `cut -d, -f...` printed, found by name
+csvcols() {
+    _cf=$1; shift
+    hascols "$_cf" "$@" || { _colmiss csvcols "$_cf"; return 2; }
+    awkc 'FNR==1{nk=split(want, keep, " ")} {s=""; for(j=1;j<=nk;j++) s=s (j>1?",":"") v(keep[j]); print s}' want="$*" "$_cf"
+}
+# an offbench CSV without the named columns, header included (dropcols FILE
+# NAME...), e.g. without the timings: dropcols results.csv fit_ns eval_ns
+dropcols() {
+    _df=$1; shift
+    hascols "$_df" "$@" || { _colmiss dropcols "$_df"; return 2; }
+    awkc 'FNR==1{split(drop, d, " "); delete x; for(j in d) x[d[j]]=1; nk=0; for(i=1;i<=NF;i++) if(!($i in x)) keep[++nk]=$i}
+        {s=""; for(j=1;j<=nk;j++) s=s (j>1?",":"") v(keep[j]); print s}' drop="$*" "$_df"
 }
