@@ -22,10 +22,11 @@
 
 #include <stdarg.h>
 
-/* 1024 bytes: as long as the funnel's own line (ob_error), so nothing a
- * function reports is cut shorter than ob_error would cut it. */
+/* 8192 bytes: as long as the longest line the funnel prints (ob_warn,
+ * ob_info), so no message is cut shorter than before the carrier (an OpenCL
+ * build log runs to kilobytes).  Passed by pointer, it costs a stack frame. */
 typedef struct ob_err {
-    char msg[1024];
+    char msg[8192];
 } ob_err;
 
 /* Purpose: record a failure.
