@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
+/* The funnel's own prints: the only fprintf(stderr) for messages. */
 static void default_handler(const char *message) { fprintf(stderr, "offbench: %s\n", message); }
 
 static ob_error_handler handler = default_handler;

@@ -6,9 +6,14 @@
  * Tests install a handler to capture messages.  ob_warn() ("offbench:
  * warning: MESSAGE") and ob_info() ("offbench: MESSAGE") are the lines that
  * report, not fail: always on stderr, one line each (no newline in fmt).
+ * Functions below the commands do not print their errors: they fill an
+ * ob_err (methods/core/err.h, included here) and return -1, and the command
+ * hands err.msg to ob_error().
  */
 #ifndef OB_DIAG_H
 #define OB_DIAG_H
+
+#include "methods/core/err.h"
 
 typedef void (*ob_error_handler)(const char *message);
 

@@ -7,6 +7,8 @@
  * into caller-owned storage.  Methods keep no static state, never allocate in
  * fit() (scratch space of work_size bytes is handed in by the driver) and never
  * print: they return an ob_fit_status and, on failure, a reason in msg.
+ * That msg (char *msg, size_t msglen) is the CSV message column, data and not
+ * an error report, so it is not an ob_err (methods/core/err.h).
  *
  * Adding a method: write methods/NAME.c exporting `const ob_method
  * ob_method_NAME`, and add one line to methods/registry.c.

@@ -34,11 +34,11 @@ int ob_cl_loader_status(char *msg, size_t len)
     snprintf(msg, len, "not compiled in (the OpenCL headers were missing at build time)");
     return -1;
 }
-int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
+int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
 {
     (void)device_substr;
     *out = NULL;
-    snprintf(err, errlen, "this build has no OpenCL backend (the OpenCL headers were missing at build time)");
+    ob_fail(err, "this build has no OpenCL backend (the OpenCL headers were missing at build time)");
     return -1;
 }
 void ob_cl_close(ob_cl *cl) { (void)cl; }
@@ -80,22 +80,22 @@ static struct {
 } cl;
 static int cl_loaded = 0;  /* 0 not tried, 1 loaded, -1 failed */
 
-static int load_cl(char *err, size_t errlen)
+static int load_cl(ob_err *err)
 {
     if (cl_loaded)
-        return cl_loaded > 0 ? 0 : (snprintf(err, errlen, "no OpenCL loader (libOpenCL.so.1)"), -1);
+        return cl_loaded > 0 ? 0 : (ob_fail(err, "no OpenCL loader (libOpenCL.so.1)"), -1);
     void *lib = dlopen("libOpenCL.so.1", RTLD_NOW | RTLD_LOCAL);
     if (!lib)
         lib = dlopen("libOpenCL.so", RTLD_NOW | RTLD_LOCAL);
     if (!lib) {
         cl_loaded = -1;
-        snprintf(err, errlen, "no OpenCL loader (libOpenCL.so.1): install ocl-icd-libopencl1 and an ICD such as pocl-opencl-icd");
+        ob_fail(err, "no OpenCL loader (libOpenCL.so.1): install ocl-icd-libopencl1 and an ICD such as pocl-opencl-icd");
         return -1;
     }
 #define X(f)                                                              \
     if (!(*(void **)&cl.f = dlsym(lib, #f))) {                            \
         cl_loaded = -1;                                                   \
-        snprintf(err, errlen, "libOpenCL lacks %s", #f);                  \
+        ob_fail(err, "libOpenCL lacks %s", #f);                  \
         return -1;                                                        \
     }
     CL_FUNCS(X)
@@ -125,7 +125,7 @@ static const char *cl_errname(cl_int e)
     do {                                                                                    \
         cl_int cl_e_ = (call);                                                              \
         if (cl_e_ != CL_SUCCESS) {                                                          \
-            snprintf(err, errlen, "%s failed: %s (%d)", #call, cl_errname(cl_e_), (int)cl_e_); \
+            ob_fail(err, "%s failed: %s (%d)", #call, cl_errname(cl_e_), (int)cl_e_); \
             goto fail;                                                                      \
         }                                                                                   \
     } while (0)
@@ -150,8 +150,11 @@ struct ob_cl {
 int ob_cl_compiled(void) { return 1; }
 int ob_cl_loader_status(char *msg, size_t len)
 {
-    if (load_cl(msg, len) != 0)
+    ob_err why;
+    if (load_cl(&why) != 0) {
+        snprintf(msg, len, "%s", why.msg);
         return -1;
+    }
     snprintf(msg, len, "compiled in; loader libOpenCL found");
     return 0;
 }
@@ -272,23 +275,23 @@ static void warm_up(ob_cl *c)
     }
 }
 
-int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
+int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
 {
     *out = NULL;
-    if (load_cl(err, errlen))
+    if (load_cl(err))
         return -1;
     ob_cl *c = calloc(1, sizeof *c);
     char *src = NULL;
     if (!c) {
-        snprintf(err, errlen, "out of memory");
+        ob_fail(err, "out of memory");
         return -1;
     }
     cl_uint np = 0;
     cl_platform_id plats[16];
     cl_int e = cl.clGetPlatformIDs(16, plats, &np);
     if (e != CL_SUCCESS || np == 0) {
-        snprintf(err, errlen, "no OpenCL platform (clGetPlatformIDs: %s); install an ICD such as pocl-opencl-icd",
-                 cl_errname(e));
+        ob_fail(err, "no OpenCL platform (clGetPlatformIDs: %s); install an ICD such as pocl-opencl-icd",
+                cl_errname(e));
         goto fail;
     }
     cl_device_id dev = NULL;
@@ -316,10 +319,10 @@ int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
     }
     if (!dev) {
         if (device_substr && *device_substr && !saw_match)
-            snprintf(err, errlen, "--device: no OpenCL device matches '%s' (see './offbench list devices')",
-                     device_substr);
+            ob_fail(err, "--device: no OpenCL device matches '%s' (see './offbench list devices')",
+                    device_substr);
         else
-            snprintf(err, errlen, "no OpenCL device with double precision (cl_khr_fp64)");
+            ob_fail(err, "no OpenCL device with double precision (cl_khr_fp64)");
         goto fail;
     }
     c->ctx = cl.clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
@@ -328,7 +331,7 @@ int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
     CL_CHECK(e);
     src = kernel_source(c->source, sizeof c->source);
     if (!src) {
-        snprintf(err, errlen, "cannot read the kernel sources (kernels/metric_core.h, kernels/measure.cl)");
+        ob_fail(err, "cannot read the kernel sources (kernels/metric_core.h, kernels/measure.cl)");
         goto fail;
     }
     const char *srcs[1] = {src};
@@ -342,8 +345,8 @@ int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen)
     if (e != CL_SUCCESS) {
         char log[8192] = "";
         cl.clGetProgramBuildInfo(c->prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
-        snprintf(err, errlen, "clBuildProgram failed: %s (%d); build log of %s:\n%s", cl_errname(e), (int)e,
-                 c->source, log);
+        ob_fail(err, "clBuildProgram failed: %s (%d); build log of %s:\n%s", cl_errname(e), (int)e,
+                c->source, log);
         goto fail;
     }
     c->k = cl.clCreateKernel(c->prog, "ob_measure_batch", &e);
@@ -403,7 +406,7 @@ void ob_cl_close(ob_cl *c)
     do {                                                                                \
         void *nh_ = realloc(c->host, (n) * sizeof(type));                               \
         if (!nh_) {                                                                     \
-            snprintf(err, errlen, "out of memory");                                     \
+            ob_fail(err, "out of memory");                                     \
             goto fail;                                                                  \
         }                                                                               \
         c->host = nh_;                                                                  \
@@ -413,7 +416,7 @@ void ob_cl_close(ob_cl *c)
         CL_CHECK(e);                                                                    \
     } while (0)
 
-static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, char *err, size_t errlen)
+static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, ob_err *err)
 {
     cl_int e;
     if (nrec > c->cap_rec) {
@@ -453,8 +456,7 @@ fail:
 int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
 {
     ob_cl *c = ctx;
-    char err[512];
-    const size_t errlen = sizeof err;
+    ob_err why, *err = &why; /* the name CL_CHECK writes to */
     if (!c || n <= 0)
         return -1;
     const int S = ob_clamp_samples(samples);
@@ -466,7 +468,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     }
     if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2)
         return -1;
-    if (ensure_capacity(c, (size_t)n, nctrl, nscr, err, errlen))
+    if (ensure_capacity(c, (size_t)n, nctrl, nscr, err))
         return -1;
     size_t pc = 0, ps = 0;
     for (int i = 0; i < n; i++) {
@@ -521,15 +523,15 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     }
     return 0;
 fail:
-    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", n, err);
+    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", n, why.msg);
     return -1;
 }
 
 int ob_cl_list_devices(FILE *f)
 {
-    char err[256];
-    if (load_cl(err, sizeof err)) {
-        fprintf(f, "# %s\n", err);
+    ob_err err;
+    if (load_cl(&err)) {
+        fprintf(f, "# %s\n", err.msg);
         return -1;
     }
     cl_uint np = 0;

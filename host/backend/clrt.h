@@ -13,6 +13,7 @@
 #include <stdio.h>
 
 #include "methods/driver/driver.h"
+#include "methods/core/err.h"
 
 typedef struct ob_cl ob_cl;
 
@@ -28,10 +29,10 @@ int ob_cl_loader_status(char *msg, size_t len);
  *          load kernels/measure.cl with kernels/metric_core.h prepended (from
  *          $OFFBENCH_KERNELS, ./kernels, kernels/ beside the program, or the
  *          copy compiled in) and build it.
- * Errors:  returns 0; -1 with the reason in err: no loader, no platform, no
+ * Errors:  returns 0; -1 with the reason in err->msg: no loader, no platform, no
  *          matching device, no fp64, a failing call (named), or the build log
  *          of a failed build. */
-int ob_cl_open(const char *device_substr, ob_cl **out, char *err, size_t errlen);
+int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err);
 
 /* Always safe to call (NULL included). */
 void ob_cl_close(ob_cl *cl);

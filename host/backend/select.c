@@ -15,13 +15,13 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
         snprintf(b->why_cpu, sizeof b->why_cpu, "--backend cpu");
         return 0;
     }
-    char err[8192];
-    if (ob_cl_open(device, cl, err, sizeof err) != 0) {
+    ob_err err;
+    if (ob_cl_open(device, cl, &err) != 0) {
         if (kind == OB_BACKEND_OPENCL || device) {
-            ob_error("--backend opencl: %s", err);
+            ob_error("--backend opencl: %s", err.msg);
             return -1;
         }
-        snprintf(b->why_cpu, sizeof b->why_cpu, "%.500s", err);
+        snprintf(b->why_cpu, sizeof b->why_cpu, "%.500s", err.msg);
         return 0;
     }
     b->opencl = 1;

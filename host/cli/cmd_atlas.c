@@ -100,14 +100,15 @@ static int parse_atlas(const char *text, const char *name, atlas_row *rows, int 
 static int load_atlas(atlas_row *rows, int *n, char *where, size_t wlen)
 {
     static const char rel[] = "results/published/offset_atlas.csv";
-    char path[4200] = "", err[1024];
+    char path[4200] = "";
+    ob_err err;
     if (ob_find_tree_file(rel, "OFFBENCH_ATLAS", path, sizeof path) != 0)
         path[0] = '\0';
     if (path[0]) {
         char *text;
         size_t len;
-        if (ob_slurp(path, &text, &len, err, sizeof err) != 0) {
-            ob_error("%s", err);
+        if (ob_slurp(path, &text, &len, &err) != 0) {
+            ob_error("%s", err.msg);
             return -1;
         }
         int rc = parse_atlas(text, path, rows, n);
@@ -187,12 +188,13 @@ int ob_cmd_atlas(int argc, char **argv)
     atlas_row rows[MAX_ROWS];
     atlas_out res[MAX_ROWS];
     int n = 0, status = 2;
-    char where[4200], cwhere[4096], cerr[1024];
+    char where[4200], cwhere[4096];
+    ob_err cerr;
     ob_curveset set = {0};
     if (load_atlas(rows, &n, where, sizeof where) != 0)
         goto done;
-    if (ob_load_default_curves(&set, cwhere, sizeof cwhere, cerr, sizeof cerr) != 0) {
-        ob_error("%s", cerr);
+    if (ob_load_default_curves(&set, cwhere, sizeof cwhere, &cerr) != 0) {
+        ob_error("%s", cerr.msg);
         goto done;
     }
     int cnt[3] = {0};

@@ -367,9 +367,9 @@ static void bench_peaks(bench_out *b, int N, double peak[2], double *vpeak)
 static ob_cl *bench_open_cl(bench_out *b)
 {
     ob_cl *cl = NULL;
-    char err[8192];
-    if (ob_cl_open(NULL, &cl, err, sizeof err) != 0) {
-        printf("OpenCL: not available (%s); its rows are missing\n", err);
+    ob_err err;
+    if (ob_cl_open(NULL, &cl, &err) != 0) {
+        printf("OpenCL: not available (%s); its rows are missing\n", err.msg);
         cl = NULL;
     } else {
         printf("OpenCL: %s / %s, kernel built in %.2f s (not in any timing below)\n", ob_cl_platform(cl),
@@ -453,8 +453,9 @@ out:
 static void bench_whole_runs(bench_out *b, ob_cl *cl, int N)
 {
     ob_curveset set = {0};
-    char where[4096], cerr[1024];
-    if (ob_load_default_curves(&set, where, sizeof where, cerr, sizeof cerr) == 0) {
+    char where[4096];
+    ob_err cerr;
+    if (ob_load_default_curves(&set, where, sizeof where, &cerr) == 0) {
         ob_driver_opts o;
         ob_driver_defaults(&o);
         size_t nj = 0;
@@ -478,9 +479,9 @@ static void bench_whole_runs(bench_out *b, ob_cl *cl, int N)
  * OpenCL (cl, or NULL); then each method's median times per job. */
 static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
 {
-    char cerr[1024];
+    ob_err cerr;
     ob_curveset rset = {0};
-    if (ob_random_append(&rset, 1, quick ? 8 : 24, NULL, 0, cerr, sizeof cerr) == 0) {
+    if (ob_random_append(&rset, 1, quick ? 8 : 24, NULL, 0, &cerr) == 0) {
         ob_driver_opts o;
         ob_driver_defaults(&o);
         omp_set_num_threads(N);

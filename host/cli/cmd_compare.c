@@ -299,12 +299,12 @@ int ob_cmd_compare(int argc, char **argv)
     memset(&b, 0, sizeof b);
     memset(&n, 0, sizeof n);
     memset(&r, 0, sizeof r);
-    char err[1024];
+    ob_err err;
     int status = 2;
-    if (ob_cmp_load_side(o.in[0], "BASE", &b, err, sizeof err) ||
-        ob_cmp_load_side(o.in[1], "NEW", &n, err, sizeof err) || ob_cmp_context(&b, &n, &o.c, &r, err, sizeof err) ||
-        (r.incomparable.n == 0 && ob_cmp_rows(&b, &n, &o.c, &r, err, sizeof err))) {
-        ob_error("compare: %s", err);
+    if (ob_cmp_load_side(o.in[0], "BASE", &b, &err) ||
+        ob_cmp_load_side(o.in[1], "NEW", &n, &err) || ob_cmp_context(&b, &n, &o.c, &r, &err) ||
+        (r.incomparable.n == 0 && ob_cmp_rows(&b, &n, &o.c, &r, &err))) {
+        ob_error("compare: %s", err.msg);
         goto done;
     }
     for (int i = 0; i < r.incomparable.n; i++)

@@ -125,7 +125,8 @@ static int list_metrics(void)
 static int list_curves(int argc, char **argv)
 {
     ob_curveset set = {0};
-    char err[1024], where[4096] = "";
+    char where[4096] = "";
+    ob_err err;
     const char *file = NULL;
     long rn = 0;
     uint64_t seed = 1;
@@ -140,12 +141,12 @@ static int list_curves(int argc, char **argv)
     seed = a.seed;
     if (file) {
         snprintf(where, sizeof where, "%s", file);
-        rc = ob_curves_load_file(file, &set, err, sizeof err);
+        rc = ob_curves_load_file(file, &set, &err);
     } else if (rn == 0) {
-        rc = ob_load_default_curves(&set, where, sizeof where, err, sizeof err);
+        rc = ob_load_default_curves(&set, where, sizeof where, &err);
     }
     if (rc != 0) {
-        ob_error("%s", err);
+        ob_error("%s", err.msg);
         ob_curveset_free(&set);
         return 2;
     }

@@ -130,14 +130,15 @@ static int measure(const measure_args *a, ob_run_opts *o)
 {
     ob_curveset set = {0};
     ob_approx ap = {0};
-    char where[4096], err[1024];
+    char where[4096];
+    ob_err err;
     int status = 2;
     if (ob_load_run_curves(o, &set, where, sizeof where) != 0)
         goto out;
     const ob_curve *c = &set.v[ob_curveset_find(&set, o->curve_ids[0])];
-    if (ob_approx_read(a->approx, &ap, err, sizeof err) != 0 ||
-        ob_approx_match(c, a->d, &ap, a->approx, err, sizeof err) != 0) {
-        ob_error("%s", err);
+    if (ob_approx_read(a->approx, &ap, &err) != 0 ||
+        ob_approx_match(c, a->d, &ap, a->approx, &err) != 0) {
+        ob_error("%s", err.msg);
         goto out;
     }
     if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
@@ -147,8 +148,8 @@ static int measure(const measure_args *a, ob_run_opts *o)
     ob_mres res[OB_METRIC_COUNT];
     for (int m = 0; m < OB_METRIC_COUNT; m++)
         if ((a->all || (ob_metric)m == a->metric) &&
-            ob_approx_measure(c, a->d, &ap, (ob_metric)m, samples, a->approx, &res[m], err, sizeof err) != 0) {
-            ob_error("%s", err);
+            ob_approx_measure(c, a->d, &ap, (ob_metric)m, samples, a->approx, &res[m], &err) != 0) {
+            ob_error("%s", err.msg);
             goto out;
         }
     fputs("metric,status,max_err,piece,seg,t,message\n", stdout);

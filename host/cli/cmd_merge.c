@@ -148,7 +148,8 @@ static const char *meta_str(const shard_in *s, const char *key)
 /* A finished shard's meta.json (no journal beside it): its K/N and reps. */
 static int shard_meta(shard_in *s, const char *dir)
 {
-    char path[4200], err[1024];
+    char path[4200];
+    ob_err err;
     snprintf(path, sizeof path, "%s/results.journal.csv", dir);
     FILE *jf = fopen(path, "r");
     if (jf || errno != ENOENT) {
@@ -158,9 +159,9 @@ static int shard_meta(shard_in *s, const char *dir)
         return -1;
     }
     snprintf(path, sizeof path, "%s/meta.json", dir);
-    if (ob_json_load(path, &s->meta, err, sizeof err) != 0 ||
-        ob_slurp(path, &s->meta_text, &s->meta_len, err, sizeof err) != 0) {
-        ob_error("merge: %s (not a finished shard?)", err);
+    if (ob_json_load(path, &s->meta, &err) != 0 ||
+        ob_slurp(path, &s->meta_text, &s->meta_len, &err) != 0) {
+        ob_error("merge: %s (not a finished shard?)", err.msg);
         return -1;
     }
     const ob_json_entry *sh = ob_json_get(&s->meta, "shard");
@@ -177,18 +178,22 @@ static int shard_meta(shard_in *s, const char *dir)
 /* Its results.csv, whole lines as run writes them. */
 static int shard_results(shard_in *s, const char *dir)
 {
-    char path[4200], err[1024], *hdr;
+    char path[4200], *hdr;
+    ob_err err;
     snprintf(path, sizeof path, "%s/results.csv", dir);
     ob_res_table t;
-    if (ob_res_load(path, &t, err, sizeof err) != 0) {
-        ob_error("merge: %s", err);
+    if (ob_res_load(path, &t, &err) != 0) {
+        ob_error("merge: %s", err.msg);
         return -1;
     }
     const int nrows = t.n;
     ob_res_free(&t);
-    if (ob_slurp(path, &s->res_text, &s->res_len, err, sizeof err) != 0 ||
-        split_lines(s->res_text, s->res_len, &hdr, &s->lines, &s->nlines) != 0) {
-        ob_error("merge: %s", err[0] ? err : "out of memory");
+    if (ob_slurp(path, &s->res_text, &s->res_len, &err) != 0) {
+        ob_error("merge: %s", err.msg);
+        return -1;
+    }
+    if (split_lines(s->res_text, s->res_len, &hdr, &s->lines, &s->nlines) != 0) {
+        ob_error("merge: out of memory");
         return -1;
     }
     if (!hdr || strcmp(hdr, ob_results_header()) != 0 || s->nlines != (size_t)nrows) {
@@ -202,12 +207,13 @@ static int shard_results(shard_in *s, const char *dir)
  * the row. */
 static int shard_index(shard_in *s, const char *dir)
 {
-    char path[4200], err[1024];
+    char path[4200];
+    ob_err err;
     snprintf(path, sizeof path, "%s/shard.csv", dir);
     char *hdr, **il;
     size_t ni;
-    if (ob_slurp(path, &s->idx_text, &s->idx_len, err, sizeof err) != 0) {
-        ob_error("merge: %s", err);
+    if (ob_slurp(path, &s->idx_text, &s->idx_len, &err) != 0) {
+        ob_error("merge: %s", err.msg);
         return -1;
     }
     if (split_lines(s->idx_text, s->idx_len, &hdr, &il, &ni) != 0 || !hdr || strcmp(hdr, "job,key") != 0 ||
@@ -255,13 +261,14 @@ static int shard_index(shard_in *s, const char *dir)
 /* Its samples.csv, when there is one (--reps). */
 static int shard_samples(shard_in *s, const char *dir)
 {
-    char path[4200], err[1024];
+    char path[4200];
+    ob_err err;
     char *hdr;
     snprintf(path, sizeof path, "%s/samples.csv", dir);
     FILE *probe = fopen(path, "r");
     if (probe) {
         fclose(probe);
-        if (ob_slurp(path, &s->smp_text, &s->smp_len, err, sizeof err) != 0 ||
+        if (ob_slurp(path, &s->smp_text, &s->smp_len, &err) != 0 ||
             split_lines(s->smp_text, s->smp_len, &hdr, &s->slines, &s->nslines) != 0 || !hdr ||
             strcmp(hdr, OB_SAMPLES_HEADER) != 0 || s->nslines != s->nlines * (size_t)s->reps) {
             ob_error("merge: %s: expected %d rows per job of results.csv", path, s->reps);

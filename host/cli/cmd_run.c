@@ -125,7 +125,7 @@ static void remove_stale(const char *dir)
 static int claim_dir(run_cmd *r)
 {
     const ob_run_opts *o = &r->o;
-    char err[8400];
+    ob_err err;
     struct stat st;
     int lrc = 0;
     const char *const inputs[] = {o->curves_file};
@@ -139,8 +139,8 @@ static int claim_dir(run_cmd *r)
         ob_error("--out: cannot create '%s': %s", o->out_dir, strerror(errno));
         return 1;
     }
-    if ((lrc = ob_lock_dir(o->out_dir, &r->lock_fd, err, sizeof err)) != 0) {
-        ob_error("%s", err);
+    if ((lrc = ob_lock_dir(o->out_dir, &r->lock_fd, &err)) != 0) {
+        ob_error("%s", err.msg);
         return lrc == -2 ? 2 : 1;
     }
     if (o->resume_dir)

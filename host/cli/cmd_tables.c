@@ -36,8 +36,7 @@ enum { NCUTS = sizeof sweep_cut / sizeof sweep_cut[0] };
 static int group_of(const ob_tab_spec *s) { return 2 * s->single_piece + s->inflections; }
 
 /* A curve or a piece of one (Zhao-Zhou's halves), owned by the plan. */
-static const ob_curve *find_curve(ob_tab_plan *pl, const ob_curveset *set, const ob_tab_spec *s, char *err,
-                                  size_t errlen)
+static const ob_curve *find_curve(ob_tab_plan *pl, const ob_curveset *set, const ob_tab_spec *s, ob_err *err)
 {
     int i = ob_curveset_find(set, s->curve);
     if (i < 0)
@@ -50,11 +49,11 @@ static const ob_curve *find_curve(ob_tab_plan *pl, const ob_curveset *set, const
             pl->piece_ab[k][0] == s->piece_a && pl->piece_ab[k][1] == s->piece_b)
             return &pl->pieces[k];
     if (base->nseg != 1) {
-        snprintf(err, errlen, "curve '%s': pieces are only defined for one-segment curves", base->id);
+        ob_fail(err, "curve '%s': pieces are only defined for one-segment curves", base->id);
         return NULL;
     }
     if (pl->npieces == OB_TAB_MAX_PIECES) {
-        snprintf(err, errlen, "more than %d curve pieces", OB_TAB_MAX_PIECES);
+        ob_fail(err, "more than %d curve pieces", OB_TAB_MAX_PIECES);
         return NULL;
     }
     ob_curve *c = &pl->pieces[pl->npieces];
@@ -66,7 +65,7 @@ static const ob_curve *find_curve(ob_tab_plan *pl, const ob_curveset *set, const
         free(c->d);
         c->seg = NULL;
         c->d = NULL;
-        snprintf(err, errlen, "out of memory");
+        ob_fail(err, "out of memory");
         return NULL;
     }
     snprintf(c->id, sizeof c->id, "%.40s[%.3f,%.3f]", base->id, s->piece_a, s->piece_b);
@@ -183,7 +182,7 @@ static int selected(const char *only, const char *source, const char *table)
 static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, const char *only,
                 unsigned protos)
 {
-    char err[512];
+    ob_err err;
     pl->rows = calloc((size_t)pub->n * OB_PROTO_COUNT, sizeof *pl->rows);
     if (!pl->rows) {
         ob_error("out of memory planning the tables");
@@ -198,18 +197,18 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
             r->cell = c;
             r->proto = (ob_proto)p;
             r->slot = -1;
-            err[0] = '\0';
-            if (ob_tab_resolve(c, (ob_proto)p, &r->spec, err, sizeof err)) {
-                ob_error("%s:%d: %s", pub->where, c->line, err);
+            err.msg[0] = '\0'; /* find_curve's NULL without a message: no such curve */
+            if (ob_tab_resolve(c, (ob_proto)p, &r->spec, &err)) {
+                ob_error("%s:%d: %s", pub->where, c->line, err.msg);
                 return -1;
             }
             if (!r->spec.method) {
                 r->fixed = "no-method";
                 continue;
             }
-            const ob_curve *curve = find_curve(pl, set, &r->spec, err, sizeof err);
-            if (!curve && err[0]) {
-                ob_error("%s:%d: %s", pub->where, c->line, err);
+            const ob_curve *curve = find_curve(pl, set, &r->spec, &err);
+            if (!curve && err.msg[0]) {
+                ob_error("%s:%d: %s", pub->where, c->line, err.msg);
                 return -1;
             }
             if (!curve || (isnan(c->d) && curve->nd == 0)) {
@@ -254,7 +253,7 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                     snprintf(cell.curve, sizeof cell.curve, "%.39s", pieces[k]);
                     snprintf(cell.method, sizeof cell.method, "%s", methods[m]);
                     ob_tab_spec s;
-                    if (ob_tab_resolve(&cell, p, &s, err, sizeof err) || !s.method)
+                    if (ob_tab_resolve(&cell, p, &s, &err) || !s.method)
                         continue;
                     if (v == 1)
                         s.metric = OB_METRIC_NORMAL;
@@ -262,7 +261,7 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                         s.set_name[s.nset] = "weighted";
                         s.set_value[s.nset++] = 0.0;
                     }
-                    const ob_curve *curve = find_curve(pl, set, &s, err, sizeof err);
+                    const ob_curve *curve = find_curve(pl, set, &s, &err);
                     if (!curve)
                         continue;
                     if (pl->nsweep == OB_TAB_MAX_SWEEP) {
@@ -426,7 +425,8 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     ob_tab_plan pl;
     ob_cl *cl = NULL;
     int status = 2;
-    char err[1024], where[4096];
+    char where[4096];
+    ob_err err;
     memset(&pl, 0, sizeof pl);
     memset(&o, 0, sizeof o);
     const char *only = NULL;
@@ -438,14 +438,14 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     }
     o.argc = full_argc;
     o.argv = full_argv;
-    if (ob_pub_load(&pub, err, sizeof err) != 0) {
-        ob_error("%s", err);
+    if (ob_pub_load(&pub, &err) != 0) {
+        ob_error("%s", err.msg);
         goto done;
     }
     if (check_table_names(only, &pub) != 0)
         goto done;
-    if (ob_load_default_curves(&set, where, sizeof where, err, sizeof err) != 0) {
-        ob_error("%s", err);
+    if (ob_load_default_curves(&set, where, sizeof where, &err) != 0) {
+        ob_error("%s", err.msg);
         goto done;
     }
     if (o.threads > 0)

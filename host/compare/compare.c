@@ -284,8 +284,7 @@ static int strict_reasons(const ob_cmp_opts *o, ob_cmp_result *r)
     return rc;
 }
 
-int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, char *err,
-                size_t errlen)
+int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     const ob_res_table *bt = &bs->res, *nt = &ns->res;
     const int maxrep = bt->maxrep > nt->maxrep ? bt->maxrep : nt->maxrep;
@@ -363,7 +362,7 @@ done:
     free(xb);
     free(xn);
     if (rc)
-        snprintf(err, errlen, "out of memory");
+        ob_fail(err, "out of memory");
     return rc;
 }
 

@@ -14,6 +14,7 @@
 
 #include "host/io/metajson.h"
 #include "host/io/results_csv.h"
+#include "methods/core/err.h"
 
 typedef struct {
     double err_rtol, err_atol;   /* max_err changes: beyond base*(1+rtol)+atol */
@@ -44,9 +45,9 @@ typedef struct {
 /* Purpose: load one side: arg is a results.csv file or a run directory
  *          (DIR/results.csv); meta.json and samples.csv are taken from the
  *          same directory when they exist.
- * Errors:  returns 0; -1 with the reason in err ("PATH: cannot open: ...",
+ * Errors:  returns 0; -1 with the reason in err->msg ("PATH: cannot open: ...",
  *          "FILE:LINE: ...").  *s is always safe for ob_cmp_side_free(). */
-int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, char *err, size_t errlen);
+int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, ob_err *err);
 
 void ob_cmp_side_free(ob_cmp_side *s);
 
@@ -105,16 +106,16 @@ typedef struct {
 /* Purpose: the comparability checks (meta.json keys, method parameters and
  *          versions, metric and split sets) and the timing context; fills
  *          r->incomparable, r->timing_diffs, r->notes, r->checked, r->timing.
- * Errors:  returns 0, or -1 with "out of memory" in err. */
+ * Errors:  returns 0, or -1 with "out of memory" in err->msg. */
 int ob_cmp_context(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
-                   char *err, size_t errlen);
+                   ob_err *err);
 
 /* Purpose: join the rows and judge them (after ob_cmp_context); fills the
  *          changes (regressions and improvements in BASE order, then new
  *          rows in NEW order), the counts and the per-method summary.
- * Errors:  returns 0, or -1 with "out of memory" in err. */
+ * Errors:  returns 0, or -1 with "out of memory" in err->msg. */
 int ob_cmp_rows(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
-                char *err, size_t errlen);
+                ob_err *err);
 
 /* Exit status of a finished comparison: 3 not comparable (or, with
  * --strict-timing, timings that could not be judged: r->strict), 1 a

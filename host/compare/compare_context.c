@@ -74,13 +74,13 @@ static void drop_samples(ob_res_table *t)
     }
 }
 
-int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, char *err, size_t errlen)
+int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, ob_err *err)
 {
     memset(s, 0, sizeof *s);
     s->label = label;
     struct stat st;
     if (stat(arg, &st) != 0) {
-        snprintf(err, errlen, "%s: cannot open: %s", arg, strerror(errno));
+        ob_fail(err, "%s: cannot open: %s", arg, strerror(errno));
         return -1;
     }
     char dir[4096];
@@ -104,20 +104,20 @@ int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, char *e
                snprintf(s->samples_path, sizeof s->samples_path, "%s/samples.csv", dir) >=
                    (int)sizeof s->samples_path;
     if (too_long) {
-        snprintf(err, errlen, "%.200s...: path too long", arg);
+        ob_fail(err, "%.200s...: path too long", arg);
         return -1;
     }
-    if (ob_res_load(s->results_path, &s->res, err, errlen))
+    if (ob_res_load(s->results_path, &s->res, err))
         return -1;
     if (access(s->meta_path, F_OK) == 0) {
-        if (ob_json_load(s->meta_path, &s->meta, err, errlen)) {
+        if (ob_json_load(s->meta_path, &s->meta, err)) {
             ob_cmp_side_free(s);
             return -1;
         }
         s->has_meta = 1;
     }
     if (access(s->samples_path, F_OK) == 0) {
-        if (ob_res_load_samples(&s->res, s->samples_path, err, errlen)) {
+        if (ob_res_load_samples(&s->res, s->samples_path, err)) {
             ob_cmp_side_free(s);
             return -1;
         }
@@ -219,8 +219,7 @@ static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *g
     return 0;
 }
 
-int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, char *err,
-                   size_t errlen)
+int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     static const char *const same[] = {"samples_per_segment", "max_depth", "max_segments", "inflection_split",
                                        "seed"};
@@ -268,7 +267,7 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
             }
     }
     if (rc) {
-        snprintf(err, errlen, "out of memory");
+        ob_fail(err, "out of memory");
         return -1;
     }
     return 0;

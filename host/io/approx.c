@@ -52,8 +52,7 @@ int ob_apiece_base(const ob_curve *c, const ob_apiece *p, ob_bez *base)
 
 /* Refits span sp of job j and appends its pieces; adds them to *segs.
  * Returns 0 or -1 (reason in err). */
-static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx *out, int *segs, char *err,
-                      size_t errlen)
+static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx *out, int *segs, ob_err *err)
 {
     ob_bez sub;
     ob_fit fit;
@@ -62,14 +61,14 @@ static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx 
     const ob_fit_args args = {j->d, j->tol, j->params};
     const ob_fit_status st = j->method->fit(&sub, &args, work, &fit, msg, sizeof msg);
     if (st != OB_FIT_OK || fit.n < 1 || fit.n > OB_MAX_PIECES) {
-        snprintf(err, errlen, "refitting the accepted piece [%.17g, %.17g] of segment %d failed (%s)", sp->a, sp->b,
-                 sp->seg, msg[0] ? msg : ob_fit_status_name(st));
+        ob_fail(err, "refitting the accepted piece [%.17g, %.17g] of segment %d failed (%s)", sp->a, sp->b,
+                sp->seg, msg[0] ? msg : ob_fit_status_name(st));
         return -1;
     }
     for (int k = 0; k < fit.n; k++) {
         ob_apiece *p = ob_approx_add(out);
         if (!p) {
-            snprintf(err, errlen, "out of memory");
+            ob_fail(err, "out of memory");
             return -1;
         }
         *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k]};
@@ -78,24 +77,24 @@ static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx 
     return 0;
 }
 
-int ob_approx_from_job(const ob_job *j, const ob_span_log *log, ob_approx *out, char *err, size_t errlen)
+int ob_approx_from_job(const ob_job *j, const ob_span_log *log, ob_approx *out, ob_err *err)
 {
     if (log->oom) {
-        snprintf(err, errlen, "the run could not log the job's pieces (out of memory)");
+        ob_fail(err, "the run could not log the job's pieces (out of memory)");
         return -1;
     }
     void *work = malloc(j->method->work_size ? j->method->work_size : 1);
     if (!work) {
-        snprintf(err, errlen, "out of memory");
+        ob_fail(err, "out of memory");
         return -1;
     }
     out->same_param = (j->method->caps & OB_CAP_SAME_PARAM) != 0;
     int segs = 0, rc = 0;
     for (int i = 0; i < log->n && rc == 0; i++)
-        rc = refit_span(j, &log->v[i], work, out, &segs, err, errlen);
+        rc = refit_span(j, &log->v[i], work, out, &segs, err);
     free(work);
     if (rc == 0 && segs != j->segments) {
-        snprintf(err, errlen, "refitting the accepted pieces gave %d segments, the run %d", segs, j->segments);
+        ob_fail(err, "refitting the accepted pieces gave %d segments, the run %d", segs, j->segments);
         rc = -1;
     }
     return rc;

@@ -19,6 +19,7 @@
 #include <stddef.h>
 
 #include "methods/driver/driver.h"
+#include "methods/core/err.h"
 
 typedef struct {
     int has_base;       /* 1: seg, a, b, t0, t1 are known */
@@ -58,8 +59,8 @@ int ob_apiece_base(const ob_curve *c, const ob_apiece *p, ob_bez *base);
  *          how draw gets them too, host/view/jobview.c), in curve order.
  * Inputs:  j: a job that ended ok or limit; log: its span log.
  * Outputs: *out (appended to; same_param from the method's capabilities).
- * Errors:  returns 0; -1 with a reason in err (a refit that fails or does not
+ * Errors:  returns 0; -1 with a reason in err->msg (a refit that fails or does not
  *          give the run's segment count; out of memory). */
-int ob_approx_from_job(const ob_job *j, const ob_span_log *log, ob_approx *out, char *err, size_t errlen);
+int ob_approx_from_job(const ob_job *j, const ob_span_log *log, ob_approx *out, ob_err *err);
 
 #endif

@@ -105,12 +105,12 @@ int ob_approx_parse_job(const char *s, ob_approx *out)
     return 1;
 }
 
-int ob_approx_check_piece(ob_apiece *p, int k, const char *name, char *err, size_t errlen)
+int ob_approx_check_piece(ob_apiece *p, int k, const char *name, ob_err *err)
 {
     ob_bez *b = &p->approx;
     if (b->deg < 1 || b->deg > OB_MAX_DEG) {
-        snprintf(err, errlen, "%s:%d: piece %d: degree %d (measure takes 1 to %d)", name, p->line, k, b->deg,
-                 OB_MAX_DEG);
+        ob_fail(err, "%s:%d: piece %d: degree %d (measure takes 1 to %d)", name, p->line, k, b->deg,
+                OB_MAX_DEG);
         return -1;
     }
     b->rational = 0;
@@ -118,23 +118,23 @@ int ob_approx_check_piece(ob_apiece *p, int k, const char *name, char *err, size
         /* weights of any sign: rational fits may have negative interior
          * weights (zhao-rational does), and the run measured them */
         if (!isfinite(b->h[i][0]) || !isfinite(b->h[i][1]) || !isfinite(b->h[i][2])) {
-            snprintf(err, errlen, "%s:%d: piece %d: control point %d is not finite", name, p->line, k, i);
+            ob_fail(err, "%s:%d: piece %d: control point %d is not finite", name, p->line, k, i);
             return -1;
         }
         b->rational |= b->h[i][2] != 1.0;
     }
     if (p->has_base && !(p->a < p->b && p->t0 < p->t1)) {
-        snprintf(err, errlen, "%s:%d: piece %d: its base piece (span %.17g %.17g, fit %.17g %.17g) is empty", name,
-                 p->line, k, p->a, p->b, p->t0, p->t1);
+        ob_fail(err, "%s:%d: piece %d: its base piece (span %.17g %.17g, fit %.17g %.17g) is empty", name,
+                p->line, k, p->a, p->b, p->t0, p->t1);
         return -1;
     }
     return 0;
 }
 
-int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen)
+int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err)
 {
     ob_curveset set = {0};
-    if (ob_curves_parse(text, len, name, &set, err, errlen) != 0)
+    if (ob_curves_parse(text, len, name, &set, err) != 0)
         return -1;
     int rc = 0, linked = 0;
     for (int c = 0; c < set.n && rc == 0; c++) {
@@ -142,7 +142,7 @@ int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_app
         for (int s = 0; s < cv->nseg && rc == 0; s++) {
             ob_apiece *p = ob_approx_add(out);
             if (!p) {
-                snprintf(err, errlen, "%s: out of memory", name);
+                ob_fail(err, "%s: out of memory", name);
                 rc = -1;
                 break;
             }
@@ -154,7 +154,7 @@ int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_app
                 ob_approx_parse_job(cv->source, out);
             if (cv->nseg == 1 && ob_approx_parse_link(cv->source, p))
                 linked += strstr(cv->source, "same_param yes") != NULL;
-            rc = ob_approx_check_piece(p, out->n - 1, name, err, errlen);
+            rc = ob_approx_check_piece(p, out->n - 1, name, err);
         }
     }
     out->same_param = rc == 0 && out->n > 0 && linked == out->n;
@@ -162,21 +162,21 @@ int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_app
     return rc;
 }
 
-int ob_approx_read(const char *path, ob_approx *out, char *err, size_t errlen)
+int ob_approx_read(const char *path, ob_approx *out, ob_err *err)
 {
     char *text = NULL;
     size_t len = 0;
-    if (ob_slurp(path, &text, &len, err, errlen) != 0)
+    if (ob_slurp(path, &text, &len, err) != 0)
         return -1;
     int rc;
     switch (ob_approx_format(path, text, len)) {
-    case OB_AFMT_JSON: rc = ob_approx_read_json(text, len, path, out, err, errlen); break;
-    case OB_AFMT_DXF: rc = ob_approx_read_dxf(text, len, path, out, err, errlen); break;
-    default: rc = ob_approx_read_curves(text, len, path, out, err, errlen); break;
+    case OB_AFMT_JSON: rc = ob_approx_read_json(text, len, path, out, err); break;
+    case OB_AFMT_DXF: rc = ob_approx_read_dxf(text, len, path, out, err); break;
+    default: rc = ob_approx_read_curves(text, len, path, out, err); break;
     }
     free(text);
     if (rc == 0 && out->n == 0) {
-        snprintf(err, errlen, "%s: no pieces (no Bézier segments or SPLINE entities) in the file", path);
+        ob_fail(err, "%s: no pieces (no Bézier segments or SPLINE entities) in the file", path);
         rc = -1;
     }
     return rc;

@@ -14,6 +14,7 @@
 #include <stddef.h>
 
 #include "host/io/approx.h"
+#include "methods/core/err.h"
 
 typedef enum { OB_AFMT_CURVES = 0, OB_AFMT_JSON, OB_AFMT_DXF } ob_afmt;
 
@@ -28,13 +29,12 @@ ob_afmt ob_approx_format(const char *path, const char *text, size_t len);
  *          that is not a Bézier segment offbench can hold (degree 1 to
  *          OB_MAX_DEG, finite coordinates; weights of either sign, as
  *          rational fits make them), no pieces. */
-int ob_approx_read(const char *path, ob_approx *out, char *err, size_t errlen);
+int ob_approx_read(const char *path, ob_approx *out, ob_err *err);
 
 /* The readers behind it, on a file's text (name for messages). */
-int ob_approx_read_json(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen);
-int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen);
-int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_approx *out, char *err,
-                          size_t errlen);
+int ob_approx_read_json(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
+int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
+int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
 
 /* Parses the link "base segment S span A B fit T0 T1" (the text of the
  * exports' .curves source line and DXF comment, found anywhere in s) into
@@ -49,7 +49,7 @@ int ob_approx_parse_job(const char *s, ob_approx *out);
 
 /* Checks piece p read at line (finite homogeneous points, degree 1 ..
  * OB_MAX_DEG) and sets its rational flag; 0, or -1 with
- * "NAME:LINE: piece K: reason" in err. */
-int ob_approx_check_piece(ob_apiece *p, int k, const char *name, char *err, size_t errlen);
+ * "NAME:LINE: piece K: reason" in err->msg. */
+int ob_approx_check_piece(ob_apiece *p, int k, const char *name, ob_err *err);
 
 #endif

@@ -29,12 +29,12 @@ typedef struct {
 } dxfrd;
 
 /* Next (code, value) pair; 1 at the end, 0, or -1 with err. */
-static int next_pair(dxfrd *r, char *err, size_t errlen)
+static int next_pair(dxfrd *r, ob_err *err)
 {
     char buf[2][512];
     for (int k = 0; k < 2; k++) {
         if (r->s >= r->end)
-            return k == 0 ? 1 : (snprintf(err, errlen, "%s:%d: group code without a value", r->name, r->line), -1);
+            return k == 0 ? 1 : (ob_fail(err, "%s:%d: group code without a value", r->name, r->line), -1);
         const char *nl = memchr(r->s, '\n', (size_t)(r->end - r->s));
         size_t n = nl ? (size_t)(nl - r->s) : (size_t)(r->end - r->s);
         const char *a = r->s;
@@ -52,8 +52,8 @@ static int next_pair(dxfrd *r, char *err, size_t errlen)
     char *e;
     const long c = strtol(buf[0], &e, 10);
     if (!buf[0][0] || *e || c < 0 || c > 1071) {
-        snprintf(err, errlen, "%s:%d: expected a DXF group code (a whole number), got '%.40s'", r->name, r->line - 1,
-                 buf[0]);
+        ob_fail(err, "%s:%d: expected a DXF group code (a whole number), got '%.40s'", r->name, r->line - 1,
+                buf[0]);
         return -1;
     }
     r->code = (int)c;
@@ -67,29 +67,29 @@ typedef struct {
     double *knots, *w, (*pts)[3];
 } spline;
 
-static int num(dxfrd *r, double *x, char *err, size_t errlen)
+static int num(dxfrd *r, double *x, ob_err *err)
 {
     char *e;
     *x = strtod(r->val, &e);
     if (!r->val[0] || *e) {
-        snprintf(err, errlen, "%s:%d: group %d: '%.40s' is not a number", r->name, r->line, r->code, r->val);
+        ob_fail(err, "%s:%d: group %d: '%.40s' is not a number", r->name, r->line, r->code, r->val);
         return -1;
     }
     return 0;
 }
 
 /* One group of a SPLINE into sp. */
-static int spline_group(dxfrd *r, spline *sp, char *err, size_t errlen)
+static int spline_group(dxfrd *r, spline *sp, ob_err *err)
 {
     double x = 0.0;
     if (r->code == 71 || r->code == 70 || r->code == 72 || r->code == 73 || r->code == 74 || r->code == 40 ||
         r->code == 41 || r->code == 10 || r->code == 20)
-        if (num(r, &x, err, errlen))
+        if (num(r, &x, err))
             return -1;
     const int cap = sp->nc > 0 ? sp->nc : 0, kcap = sp->nk > 0 ? sp->nk : 0;
     if (r->code >= 70 && r->code <= 74 && !(x >= 0 && x <= DXF_MAX_CTRL && x == (int)x)) {
-        snprintf(err, errlen, "%s:%d: group %d: '%.40s' is not a whole number from 0 to %d", r->name, r->line,
-                 r->code, r->val, DXF_MAX_CTRL);
+        ob_fail(err, "%s:%d: group %d: '%.40s' is not a whole number from 0 to %d", r->name, r->line,
+                r->code, r->val, DXF_MAX_CTRL);
         return -1;
     }
     switch (r->code) {
@@ -122,7 +122,7 @@ static int spline_group(dxfrd *r, spline *sp, char *err, size_t errlen)
         break;
     }
     if ((r->code == 72 && sp->knots) || (r->code == 73 && sp->pts)) {
-        snprintf(err, errlen, "%s:%d: group %d given twice in one SPLINE", r->name, r->line, r->code);
+        ob_fail(err, "%s:%d: group %d given twice in one SPLINE", r->name, r->line, r->code);
         return -1;
     }
     if (r->code == 72 && !(sp->knots = calloc((size_t)sp->nk + 1, sizeof *sp->knots)))
@@ -132,11 +132,11 @@ static int spline_group(dxfrd *r, spline *sp, char *err, size_t errlen)
         goto oom;
     return 0;
 count:
-    snprintf(err, errlen, "%s:%d: group %d: more values than the SPLINE's counts (72 knots, 73 control points) "
-             "announce, or a value before its count", r->name, r->line, r->code);
+    ob_fail(err, "%s:%d: group %d: more values than the SPLINE's counts (72 knots, 73 control points) "
+            "announce, or a value before its count", r->name, r->line, r->code);
     return -1;
 oom:
-    snprintf(err, errlen, "%s: out of memory", r->name);
+    ob_fail(err, "%s: out of memory", r->name);
     return -1;
 }
 
@@ -165,33 +165,32 @@ static int one_bezier(const spline *sp, ob_bez **segs, int *nseg)
 }
 
 /* Turns a complete SPLINE into pieces. */
-static int spline_pieces(const dxfrd *r, spline *sp, const ob_apiece *link, ob_approx *out, char *err,
-                         size_t errlen)
+static int spline_pieces(const dxfrd *r, spline *sp, const ob_apiece *link, ob_approx *out, ob_err *err)
 {
     const int L = sp->line;
     if (sp->npts == 0 && sp->nfit > 0) {
-        snprintf(err, errlen, "%s:%d: SPLINE given by fit points only: measure needs its control points", r->name, L);
+        ob_fail(err, "%s:%d: SPLINE given by fit points only: measure needs its control points", r->name, L);
         return -1;
     }
     if (sp->deg < 1 || sp->deg > OB_MAX_IN_DEG || sp->npts != sp->nc || sp->nknots != sp->nk ||
         sp->nk != sp->nc + sp->deg + 1 || (sp->nw != 0 && sp->nw != sp->nc)) {
-        snprintf(err, errlen, "%s:%d: SPLINE of degree %d (1 to %d) with %d of %d control points, %d of %d knots "
-                 "(needs control points + degree + 1) and %d weights (none or one per control point)",
-                 r->name, L, sp->deg, OB_MAX_IN_DEG, sp->npts, sp->nc, sp->nknots, sp->nk, sp->nw);
+        ob_fail(err, "%s:%d: SPLINE of degree %d (1 to %d) with %d of %d control points, %d of %d knots "
+                "(needs control points + degree + 1) and %d weights (none or one per control point)",
+                r->name, L, sp->deg, OB_MAX_IN_DEG, sp->npts, sp->nc, sp->nknots, sp->nk, sp->nw);
         return -1;
     }
     for (int i = 0; i < sp->nw; i++)
         sp->pts[i][2] = sp->w[i];
     ob_bez *segs = NULL;
     int nseg = 0;
-    char msg[256];
+    ob_err why;
     if (one_bezier(sp, &segs, &nseg) != 0) {
-        snprintf(err, errlen, "%s: out of memory", r->name);
+        ob_fail(err, "%s: out of memory", r->name);
         return -1;
     }
-    if (!segs && ob_bspline_to_bezier(sp->deg, sp->nc, sp->knots, (const double(*)[3])sp->pts, &segs, &nseg, msg,
-                                      sizeof msg) != 0) {
-        snprintf(err, errlen, "%s:%d: SPLINE: %s", r->name, L, msg);
+    if (!segs && ob_bspline_to_bezier(sp->deg, sp->nc, sp->knots, (const double(*)[3])sp->pts, &segs, &nseg,
+                                      &why) != 0) {
+        ob_fail(err, "%s:%d: SPLINE: %s", r->name, L, why.msg);
         free(segs);
         return -1;
     }
@@ -199,7 +198,7 @@ static int spline_pieces(const dxfrd *r, spline *sp, const ob_apiece *link, ob_a
     for (int k = 0; k < nseg && rc == 0; k++) {
         ob_apiece *p = ob_approx_add(out);
         if (!p) {
-            snprintf(err, errlen, "%s: out of memory", r->name);
+            ob_fail(err, "%s: out of memory", r->name);
             rc = -1;
             break;
         }
@@ -208,7 +207,7 @@ static int spline_pieces(const dxfrd *r, spline *sp, const ob_apiece *link, ob_a
         p->line = L;
         p->fit_first = k == 0;
         p->approx = segs[k];
-        rc = ob_approx_check_piece(p, out->n - 1, r->name, err, errlen);
+        rc = ob_approx_check_piece(p, out->n - 1, r->name, err);
     }
     free(segs);
     return rc;
@@ -222,7 +221,7 @@ static void spline_free(spline *sp)
     memset(sp, 0, sizeof *sp);
 }
 
-int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen)
+int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err)
 {
     dxfrd r = {text, text + len, name, 0, 0, ""};
     spline sp = {0};
@@ -230,14 +229,14 @@ int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx
     int in = 0, rc = 0, eof = 0, link_sp = 0, all_sp = 1;
     int sect = 0;  /* 0 none seen (bare entities), 1 SECTION opened, 2 ENTITIES, 3 another, 4 after ENDSEC */
     while (rc == 0 && !eof) {
-        const int st = next_pair(&r, err, errlen);
+        const int st = next_pair(&r, err);
         if (st < 0) {
             rc = -1;
             break;
         }
         eof = st == 1 || (r.code == 0 && strcmp(r.val, "EOF") == 0);
         if (in && (eof || r.code == 0 || r.code == 999)) {  /* the SPLINE ends at the next entity or comment */
-            rc = spline_pieces(&r, &sp, &link, out, err, errlen);
+            rc = spline_pieces(&r, &sp, &link, out, err);
             all_sp &= link.has_base && link_sp;
             spline_free(&sp);
             memset(&link, 0, sizeof link);
@@ -260,7 +259,7 @@ int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx
             if (!in)  /* a link belongs to the SPLINE right after it */
                 memset(&link, 0, sizeof link);
         } else if (in) {
-            rc = spline_group(&r, &sp, err, errlen);
+            rc = spline_group(&r, &sp, err);
         }
     }
     spline_free(&sp);

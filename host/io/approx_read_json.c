@@ -75,7 +75,7 @@ static int get_num(const ob_json_flat *f, const char *key, double *x)
 }
 
 /* The control points of one piece object (flattened into f). */
-static int piece_points(const ob_json_flat *f, ob_apiece *p, int k, const char *name, char *err, size_t errlen)
+static int piece_points(const ob_json_flat *f, ob_apiece *p, int k, const char *name, ob_err *err)
 {
     ob_bez *b = &p->approx;
     const int np = b->deg + 1;
@@ -91,58 +91,57 @@ static int piece_points(const ob_json_flat *f, ob_apiece *p, int k, const char *
         return 0;
     }
     if (!pt || pt->type != OB_JSON_ARRAY || num_array(pt->value, 2, v, 2 * np) != 2 * np) {
-        snprintf(err, errlen, "%s:%d: piece %d: \"points\" must be %d [x, y] pairs (degree %d)", name, p->line, k,
-                 np, b->deg);
+        ob_fail(err, "%s:%d: piece %d: \"points\" must be %d [x, y] pairs (degree %d)", name, p->line, k,
+                np, b->deg);
         return -1;
     }
     double wv[OB_MAX_DEG + 1];
     for (int i = 0; i < np; i++)
         wv[i] = 1.0;
     if (w && (w->type != OB_JSON_ARRAY || num_array(w->value, 0, wv, np) != np)) {
-        snprintf(err, errlen, "%s:%d: piece %d: \"weights\" must be %d numbers", name, w->line, k, np);
+        ob_fail(err, "%s:%d: piece %d: \"weights\" must be %d numbers", name, w->line, k, np);
         return -1;
     }
     for (int i = 0; i < np; i++) {
         if (!(wv[i] != 0.0)) {
-            snprintf(err, errlen, "%s:%d: piece %d: weight %d is 0 (give \"homogeneous\" for a control point at "
-                     "infinity)", name, w->line, k, i);
+            ob_fail(err, "%s:%d: piece %d: weight %d is 0 (give \"homogeneous\" for a control point at "
+                    "infinity)", name, w->line, k, i);
             return -1;
         }
         ob_bez_set(b, i, v[2 * i], v[2 * i + 1], wv[i]);
     }
     return 0;
 bad_h:
-    snprintf(err, errlen, "%s:%d: piece %d: \"homogeneous\" must be %d [w x, w y, w] triples (degree %d)", name,
-             h->line, k, np, b->deg);
+    ob_fail(err, "%s:%d: piece %d: \"homogeneous\" must be %d [w x, w y, w] triples (degree %d)", name,
+            h->line, k, np, b->deg);
     return -1;
 }
 
 /* One element of "pieces" (object text elem, starting at line). */
-static int read_piece(const char *elem, size_t len, int line, int k, const char *name, ob_approx *out, char *err,
-                      size_t errlen)
+static int read_piece(const char *elem, size_t len, int line, int k, const char *name, ob_approx *out, ob_err *err)
 {
     ob_json_flat f = {0};
-    char e2[512];
-    if (ob_json_flatten(elem, len, "", &f, e2, sizeof e2) != 0) {
-        const char *reason = strchr(e2 + 1, ':');
-        snprintf(err, errlen, "%s:%d: piece %d: %s", name, line + atoi(e2 + 1) - 1, k, reason ? reason + 2 : e2);
+    ob_err e2;
+    if (ob_json_flatten(elem, len, "", &f, &e2) != 0) {
+        const char *reason = strchr(e2.msg + 1, ':');
+        ob_fail(err, "%s:%d: piece %d: %s", name, line + atoi(e2.msg + 1) - 1, k, reason ? reason + 2 : e2.msg);
         return -1;
     }
     ob_apiece *p = ob_approx_add(out);
     int rc = p ? 0 : -1;
     double deg = 0, seg = 0, ab[2], tt[2];
     if (!p)
-        snprintf(err, errlen, "%s: out of memory", name);
+        ob_fail(err, "%s: out of memory", name);
     else {
         p->line = line;
         p->fit_first = 1;
         if (get_num(&f, "degree", &deg) != 0 || !(fabs(deg) < 1e6) || deg != (int)deg) {
-            snprintf(err, errlen, "%s:%d: piece %d: \"degree\" missing or not a whole number", name, line, k);
+            ob_fail(err, "%s:%d: piece %d: \"degree\" missing or not a whole number", name, line, k);
             rc = -1;
         } else {
             p->approx.deg = (int)deg;
-            rc = deg < 1 || deg > OB_MAX_DEG ? ob_approx_check_piece(p, k, name, err, errlen)
-                                             : piece_points(&f, p, k, name, err, errlen);
+            rc = deg < 1 || deg > OB_MAX_DEG ? ob_approx_check_piece(p, k, name, err)
+                                             : piece_points(&f, p, k, name, err);
         }
     }
     if (rc == 0) {
@@ -151,8 +150,8 @@ static int read_piece(const char *elem, size_t len, int line, int k, const char 
         if (has || sp || t) {
             if (!has || !sp || !t || num_array(sp->value, 0, ab, 2) != 2 || num_array(t->value, 0, tt, 2) != 2 ||
                 !(seg >= 0 && seg < 1e9) || seg != (int)seg) {
-                snprintf(err, errlen, "%s:%d: piece %d: the base link needs \"seg\" (a whole number), \"span\" "
-                         "[a, b] and \"t\" [t0, t1] together", name, line, k);
+                ob_fail(err, "%s:%d: piece %d: the base link needs \"seg\" (a whole number), \"span\" "
+                        "[a, b] and \"t\" [t0, t1] together", name, line, k);
                 rc = -1;
             } else {
                 *p = (ob_apiece){1, (int)seg, ab[0], ab[1], tt[0], tt[1], 1, line, p->approx};
@@ -160,13 +159,13 @@ static int read_piece(const char *elem, size_t len, int line, int k, const char 
         }
     }
     if (rc == 0)
-        rc = ob_approx_check_piece(p, k, name, err, errlen);
+        rc = ob_approx_check_piece(p, k, name, err);
     ob_json_free(&f);
     return rc;
 }
 
 /* Walks the validated array text arr (at line) element by element. */
-static int read_pieces(const char *arr, int line, const char *name, ob_approx *out, char *err, size_t errlen)
+static int read_pieces(const char *arr, int line, const char *name, ob_approx *out, ob_err *err)
 {
     const char *p = arr + 1;
     int k = 0;
@@ -176,7 +175,7 @@ static int read_pieces(const char *arr, int line, const char *name, ob_approx *o
         if (*p == ']' || !*p)
             break;
         if (*p != '{') {
-            snprintf(err, errlen, "%s:%d: piece %d: not an object", name, line, k);
+            ob_fail(err, "%s:%d: piece %d: not an object", name, line, k);
             return -1;
         }
         const char *s = p;
@@ -197,7 +196,7 @@ static int read_pieces(const char *arr, int line, const char *name, ob_approx *o
                 break;
             }
         }
-        if (read_piece(s, (size_t)(p - s), l0, k++, name, out, err, errlen) != 0)
+        if (read_piece(s, (size_t)(p - s), l0, k++, name, out, err) != 0)
             return -1;
     }
     return 0;
@@ -215,24 +214,24 @@ static void job_of(const ob_json_flat *f, ob_approx *out)
     }
 }
 
-int ob_approx_read_json(const char *text, size_t len, const char *name, ob_approx *out, char *err, size_t errlen)
+int ob_approx_read_json(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err)
 {
     ob_json_flat f = {0};
-    if (ob_json_flatten(text, len, name, &f, err, errlen) != 0)
+    if (ob_json_flatten(text, len, name, &f, err) != 0)
         return -1;
     int rc = 0;
     const ob_json_entry *fmt = ob_json_get(&f, "format"), *pc = ob_json_get(&f, "pieces"),
                         *sp = ob_json_get(&f, "same_param");
     if (fmt && (fmt->type != OB_JSON_STRING || strcmp(fmt->value, "offbench-approximation") != 0)) {
-        snprintf(err, errlen, "%s:%d: \"format\" is \"%.60s\", not \"offbench-approximation\"", name, fmt->line,
-                 fmt->value);
+        ob_fail(err, "%s:%d: \"format\" is \"%.60s\", not \"offbench-approximation\"", name, fmt->line,
+                fmt->value);
         rc = -1;
     } else if (!pc || pc->type != OB_JSON_ARRAY) {
-        snprintf(err, errlen, "%s:%d: no \"pieces\" array (a list of {\"degree\": N, \"points\": [[x, y], ...]})",
-                 name, pc ? pc->line : 1);
+        ob_fail(err, "%s:%d: no \"pieces\" array (a list of {\"degree\": N, \"points\": [[x, y], ...]})",
+                name, pc ? pc->line : 1);
         rc = -1;
     } else {
-        rc = read_pieces(pc->value, pc->line, name, out, err, errlen);
+        rc = read_pieces(pc->value, pc->line, name, out, err);
         out->same_param = rc == 0 && sp && sp->type == OB_JSON_BOOL && strcmp(sp->value, "true") == 0;
         job_of(&f, out);
     }

@@ -79,8 +79,7 @@ typedef struct {
 
 typedef struct {
     const char *name;
-    char *err;
-    size_t errlen;
+    ob_err *err;
     int line;                 /* current line */
     const ob_curveset *set;
     ob_curve *v;              /* curves parsed so far (not yet in set) */
@@ -89,19 +88,15 @@ typedef struct {
     double vals[LINE_MAX_BYTES / 2 + 1]; /* numbers of the current line */
 } parser;
 
-/* Writes "NAME:LINE: message" into the error buffer; returns -1. */
+/* Writes "NAME:LINE: message" into the error carrier; returns -1. */
 static int perr(parser *P, int line, const char *fmt, ...)
 {
-    if (P->err && P->errlen) {
-        int k = snprintf(P->err, P->errlen, "%s:%d: ", P->name, line);
-        if (k >= 0 && (size_t)k < P->errlen) {
-            va_list ap;
-            va_start(ap, fmt);
-            vsnprintf(P->err + k, P->errlen - (size_t)k, fmt, ap);
-            va_end(ap);
-        }
-    }
-    return -1;
+    char buf[sizeof P->err->msg];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    return ob_fail(P->err, "%s:%d: %s", P->name, line, buf);
 }
 
 static void block_clear(block *b)
@@ -459,11 +454,11 @@ static int block_segments(parser *P, ob_curve *c, double M)
             }
         }
     } else {
-        char msg[200];
+        ob_err why;
         int rc = ob_bspline_to_bezier(b->deg, npts, b->knots.v, (const double(*)[3])pt,
-                                      &c->seg, &c->nseg, msg, sizeof msg);
+                                      &c->seg, &c->nseg, &why);
         if (rc == -1) /* not expected after the checks above */
-            return perr(P, L, "%s", msg);
+            return perr(P, L, "%s", why.msg);
         /* each segment is measured on its own: it must span enough too */
         for (int k = 0; c->seg && k < c->nseg; k++) {
             const ob_bez *sg = &c->seg[k];
@@ -602,19 +597,13 @@ static int parse_all(parser *P, const char *text, size_t len)
 }
 
 int ob_curves_parse(const char *text, size_t len, const char *name,
-                    ob_curveset *set, char *err, size_t errlen)
+                    ob_curveset *set, ob_err *err)
 {
-    if (err && errlen)
-        err[0] = '\0';
     parser *P = calloc(1, sizeof *P);
-    if (!P) {
-        if (err && errlen)
-            snprintf(err, errlen, "%s:0: out of memory", name ? name : "<input>");
-        return -1;
-    }
+    if (!P)
+        return ob_fail(err, "%s:0: out of memory", name ? name : "<input>");
     P->name = name ? name : "<input>";
     P->err = err;
-    P->errlen = errlen;
     P->set = set;
     int rc = -1;
     if (!set)
@@ -652,34 +641,30 @@ int ob_curves_parse(const char *text, size_t len, const char *name,
 }
 
 /* "PATH: message" for errors that are not about a line; returns -1. */
-static int ferr(char *err, size_t errlen, const char *path, const char *fmt, ...)
+static int ferr(ob_err *err, const char *path, const char *fmt, ...)
 {
-    if (err && errlen) {
-        int k = snprintf(err, errlen, "%s: ", path);
-        if (k >= 0 && (size_t)k < errlen) {
-            va_list ap;
-            va_start(ap, fmt);
-            vsnprintf(err + k, errlen - (size_t)k, fmt, ap);
-            va_end(ap);
-        }
-    }
-    return -1;
+    char buf[sizeof err->msg];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    return ob_fail(err, "%s: %s", path, buf);
 }
 
-int ob_curves_load_file(const char *path, ob_curveset *set, char *err, size_t errlen)
+int ob_curves_load_file(const char *path, ob_curveset *set, ob_err *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
-        return ferr(err, errlen, path, "cannot open: %s", strerror(errno));
+        return ferr(err, path, "cannot open: %s", strerror(errno));
     struct stat st;
     if (fstat(fileno(f), &st) == 0) {
         if (S_ISDIR(st.st_mode)) {
             fclose(f);
-            return ferr(err, errlen, path, "is a directory");
+            return ferr(err, path, "is a directory");
         }
         if (S_ISREG(st.st_mode) && (unsigned long long)st.st_size > FILE_LIMIT) {
             fclose(f);
-            return ferr(err, errlen, path, "file too large (%lld bytes; the limit is 64 MiB)",
+            return ferr(err, path, "file too large (%lld bytes; the limit is 64 MiB)",
                         (long long)st.st_size);
         }
     }
@@ -692,7 +677,7 @@ int ob_curves_load_file(const char *path, ob_curveset *set, char *err, size_t er
             if (cap > FILE_LIMIT) {
                 free(buf);
                 fclose(f);
-                return ferr(err, errlen, path, "file too large (the limit is 64 MiB)");
+                return ferr(err, path, "file too large (the limit is 64 MiB)");
             }
             cap = cap ? 2 * cap : 65536;
             if (cap > FILE_LIMIT + 1)
@@ -701,7 +686,7 @@ int ob_curves_load_file(const char *path, ob_curveset *set, char *err, size_t er
             if (!nb) {
                 free(buf);
                 fclose(f);
-                return ferr(err, errlen, path, "out of memory");
+                return ferr(err, path, "out of memory");
             }
             buf = nb;
         }
@@ -715,13 +700,13 @@ int ob_curves_load_file(const char *path, ob_curveset *set, char *err, size_t er
     fclose(f);
     if (bad) {
         free(buf);
-        return ferr(err, errlen, path, "read error: %s", strerror(e));
+        return ferr(err, path, "read error: %s", strerror(e));
     }
     if (n > FILE_LIMIT) {
         free(buf);
-        return ferr(err, errlen, path, "file too large (the limit is 64 MiB)");
+        return ferr(err, path, "file too large (the limit is 64 MiB)");
     }
-    int rc = ob_curves_parse(buf, n, path, set, err, errlen);
+    int rc = ob_curves_parse(buf, n, path, set, err);
     free(buf);
     return rc;
 }
@@ -731,11 +716,11 @@ static int cmp_names(const void *a, const void *b)
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
-int ob_curves_load_dir(const char *dir, ob_curveset *set, char *err, size_t errlen)
+int ob_curves_load_dir(const char *dir, ob_curveset *set, ob_err *err)
 {
     DIR *d = opendir(dir);
     if (!d)
-        return ferr(err, errlen, dir, "cannot open directory: %s", strerror(errno));
+        return ferr(err, dir, "cannot open directory: %s", strerror(errno));
     char **names = NULL;
     size_t n = 0, cap = 0;
     int rc = 0;
@@ -746,18 +731,18 @@ int ob_curves_load_dir(const char *dir, ob_curveset *set, char *err, size_t errl
         if (de->d_name[0] == '.' || k <= 7 || strcmp(de->d_name + k - 7, ".curves"))
             continue;
         if (ob_grow(&names, &cap, n, sizeof *names, 16)) {
-            rc = ferr(err, errlen, dir, "out of memory");
+            rc = ferr(err, dir, "out of memory");
             break;
         }
         if (!(names[n] = strdup(de->d_name))) {
-            rc = ferr(err, errlen, dir, "out of memory");
+            rc = ferr(err, dir, "out of memory");
             break;
         }
         n++;
         errno = 0;
     }
     if (!rc && errno)
-        rc = ferr(err, errlen, dir, "cannot read directory: %s", strerror(errno));
+        rc = ferr(err, dir, "cannot read directory: %s", strerror(errno));
     closedir(d);
     if (names)
         qsort(names, n, sizeof *names, cmp_names);
@@ -770,11 +755,11 @@ int ob_curves_load_dir(const char *dir, ob_curveset *set, char *err, size_t errl
         size_t len = dl + 1 + strlen(names[i]) + 1;
         char *path = malloc(len);
         if (!path) {
-            rc = ferr(err, errlen, dir, "out of memory");
+            rc = ferr(err, dir, "out of memory");
             break;
         }
         snprintf(path, len, "%s%s%s", dir, slash ? "" : "/", names[i]);
-        rc = ob_curves_load_file(path, set, err, errlen);
+        rc = ob_curves_load_file(path, set, err);
         free(path);
     }
     if (rc && set) {

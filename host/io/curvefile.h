@@ -21,6 +21,7 @@
 
 #include <stddef.h>
 #include "methods/core/curve.h"
+#include "methods/core/err.h"
 
 typedef struct {
     ob_curve *v;
@@ -37,14 +38,14 @@ void ob_curveset_free(ob_curveset *s);
  *          against curves already in *set are errors.  Never crashes on any
  *          input bytes. */
 int ob_curves_parse(const char *text, size_t len, const char *name,
-                    ob_curveset *set, char *err, size_t errlen);
+                    ob_curveset *set, ob_err *err);
 
 /* Same, reading the file at path (messages name the path). */
-int ob_curves_load_file(const char *path, ob_curveset *set, char *err, size_t errlen);
+int ob_curves_load_file(const char *path, ob_curveset *set, ob_err *err);
 
 /* Purpose: load every `*.curves` file in directory dir, in name order.
  * Errors:  -1 with message as above; -1 with "DIR: ..." if unreadable. */
-int ob_curves_load_dir(const char *dir, ob_curveset *set, char *err, size_t errlen);
+int ob_curves_load_dir(const char *dir, ob_curveset *set, ob_err *err);
 
 /* Index of the curve with this id, or -1. */
 int ob_curveset_find(const ob_curveset *set, const char *id);

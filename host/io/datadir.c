@@ -21,17 +21,17 @@ static int is_dir(const char *p)
     return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
-int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, char *err, size_t errlen)
+int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, ob_err *err)
 {
     char dir[4096];
     const char *env = getenv("OFFBENCH_DATA");
     if (env && *env) {
         snprintf(where, wlen, "%s", env);
-        return ob_curves_load_dir(env, set, err, errlen);
+        return ob_curves_load_dir(env, set, err);
     }
     if (is_dir("datasets")) {
         snprintf(where, wlen, "datasets");
-        return ob_curves_load_dir("datasets", set, err, errlen);
+        return ob_curves_load_dir("datasets", set, err);
     }
     ssize_t n = readlink("/proc/self/exe", dir, sizeof dir - 16);
     if (n > 0) {
@@ -41,14 +41,14 @@ int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, char *err
             strcpy(slash + 1, "datasets");
             if (is_dir(dir)) {
                 snprintf(where, wlen, "%s", dir);
-                return ob_curves_load_dir(dir, set, err, errlen);
+                return ob_curves_load_dir(dir, set, err);
             }
         }
     }
     snprintf(where, wlen, "embedded copy of datasets/");
     for (int i = 0; ob_embedded_files[i].name; i++) {
         const char *t = ob_embedded_files[i].text;
-        if (ob_curves_parse(t, strlen(t), ob_embedded_files[i].name, set, err, errlen))
+        if (ob_curves_parse(t, strlen(t), ob_embedded_files[i].name, set, err))
             return -1;
     }
     return 0;

@@ -10,10 +10,11 @@
 
 #include <stddef.h>
 #include "host/io/curvefile.h"
+#include "methods/core/err.h"
 
 /* Purpose: load the default curve set.  *where gets a description of the
  * source ("DIR" or "embedded copy of datasets/").  Errors as ob_curves_load_dir. */
-int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, char *err, size_t errlen);
+int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, ob_err *err);
 
 /* Purpose: find a file of the tree such as results/published/X.csv: the path
  *          in $env when set, else rel from the current directory, else rel

@@ -78,10 +78,11 @@ static int write_one(const char *dir, const char *stem, const char *ext, writer_
 int ob_export_job(const char *dir, const ob_job *j, int samples, const ob_span_log *log)
 {
     ob_approx a = {0};
-    char err[512], stem[400];
+    char stem[400];
+    ob_err err;
     ob_export_stem(stem, sizeof stem, j);
-    if (ob_approx_from_job(j, log, &a, err, sizeof err) != 0) {
-        ob_error("--export: job %s: %s", stem, err);
+    if (ob_approx_from_job(j, log, &a, &err) != 0) {
+        ob_error("--export: job %s: %s", stem, err.msg);
         ob_approx_free(&a);
         return -1;
     }

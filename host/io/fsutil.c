@@ -72,14 +72,14 @@ int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *,
  * ends; the file holds the owner's pid.  The lock is per process and would
  * be dropped if the process closed any descriptor of the file: only this
  * function opens it. */
-int ob_lock_dir(const char *dir, int *fd_out, char *err, size_t errlen)
+int ob_lock_dir(const char *dir, int *fd_out, ob_err *err)
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/.lock", dir);
     *fd_out = -1;
     const int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot create the lock file: %s", path, strerror(errno));
+        ob_fail(err, "%s: cannot create the lock file: %s", path, strerror(errno));
         return -1;
     }
     struct flock fl;
@@ -105,17 +105,17 @@ int ob_lock_dir(const char *dir, int *fd_out, char *err, size_t errlen)
         }
         close(fd);
         if (e == EACCES || e == EAGAIN) {
-            snprintf(err, errlen, "%s is in use by another offbench run (pid %ld holds %s): wait for it to end, or "
-                     "choose another directory", dir, pid, path);
+            ob_fail(err, "%s is in use by another offbench run (pid %ld holds %s): wait for it to end, or "
+                    "choose another directory", dir, pid, path);
             return -2;
         }
-        snprintf(err, errlen, "%s: cannot lock: %s", path, strerror(e));
+        ob_fail(err, "%s: cannot lock: %s", path, strerror(e));
         return -1;
     }
     char buf[32];
     const int n = snprintf(buf, sizeof buf, "%ld\n", (long)getpid());
     if (ftruncate(fd, 0) != 0 || pwrite(fd, buf, (size_t)n, 0) != n) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+        ob_fail(err, "%s: cannot write: %s", path, strerror(errno));
         close(fd);
         return -1;
     }

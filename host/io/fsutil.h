@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 #include <stdio.h>
+#include "methods/core/err.h"
 
 /* Creates dir and its parents (mode 0777 & umask); 0 or -1 (errno set). */
 int ob_mkdir_p(const char *dir);
@@ -45,7 +46,7 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
  * drops it however the process ends).  Returns 0 with the descriptor in
  * *fd (keep it open); -2 when another process holds it (err names dir and
  * the holder's pid); -1 when the file cannot be created or locked (err). */
-int ob_lock_dir(const char *dir, int *fd, char *err, size_t errlen);
+int ob_lock_dir(const char *dir, int *fd, ob_err *err);
 
 #endif
 

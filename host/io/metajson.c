@@ -18,8 +18,7 @@ typedef struct {
     const char *s, *end;
     const char *name;
     int line, depth;
-    char *err;
-    size_t errlen;
+    ob_err *err;
     ob_json_flat *out;
     char path[PATH_MAX_LEN];
 } parser;
@@ -32,8 +31,7 @@ static int fail(parser *p, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    snprintf(p->err, p->errlen, "%s:%d: %s", p->name, p->line, msg);
-    return -1;
+    return ob_fail(p->err, "%s:%d: %s", p->name, p->line, msg);
 }
 
 static void skip_ws(parser *p)
@@ -436,9 +434,9 @@ void ob_json_free(ob_json_flat *f)
     f->n = f->cap = 0;
 }
 
-int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat *out, char *err, size_t errlen)
+int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat *out, ob_err *err)
 {
-    parser p = {text, text + len, name, 1, 0, err, errlen, out, ""};
+    parser p = {text, text + len, name, 1, 0, err, out, ""};
     out->v = NULL;
     out->n = out->cap = 0;
     char what[32];
@@ -466,15 +464,15 @@ int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat
     return 0;
 }
 
-int ob_json_load(const char *path, ob_json_flat *out, char *err, size_t errlen)
+int ob_json_load(const char *path, ob_json_flat *out, ob_err *err)
 {
     char *text;
     size_t len;
     out->v = NULL;
     out->n = out->cap = 0;
-    if (ob_slurp_max(path, OB_JSON_LIMIT, &text, &len, err, errlen))
+    if (ob_slurp_max(path, OB_JSON_LIMIT, &text, &len, err))
         return -1;
-    int rc = ob_json_flatten(text, len, path, out, err, errlen);
+    int rc = ob_json_flatten(text, len, path, out, err);
     free(text);
     return rc;
 }

@@ -15,6 +15,7 @@
 #define OB_METAJSON_H
 
 #include <stddef.h>
+#include "methods/core/err.h"
 
 enum { OB_JSON_MAX_DEPTH = 32 };
 
@@ -41,16 +42,16 @@ typedef struct {
 
 /* Purpose: parse text[0..len) (a file named `name` for messages) and
  *          flatten it into *out, entries in file order.
- * Errors:  returns 0; -1 with "NAME:LINE: reason" in err (malformed JSON, too
+ * Errors:  returns 0; -1 with "NAME:LINE: reason" in err->msg (malformed JSON, too
  *          deep, a duplicate key path, out of memory).  *out is always left
  *          safe for ob_json_free() (and empty after an error). */
-int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat *out, char *err, size_t errlen);
+int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat *out, ob_err *err);
 
 /* Purpose: read and flatten the file at path.
  * Errors:  as ob_json_flatten, plus "PATH: cannot open: reason". */
 /* The largest meta.json ob_json_load reads (64 MiB; a run's is a few KiB). */
 #define OB_JSON_LIMIT ((size_t)64 << 20)
-int ob_json_load(const char *path, ob_json_flat *out, char *err, size_t errlen);
+int ob_json_load(const char *path, ob_json_flat *out, ob_err *err);
 
 /* The entry of a key path, or NULL. */
 const ob_json_entry *ob_json_get(const ob_json_flat *f, const char *path);

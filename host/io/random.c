@@ -510,27 +510,27 @@ static long *selected_indices(uint64_t seed, long n, char *const *ids, int nids,
 }
 
 int ob_random_append(ob_curveset *set, uint64_t seed, long n, char *const *ids, int nids,
-                     char *err, size_t errlen)
+                     ob_err *err)
 {
     long *sel = NULL, count = n;
     if (nids > 0) {
         sel = selected_indices(seed, n, ids, nids, &count);
         if (!sel) {
-            snprintf(err, errlen, "--random: out of memory");
+            ob_fail(err, "--random: out of memory");
             return -1;
         }
     }
     const int n0 = set->n;
     if (count > INT_MAX - n0 - 1) {
         free(sel);
-        snprintf(err, errlen, "--random: too many curves");
+        ob_fail(err, "--random: too many curves");
         return -1;
     }
     if (n0 + count > set->cap) {
         ob_curve *v = realloc(set->v, (size_t)(n0 + count) * sizeof *v);
         if (!v) {
             free(sel);
-            snprintf(err, errlen, "--random: out of memory for %ld curves", count);
+            ob_fail(err, "--random: out of memory for %ld curves", count);
             return -1;
         }
         set->v = v;
@@ -544,7 +544,7 @@ int ob_random_append(ob_curveset *set, uint64_t seed, long n, char *const *ids, 
     if (failed) {
         for (long k = 0; k < count; k++)
             ob_curve_free(&set->v[n0 + k]);
-        snprintf(err, errlen, "--random: out of memory generating %ld curves", count);
+        ob_fail(err, "--random: out of memory generating %ld curves", count);
         return -1;
     }
     set->n = (int)(n0 + count);
@@ -555,8 +555,8 @@ int ob_random_append(ob_curveset *set, uint64_t seed, long n, char *const *ids, 
             continue;
         for (long k = 0; k < count; k++)
             if (strcmp(set->v[i].id, set->v[n0 + k].id) == 0) {
-                snprintf(err, errlen, "--random: curve id '%s' is also defined at %s:%d", set->v[i].id,
-                         set->v[i].file, set->v[i].line);
+                ob_fail(err, "--random: curve id '%s' is also defined at %s:%d", set->v[i].id,
+                        set->v[i].file, set->v[i].line);
                 for (long q = 0; q < count; q++)
                     ob_curve_free(&set->v[n0 + q]);
                 set->n = n0;

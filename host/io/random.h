@@ -30,6 +30,7 @@
 
 #include "methods/core/curve.h"
 #include "host/io/curvefile.h"
+#include "methods/core/err.h"
 
 enum { OB_RND_NFAMILIES = 8 };
 enum {
@@ -65,9 +66,9 @@ int ob_random_curve(uint64_t seed, long index, ob_curve *c);
  *          parallel, the result does not depend on the threads).  With ids
  *          (nids > 0), only the curves whose ids are listed are generated; ids
  *          that are not random ids of this set are ignored.
- * Errors:  0; -1 with a message in err on a duplicate id against the curves
+ * Errors:  0; -1 with a message in err->msg on a duplicate id against the curves
  *          already in *set, or out of memory (*set is then as before). */
 int ob_random_append(ob_curveset *set, uint64_t seed, long n, char *const *ids, int nids,
-                     char *err, size_t errlen);
+                     ob_err *err);
 
 #endif

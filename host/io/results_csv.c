@@ -27,8 +27,7 @@ typedef struct {
     const char *name;
     char **f;           /* field pointers, room for nmax */
     int nmax;
-    char *err;
-    size_t errlen;
+    ob_err *err;
 } csv_reader;
 
 static int csv_fail(csv_reader *r, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -39,8 +38,7 @@ static int csv_fail(csv_reader *r, int line, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    snprintf(r->err, r->errlen, "%s:%d: %s", r->name, line, msg);
-    return -1;
+    return ob_fail(r->err, "%s:%d: %s", r->name, line, msg);
 }
 
 /* The next record (blank lines skipped) into r->f: returns its field count
@@ -307,8 +305,7 @@ static int index_rows(ob_res_table *t, csv_reader *r, int line)
     return 0;
 }
 
-static int parse_owned(char *buf, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
-                       size_t errlen)
+static int parse_owned(char *buf, size_t len, const char *name, int first_line, ob_res_table *t, ob_err *err)
 {
     /* required, then the optional joint columns (NREQ on) */
     /* the names from the column table (columns.h), in the order of at[] */
@@ -323,7 +320,7 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
     int at[NCOL];
     memset(t, 0, sizeof *t);
     t->text = buf;
-    csv_reader r = {buf, buf + len, first_line, name, NULL, 0, err, errlen};
+    csv_reader r = {buf, buf + len, first_line, name, NULL, 0, err};
     int cap = 0, line = 0;
     int nh = csv_header(&r, cols, NCOL, NREQ, at);
     if (nh < 0)
@@ -370,33 +367,32 @@ fail:
     return -1;
 }
 
-int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen)
+int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, ob_err *err)
 {
-    return ob_res_parse_at(text, len, name, 1, t, err, errlen);
+    return ob_res_parse_at(text, len, name, 1, t, err);
 }
 
-int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
-                    size_t errlen)
+int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, ob_err *err)
 {
     memset(t, 0, sizeof *t);
     char *buf = malloc(len + 1);
     if (!buf) {
-        snprintf(err, errlen, "%s: out of memory", name);
+        ob_fail(err, "%s: out of memory", name);
         return -1;
     }
     memcpy(buf, text, len);
     buf[len] = '\0';
-    return parse_owned(buf, len, name, first_line, t, err, errlen);
+    return parse_owned(buf, len, name, first_line, t, err);
 }
 
-int ob_res_load(const char *path, ob_res_table *t, char *err, size_t errlen)
+int ob_res_load(const char *path, ob_res_table *t, ob_err *err)
 {
     char *buf;
     size_t len;
     memset(t, 0, sizeof *t);
-    if (ob_slurp(path, &buf, &len, err, errlen))
+    if (ob_slurp(path, &buf, &len, err))
         return -1;
-    return parse_owned(buf, len, path, 1, t, err, errlen);
+    return parse_owned(buf, len, path, 1, t, err);
 }
 
 typedef struct {
@@ -404,14 +400,14 @@ typedef struct {
     double t;
 } sample;
 
-static int attach_owned(ob_res_table *t, char *buf, size_t len, const char *name, char *err, size_t errlen)
+static int attach_owned(ob_res_table *t, char *buf, size_t len, const char *name, ob_err *err)
 {
     static const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", "rep", "fit_ns", "eval_ns"};
     enum { NCOL = sizeof cols / sizeof cols[0] };
     int at[NCOL], line = 0, n = 0, cap = 0, maxrep = 0, rc = -1;
     sample *s = NULL;
     double *rep_t = NULL;
-    csv_reader r = {buf, buf + len, 1, name, NULL, 0, err, errlen};
+    csv_reader r = {buf, buf + len, 1, name, NULL, 0, err};
     int nh = csv_header(&r, cols, NCOL, NCOL, at);
     if (nh < 0)
         goto done;
@@ -489,24 +485,23 @@ done:
     return rc;
 }
 
-int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const char *name, char *err,
-                          size_t errlen)
+int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const char *name, ob_err *err)
 {
     char *buf = malloc(len + 1);
     if (!buf) {
-        snprintf(err, errlen, "%s: out of memory", name);
+        ob_fail(err, "%s: out of memory", name);
         return -1;
     }
     memcpy(buf, text, len);
     buf[len] = '\0';
-    return attach_owned(t, buf, len, name, err, errlen);
+    return attach_owned(t, buf, len, name, err);
 }
 
-int ob_res_load_samples(ob_res_table *t, const char *path, char *err, size_t errlen)
+int ob_res_load_samples(ob_res_table *t, const char *path, ob_err *err)
 {
     char *buf;
     size_t len;
-    if (ob_slurp(path, &buf, &len, err, errlen))
+    if (ob_slurp(path, &buf, &len, err))
         return -1;
-    return attach_owned(t, buf, len, path, err, errlen);
+    return attach_owned(t, buf, len, path, err);
 }

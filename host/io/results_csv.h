@@ -21,6 +21,7 @@
 #define OB_RESULTS_CSV_H
 
 #include <stddef.h>
+#include "methods/core/err.h"
 
 typedef struct {
     /* text fields point into the table's buffer */
@@ -51,7 +52,7 @@ typedef struct {
 
 /* Purpose: parse the text of a results.csv named `name` (copied: the caller
  *          keeps text).
- * Errors:  returns 0; -1 with "NAME:LINE: reason" in err: no header, a
+ * Errors:  returns 0; -1 with "NAME:LINE: reason" in err->msg: no header, a
  *          missing or repeated column, a wrong field count, an unterminated
  *          quote or text after a closing quote, an empty key field, d or tol
  *          not a finite number, ctrl_points not a whole number >= 0, max_err
@@ -62,28 +63,26 @@ typedef struct {
  *          eval_ns not a finite number >= 0, a status other than ok / limit /
  *          fail / skip / timeout, a duplicate key (naming both lines), no memory.  *t is
  *          always left safe for ob_res_free() (empty after an error). */
-int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, char *err, size_t errlen);
+int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, ob_err *err);
 /* As ob_res_parse, for text that starts on line first_line of the file name
  * (the journal's header is its line 2): messages say NAME:LINE of the file. */
-int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, char *err,
-                    size_t errlen);
+int ob_res_parse_at(const char *text, size_t len, const char *name, int first_line, ob_res_table *t, ob_err *err);
 
 /* Purpose: read and parse the results.csv at path.
  * Errors:  as ob_res_parse, plus "PATH: cannot open: reason". */
-int ob_res_load(const char *path, ob_res_table *t, char *err, size_t errlen);
+int ob_res_load(const char *path, ob_res_table *t, ob_err *err);
 
 /* Purpose: attach the repetitions of a samples.csv (text, named `name`) to
  *          the rows of t: fills t->rep_t, t->maxrep, and each row's rep_t and
  *          nsamples.
- * Errors:  returns 0; -1 with "NAME:LINE: reason" in err (missing column,
+ * Errors:  returns 0; -1 with "NAME:LINE: reason" in err->msg (missing column,
  *          malformed field, rep not a whole number in 1..100000, a key that
  *          is not a row of results.csv, a (key, rep) twice, no memory); t then
  *          has no samples, its rows are unchanged. */
-int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const char *name, char *err,
-                          size_t errlen);
+int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const char *name, ob_err *err);
 
 /* Purpose: as ob_res_attach_samples, reading the file at path. */
-int ob_res_load_samples(ob_res_table *t, const char *path, char *err, size_t errlen);
+int ob_res_load_samples(ob_res_table *t, const char *path, ob_err *err);
 
 /* Orders two rows by key: curve, d, method, metric, split, tol. */
 int ob_res_key_cmp(const ob_res_row *a, const ob_res_row *b);

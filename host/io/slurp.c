@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, char *err, size_t errlen)
+int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, ob_err *err)
 {
     *text = NULL;
     *len = 0;
@@ -20,23 +20,23 @@ int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, char *e
     /* O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        ob_fail(err, "%s: cannot open: %s", path, strerror(errno));
         return -1;
     }
     struct stat st;
     if (fstat(fd, &st) != 0) {
-        snprintf(err, errlen, "%s: cannot stat: %s", path, strerror(errno));
+        ob_fail(err, "%s: cannot stat: %s", path, strerror(errno));
         close(fd);
         return -1;
     }
     if (!S_ISREG(st.st_mode)) {
-        snprintf(err, errlen, "%s: %s", path, S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
+        ob_fail(err, "%s: %s", path, S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
         close(fd);
         return -1;
     }
     if ((unsigned long long)st.st_size > max) {
-        snprintf(err, errlen, "%s: file too large (%lld bytes; the limit is %zu MiB)", path, (long long)st.st_size,
-                 max >> 20);
+        ob_fail(err, "%s: file too large (%lld bytes; the limit is %zu MiB)", path, (long long)st.st_size,
+                max >> 20);
         close(fd);
         return -1;
     }
@@ -80,11 +80,11 @@ int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, char *e
     close(fd);
     if (!buf || rd || toobig) {
         if (toobig)
-            snprintf(err, errlen, "%s: file too large (the limit is %zu MiB)", path, max >> 20);
+            ob_fail(err, "%s: file too large (the limit is %zu MiB)", path, max >> 20);
         else if (rd)
-            snprintf(err, errlen, "%s: read error: %s", path, strerror(rd));
+            ob_fail(err, "%s: read error: %s", path, strerror(rd));
         else
-            snprintf(err, errlen, "%s: out of memory", path);
+            ob_fail(err, "%s: out of memory", path);
         free(buf);
         return -1;
     }
@@ -94,7 +94,7 @@ int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, char *e
     return 0;
 }
 
-int ob_slurp(const char *path, char **text, size_t *len, char *err, size_t errlen)
+int ob_slurp(const char *path, char **text, size_t *len, ob_err *err)
 {
-    return ob_slurp_max(path, OB_SLURP_LIMIT, text, len, err, errlen);
+    return ob_slurp_max(path, OB_SLURP_LIMIT, text, len, err);
 }

@@ -7,6 +7,7 @@
 #define OB_SLURP_H
 
 #include <stddef.h>
+#include "methods/core/err.h"
 
 /* The largest file ob_slurp reads: 1 GiB (a results.csv of some 5 million
  * jobs); meta.json has its own, smaller cap (OB_JSON_LIMIT, metajson.h). */
@@ -17,11 +18,11 @@
  *          (*len excludes it).
  * Errors:  returns 0; -1 with "PATH: cannot open: reason" (or "is a
  *          directory", "not a regular file", "file too large (... the limit
- *          is N MiB)", "read error", "out of memory") in err and *text = NULL.
+ *          is N MiB)", "read error", "out of memory") in err->msg and *text = NULL.
  *          A FIFO or device is refused without reading from it (so
  *          `compare BASE /dev/zero` stops at once). */
-int ob_slurp(const char *path, char **text, size_t *len, char *err, size_t errlen);
+int ob_slurp(const char *path, char **text, size_t *len, ob_err *err);
 /* The same with a cap of max bytes (max <= OB_SLURP_LIMIT). */
-int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, char *err, size_t errlen);
+int ob_slurp_max(const char *path, size_t max, char **text, size_t *len, ob_err *err);
 
 #endif

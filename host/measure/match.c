@@ -80,7 +80,7 @@ static void reverse(ob_bez *b)
 }
 
 /* Links piece p (its ends e0, e1 on one segment). */
-static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const char *name, char *err, size_t errlen)
+static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const char *name, ob_err *err)
 {
     double q0[2], q1[2];
     ob_bez_point(&p->approx, 0.0, q0);
@@ -96,15 +96,15 @@ static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const ch
         else if (a0.dist <= n0.dist + slack)
             n0 = a0;
         else {
-            snprintf(err, errlen, "%s:%d: piece %d runs from base segment %d to %d: cut it where the base's "
-                     "segments join (measure matches each piece to one base segment)", name, p->line, k, n0.seg,
-                     n1.seg);
+            ob_fail(err, "%s:%d: piece %d runs from base segment %d to %d: cut it where the base's "
+                    "segments join (measure matches each piece to one base segment)", name, p->line, k, n0.seg,
+                    n1.seg);
             return -1;
         }
     }
     if (n0.t == n1.t) {
-        snprintf(err, errlen, "%s:%d: piece %d: both its ends are nearest to one point of the offset (t = %.17g of "
-                 "base segment %d)", name, p->line, k, n0.t, n0.seg);
+        ob_fail(err, "%s:%d: piece %d: both its ends are nearest to one point of the offset (t = %.17g of "
+                "base segment %d)", name, p->line, k, n0.t, n0.seg);
         return -1;
     }
     if (n0.t > n1.t) {
@@ -122,13 +122,13 @@ static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const ch
     return 0;
 }
 
-int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, char *err, size_t errlen)
+int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, ob_err *err)
 {
     for (int k = 0; k < a->n; k++) {
         if (a->v[k].has_base)
             continue;
         a->same_param = 0;  /* a link by projection says nothing of the parameter */
-        if (link_piece(c, d, &a->v[k], k, name, err, errlen) != 0)
+        if (link_piece(c, d, &a->v[k], k, name, err) != 0)
             return -1;
     }
     return 0;

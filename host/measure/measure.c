@@ -7,7 +7,7 @@
 #include <stdio.h>
 
 int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric m, int samples, const char *name,
-                      ob_mres *r, char *err, size_t errlen)
+                      ob_mres *r, ob_err *err)
 {
     *r = (ob_mres){1, "", 0.0, -1, -1, NAN};
     if (ob_metric_same_param(m) && !a->same_param) {
@@ -19,15 +19,15 @@ int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric
         const ob_apiece *p = &a->v[k];
         ob_bez base;
         if (ob_apiece_base(c, p, &base) != 0) {
-            snprintf(err, errlen, "%s:%d: piece %d: its base segment %d (span %.17g %.17g, fit %.17g %.17g) is not a "
-                     "piece of curve '%s' (%d segments)", name, p->line, k, p->seg, p->a, p->b, p->t0, p->t1, c->id,
-                     c->nseg);
+            ob_fail(err, "%s:%d: piece %d: its base segment %d (span %.17g %.17g, fit %.17g %.17g) is not a "
+                    "piece of curve '%s' (%d segments)", name, p->line, k, p->seg, p->a, p->b, p->t0, p->t1, c->id,
+                    c->nseg);
             return -1;
         }
         ob_errval e;
         if (ob_measure(m, &base, &p->approx, d, samples, &e) != 0 || isnan(e.err)) {
-            snprintf(err, errlen, "%s:%d: piece %d: metric %s cannot measure it (degree %d)", name, p->line, k,
-                     ob_metric_name(m), p->approx.deg);
+            ob_fail(err, "%s:%d: piece %d: metric %s cannot measure it (degree %d)", name, p->line, k,
+                    ob_metric_name(m), p->approx.deg);
             return -1;
         }
         if (!(e.err <= r->err) || r->piece < 0) {  /* as the driver keeps a job's max_err */

@@ -15,6 +15,7 @@
 #include <stddef.h>
 
 #include "host/io/approx.h"
+#include "methods/core/err.h"
 
 /* Purpose: give every piece without a base link one, by projection: each
  *          end point goes to the base parameter whose exact offset point
@@ -24,12 +25,12 @@
  *          segment (fit [0, 1]), reversed first (its control points in the
  *          other order, an exact reparameterization) when it runs against
  *          the base.
- * Errors:  returns 0; -1 with "NAME:LINE: piece K: reason" in err when both
+ * Errors:  returns 0; -1 with "NAME:LINE: piece K: reason" in err->msg when both
  *          ends fall on one point, or on two base segments that do not meet
  *          there (the piece must then be cut where the base's segments join).
  * Note:    on an offset with loops (cusps) the nearest point can lie on the
  *          wrong branch; such files should carry the link. */
-int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, char *err, size_t errlen);
+int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, ob_err *err);
 
 /* One metric's result. */
 typedef struct {
@@ -45,10 +46,10 @@ typedef struct {
  *          d-offset of curve c under metric m, S samples, the largest kept.
  *          bound and radial apply only when a->same_param (the pieces share
  *          the base's parameter).
- * Returns: 0; -1 with "NAME:LINE: piece K: reason" in err when a piece
+ * Returns: 0; -1 with "NAME:LINE: piece K: reason" in err->msg when a piece
  *          cannot be measured (a link to a segment c does not have; bound
  *          past its degree). */
 int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric m, int samples, const char *name,
-                      ob_mres *r, char *err, size_t errlen);
+                      ob_mres *r, ob_err *err);
 
 #endif

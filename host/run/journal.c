@@ -274,36 +274,36 @@ int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
 }
 
 /* Creates the journal afresh: first line and header. */
-static int create(ob_journal *j, const char *fp, char *err, size_t errlen)
+static int create(ob_journal *j, const char *fp, ob_err *err)
 {
     j->f = fopen(j->path, "w");
     if (!j->f) {
-        snprintf(err, errlen, "%s: cannot write: %s", j->path, strerror(errno));
+        ob_fail(err, "%s: cannot write: %s", j->path, strerror(errno));
         return -1;
     }
     fprintf(j->f, "%s%s\n%s\n", MAGIC, fp, ob_results_header());
     if (fflush(j->f) != 0) {
-        snprintf(err, errlen, "%s: write failed", j->path);
+        ob_fail(err, "%s: write failed", j->path);
         return -1;
     }
     return 0;
 }
 
 /* Reads an existing journal into *restored; cuts a partial last line. */
-static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *err, size_t errlen)
+static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, ob_err *err)
 {
     char *text;
     size_t len;
-    if (ob_slurp(j->path, &text, &len, err, errlen) != 0)
+    if (ob_slurp(j->path, &text, &len, err) != 0)
         return -1;
     const char *nl = memchr(text, '\n', len);
     if (!nl) {  /* killed while the first line was written: nothing saved */
         free(text);
-        return create(j, fp, err, errlen);
+        return create(j, fp, err);
     }
     const size_t first = (size_t)(nl - text);
     if (first < sizeof MAGIC - 1 || memcmp(text, MAGIC, sizeof MAGIC - 1) != 0) {
-        snprintf(err, errlen, "%s:1: not an offbench journal", j->path);
+        ob_fail(err, "%s:1: not an offbench journal", j->path);
         free(text);
         return -1;
     }
@@ -312,8 +312,8 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
         char *was = strndup(text + sizeof MAGIC - 1, fplen), diff[512];
         ob_fingerprint_diff(was ? was : "", fp, diff, sizeof diff);
         free(was);
-        snprintf(err, errlen, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
-                 "same options and build, or start afresh (another --out, or --force)", j->path, diff);
+        ob_fail(err, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
+                "same options and build, or start afresh (another --out, or --force)", j->path, diff);
         free(text);
         return -1;
     }
@@ -321,7 +321,7 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
     while (keep > first + 1 && text[keep - 1] != '\n')
         keep--;
     if (keep < len && truncate(j->path, (off_t)keep) != 0) {
-        snprintf(err, errlen, "%s: cannot cut the partial last line: %s", j->path, strerror(errno));
+        ob_fail(err, "%s: cannot cut the partial last line: %s", j->path, strerror(errno));
         free(text);
         return -1;
     }
@@ -331,53 +331,52 @@ static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, char *e
     if (hend && ((size_t)(hend - body) != strlen(ob_results_header()) ||
                  memcmp(body, ob_results_header(), strlen(ob_results_header())) != 0)) {
         /* rows of another build's columns cannot be continued or restored */
-        snprintf(err, errlen, "%s:2: written by another version of offbench (its columns differ): run again "
-                 "without --resume", j->path);
+        ob_fail(err, "%s:2: written by another version of offbench (its columns differ): run again "
+                "without --resume", j->path);
         free(text);
         return -1;
     }
     int rc = 0;
     if (blen > 0 && memchr(body, '\n', blen)) {  /* a header line at least */
-        rc = ob_res_parse_at(body, blen, j->path, 2, restored, err, errlen);  /* body is line 2 on */
+        rc = ob_res_parse_at(body, blen, j->path, 2, restored, err);  /* body is line 2 on */
         if (rc == 0) {
             j->f = fopen(j->path, "a");
             if (!j->f) {
-                snprintf(err, errlen, "%s: cannot append: %s", j->path, strerror(errno));
+                ob_fail(err, "%s: cannot append: %s", j->path, strerror(errno));
                 rc = -1;
             }
         }
     } else {
-        rc = create(j, fp, err, errlen);
+        rc = create(j, fp, err);
     }
     free(text);
     return rc;
 }
 
-int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, ob_res_table *restored, char *err,
-                    size_t errlen)
+int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, ob_res_table *restored, ob_err *err)
 {
     memset(j, 0, sizeof *j);
     memset(restored, 0, sizeof *restored);
     snprintf(j->path, sizeof j->path, "%s/results.journal.csv", dir);
     j->last_sync = mono_s();
     if (!resume)
-        return create(j, fp, err, errlen);
+        return create(j, fp, err);
     struct stat st;
     if (stat(j->path, &st) == 0)
-        return reopen(j, fp, restored, err, errlen);
+        return reopen(j, fp, restored, err);
     char res[4200];
     snprintf(res, sizeof res, "%s/results.csv", dir);
     if (stat(res, &st) != 0) {
-        snprintf(err, errlen, "--resume: %s has neither results.journal.csv nor results.csv: nothing to resume",
-                 dir);
+        ob_fail(err, "--resume: %s has neither results.journal.csv nor results.csv: nothing to resume",
+                dir);
         return -1;
     }
     /* the run had finished: its rows are taken as they are */
-    if (ob_res_load(res, restored, err, errlen) != 0)
+    if (ob_res_load(res, restored, err) != 0)
         return -1;
     if (!restored->has_joints) {
-        snprintf(err, errlen, "--resume: %s was written by an older offbench (no max_gap column): run again without "
-                 "--resume", res);
+        ob_fail(err, "--resume: %s was written by an older offbench (no max_gap column): run again without "
+                "--resume", res);
         ob_res_free(restored);
         return -1;
     }
@@ -385,24 +384,24 @@ int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, 
     char fpath[4200], *was = NULL, diff[512];
     size_t wlen = 0;
     snprintf(fpath, sizeof fpath, "%s/results.fingerprint", dir);
-    if (ob_slurp(fpath, &was, &wlen, diff, sizeof diff) != 0) {
-        snprintf(err, errlen, "--resume: %s has no results.fingerprint (the options, data and build of its run): "
-                 "it cannot be checked; run again without --resume", dir);
+    if (ob_slurp(fpath, &was, &wlen, NULL) != 0) { /* its reason is not reported: the message says it */
+        ob_fail(err, "--resume: %s has no results.fingerprint (the options, data and build of its run): "
+                "it cannot be checked; run again without --resume", dir);
         ob_res_free(restored);
         return -1;
     }
     while (wlen > 0 && (was[wlen - 1] == '\n' || was[wlen - 1] == '\r'))
         was[--wlen] = '\0';
     if (ob_fingerprint_diff(was, fp, diff, sizeof diff) != 0) {
-        snprintf(err, errlen, "--resume: %s: the finished run had other options, data or build: %s; resume it with "
-                 "the same options and build, or run afresh (another --out)", fpath, diff);
+        ob_fail(err, "--resume: %s: the finished run had other options, data or build: %s; resume it with "
+                "the same options and build, or run afresh (another --out)", fpath, diff);
         free(was);
         ob_res_free(restored);
         return -1;
     }
     free(was);
     j->from_results = 1;
-    return create(j, fp, err, errlen);
+    return create(j, fp, err);
 }
 
 int ob_journal_add(ob_journal *j, const ob_job *job)

@@ -24,6 +24,7 @@
 #include "host/run/options.h"
 #include "host/run/record.h"
 #include "host/io/results_csv.h"
+#include "methods/core/err.h"
 
 typedef struct {
     FILE *f;
@@ -61,14 +62,13 @@ int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
  *          their rows go to *restored (empty when there is nothing); then
  *          continue the journal (a partial last line cut off) or start one
  *          holding the restored rows' text.
- * Errors:  returns 0; -1 with the reason in err (naming the file and line):
+ * Errors:  returns 0; -1 with the reason in err->msg (naming the file and line):
  *          unreadable or malformed files, another fingerprint (err names
  *          the first difference, ob_fingerprint_diff), a journal with other columns or a
  *          results.csv without the joint columns (another build), no
  *          previous run to resume, cannot write.
  *          *j and *restored are always safe to pass to the free functions. */
-int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, ob_res_table *restored, char *err,
-                    size_t errlen);
+int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, ob_res_table *restored, ob_err *err);
 
 /* Purpose: append a finished job's row (flushed; synced when a second has
  *          passed since the last sync).  Returns 0 or -1 (write error). */

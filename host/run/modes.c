@@ -186,7 +186,7 @@ int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char
 {
     const ob_run_opts *o = c->o;
     ob_driver_hooks h = c->hooks;
-    char err[1024];
+    ob_err err;
     ob_res_table prev;
     char *fp = ob_resume_fingerprint(o, c->rec, where);
     size_t *idx = malloc((njobs ? njobs : 1) * sizeof *idx);
@@ -198,8 +198,8 @@ int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char
         memset(&prev, 0, sizeof prev);
         goto out;
     }
-    if (ob_journal_open(jr, o->out_dir, fp, o->resume_dir != NULL, &prev, err, sizeof err) != 0) {
-        ob_error("%s", err);
+    if (ob_journal_open(jr, o->out_dir, fp, o->resume_dir != NULL, &prev, &err) != 0) {
+        ob_error("%s", err.msg);
         goto out;
     }
     size_t np = 0;

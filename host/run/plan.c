@@ -16,23 +16,23 @@
 
 int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
 {
-    char err[1024];
+    ob_err err;
     int rc = 0;
     where[0] = '\0';
     if (o->curves_file) {
         snprintf(where, wlen, "%s", o->curves_file);
-        rc = ob_curves_load_file(o->curves_file, set, err, sizeof err);
+        rc = ob_curves_load_file(o->curves_file, set, &err);
     } else if (o->random_n == 0) {
-        rc = ob_load_default_curves(set, where, wlen, err, sizeof err);
+        rc = ob_load_default_curves(set, where, wlen, &err);
     }
     if (rc == 0 && o->random_n > 0) {
         size_t k = strlen(where);
         snprintf(where + k, wlen - k, "%srandom %ld:%" PRIu64, k ? " + " : "", o->random_n, o->random_seed);
         /* with --curve, only the selected random curves are generated */
-        rc = ob_random_append(set, o->random_seed, o->random_n, o->curve_ids, o->ncurve_ids, err, sizeof err);
+        rc = ob_random_append(set, o->random_seed, o->random_n, o->curve_ids, o->ncurve_ids, &err);
     }
     if (rc != 0) {
-        ob_error("%s", err);
+        ob_error("%s", err.msg);
         return -1;
     }
     for (int i = 0; i < o->ncurve_ids; i++)

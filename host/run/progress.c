@@ -77,6 +77,8 @@ void ob_progress_cb(void *ctx, size_t done, size_t total)
         bar[i] = i < fill ? '#' : '.';
     bar[W] = '\0';
     fmt_eta(eta, sizeof eta, eta_s(p, el, done, total));
+    /* raw, not through the funnel: a bar redrawn in place ("\r", no newline,
+     * no "offbench: " prefix), drawn only on a terminal */
     fprintf(stderr, "\r[%s] %zu/%zu jobs, %.0f s, %s   ", bar, done, total, el, eta);
     fflush(stderr);
     p->drawn = 1;
@@ -85,6 +87,7 @@ void ob_progress_cb(void *ctx, size_t done, size_t total)
 void ob_progress_end(ob_progress *p)
 {
     if (p->tty && p->drawn) {
+        /* raw: blanks the bar in place before the next line */
         fprintf(stderr, "\r%*s\r", 78, "");
         fflush(stderr);
     }

@@ -94,7 +94,7 @@ static int copy_field(char *dst, size_t cap, const char *src)
     return 0;
 }
 
-int ob_pub_parse(const char *text, size_t len, const char *name, ob_pub_set *s, char *err, size_t errlen)
+int ob_pub_parse(const char *text, size_t len, const char *name, ob_pub_set *s, ob_err *err)
 {
     static const char *cols[] = {"source", "table", "curve", "d", "tol", "method", "label", "value", "unit"};
     enum { NCOL = 9 };
@@ -107,7 +107,7 @@ int ob_pub_parse(const char *text, size_t len, const char *name, ob_pub_set *s, 
     /* header */
     nhead = split_record(&p, end, f);
     if (nhead <= 0) {
-        snprintf(err, errlen, "%s:1: %s", name, nhead == 0 ? "empty file" : "malformed header");
+        ob_fail(err, "%s:1: %s", name, nhead == 0 ? "empty file" : "malformed header");
         return -1;
     }
     for (int c = 0; c < NCOL; c++) {
@@ -116,7 +116,7 @@ int ob_pub_parse(const char *text, size_t len, const char *name, ob_pub_set *s, 
             if (strcmp(f[i], cols[c]) == 0)
                 at[c] = i;
         if (at[c] < 0) {
-            snprintf(err, errlen, "%s:1: no column '%s' in the header", name, cols[c]);
+            ob_fail(err, "%s:1: no column '%s' in the header", name, cols[c]);
             return -1;
         }
     }
@@ -131,18 +131,18 @@ int ob_pub_parse(const char *text, size_t len, const char *name, ob_pub_set *s, 
         static const char *why[] = {"", "unterminated quote", "field longer than 127 characters",
                                     "more than 24 fields"};
         if (nf < 0) {
-            snprintf(err, errlen, "%s:%d: %s", name, line, why[-nf]);
+            ob_fail(err, "%s:%d: %s", name, line, why[-nf]);
             goto fail;
         }
         if (nf != nhead) {
-            snprintf(err, errlen, "%s:%d: %d fields, the header has %d", name, line, nf, nhead);
+            ob_fail(err, "%s:%d: %d fields, the header has %d", name, line, nf, nhead);
             goto fail;
         }
         if (s->n == cap) {
             cap = cap ? 2 * cap : 256;
             ob_pub_cell *nv = realloc(s->v, (size_t)cap * sizeof *nv);
             if (!nv) {
-                snprintf(err, errlen, "%s:%d: out of memory", name, line);
+                ob_fail(err, "%s:%d: out of memory", name, line);
                 goto fail;
             }
             s->v = nv;
@@ -171,13 +171,13 @@ int ob_pub_parse(const char *text, size_t len, const char *name, ob_pub_set *s, 
         else if (strcmp(c->unit, "ctrl_points") == 0 && !c->tol_text[0])
             bad = "a ctrl_points figure needs a tolerance";
         if (bad) {
-            snprintf(err, errlen, "%s:%d: %s", name, line, bad);
+            ob_fail(err, "%s:%d: %s", name, line, bad);
             goto fail;
         }
         s->n++;
     }
     if (s->n == 0) {
-        snprintf(err, errlen, "%s: no figures", name);
+        ob_fail(err, "%s: no figures", name);
         goto fail;
     }
     return 0;
@@ -186,33 +186,33 @@ fail:
     return -1;
 }
 
-static int load_file(const char *path, ob_pub_set *s, char *err, size_t errlen)
+static int load_file(const char *path, ob_pub_set *s, ob_err *err)
 {
     char *buf;
     size_t n;
-    if (ob_slurp(path, &buf, &n, err, errlen) != 0)
+    if (ob_slurp(path, &buf, &n, err) != 0)
         return -1;
-    int rc = ob_pub_parse(buf, n, path, s, err, errlen);
+    int rc = ob_pub_parse(buf, n, path, s, err);
     free(buf);
     if (rc == 0)
         snprintf(s->where, sizeof s->where, "%.500s", path);
     return rc;
 }
 
-int ob_pub_load(ob_pub_set *s, char *err, size_t errlen)
+int ob_pub_load(ob_pub_set *s, ob_err *err)
 {
     static const char rel[] = "results/published/published_tables.csv";
     char path[4200];
     s->v = NULL;
     s->n = 0;
     if (ob_find_tree_file(rel, "OFFBENCH_PUBLISHED", path, sizeof path) == 0)
-        return load_file(path, s, err, errlen);
+        return load_file(path, s, err);
     const struct ob_embedded_file *e = &ob_embedded_published[0];
     if (!e->name) {
-        snprintf(err, errlen, "no published figures: %s not found and none compiled in", rel);
+        ob_fail(err, "no published figures: %s not found and none compiled in", rel);
         return -1;
     }
-    int rc = ob_pub_parse(e->text, strlen(e->text), e->name, s, err, errlen);
+    int rc = ob_pub_parse(e->text, strlen(e->text), e->name, s, err);
     if (rc == 0)
         snprintf(s->where, sizeof s->where, "embedded copy of %s", e->name);
     return rc;

@@ -110,7 +110,7 @@ static double cut_point(const char *piece)
 
 /* "zhao2017_quintic/C1" -> curve "zhao2017_quintic", [0, 1/2]; "C2@0.4" ->
  * [0.4, 1] (the cut Zhao-Zhou do not give, for the sweep). */
-static int resolve_piece(const char *curve, ob_tab_spec *s, char *err, size_t errlen)
+static int resolve_piece(const char *curve, ob_tab_spec *s, ob_err *err)
 {
     const char *slash = strchr(curve, '/');
     size_t n = slash ? (size_t)(slash - curve) : strlen(curve);
@@ -133,13 +133,13 @@ static int resolve_piece(const char *curve, ob_tab_spec *s, char *err, size_t er
             s->piece_a = cut;
         return 0;
     }
-    snprintf(err, errlen, "curve '%s': unknown piece '%s' (known: C, C1, C2, C1@X, C2@X with 0 < X < 1)", curve,
-             piece);
+    ob_fail(err, "curve '%s': unknown piece '%s' (known: C, C1, C2, C1@X, C2@X with 0 < X < 1)", curve,
+            piece);
     return -1;
 }
 
 /* "zhao-rational/iter2" -> zhao-rational with iterations = 2. */
-static int resolve_method(const char *name, ob_tab_spec *s, char *err, size_t errlen)
+static int resolve_method(const char *name, ob_tab_spec *s, ob_err *err)
 {
     char base[48];
     const char *slash = strchr(name, '/');
@@ -158,7 +158,7 @@ static int resolve_method(const char *name, ob_tab_spec *s, char *err, size_t er
         set_param(s, "iterations", it);
         return 0;
     }
-    snprintf(err, errlen, "method '%s': unknown variant '%s'", name, slash + 1);
+    ob_fail(err, "method '%s': unknown variant '%s'", name, slash + 1);
     return -1;
 }
 
@@ -234,12 +234,12 @@ static void paper_errors(const ob_pub_cell *c, ob_tab_spec *s)
     }
 }
 
-int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, char *err, size_t errlen)
+int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, ob_err *err)
 {
     memset(s, 0, sizeof *s);
     s->d_factor = 1.0;
     s->inflections = 1;
-    if (resolve_piece(c->curve, s, err, errlen) || resolve_method(c->method, s, err, errlen))
+    if (resolve_piece(c->curve, s, err) || resolve_method(c->method, s, err))
         return -1;
     const int errors = is(c->unit, "max_err");
     s->single_piece = errors;
@@ -255,7 +255,7 @@ int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, char *err, 
     }
     /* rigorous and best keep the paper's sign of d and its method variant */
     ob_tab_spec paper;
-    if (ob_tab_resolve(c, OB_PROTO_PAPER, &paper, err, errlen))
+    if (ob_tab_resolve(c, OB_PROTO_PAPER, &paper, err))
         return -1;
     s->method = paper.method;  /* which method a column is, is the paper's reading */
     s->d_factor = paper.d_factor;

@@ -18,6 +18,7 @@
 
 #include "methods/driver/driver.h"
 #include "host/tables/published.h"
+#include "methods/core/err.h"
 
 typedef enum { OB_PROTO_PAPER = 0, OB_PROTO_RIGOROUS, OB_PROTO_BEST, OB_PROTO_COUNT } ob_proto;
 const char *ob_proto_name(ob_proto p);
@@ -44,7 +45,7 @@ typedef struct {
 /* Purpose: decide how cell c is measured under protocol p.
  * Output:  *s; s->method is NULL when offbench has no such method.
  * Returns: 0; -1 if the cell names a piece or a variant this module does not
- *          know (the message goes to err). */
-int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, char *err, size_t errlen);
+ *          know (the message goes to err->msg). */
+int ob_tab_resolve(const ob_pub_cell *c, ob_proto p, ob_tab_spec *s, ob_err *err);
 
 #endif

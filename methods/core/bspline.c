@@ -15,51 +15,39 @@
 
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-static int fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (err && errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 /* Checks everything ob_bspline_to_bezier promises to reject.
  * Returns 0 or -1 with a message. */
 static int validate(int p, int npts, const double *knots, const double (*pts)[3],
-                    char *err, size_t errlen)
+                    ob_err *err)
 {
     if (p < 1 || p > OB_MAX_IN_DEG)
-        return fail(err, errlen, "bspline degree %d outside 1..%d", p, (int)OB_MAX_IN_DEG);
+        return ob_fail(err, "bspline degree %d outside 1..%d", p, (int)OB_MAX_IN_DEG);
     if (npts < p + 1)
-        return fail(err, errlen, "bspline of degree %d needs at least %d control points, got %d",
+        return ob_fail(err, "bspline of degree %d needs at least %d control points, got %d",
                     p, p + 1, npts);
     if (npts > INT_MAX - p - 1)
-        return fail(err, errlen, "too many control points (%d)", npts);
+        return ob_fail(err, "too many control points (%d)", npts);
     if (!knots || !pts)
-        return fail(err, errlen, "bspline: missing knots or control points");
+        return ob_fail(err, "bspline: missing knots or control points");
     const int nk = npts + p + 1;
     for (int i = 0; i < nk; i++) {
         if (!isfinite(knots[i]))
-            return fail(err, errlen, "knot %d is not finite", i);
+            return ob_fail(err, "knot %d is not finite", i);
         if (i > 0 && knots[i] < knots[i - 1])
-            return fail(err, errlen, "knots decrease at index %d (%.17g < %.17g)", i,
+            return ob_fail(err, "knots decrease at index %d (%.17g < %.17g)", i,
                         knots[i], knots[i - 1]);
     }
     if (!(knots[p] < knots[npts]))
-        return fail(err, errlen, "empty domain: knots[%d] = knots[%d] = %.17g", p, npts,
+        return ob_fail(err, "empty domain: knots[%d] = knots[%d] = %.17g", p, npts,
                     knots[p]);
     for (int i = 0; i < npts; i++) {
         if (!isfinite(pts[i][0]) || !isfinite(pts[i][1]) || !isfinite(pts[i][2]))
-            return fail(err, errlen, "control point %d is not finite", i);
+            return ob_fail(err, "control point %d is not finite", i);
         if (!(pts[i][2] > 0))
-            return fail(err, errlen, "control point %d has weight %.17g (must be > 0)", i,
+            return ob_fail(err, "control point %d has weight %.17g (must be > 0)", i,
                         pts[i][2]);
     }
     return 0;
@@ -104,13 +92,13 @@ int ob_bspline_span_to_bezier(int p, int k, const double *U, const double (*pts)
 
 int ob_bspline_to_bezier(int p, int npts, const double *knots,
                          const double (*pts)[3], ob_bez **segs, int *nseg,
-                         char *err, size_t errlen)
+                         ob_err *err)
 {
     if (!segs || !nseg)
-        return fail(err, errlen, "bspline: missing output arguments");
+        return ob_fail(err, "bspline: missing output arguments");
     *segs = NULL;
     *nseg = 0;
-    if (validate(p, npts, knots, pts, err, errlen))
+    if (validate(p, npts, knots, pts, err))
         return -1;
 
     int n = 0;
@@ -118,7 +106,7 @@ int ob_bspline_to_bezier(int p, int npts, const double *knots,
         n += knots[k] < knots[k + 1];
     ob_bez *s = calloc((size_t)n, sizeof *s);
     if (!s) {
-        fail(err, errlen, "bspline: out of memory (%d segments)", n);
+        ob_fail(err, "bspline: out of memory (%d segments)", n);
         return -2;
     }
 
@@ -132,7 +120,7 @@ int ob_bspline_to_bezier(int p, int npts, const double *knots,
             rational |= pts[i][2] != 1.0;
         if (ob_bspline_span_to_bezier(p, k, knots, pts, rational, &s[m])) {
             free(s);
-            return fail(err, errlen, "bspline: overflow converting span %d", k);
+            return ob_fail(err, "bspline: overflow converting span %d", k);
         }
         m++;
     }

@@ -5,6 +5,7 @@
 #define OB_BSPLINE_H
 
 #include "methods/core/curve.h"
+#include "methods/core/err.h"
 
 /* Purpose: convert a B-spline of degree p with npts control points to its
  *          Bézier segments (one per non-empty knot span inside the domain
@@ -15,10 +16,10 @@
  * Method:  knot insertion (Boehm) on homogeneous points until every interior
  *          knot has multiplicity p, then read off the segments.  Works for
  *          uniform, non-uniform, clamped and unclamped knot vectors.
- * Errors:  returns 0; -1 on bad arguments (message in err), -2 on no memory. */
+ * Errors:  returns 0; -1 on bad arguments (message in err->msg; err may be NULL), -2 on no memory. */
 int ob_bspline_to_bezier(int p, int npts, const double *knots,
                          const double (*pts)[3], ob_bez **segs, int *nseg,
-                         char *err, size_t errlen);
+                         ob_err *err);
 
 /* Purpose: the Bézier segment of one non-empty knot span [U[k], U[k+1]]
  *          (p <= k, U[k] < U[k+1]) of a B-spline of degree p, reparameterized

@@ -22,24 +22,24 @@ static void check_message(const char *err, const char *name)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     const char *text = (const char *)data;
-    char err[512];
+    ob_err err;
     ob_res_table t;
-    err[0] = '\0';
-    if (ob_res_parse(text, size, "fuzz.csv", &t, err, sizeof err) != 0) {
-        check_message(err, "fuzz.csv");
+    err.msg[0] = '\0';
+    if (ob_res_parse(text, size, "fuzz.csv", &t, &err) != 0) {
+        check_message(err.msg, "fuzz.csv");
     } else {
-        err[0] = '\0';
-        if (ob_res_attach_samples(&t, text, size, "fuzz-samples.csv", err, sizeof err) != 0)
-            check_message(err, "fuzz-samples.csv");
+        err.msg[0] = '\0';
+        if (ob_res_attach_samples(&t, text, size, "fuzz-samples.csv", &err) != 0)
+            check_message(err.msg, "fuzz-samples.csv");
         for (int i = 0; i < t.n; i++)
             if (ob_res_find(&t, &t.v[i]) == NULL)
                 __builtin_trap();  /* every row is found by its own key */
     }
     ob_res_free(&t);
     ob_json_flat j;
-    err[0] = '\0';
-    if (ob_json_flatten(text, size, "fuzz.json", &j, err, sizeof err) != 0)
-        check_message(err, "fuzz.json");
+    err.msg[0] = '\0';
+    if (ob_json_flatten(text, size, "fuzz.json", &j, &err) != 0)
+        check_message(err.msg, "fuzz.json");
     ob_json_free(&j);
     return 0;
 }

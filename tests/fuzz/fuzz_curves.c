@@ -14,13 +14,13 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     ob_curveset set;
-    char err[512];
+    ob_err err;
     memset(&set, 0, sizeof set);
-    err[0] = '\0';
-    int rc = ob_curves_parse((const char *)data, size, "fuzz.curves", &set, err, sizeof err);
-    if (rc != 0 && strncmp(err, "fuzz.curves:", 12) != 0)
+    err.msg[0] = '\0';
+    int rc = ob_curves_parse((const char *)data, size, "fuzz.curves", &set, &err);
+    if (rc != 0 && strncmp(err.msg, "fuzz.curves:", 12) != 0)
         __builtin_trap();  /* every error names the file and line */
-    if (rc == 0 && set.n > 0 && ob_curves_parse((const char *)data, size, "again.curves", &set, err, sizeof err) == 0)
+    if (rc == 0 && set.n > 0 && ob_curves_parse((const char *)data, size, "again.curves", &set, &err) == 0)
         __builtin_trap();  /* the same ids twice must be refused */
     ob_curveset_free(&set);
     return 0;

@@ -54,11 +54,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     const char *rows = nl + 1;
     const size_t n = size - l1 - 1;
-    char err[512];
-    err[0] = '\0';
+    ob_err err;
+    err.msg[0] = '\0';
     ob_res_table t;
-    if (ob_res_parse_at(rows, n, "fuzz.journal", 2, &t, err, sizeof err) != 0 &&
-        strncmp(err, "fuzz.journal", 12) != 0)
+    if (ob_res_parse_at(rows, n, "fuzz.journal", 2, &t, &err) != 0 &&
+        strncmp(err.msg, "fuzz.journal", 12) != 0)
         __builtin_trap(); /* every error names the input */
     ob_res_free(&t);
     return 0;

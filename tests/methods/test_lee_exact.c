@@ -93,9 +93,9 @@ static const ob_curve *ref_curve(const char *id)
 
 static void test_reference_file(void)
 {
-    char err[512];
-    CHECK(ob_curves_load_file("datasets/reference.curves", &refset, err, sizeof err) == 0,
-          "load reference.curves: %s", err);
+    ob_err err = {""};
+    CHECK(ob_curves_load_file("datasets/reference.curves", &refset, &err) == 0,
+          "load reference.curves: %s", err.msg);
     CHECK(refset.n == 3, "reference.curves has %d curves", refset.n);
     for (int i = 0; i < refset.n; i++) {
         CHECK(refset.v[i].family && strcmp(refset.v[i].family, "reference") == 0,
@@ -113,7 +113,7 @@ static void test_reference_file(void)
 
     /* the whole datasets/ directory still loads (ids unique across files) */
     ob_curveset all = {0};
-    CHECK(ob_curves_load_dir("datasets", &all, err, sizeof err) == 0, "datasets/: %s", err);
+    CHECK(ob_curves_load_dir("datasets", &all, &err) == 0, "datasets/: %s", err.msg);
     CHECK(ob_curveset_find(&all, "arc_quarter") >= 0 && ob_curveset_find(&all, "liu2002_ex1") >= 0,
           "datasets/ has the reference and the published curves");
     ob_curveset_free(&all);

@@ -101,10 +101,10 @@ static double measure_sisl(SISLCurve *rc, const ob_bez *base, int nb, double u0,
     }
     ob_bez *segs = NULL;
     int nseg = 0;
-    char err[128];
+    ob_err err = {""};
     double worst = INFINITY;
     if (ob_bspline_to_bezier(rc->ik - 1, rc->in, rc->et, (const double (*)[3])pts, &segs, &nseg,
-                             err, sizeof err) == 0) {
+                             &err) == 0) {
         worst = 0.0;
         int s = 0;
         for (int j = rc->ik - 1; j < rc->in; j++) {
@@ -271,10 +271,9 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
         pts[i][0] = rc->ecoef[2 * i], pts[i][1] = rc->ecoef[2 * i + 1], pts[i][2] = 1.0;
     ob_bez *segs = NULL;
     int nseg = 0;
-    char err[128];
-    int r = ob_bspline_to_bezier(3, rc->in, rc->et, (const double (*)[3])pts, &segs, &nseg, err,
-                                 sizeof err);
-    CHECK(r == 0 && nseg == f.n, "%s: ob_bspline_to_bezier %d, %d segments (%s)", name, r, nseg, err);
+    ob_err err = {""};
+    int r = ob_bspline_to_bezier(3, rc->in, rc->et, (const double (*)[3])pts, &segs, &nseg, &err);
+    CHECK(r == 0 && nseg == f.n, "%s: ob_bspline_to_bezier %d, %d segments (%s)", name, r, nseg, err.msg);
     if (r == 0 && nseg == f.n) {
         double w = 0.0;
         for (int i = 0; i < nseg; i++)
@@ -453,9 +452,9 @@ static void test_tolerance(void)
     }
     ob_bez *segs = NULL;
     int nseg = 0;
-    char err[128];
-    int r = ob_bspline_to_bezier(3, 7, kn, (const double (*)[3])pts, &segs, &nseg, err, sizeof err);
-    CHECK(r == 0 && nseg == 4, "liu2002_ex2_unclamped: %d segments (%s)", nseg, err);
+    ob_err err = {""};
+    int r = ob_bspline_to_bezier(3, 7, kn, (const double (*)[3])pts, &segs, &nseg, &err);
+    CHECK(r == 0 && nseg == 4, "liu2002_ex2_unclamped: %d segments (%s)", nseg, err.msg);
     if (r != 0)
         return;
     SISLCurve *pc = newCurve(7, 4, (double *)kn, co, 1, 2, 1);
@@ -624,10 +623,10 @@ static void test_threads(void)
 static void test_runaway(void)
 {
     ob_curveset set = {0};
-    char err[256];
+    ob_err err = {""};
     char *ids[] = {"rnd7_000223"};
-    CHECK(ob_random_append(&set, 7, 500, ids, 1, err, sizeof err) == 0 && set.n == 1, "random curve 223: %s",
-          err);
+    CHECK(ob_random_append(&set, 7, 500, ids, 1, &err) == 0 && set.n == 1, "random curve 223: %s",
+          err.msg);
     if (set.n != 1)
         return;
     const ob_method *sm = ob_method_find("sisl");

@@ -58,13 +58,14 @@ static void test_round_trip(const ob_job *j)
         {"t.json", w_json, 1}, {"t.curves", ob_export_write_curves, 1}, {"t.dxf", ob_export_write_dxf, 0}};
     for (int f = 0; f < 3; f++) {
         size_t len;
-        char *text = write_mem(fmts[f].w, j, &a, &len), err[512] = "";
+        char *text = write_mem(fmts[f].w, j, &a, &len);
+        ob_err err = {""};
         ob_approx b = {0};
         const ob_afmt fm = ob_approx_format(fmts[f].name, text, len);
-        const int rc = fm == OB_AFMT_JSON ? ob_approx_read_json(text, len, fmts[f].name, &b, err, sizeof err)
-                       : fm == OB_AFMT_DXF ? ob_approx_read_dxf(text, len, fmts[f].name, &b, err, sizeof err)
-                                           : ob_approx_read_curves(text, len, fmts[f].name, &b, err, sizeof err);
-        CHECK(rc == 0 && b.n == 2 && b.same_param == 1, "%s: rc %d, %d pieces: %s", fmts[f].name, rc, b.n, err);
+        const int rc = fm == OB_AFMT_JSON ? ob_approx_read_json(text, len, fmts[f].name, &b, &err)
+                       : fm == OB_AFMT_DXF ? ob_approx_read_dxf(text, len, fmts[f].name, &b, &err)
+                                           : ob_approx_read_curves(text, len, fmts[f].name, &b, &err);
+        CHECK(rc == 0 && b.n == 2 && b.same_param == 1, "%s: rc %d, %d pieces: %s", fmts[f].name, rc, b.n, err.msg);
         CHECK(b.have_job && strcmp(b.job_curve, j->curve->id) == 0 && b.job_d == j->d,
               "%s: the exporting job (have %d, curve '%s', d %.17g) did not come back", fmts[f].name, b.have_job,
               b.job_curve, b.job_d);
@@ -127,9 +128,9 @@ static void test_match(void)
     const double pts[3][2] = {{1.5, 0.5}, {1.0, 0.5}, {0.5, 0.5}};
     ob_bez_from_points(&p->approx, 2, pts);
     a.same_param = 1;
-    char err[512] = "";
-    const int rc = ob_approx_match(&c, 0.5, &a, "m.curves", err, sizeof err);
-    CHECK(rc == 0 && p->has_base && p->seg == 0, "match: %s", err);
+    ob_err err = {""};
+    const int rc = ob_approx_match(&c, 0.5, &a, "m.curves", &err);
+    CHECK(rc == 0 && p->has_base && p->seg == 0, "match: %s", err.msg);
     CHECK_NEAR(p->a, 0.25, 1e-12, "matched start");
     CHECK_NEAR(p->b, 0.75, 1e-12, "matched end");
     CHECK(p->t0 == 0.0 && p->t1 == 1.0 && a.same_param == 0, "matched fit range [0, 1], no shared parameter");
@@ -137,17 +138,17 @@ static void test_match(void)
     ob_bez_point(&p->approx, 0.0, q);
     CHECK(q[0] == 0.5 && q[1] == 0.5, "the piece was reversed to run with the base: starts at (%g, %g)", q[0], q[1]);
     ob_mres r;
-    CHECK(ob_approx_measure(&c, 0.5, &a, OB_METRIC_HAUSDORFF, 256, "m.curves", &r, err, sizeof err) == 0 && r.applies &&
+    CHECK(ob_approx_measure(&c, 0.5, &a, OB_METRIC_HAUSDORFF, 256, "m.curves", &r, &err) == 0 && r.applies &&
               r.err <= 1e-15,
-          "hausdorff error of the exact offset line: %.3g (%s)", r.err, err);
-    CHECK(ob_approx_measure(&c, 0.5, &a, OB_METRIC_RADIAL, 256, "m.curves", &r, err, sizeof err) == 0 && !r.applies,
+          "hausdorff error of the exact offset line: %.3g (%s)", r.err, err.msg);
+    CHECK(ob_approx_measure(&c, 0.5, &a, OB_METRIC_RADIAL, 256, "m.curves", &r, &err) == 0 && !r.applies,
           "radial does not apply to a matched piece");
     /* both ends on one offset point */
     const double dot[2][2] = {{1.0, 0.5}, {1.0, 0.5}};
     p->has_base = 0;
     ob_bez_from_points(&p->approx, 1, dot);
-    CHECK(ob_approx_match(&c, 0.5, &a, "m.curves", err, sizeof err) != 0 && strstr(err, "m.curves:0: piece 0"),
-          "a point-like piece is refused: %s", err);
+    CHECK(ob_approx_match(&c, 0.5, &a, "m.curves", &err) != 0 && strstr(err.msg, "m.curves:0: piece 0"),
+          "a point-like piece is refused: %s", err.msg);
     ob_approx_free(&a);
 }
 
@@ -178,11 +179,11 @@ static void test_hostile(const ob_job *j)
                 m[next_rand() % len] = alphabet[next_rand() % (sizeof alphabet - 1)];
             const size_t cut = next_rand() % 8 == 0 ? next_rand() % len : len;
             ob_approx b = {0};
-            char err[512] = "";
-            const int rc = f == 0 ? ob_approx_read_json(m, cut, names[f], &b, err, sizeof err)
-                           : f == 1 ? ob_approx_read_curves(m, cut, names[f], &b, err, sizeof err)
-                                    : ob_approx_read_dxf(m, cut, names[f], &b, err, sizeof err);
-            bad_msgs += rc != 0 && strncmp(err, names[f], strlen(names[f])) != 0;
+            ob_err err = {""};
+            const int rc = f == 0 ? ob_approx_read_json(m, cut, names[f], &b, &err)
+                           : f == 1 ? ob_approx_read_curves(m, cut, names[f], &b, &err)
+                                    : ob_approx_read_dxf(m, cut, names[f], &b, &err);
+            bad_msgs += rc != 0 && strncmp(err.msg, names[f], strlen(names[f])) != 0;
             bad_msgs += rc == 0 && b.n > 0 && b.v[0].approx.deg < 1;
             runs++;
             ob_approx_free(&b);
@@ -201,16 +202,16 @@ static void test_huge_numbers(void)
     const char *json2 = "{\"pieces\": [{\"degree\": 1, \"points\": [[0, 0], [1, 1]], \"seg\": 1e300, "
                         "\"span\": [0, 1], \"t\": [0, 1]}]}";
     const char *dxf = "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n1e300\n0\nENDSEC\n0\nEOF\n";
-    char err[512];
+    ob_err err = {""};
     ob_approx b = {0};
-    CHECK(ob_approx_read_json(json, strlen(json), "h.json", &b, err, sizeof err) != 0 && strstr(err, "h.json:1:"),
-          "degree 1e300: %s", err);
+    CHECK(ob_approx_read_json(json, strlen(json), "h.json", &b, &err) != 0 && strstr(err.msg, "h.json:1:"),
+          "degree 1e300: %s", err.msg);
     ob_approx_free(&b);
-    CHECK(ob_approx_read_json(json2, strlen(json2), "h.json", &b, err, sizeof err) != 0 && strstr(err, "base link"),
-          "seg 1e300: %s", err);
+    CHECK(ob_approx_read_json(json2, strlen(json2), "h.json", &b, &err) != 0 && strstr(err.msg, "base link"),
+          "seg 1e300: %s", err.msg);
     ob_approx_free(&b);
-    CHECK(ob_approx_read_dxf(dxf, strlen(dxf), "h.dxf", &b, err, sizeof err) != 0 && strstr(err, "h.dxf:8: group 71"),
-          "DXF degree 1e300: %s", err);
+    CHECK(ob_approx_read_dxf(dxf, strlen(dxf), "h.dxf", &b, &err) != 0 && strstr(err.msg, "h.dxf:8: group 71"),
+          "DXF degree 1e300: %s", err.msg);
     ob_approx_free(&b);
 }
 

@@ -156,8 +156,8 @@ static void test_detects_wrong(const ob_curveset *set)
 int main(void)
 {
     ob_curveset set = {0};
-    char err[1024];
-    CHECK(ob_curves_load_file("datasets/atlas.curves", &set, err, sizeof err) == 0, "atlas.curves: %s", err);
+    ob_err err = {""};
+    CHECK(ob_curves_load_file("datasets/atlas.curves", &set, &err) == 0, "atlas.curves: %s", err.msg);
     for (size_t k = 0; k < sizeof eqs / sizeof eqs[0]; k++)
         test_equation(&set, &eqs[k]);
     test_detects_wrong(&set);

@@ -50,9 +50,9 @@ static double compare_with_ref(const char *what, int p, int npts, const double *
 {
     ob_bez *seg = NULL;
     int nseg = -1;
-    char err[256] = "";
-    int rc = ob_bspline_to_bezier(p, npts, U, P, &seg, &nseg, err, sizeof err);
-    CHECK(rc == 0, "%s: rc %d (%s)", what, rc, err);
+    ob_err err = {""};
+    int rc = ob_bspline_to_bezier(p, npts, U, P, &seg, &nseg, &err);
+    CHECK(rc == 0, "%s: rc %d (%s)", what, rc, err.msg);
     CHECK(nseg == expect_nseg, "%s: %d segments, expected %d", what, nseg, expect_nseg);
     if (rc)
         return INFINITY;
@@ -106,9 +106,8 @@ static void test_single_span(void)
         }
         ob_bez *seg = NULL;
         int nseg = 0;
-        char err[128];
-        int rc = ob_bspline_to_bezier(p, p + 1, U, (const double(*)[3])P, &seg, &nseg, err,
-                                      sizeof err);
+        ob_err err = {""};
+        int rc = ob_bspline_to_bezier(p, p + 1, U, (const double(*)[3])P, &seg, &nseg, &err);
         CHECK(rc == 0 && nseg == 1, "single span p=%d: rc %d nseg %d", p, rc, nseg);
         if (rc)
             continue;
@@ -134,8 +133,8 @@ static void test_uniform_cubic(void)
     /* the closed form of a uniform cubic span, as a second reference */
     ob_bez *seg = NULL;
     int nseg = 0;
-    char err[128];
-    CHECK(ob_bspline_to_bezier(3, 7, U, ex2, &seg, &nseg, err, sizeof err) == 0, "%s", err);
+    ob_err err = {""};
+    CHECK(ob_bspline_to_bezier(3, 7, U, ex2, &seg, &nseg, &err) == 0, "%s", err.msg);
     for (int s = 0; s < nseg; s++) {
         const double *P0 = ex2[s], *P1 = ex2[s + 1], *P2 = ex2[s + 2], *P3 = ex2[s + 3];
         CHECK(!seg[s].rational, "uniform cubic segment %d marked rational", s);
@@ -218,9 +217,9 @@ static void test_non_uniform(void)
     const double K[11] = {0, 0.3, 1, 1.7, 2, 3.2, 3.6, 5, 5.5, 6, 7.5};
     ob_bez *seg = NULL;
     int nseg = 0;
-    char err[128];
-    CHECK(ob_bspline_to_bezier(3, 7, K, ex2, &seg, &nseg, err, sizeof err) == 0 && nseg == 4,
-          "non-uniform C2 conversion: %s", err);
+    ob_err err = {""};
+    CHECK(ob_bspline_to_bezier(3, 7, K, ex2, &seg, &nseg, &err) == 0 && nseg == 4,
+          "non-uniform C2 conversion: %s", err.msg);
     for (int s = 0; s + 1 < nseg; s++) {
         double ha = K[3 + s + 1] - K[3 + s], hb = K[3 + s + 2] - K[3 + s + 1];
         const double(*a)[3] = seg[s].h, (*b)[3] = seg[s + 1].h;
@@ -247,8 +246,8 @@ static void test_rational_circle(void)
     CHECK(worst <= 1e-12, "circle: max deviation %g", worst);
     ob_bez *seg = NULL;
     int nseg = 0;
-    char err[128];
-    CHECK(ob_bspline_to_bezier(2, 9, U, P, &seg, &nseg, err, sizeof err) == 0, "%s", err);
+    ob_err err = {""};
+    CHECK(ob_bspline_to_bezier(2, 9, U, P, &seg, &nseg, &err) == 0, "%s", err.msg);
     for (int s = 0; s < nseg; s++) {
         CHECK(seg[s].rational == 1, "circle segment %d not rational", s);
         for (int j = 0; j <= 64; j++) {
@@ -263,8 +262,8 @@ static void test_rational_circle(void)
      * is polynomial with weights exactly 1 */
     const double Q[5][3] = {{0, 0, 1}, {1, 2, 1}, {2, -1, 1}, {3, 1, 4}, {4, 0, 1}};
     const double V[8] = {0, 0, 0, 1, 2, 3, 3, 3};
-    CHECK(ob_bspline_to_bezier(2, 5, V, Q, &seg, &nseg, err, sizeof err) == 0 && nseg == 3,
-          "mixed weights: %s", err);
+    CHECK(ob_bspline_to_bezier(2, 5, V, Q, &seg, &nseg, &err) == 0 && nseg == 3,
+          "mixed weights: %s", err.msg);
     if (nseg != 3)
         return;
     CHECK(!seg[0].rational && seg[1].rational && seg[2].rational, "mixed flags %d %d %d",
@@ -278,10 +277,10 @@ static void bad(const char *what, int p, int npts, const double *U, const double
 {
     ob_bez *seg = (ob_bez *)&seg; /* must be reset to NULL */
     int nseg = 99;
-    char err[200] = "";
-    int rc = ob_bspline_to_bezier(p, npts, U, P, &seg, &nseg, err, sizeof err);
+    ob_err err = {""};
+    int rc = ob_bspline_to_bezier(p, npts, U, P, &seg, &nseg, &err);
     CHECK(rc == -1, "%s: rc %d", what, rc);
-    CHECK(err[0] != '\0', "%s: no message", what);
+    CHECK(err.msg[0] != '\0', "%s: no message", what);
     CHECK(seg == NULL && nseg == 0, "%s: outputs not reset", what);
 }
 
@@ -328,14 +327,15 @@ static void test_bad_args(void)
     memcpy(P, ex2, sizeof P);
 
     /* missing outputs, and no room for a message: still -1, no crash */
-    CHECK(ob_bspline_to_bezier(3, 7, U, cp, NULL, NULL, NULL, 0) == -1, "NULL outputs");
+    CHECK(ob_bspline_to_bezier(3, 7, U, cp, NULL, NULL, NULL) == -1, "NULL outputs");
     ob_bez *seg = NULL;
     int nseg = 0;
-    CHECK(ob_bspline_to_bezier(0, 7, U, cp, &seg, &nseg, NULL, 0) == -1, "NULL err");
-    char tiny[4] = "xyz";
-    CHECK(ob_bspline_to_bezier(0, 7, U, cp, &seg, &nseg, tiny, sizeof tiny) == -1 &&
-              strlen(tiny) == 3,
-          "truncated message '%s'", tiny);
+    CHECK(ob_bspline_to_bezier(0, 7, U, cp, &seg, &nseg, NULL) == -1, "NULL err");
+    ob_err e;
+    char want[64];
+    snprintf(want, sizeof want, "bspline degree 0 outside 1..%d", (int)OB_MAX_IN_DEG);
+    CHECK(ob_bspline_to_bezier(0, 7, U, cp, &seg, &nseg, &e) == -1 && strcmp(e.msg, want) == 0,
+          "message '%s'", e.msg);
 }
 
 int main(void)

@@ -79,10 +79,10 @@ static void test_ranktest(void)
 static void expect_json_bad(const char *text, const char *where, const char *why)
 {
     ob_json_flat f;
-    char err[512] = "";
-    int rc = ob_json_flatten(text, strlen(text), "t.json", &f, err, sizeof err);
-    CHECK(rc == -1 && strstr(err, where) && strstr(err, why), "'%s': want '%s' '%s', got '%s'", text, where, why,
-          err);
+    ob_err err = {""};
+    int rc = ob_json_flatten(text, strlen(text), "t.json", &f, &err);
+    CHECK(rc == -1 && strstr(err.msg, where) && strstr(err.msg, why), "'%s': want '%s' '%s', got '%s'", text, where,
+          why, err.msg);
     CHECK(f.n == 0 && f.v == NULL, "a failed parse leaves nothing");
     ob_json_free(&f);
 }
@@ -100,8 +100,8 @@ static void test_json(void)
                         "  \"n\": 0\n"
                         "}\n";
     ob_json_flat f;
-    char err[512] = "";
-    CHECK(ob_json_flatten(good, strlen(good), "g.json", &f, err, sizeof err) == 0, "good json: %s", err);
+    ob_err err = {""};
+    CHECK(ob_json_flatten(good, strlen(good), "g.json", &f, &err) == 0, "good json: %s", err.msg);
     const ob_json_entry *e = ob_json_get(&f, "git_commit");
     CHECK(e && e->type == OB_JSON_STRING && strcmp(e->value, "abc\"d\xc3\xa9\xf0\x9f\x98\x80") == 0 && e->line == 2,
           "escapes decoded: '%s'", e ? e->value : "(none)");
@@ -163,9 +163,9 @@ static void test_json(void)
     deep[k] = '\0';
     expect_json_bad(deep, "t.json:1", "nested deeper than 32");
 
-    CHECK(ob_json_load("/nonexistent/meta.json", &f, err, sizeof err) == -1 &&
-              strstr(err, "/nonexistent/meta.json: cannot open"),
-          "missing file: %s", err);
+    CHECK(ob_json_load("/nonexistent/meta.json", &f, &err) == -1 &&
+              strstr(err.msg, "/nonexistent/meta.json: cannot open"),
+          "missing file: %s", err.msg);
     ob_json_free(&f);
 }
 
@@ -176,12 +176,13 @@ static const char HDR[] =
 
 static void expect_csv_bad(const char *body, const char *where, const char *why)
 {
-    char text[2048], err[512] = "";
+    char text[2048];
+    ob_err err = {""};
     snprintf(text, sizeof text, "%s%s", HDR, body);
     ob_res_table t;
-    int rc = ob_res_parse(text, strlen(text), "r.csv", &t, err, sizeof err);
-    CHECK(rc == -1 && strstr(err, where) && strstr(err, why), "'%s': want '%s' '%s', got '%s'", body, where, why,
-          err);
+    int rc = ob_res_parse(text, strlen(text), "r.csv", &t, &err);
+    CHECK(rc == -1 && strstr(err.msg, where) && strstr(err.msg, why), "'%s': want '%s' '%s', got '%s'", body, where,
+          why, err.msg);
     CHECK(t.n == 0 && t.v == NULL && t.text == NULL, "a failed parse leaves an empty table");
     ob_res_free(&t);
 }
@@ -189,9 +190,10 @@ static void expect_csv_bad(const char *body, const char *where, const char *why)
 static void expect_samples_bad(const ob_res_table *t0, const char *text, const char *where, const char *why)
 {
     ob_res_table t = *t0;
-    char err[512] = "";
-    int rc = ob_res_attach_samples(&t, text, strlen(text), "s.csv", err, sizeof err);
-    CHECK(rc == -1 && strstr(err, where) && strstr(err, why), "samples: want '%s' '%s', got '%s'", where, why, err);
+    ob_err err = {""};
+    int rc = ob_res_attach_samples(&t, text, strlen(text), "s.csv", &err);
+    CHECK(rc == -1 && strstr(err.msg, where) && strstr(err.msg, why), "samples: want '%s' '%s', got '%s'", where, why,
+          err.msg);
     CHECK(t.rep_t == t0->rep_t && t.maxrep == t0->maxrep, "a failed attach changes nothing");
 }
 
@@ -205,8 +207,8 @@ static void test_csv(void)
                         "fail,0,0,y\n"
                         "published,,c1,-1,ahn,hausdorff,mid,0.00001,0,0,6,,skip,0,0,z";
     ob_res_table t;
-    char err[512] = "";
-    CHECK(ob_res_parse(good, strlen(good), "g.csv", &t, err, sizeof err) == 0 && t.n == 3, "good csv: %s", err);
+    ob_err err = {""};
+    CHECK(ob_res_parse(good, strlen(good), "g.csv", &t, &err) == 0 && t.n == 3, "good csv: %s", err.msg);
     if (t.n == 3) {
         CHECK(strcmp(t.v[0].curve, "c1") == 0 && t.v[0].ctrl_points == 10 && t.v[0].max_err == 0.05 &&
                   t.v[0].fit_ns + t.v[0].eval_ns == 2000100 && t.v[0].line == 2,
@@ -232,8 +234,8 @@ static void test_csv(void)
                          "c1,1,tiller,hausdorff,mid,0.1,1,10,1000\n"
                          "c1,1,tiller,hausdorff,mid,1e-1,3,20,1000\n"
                          "c1,1,ahn,hausdorff,mid,0.00001,2,0,5\n";
-    CHECK(ob_res_attach_samples(&t, sgood, strlen(sgood), "s.csv", err, sizeof err) == 0 && t.maxrep == 3,
-          "good samples: %s", err);
+    CHECK(ob_res_attach_samples(&t, sgood, strlen(sgood), "s.csv", &err) == 0 && t.maxrep == 3,
+          "good samples: %s", err.msg);
     if (t.maxrep == 3) {
         CHECK(t.v[0].nsamples == 2 && t.v[0].rep_t[0] == 1010 && isnan(t.v[0].rep_t[1]) && t.v[0].rep_t[2] == 1020,
               "reps of row 1");
@@ -261,8 +263,8 @@ static void test_csv(void)
     char jt[1024];
     snprintf(jt, sizeof jt, "%sc1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,f,10,no,0.031,2.06,open\n"
              "c1,1,cobb,hausdorff,mid,0.1,4,1,3,0.05,ok,1,1,,f,10,no,,,\n", jhdr);
-    CHECK(ob_res_parse(jt, strlen(jt), "j.csv", &t, err, sizeof err) == 0 && t.n == 2 && t.has_joints,
-          "joint columns: %s", err);
+    CHECK(ob_res_parse(jt, strlen(jt), "j.csv", &t, &err) == 0 && t.n == 2 && t.has_joints,
+          "joint columns: %s", err.msg);
     if (t.n == 2)
         CHECK(t.v[0].max_gap == 0.031 && t.v[0].max_kink == 2.06 && strcmp(t.v[0].continuity, "open") == 0 &&
                   isnan(t.v[1].max_gap) && isnan(t.v[1].max_kink) && strcmp(t.v[1].continuity, "") == 0,
@@ -275,16 +277,16 @@ static void test_csv(void)
     };
     for (size_t k = 0; k < sizeof jbad / sizeof jbad[0]; k++) {
         snprintf(jt, sizeof jt, "%s%s", jhdr, jbad[k].row);
-        CHECK(ob_res_parse(jt, strlen(jt), "j.csv", &t, err, sizeof err) == -1 && strstr(err, "j.csv:2") &&
-                  strstr(err, jbad[k].why),
-              "'%s': %s", jbad[k].row, err);
+        CHECK(ob_res_parse(jt, strlen(jt), "j.csv", &t, &err) == -1 && strstr(err.msg, "j.csv:2") &&
+                  strstr(err.msg, jbad[k].why),
+              "'%s': %s", jbad[k].row, err.msg);
         ob_res_free(&t);
     }
     const char half[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
                         "eval_ns,message,max_gap\nc1,1,zhao,hausdorff,mid,0.1,8,2,3,0.05,ok,1,1,,0.1\n";
-    CHECK(ob_res_parse(half, strlen(half), "h.csv", &t, err, sizeof err) == -1 && strstr(err, "h.csv:1") &&
-              strstr(err, "come together"),
-          "only max_gap: %s", err);
+    CHECK(ob_res_parse(half, strlen(half), "h.csv", &t, &err) == -1 && strstr(err.msg, "h.csv:1") &&
+              strstr(err.msg, "come together"),
+          "only max_gap: %s", err.msg);
     ob_res_free(&t);
 
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,,f\nc,1,m,hausdorff,mid,0.1,10,3,3\n", "r.csv:3",
@@ -305,21 +307,21 @@ static void test_csv(void)
                    "r.csv:4", "duplicate job c,1.0,m,hausdorff,mid,1e-1 (first on line 2)");
     const char nocol[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,status,fit_ns,eval_ns,"
                          "message\n";
-    CHECK(ob_res_parse(nocol, strlen(nocol), "h.csv", &t, err, sizeof err) == -1 && strstr(err, "h.csv:1") &&
-              strstr(err, "'max_err'"),
-          "missing column: %s", err);
+    CHECK(ob_res_parse(nocol, strlen(nocol), "h.csv", &t, &err) == -1 && strstr(err.msg, "h.csv:1") &&
+              strstr(err.msg, "'max_err'"),
+          "missing column: %s", err.msg);
     const char twice[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
                          "eval_ns,message,tol\n";
-    CHECK(ob_res_parse(twice, strlen(twice), "h.csv", &t, err, sizeof err) == -1 && strstr(err, "appears twice"),
-          "repeated column: %s", err);
-    CHECK(ob_res_parse("", 0, "e.csv", &t, err, sizeof err) == -1 && strstr(err, "e.csv:1: empty"), "empty: %s", err);
+    CHECK(ob_res_parse(twice, strlen(twice), "h.csv", &t, &err) == -1 && strstr(err.msg, "appears twice"),
+          "repeated column: %s", err.msg);
+    CHECK(ob_res_parse("", 0, "e.csv", &t, &err) == -1 && strstr(err.msg, "e.csv:1: empty"), "empty: %s", err.msg);
     const char garbage[] = "\x7f" "ELF\x02\x01\x01\n\x00\x01garbage";
-    CHECK(ob_res_parse(garbage, sizeof garbage - 1, "b.csv", &t, err, sizeof err) == -1 && strstr(err, "b.csv:1"),
-          "garbage: %s", err);
-    CHECK(ob_res_parse(HDR, strlen(HDR), "h.csv", &t, err, sizeof err) == 0 && t.n == 0, "header only: no rows");
+    CHECK(ob_res_parse(garbage, sizeof garbage - 1, "b.csv", &t, &err) == -1 && strstr(err.msg, "b.csv:1"),
+          "garbage: %s", err.msg);
+    CHECK(ob_res_parse(HDR, strlen(HDR), "h.csv", &t, &err) == 0 && t.n == 0, "header only: no rows");
     ob_res_free(&t);
-    CHECK(ob_res_load("/nonexistent/results.csv", &t, err, sizeof err) == -1 && strstr(err, "cannot open"),
-          "missing file: %s", err);
+    CHECK(ob_res_load("/nonexistent/results.csv", &t, &err) == -1 && strstr(err.msg, "cannot open"),
+          "missing file: %s", err.msg);
 }
 
 /* ---- join and verdicts ---- */
@@ -337,25 +339,26 @@ typedef struct {
 
 static void load(ob_cmp_side *s, const char *label, const char *rows, const meta_spec *m, const char *samples)
 {
-    char text[8192], err[512] = "";
+    char text[8192];
+    ob_err err = {""};
     memset(s, 0, sizeof *s);
     s->label = label;
     snprintf(s->results_path, sizeof s->results_path, "%s.csv", label);
     snprintf(text, sizeof text, "%s%s", HDR, rows);
-    CHECK(ob_res_parse(text, strlen(text), s->results_path, &s->res, err, sizeof err) == 0, "rows: %s", err);
+    CHECK(ob_res_parse(text, strlen(text), s->results_path, &s->res, &err) == 0, "rows: %s", err.msg);
     if (m) {
         snprintf(text, sizeof text, META, m->samples, m->tiller_k, m->zhao_n, m->tiller_version);
         if (m->compiler) {
             char *c = strstr(text, "gcc 12");
             memcpy(c, m->compiler, 6);
         }
-        CHECK(ob_json_flatten(text, strlen(text), "meta.json", &s->meta, err, sizeof err) == 0, "meta: %s", err);
+        CHECK(ob_json_flatten(text, strlen(text), "meta.json", &s->meta, &err) == 0, "meta: %s", err.msg);
         s->has_meta = 1;
     }
     if (samples) {
         snprintf(text, sizeof text, "curve,d,method,metric,split,tol,rep,fit_ns,eval_ns\n%s", samples);
-        CHECK(ob_res_attach_samples(&s->res, text, strlen(text), "samples.csv", err, sizeof err) == 0, "samples: %s",
-              err);
+        CHECK(ob_res_attach_samples(&s->res, text, strlen(text), "samples.csv", &err) == 0, "samples: %s",
+              err.msg);
         s->has_samples = s->res.maxrep > 0;
     }
 }
@@ -363,12 +366,12 @@ static void load(ob_cmp_side *s, const char *label, const char *rows, const meta
 /* Runs a comparison; returns the exit status and keeps the result in *r. */
 static int run(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r)
 {
-    char err[256] = "";
+    ob_err err = {""};
     memset(r, 0, sizeof *r);
-    int rc = ob_cmp_context(b, n, o, r, err, sizeof err);
+    int rc = ob_cmp_context(b, n, o, r, &err);
     if (rc == 0 && r->incomparable.n == 0)
-        rc = ob_cmp_rows(b, n, o, r, err, sizeof err);
-    CHECK(rc == 0, "comparison: %s", err);
+        rc = ob_cmp_rows(b, n, o, r, &err);
+    CHECK(rc == 0, "comparison: %s", err.msg);
     /* both reports render */
     FILE *devnull = fopen("/dev/null", "w");
     if (devnull) {

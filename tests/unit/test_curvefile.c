@@ -64,12 +64,12 @@ static int starts_with(const char *s, const char *prefix)
 /* Parses a buffer that is exactly len bytes long (malloc'd copy, so ASan sees
  * any read past the end). */
 static int parse_exact(const char *text, size_t len, const char *name, ob_curveset *set,
-                       char *err, size_t errlen)
+                       ob_err *err)
 {
     char *copy = malloc(len ? len : 1);
     if (len)
         memcpy(copy, text, len);
-    int rc = ob_curves_parse(copy, len, name, set, err, errlen);
+    int rc = ob_curves_parse(copy, len, name, set, err);
     free(copy);
     return rc;
 }
@@ -91,9 +91,9 @@ static int same_curve(const ob_curve *a, const ob_curve *b)
 static void test_published(void)
 {
     ob_curveset set = {0};
-    char err[512] = "";
-    int rc = ob_curves_load_file(PUBLISHED, &set, err, sizeof err);
-    CHECK(rc == 0, "load %s: %s", PUBLISHED, err);
+    ob_err err = {""};
+    int rc = ob_curves_load_file(PUBLISHED, &set, &err);
+    CHECK(rc == 0, "load %s: %s", PUBLISHED, err.msg);
     CHECK(set.n == 5, "%d curves", set.n);
     static const struct {
         const char *id;
@@ -170,14 +170,14 @@ static void test_crlf_roundtrip(void)
         crlf[m++] = lf[i];
     }
     ob_curveset a = {0}, b = {0}, c = {0};
-    char err[512] = "";
-    CHECK(parse_exact(lf, len, PUBLISHED, &a, err, sizeof err) == 0, "LF: %s", err);
-    CHECK(parse_exact(crlf, m, PUBLISHED, &b, err, sizeof err) == 0, "CRLF: %s", err);
+    ob_err err = {""};
+    CHECK(parse_exact(lf, len, PUBLISHED, &a, &err) == 0, "LF: %s", err.msg);
+    CHECK(parse_exact(crlf, m, PUBLISHED, &b, &err) == 0, "CRLF: %s", err.msg);
     /* BOM in front, CRLF, and the final "\r\n" dropped */
     char *bom = malloc(m + 3);
     memcpy(bom, "\xEF\xBB\xBF", 3);
     memcpy(bom + 3, crlf, m);
-    CHECK(parse_exact(bom, m + 3 - 2, PUBLISHED, &c, err, sizeof err) == 0, "BOM: %s", err);
+    CHECK(parse_exact(bom, m + 3 - 2, PUBLISHED, &c, &err) == 0, "BOM: %s", err.msg);
     CHECK(a.n == 5 && b.n == a.n && c.n == a.n, "counts %d %d %d", a.n, b.n, c.n);
     for (int i = 0; i < a.n && i < b.n && i < c.n; i++) {
         CHECK(same_curve(&a.v[i], &b.v[i]), "CRLF curve %d differs", i);
@@ -217,9 +217,9 @@ static void test_valid_variants(void)
         "  offset 2\n"
         "end"; /* no final newline */
     ob_curveset set = {0};
-    char err[512] = "";
-    int rc = parse_exact(text, strlen(text), "mem", &set, err, sizeof err);
-    CHECK(rc == 0, "variants: %s", err);
+    ob_err err = {""};
+    int rc = parse_exact(text, strlen(text), "mem", &set, &err);
+    CHECK(rc == 0, "variants: %s", err.msg);
     if (rc == 0 && set.n == 2) {
         const ob_curve *c = &set.v[0];
         CHECK(!strcmp(c->id, "r/1.a-b_c"), "id '%s'", c->id);
@@ -253,17 +253,17 @@ static void test_valid_variants(void)
             big[n++] = 'z';
         big[n++] = '\r'; /* CRLF does not count */
         big[n++] = '\n';
-        rc = parse_exact(big, n, "big", &set, err, sizeof err);
-        CHECK(rc == (extra ? -1 : 0), "line of %d bytes: rc %d (%s)", 4096 + extra, rc, err);
+        rc = parse_exact(big, n, "big", &set, &err);
+        CHECK(rc == (extra ? -1 : 0), "line of %d bytes: rc %d (%s)", 4096 + extra, rc, err.msg);
         if (extra)
-            CHECK(starts_with(err, "big:7:"), "long line message '%s'", err);
+            CHECK(starts_with(err.msg, "big:7:"), "long line message '%s'", err.msg);
         ob_curveset_free(&set);
     }
     free(big);
 
     /* empty input and comment-only input give no curves and no error */
-    CHECK(ob_curves_parse(NULL, 0, "empty", &set, err, sizeof err) == 0 && set.n == 0, "empty");
-    CHECK(parse_exact("# nothing\n\n", 11, "c", &set, err, sizeof err) == 0 && set.n == 0,
+    CHECK(ob_curves_parse(NULL, 0, "empty", &set, &err) == 0 && set.n == 0, "empty");
+    CHECK(parse_exact("# nothing\n\n", 11, "c", &set, &err) == 0 && set.n == 0,
           "comments only");
 }
 
@@ -287,8 +287,8 @@ static void test_bad_corpus(void)
     /* the published curves are loaded first, so that a file may also test
      * duplicate ids across files */
     ob_curveset set = {0};
-    char err[1024];
-    CHECK(ob_curves_load_file(PUBLISHED, &set, err, sizeof err) == 0, "%s", err);
+    ob_err err = {""};
+    CHECK(ob_curves_load_file(PUBLISHED, &set, &err) == 0, "%s", err.msg);
     const int n0 = set.n;
     for (int i = 0; i < n; i++) {
         char path[512];
@@ -301,15 +301,15 @@ static void test_bad_corpus(void)
         free(text);
         CHECK(expect > 0, "%s: no '# expect-line: N' first line", path);
 
-        strcpy(err, "untouched");
-        int rc = ob_curves_load_file(path, &set, err, sizeof err);
+        strcpy(err.msg, "untouched");
+        int rc = ob_curves_load_file(path, &set, &err);
         char prefix[600];
         snprintf(prefix, sizeof prefix, "%s:%d: ", path, expect);
         CHECK(rc == -1, "%s: parsed although malformed", path);
-        CHECK(starts_with(err, prefix), "%s: message '%s', expected it to start with '%s'", path,
-              err, prefix);
-        CHECK(strchr(err, '\n') == NULL && strlen(err) > strlen(prefix), "%s: message '%s'",
-              path, err);
+        CHECK(starts_with(err.msg, prefix), "%s: message '%s', expected it to start with '%s'", path,
+              err.msg, prefix);
+        CHECK(strchr(err.msg, '\n') == NULL && strlen(err.msg) > strlen(prefix), "%s: message '%s'",
+              path, err.msg);
         CHECK(set.n == n0, "%s: set grew to %d", path, set.n);
         free(names[i]);
     }
@@ -321,9 +321,9 @@ static void test_bad_corpus(void)
 static void test_dir_and_files(void)
 {
     ob_curveset set = {0};
-    char err[1024];
+    ob_err err = {""};
 
-    CHECK(ob_curves_load_dir("datasets", &set, err, sizeof err) == 0, "datasets: %s", err);
+    CHECK(ob_curves_load_dir("datasets", &set, &err) == 0, "datasets: %s", err.msg);
     CHECK(set.n >= 4 && ob_curveset_find(&set, "liu2002_ex2") >= 0 &&
               ob_curveset_find(&set, "zhao2017_quintic") >= 0,
           "datasets: %d curves", set.n);
@@ -345,7 +345,7 @@ static void test_dir_and_files(void)
         snprintf(p[i], sizeof p[i], "%s/%s", dir, files[i]);
         write_file(p[i], texts[i]);
     }
-    CHECK(ob_curves_load_dir(dir, &set, err, sizeof err) == 0, "tmp dir: %s", err);
+    CHECK(ob_curves_load_dir(dir, &set, &err) == 0, "tmp dir: %s", err.msg);
     CHECK(set.n == 3, "tmp dir: %d curves", set.n);
     if (set.n == 3) {
         CHECK(!strcmp(set.v[0].id, "a1") && !strcmp(set.v[1].id, "a2") &&
@@ -355,25 +355,25 @@ static void test_dir_and_files(void)
               set.v[0].file, set.v[1].line);
     }
     /* loading the same directory again: duplicate ids, nothing appended */
-    CHECK(ob_curves_load_dir(dir, &set, err, sizeof err) == -1 && set.n == 3, "reload");
+    CHECK(ob_curves_load_dir(dir, &set, &err) == -1 && set.n == 3, "reload");
     char want[400];
     snprintf(want, sizeof want, "%s:1: duplicate id 'a1'", p[1]);
-    CHECK(starts_with(err, want), "reload message '%s'", err);
+    CHECK(starts_with(err.msg, want), "reload message '%s'", err.msg);
     ob_curveset_free(&set);
 
     /* a bad file after good ones: all or nothing, message names DIR/FILE */
     char pc[300];
     snprintf(pc, sizeof pc, "%s/c.curves", dir);
     write_file(pc, "curve c1\n bezier 1\n point 0 0\n point 1 x\n offset 1\nend\n");
-    CHECK(ob_curves_load_dir(dir, &set, err, sizeof err) == -1 && set.n == 0,
+    CHECK(ob_curves_load_dir(dir, &set, &err) == -1 && set.n == 0,
           "bad file: rc, %d curves", set.n);
     snprintf(want, sizeof want, "%s:4: ", pc);
-    CHECK(starts_with(err, want), "bad file message '%s'", err);
+    CHECK(starts_with(err.msg, want), "bad file message '%s'", err.msg);
     /* the same through a trailing slash */
     char dirslash[320];
     snprintf(dirslash, sizeof dirslash, "%s/", dir);
-    CHECK(ob_curves_load_dir(dirslash, &set, err, sizeof err) == -1 && starts_with(err, want),
-          "trailing slash message '%s'", err);
+    CHECK(ob_curves_load_dir(dirslash, &set, &err) == -1 && starts_with(err.msg, want),
+          "trailing slash message '%s'", err.msg);
     ob_curveset_free(&set);
 
     /* a file too large (sparse, so this is cheap) */
@@ -381,18 +381,18 @@ static void test_dir_and_files(void)
     snprintf(pbig, sizeof pbig, "%s/big.data", dir);
     write_file(pbig, "");
     CHECK(truncate(pbig, ((off_t)64 << 20) + 1) == 0, "truncate");
-    CHECK(ob_curves_load_file(pbig, &set, err, sizeof err) == -1 && set.n == 0, "big file");
-    CHECK(starts_with(err, pbig) && strstr(err, "too large"), "big file message '%s'", err);
+    CHECK(ob_curves_load_file(pbig, &set, &err) == -1 && set.n == 0, "big file");
+    CHECK(starts_with(err.msg, pbig) && strstr(err.msg, "too large"), "big file message '%s'", err.msg);
 
     /* missing file, directory as a file, missing directory */
     char pmiss[300];
     snprintf(pmiss, sizeof pmiss, "%s/missing.curves", dir);
-    CHECK(ob_curves_load_file(pmiss, &set, err, sizeof err) == -1 && starts_with(err, pmiss),
-          "missing file: '%s'", err);
-    CHECK(ob_curves_load_file(dir, &set, err, sizeof err) == -1 && starts_with(err, dir),
-          "directory as file: '%s'", err);
-    CHECK(ob_curves_load_dir(pmiss, &set, err, sizeof err) == -1 && starts_with(err, pmiss),
-          "missing dir: '%s'", err);
+    CHECK(ob_curves_load_file(pmiss, &set, &err) == -1 && starts_with(err.msg, pmiss),
+          "missing file: '%s'", err.msg);
+    CHECK(ob_curves_load_file(dir, &set, &err) == -1 && starts_with(err.msg, dir),
+          "directory as file: '%s'", err.msg);
+    CHECK(ob_curves_load_dir(pmiss, &set, &err) == -1 && starts_with(err.msg, pmiss),
+          "missing dir: '%s'", err.msg);
     CHECK(set.n == 0, "nothing appended");
 
     for (int i = 0; i < 4; i++)
@@ -403,18 +403,24 @@ static void test_dir_and_files(void)
     ob_curveset_free(&set);
 }
 
-/* Small or missing error buffers are respected. */
+/* A message longer than the carrier is cut inside it (NUL-terminated, the
+ * "NAME:LINE: " prefix kept); a missing carrier is allowed. */
 static void test_error_buffer(void)
 {
     ob_curveset set = {0};
     const char *bad = "curve x\n bezier 99\n";
-    char small[8];
-    memset(small, 'Q', sizeof small);
-    CHECK(ob_curves_parse(bad, strlen(bad), "name", &set, small, sizeof small) == -1, "small");
-    CHECK(memchr(small, '\0', sizeof small) != NULL && starts_with("name:2: ", small),
-          "small buffer '%.8s'", small);
-    CHECK(ob_curves_parse(bad, strlen(bad), "name", &set, NULL, 0) == -1, "NULL err");
-    CHECK(ob_curves_parse(bad, strlen(bad), "name", NULL, small, sizeof small) == -1, "NULL set");
+    static ob_err e;
+    static char name[sizeof e.msg + 100];
+    memset(name, 'n', sizeof name - 1);
+    memset(e.msg, 'Q', sizeof e.msg);
+    CHECK(ob_curves_parse(bad, strlen(bad), name, &set, &e) == -1, "long name");
+    CHECK(memchr(e.msg, '\0', sizeof e.msg) != NULL && strlen(e.msg) == sizeof e.msg - 1 &&
+              starts_with(e.msg, "nnnn"),
+          "long message cut at %zu bytes, got %zu", sizeof e.msg - 1, strnlen(e.msg, sizeof e.msg));
+    CHECK(ob_curves_parse(bad, strlen(bad), "name", &set, &e) == -1 && starts_with(e.msg, "name:2: "),
+          "message '%s'", e.msg);
+    CHECK(ob_curves_parse(bad, strlen(bad), "name", &set, NULL) == -1, "NULL err");
+    CHECK(ob_curves_parse(bad, strlen(bad), "name", NULL, &e) == -1, "NULL set");
     CHECK(set.n == 0, "nothing appended");
 }
 
@@ -431,9 +437,9 @@ static unsigned rnd(unsigned n)
  * that leaves the set alone; ASan/UBSan catch the rest. */
 static void fuzz_one(const char *buf, size_t len, ob_curveset *set, int *ok, int *bad)
 {
-    char err[512] = "";
+    ob_err err = {""};
     int n0 = set->n;
-    int rc = parse_exact(buf, len, "fuzz", set, err, sizeof err);
+    int rc = parse_exact(buf, len, "fuzz", set, &err);
     if (rc == 0) {
         (*ok)++;
         for (int i = n0; i < set->n; i++) {
@@ -453,8 +459,8 @@ static void fuzz_one(const char *buf, size_t len, ob_curveset *set, int *ok, int
         set->n = n0;
     } else {
         (*bad)++;
-        if (rc != -1 || !starts_with(err, "fuzz:") || strchr(err, '\n') || set->n != n0)
-            CHECK(0, "fuzz: rc %d, message '%s', n %d", rc, err, set->n);
+        if (rc != -1 || !starts_with(err.msg, "fuzz:") || strchr(err.msg, '\n') || set->n != n0)
+            CHECK(0, "fuzz: rc %d, message '%s', n %d", rc, err.msg, set->n);
     }
 }
 

@@ -98,9 +98,9 @@ static void test_lock(void)
     }
     const pid_t child = fork();
     if (child == 0) {  /* the holder: lock, tell the parent, wait to be killed */
-        char err[512];
+        ob_err err = {""};
         int fd;
-        char c = ob_lock_dir(dir, &fd, err, sizeof err) == 0 ? 'y' : 'n';
+        char c = ob_lock_dir(dir, &fd, &err) == 0 ? 'y' : 'n';
         if (write(p[1], &c, 1) != 1)
             _exit(1);
         pause();
@@ -108,16 +108,17 @@ static void test_lock(void)
     }
     char c = 0;
     CHECK(read(p[0], &c, 1) == 1 && c == 'y', "the child locks %s", dir);
-    char err[8400], pid[32];
+    char pid[32];
+    ob_err err = {""};
     int fd = -1;
     snprintf(pid, sizeof pid, "pid %ld", (long)child);
-    CHECK(ob_lock_dir(dir, &fd, err, sizeof err) == -2 && strstr(err, pid) && strstr(err, dir), "held: %s", err);
+    CHECK(ob_lock_dir(dir, &fd, &err) == -2 && strstr(err.msg, pid) && strstr(err.msg, dir), "held: %s", err.msg);
     kill(child, SIGKILL);
     waitpid(child, NULL, 0);
-    CHECK(ob_lock_dir(dir, &fd, err, sizeof err) == 0 && fd >= 0, "after the holder died: %s", err);
+    CHECK(ob_lock_dir(dir, &fd, &err) == 0 && fd >= 0, "after the holder died: %s", err.msg);
     if (fd >= 0)
         close(fd);
-    CHECK(ob_lock_dir("/proc/no/such/dir", &fd, err, sizeof err) == -1, "no directory: %s", err);
+    CHECK(ob_lock_dir("/proc/no/such/dir", &fd, &err) == -1, "no directory: %s", err.msg);
     close(p[0]);
     close(p[1]);
     char path[64];

@@ -74,9 +74,9 @@ int main(void)
 {
     testlib_seed(0x5DEECE66DULL);
     ob_cl *cl = NULL;
-    char err[8192];
-    if (ob_cl_open(NULL, &cl, err, sizeof err) != 0) {
-        fprintf(stderr, "no OpenCL: %s\n", err);
+    ob_err err = {""};
+    if (ob_cl_open(NULL, &cl, &err) != 0) {
+        fprintf(stderr, "no OpenCL: %s\n", err.msg);
         SKIP("kernel vs CPU: no OpenCL platform");
         return check_done();
     }

@@ -187,12 +187,12 @@ static void test_determinism(void)
 
     /* regardless of N and of the thread count */
     ob_curveset s100 = {0}, s1000 = {0}, s1 = {0};
-    char err[256];
+    ob_err err = {""};
     omp_set_num_threads(2);
-    CHECK(ob_random_append(&s100, 7, 100, NULL, 0, err, sizeof err) == 0 && s100.n == 100, "append 100");
-    CHECK(ob_random_append(&s1000, 7, 1000, NULL, 0, err, sizeof err) == 0 && s1000.n == 1000, "append 1000");
+    CHECK(ob_random_append(&s100, 7, 100, NULL, 0, &err) == 0 && s100.n == 100, "append 100");
+    CHECK(ob_random_append(&s1000, 7, 1000, NULL, 0, &err) == 0 && s1000.n == 1000, "append 1000");
     omp_set_num_threads(1);
-    CHECK(ob_random_append(&s1, 7, 1000, NULL, 0, err, sizeof err) == 0 && s1.n == 1000, "append 1000, 1 thread");
+    CHECK(ob_random_append(&s1, 7, 1000, NULL, 0, &err) == 0 && s1.n == 1000, "append 1000, 1 thread");
     omp_set_num_threads(2);
     int agree = s100.n == 100 && s1000.n == 1000 && s1.n == 1000;
     for (int i = 0; agree && i < 100; i++)
@@ -240,7 +240,7 @@ static void test_determinism(void)
     char *ids[] = {"rnd7_000005", "rnd7_5", "rnd8_000001", "liu2002_ex1", "rnd7_000003",
                    "rnd7_000005", "rnd7_000100", "rnd7_", "rnd7_00000x", "rnd7_0000003"};
     ob_curveset sel = {0};
-    int rc = ob_random_append(&sel, 7, 100, ids, (int)(sizeof ids / sizeof *ids), err, sizeof err);
+    int rc = ob_random_append(&sel, 7, 100, ids, (int)(sizeof ids / sizeof *ids), &err);
     CHECK(rc == 0 && sel.n == 2, "selection: rc %d, %d curves", rc, sel.n);
     if (sel.n == 2) {
         CHECK(same_curve(&sel.v[0], &s1000.v[3]) && same_curve(&sel.v[1], &s1000.v[5]),
@@ -257,16 +257,16 @@ static void test_clash(void)
     const char *text = "curve rnd7_000002\n source x\n bezier 1\n point 0 0\n point 1 0\n offset 1\nend\n"
                        "curve mine\n source x\n bezier 1\n point 0 0\n point 1 0\n offset 1\nend\n";
     ob_curveset set = {0};
-    char err[256] = "";
-    CHECK(ob_curves_parse(text, strlen(text), "x.curves", &set, err, sizeof err) == 0 && set.n == 2, "parse: %s",
-          err);
-    int rc = ob_random_append(&set, 7, 10, NULL, 0, err, sizeof err);
-    CHECK(rc == -1 && set.n == 2 && strstr(err, "rnd7_000002") && strstr(err, "x.curves:1"),
-          "a random id that clashes with a file's is an error naming both: rc %d, n %d, '%s'", rc, set.n, err);
-    rc = ob_random_append(&set, 7, 2, NULL, 0, err, sizeof err);
+    ob_err err = {""};
+    CHECK(ob_curves_parse(text, strlen(text), "x.curves", &set, &err) == 0 && set.n == 2, "parse: %s",
+          err.msg);
+    int rc = ob_random_append(&set, 7, 10, NULL, 0, &err);
+    CHECK(rc == -1 && set.n == 2 && strstr(err.msg, "rnd7_000002") && strstr(err.msg, "x.curves:1"),
+          "a random id that clashes with a file's is an error naming both: rc %d, n %d, '%s'", rc, set.n, err.msg);
+    rc = ob_random_append(&set, 7, 2, NULL, 0, &err);
     CHECK(rc == 0 && set.n == 4 && strcmp(set.v[2].id, "rnd7_000000") == 0, "no clash below index 2: rc %d n %d",
           rc, set.n);
-    rc = ob_random_append(&set, 8, 10, NULL, 0, err, sizeof err);
+    rc = ob_random_append(&set, 8, 10, NULL, 0, &err);
     CHECK(rc == 0 && set.n == 14, "another seed does not clash: rc %d n %d", rc, set.n);
     ob_curveset_free(&set);
 }

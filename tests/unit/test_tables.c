@@ -16,11 +16,12 @@ static const char HDR[] = "source,table,curve,d,tol,method,label,value,unit\n";
 
 static void expect_bad(const char *body, const char *line, const char *why)
 {
-    char text[1024], err[512] = "";
+    char text[1024];
+    ob_err err = {""};
     snprintf(text, sizeof text, "%s%s", HDR, body);
     ob_pub_set s;
-    int rc = ob_pub_parse(text, strlen(text), "t.csv", &s, err, sizeof err);
-    CHECK(rc == -1 && strstr(err, line) && strstr(err, why), "'%s': got '%s'", body, err);
+    int rc = ob_pub_parse(text, strlen(text), "t.csv", &s, &err);
+    CHECK(rc == -1 && strstr(err.msg, line) && strstr(err.msg, why), "'%s': got '%s'", body, err.msg);
     CHECK(s.v == NULL && s.n == 0, "failed parse leaves an empty set");
     ob_pub_free(&s);
 }
@@ -28,12 +29,12 @@ static void expect_bad(const char *body, const char *line, const char *why)
 static void test_parser(void)
 {
     ob_pub_set s;
-    char err[512] = "";
+    ob_err err = {""};
     const char ok[] = "source,table,curve,d,tol,method,label,value,unit\r\n"
                       "liu2002,1,liu2002_ex1,1.0,1e-1,tiller,Til,10,ctrl_points\r\n"
                       "\n"
                       "zhao2017,text,zhao2017_septic,0.5,,interp500,\"interpolating, 500 \"\"samples\"\"\",0.0371,max_err\n";
-    CHECK(ob_pub_parse(ok, strlen(ok), "ok.csv", &s, err, sizeof err) == 0 && s.n == 2, "good file: %s", err);
+    CHECK(ob_pub_parse(ok, strlen(ok), "ok.csv", &s, &err) == 0 && s.n == 2, "good file: %s", err.msg);
     if (s.n == 2) {
         CHECK(strcmp(s.v[1].label, "interpolating, 500 \"samples\"") == 0, "quoted label: %s", s.v[1].label);
         CHECK(isnan(s.v[1].tol) && s.v[1].value == 0.0371 && strcmp(s.v[1].value_text, "0.0371") == 0,
@@ -56,13 +57,13 @@ static void test_parser(void)
     expect_bad("a,1,c,1,1e-1,m,L,3,ctrl_points\nb,1,c,1,1e-1,m,L,3,ctrl_points,x\n", "t.csv:3", "10 fields");
     expect_bad("", "t.csv", "no figures");
     const char nocol[] = "source,table,curve,d,tol,method,label,value\n";
-    CHECK(ob_pub_parse(nocol, strlen(nocol), "h.csv", &s, err, sizeof err) == -1 && strstr(err, "h.csv:1") &&
-              strstr(err, "'unit'"),
-          "missing column: %s", err);
-    CHECK(ob_pub_parse("", 0, "e.csv", &s, err, sizeof err) == -1 && strstr(err, "e.csv:1"), "empty: %s", err);
+    CHECK(ob_pub_parse(nocol, strlen(nocol), "h.csv", &s, &err) == -1 && strstr(err.msg, "h.csv:1") &&
+              strstr(err.msg, "'unit'"),
+          "missing column: %s", err.msg);
+    CHECK(ob_pub_parse("", 0, "e.csv", &s, &err) == -1 && strstr(err.msg, "e.csv:1"), "empty: %s", err.msg);
 
     /* the real file: every published table */
-    CHECK(ob_pub_load(&s, err, sizeof err) == 0, "load: %s", err);
+    CHECK(ob_pub_load(&s, &err) == 0, "load: %s", err.msg);
     CHECK(s.n == 237, "237 published cells, got %d", s.n);
     int liu1 = 0, ahn1 = 0, zhao = 0;
     for (int i = 0; i < s.n; i++) {
@@ -93,29 +94,29 @@ static ob_pub_cell cell(const char *source, const char *table, const char *curve
 static void test_protocols(void)
 {
     ob_tab_spec s;
-    char err[256];
+    ob_err err = {""};
     ob_pub_cell c = cell("liu2002", "1", "liu2002_ex1", "tiller", "Til", "ctrl_points", 1e-3);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_BOUND &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.metric == OB_METRIC_BOUND &&
               s.split == OB_SPLIT_MID && s.d_factor == 1.0 && s.tol == 1e-3 && !s.single_piece,
           "Til: bound, mid");
     c = cell("liu2002", "2", "liu2002_ex2", "liu", "Liu", "ctrl_points", 1e-3);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_RADIAL &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.metric == OB_METRIC_RADIAL &&
               s.split == OB_SPLIT_MAXERR && s.inflections,
           "Liu: radial, maxerr, inflections");
-    CHECK(ob_tab_resolve(&c, OB_PROTO_RIGOROUS, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_HAUSDORFF &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_RIGOROUS, &s, &err) == 0 && s.metric == OB_METRIC_HAUSDORFF &&
               s.split == OB_SPLIT_MID,
           "rigorous: hausdorff, mid");
-    CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_HAUSDORFF &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, &err) == 0 && s.metric == OB_METRIC_HAUSDORFF &&
               s.split == OB_SPLIT_OPTIMAL,
           "best: hausdorff, optimal (issue 19: the fewest pieces, errors equalized)");
     c = cell("ahn2023", "1", "liu2002_ex1", "ahn", "Our method", "ctrl_points", 1e-2);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_RADIAL &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.metric == OB_METRIC_RADIAL &&
               s.d_factor == -1.0,
           "Ahn: radial, his normal points right");
-    CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, err, sizeof err) == 0 && s.d_factor == -1.0,
+    CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, &err) == 0 && s.d_factor == -1.0,
           "the sign of d is kept by the other protocols");
     c = cell("ahn2023", "1", "liu2002_ex1", "hoschek", "Hos", "ctrl_points", 1e-2);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_HAUSDORFF,
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.metric == OB_METRIC_HAUSDORFF,
           "a method not parameterized like the base is not measured radially");
     /* the columns of Lee, Kim & Elber 1996 (Liu-Wang's [13], Ahn's [11]) */
     const ob_method *lsq = ob_method_find("bspline-lsq");
@@ -125,24 +126,24 @@ static void test_protocols(void)
                    {"ahn2023", "2", "hoschek"}};
     for (int k = 0; k < 4; k++) {
         c = cell(lee_lst[k].source, lee_lst[k].table, "liu2002_ex1", lee_lst[k].method, "Lst", "ctrl_points", 1e-2);
-        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && lsq && s.method == lsq &&
+        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && lsq && s.method == lsq &&
                   s.metric == OB_METRIC_BOUND && s.split == OB_SPLIT_MID && !s.inflections &&
                   strstr(s.note, "Lee, Kim & Elber 1996"),
               "%s T%s Lst: Lee et al.'s least-squares B-spline, its own bound, no inflection split (%s)",
               lee_lst[k].source, lee_lst[k].table, s.note ? s.note : "");
-        CHECK(ob_tab_resolve(&c, OB_PROTO_RIGOROUS, &s, err, sizeof err) == 0 && s.method == lsq &&
+        CHECK(ob_tab_resolve(&c, OB_PROTO_RIGOROUS, &s, &err) == 0 && s.method == lsq &&
                   s.metric == OB_METRIC_HAUSDORFF,
               "%s T%s Lst: the other protocols measure the same method", lee_lst[k].source, lee_lst[k].table);
     }
     c = cell("ahn2023", "2", "liu2002_ex2", "lee", "M2", "ctrl_points", 1e-2);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_RADIAL &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.metric == OB_METRIC_RADIAL &&
               s.d_factor == -1.0 && !s.inflections,
           "Ahn's M2 (Lee et al.'s runs): his measure, no inflection split");
     c = cell("ahn2023", "2", "liu2002_ex2", "kim2018", "[26]", "ctrl_points", 1e-2);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.inflections,
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.inflections,
           "Ahn's other columns: inflections first");
     c = cell("liu2002", "3", "liu2002_ex3", "lstsq", "Lst", "ctrl_points", 1e-2);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.method == ob_method_find("lstsq") &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.method == ob_method_find("lstsq") &&
               s.metric == OB_METRIC_RADIAL && s.inflections,
           "Liu-Wang T3 Lst (their own runs): their normal-LSQ variant, their protocol");
     static const char *const lee_cols[] = {"Til", "Cob", "Coq", "Elb"};
@@ -150,43 +151,43 @@ static void test_protocols(void)
         for (int t = 1; t <= 3; t++) {
             char tab[2] = {(char)('0' + t), 0};
             c = cell("liu2002", tab, "liu2002_ex1", "tiller", lee_cols[k], "ctrl_points", 1e-2);
-            CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.metric == OB_METRIC_BOUND &&
+            CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.metric == OB_METRIC_BOUND &&
                       s.inflections == (t == 3),
                   "Liu-Wang T%d %s: %s inflection split", t, lee_cols[k], t == 3 ? "their" : "no (IRIT's runs)");
         }
     c = cell("ahn2023", "1", "liu2002_ex1", "cl", "CL", "ctrl_points", 1e-2);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.method == NULL, "CL: no method");
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.method == NULL, "CL: no method");
     c = cell("zhao2017", "1", "zhao2017_quintic/C1", "zhao-rational", "Ours", "max_err", NAN);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.single_piece && s.piece_a == 0.0 &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.single_piece && s.piece_a == 0.0 &&
               s.piece_b == 0.5 && strcmp(s.curve, "zhao2017_quintic") == 0 && s.metric == OB_METRIC_PARAM &&
               s.nset == 1 && s.set_value[0] == 4,
           "Zhao C1: one piece, first half, the error at the given parameter, four iterations");
-    CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, err, sizeof err) == 0 && s.split == OB_SPLIT_MID &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_BEST, &s, &err) == 0 && s.split == OB_SPLIT_MID &&
               s.metric == OB_METRIC_HAUSDORFF,
           "error tables: best = rigorous");
     c = cell("zhao2017", "text", "zhao2017_septic", "zhao-rational/iter2", "2nd", "max_err", NAN);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.nset == 1 &&
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.nset == 1 &&
               strcmp(s.set_name[0], "iterations") == 0 && s.set_value[0] == 2 && s.metric == OB_METRIC_PARAM,
           "iter2 variant, the error at the given parameter");
     c = cell("zhao2017", "1", "zhao2017_quintic/C1@0.4", "lee", "Lee", "max_err", NAN);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.0 && s.piece_b == 0.4,
-          "C1@0.4: the first part cut at t = 0.4 (%s)", err);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.piece_a == 0.0 && s.piece_b == 0.4,
+          "C1@0.4: the first part cut at t = 0.4 (%s)", err.msg);
     c = cell("zhao2017", "1", "zhao2017_quintic/C2@0.7", "lee", "Lee", "max_err", NAN);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == 0 && s.piece_a == 0.7 && s.piece_b == 1.0,
-          "C2@0.7: the second part from t = 0.7 (%s)", err);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == 0 && s.piece_a == 0.7 && s.piece_b == 1.0,
+          "C2@0.7: the second part from t = 0.7 (%s)", err.msg);
     static const char *const bad_cuts[] = {"zhao2017_quintic/C1@1", "zhao2017_quintic/C2@0", "zhao2017_quintic/C1@x",
                                            "zhao2017_quintic/C1@0.5x", "zhao2017_quintic/C@0.5"};
     for (int k = 0; k < 5; k++) {
         c = cell("zhao2017", "1", bad_cuts[k], "lee", "Lee", "max_err", NAN);
-        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "piece"),
-              "%s refused: %s", bad_cuts[k], err);
+        CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == -1 && strstr(err.msg, "piece"),
+              "%s refused: %s", bad_cuts[k], err.msg);
     }
     c = cell("zhao2017", "1", "zhao2017_quintic/C9", "lee", "Lee", "max_err", NAN);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "C9"), "unknown piece: %s",
-          err);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == -1 && strstr(err.msg, "C9"), "unknown piece: %s",
+          err.msg);
     c = cell("zhao2017", "text", "zhao2017_septic", "zhao-rational/turbo", "x", "max_err", NAN);
-    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, err, sizeof err) == -1 && strstr(err, "turbo"),
-          "unknown variant: %s", err);
+    CHECK(ob_tab_resolve(&c, OB_PROTO_PAPER, &s, &err) == -1 && strstr(err.msg, "turbo"),
+          "unknown variant: %s", err.msg);
 }
 
 /* One row over one finished job. */
