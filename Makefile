@@ -90,6 +90,11 @@ $(BUILD)/%.o: %.c $(BUILD)/.deps-ok
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -MMD -MP -I. -I$(BUILD) -c $< -o $@
 
+# The metric core's lane loops (kernels/metric_core.h, OBC_SIMD) hold sqrt:
+# without errno to set, it is one instruction and the loops vectorize.  Not a
+# fast-math flag: every result keeps its bits.
+$(BUILD)/methods/metrics/metric_sampled.o: CFLAGS += -fno-math-errno
+
 $(BUILD)/embedded_%.o: $(BUILD)/embedded_%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
