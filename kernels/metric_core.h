@@ -45,16 +45,17 @@
  * lane): the CPU compiler vectorizes it; every lane does the IEEE operations
  * of the scalar code in the same order, so the bits are the scalar ones.
  * OBC_FMIN/OBC_FMAX: the CPU build calls fmin/fmax out of line (libm); the
- * inline forms give what glibc's x86-64 fmin/fmax give (minsd/maxsd when
- * ordered, the other operand when one is NaN), signed zeros included. */
+ * inline forms give what glibc's x86-64 fmin/fmax give: the first operand
+ * on a tie (so fmax(-0, +0) = -0), the other operand when one is NaN
+ * (tests/unit/test_table_lanes.c checks them against libm). */
 #ifdef __OPENCL_VERSION__
 #define OBC_SIMD
 #define OBC_FMIN(a, b) fmin(a, b)
 #define OBC_FMAX(a, b) fmax(a, b)
 #else
 #define OBC_SIMD _Pragma("omp simd")
-static inline double obc_fmin(double x, double y) { return (x < y || y != y) ? x : y; }
-static inline double obc_fmax(double x, double y) { return (x > y || y != y) ? x : y; }
+static inline double obc_fmin(double x, double y) { return (x <= y || y != y) ? x : y; }
+static inline double obc_fmax(double x, double y) { return (x >= y || y != y) ? x : y; }
 #define OBC_FMIN(a, b) obc_fmin(a, b)
 #define OBC_FMAX(a, b) obc_fmax(a, b)
 #endif
