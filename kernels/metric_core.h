@@ -858,10 +858,16 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     int b0 = 0;
     double lb0 = OBC_INF;
     double lbc[OBC_LB_CACHE]; /* the bounds of the first blocks, asked again below */
+    const int ncache = nblk < OBC_LB_CACHE ? nblk : OBC_LB_CACHE;
+    const OBC_G double *circ = tgt + OBC_REC * S;
+    *ops += OBC_OPS_BLOCK * ncache;
+    OBC_SIMD /* obc_block_lb of the cached blocks, all at once */
+    for (int bk = 0; bk < ncache; bk++) {
+        const double x = Q[0] - circ[4 * bk], y = Q[1] - circ[4 * bk + 1];
+        lbc[bk] = sqrt(x * x + y * y) - circ[4 * bk + 2];
+    }
     for (int bk = 0; bk < nblk; bk++) {
-        const double lb = obc_block_lb(Q, tgt, S, bk, ops);
-        if (bk < OBC_LB_CACHE)
-            lbc[bk] = lb;
+        const double lb = bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops);
         if (lb < lb0) {
             lb0 = lb;
             b0 = bk;
