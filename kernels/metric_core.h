@@ -131,6 +131,11 @@ OBC_FN void obc_casteljau(const OBC_G double *h, int n, double t, const int K, d
         q0[k] = s * lv1[0][k] + t * lv1[1][k];
 }
 
+/* x / w, skipping the division where w is exactly 1 (every polynomial
+ * segment): x / 1 is x in IEEE arithmetic, NaN and signed zeros included,
+ * so the bits are the division's, at a fraction of its latency. */
+OBC_FN double obc_divw(double x, double w) { return w == 1.0 ? x : x / w; }
+
 /* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
  * homogeneous points; derivatives from its last three levels; quotient rule.
  * A polynomial segment (every weight exactly 1) at t in [0,1] runs the pass
@@ -159,18 +164,18 @@ OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double ou
         H[2][k] = n >= 2 ? n * (n - 1) * (lv2[2][k] - 2.0 * lv2[1][k] + lv2[0][k]) : 0.0;
     }
     const double w = H[0][2], w1 = H[1][2], w2 = H[2][2];
-    const double P0 = H[0][0] / w, P1 = H[0][1] / w;
+    const double P0 = obc_divw(H[0][0], w), P1 = obc_divw(H[0][1], w);
     out[0][0] = P0;
     out[0][1] = P1;
     if (nder < 1)
         return;
-    const double D0 = (H[1][0] - w1 * P0) / w, D1 = (H[1][1] - w1 * P1) / w;
+    const double D0 = obc_divw(H[1][0] - w1 * P0, w), D1 = obc_divw(H[1][1] - w1 * P1, w);
     out[1][0] = D0;
     out[1][1] = D1;
     if (nder < 2)
         return;
-    out[2][0] = (H[2][0] - 2.0 * w1 * D0 - w2 * P0) / w;
-    out[2][1] = (H[2][1] - 2.0 * w1 * D1 - w2 * P1) / w;
+    out[2][0] = obc_divw(H[2][0] - 2.0 * w1 * D0 - w2 * P0, w);
+    out[2][1] = obc_divw(H[2][1] - 2.0 * w1 * D1 - w2 * P1, w);
 }
 
 OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2], long *ops)

@@ -2,7 +2,8 @@
  * test_table_lanes.c - the metric core's lane-batched Hausdorff sample tables
  * (obc_fill_table: OBC_LANES samples at a time) against the scalar reference
  * kept for this purpose (obc_fill_table_ref: one obc_pc_eval per sample),
- * bit for bit; and the inline fmin/fmax of the CPU build against libm's.
+ * bit for bit; the inline fmin/fmax of the CPU build against libm's; and
+ * obc_divw's shortcut (x / 1 = x) against the division.
  *
  * Why: the tables decide every hausdorff result.  The batched rows are meant
  * to run the same IEEE operations per sample in the same order, so any bit
@@ -128,8 +129,24 @@ static void min_max(void)
     CHECK(bad == 0, "%d of %d pairs: OBC_FMIN/OBC_FMAX differ from fmin/fmax", bad, nv * nv);
 }
 
+/* obc_divw(x, 1) is x / 1 bit for bit (its shortcut for polynomial segments). */
+static void div_by_one(void)
+{
+    static volatile double v[] = {0.0, -0.0, 1.0, -1.0, 0x1p-1074, 1e300, (double)INFINITY, -(double)INFINITY,
+                                  (double)NAN, -(double)NAN};
+    static volatile double one = 1.0;
+    const int nv = sizeof v / sizeof v[0];
+    int bad = 0;
+    for (int i = 0; i < nv; i++) {
+        const double a = obc_divw(v[i], one), b = v[i] / one;
+        bad += memcmp(&a, &b, sizeof a) != 0;
+    }
+    CHECK(bad == 0, "%d of %d values: obc_divw(x, 1) differs from x / 1", bad, nv);
+}
+
 int main(void)
 {
+    div_by_one();
     random_curves();
     special_curves();
     min_max();
