@@ -110,13 +110,15 @@ OBC_FN void obc_casteljau(const OBC_G double *h, int n, double t, const int K, d
             for (int k = 0; k < K; k++)
                 lv2[i][k] = h[3 * i + k];
     } else {
-        for (int i = 0; i <= n; i++)
-            for (int k = 0; k < 3; k++)
-                q[i][k] = h[3 * i + k];
+        /* level n straight from the control points (no copy), then down to 3 */
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < K; k++)
+                q[i][k] = s * h[3 * i + k] + t * h[3 * i + 3 + k];
         for (int r = n; r >= 3; r--) {
-            for (int i = 0; i < r; i++)
-                for (int k = 0; k < K; k++)
-                    q[i][k] = s * q[i][k] + t * q[i + 1][k];
+            if (r < n)
+                for (int i = 0; i < r; i++)
+                    for (int k = 0; k < K; k++)
+                        q[i][k] = s * q[i][k] + t * q[i + 1][k];
             if (r == 3)
                 for (int i = 0; i < 3; i++)
                     for (int k = 0; k < K; k++)
