@@ -90,6 +90,13 @@ $(BUILD)/%.o: %.c $(BUILD)/.deps-ok
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -MMD -MP -I. -I$(BUILD) -c $< -o $@
 
+# The metric core's lane loops (kernels/metric_core.h, OBC_SIMD) hold sqrt:
+# without errno to set, it is one instruction and the loops vectorize.  Not a
+# fast-math flag: every result keeps its bits
+# (private: not passed on to prerequisites; the test compiles the core too).
+$(BUILD)/methods/metrics/metric_sampled.o: private CFLAGS += -fno-math-errno
+$(BUILD)/tests/unit/test_table_lanes: private CFLAGS += -fno-math-errno
+
 $(BUILD)/embedded_%.o: $(BUILD)/embedded_%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 

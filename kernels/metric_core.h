@@ -41,6 +41,25 @@
 #define OBC_INF ((double)INFINITY)
 #endif
 
+/* OBC_SIMD before a loop whose iterations are independent (one per sample
+ * lane): the CPU compiler vectorizes it; every lane does the IEEE operations
+ * of the scalar code in the same order, so the bits are the scalar ones.
+ * OBC_FMIN/OBC_FMAX: the CPU build calls fmin/fmax out of line (libm); the
+ * inline forms give what glibc's x86-64 fmin/fmax give: the first operand
+ * on a tie (so fmax(-0, +0) = -0), the other operand when one is NaN
+ * (tests/unit/test_table_lanes.c checks them against libm). */
+#ifdef __OPENCL_VERSION__
+#define OBC_SIMD
+#define OBC_FMIN(a, b) fmin(a, b)
+#define OBC_FMAX(a, b) fmax(a, b)
+#else
+#define OBC_SIMD _Pragma("omp simd")
+static inline double obc_fmin(double x, double y) { return (x <= y || y != y) ? x : y; }
+static inline double obc_fmax(double x, double y) { return (x >= y || y != y) ? x : y; }
+#define OBC_FMIN(a, b) obc_fmin(a, b)
+#define OBC_FMAX(a, b) obc_fmax(a, b)
+#endif
+
 #define OBC_MAX_DEG 32           /* = OB_MAX_DEG */
 
 /* The work of a measurement, counted in floating-point operations as every
@@ -91,13 +110,15 @@ OBC_FN void obc_casteljau(const OBC_G double *h, int n, double t, const int K, d
             for (int k = 0; k < K; k++)
                 lv2[i][k] = h[3 * i + k];
     } else {
-        for (int i = 0; i <= n; i++)
-            for (int k = 0; k < 3; k++)
-                q[i][k] = h[3 * i + k];
+        /* level n straight from the control points (no copy), then down to 3 */
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < K; k++)
+                q[i][k] = s * h[3 * i + k] + t * h[3 * i + 3 + k];
         for (int r = n; r >= 3; r--) {
-            for (int i = 0; i < r; i++)
-                for (int k = 0; k < K; k++)
-                    q[i][k] = s * q[i][k] + t * q[i + 1][k];
+            if (r < n)
+                for (int i = 0; i < r; i++)
+                    for (int k = 0; k < K; k++)
+                        q[i][k] = s * q[i][k] + t * q[i + 1][k];
             if (r == 3)
                 for (int i = 0; i < 3; i++)
                     for (int k = 0; k < K; k++)
@@ -111,6 +132,11 @@ OBC_FN void obc_casteljau(const OBC_G double *h, int n, double t, const int K, d
     for (int k = 0; k < K; k++)
         q0[k] = s * lv1[0][k] + t * lv1[1][k];
 }
+
+/* x / w, skipping the division where w is exactly 1 (every polynomial
+ * segment): x / 1 is x in IEEE arithmetic, NaN and signed zeros included,
+ * so the bits are the division's, at a fraction of its latency. */
+OBC_FN double obc_divw(double x, double w) { return w == 1.0 ? x : x / w; }
 
 /* Point and derivatives up to nder (<= 2) at t: one de Casteljau pass on the
  * homogeneous points; derivatives from its last three levels; quotient rule.
@@ -140,18 +166,18 @@ OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double ou
         H[2][k] = n >= 2 ? n * (n - 1) * (lv2[2][k] - 2.0 * lv2[1][k] + lv2[0][k]) : 0.0;
     }
     const double w = H[0][2], w1 = H[1][2], w2 = H[2][2];
-    const double P0 = H[0][0] / w, P1 = H[0][1] / w;
+    const double P0 = obc_divw(H[0][0], w), P1 = obc_divw(H[0][1], w);
     out[0][0] = P0;
     out[0][1] = P1;
     if (nder < 1)
         return;
-    const double D0 = (H[1][0] - w1 * P0) / w, D1 = (H[1][1] - w1 * P1) / w;
+    const double D0 = obc_divw(H[1][0] - w1 * P0, w), D1 = obc_divw(H[1][1] - w1 * P1, w);
     out[1][0] = D0;
     out[1][1] = D1;
     if (nder < 2)
         return;
-    out[2][0] = (H[2][0] - 2.0 * w1 * D0 - w2 * P0) / w;
-    out[2][1] = (H[2][1] - 2.0 * w1 * D1 - w2 * P1) / w;
+    out[2][0] = obc_divw(H[2][0] - 2.0 * w1 * D0 - w2 * P0, w);
+    out[2][1] = obc_divw(H[2][1] - 2.0 * w1 * D1 - w2 * P1, w);
 }
 
 OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2], long *ops)
@@ -172,8 +198,8 @@ OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2], long
     double ext = 0.0, mag = 0.0;
     for (int i = 0; i <= n; i++) {
         const double x = h[3 * i] / h[3 * i + 2], y = h[3 * i + 1] / h[3 * i + 2];
-        ext = fmax(ext, fmax(fabs(x - x0), fabs(y - y0)));
-        mag = fmax(mag, fmax(fabs(x), fabs(y)));
+        ext = OBC_FMAX(ext, OBC_FMAX(fabs(x - x0), fabs(y - y0)));
+        mag = OBC_FMAX(mag, OBC_FMAX(fabs(x), fabs(y)));
     }
     v[0] = v[1] = 0.0;
     if (ext <= 1e-13 * mag)
@@ -289,14 +315,9 @@ OBC_FN double obc_dist(const double a[2], const double b[2])
 
 OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
 
-/* Purpose: the sample table T of curve (h, n) or of its exact dc-offset.
- * The margin of span j bounds how far the curve strays from the chord
- * P_j P_{j+1}: a cubic Hermite arc with end derivatives m0, m1 over a span
- * of parameter length h strays at most (4/27) h (|m0 - c| + |m1 - c|) from
- * its chord (c = chord / h); the margin takes 0.5 instead of 4/27 to cover
- * the curve's departure from its Hermite arc.  A block's circle holds its
- * sample points (hence its chords) widened by its largest margin. */
-OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
+/* The rows of sample table T (see obc_fill_table), one obc_pc_eval per
+ * sample: the scalar reference of obc_table_rows. */
+OBC_FN void obc_table_rows_ref(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
 {
     for (int k = 0; k < S; k++) {
         double P[2], dP[2], K[2];
@@ -305,8 +326,183 @@ OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G
         r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
         r[6] = r[7] = 0.0;
     }
+}
+
+/* ---- the sample tables, OBC_LANES samples at a time ------------------- */
+
+#define OBC_LANES 4
+
+/* obc_casteljau for OBC_LANES parameters t[l] at once on the first K
+ * coordinates: q0[k][l], levels 2 (l2[k][i][l]) and 1 (l1[k][i][l]).  Each
+ * lane runs the scalar pass's lerps in its order (the levels of one
+ * coordinate before the next: the coordinates do not mix). */
+OBC_FN void obc_casteljau_lanes(const OBC_G double *h, int n, const double *t, const int K,
+                                double q0[3][OBC_LANES], double l2[3][3][OBC_LANES], double l1[3][2][OBC_LANES])
+{
+    double s[OBC_LANES], q[OBC_MAX_DEG][OBC_LANES];
+    OBC_SIMD
+    for (int l = 0; l < OBC_LANES; l++)
+        s[l] = 1.0 - t[l];
+    for (int k = 0; k < K; k++) {
+        if (n == 0) {
+            for (int l = 0; l < OBC_LANES; l++)
+                q0[k][l] = h[k];
+            continue;
+        }
+        if (n == 1) {
+            for (int i = 0; i < 2; i++)
+                for (int l = 0; l < OBC_LANES; l++)
+                    l1[k][i][l] = h[3 * i + k];
+        } else if (n == 2) {
+            for (int i = 0; i < 3; i++)
+                for (int l = 0; l < OBC_LANES; l++)
+                    l2[k][i][l] = h[3 * i + k];
+        } else {
+            /* level n straight from the control points, then down to 3 */
+            for (int i = 0; i < n; i++) {
+                const double a = h[3 * i + k], b = h[3 * i + 3 + k];
+                OBC_SIMD
+                for (int l = 0; l < OBC_LANES; l++)
+                    q[i][l] = s[l] * a + t[l] * b;
+            }
+            for (int r = n - 1; r >= 3; r--)
+                for (int i = 0; i < r; i++) {
+                    OBC_SIMD
+                    for (int l = 0; l < OBC_LANES; l++)
+                        q[i][l] = s[l] * q[i][l] + t[l] * q[i + 1][l];
+                }
+            for (int i = 0; i < 3; i++)
+                for (int l = 0; l < OBC_LANES; l++)
+                    l2[k][i][l] = q[i][l];
+        }
+        if (n >= 2)
+            for (int i = 0; i < 2; i++) {
+                OBC_SIMD
+                for (int l = 0; l < OBC_LANES; l++)
+                    l1[k][i][l] = s[l] * l2[k][i][l] + t[l] * l2[k][i + 1][l];
+            }
+        OBC_SIMD
+        for (int l = 0; l < OBC_LANES; l++)
+            q0[k][l] = s[l] * l1[k][0][l] + t[l] * l1[k][1][l];
+    }
+}
+
+/* obc_pc_eval at OBC_LANES parameters t[l]: R[0..5][l] = P, dP, K, and what
+ * obc_lane_ok needs (R[6..8]: |C'|, |C''|, 1 - d kappa).  Where obc_lane_ok
+ * says no, R is not obc_pc_eval's (the one-sided limit at a cusp needs
+ * obc_normal): the caller evaluates that lane with obc_pc_eval.  poly: every
+ * weight is 1 (the shortcut of obc_eval; every t here is in [0,1]).  Each
+ * lane runs obc_eval's and obc_pc_eval's operations in their order, so the
+ * bits are theirs; no branch per lane, so the loops vectorize. */
+OBC_FN void obc_pc_lanes(const OBC_G double *h, int n, int poly, double d, const double *t,
+                         double R[9][OBC_LANES])
+{
+    double q0[3][OBC_LANES], l2[3][3][OBC_LANES], l1[3][2][OBC_LANES];
+    for (int k = 0; k < 3; k++)
+        for (int l = 0; l < OBC_LANES; l++) /* what obc_eval's zeroed levels hold below degree 2 */
+            l2[k][0][l] = l2[k][1][l] = l2[k][2][l] = l1[k][0][l] = l1[k][1][l] = 0.0;
+    obc_casteljau_lanes(h, n, t, poly ? 2 : 3, q0, l2, l1);
+    if (poly)
+        for (int l = 0; l < OBC_LANES; l++) {
+            q0[2][l] = 1.0;
+            l1[2][0][l] = l1[2][1][l] = 1.0;
+            l2[2][0][l] = l2[2][1][l] = l2[2][2][l] = 1.0;
+        }
+    const double dn = n, dnn = n * (n - 1);
+    double H1[3][OBC_LANES], H2[3][OBC_LANES], kappa[OBC_LANES], N0[OBC_LANES], N1[OBC_LANES];
+    for (int k = 0; k < 3; k++) {
+        OBC_SIMD
+        for (int l = 0; l < OBC_LANES; l++)
+            H1[k][l] = H2[k][l] = 0.0;
+        if (n >= 1) {
+            OBC_SIMD
+            for (int l = 0; l < OBC_LANES; l++)
+                H1[k][l] = dn * (l1[k][1][l] - l1[k][0][l]);
+        }
+        if (n >= 2) {
+            OBC_SIMD
+            for (int l = 0; l < OBC_LANES; l++)
+                H2[k][l] = dnn * (l2[k][2][l] - 2.0 * l2[k][1][l] + l2[k][0][l]);
+        }
+    }
+    OBC_SIMD
+    for (int l = 0; l < OBC_LANES; l++) {
+        const double w = q0[2][l], w1 = H1[2][l], w2 = H2[2][l];
+        const double P0 = q0[0][l] / w, P1 = q0[1][l] / w;
+        const double D0 = (H1[0][l] - w1 * P0) / w, D1 = (H1[1][l] - w1 * P1) / w;
+        const double E0 = (H2[0][l] - 2.0 * w1 * D0 - w2 * P0) / w, E1 = (H2[1][l] - 2.0 * w1 * D1 - w2 * P1) / w;
+        const double sp = sqrt(D0 * D0 + D1 * D1), s2 = sqrt(E0 * E0 + E1 * E1);
+        kappa[l] = (D0 * E1 - D1 * E0) / (sp * sp * sp);
+        N0[l] = -D1 / sp;
+        N1[l] = D0 / sp;
+        R[0][l] = P0, R[1][l] = P1, R[2][l] = D0, R[3][l] = D1;
+        R[6][l] = sp, R[7][l] = s2;
+    }
+    if (d == 0.0) {
+        OBC_SIMD
+        for (int l = 0; l < OBC_LANES; l++) {
+            R[4][l] = kappa[l] * N0[l];
+            R[5][l] = kappa[l] * N1[l];
+        }
+        return;
+    }
+    OBC_SIMD
+    for (int l = 0; l < OBC_LANES; l++) {
+        const double f = 1.0 - d * kappa[l], ko = kappa[l] / f;
+        R[0][l] = R[0][l] + d * N0[l];
+        R[1][l] = R[1][l] + d * N1[l];
+        R[2][l] = f * R[2][l];
+        R[3][l] = f * R[3][l];
+        R[4][l] = ko * N0[l];
+        R[5][l] = ko * N1[l];
+        R[8][l] = f;
+    }
+}
+
+/* Whether lane l of obc_pc_lanes holds obc_pc_eval's bits: a regular point
+ * (|C'| > 1e-12 |C''| and > 0), and off the offset's cusp (1 - d kappa != 0),
+ * where obc_pc_eval takes other branches. */
+OBC_FN int obc_lane_ok(double R[9][OBC_LANES], double d, int l)
+{
+    const double sp = R[6][l], s2 = R[7][l];
+    return sp > 1e-12 * s2 && sp > 0 && (d == 0.0 || R[8][l] != 0.0);
+}
+
+/* The rows of sample table T, OBC_LANES samples at a time (obc_pc_lanes);
+ * a lane that obc_lane_ok refuses by obc_pc_eval.  The same bits and the same
+ * count of work as obc_table_rows_ref. */
+OBC_FN void obc_table_rows(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
+{
+    int poly = 1;
+    for (int i = 0; i <= n && poly; i++)
+        poly = h[3 * i + 2] == 1.0;
+    for (int k0 = 0; k0 < S; k0 += OBC_LANES) {
+        double t[OBC_LANES], R[9][OBC_LANES];
+        for (int l = 0; l < OBC_LANES; l++) /* lanes past the end repeat the last sample */
+            t[l] = obc_sample_t(k0 + l < S ? k0 + l : S - 1, S);
+        obc_pc_lanes(h, n, poly, dc, t, R);
+        for (int l = 0; l < OBC_LANES && k0 + l < S; l++) {
+            OBC_G double *r = T + OBC_REC * (k0 + l);
+            if (obc_lane_ok(R, dc, l)) {
+                *ops += OBC_OPS_EVAL(n);
+                for (int c = 0; c < 6; c++)
+                    r[c] = R[c][l];
+            } else {
+                double P[2], dP[2], K[2];
+                obc_pc_eval(h, n, dc, t[l], P, dP, K, ops);
+                r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
+            }
+            r[6] = r[7] = 0.0;
+        }
+    }
+}
+
+/* The margins and block circles of table T from its rows (see obc_fill_table). */
+OBC_FN void obc_table_bounds(int S, OBC_G double *T)
+{
     const double hs = 1.0 / (S - 1);
-    for (int j = 0; j + 1 < S; j++) {
+    OBC_SIMD
+    for (int j = 0; j < S - 1; j++) {
         OBC_G double *a = T + OBC_REC * j;
         const OBC_G double *b = a + OBC_REC;
         const double c0 = (b[0] - a[0]) / hs, c1 = (b[1] - a[1]) / hs;
@@ -319,20 +515,42 @@ OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G
         double x0 = OBC_INF, x1 = -OBC_INF, y0 = OBC_INF, y1 = -OBC_INF, m = 0.0;
         for (int j = j0; j <= j1; j++) {
             const OBC_G double *r = T + OBC_REC * j;
-            x0 = fmin(x0, r[0]), x1 = fmax(x1, r[0]);
-            y0 = fmin(y0, r[1]), y1 = fmax(y1, r[1]);
+            x0 = OBC_FMIN(x0, r[0]), x1 = OBC_FMAX(x1, r[0]);
+            y0 = OBC_FMIN(y0, r[1]), y1 = OBC_FMAX(y1, r[1]);
             if (j < j1)
-                m = fmax(m, r[OBC_MARGIN]);
+                m = OBC_FMAX(m, r[OBC_MARGIN]);
         }
         const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
         double rad = 0.0;
         for (int j = j0; j <= j1; j++) {
             const double x = T[OBC_REC * j] - cx, y = T[OBC_REC * j + 1] - cy;
-            rad = fmax(rad, sqrt(x * x + y * y));
+            rad = OBC_FMAX(rad, sqrt(x * x + y * y));
         }
         OBC_G double *c = T + OBC_REC * S + 4 * bk;
         c[0] = cx, c[1] = cy, c[2] = rad + m, c[3] = 0.0;
     }
+}
+
+/* Purpose: the sample table T of curve (h, n) or of its exact dc-offset,
+ * rows by obc_table_rows (the same bits as obc_table_rows_ref, the scalar
+ * reference kept for the tests), then margins and block circles.
+ * The margin of span j bounds how far the curve strays from the chord
+ * P_j P_{j+1}: a cubic Hermite arc with end derivatives m0, m1 over a span
+ * of parameter length h strays at most (4/27) h (|m0 - c| + |m1 - c|) from
+ * its chord (c = chord / h); the margin takes 0.5 instead of 4/27 to cover
+ * the curve's departure from its Hermite arc.  A block's circle holds its
+ * sample points (hence its chords) widened by its largest margin. */
+OBC_FN void obc_fill_table(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
+{
+    obc_table_rows(h, n, dc, S, T, ops);
+    obc_table_bounds(S, T);
+}
+
+/* obc_fill_table with the scalar rows: the reference of the tests. */
+OBC_FN void obc_fill_table_ref(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
+{
+    obc_table_rows_ref(h, n, dc, S, T, ops);
+    obc_table_bounds(S, T);
 }
 
 OBC_FN double obc_radial_err(OBC_ARGS, double t)
@@ -416,7 +634,7 @@ OBC_FN double obc_normal_err(OBC_ARGS, double t)
                 }
                 const double r = 0.5 * (lo + hi);
                 const double gr = fabs(obc_normal_g(ha, na, r, P, N, &dg, ops));
-                if (gr <= 1e-6 * fmax(fabs(g0), fabs(g1)) && fabs(r - t) < best) {
+                if (gr <= 1e-6 * OBC_FMAX(fabs(g0), fabs(g1)) && fabs(r - t) < best) {
                     best = fabs(r - t);
                     ub = r;
                 }
@@ -500,7 +718,7 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
         if (dd == 0.0 || !(den > 0.2))
             break;
         const double step = (r0 * dP[0] + r1 * dP[1]) / (dd * den);
-        const double tn = fmin(hi, fmax(lo, t + step));
+        const double tn = OBC_FMIN(hi, OBC_FMAX(lo, t + step));
         settled = fabs(tn - t) <= 1e-8 * (hi - lo) || (fabs(step) >= prev && fabs(step) <= 1e-6 * (hi - lo));
         prev = fabs(step);
         if (tn == t)
@@ -556,7 +774,7 @@ OBC_FN double obc_chord_dist2(const double Q[2], const OBC_G double *T, int j, l
     *ops += OBC_OPS_CHORD;
     const double vx = b[0] - a[0], vy = b[1] - a[1], wx = Q[0] - a[0], wy = Q[1] - a[1];
     const double vv = vx * vx + vy * vy;
-    const double s = vv > 0.0 ? fmin(1.0, fmax(0.0, (wx * vx + wy * vy) / vv)) : 0.0;
+    const double s = vv > 0.0 ? OBC_FMIN(1.0, OBC_FMAX(0.0, (wx * vx + wy * vy) / vv)) : 0.0;
     const double x = wx - s * vx, y = wy - s * vy;
     return x * x + y * y;
 }
@@ -647,10 +865,16 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     int b0 = 0;
     double lb0 = OBC_INF;
     double lbc[OBC_LB_CACHE]; /* the bounds of the first blocks, asked again below */
+    const int ncache = nblk < OBC_LB_CACHE ? nblk : OBC_LB_CACHE;
+    const OBC_G double *circ = tgt + OBC_REC * S;
+    *ops += OBC_OPS_BLOCK * ncache;
+    OBC_SIMD /* obc_block_lb of the cached blocks, all at once */
+    for (int bk = 0; bk < ncache; bk++) {
+        const double x = Q[0] - circ[4 * bk], y = Q[1] - circ[4 * bk + 1];
+        lbc[bk] = sqrt(x * x + y * y) - circ[4 * bk + 2];
+    }
     for (int bk = 0; bk < nblk; bk++) {
-        const double lb = obc_block_lb(Q, tgt, S, bk, ops);
-        if (bk < OBC_LB_CACHE)
-            lbc[bk] = lb;
+        const double lb = bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops);
         if (lb < lb0) {
             lb0 = lb;
             b0 = bk;
