@@ -206,7 +206,8 @@ static void check_exact(const char *what, const ob_bez *C, double d)
     CHECK(worst < 1e-13, "exact %s d %g: point by point %g", what, d, worst);
 }
 
-static void test_exact(void)
+/* exact: the declared output degree and capabilities. */
+static void test_exact_declared(void)
 {
     const ob_method *m = &ob_method_exact;
     CHECK(ob_method_out_degree(m, 3, 0, NULL) == 5 && ob_method_out_degree(m, 5, 0, NULL) == 9 && ob_method_out_degree(m, 2, 1, NULL) == 2 &&
@@ -215,6 +216,11 @@ static void test_exact(void)
     CHECK((m->caps & OB_CAP_SAME_PARAM) && (m->caps & OB_CAP_RATIONAL_OUT) &&
               (m->caps & OB_CAP_RATIONAL_IN) && !(m->caps & OB_CAP_POLY_OUT),
           "exact: caps");
+}
+
+/* exact on the reference curves, their pieces and reversals, both sides. */
+static void test_exact_reference_curves(void)
+{
     const char *ids[3] = {"arc_quarter", "ph_cubic", "line"};
     for (int i = 0; i < 3; i++) {
         const ob_curve *c = ref_curve(ids[i]);
@@ -232,7 +238,12 @@ static void test_exact(void)
             check_exact(ids[i], &rv, c->d[k]);
         }
     }
-    /* arc_quarter, d = +-0.5: circles of radius 0.5 and 1.5 */
+}
+
+/* exact on arc_quarter, d = +-0.5: circles of radius 0.5 and 1.5. */
+static void test_exact_arc_radius(void)
+{
+    const ob_method *m = &ob_method_exact;
     const ob_curve *a = ref_curve("arc_quarter");
     if (a) {
         static ob_fit f;
@@ -249,6 +260,11 @@ static void test_exact(void)
             CHECK(worst < 1e-15, "exact arc_quarter d %g: radius off by %g", d, worst);
         }
     }
+}
+
+/* exact on other circle arcs, a rational straight segment and a PH quintic. */
+static void test_exact_other_curves(void)
+{
     /* other circle arcs: radius 2.5 about (1,-2), weights not normalised,
      * 120 degrees clockwise */
     {
@@ -296,7 +312,13 @@ static void test_exact(void)
         check_exact("PH quintic", &q, 0.1);
         check_exact("PH quintic", &q, -0.3);
     }
-    /* the driver: one segment, ctrl_points 1 + degree, every metric */
+}
+
+/* exact through the driver: one segment, ctrl_points 1 + degree, every metric. */
+static void test_exact_driver(void)
+{
+    const ob_method *m = &ob_method_exact;
+    const ob_curve *a = ref_curve("arc_quarter");
     if (a) {
         ob_curve c = one_curve(&a->seg[0], 0.5);
         for (int mt = 0; mt < OB_METRIC_COUNT; mt++) {
@@ -317,8 +339,12 @@ static void test_exact(void)
               ob_status_name(j.status), j.segments, j.ctrl_points, j.message);
         ob_curve_free(&c);
     }
+}
 
-    /* SKIP, with a reason, where the offset is not rational */
+/* exact answers SKIP, with a reason, where the offset is not rational. */
+static void test_exact_skips(void)
+{
+    const ob_method *m = &ob_method_exact;
     static ob_fit f;
     char msg[MSGLEN];
     ob_bez g;
@@ -482,11 +508,18 @@ static void check_lee_construction(const char *what, const ob_bez *C, double d, 
         CHECK(er >= 0.99 * ce, "lee %s d %g tol %g: radial %g, circle error %g", what, d, tol, er, ce);
 }
 
-static void test_lee(void)
+/* liu2002_ex1 (Liu et al. 2002, example 1), the cubic most lee checks use. */
+static ob_bez liu_ex1(void)
+{
+    ob_bez g;
+    ob_bez_from_points(&g, 3, EX1);
+    return g;
+}
+
+/* lee: the declared output degree, capabilities and parameters. */
+static void test_lee_declared(void)
 {
     const ob_method *m = &ob_method_lee;
-    static ob_fit f;
-    char msg[MSGLEN];
     CHECK(ob_method_out_degree(m, 3, 0, NULL) == 7 && ob_method_out_degree(m, 2, 0, NULL) == 4 && ob_method_out_degree(m, 1, 0, NULL) == 1 &&
               ob_method_out_degree(m, 2, 1, NULL) == 6 && ob_method_out_degree(m, 3, 1, NULL) == 11,
           "lee: out_degree 3n-2 polynomial, 5n-4 rational");
@@ -497,7 +530,14 @@ static void test_lee(void)
               m->params[1].def == 0.0 && m->params[2].def == 0.0 && m->params[3].def == 0.0 &&
               ob_param_find(m, "clip") == 4 && m->params[4].def == 0.0,
           "lee: params tol_frac=1 arc=0 arcs_on=0 start=0 clip=0");
+}
 
+/* 1. lee's circle approximation, seen through straight segments. */
+static void test_lee_circle_on_lines(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
     /* 1. the circle approximation, sampled through straight segments in 720
      * directions: A - C is the arc point whose tangent is parallel to the line */
     for (int pass = 0; pass < 4; pass++) {
@@ -535,10 +575,13 @@ static void test_lee(void)
         CHECK(lo >= -1e-15, "lee arcs d %g tol %g: inside the circle by %g (they interpolate it "
               "at the arc ends, bulge outwards)", d, tol, -lo);
     }
+}
 
+/* 2. lee's construction against the independent rebuild on five curves. */
+static void test_lee_constructions(void)
+{
     /* 2. the construction rebuilt independently */
-    ob_bez g;
-    ob_bez_from_points(&g, 3, EX1);
+    ob_bez g = liu_ex1();
     const double tols[3] = {1e-1, 1e-2, 1e-3};
     for (int i = 0; i < 3; i++) {
         check_lee_construction("liu2002_ex1", &g, 1.0, tols[i]);
@@ -556,7 +599,15 @@ static void test_lee(void)
         q5[i][0] = (2.5 + 0.25 * i) * cos(0.45 * i), q5[i][1] = (2.5 + 0.25 * i) * sin(0.45 * i);
     ob_bez Q5 = make(5, (const double (*)[2])q5, NULL);
     check_lee_construction("quintic spiral", &Q5, 0.5, 1e-3);
+}
 
+/* 3. lee's radial error decreases with tol, the pieces do not get fewer. */
+static void test_lee_error_with_tol(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez g = liu_ex1();
     /* 3. the error decreases as tol decreases (liu2002_ex1, both sides) */
     for (int sg = -1; sg <= 1; sg += 2) {
         double prev = INFINITY;
@@ -574,18 +625,34 @@ static void test_lee(void)
         }
         CHECK(ok, "lee liu2002_ex1 d %d: radial error decreasing with tol, pieces not fewer", sg);
     }
+}
 
+/* 4. lee's refusals: too many arcs (retry smaller) and d = 0 (skip). */
+static void test_lee_refusals(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez g = liu_ex1();
     /* 4. more arcs than pieces allowed: OB_FIT_RETRY_SMALLER */
     ob_fit_status st = fit(m, &g, 1.0, 1e-9, NULL, &f, msg);
     CHECK(st == OB_FIT_RETRY_SMALLER && msg[0], "lee tol 1e-9: %s (%s)", ob_fit_status_name(st), msg);
     st = fit(m, &g, 0.0, 1e-3, NULL, &f, msg);
     CHECK(st == OB_FIT_SKIP && msg[0], "lee d = 0: %s (%s)", ob_fit_status_name(st), msg);
+}
 
+/* 5. lee's parameters tol_frac and arc (the equioscillating quadratic). */
+static void test_lee_param_tol_frac_arc(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez g = liu_ex1();
     /* 5. the parameters */
     double par[OB_MAX_PARAMS];
     ob_param_defaults(m, par);
     par[0] = 0.25;  /* tol_frac */
-    st = fit(m, &g, -1.0, 1e-2, par, &f, msg);
+    ob_fit_status st = fit(m, &g, -1.0, 1e-2, par, &f, msg);
     CHECK(st == OB_FIT_OK && fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512) <= 0.25e-2,
           "lee tol_frac 0.25: radial %g", fit_max_err(OB_METRIC_RADIAL, &g, &f, -1.0, 512));
     ob_param_defaults(m, par);
@@ -614,6 +681,17 @@ static void test_lee(void)
         CHECK(hi <= tol && lo >= -tol && hi > 0.8 * -lo && -lo > 0.8 * hi,
               "lee arc=1 tol %g: radial deviation in [%g, %g] (equioscillates)", tol, lo, hi);
     }
+}
+
+/* 5. lee's parameter arcs_on: ends interpolate, a straight cubic is exact. */
+static void test_lee_param_arcs_on(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez g = liu_ex1();
+    double par[OB_MAX_PARAMS];
+    ob_fit_status st;
     ob_param_defaults(m, par);
     par[2] = 1;  /* arcs_on: the piece's own normal range */
     for (int k = 0; k < 2; k++) {
@@ -641,6 +719,16 @@ static void test_lee(void)
                   fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.4, 512) < 1e-12,
               "lee arcs_on=1 on a straight cubic: the exact translate (%s)", msg);
     }
+}
+
+/* 5. lee's parameter start: a boundary on a line's normal makes it exact. */
+static void test_lee_param_start(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
+    double par[OB_MAX_PARAMS];
+    ob_fit_status st;
     ob_param_defaults(m, par);
     {
         /* start: a boundary on the normal of a straight segment makes it exact */
@@ -654,7 +742,17 @@ static void test_lee(void)
         double e2 = st == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &L, &f, 0.3, 512) : 0.0;
         CHECK(e1 < 1e-12 && e2 > 1e-4, "lee start: boundary on the normal %g, off it %g", e1, e2);
     }
+}
 
+/* 5. lee's parameter clip against whole arcs on liu2002_ex1, both sides. */
+static void test_lee_param_clip(void)
+{
+    const ob_method *m = &ob_method_lee;
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez g = liu_ex1();
+    double par[OB_MAX_PARAMS];
+    ob_fit_status st;
     /* clip: the sub-arc that a part's normals cover.  Same breakpoints as the
      * whole arcs; the ends interpolate the offset; error at most the circle
      * error under hausdorff too (d = -1: the regular side of liu2002_ex1),
@@ -702,6 +800,14 @@ static void test_lee(void)
                     inner &= fabs(f.seg[i].h[q][c3] - f0.seg[i].h[q][c3]) <= 1e-12;
         CHECK(inner, "lee clip=1: interior parts as with whole arcs");
     }
+}
+
+/* 5. lee with clip=1 through the driver: hausdorff met under every split. */
+static void test_lee_clip_driver(void)
+{
+    const ob_method *m = &ob_method_lee;
+    ob_bez g = liu_ex1();
+    double par[OB_MAX_PARAMS];
     {
         ob_curve c1 = one_curve(&g, 1.0);
         ob_param_defaults(m, par);
@@ -724,7 +830,13 @@ static void test_lee(void)
         }
         ob_curve_free(&c1);
     }
+}
 
+/* 6. lee through the driver reproduces Ahn 2023 Table 1, column M2. */
+static void test_lee_driver_ahn(void)
+{
+    const ob_method *m = &ob_method_lee;
+    ob_bez g = liu_ex1();
     /* 6. the driver: radial metric, mid split (Ahn's protocol), every tolerance met,
      * 7k+1 control points for k degree-7 pieces.  Ahn's normal is the clockwise
      * rotation of the tangent (our right normal), so his r = 1 is our d = -1;
@@ -749,8 +861,25 @@ static void test_lee(void)
 int main(void)
 {
     test_reference_file();
-    test_exact();
-    test_lee();
+    test_exact_declared();
+    test_exact_reference_curves();
+    test_exact_arc_radius();
+    test_exact_other_curves();
+    test_exact_driver();
+    test_exact_skips();
+    test_lee_declared();
+    test_lee_circle_on_lines();
+    test_lee_constructions();
+    test_lee_error_with_tol();
+    test_lee_refusals();
+    test_lee_param_tol_frac_arc();
+    test_lee_param_arcs_on();
+    test_lee_param_start();
+    test_lee_param_clip();
+    test_lee_clip_driver();
+    test_lee_driver_ahn();
+
+
     CHECK(ob_method_find("lee") == NULL || ob_method_find("lee") == &ob_method_lee, "lee registry");
     CHECK(ob_method_find("exact") == NULL || ob_method_find("exact") == &ob_method_exact,
           "exact registry");
