@@ -197,8 +197,11 @@ static void expect_samples_bad(const ob_res_table *t0, const char *text, const c
     CHECK(t.rep_t == t0->rep_t && t.maxrep == t0->maxrep, "a failed attach changes nothing");
 }
 
-static void test_csv(void)
+/* results.csv: a good file read (columns in any order, quotes, CRLF), rows found by job. */
+static void csv_good_rows(ob_res_table *tp)
 {
+    ob_res_table t;
+    ob_err err = {""};
     const char good[] = "family,message,curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,"
                         "status,fit_ns,eval_ns,extra\r\n"
                         "published,,c1,1,tiller,hausdorff,mid,0.1,10,3,3,0.05,ok,100,2000000,x\r\n"
@@ -206,8 +209,6 @@ static void test_csv(void)
                         "published,\"singular, \"\"really\"\"\nsecond line\",c1,1,ahn,hausdorff,mid,1e-05,0,0,6,nan,"
                         "fail,0,0,y\n"
                         "published,,c1,-1,ahn,hausdorff,mid,0.00001,0,0,6,,skip,0,0,z";
-    ob_res_table t;
-    ob_err err = {""};
     CHECK(ob_res_parse(good, strlen(good), "g.csv", &t, &err) == 0 && t.n == 3, "good csv: %s", err.msg);
     if (t.n == 3) {
         CHECK(strcmp(t.v[0].curve, "c1") == 0 && t.v[0].ctrl_points == 10 && t.v[0].max_err == 0.05 &&
@@ -228,7 +229,14 @@ static void test_csv(void)
         key.method = "cobb";
         CHECK(ob_res_find(&t, &key) == NULL, "no such job");
     }
+    *tp = t;
+}
 
+/* samples.csv attached to the good table; bad samples change nothing. */
+static void csv_samples(ob_res_table *tp)
+{
+    ob_res_table t = *tp;
+    ob_err err = {""};
     /* samples */
     const char sgood[] = "curve,d,method,metric,split,tol,rep,fit_ns,eval_ns\n"
                          "c1,1,tiller,hausdorff,mid,0.1,1,10,1000\n"
@@ -256,7 +264,13 @@ static void test_csv(void)
     expect_samples_bad(&t, "curve,d,method,metric,split,tol,fit_ns,eval_ns\n", "s.csv:1", "no column 'rep'");
     ob_res_free(&t);
     ob_res_free(&t);
+}
 
+/* results.csv: the joint columns, optional, all three or none, values checked. */
+static void csv_joint_columns(void)
+{
+    ob_res_table t;
+    ob_err err = {""};
     /* the joint columns: optional, all three or none, values checked */
     const char jhdr[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
                         "eval_ns,message,family,offset_degree,offset_rational,max_gap,max_kink,continuity\n";
@@ -288,7 +302,13 @@ static void test_csv(void)
               strstr(err.msg, "come together"),
           "only max_gap: %s", err.msg);
     ob_res_free(&t);
+}
 
+/* results.csv: bad rows, bad headers, empty, garbage and missing files, each named. */
+static void csv_bad(void)
+{
+    ob_res_table t;
+    ob_err err = {""};
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,,f\nc,1,m,hausdorff,mid,0.1,10,3,3\n", "r.csv:3",
                    "9 fields, the header has 15");
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,\"oops,f\n", "r.csv:2", "unterminated quote");
@@ -323,6 +343,17 @@ static void test_csv(void)
     CHECK(ob_res_load("/nonexistent/results.csv", &t, &err) == -1 && strstr(err.msg, "cannot open"),
           "missing file: %s", err.msg);
 }
+
+/* results.csv and samples.csv, read and refused. */
+static void test_csv(void)
+{
+    ob_res_table t;
+    csv_good_rows(&t);
+    csv_samples(&t);
+    csv_joint_columns();
+    csv_bad();
+}
+
 
 /* ---- join and verdicts ---- */
 
