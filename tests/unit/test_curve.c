@@ -433,7 +433,8 @@ static int child_rat22(void) { return child_rational_high_degree(22); }
 static int child_rat24(void) { return child_rational_high_degree(24); }
 static int child_rat32(void) { return child_rational_high_degree(OB_MAX_DEG); }
 
-static void test_inflections(void)
+/* inflections of cubics: symmetric and asymmetric S (one), convex (none). */
+static void inflections_cubics(void)
 {
     double ts[16];
     /* symmetric S cubic: y = 3t(1-t)(1-2t), x = 3t: y'' = 0 at t = 1/2 */
@@ -480,6 +481,12 @@ static void test_inflections(void)
         ob_bez b = make(3, (const double (*)[2])xy, NULL);
         CHECK(ob_bez_inflections(&b, ts, 16) == 0, "convex cubic has no inflection");
     }
+}
+
+/* no spurious inflections on straight segments of degree 2..5, both kinds. */
+static void inflections_straight(void)
+{
+    double ts[16];
     /* straight segments (round-off off the line): none */
     {
         static const double s[6] = {0, 0.37, 1.21, 2.0, 2.9, 3.3};
@@ -497,6 +504,12 @@ static void test_inflections(void)
                 }
             }
     }
+}
+
+/* a quintic's two inflections found in several orientations. */
+static void inflections_quintic(void)
+{
+    double ts[16];
     /* quintic with two inflections at 0.25 and 0.6, in several orientations */
     for (int k = 0; k < 5; k++) {
         ob_bez b = quintic_with_ypp_roots(0.25, 0.6, 1.3 * k);
@@ -505,6 +518,12 @@ static void test_inflections(void)
         CHECK(cmp_roots(ts, n, exp, 2, 1e-12), "quintic (rotation %d): %d inflections (%.17g, %.17g)", k, n,
               n > 0 ? ts[0] : NAN, n > 1 ? ts[1] : NAN);
     }
+}
+
+/* a double root of the curvature (no sign change) is not an inflection. */
+static void inflections_double_root(void)
+{
+    double ts[16];
     /* double root of the curvature (touches zero, no sign change): not reported.
      * y'' = K (t-r)^2 (t+3/2) integrated twice, scaled by K so that every
      * control point is an integer (computed exactly with rational arithmetic),
@@ -540,6 +559,12 @@ static void test_inflections(void)
                   "(at %.17g: %g, vs %g at r - 0.01)", dbl[i].r, far, ts[n > 0 ? n - 1 : 0], ref_cross(&b, ts[n > 0 ? n - 1 : 0]), cm);
         }
     }
+}
+
+/* rational cubic and quintic: inflections where the reference's curvature changes sign. */
+static void inflections_rational(void)
+{
+    double ts[16];
     /* rational: det(P,P',P'') against the sign changes of the curvature */
     {
         double xy[4][2] = {{0, 0}, {1, 1}, {2, -1}, {3, 0}}, w[4] = {1, 2, 0.5, 1};
@@ -568,6 +593,11 @@ static void test_inflections(void)
         CHECK(cmp_roots(ts, n, exp, ne, 1e-10), "rational quintic: %d inflections (%.17g, %.17g) expected (%.17g, %.17g)",
               n, n > 0 ? ts[0] : NAN, n > 1 ? ts[1] : NAN, exp[0], exp[1]);
     }
+}
+
+/* inflections: max limits the output; high rational degrees are right and safe. */
+static void inflections_limits(void)
+{
     /* max limits the output */
     {
         ob_bez b = quintic_with_ypp_roots(0.25, 0.6, 0.0);
@@ -583,6 +613,18 @@ static void test_inflections(void)
                      "1/>=128 = crash or sanitizer report)", rc24);
     CHECK(rc32 == 0, "rational degree %d (elevated S cubic): child status %d", OB_MAX_DEG, rc32);
 }
+
+/* ob_bez_inflections, case by case. */
+static void test_inflections(void)
+{
+    inflections_cubics();
+    inflections_straight();
+    inflections_quintic();
+    inflections_double_root();
+    inflections_rational();
+    inflections_limits();
+}
+
 
 /* ---- turning ------------------------------------------------------------------- */
 
