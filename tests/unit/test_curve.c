@@ -662,7 +662,8 @@ static void test_turn(void)
 
 /* ---- Bernstein algebra ------------------------------------------------------------ */
 
-static void test_bernstein(void)
+/* ob_binom against Pascal's triangle and a few known values. */
+static void bernstein_binomials(void)
 {
     /* binomials against Pascal's triangle */
     int bad = 0;
@@ -673,7 +674,11 @@ static void test_bernstein(void)
     CHECK(bad == 0, "ob_binom differs from Pascal's triangle in %d entries (n <= 40)", bad);
     CHECK(ob_binom(0, 0) == 1 && ob_binom(5, 2) == 10 && ob_binom(10, 5) == 252 && ob_binom(4, 5) == 0 &&
               ob_binom(4, -1) == 0, "small binomials");
+}
 
+/* ob_bern_mul, ob_bern_eval and ob_bern_elevate against pointwise values. */
+static void bernstein_products_elevation(void)
+{
     /* products and elevation against pointwise values */
     for (int m = 0; m <= 12; m += 1)
         for (int n = 0; n <= 12; n += 3) {
@@ -703,7 +708,11 @@ static void test_bernstein(void)
             CHECK(wl <= 1e-13, "ob_bern_elevate %d -> %d: error %.3g", m, r, wl);
             CHECK(e[0] == a[0] && e[r] == a[m], "ob_bern_elevate keeps the end coefficients");
         }
+}
 
+/* ob_bern_roots on polynomials with known roots, also scaled and negated. */
+static void bernstein_known_roots(void)
+{
     /* roots of polynomials with known roots */
     static const struct {
         int nr;
@@ -741,6 +750,11 @@ static void test_bernstein(void)
         CHECK(cmp_roots(got, ng2, cases[i].e, cases[i].ne, cases[i].tol), "ob_bern_roots (scaled), %s: %d roots",
               cases[i].what, ng2);
     }
+}
+
+/* ob_bern_roots reports no root at an exact double root (no sign change). */
+static void bernstein_double_roots(void)
+{
     /* exact double roots: K (t-r)^2 (t+3/2) with integer Bernstein coefficients
      * (computed with rational arithmetic), degree 3 and the same elevated to 7.
      * The polynomial is >= 0 on [0,1]: no sign change, so no root; anything
@@ -778,6 +792,11 @@ static void test_bernstein(void)
                   dr[i].r, dr[i].n, notzero, got[ng > 0 ? ng - 1 : 0], bsum(dr[i].b, dr[i].n, got[ng > 0 ? ng - 1 : 0]));
         }
     }
+}
+
+/* the test's own power-to-Bernstein conversion; max and degenerate inputs of ob_bern_roots. */
+static void bernstein_roots_limits(void)
+{
     /* the reference conversion itself */
     {
         double r[3] = {0.2, 0.5, 0.8}, p[4], bc[4];
@@ -797,6 +816,11 @@ static void test_bernstein(void)
         CHECK(ob_bern_roots(c1, 0, got, 2) == 0, "degree 0 has no roots");
         CHECK(ob_bern_roots(cz, 3, got, 2) == 0, "the zero polynomial reports no roots");
     }
+}
+
+/* ob_bern_roots on random polynomials with known roots, within their condition. */
+static void bernstein_random_roots(void)
+{
     /* random polynomials with random known roots, degree up to 12, built as
      * products of the linear factors (-r)B0 + (1-r)B1 (Bernstein products by
      * the binomial formula written here); each root is compared within its
@@ -848,6 +872,18 @@ static void test_bernstein(void)
     }
     CHECK(badr == 0, "ob_bern_roots wrong on %d random polynomials with known roots", badr);
 }
+
+/* Bernstein arithmetic and roots, case by case (urange draws in the same order). */
+static void test_bernstein(void)
+{
+    bernstein_binomials();
+    bernstein_products_elevation();
+    bernstein_known_roots();
+    bernstein_double_roots();
+    bernstein_roots_limits();
+    bernstein_random_roots();
+}
+
 
 static void test_count(void)
 {
