@@ -495,7 +495,8 @@ static void test_l2_optimality(void)
 
 /* ---- 6: chebyshev and lstsq against liu; convergence -------------------------------- */
 
-static void test_agreement_convergence(void)
+/* the three methods agree on pieces of a cubic, and converge O(h^4). */
+static void agreement_cubic(void)
 {
     static ob_fit f;
     char msg[MSGLEN];
@@ -526,6 +527,13 @@ static void test_agreement_convergence(void)
             CHECK(r > 14 && r < 19.5, "%s: halving from h = %g: error ratio %.3g (expected ~16)",
                   NAMES[mi], 0.5 / (1 << l), r);
         }
+}
+
+/* the same for a quintic: O(h^6), and agreement with liu. */
+static void agreement_quintic(void)
+{
+    static ob_fit f;
+    char msg[MSGLEN];
     /* the same for a quintic: O(h^6), ratio -> 64 */
     ob_bez Q = quintic();
     double eq[3][4];
@@ -543,7 +551,14 @@ static void test_agreement_convergence(void)
         CHECK(eq[mi][3] / eq[0][3] > 1.0 / 3 && eq[mi][3] / eq[0][3] < 3, "%s quintic vs liu: %.3g vs %.3g",
               NAMES[mi], eq[mi][3], eq[0][3]);
     }
+}
 
+/* chebyshev with n-1 nodes interpolates f~ at the Chebyshev points. */
+static void chebyshev_interpolates(void)
+{
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez Q = quintic();
     /* chebyshev with n-1 nodes interpolates f~ at the Chebyshev points */
     ob_bez P;
     ob_bez_subsegment(&Q, 0.1, 0.9, &P);
@@ -561,7 +576,16 @@ static void test_agreement_convergence(void)
         }
         CHECK(worst < 1e-12, "chebyshev, n-1 nodes: interpolates f~ at the Chebyshev points (%g)", worst);
     }
+}
 
+/* lstsq against liu: of f~ samples it tends to liu, of normal samples it beats liu on the normal. */
+static void lstsq_against_liu(void)
+{
+    static ob_fit f;
+    char msg[MSGLEN];
+    ob_bez C = liu_ex1(), P;
+    const double d = 1.0;
+    ob_fit_status st;
     /* lstsq of f~ samples tends to liu as the samples grow (discrete -> continuous L2) */
     ob_bez_subsegment(&C, 0.1, 0.7, &P);
     static ob_fit fl;
@@ -602,6 +626,16 @@ static void test_agreement_convergence(void)
     CHECK(en_s < en_l, "lstsq (normal samples) L2 error of the normal %g < liu's %g", sqrt(en_s / FINE),
           sqrt(en_l / FINE));
 }
+
+/* liu, chebyshev and lstsq: agreement, convergence, and how they differ. */
+static void test_agreement_convergence(void)
+{
+    agreement_cubic();
+    agreement_quintic();
+    chebyshev_interpolates();
+    lstsq_against_liu();
+}
+
 
 /* ---- 7: rational input (§2.4) --------------------------------------------------------- */
 

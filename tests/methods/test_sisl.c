@@ -179,6 +179,102 @@ static void split_fit(const ob_bez *C, double d, double tol, long *ctrl, double 
 
 /* ---- structure, orientation, conversion --------------------------------- */
 
+/* sin of the angle from tangent l to tangent r; INFINITY when they point apart. */
+static double g1_sin(const double l[2], const double r[2])
+{
+    double sn = (l[0] * r[1] - l[1] * r[0]) / (hypot(l[0], l[1]) * hypot(r[0], r[1]));
+    double cs = l[0] * r[0] + l[1] * r[1];
+    return cs > 0 ? fabs(sn) : INFINITY;
+}
+
+/* The pieces of f: cubic, equal to SISL's curve rc, breakpoints on the exact
+ * offset, on the side of sign(d), joined G1, end tangents parallel to C'. */
+static void check_pieces_against_sisl(const char *name, const ob_bez *C, double d, const ob_fit *f,
+                                      SISLCurve *rc)
+{
+    double worst_eval = 0.0, worst_knot = 0.0, worst_join = 0.0, worst_g1 = 0.0;
+    int left = 0, side_ok = 1;
+    for (int i = 0; i < f->n; i++) {
+        const ob_bez *A = &f->seg[i];
+        CHECK(A->deg == 3 && !A->rational, "%s: piece %d degree %d rational %d", name, i, A->deg,
+              A->rational);
+        const double a = f->t[i], b = f->t[i + 1];
+        for (int s = 0; s <= 8; s++) {
+            double u = s / 8.0, p[2], der[2];
+            int st2 = 0;
+            ref_point(A, u, p);
+            s1221(rc, 0, a + (b - a) * u, &left, der, &st2);
+            worst_eval = fmax(worst_eval, dist2d(p, der));
+        }
+        /* at its base parameter, each breakpoint is the exact offset point */
+        double o[2], N[2], p[2];
+        ref_offset_normal(C, a, d, o, N);
+        ref_point(A, 0.0, p);
+        worst_knot = fmax(worst_knot, dist2d(p, o));
+        /* orientation: the middle of the piece is on the side of sign(d) */
+        double e[2][2], m[2];
+        ref_eval(C, 0.5 * (a + b), 1, e);
+        ref_point(A, 0.5, m);
+        double cr = e[1][0] * (m[1] - e[0][1]) - e[1][1] * (m[0] - e[0][0]);
+        double dist = dist2d(m, e[0]);
+        side_ok &= (cr > 0) == (d > 0) && fabs(dist - fabs(d)) < 0.5 * fabs(d);
+        if (i + 1 < f->n) {
+            double q[2], da[2][2], db[2][2];
+            ref_point(A, 1.0, p);
+            ref_point(&f->seg[i + 1], 0.0, q);
+            worst_join = fmax(worst_join, dist2d(p, q));
+            ref_eval(A, 1.0, 1, da);
+            ref_eval(&f->seg[i + 1], 0.0, 1, db);
+            /* G1: the same tangent direction on both sides (SISL's Hermite
+             * data are offset tangent directions; their lengths differ, so
+             * the joint is not C1 in the knot parameter) */
+            worst_g1 = fmax(worst_g1, g1_sin(da[1], db[1]));
+        } else {
+            /* end tangents along the offset's, i.e. parallel to C' (G1 with
+             * the next driver piece) */
+            for (int end = 0; end < 2; end++) {
+                double da[2][2], dc[2][2];
+                ref_eval(end ? A : &f->seg[0], end, 1, da);
+                ref_eval(C, end, 1, dc);
+                worst_g1 = fmax(worst_g1, g1_sin(da[1], dc[1]));
+            }
+            ref_offset_normal(C, 1.0, d, o, N);
+            ref_point(A, 1.0, p);
+            worst_knot = fmax(worst_knot, dist2d(p, o));
+        }
+    }
+    CHECK(worst_eval < 1e-13, "%s d %g: pieces vs SISL's s1221: %g", name, d, worst_eval);
+    CHECK(worst_knot < 1e-12, "%s d %g: breakpoint vs C(t_i) + d N(t_i): %g", name, d, worst_knot);
+    CHECK(side_ok, "%s d %g: offset not on the %s side", name, d, d > 0 ? "left" : "right");
+    CHECK(worst_join < 1e-14, "%s d %g: pieces do not join: %g", name, d, worst_join);
+    CHECK(worst_g1 < 1e-12, "%s d %g: not G1 at the knots (sin of the angle %g)", name, d, worst_g1);
+}
+
+/* The method's Bezier pieces against ob_bspline_to_bezier of SISL's curve rc. */
+static void check_blossoming(const char *name, const ob_fit *f, const SISLCurve *rc)
+{
+    /* the method's blossoming vs ob_bspline_to_bezier's knot insertion */
+    double (*pts)[3] = malloc(sizeof *pts * (size_t)rc->in);
+    for (int i = 0; i < rc->in; i++)
+        pts[i][0] = rc->ecoef[2 * i], pts[i][1] = rc->ecoef[2 * i + 1], pts[i][2] = 1.0;
+    ob_bez *segs = NULL;
+    int nseg = 0;
+    ob_err err = {""};
+    int r = ob_bspline_to_bezier(3, rc->in, rc->et, (const double (*)[3])pts, &segs, &nseg, &err);
+    CHECK(r == 0 && nseg == f->n, "%s: ob_bspline_to_bezier %d, %d segments (%s)", name, r, nseg, err.msg);
+    if (r == 0 && nseg == f->n) {
+        double w = 0.0;
+        for (int i = 0; i < nseg; i++)
+            for (int j = 0; j <= 3; j++)
+                w = fmax(w, hypot(segs[i].h[j][0] - f->seg[i].h[j][0], segs[i].h[j][1] - f->seg[i].h[j][1]));
+        CHECK(w < 1e-13, "%s: blossoming vs knot insertion: %g", name, w);
+    }
+    free(segs);
+    free(pts);
+}
+
+/* The method on C, d, tol against SISL's s1360 run directly: the same vertex
+ * count and distinct knots, then the pieces and their conversion. */
 static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, double tol)
 {
     static ob_fit f;
@@ -203,86 +299,8 @@ static void check_fit_against_sisl(const char *name, const ob_bez *C, double d, 
             knots_ok &= k < f.n && f.t[k++] == rc->et[j];
     CHECK(knots_ok && k == f.n, "%s: t[] are not SISL's distinct knots", name);
 
-    double worst_eval = 0.0, worst_knot = 0.0, worst_join = 0.0, worst_g1 = 0.0;
-    int left = 0, side_ok = 1;
-    for (int i = 0; i < f.n; i++) {
-        const ob_bez *A = &f.seg[i];
-        CHECK(A->deg == 3 && !A->rational, "%s: piece %d degree %d rational %d", name, i, A->deg,
-              A->rational);
-        const double a = f.t[i], b = f.t[i + 1];
-        for (int s = 0; s <= 8; s++) {
-            double u = s / 8.0, p[2], der[2];
-            int st2 = 0;
-            ref_point(A, u, p);
-            s1221(rc, 0, a + (b - a) * u, &left, der, &st2);
-            worst_eval = fmax(worst_eval, dist2d(p, der));
-        }
-        /* at its base parameter, each breakpoint is the exact offset point */
-        double o[2], N[2], p[2];
-        ref_offset_normal(C, a, d, o, N);
-        ref_point(A, 0.0, p);
-        worst_knot = fmax(worst_knot, dist2d(p, o));
-        /* orientation: the middle of the piece is on the side of sign(d) */
-        double e[2][2], m[2];
-        ref_eval(C, 0.5 * (a + b), 1, e);
-        ref_point(A, 0.5, m);
-        double cr = e[1][0] * (m[1] - e[0][1]) - e[1][1] * (m[0] - e[0][0]);
-        double dist = dist2d(m, e[0]);
-        side_ok &= (cr > 0) == (d > 0) && fabs(dist - fabs(d)) < 0.5 * fabs(d);
-        if (i + 1 < f.n) {
-            double q[2], da[2][2], db[2][2];
-            ref_point(A, 1.0, p);
-            ref_point(&f.seg[i + 1], 0.0, q);
-            worst_join = fmax(worst_join, dist2d(p, q));
-            ref_eval(A, 1.0, 1, da);
-            ref_eval(&f.seg[i + 1], 0.0, 1, db);
-            /* G1: the same tangent direction on both sides (SISL's Hermite
-             * data are offset tangent directions; their lengths differ, so
-             * the joint is not C1 in the knot parameter) */
-            const double *l = da[1], *r = db[1];
-            double sn = (l[0] * r[1] - l[1] * r[0]) / (hypot(l[0], l[1]) * hypot(r[0], r[1]));
-            double cs = l[0] * r[0] + l[1] * r[1];
-            worst_g1 = fmax(worst_g1, cs > 0 ? fabs(sn) : INFINITY);
-        } else {
-            /* end tangents along the offset's, i.e. parallel to C' (G1 with
-             * the next driver piece) */
-            for (int end = 0; end < 2; end++) {
-                double da[2][2], dc[2][2];
-                ref_eval(end ? A : &f.seg[0], end, 1, da);
-                ref_eval(C, end, 1, dc);
-                double sn = (da[1][0] * dc[1][1] - da[1][1] * dc[1][0]) /
-                            (hypot(da[1][0], da[1][1]) * hypot(dc[1][0], dc[1][1]));
-                worst_g1 = fmax(worst_g1, da[1][0] * dc[1][0] + da[1][1] * dc[1][1] > 0 ? fabs(sn) : INFINITY);
-            }
-            ref_offset_normal(C, 1.0, d, o, N);
-            ref_point(A, 1.0, p);
-            worst_knot = fmax(worst_knot, dist2d(p, o));
-        }
-    }
-    CHECK(worst_eval < 1e-13, "%s d %g: pieces vs SISL's s1221: %g", name, d, worst_eval);
-    CHECK(worst_knot < 1e-12, "%s d %g: breakpoint vs C(t_i) + d N(t_i): %g", name, d, worst_knot);
-    CHECK(side_ok, "%s d %g: offset not on the %s side", name, d, d > 0 ? "left" : "right");
-    CHECK(worst_join < 1e-14, "%s d %g: pieces do not join: %g", name, d, worst_join);
-    CHECK(worst_g1 < 1e-12, "%s d %g: not G1 at the knots (sin of the angle %g)", name, d, worst_g1);
-
-    /* the method's blossoming vs ob_bspline_to_bezier's knot insertion */
-    double (*pts)[3] = malloc(sizeof *pts * (size_t)rc->in);
-    for (int i = 0; i < rc->in; i++)
-        pts[i][0] = rc->ecoef[2 * i], pts[i][1] = rc->ecoef[2 * i + 1], pts[i][2] = 1.0;
-    ob_bez *segs = NULL;
-    int nseg = 0;
-    ob_err err = {""};
-    int r = ob_bspline_to_bezier(3, rc->in, rc->et, (const double (*)[3])pts, &segs, &nseg, &err);
-    CHECK(r == 0 && nseg == f.n, "%s: ob_bspline_to_bezier %d, %d segments (%s)", name, r, nseg, err.msg);
-    if (r == 0 && nseg == f.n) {
-        double w = 0.0;
-        for (int i = 0; i < nseg; i++)
-            for (int j = 0; j <= 3; j++)
-                w = fmax(w, hypot(segs[i].h[j][0] - f.seg[i].h[j][0], segs[i].h[j][1] - f.seg[i].h[j][1]));
-        CHECK(w < 1e-13, "%s: blossoming vs knot insertion: %g", name, w);
-    }
-    free(segs);
-    free(pts);
+    check_pieces_against_sisl(name, C, d, &f, rc);
+    check_blossoming(name, &f, rc);
     freeCurve(rc);
 }
 

@@ -197,8 +197,11 @@ static void expect_samples_bad(const ob_res_table *t0, const char *text, const c
     CHECK(t.rep_t == t0->rep_t && t.maxrep == t0->maxrep, "a failed attach changes nothing");
 }
 
-static void test_csv(void)
+/* results.csv: a good file read (columns in any order, quotes, CRLF), rows found by job. */
+static void csv_good_rows(ob_res_table *tp)
 {
+    ob_res_table t;
+    ob_err err = {""};
     const char good[] = "family,message,curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,"
                         "status,fit_ns,eval_ns,extra\r\n"
                         "published,,c1,1,tiller,hausdorff,mid,0.1,10,3,3,0.05,ok,100,2000000,x\r\n"
@@ -206,8 +209,6 @@ static void test_csv(void)
                         "published,\"singular, \"\"really\"\"\nsecond line\",c1,1,ahn,hausdorff,mid,1e-05,0,0,6,nan,"
                         "fail,0,0,y\n"
                         "published,,c1,-1,ahn,hausdorff,mid,0.00001,0,0,6,,skip,0,0,z";
-    ob_res_table t;
-    ob_err err = {""};
     CHECK(ob_res_parse(good, strlen(good), "g.csv", &t, &err) == 0 && t.n == 3, "good csv: %s", err.msg);
     if (t.n == 3) {
         CHECK(strcmp(t.v[0].curve, "c1") == 0 && t.v[0].ctrl_points == 10 && t.v[0].max_err == 0.05 &&
@@ -228,7 +229,14 @@ static void test_csv(void)
         key.method = "cobb";
         CHECK(ob_res_find(&t, &key) == NULL, "no such job");
     }
+    *tp = t;
+}
 
+/* samples.csv attached to the good table; bad samples change nothing. */
+static void csv_samples(ob_res_table *tp)
+{
+    ob_res_table t = *tp;
+    ob_err err = {""};
     /* samples */
     const char sgood[] = "curve,d,method,metric,split,tol,rep,fit_ns,eval_ns\n"
                          "c1,1,tiller,hausdorff,mid,0.1,1,10,1000\n"
@@ -256,7 +264,13 @@ static void test_csv(void)
     expect_samples_bad(&t, "curve,d,method,metric,split,tol,fit_ns,eval_ns\n", "s.csv:1", "no column 'rep'");
     ob_res_free(&t);
     ob_res_free(&t);
+}
 
+/* results.csv: the joint columns, optional, all three or none, values checked. */
+static void csv_joint_columns(void)
+{
+    ob_res_table t;
+    ob_err err = {""};
     /* the joint columns: optional, all three or none, values checked */
     const char jhdr[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
                         "eval_ns,message,family,offset_degree,offset_rational,max_gap,max_kink,continuity\n";
@@ -288,7 +302,13 @@ static void test_csv(void)
               strstr(err.msg, "come together"),
           "only max_gap: %s", err.msg);
     ob_res_free(&t);
+}
 
+/* results.csv: bad rows, bad headers, empty, garbage and missing files, each named. */
+static void csv_bad(void)
+{
+    ob_res_table t;
+    ob_err err = {""};
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,,f\nc,1,m,hausdorff,mid,0.1,10,3,3\n", "r.csv:3",
                    "9 fields, the header has 15");
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,\"oops,f\n", "r.csv:2", "unterminated quote");
@@ -323,6 +343,17 @@ static void test_csv(void)
     CHECK(ob_res_load("/nonexistent/results.csv", &t, &err) == -1 && strstr(err.msg, "cannot open"),
           "missing file: %s", err.msg);
 }
+
+/* results.csv and samples.csv, read and refused. */
+static void test_csv(void)
+{
+    ob_res_table t;
+    csv_good_rows(&t);
+    csv_samples(&t);
+    csv_joint_columns();
+    csv_bad();
+}
+
 
 /* ---- join and verdicts ---- */
 
@@ -409,27 +440,32 @@ static void rows2(char *buf, size_t len, const char *t_status, int t_cp, const c
              t_cp, t_err, t_status, t_ns, a_cp, a_err, a_status, a_ns);
 }
 
-static void test_verdicts(void)
+/* compare: identical results give 0 and geometric means 1. */
+static void verdicts_identical(const ob_cmp_side *b, const char *rb, const meta_spec *m)
 {
     ob_cmp_opts o = ob_cmp_defaults();
-    const meta_spec m0 = {256, 1, "10", "8", NULL};
-    ob_cmp_side b, n;
+    ob_cmp_side n;
     ob_cmp_result r;
-    char rb[1024], rn[1024];
-
-    rows2(rb, sizeof rb, "ok", 10, "0.05", 2000000, "ok", 13, "0.04", 3000000);
-    load(&b, "BASE", rb, &m0, NULL);
-    load(&n, "NEW", rb, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 0 && r.joined == 2 && r.nch == 0 && r.checked && r.timing, "identical: 0");
+    load(&n, "NEW", rb, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 0 && r.joined == 2 && r.nch == 0 && r.checked && r.timing, "identical: 0");
     CHECK(r.nms == 2 && r.ms[0].gm_cp == 1 && r.ms[0].gm_t == 1 && r.t_judged == 2 && r.t_threshold_only == 2,
           "identical: geometric means 1, timings judged by threshold");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
+}
+
+/* compare: ctrl_points up is a regression, down with a larger error an improvement. */
+static void verdicts_ctrl_points(const ob_cmp_side *b, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
+    char rn[1024];
 
     /* more control points: a regression */
     rows2(rn, sizeof rn, "ok", 11, "0.05", 2000000, "ok", 13, "0.04", 3000000);
-    load(&n, "NEW", rn, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && r.q_reg == 1 && find_change(&r, OB_CH_REGRESSION, "ctrl_points", "tiller"),
+    load(&n, "NEW", rn, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 1 && r.q_reg == 1 && find_change(&r, OB_CH_REGRESSION, "ctrl_points", "tiller"),
           "ctrl_points 10 -> 11: regression");
     CHECK(r.ms[0].regressions == 1 && fabs(r.ms[0].gm_cp - 1.1) < 1e-12, "tiller gm ctrl_points 1.1");
     ob_cmp_result_free(&r);
@@ -437,134 +473,193 @@ static void test_verdicts(void)
 
     /* fewer control points with a larger error: an improvement */
     rows2(rn, sizeof rn, "ok", 9, "0.09", 2000000, "ok", 13, "0.04", 3000000);
-    load(&n, "NEW", rn, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 0 && r.q_imp == 1 && find_change(&r, OB_CH_IMPROVEMENT, "ctrl_points", "tiller"),
+    load(&n, "NEW", rn, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 0 && r.q_imp == 1 && find_change(&r, OB_CH_IMPROVEMENT, "ctrl_points", "tiller"),
           "ctrl_points 10 -> 9 with a larger error: improvement");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
+}
+
+/* compare: max_err beyond the tolerance, within it, --err-rtol, smaller. */
+static void verdicts_max_err(const ob_cmp_side *b, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
+    char rn[1024];
 
     /* max_err: beyond the tolerance, within it */
     rows2(rn, sizeof rn, "ok", 10, "0.0500001", 2000000, "ok", 13, "0.04000000000000001", 3000000);
-    load(&n, "NEW", rn, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && r.q_reg == 1 && find_change(&r, OB_CH_REGRESSION, "max_err", "tiller") &&
+    load(&n, "NEW", rn, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 1 && r.q_reg == 1 && find_change(&r, OB_CH_REGRESSION, "max_err", "tiller") &&
               r.nch == 1,
           "max_err up by 2e-6 relative: regression; by 2.5e-16: nothing");
     ob_cmp_result_free(&r);
     o.err_rtol = 1e-3;
-    CHECK(run(&b, &n, &o, &r) == 0 && r.nch == 0, "--err-rtol 1e-3: no change");
+    CHECK(run(b, &n, &o, &r) == 0 && r.nch == 0, "--err-rtol 1e-3: no change");
     ob_cmp_result_free(&r);
     o = ob_cmp_defaults();
     ob_cmp_side_free(&n);
     rows2(rn, sizeof rn, "ok", 10, "0.04", 2000000, "ok", 13, "0.04", 3000000);
-    load(&n, "NEW", rn, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 0 && find_change(&r, OB_CH_IMPROVEMENT, "max_err", "tiller"), "smaller max_err");
+    load(&n, "NEW", rn, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 0 && find_change(&r, OB_CH_IMPROVEMENT, "max_err", "tiller"), "smaller max_err");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
+}
+
+/* compare: status changes; the base side is reloaded here and freed. */
+static void verdicts_status(ob_cmp_side *b, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
+    char rn[1024], rs[1024];
 
     /* status changes */
     rows2(rn, sizeof rn, "fail", 0, "", 2000000, "limit", 13, "0.04", 3000000);
-    load(&n, "NEW", rn, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && r.q_reg == 2 && find_change(&r, OB_CH_REGRESSION, "status", "tiller") &&
+    load(&n, "NEW", rn, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 1 && r.q_reg == 2 && find_change(&r, OB_CH_REGRESSION, "status", "tiller") &&
               find_change(&r, OB_CH_REGRESSION, "status", "ahn") && r.t_judged == 0,
           "ok -> fail and ok -> limit: regressions, timings not judged");
     ob_cmp_result_free(&r);
-    CHECK(run(&n, &b, &o, &r) == 0 && r.q_imp == 2, "fail -> ok, limit -> ok: improvements");
+    CHECK(run(&n, b, &o, &r) == 0 && r.q_imp == 2, "fail -> ok, limit -> ok: improvements");
     ob_cmp_result_free(&r);
-    ob_cmp_side_free(&b);
-    rows2(rb, sizeof rb, "skip", 0, "", 2000000, "fail", 0, "", 3000000);
-    load(&b, "BASE", rb, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && r.q_reg == 2, "skip -> fail, fail -> limit: other changes are regressions");
+    ob_cmp_side_free(b);
+    rows2(rs, sizeof rs, "skip", 0, "", 2000000, "fail", 0, "", 3000000);
+    load(b, "BASE", rs, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 1 && r.q_reg == 2, "skip -> fail, fail -> limit: other changes are regressions");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
-    load(&n, "NEW", rb, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 0 && r.nch == 0, "skip -> skip, fail -> fail: nothing");
+    load(&n, "NEW", rs, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 0 && r.nch == 0, "skip -> skip, fail -> fail: nothing");
     ob_cmp_result_free(&r);
-    ob_cmp_side_free(&b);
+    ob_cmp_side_free(b);
     ob_cmp_side_free(&n);
+}
+
+/* compare: a missing row is 1, a new row is reported. */
+static void verdicts_missing_new(const ob_cmp_side *b, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
 
     /* missing and new rows */
-    rows2(rb, sizeof rb, "ok", 10, "0.05", 2000000, "ok", 13, "0.04", 3000000);
-    load(&b, "BASE", rb, &m0, NULL);
     load(&n, "NEW", "c1,1,tiller,hausdorff,mid,0.1,10,3,3,0.05,ok,0,2000000,,f\n"
-                    "c1,1,tiller,hausdorff,mid,0.01,31,3,3,0.005,ok,0,2000000,,f\n", &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && r.n_missing == 1 && r.n_new == 1 && r.joined == 1 &&
+                    "c1,1,tiller,hausdorff,mid,0.01,31,3,3,0.005,ok,0,2000000,,f\n", m, NULL);
+    CHECK(run(b, &n, &o, &r) == 1 && r.n_missing == 1 && r.n_new == 1 && r.joined == 1 &&
               find_change(&r, OB_CH_MISSING, "status", "ahn") && find_change(&r, OB_CH_NEW, "status", "tiller"),
           "a missing row: 1; a new row is reported");
     ob_cmp_result_free(&r);
-    CHECK(run(&n, &b, &o, &r) == 1 && r.n_missing == 1 && r.n_new == 1, "reversed: still one missing");
+    CHECK(run(&n, b, &o, &r) == 1 && r.n_missing == 1 && r.n_new == 1, "reversed: still one missing");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
+}
+
+/* compare: timing without samples: the threshold, the floor, --no-timing. */
+static void verdicts_timing_threshold(const ob_cmp_side *b, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
+    char rn[1024];
 
     /* timing without samples: the threshold decides; the floor; */
     rows2(rn, sizeof rn, "ok", 10, "0.05", 2300000, "ok", 13, "0.04", 2500000);
-    load(&n, "NEW", rn, &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && r.t_reg == 1 && r.t_imp == 1 && r.t_threshold_only == 2 &&
+    load(&n, "NEW", rn, m, NULL);
+    CHECK(run(b, &n, &o, &r) == 1 && r.t_reg == 1 && r.t_imp == 1 && r.t_threshold_only == 2 &&
               find_change(&r, OB_CH_REGRESSION, "time", "tiller") && find_change(&r, OB_CH_IMPROVEMENT, "time", "ahn"),
           "timing +15%%: regression, -17%%: improvement");
     CHECK(r.m_reg == 1 && r.ms[0].verdict == 1 && r.m_imp == 1 && r.ms[1].verdict == -1, "per method verdicts");
     ob_cmp_result_free(&r);
     o.time_threshold = 0.2;
-    CHECK(run(&b, &n, &o, &r) == 0 && r.nch == 0, "--time-threshold 0.2: no change");
+    CHECK(run(b, &n, &o, &r) == 0 && r.nch == 0, "--time-threshold 0.2: no change");
     ob_cmp_result_free(&r);
     o = ob_cmp_defaults();
     o.time_floor_ns = 2500000;
-    CHECK(run(&b, &n, &o, &r) == 0 && r.t_judged == 1 && isnan(r.ms[0].gm_t), "below the floor: not judged");
+    CHECK(run(b, &n, &o, &r) == 0 && r.t_judged == 1 && isnan(r.ms[0].gm_t), "below the floor: not judged");
     ob_cmp_result_free(&r);
     o = ob_cmp_defaults();
     o.no_timing = 1;
-    CHECK(run(&b, &n, &o, &r) == 0 && r.t_judged == 0 && !r.timing, "--no-timing");
+    CHECK(run(b, &n, &o, &r) == 0 && r.t_judged == 0 && !r.timing, "--no-timing");
     ob_cmp_result_free(&r);
     o = ob_cmp_defaults();
     ob_cmp_side_free(&n);
+}
+
+/* compare: a different timing context leaves quality compared, timings not. */
+static void verdicts_timing_context(const ob_cmp_side *b, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
+    char rn[1024];
 
     /* timing context differs: timings not compared, quality still is */
-    meta_spec m1 = m0;
+    meta_spec m1 = *m;
     m1.compiler = "gcc 13";
     rows2(rn, sizeof rn, "ok", 11, "0.05", 9000000, "ok", 13, "0.04", 3000000);
     load(&n, "NEW", rn, &m1, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && !r.timing && r.t_judged == 0 && r.q_reg == 1 &&
+    CHECK(run(b, &n, &o, &r) == 1 && !r.timing && r.t_judged == 0 && r.q_reg == 1 &&
               has_text(&r.timing_diffs, "compiler: gcc 12 vs gcc 13"),
           "compiler differs: only quality compared");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
+}
+
+/* compare: not comparable (3) or comparable with a note, every reason named. */
+static void verdicts_incomparable(const ob_cmp_side *b, const char *rb, const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
 
     /* not comparable */
-    meta_spec m2 = m0;
+    meta_spec m2 = *m;
     m2.samples = 64;
     load(&n, "NEW", rb, &m2, NULL);
-    CHECK(run(&b, &n, &o, &r) == 3 && has_text(&r.incomparable, "samples_per_segment 256 vs 64"),
+    CHECK(run(b, &n, &o, &r) == 3 && has_text(&r.incomparable, "samples_per_segment 256 vs 64"),
           "samples_per_segment differs: 3");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
-    m2 = m0;
+    m2 = *m;
     m2.tiller_k = "12";
     m2.tiller_version = 2;
     load(&n, "NEW", rb, &m2, NULL);
-    CHECK(run(&b, &n, &o, &r) == 3 && has_text(&r.incomparable, "method_params.tiller.k 10 vs 12") &&
+    CHECK(run(b, &n, &o, &r) == 3 && has_text(&r.incomparable, "method_params.tiller.k 10 vs 12") &&
               has_text(&r.incomparable, "method_versions.tiller 1 vs 2") && r.incomparable.n == 2,
           "a parameter and a version of a method both ran: 3, every reason");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
-    m2 = m0;
+    m2 = *m;
     m2.zhao_n = "16";
     load(&n, "NEW", rb, &m2, NULL);
-    CHECK(run(&b, &n, &o, &r) == 0 && has_text(&r.notes, "1 method_params key(s) differ for methods not run"),
+    CHECK(run(b, &n, &o, &r) == 0 && has_text(&r.notes, "1 method_params key(s) differ for methods not run"),
           "a parameter of a method neither ran: comparable, with a note");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
     load(&n, "NEW", "c1,1,tiller,hausdorff,mid,0.1,10,3,3,0.05,ok,0,2000000,,f\n", NULL, NULL);
-    CHECK(run(&b, &n, &o, &r) == 1 && !r.checked && has_text(&r.notes, "no meta.json beside NEW") && r.timing,
+    CHECK(run(b, &n, &o, &r) == 1 && !r.checked && has_text(&r.notes, "no meta.json beside NEW") && r.timing,
           "no meta.json on one side: compared, with a note");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
     load(&n, "NEW", "c1,1,tiller,radial,mid,0.1,10,3,3,0.05,ok,0,2000000,,f\n"
-                    "c1,1,ahn,radial,greedy,0.1,10,3,3,0.05,ok,0,2000000,,f\n", &m0, NULL);
-    CHECK(run(&b, &n, &o, &r) == 3 && has_text(&r.incomparable, "metric differs: hausdorff vs radial") &&
+                    "c1,1,ahn,radial,greedy,0.1,10,3,3,0.05,ok,0,2000000,,f\n", m, NULL);
+    CHECK(run(b, &n, &o, &r) == 3 && has_text(&r.incomparable, "metric differs: hausdorff vs radial") &&
               !has_text(&r.incomparable, "split differs"),
           "no metric in common: 3 (splits share mid)");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
-    ob_cmp_side_free(&b);
+}
+
+/* compare: timing with 3 and 5 repetitions: the rank test decides. */
+static void verdicts_rank_test(const meta_spec *m)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    ob_cmp_side n;
+    ob_cmp_result r;
+    ob_cmp_side b;
+    char rb[1024], rn[1024];
 
     /* timing with repetitions: the rank test decides */
     char sb[2048], sn[2048];
@@ -581,8 +676,8 @@ static void test_verdicts(void)
             }
         rows2(rb, sizeof rb, "ok", 10, "0.05", 2000000, "ok", 13, "0.04", 3000000);
         rows2(rn, sizeof rn, "ok", 10, "0.05", 2500000, "ok", 13, "0.04", 3600000);
-        load(&b, "BASE", rb, &m0, sb);
-        load(&n, "NEW", rn, &m0, sn);
+        load(&b, "BASE", rb, m, sb);
+        load(&n, "NEW", rn, m, sn);
         int st = run(&b, &n, &o, &r);
         const ob_change *c = find_change(&r, OB_CH_REGRESSION, "time", "tiller");
         if (reps == 5) {
@@ -601,6 +696,29 @@ static void test_verdicts(void)
         ob_cmp_side_free(&b);
         ob_cmp_side_free(&n);
     }
+}
+
+/* compare: the verdicts, case by case; the base side is shared as it was loaded. */
+static void test_verdicts(void)
+{
+    const meta_spec m0 = {256, 1, "10", "8", NULL};
+    ob_cmp_side b;
+    char rb[1024];
+
+    rows2(rb, sizeof rb, "ok", 10, "0.05", 2000000, "ok", 13, "0.04", 3000000);
+    load(&b, "BASE", rb, &m0, NULL);
+    verdicts_identical(&b, rb, &m0);
+    verdicts_ctrl_points(&b, &m0);
+    verdicts_max_err(&b, &m0);
+    verdicts_status(&b, &m0);
+    rows2(rb, sizeof rb, "ok", 10, "0.05", 2000000, "ok", 13, "0.04", 3000000);
+    load(&b, "BASE", rb, &m0, NULL);
+    verdicts_missing_new(&b, &m0);
+    verdicts_timing_threshold(&b, &m0);
+    verdicts_timing_context(&b, &m0);
+    verdicts_incomparable(&b, rb, &m0);
+    ob_cmp_side_free(&b);
+    verdicts_rank_test(&m0);
 }
 
 int main(void)

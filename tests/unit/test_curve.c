@@ -433,7 +433,8 @@ static int child_rat22(void) { return child_rational_high_degree(22); }
 static int child_rat24(void) { return child_rational_high_degree(24); }
 static int child_rat32(void) { return child_rational_high_degree(OB_MAX_DEG); }
 
-static void test_inflections(void)
+/* inflections of cubics: symmetric and asymmetric S (one), convex (none). */
+static void inflections_cubics(void)
 {
     double ts[16];
     /* symmetric S cubic: y = 3t(1-t)(1-2t), x = 3t: y'' = 0 at t = 1/2 */
@@ -480,6 +481,12 @@ static void test_inflections(void)
         ob_bez b = make(3, (const double (*)[2])xy, NULL);
         CHECK(ob_bez_inflections(&b, ts, 16) == 0, "convex cubic has no inflection");
     }
+}
+
+/* no spurious inflections on straight segments of degree 2..5, both kinds. */
+static void inflections_straight(void)
+{
+    double ts[16];
     /* straight segments (round-off off the line): none */
     {
         static const double s[6] = {0, 0.37, 1.21, 2.0, 2.9, 3.3};
@@ -497,6 +504,12 @@ static void test_inflections(void)
                 }
             }
     }
+}
+
+/* a quintic's two inflections found in several orientations. */
+static void inflections_quintic(void)
+{
+    double ts[16];
     /* quintic with two inflections at 0.25 and 0.6, in several orientations */
     for (int k = 0; k < 5; k++) {
         ob_bez b = quintic_with_ypp_roots(0.25, 0.6, 1.3 * k);
@@ -505,6 +518,12 @@ static void test_inflections(void)
         CHECK(cmp_roots(ts, n, exp, 2, 1e-12), "quintic (rotation %d): %d inflections (%.17g, %.17g)", k, n,
               n > 0 ? ts[0] : NAN, n > 1 ? ts[1] : NAN);
     }
+}
+
+/* a double root of the curvature (no sign change) is not an inflection. */
+static void inflections_double_root(void)
+{
+    double ts[16];
     /* double root of the curvature (touches zero, no sign change): not reported.
      * y'' = K (t-r)^2 (t+3/2) integrated twice, scaled by K so that every
      * control point is an integer (computed exactly with rational arithmetic),
@@ -540,6 +559,12 @@ static void test_inflections(void)
                   "(at %.17g: %g, vs %g at r - 0.01)", dbl[i].r, far, ts[n > 0 ? n - 1 : 0], ref_cross(&b, ts[n > 0 ? n - 1 : 0]), cm);
         }
     }
+}
+
+/* rational cubic and quintic: inflections where the reference's curvature changes sign. */
+static void inflections_rational(void)
+{
+    double ts[16];
     /* rational: det(P,P',P'') against the sign changes of the curvature */
     {
         double xy[4][2] = {{0, 0}, {1, 1}, {2, -1}, {3, 0}}, w[4] = {1, 2, 0.5, 1};
@@ -568,6 +593,11 @@ static void test_inflections(void)
         CHECK(cmp_roots(ts, n, exp, ne, 1e-10), "rational quintic: %d inflections (%.17g, %.17g) expected (%.17g, %.17g)",
               n, n > 0 ? ts[0] : NAN, n > 1 ? ts[1] : NAN, exp[0], exp[1]);
     }
+}
+
+/* inflections: max limits the output; high rational degrees are right and safe. */
+static void inflections_limits(void)
+{
     /* max limits the output */
     {
         ob_bez b = quintic_with_ypp_roots(0.25, 0.6, 0.0);
@@ -583,6 +613,18 @@ static void test_inflections(void)
                      "1/>=128 = crash or sanitizer report)", rc24);
     CHECK(rc32 == 0, "rational degree %d (elevated S cubic): child status %d", OB_MAX_DEG, rc32);
 }
+
+/* ob_bez_inflections, case by case. */
+static void test_inflections(void)
+{
+    inflections_cubics();
+    inflections_straight();
+    inflections_quintic();
+    inflections_double_root();
+    inflections_rational();
+    inflections_limits();
+}
+
 
 /* ---- turning ------------------------------------------------------------------- */
 
@@ -620,7 +662,8 @@ static void test_turn(void)
 
 /* ---- Bernstein algebra ------------------------------------------------------------ */
 
-static void test_bernstein(void)
+/* ob_binom against Pascal's triangle and a few known values. */
+static void bernstein_binomials(void)
 {
     /* binomials against Pascal's triangle */
     int bad = 0;
@@ -631,7 +674,11 @@ static void test_bernstein(void)
     CHECK(bad == 0, "ob_binom differs from Pascal's triangle in %d entries (n <= 40)", bad);
     CHECK(ob_binom(0, 0) == 1 && ob_binom(5, 2) == 10 && ob_binom(10, 5) == 252 && ob_binom(4, 5) == 0 &&
               ob_binom(4, -1) == 0, "small binomials");
+}
 
+/* ob_bern_mul, ob_bern_eval and ob_bern_elevate against pointwise values. */
+static void bernstein_products_elevation(void)
+{
     /* products and elevation against pointwise values */
     for (int m = 0; m <= 12; m += 1)
         for (int n = 0; n <= 12; n += 3) {
@@ -661,7 +708,11 @@ static void test_bernstein(void)
             CHECK(wl <= 1e-13, "ob_bern_elevate %d -> %d: error %.3g", m, r, wl);
             CHECK(e[0] == a[0] && e[r] == a[m], "ob_bern_elevate keeps the end coefficients");
         }
+}
 
+/* ob_bern_roots on polynomials with known roots, also scaled and negated. */
+static void bernstein_known_roots(void)
+{
     /* roots of polynomials with known roots */
     static const struct {
         int nr;
@@ -699,6 +750,11 @@ static void test_bernstein(void)
         CHECK(cmp_roots(got, ng2, cases[i].e, cases[i].ne, cases[i].tol), "ob_bern_roots (scaled), %s: %d roots",
               cases[i].what, ng2);
     }
+}
+
+/* ob_bern_roots reports no root at an exact double root (no sign change). */
+static void bernstein_double_roots(void)
+{
     /* exact double roots: K (t-r)^2 (t+3/2) with integer Bernstein coefficients
      * (computed with rational arithmetic), degree 3 and the same elevated to 7.
      * The polynomial is >= 0 on [0,1]: no sign change, so no root; anything
@@ -736,6 +792,11 @@ static void test_bernstein(void)
                   dr[i].r, dr[i].n, notzero, got[ng > 0 ? ng - 1 : 0], bsum(dr[i].b, dr[i].n, got[ng > 0 ? ng - 1 : 0]));
         }
     }
+}
+
+/* the test's own power-to-Bernstein conversion; max and degenerate inputs of ob_bern_roots. */
+static void bernstein_roots_limits(void)
+{
     /* the reference conversion itself */
     {
         double r[3] = {0.2, 0.5, 0.8}, p[4], bc[4];
@@ -755,6 +816,11 @@ static void test_bernstein(void)
         CHECK(ob_bern_roots(c1, 0, got, 2) == 0, "degree 0 has no roots");
         CHECK(ob_bern_roots(cz, 3, got, 2) == 0, "the zero polynomial reports no roots");
     }
+}
+
+/* ob_bern_roots on random polynomials with known roots, within their condition. */
+static void bernstein_random_roots(void)
+{
     /* random polynomials with random known roots, degree up to 12, built as
      * products of the linear factors (-r)B0 + (1-r)B1 (Bernstein products by
      * the binomial formula written here); each root is compared within its
@@ -806,6 +872,18 @@ static void test_bernstein(void)
     }
     CHECK(badr == 0, "ob_bern_roots wrong on %d random polynomials with known roots", badr);
 }
+
+/* Bernstein arithmetic and roots, case by case (urange draws in the same order). */
+static void test_bernstein(void)
+{
+    bernstein_binomials();
+    bernstein_products_elevation();
+    bernstein_known_roots();
+    bernstein_double_roots();
+    bernstein_roots_limits();
+    bernstein_random_roots();
+}
+
 
 static void test_count(void)
 {

@@ -280,6 +280,126 @@ static const char *const pname[P_COUNT] = {"id/family/source", "control points f
                                            "tight: |d| 0.9..0.99 rmin, concave side",
                                            "loop: |d| 1.1..2 rmin, concave side", "degenerate kind"};
 
+/* Every control point finite and inside the unit box. */
+static int in_box(const double (*p)[2], int n)
+{
+    int inbox = 1;
+    for (int k = 0; k <= n; k++)
+        inbox &= isfinite(p[k][0]) && isfinite(p[k][1]) && p[k][0] >= 0 && p[k][0] <= 1 && p[k][1] >= 0 &&
+                 p[k][1] <= 1;
+    return inbox;
+}
+
+/* The degree and kind (rational or not) the family promises. */
+static int degree_ok(int fam, const ob_bez *b)
+{
+    const int n = b->deg;
+    int deg_ok;
+    switch (fam) {
+    case 0: deg_ok = n == 3; break;
+    case 1: deg_ok = n == 5; break;
+    case 2: deg_ok = n == 7; break;
+    case 3: deg_ok = n == 2 || n == 3; break;
+    case 5: case 6: deg_ok = n == 3; break;
+    default: deg_ok = n == 3 || n == 5; break;
+    }
+    deg_ok &= b->rational == (fam == 3);
+    return deg_ok;
+}
+
+/* Weights in [0.5, 2] and not all alike for the rational family, all 1 otherwise. */
+static int weights_ok(int fam, const double *w, int n)
+{
+    double wlo = INFINITY, whi = 0;
+    for (int k = 0; k <= n; k++) {
+        wlo = fmin(wlo, w[k]);
+        whi = fmax(whi, w[k]);
+    }
+    if (fam == 3)
+        return wlo >= 0.5 && whi <= 2 && whi >= 1.2 * wlo;
+    return wlo == 1 && whi == 1;
+}
+
+/* One or two finite non-zero offsets; outside families 5 and 6 in
+ * 0.02..0.25 and, when two, of opposite signs. */
+static int offsets_ok(int fam, const ob_curve *c)
+{
+    int offs = (c->nd == 1 || c->nd == 2);
+    for (int k = 0; k < c->nd; k++)
+        offs &= isfinite(c->d[k]) && c->d[k] != 0;
+    if (fam != 5 && fam != 6) {
+        for (int k = 0; k < c->nd; k++)
+            offs &= fabs(c->d[k]) >= 0.02 && fabs(c->d[k]) <= 0.25;
+        if (c->nd == 2)
+            offs &= c->d[0] * c->d[1] < 0;
+    }
+    return offs;
+}
+
+/* Family 4: an inflection well inside (0,1), also seen on a grid. */
+static int inflection_ok(const ob_bez *b)
+{
+    double ts[64];
+    int m = ob_bez_inflections(b, ts, 64), inside = 0;
+    for (int k = 0; k < m; k++)
+        inside |= ts[k] >= 0.05 && ts[k] <= 0.95;
+    return inside && grid_inflection(b);
+}
+
+/* Families 5 (tight) and 6 (loop): |d| against the smallest radius of
+ * curvature, on the curving side, and 1 - d kappa keeps (5) or changes (6)
+ * sign; the ratios seen are widened into ratio_lo/hi. */
+static int tight_loop_ok(int fam, const ob_curve *c, double *ratio_lo, double *ratio_hi)
+{
+    const ob_bez *b = &c->seg[0];
+    int s;
+    double kmax = ref_max_kappa(b, &s), rmin = 1 / kmax;
+    double lo = fam == 5 ? 0.9 : 1.1, hi = fam == 5 ? 0.99 : 2.0;
+    int ok = rmin >= 0.03 * (1 - 1e-9) && rmin <= 0.5 * (1 + 1e-9);
+    for (int k = 0; k < c->nd; k++) {
+        double r = fabs(c->d[k]) / rmin;
+        ok &= (c->d[k] > 0) == (s > 0) && r >= lo * (1 - 1e-7) && r <= hi * (1 + 1e-7);
+        ratio_lo[fam - 5] = fmin(ratio_lo[fam - 5], r);
+        ratio_hi[fam - 5] = fmax(ratio_hi[fam - 5], r);
+        /* the meaning: 1 - d kappa(t) > 0 everywhere (tight), or it
+         * changes sign (loop: the offset's speed vanishes) */
+        double minf = INFINITY;
+        for (int q = 0; q <= 4096; q++)
+            minf = fmin(minf, 1 - c->d[k] * ref_kappa(b, q / 4096.0));
+        ok &= fam == 5 ? minf > 0 : minf < 0;
+    }
+    return ok;
+}
+
+/* Family 7: the degenerate kind of index i, and the polygon it promises
+ * (nearly straight, or exactly one tiny leg). */
+static int degenerate_ok(long i, const double (*p)[2], int n)
+{
+    int kind = ob_random_degenerate_kind(i), ok = kind == (int)((i / 8) % 3);
+    if (kind == OB_RND_DEGEN_STRAIGHT) {
+        double dev = 0;
+        for (int k = 1; k < n; k++)
+            dev = fmax(dev, line_dist(p[0], p[n], p[k]));
+        ok &= dev <= 1e-6 * (1 + 1e-6) && dev >= 1e-9 * (1 - 1e-3);
+        for (int k = 0; k < n; k++)
+            ok &= legk(p, k) >= 0.0249;
+    } else {
+        double lo = kind == OB_RND_DEGEN_COINCIDENT ? 1e-8 : 1e-5, hi = lo * 100;
+        int tiny = 0;
+        for (int k = 0; k < n; k++) {
+            double L = legk(p, k);
+            if (L >= lo * (1 - 1e-6) && L <= hi * (1 + 1e-6))
+                tiny++;
+            else
+                ok &= L >= 0.05;
+        }
+        ok &= tiny == 1;
+    }
+    return ok;
+}
+
+/* Curve i of seed: its name, then each property its family promises,
+ * counted into bad[] by property. */
 static void check_curve(uint64_t seed, long i, int *bad, int *famcount, double *ratio_lo, double *ratio_hi)
 {
     ob_curve c;
@@ -301,97 +421,18 @@ static void check_curve(uint64_t seed, long i, int *bad, int *famcount, double *
     double p[OB_MAX_DEG + 1][2], w[OB_MAX_DEG + 1];
     polygon(b, p, w);
 
-    int inbox = 1;
-    for (int k = 0; k <= n; k++)
-        inbox &= isfinite(p[k][0]) && isfinite(p[k][1]) && p[k][0] >= 0 && p[k][0] <= 1 && p[k][1] >= 0 &&
-                 p[k][1] <= 1;
-    bad[P_BOX] += !inbox;
-
-    int deg_ok;
-    switch (fam) {
-    case 0: deg_ok = n == 3; break;
-    case 1: deg_ok = n == 5; break;
-    case 2: deg_ok = n == 7; break;
-    case 3: deg_ok = n == 2 || n == 3; break;
-    case 5: case 6: deg_ok = n == 3; break;
-    default: deg_ok = n == 3 || n == 5; break;
-    }
-    deg_ok &= b->rational == (fam == 3);
-    bad[P_DEGREE] += !deg_ok;
-
-    double wlo = INFINITY, whi = 0;
-    for (int k = 0; k <= n; k++) {
-        wlo = fmin(wlo, w[k]);
-        whi = fmax(whi, w[k]);
-    }
-    if (fam == 3)
-        bad[P_WEIGHTS] += !(wlo >= 0.5 && whi <= 2 && whi >= 1.2 * wlo);
-    else
-        bad[P_WEIGHTS] += !(wlo == 1 && whi == 1);
-
+    bad[P_BOX] += !in_box((const double (*)[2])p, n);
+    bad[P_DEGREE] += !degree_ok(fam, b);
+    bad[P_WEIGHTS] += !weights_ok(fam, w, n);
     if (fam <= 6)
         bad[P_GENERIC] += !generic_ok(b, (const double (*)[2])p);
-
-    int offs = (c.nd == 1 || c.nd == 2);
-    for (int k = 0; k < c.nd; k++)
-        offs &= isfinite(c.d[k]) && c.d[k] != 0;
-    if (fam != 5 && fam != 6) {
-        for (int k = 0; k < c.nd; k++)
-            offs &= fabs(c.d[k]) >= 0.02 && fabs(c.d[k]) <= 0.25;
-        if (c.nd == 2)
-            offs &= c.d[0] * c.d[1] < 0;
-    }
-    bad[P_OFFSETS] += !offs;
-
-    if (fam == 4) {
-        double ts[64];
-        int m = ob_bez_inflections(b, ts, 64), inside = 0;
-        for (int k = 0; k < m; k++)
-            inside |= ts[k] >= 0.05 && ts[k] <= 0.95;
-        bad[P_INFLECTION] += !(inside && grid_inflection(b));
-    }
-    if (fam == 5 || fam == 6) {
-        int s;
-        double kmax = ref_max_kappa(b, &s), rmin = 1 / kmax;
-        double lo = fam == 5 ? 0.9 : 1.1, hi = fam == 5 ? 0.99 : 2.0;
-        int ok = rmin >= 0.03 * (1 - 1e-9) && rmin <= 0.5 * (1 + 1e-9);
-        for (int k = 0; k < c.nd; k++) {
-            double r = fabs(c.d[k]) / rmin;
-            ok &= (c.d[k] > 0) == (s > 0) && r >= lo * (1 - 1e-7) && r <= hi * (1 + 1e-7);
-            ratio_lo[fam - 5] = fmin(ratio_lo[fam - 5], r);
-            ratio_hi[fam - 5] = fmax(ratio_hi[fam - 5], r);
-            /* the meaning: 1 - d kappa(t) > 0 everywhere (tight), or it
-             * changes sign (loop: the offset's speed vanishes) */
-            double minf = INFINITY;
-            for (int q = 0; q <= 4096; q++)
-                minf = fmin(minf, 1 - c.d[k] * ref_kappa(b, q / 4096.0));
-            ok &= fam == 5 ? minf > 0 : minf < 0;
-        }
-        bad[fam == 5 ? P_TIGHT : P_LOOP] += !ok;
-    }
-    if (fam == 7) {
-        int kind = ob_random_degenerate_kind(i), ok = kind == (int)((i / 8) % 3);
-        if (kind == OB_RND_DEGEN_STRAIGHT) {
-            double dev = 0;
-            for (int k = 1; k < n; k++)
-                dev = fmax(dev, line_dist(p[0], p[n], p[k]));
-            ok &= dev <= 1e-6 * (1 + 1e-6) && dev >= 1e-9 * (1 - 1e-3);
-            for (int k = 0; k < n; k++)
-                ok &= legk((const double (*)[2])p, k) >= 0.0249;
-        } else {
-            double lo = kind == OB_RND_DEGEN_COINCIDENT ? 1e-8 : 1e-5, hi = lo * 100;
-            int tiny = 0;
-            for (int k = 0; k < n; k++) {
-                double L = legk((const double (*)[2])p, k);
-                if (L >= lo * (1 - 1e-6) && L <= hi * (1 + 1e-6))
-                    tiny++;
-                else
-                    ok &= L >= 0.05;
-            }
-            ok &= tiny == 1;
-        }
-        bad[P_DEGEN] += !ok;
-    }
+    bad[P_OFFSETS] += !offsets_ok(fam, &c);
+    if (fam == 4)
+        bad[P_INFLECTION] += !inflection_ok(b);
+    if (fam == 5 || fam == 6)
+        bad[fam == 5 ? P_TIGHT : P_LOOP] += !tight_loop_ok(fam, &c, ratio_lo, ratio_hi);
+    if (fam == 7)
+        bad[P_DEGEN] += !degenerate_ok(i, (const double (*)[2])p, n);
     ob_curve_free(&c);
 }
 
