@@ -192,7 +192,10 @@ OBC_FN void obc_point(const OBC_G double *h, int n, double t, double p[2], long 
  * vanishes (C'(t+h) ~ h C'', so +C'' below t = 1, -C'' at 1).  "Vanishes" is
  * judged against |C''| (scale-free) and against the control polygon's extent
  * (round-off on a point-like segment).  Returns -1 for a point-like segment. */
-OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2], long *ops)
+/* The scale of obc_tangent's "vanishes": 1e-12 of the control polygon's
+ * extent into *tiny; -1 for a point-like segment (extent round-off of its
+ * magnitude), which has no tangent. */
+OBC_FN int obc_tangent_scale(const OBC_G double *h, int n, double *tiny)
 {
     const double x0 = h[0] / h[2], y0 = h[1] / h[2];
     double ext = 0.0, mag = 0.0;
@@ -201,12 +204,15 @@ OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2], long
         ext = OBC_FMAX(ext, OBC_FMAX(fabs(x - x0), fabs(y - y0)));
         mag = OBC_FMAX(mag, OBC_FMAX(fabs(x), fabs(y)));
     }
-    v[0] = v[1] = 0.0;
-    if (ext <= 1e-13 * mag)
-        return -1;
-    const double tiny = 1e-12 * ext;
-    double o[3][2];
-    obc_eval(h, n, t, 2, o, ops);
+    *tiny = 1e-12 * ext;
+    return ext <= 1e-13 * mag ? -1 : 0;
+}
+
+/* obc_tangent's choice from the point and derivatives o = obc_eval(h, n, t,
+ * 2) already computed (a caller that needs the point too evaluates once). */
+OBC_FN int obc_tangent_from(const OBC_G double *h, int n, double t, double tiny, double o[3][2], double v[2],
+                            long *ops)
+{
     const double s1 = sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]);
     const double s2 = sqrt(o[2][0] * o[2][0] + o[2][1] * o[2][1]);
     if (s1 > 1e-12 * s2 && s1 > tiny) {
@@ -220,14 +226,33 @@ OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2], long
         v[1] = sg * o[2][1];
         return 0;
     }
+    double o1[3][2];
     const double dh = t >= 1.0 ? -1e-6 : 1e-6;
-    obc_eval(h, n, t + dh, 1, o, ops);
-    if (sqrt(o[1][0] * o[1][0] + o[1][1] * o[1][1]) > tiny) {
-        v[0] = o[1][0];
-        v[1] = o[1][1];
+    obc_eval(h, n, t + dh, 1, o1, ops);
+    if (sqrt(o1[1][0] * o1[1][0] + o1[1][1] * o1[1][1]) > tiny) {
+        v[0] = o1[1][0];
+        v[1] = o1[1][1];
         return 0;
     }
     return -1;
+}
+
+OBC_FN int obc_tangent(const OBC_G double *h, int n, double t, double v[2], long *ops)
+{
+    double tiny, o[3][2];
+    v[0] = v[1] = 0.0;
+    if (obc_tangent_scale(h, n, &tiny) != 0)
+        return -1;
+    obc_eval(h, n, t, 2, o, ops);
+    return obc_tangent_from(h, n, t, tiny, o, v, ops);
+}
+
+/* The unit left normal (-y', x') / |v| of a tangent v. */
+OBC_FN void obc_unit_normal(const double v[2], double N[2])
+{
+    const double len = sqrt(v[0] * v[0] + v[1] * v[1]);
+    N[0] = -v[1] / len;
+    N[1] = v[0] / len;
 }
 
 /* Unit left normal (-y', x')/|C'|; (0,0) and -1 for a point-like segment. */
@@ -238,9 +263,7 @@ OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2], long 
         N[0] = N[1] = 0.0;
         return -1;
     }
-    const double len = sqrt(v[0] * v[0] + v[1] * v[1]);
-    N[0] = -v[1] / len;
-    N[1] = v[0] / len;
+    obc_unit_normal(v, N);
     return 0;
 }
 

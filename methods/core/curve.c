@@ -151,13 +151,23 @@ double ob_bez_curvature(const ob_bez *b, double t)
     return (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);
 }
 
+/* One evaluation gives the point and the derivatives its normal needs (the
+ * point of obc_eval does not depend on nder): the bits of ob_bez_point and
+ * ob_bez_normal called apart, at one de Casteljau pass instead of two. */
 void ob_bez_offset_point(const ob_bez *b, double t, double d, double p[2])
 {
-    double c[2], n[2];
-    ob_bez_point(b, t, c);
-    ob_bez_normal(b, t, n);
-    p[0] = c[0] + d * n[0];
-    p[1] = c[1] + d * n[1];
+    const double *h = &b->h[0][0];
+    long ops = 0;
+    double o[3][2], v[2], n[2] = {0.0, 0.0}, tiny;
+    if (obc_tangent_scale(h, b->deg, &tiny) != 0) {
+        obc_eval(h, b->deg, t, 0, o, &ops);
+    } else {
+        obc_eval(h, b->deg, t, 2, o, &ops);
+        if (obc_tangent_from(h, b->deg, t, tiny, o, v, &ops) == 0)
+            obc_unit_normal(v, n);
+    }
+    p[0] = o[0][0] + d * n[0];
+    p[1] = o[0][1] + d * n[1];
 }
 
 /* ---- shape analysis --------------------------------------------------- */

@@ -896,6 +896,36 @@ static void test_count(void)
     CHECK(ob_count_ctrl_points(NULL, 0) == 0, "0 segments (NULL) count 0");
 }
 
+/* ob_bez_offset_point (one evaluation) has the bits of ob_bez_point plus d
+ * times ob_bez_normal (two), on random curves, collapsed legs, a cusp of
+ * the base and a point-like segment. */
+static void test_offset_point(void)
+{
+    ob_bez v[40];
+    int nv = 0;
+    for (int deg = 1; deg <= 9; deg++)
+        for (int rat = 0; rat <= 1; rat++)
+            v[nv++] = random_bez(deg, rat);
+    double legs[4][2] = {{0, 0}, {0, 0}, {1, 0.5}, {2, 2}}, cusp[4][2] = {{0, 0}, {1, 1}, {0, 1}, {1, 0}};
+    double dot[3][2] = {{1, 1}, {1, 1 + 1e-15}, {1, 1}};
+    v[nv++] = make(3, (const double (*)[2])legs, NULL);
+    v[nv++] = make(3, (const double (*)[2])cusp, NULL);
+    v[nv++] = make(2, (const double (*)[2])dot, NULL);
+    int bad = 0, runs = 0;
+    for (int i = 0; i < nv; i++)
+        for (int k = 0; k <= 64; k++) {
+            const double t = k / 64.0, d = k % 2 ? -0.75 : 0.3;
+            double p[2], c[2], n[2];
+            ob_bez_offset_point(&v[i], t, d, p);
+            ob_bez_point(&v[i], t, c);
+            ob_bez_normal(&v[i], t, n);
+            const double q[2] = {c[0] + d * n[0], c[1] + d * n[1]};
+            bad += memcmp(p, q, sizeof p) != 0;
+            runs++;
+        }
+    CHECK(bad == 0, "ob_bez_offset_point differs from point + d normal at %d of %d parameters", bad, runs);
+}
+
 int main(void)
 {
     testlib_seed(0x9E3779B97F4A7C15ULL);
@@ -903,6 +933,7 @@ int main(void)
     test_split();
     test_elevate();
     test_normal();
+    test_offset_point();
     test_curvature();
     test_inflections();
     test_turn();
