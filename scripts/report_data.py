@@ -95,24 +95,35 @@ def read_results(path):
     skip counts, time_ns (fit_ns + eval_ns summed), jobs (a hash of the
     job keys).  Raises ValueError naming FILE:LINE on bad content."""
     methods = {}
+    for row, col, line in csv_rows(path, NEEDED, True):
+        m = methods.setdefault(row[col["method"]], new_method())
+        add_row(m, row, col, path, line)
+    return methods
+
+
+def csv_rows(path, needed, whole_list, empty_is_error=True):
+    """The non-empty rows of the CSV file PATH as (row, col, line), col
+    mapping each header name to its index.  ValueError naming FILE:LINE for
+    an empty file (when EMPTY_IS_ERROR), a header without the NEEDED names
+    (all of them listed when WHOLE_LIST, else the first), or a row with
+    another field count than the header."""
     with open(path, newline="", encoding="utf-8") as f:
         rd = csv.reader(f)
         header = next(rd, None)
-        if header is None:
+        if header is None and empty_is_error:
             raise ValueError("%s: empty file" % path)
+        header = header or []
         col = {n: i for i, n in enumerate(header)}
-        missing = [n for n in NEEDED if n not in col]
+        missing = [n for n in needed if n not in col]
         if missing:
-            raise ValueError("%s:1: no column %s in the header" % (path, ", ".join(missing)))
+            raise ValueError("%s:1: no column %s in the header" % (path, ", ".join(missing if whole_list else missing[:1])))
         for row in rd:
             if not row:
                 continue
             line = rd.line_num
             if len(row) != len(header):
                 raise ValueError("%s:%d: %d fields, the header has %d" % (path, line, len(row), len(header)))
-            m = methods.setdefault(row[col["method"]], new_method())
-            add_row(m, row, col, path, line)
-    return methods
+            yield row, col, line
 
 
 def new_method():
@@ -147,25 +158,13 @@ def read_samples(path, methods):
     method's rows) from samples.csv, where there is one."""
     if not os.path.isfile(path):
         return
-    with open(path, newline="", encoding="utf-8") as f:
-        rd = csv.reader(f)
-        header = next(rd, None) or []
-        col = {n: i for i, n in enumerate(header)}
-        for n in ("method", "rep", "fit_ns", "eval_ns"):
-            if n not in col:
-                raise ValueError("%s:1: no column %s in the header" % (path, n))
-        for row in rd:
-            if not row:
-                continue
-            line = rd.line_num
-            if len(row) != len(header):
-                raise ValueError("%s:%d: %d fields, the header has %d" % (path, line, len(row), len(header)))
-            m = methods.get(row[col["method"]])
-            if m is None:
-                continue
-            rep = row[col["rep"]]
-            m["reps"][rep] = (m["reps"].get(rep, 0) + number(row[col["fit_ns"]], "fit_ns", path, line, int)
-                              + number(row[col["eval_ns"]], "eval_ns", path, line, int))
+    for row, col, line in csv_rows(path, ("method", "rep", "fit_ns", "eval_ns"), False, False):
+        m = methods.get(row[col["method"]])
+        if m is None:
+            continue
+        rep = row[col["rep"]]
+        m["reps"][rep] = (m["reps"].get(rep, 0) + number(row[col["fit_ns"]], "fit_ns", path, line, int)
+                          + number(row[col["eval_ns"]], "eval_ns", path, line, int))
 
 
 def iqr(values):

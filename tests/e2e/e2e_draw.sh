@@ -149,9 +149,4 @@ $OB draw --curve $C --method tiller --tol 1e-2 >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--out" "$T/e.txt"' "draw without --out exits 2 naming --out"
 check '[ ! -e "$T/bad.svg" ]' "no SVG is left behind by a bad command line"
 
-if [ $skipped -gt 0 ]; then
-    echo "$pass passed, $fail failed, $skipped skipped"
-else
-    echo "$pass passed, $fail failed"
-fi
-[ $fail -eq 0 ]
+e2e_done

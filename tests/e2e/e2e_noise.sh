@@ -136,5 +136,4 @@ else
     echo "SKIP: no python3 with json: compare --format json not parsed" >&2
 fi
 
-if [ $skipped -gt 0 ]; then echo "$pass passed, $fail failed, $skipped skipped"; else echo "$pass passed, $fail failed"; fi
-[ $fail -eq 0 ]
+e2e_done

@@ -176,9 +176,4 @@ else
     check '[ "$(head -c 8 "$T/shot.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]' "chromium: a screenshot of the page"
 fi
 
-if [ $skipped -gt 0 ]; then
-    echo "$pass passed, $fail failed, $skipped skipped"
-else
-    echo "$pass passed, $fail failed"
-fi
-[ $fail -eq 0 ]
+e2e_done

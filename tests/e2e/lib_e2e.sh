@@ -10,6 +10,11 @@ pass=0 fail=0 skipped=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
 check() { if eval "$1"; then ok; else bad "$2"; fi; }
+# the script's last line and exit status: "N passed, N failed[, N skipped]"
+e2e_done() {
+    if [ "$skipped" -gt 0 ]; then echo "$pass passed, $fail failed, $skipped skipped"; else echo "$pass passed, $fail failed"; fi
+    [ "$fail" -eq 0 ]
+}
 # a results.csv without its timing columns (fit_ns, eval_ns, and the spread
 # of --reps: time_iqr_ns, time_cv), found by name (fit_ns and eval_ns come
 # before the message, the one field that may hold a comma; the others are
