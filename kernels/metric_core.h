@@ -334,6 +334,7 @@ OBC_FN double obc_dist(const double a[2], const double b[2])
 #define OBC_NBLK(S) (((S) + OBC_BLK - 2) / OBC_BLK)
 #define OBC_TABLE_SIZE(S) (OBC_REC * (S) + 4 * OBC_NBLK(S))
 #define OBC_MAX_CAND 8 /* spans refined per query beyond the nearest sample's (obc_side_dist) */
+#define OBC_NO_HINT (-0x40000000) /* obc_side_dist: no foot found yet */
 #define OBC_LB_CACHE 32 /* block bounds kept per query (obc_side_dist): all of them up to S = 513 */
 
 OBC_FN double obc_sample_t(int k, int S) { return (double)k / (S - 1); }
@@ -831,12 +832,57 @@ OBC_FN void obc_block_nearest(const double Q[2], const OBC_G double *T, int S, i
     }
 }
 
+/* The cheap settlements of a query Q near the last foot (obc_side_dist):
+ * the samples of target table T beside sample `hint`, then one Newton step
+ * of the projection from the nearest of them (one curve evaluation: the
+ * step obc_project would take first from there).  Either gives the
+ * distance to a point of the target, an upper bound of the query's
+ * distance; when it is <= cut that is all the caller asks for (see
+ * obc_project), so it is returned, with *tfoot its parameter.  Else -1.
+ * *db, *jb: the nearest of those samples (squared distance, index), where
+ * the global search starts.  Without this step every query the running
+ * maximum settles paid for the search over all blocks first. */
+OBC_FN double obc_near_hint(const OBC_G double *hc, int nc, double dc, const double Q[2], const OBC_G double *T,
+                            int S, int hint, double cut, double *db, int *jb, double *tfoot, long *ops)
+{
+    *ops += 3 * OBC_OPS_POINT;
+    for (int j = hint - 1; j <= hint + 1; j++)
+        if (j >= 0 && j < S && obc_sample_dist2(Q, T, j) < *db) {
+            *db = obc_sample_dist2(Q, T, j);
+            *jb = j;
+        }
+    if (*jb < 0 || !(cut >= 0.0))
+        return -1.0;
+    if (*db <= cut * cut) {
+        *tfoot = obc_sample_t(*jb, S);
+        return sqrt(*db);
+    }
+    const OBC_G double *r = T + OBC_REC * *jb;
+    const double dd = r[2] * r[2] + r[3] * r[3];
+    const double r0 = Q[0] - r[0], r1 = Q[1] - r[1];
+    const double den = 1.0 - (r[4] * r0 + r[5] * r1);
+    if (dd == 0.0 || !(den > 0.2))
+        return -1.0;
+    const double lo = obc_sample_t(*jb > 0 ? *jb - 1 : 0, S), hi = obc_sample_t(*jb < S - 1 ? *jb + 1 : S - 1, S);
+    const double t = OBC_FMIN(hi, OBC_FMAX(lo, obc_sample_t(*jb, S) + (r0 * r[2] + r1 * r[3]) / (dd * den)));
+    double P[2], dP[2], K[2];
+    obc_pc_eval(hc, nc, dc, t, P, dP, K, ops);
+    const double e = obc_dist(Q, P);
+    if (!(e <= cut))
+        return -1.0;
+    *tfoot = t;
+    return e;
+}
+
 /* Hausdorff, one side: distance from the query curve's point at u to the
  * target curve, whose sample table is tgt.  kind OBC_K_H_APPROX: query A,
  * target O; OBC_K_H_OFFSET: query O, target A.  k >= 0: u is sample k and the
  * query point is read from the query table qry.  cut: as in obc_project.
- * *hint: a sample of the target near the last foot found (-1: none); it is
- * tried first and updated.  *tfoot: the foot.
+ * *hint: where the last query's nearest target sample lay, as an offset
+ * from that query's own sample (OBC_NO_HINT: no query yet); the target
+ * samples at the same offset from this query's (the feet of consecutive
+ * samples move together) are tried first, and it is updated.  *tfoot: the
+ * foot.
  * Method: the nearest foot is searched globally.  (1) The nearest sample
  * point, over the blocks whose circle comes nearer than the best so far
  * (the nearest block first).  (2) Newton projection from it on its two
@@ -869,17 +915,14 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     int jb = -1;
     double db = OBC_INF;
     /* near the last foot first: a distance under the cut settles the query */
-    if (*hint >= 0) {
-        *ops += 3 * OBC_OPS_POINT;
-        for (int j = *hint - 1; j <= *hint + 1; j++)
-            if (j >= 0 && j < S && obc_sample_dist2(Q, tgt, j) < db) {
-                db = obc_sample_dist2(Q, tgt, j);
-                jb = j;
-            }
-        if (db <= cut2) {
-            *hint = jb;
-            *tfoot = obc_sample_t(jb, S);
-            return sqrt(db);
+    const int kq = k >= 0 ? k : (int)(u * (S - 1) + 0.5); /* the sample nearest u */
+    if (*hint != OBC_NO_HINT) {
+        const int c = kq + *hint;
+        const double e = obc_near_hint(hc, nc, dc, Q, tgt, S, c < 0 ? 0 : c < S ? c : S - 1, cut, &db, &jb,
+                                       tfoot, ops);
+        if (e >= 0.0) {
+            *hint = jb - kq;
+            return e;
         }
     }
     /* (1) the nearest sample point: the nearest block, then any other block
@@ -914,7 +957,7 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
         *tfoot = 0.0;
         return OBC_INF;
     }
-    *hint = jb;
+    *hint = jb - kq;
     if (db <= cut2) {
         *tfoot = obc_sample_t(jb, S);
         return sqrt(db);
@@ -1008,7 +1051,7 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, 
 OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 {
     double best = -1.0;
-    int kb = 0, hint = -1, bad = 0;
+    int kb = 0, hint = OBC_NO_HINT, bad = 0;
     /* Hausdorff: every OBC_COARSE-th sample first, so that the running
      * maximum is near the final one early and most samples are settled by
      * the cut; the others in order */
@@ -1073,7 +1116,7 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
     /* from A to O: the maximum's parameter is A's; report its foot on O */
     obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, &e1, &t1);
     if (!(isnan(e1) || isinf(e1))) {
-        int hint = -1;
+        int hint = OBC_NO_HINT;
         obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, t1, -1, -1.0, &hint, &tf);
         t1 = tf;
     }
