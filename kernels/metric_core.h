@@ -705,6 +705,8 @@ OBC_FN double obc_param_err(OBC_ARGS, double t)
  * f(t) = (P - Q).P', whose derivative near the foot is |P'|^2 (1 - K.(Q - P)):
  * quadratic convergence even where the distance is comparable to the radius
  * of curvature.  start: P, P', K at t0 if known (else NULL).
+ * first: NULL, or the curve at the first Newton step from start, when the
+ * caller has evaluated it (t, P, P', K: 7 doubles; used where t is that step).
  * cut: the caller only needs distances above cut.  The result never exceeds
  * the distance to any point tried, so once that is <= cut it is returned at
  * once: an upper bound that the caller's comparison treats exactly like the
@@ -719,7 +721,8 @@ OBC_FN double obc_param_err(OBC_ARGS, double t)
  * safe; there, and wherever it has not settled in 20 steps, golden-section
  * search on the bracket takes over. */
 OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const double Q[2], double t0, double lo,
-                          double hi, const OBC_G double *start, double cut, double *tp, long *ops)
+                          double hi, const OBC_G double *start, const double *first, double cut, double *tp,
+                          long *ops)
 {
     double t = t0, P[2], dP[2], K[2];
     if (start) {
@@ -748,7 +751,11 @@ OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const doubl
         if (tn == t)
             break;
         t = tn;
-        obc_pc_eval(hc, nc, dc, t, P, dP, K, ops);
+        if (it == 0 && first && first[0] == t) { /* evaluated by the caller */
+            P[0] = first[1], P[1] = first[2], dP[0] = first[3], dP[1] = first[4], K[0] = first[5], K[1] = first[6];
+        } else {
+            obc_pc_eval(hc, nc, dc, t, P, dP, K, ops);
+        }
         const double e = obc_dist(Q, P);
         if (e < best) {
             best = e;
@@ -840,10 +847,12 @@ OBC_FN void obc_block_nearest(const double Q[2], const OBC_G double *T, int S, i
  * distance; when it is <= cut that is all the caller asks for (see
  * obc_project), so it is returned, with *tfoot its parameter.  Else -1.
  * *db, *jb: the nearest of those samples (squared distance, index), where
- * the global search starts.  Without this step every query the running
+ * the global search starts; first: the evaluation of the Newton step from
+ * jb when it did not settle the query (as obc_project's `first`).  Without this step every query the running
  * maximum settles paid for the search over all blocks first. */
 OBC_FN double obc_near_hint(const OBC_G double *hc, int nc, double dc, const double Q[2], const OBC_G double *T,
-                            int S, int hint, double cut, double *db, int *jb, double *tfoot, long *ops)
+                            int S, int hint, double cut, double *db, int *jb, double *tfoot, double first[7],
+                            long *ops)
 {
     *ops += 3 * OBC_OPS_POINT;
     for (int j = hint - 1; j <= hint + 1; j++)
@@ -868,8 +877,11 @@ OBC_FN double obc_near_hint(const OBC_G double *hc, int nc, double dc, const dou
     double P[2], dP[2], K[2];
     obc_pc_eval(hc, nc, dc, t, P, dP, K, ops);
     const double e = obc_dist(Q, P);
-    if (!(e <= cut))
+    if (!(e <= cut)) { /* kept for the projection from sample jb, if the search ends there */
+        first[0] = t, first[1] = P[0], first[2] = P[1], first[3] = dP[0], first[4] = dP[1];
+        first[5] = K[0], first[6] = K[1];
         return -1.0;
+    }
     *tfoot = t;
     return e;
 }
@@ -916,10 +928,13 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     double db = OBC_INF;
     /* near the last foot first: a distance under the cut settles the query */
     const int kq = k >= 0 ? k : (int)(u * (S - 1) + 0.5); /* the sample nearest u */
+    double first[7] = {-1.0}; /* the Newton step from sample jh, if evaluated */
+    int jh = -1;
     if (*hint != OBC_NO_HINT) {
         const int c = kq + *hint;
         const double e = obc_near_hint(hc, nc, dc, Q, tgt, S, c < 0 ? 0 : c < S ? c : S - 1, cut, &db, &jb,
-                                       tfoot, ops);
+                                       tfoot, first, ops);
+        jh = jb;
         if (e >= 0.0) {
             *hint = jb - kq;
             return e;
@@ -966,7 +981,7 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
     const int ja = jb > 0 ? jb - 1 : 0, jz = jb < S - 1 ? jb + 1 : S - 1;
     double tb;
     double best = obc_project(hc, nc, dc, Q, obc_sample_t(jb, S), obc_sample_t(ja, S), obc_sample_t(jz, S),
-                              tgt + OBC_REC * jb, cut, &tb, ops);
+                              tgt + OBC_REC * jb, jb == jh ? first : 0, cut, &tb, ops);
     /* (3) feet on other spans that may be nearer, at most OBC_MAX_CAND */
     int ncand = 0;
     for (int bk = 0; bk < nblk && !(best <= cut) && ncand < OBC_MAX_CAND; bk++) {
@@ -983,7 +998,7 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
             ncand++;
             double tp;
             const double e = obc_project(hc, nc, dc, Q, obc_sample_t(js, S), obc_sample_t(j, S),
-                                         obc_sample_t(j + 1, S), tgt + OBC_REC * js, cut, &tp, ops);
+                                         obc_sample_t(j + 1, S), tgt + OBC_REC * js, 0, cut, &tp, ops);
             if (e < best) {
                 best = e;
                 tb = tp;
