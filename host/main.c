@@ -9,6 +9,7 @@
 #include "host/cli/commands.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
+#include "host/san_options.h"
 
 /* The version is the date of the commit built (there are no numbered
  * releases); the commit and its dirty flag say exactly what was built. */

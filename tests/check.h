@@ -11,6 +11,8 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "host/san_options.h"
+
 static int check_passed, check_failed, check_skipped;
 
 #define CHECK(cond, ...)                                                      \
