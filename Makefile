@@ -113,7 +113,7 @@ $(BUILD)/libob.a: $(LIB_OBJ)
 $(BIN): $(BUILD)/host/main.o $(BUILD)/libob.a $(if $(filter offbench,$(BIN)),.offbench-flavor)
 	$(CC) $(LDFLAGS) -o $@ $(filter %.o %.a,$^) $(LDLIBS)
 
-$(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h host/san_options.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -I. -o $@ $< $(BUILD)/libob.a $(LDFLAGS) $(LDLIBS)
 
