@@ -511,67 +511,93 @@ OBC_FN int obc_lane_ok(double R[9][OBC_LANES], double d, int l)
     return sp > 1e-12 * s2 && sp > 0 && (d == 0.0 || R[8][l] != 0.0);
 }
 
-/* The rows of sample table T, OBC_LANES samples at a time (obc_pc_lanes);
- * a lane that obc_lane_ok refuses by obc_pc_eval.  The same bits and the same
- * count of work as obc_table_rows_ref. */
-OBC_FN void obc_table_rows(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
+/* 1 when every weight of (h, n) is 1: obc_pc_lanes' polynomial branch. */
+OBC_FN int obc_table_poly(const OBC_G double *h, int n)
 {
     int poly = 1;
     for (int i = 0; i <= n && poly; i++)
         poly = h[3 * i + 2] == 1.0;
-    for (int k0 = 0; k0 < S; k0 += OBC_LANES) {
-        double t[OBC_LANES], R[9][OBC_LANES];
-        for (int l = 0; l < OBC_LANES; l++) /* lanes past the end repeat the last sample */
-            t[l] = obc_sample_t(k0 + l < S ? k0 + l : S - 1, S);
-        obc_pc_lanes(h, n, poly, dc, t, R);
-        for (int l = 0; l < OBC_LANES && k0 + l < S; l++) {
-            OBC_G double *r = T + OBC_REC * (k0 + l);
-            if (obc_lane_ok(R, dc, l)) {
-                *ops += OBC_OPS_EVAL(n);
-                for (int c = 0; c < 6; c++)
-                    r[c] = R[c][l];
-            } else {
-                double P[2], dP[2], K[2];
-                obc_pc_eval(h, n, dc, t[l], P, dP, K, ops);
-                r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
-            }
-            r[6] = r[7] = 0.0;
+    return poly;
+}
+
+/* Rows k0 .. k0 + OBC_LANES - 1 (those below S) of sample table T in one
+ * obc_pc_lanes call, k0 a multiple of OBC_LANES; a lane that obc_lane_ok
+ * refuses by obc_pc_eval.  poly: obc_table_poly(h, n).  Rows of different
+ * k0 are independent: the kernel shares them out over work-items. */
+OBC_FN void obc_table_lanes(const OBC_G double *h, int n, int poly, double dc, int S, int k0, OBC_G double *T,
+                            long *ops)
+{
+    double t[OBC_LANES], R[9][OBC_LANES];
+    for (int l = 0; l < OBC_LANES; l++) /* lanes past the end repeat the last sample */
+        t[l] = obc_sample_t(k0 + l < S ? k0 + l : S - 1, S);
+    obc_pc_lanes(h, n, poly, dc, t, R);
+    for (int l = 0; l < OBC_LANES && k0 + l < S; l++) {
+        OBC_G double *r = T + OBC_REC * (k0 + l);
+        if (obc_lane_ok(R, dc, l)) {
+            *ops += OBC_OPS_EVAL(n);
+            for (int c = 0; c < 6; c++)
+                r[c] = R[c][l];
+        } else {
+            double P[2], dP[2], K[2];
+            obc_pc_eval(h, n, dc, t[l], P, dP, K, ops);
+            r[0] = P[0], r[1] = P[1], r[2] = dP[0], r[3] = dP[1], r[4] = K[0], r[5] = K[1];
         }
+        r[6] = r[7] = 0.0;
     }
 }
 
-/* The margins and block circles of table T from its rows (see obc_fill_table). */
-OBC_FN void obc_table_bounds(int S, OBC_G double *T)
+/* The rows of sample table T, OBC_LANES samples at a time (obc_table_lanes).
+ * The same bits and the same count of work as obc_table_rows_ref. */
+OBC_FN void obc_table_rows(const OBC_G double *h, int n, double dc, int S, OBC_G double *T, long *ops)
+{
+    const int poly = obc_table_poly(h, n);
+    for (int k0 = 0; k0 < S; k0 += OBC_LANES)
+        obc_table_lanes(h, n, poly, dc, S, k0, T, ops);
+}
+
+/* The margin of span j (rows j, j + 1) of table T: see obc_fill_table. */
+OBC_FLAT_FN void obc_table_margin(int S, OBC_G double *T, int j)
 {
     const double hs = 1.0 / (S - 1);
+    OBC_G double *a = T + OBC_REC * j;
+    const OBC_G double *b = a + OBC_REC;
+    const double c0 = (b[0] - a[0]) / hs, c1 = (b[1] - a[1]) / hs;
+    const double e0 = sqrt((a[2] - c0) * (a[2] - c0) + (a[3] - c1) * (a[3] - c1));
+    const double e1 = sqrt((b[2] - c0) * (b[2] - c0) + (b[3] - c1) * (b[3] - c1));
+    a[OBC_MARGIN] = 0.5 * hs * (e0 + e1);
+}
+
+/* The circle of block bk of table T from its rows and margins. */
+OBC_FN void obc_table_block(int S, OBC_G double *T, int bk)
+{
+    const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
+    double x0 = OBC_INF, x1 = -OBC_INF, y0 = OBC_INF, y1 = -OBC_INF, m = 0.0;
+    for (int j = j0; j <= j1; j++) {
+        const OBC_G double *r = T + OBC_REC * j;
+        x0 = OBC_FMIN(x0, r[0]), x1 = OBC_FMAX(x1, r[0]);
+        y0 = OBC_FMIN(y0, r[1]), y1 = OBC_FMAX(y1, r[1]);
+        if (j < j1)
+            m = OBC_FMAX(m, r[OBC_MARGIN]);
+    }
+    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+    double rad = 0.0;
+    for (int j = j0; j <= j1; j++) {
+        const double x = T[OBC_REC * j] - cx, y = T[OBC_REC * j + 1] - cy;
+        rad = OBC_FMAX(rad, sqrt(x * x + y * y));
+    }
+    OBC_G double *c = T + OBC_REC * S + 4 * bk;
+    c[0] = cx, c[1] = cy, c[2] = rad + m, c[3] = 0.0;
+}
+
+/* The margins and block circles of table T from its rows (see obc_fill_table):
+ * every margin first, the circles read them. */
+OBC_FN void obc_table_bounds(int S, OBC_G double *T)
+{
     OBC_SIMD
-    for (int j = 0; j < S - 1; j++) {
-        OBC_G double *a = T + OBC_REC * j;
-        const OBC_G double *b = a + OBC_REC;
-        const double c0 = (b[0] - a[0]) / hs, c1 = (b[1] - a[1]) / hs;
-        const double e0 = sqrt((a[2] - c0) * (a[2] - c0) + (a[3] - c1) * (a[3] - c1));
-        const double e1 = sqrt((b[2] - c0) * (b[2] - c0) + (b[3] - c1) * (b[3] - c1));
-        a[OBC_MARGIN] = 0.5 * hs * (e0 + e1);
-    }
-    for (int bk = 0; bk < OBC_NBLK(S); bk++) {
-        const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
-        double x0 = OBC_INF, x1 = -OBC_INF, y0 = OBC_INF, y1 = -OBC_INF, m = 0.0;
-        for (int j = j0; j <= j1; j++) {
-            const OBC_G double *r = T + OBC_REC * j;
-            x0 = OBC_FMIN(x0, r[0]), x1 = OBC_FMAX(x1, r[0]);
-            y0 = OBC_FMIN(y0, r[1]), y1 = OBC_FMAX(y1, r[1]);
-            if (j < j1)
-                m = OBC_FMAX(m, r[OBC_MARGIN]);
-        }
-        const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
-        double rad = 0.0;
-        for (int j = j0; j <= j1; j++) {
-            const double x = T[OBC_REC * j] - cx, y = T[OBC_REC * j + 1] - cy;
-            rad = OBC_FMAX(rad, sqrt(x * x + y * y));
-        }
-        OBC_G double *c = T + OBC_REC * S + 4 * bk;
-        c[0] = cx, c[1] = cy, c[2] = rad + m, c[3] = 0.0;
-    }
+    for (int j = 0; j < S - 1; j++)
+        obc_table_margin(S, T, j);
+    for (int bk = 0; bk < OBC_NBLK(S); bk++)
+        obc_table_block(S, T, bk);
 }
 
 /* Purpose: the sample table T of curve (h, n) or of its exact dc-offset,
@@ -1082,6 +1108,39 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, 
  * sample is asked only for errors above the running maximum (the cut), which
  * lets the Hausdorff search stop early without changing the result. */
 #define OBC_COARSE 8
+
+/* Takes sample k's error e into the scan's running maximum (best, kb), the
+ * first of equal maxima kept.  Returns 1 when e ends the scan: NaN or inf,
+ * the worst, kept with its sample. */
+OBC_FN int obc_scan_take(double e, int k, double *best, int *kb)
+{
+    if (!(e <= *best)) {
+        *best = e;
+        *kb = k;
+    }
+    return isnan(e) || isinf(e);
+}
+
+/* The end of a scan whose maximum is best at sample kb: +inf when that is
+ * not finite, else the larger of it and the golden-section maximum between
+ * the neighbouring samples. */
+OBC_FN void obc_scan_refine(int kind, OBC_ARGS, double best, int kb, int *hint, double *err, double *targ)
+{
+    *err = best;
+    *targ = obc_sample_t(kb, S);
+    if (isnan(best) || isinf(best)) {
+        *err = OBC_INF;
+        return;
+    }
+    const double a = obc_sample_t(kb > 0 ? kb - 1 : 0, S), b = obc_sample_t(kb < S - 1 ? kb + 1 : S - 1, S);
+    double tr;
+    const double er = obc_golden_max(kind, OBC_PASS, a, b, hint, &tr);
+    if (er > best) {
+        *err = er;
+        *targ = tr;
+    }
+}
+
 OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 {
     double best = -1.0;
@@ -1094,27 +1153,54 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
         for (int k = pass ? 1 : 0; k < S && !bad; k += pass ? 1 : step) {
             if (pass && k % step == 0)
                 continue;
-            const double e = obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best, &hint);
-            if (!(e <= best)) {
-                best = e;
-                kb = k;
-            }
-            bad = isnan(e) || isinf(e);
+            bad = obc_scan_take(obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best, &hint), k, &best, &kb);
         }
     }
-    *err = best;
-    *targ = obc_sample_t(kb, S);
-    if (isnan(best) || isinf(best)) {
-        *err = OBC_INF;
-        return;
+    obc_scan_refine(kind, OBC_PASS, best, kb, &hint, err, targ);
+}
+
+/* ---- the two sides of the Hausdorff distance ------------------------- */
+
+/* From A to O (tgt = O's table, qry = A's): the largest distance and, where
+ * it is finite, the parameter of its foot on O. */
+OBC_FN void obc_h_side_approx(OBC_ARGS, double *e, double *t)
+{
+    obc_sample_refine(OBC_K_H_APPROX, OBC_PASS, e, t);
+    if (!(isnan(*e) || isinf(*e))) {
+        int hint = OBC_NO_HINT;
+        double tf;
+        obc_side_dist(OBC_K_H_APPROX, OBC_PASS, *t, -1, -1.0, &hint, &tf);
+        *t = tf;
     }
-    const double a = obc_sample_t(kb > 0 ? kb - 1 : 0, S), b = obc_sample_t(kb < S - 1 ? kb + 1 : S - 1, S);
-    double tr;
-    const double er = obc_golden_max(kind, OBC_PASS, a, b, &hint, &tr);
-    if (er > best) {
-        *err = er;
-        *targ = tr;
+}
+
+/* From O to A (tgt = A's table, qry = O's): the largest distance and its
+ * parameter on O. */
+OBC_FN void obc_h_side_offset(OBC_ARGS, double *e, double *t)
+{
+    obc_sample_refine(OBC_K_H_OFFSET, OBC_PASS, e, t);
+}
+
+/* The Hausdorff distance: the larger side, A's side on a tie. */
+OBC_FN void obc_h_pick(double e1, double t1, double e2, double t2, double *err, double *t)
+{
+    if (e1 >= e2) {
+        *err = e1;
+        *t = t1;
+    } else {
+        *err = e2;
+        *t = t2;
     }
+}
+
+/* The error kind the one-sided metrics (radial, normal, param) scan; -1 for
+ * hausdorff and codes that are no sampled metric. */
+OBC_FN int obc_scan_kind(int metric)
+{
+    return metric == OBC_RADIAL ? OBC_K_RADIAL
+           : metric == OBC_NORMAL ? OBC_K_NORMAL
+           : metric == OBC_PARAM  ? OBC_K_PARAM
+                                  : -1;
 }
 
 /* ---- one whole measurement ------------------------------------------- */
@@ -1126,16 +1212,9 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
                         int S, OBC_G double *scratch, double *err, double *t, long *ops)
 {
-    if (metric == OBC_RADIAL) {
-        obc_sample_refine(OBC_K_RADIAL, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
-        return;
-    }
-    if (metric == OBC_NORMAL) {
-        obc_sample_refine(OBC_K_NORMAL, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
-        return;
-    }
-    if (metric == OBC_PARAM) {
-        obc_sample_refine(OBC_K_PARAM, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
+    const int kind = obc_scan_kind(metric);
+    if (kind >= 0) {
+        obc_sample_refine(kind, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
         return;
     }
     if (metric != OBC_HAUSDORFF) {
@@ -1146,22 +1225,10 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
     OBC_G double *O = scratch, *A = scratch + OBC_TABLE_SIZE(S);
     obc_fill_table(hb, nb, d, S, O, ops);
     obc_fill_table(ha, na, 0.0, S, A, ops);
-    double e1, t1, e2, t2, tf;
-    /* from A to O: the maximum's parameter is A's; report its foot on O */
-    obc_sample_refine(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, &e1, &t1);
-    if (!(isnan(e1) || isinf(e1))) {
-        int hint = OBC_NO_HINT;
-        obc_side_dist(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, ops, t1, -1, -1.0, &hint, &tf);
-        t1 = tf;
-    }
-    obc_sample_refine(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, ops, &e2, &t2);
-    if (e1 >= e2) {
-        *err = e1;
-        *t = t1;
-    } else {
-        *err = e2;
-        *t = t2;
-    }
+    double e1, t1, e2, t2;
+    obc_h_side_approx(hb, nb, ha, na, d, S, O, A, ops, &e1, &t1);
+    obc_h_side_offset(hb, nb, ha, na, d, S, A, O, ops, &e2, &t2);
+    obc_h_pick(e1, t1, e2, t2, err, t);
 }
 
 #endif
