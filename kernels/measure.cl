@@ -1,17 +1,24 @@
 /*
  * measure.cl - one launch measures a whole batch of (base piece, approximating
- * piece, d, metric) records: one work-item per record, running the same
- * sample-and-refine code as the CPU reference.
+ * piece, d, metric) records, in one of two layouts (host/backend/clrt.h):
  *
- * The host builds this file with kernels/metric_core.h prepended (it holds the
- * formulas, shared with methods/metrics/metric_sampled.c).
+ *   ob_measure_groups  a work-group per record, its work-items over the
+ *                      record's samples (the default);
+ *   ob_measure_batch   a work-item per record running obc_measure whole (kept
+ *                      to compare with).
+ *
+ * Both give the CPU reference's bits: they run the same functions of
+ * kernels/metric_core.h on the same operands, and only reorder work whose
+ * results do not depend on order.  The host builds this file with
+ * kernels/metric_core.h prepended.
  *
  * Buffers (structure of arrays, sized once per run and grown when needed):
  *   metric[i], d[i]          the record's sampled metric code and offset
  *   bdeg[i], boff[i]         degree of the base piece, offset of its
  *   adeg[i], aoff[i]         homogeneous control points in ctrl (doubles)
- *   soff[i]                  offset of its scratch (2 OBC_TABLE_SIZE(S) doubles) in scratch,
- *                            used by hausdorff only
+ *   soff[i]                  offset of its scratch in scratch: 2 OBC_TABLE_SIZE(S)
+ *                            doubles for hausdorff; in the group layout 2 S for
+ *                            the other metrics (ob_cl_group_scratch)
  *   err[i], tpar[i]          the error and the base parameter of its maximum
  *   work[i]                  the work it took (flops, counted as OBC_OPS_* say),
  *                            by which the host shares the launch's time
@@ -33,4 +40,147 @@ __kernel void ob_measure_batch(const int nrec, const int S, __global const int *
     err[i] = e;
     tpar[i] = t;
     work[i] = (double)ops;
+}
+
+/* ---- a work-group per record ------------------------------------------ */
+
+#define OBG_MAX 256 /* largest work-group the host launches (ob_cl_open caps it) */
+
+/* The tasks 0 .. n-1 shared out over the work-items of the group. */
+#define OBG_EACH(v, n) for (int v = (int)get_local_id(0); v < (n); v += (int)get_local_size(0))
+
+/* The work of the group: each item's count in lops, summed by item 0 (whole
+ * numbers: the order of the sum does not matter). */
+long obg_sum_ops(__local long *lops, long mine)
+{
+    lops[get_local_id(0)] = mine;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    long s = 0;
+    if (get_local_id(0) == 0)
+        for (int q = 0; q < (int)get_local_size(0); q++)
+            s += lops[q];
+    return s;
+}
+
+/* Hausdorff: the four tables' parts (rows of O and A, OBC_LANES samples per
+ * task; then the margins; then the block circles) over the work-items, with
+ * a barrier between the parts that read the earlier ones; then the two
+ * sides, item 0 and item 1 each running one of them whole (a side's samples
+ * chain their nearest feet, so their order is part of the result).  Item 0
+ * returns the result. */
+void obg_hausdorff(const __global double *hb, int nb, const __global double *ha, int na, double d, int S,
+                   __global double *O, __global double *A, __local long *lops, __local double *side, double *err,
+                   double *t, long *total)
+{
+    const int lid = get_local_id(0), second = get_local_size(0) > 1 ? 1 : 0;
+    const int G = (S + OBC_LANES - 1) / OBC_LANES, pb = obc_table_poly(hb, nb), pa = obc_table_poly(ha, na);
+    long ops = 0;
+    OBG_EACH(g, 2 * G) {
+        if (g < G)
+            obc_table_lanes(hb, nb, pb, d, S, OBC_LANES * g, O, &ops);
+        else
+            obc_table_lanes(ha, na, pa, 0.0, S, OBC_LANES * (g - G), A, &ops);
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    OBG_EACH(j, 2 * (S - 1)) obc_table_margin(S, j < S - 1 ? O : A, j < S - 1 ? j : j - (S - 1));
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    const int NB = OBC_NBLK(S);
+    OBG_EACH(b, 2 * NB) obc_table_block(S, b < NB ? O : A, b < NB ? b : b - NB);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    double e, te;
+    if (lid == 0) {
+        obc_h_side_approx(hb, nb, ha, na, d, S, O, A, &ops, &e, &te);
+        side[0] = e, side[1] = te;
+    }
+    if (lid == second) {
+        obc_h_side_offset(hb, nb, ha, na, d, S, A, O, &ops, &e, &te);
+        side[2] = e, side[3] = te;
+    }
+    *total = obg_sum_ops(lops, ops); /* its barrier also publishes side[] */
+    if (lid == 0)
+        obc_h_pick(side[0], side[1], side[2], side[3], err, t);
+}
+
+/* Radial, normal, param: the samples' errors over the work-items (E, their
+ * work W in global scratch), then the scan's result as obc_sample_refine
+ * finds it in order: the first NaN or inf sample ends the scan (its work
+ * and that of the samples before it counted, none after), else the first
+ * of equal maxima; item 0 refines it. */
+void obg_scan(int kind, const __global double *hb, int nb, const __global double *ha, int na, double d, int S,
+              __global double *E, __global double *W, __local long *lops, __local int *lk, __local double *lbest,
+              double *err, double *t, long *total)
+{
+    const int lid = get_local_id(0), L = get_local_size(0);
+    int hint = OBC_NO_HINT;
+    OBG_EACH(k, S) {
+        long o = 0;
+        E[k] = obc_err_at(kind, hb, nb, ha, na, d, S, E, E, &o, obc_sample_t(k, S), k, -1.0, &hint);
+        W[k] = (double)o;
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    int bad = S;
+    OBG_EACH(k, S) if (isnan(E[k]) || isinf(E[k])) {
+        bad = k;
+        break;
+    }
+    lk[lid] = bad;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int q = 0; q < L; q++)
+        bad = min(bad, lk[q]);
+    barrier(CLK_LOCAL_MEM_FENCE); /* lk is reused below */
+    double best = -1.0;
+    int kb = 0;
+    long ops = 0;
+    OBG_EACH(k, S) {
+        if (k > bad)
+            break;
+        ops += (long)W[k];
+        obc_scan_take(E[k], k, &best, &kb);
+    }
+    lbest[lid] = best, lk[lid] = kb;
+    *total = obg_sum_ops(lops, ops);
+    if (lid != 0)
+        return;
+    if (bad < S) { /* the scan ends there, as the worst */
+        best = E[bad];
+        kb = bad;
+    } else {
+        best = -1.0, kb = 0;
+        for (int q = 0; q < L; q++) /* the first of equal maxima */
+            if (lbest[q] > best || (lbest[q] == best && lk[q] < kb)) {
+                best = lbest[q];
+                kb = lk[q];
+            }
+    }
+    obc_scan_refine(kind, hb, nb, ha, na, d, S, E, E, total, best, kb, &hint, err, t);
+}
+
+__kernel void ob_measure_groups(const int nrec, const int S, __global const int *metric,
+                                __global const double *d, __global const int *bdeg,
+                                __global const int *boff, __global const int *adeg,
+                                __global const int *aoff, __global const double *ctrl,
+                                __global const int *soff, __global double *scratch,
+                                __global double *err, __global double *tpar, __global double *work)
+{
+    __local long lops[OBG_MAX];
+    __local int lk[OBG_MAX];
+    __local double lbest[OBG_MAX];
+    __local double side[4];
+    const int i = get_group_id(0); /* the same for the whole group: it returns as one */
+    if (i >= nrec)
+        return;
+    const int m = metric[i], kind = obc_scan_kind(m);
+    const __global double *hb = ctrl + boff[i], *ha = ctrl + aoff[i];
+    __global double *scr = scratch + soff[i];
+    double e = OBC_INF, t = 0.0;
+    long ops = 0;
+    if (m == OBC_HAUSDORFF)
+        obg_hausdorff(hb, bdeg[i], ha, adeg[i], d[i], S, scr, scr + OBC_TABLE_SIZE(S), lops, side, &e, &t, &ops);
+    else if (kind >= 0)
+        obg_scan(kind, hb, bdeg[i], ha, adeg[i], d[i], S, scr, scr + S, lops, lk, lbest, &e, &t, &ops);
+    if (get_local_id(0) == 0) {
+        err[i] = e;
+        tpar[i] = t;
+        work[i] = (double)ops;
+    }
 }

@@ -26,9 +26,27 @@
 #endif
 #endif
 
+const char *ob_cl_layout_name(ob_cl_layout layout) { return layout == OB_CL_ITEMS ? "items" : "groups"; }
+int ob_cl_layout_env(ob_cl_layout *layout, ob_err *err)
+{
+    const char *v = getenv("OFFBENCH_CL_LAYOUT");
+    *layout = OB_CL_GROUPS;
+    if (!v || !*v || strcmp(v, "groups") == 0)
+        return 0;
+    if (strcmp(v, "items") == 0) {
+        *layout = OB_CL_ITEMS;
+        return 0;
+    }
+    ob_fail(err, "OFFBENCH_CL_LAYOUT='%.100s': expected groups or items", v);
+    return -1;
+}
+
 #ifndef OB_HAVE_CL
 
 int ob_cl_compiled(void) { return 0; }
+void ob_cl_set_layout(ob_cl *cl, ob_cl_layout layout) { (void)cl, (void)layout; }
+ob_cl_layout ob_cl_get_layout(const ob_cl *cl) { (void)cl; return OB_CL_GROUPS; }
+int ob_cl_group_size(const ob_cl *cl) { (void)cl; return 0; }
 int ob_cl_loader_status(char *msg, size_t len)
 {
     snprintf(msg, len, "not compiled in (the OpenCL headers were missing at build time)");
@@ -71,7 +89,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     X(clGetProgramBuildInfo) X(clCreateKernel) X(clCreateBuffer) X(clSetKernelArg)            \
     X(clEnqueueWriteBuffer) X(clEnqueueNDRangeKernel) X(clEnqueueReadBuffer) X(clFinish)      \
     X(clReleaseMemObject) X(clReleaseKernel) X(clReleaseProgram) X(clReleaseCommandQueue)     \
-    X(clReleaseContext)
+    X(clReleaseContext) X(clGetKernelWorkGroupInfo)
 
 static struct {
 #define X(f) __typeof__(&f) f;
@@ -136,7 +154,9 @@ struct ob_cl {
     cl_context ctx;
     cl_command_queue q;
     cl_program prog;
-    cl_kernel k;
+    cl_kernel k, kg;     /* ob_measure_batch (items), ob_measure_groups (groups) */
+    ob_cl_layout layout;
+    size_t group;        /* work-items per group of kg */
     char platform[256], device[256], driver[128], source[512];
     double build_s;
     /* batch buffers, grown on demand */
@@ -163,6 +183,13 @@ const char *ob_cl_device(const ob_cl *c) { return c ? c->device : ""; }
 const char *ob_cl_driver(const ob_cl *c) { return c ? c->driver : ""; }
 const char *ob_cl_source(const ob_cl *c) { return c ? c->source : ""; }
 double ob_cl_build_seconds(const ob_cl *c) { return c ? c->build_s : 0.0; }
+void ob_cl_set_layout(ob_cl *c, ob_cl_layout layout)
+{
+    if (c)
+        c->layout = layout;
+}
+ob_cl_layout ob_cl_get_layout(const ob_cl *c) { return c ? c->layout : OB_CL_GROUPS; }
+int ob_cl_group_size(const ob_cl *c) { return c ? (int)c->group : 0; }
 
 struct ob_embedded_file {
     const char *name;
@@ -257,10 +284,11 @@ static int has_fp64(cl_device_id dev)
     return fp != 0;
 }
 
-/* One launch of each shape a run makes (radial records in groups of 32, the
- * others one per group), so that a driver that compiles a kernel at its
- * first launch (PoCL does, per group size) does it here, outside the time
- * charged to the first jobs.  Its results are not used. */
+/* One launch of each shape a run makes (group layout: one; item layout:
+ * radial records in groups of 32, the others one per group), so that a
+ * driver that compiles a kernel at its first launch (PoCL does, per group
+ * size) does it here, outside the time charged to the first jobs.  Its
+ * results are not used. */
 static void warm_up(ob_cl *c)
 {
     ob_bez base, approx;
@@ -280,12 +308,16 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
     *out = NULL;
     if (load_cl(err))
         return -1;
+    ob_cl_layout layout;
+    if (ob_cl_layout_env(&layout, err))
+        return -1;
     ob_cl *c = calloc(1, sizeof *c);
     char *src = NULL;
     if (!c) {
         ob_fail(err, "out of memory");
         return -1;
     }
+    c->layout = layout;
     cl_uint np = 0;
     cl_platform_id plats[16];
     cl_int e = cl.clGetPlatformIDs(16, plats, &np);
@@ -351,6 +383,15 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
     }
     c->k = cl.clCreateKernel(c->prog, "ob_measure_batch", &e);
     CL_CHECK(e);
+    c->kg = cl.clCreateKernel(c->prog, "ob_measure_groups", &e);
+    CL_CHECK(e);
+    /* the group's work-items share out a record's tables and samples: 64
+     * covers the 2 x 64 lane groups of the default 256 samples in one or two
+     * rounds; the kernel's own limit on this device may be lower (OBG_MAX in
+     * kernels/measure.cl is 256) */
+    size_t wg = 0;
+    CL_CHECK(cl.clGetKernelWorkGroupInfo(c->kg, dev, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL));
+    c->group = wg < 64 ? (wg > 0 ? wg : 1) : 64;
     free(src);
     warm_up(c);
     clock_gettime(CLOCK_MONOTONIC, &t1);
@@ -381,6 +422,8 @@ void ob_cl_close(ob_cl *c)
     release_buffers(c);
     if (c->k)
         cl.clReleaseKernel(c->k);
+    if (c->kg)
+        cl.clReleaseKernel(c->kg);
     if (c->prog)
         cl.clReleaseProgram(c->prog);
     if (c->q)
@@ -453,6 +496,38 @@ fail:
     return -1;
 }
 
+/* Scratch doubles of one record: hausdorff's two sample tables; in the
+ * group layout, the other metrics' errors and work per sample. */
+static size_t rec_scratch(const ob_cl *c, ob_metric m, int S)
+{
+    if (m == OB_METRIC_HAUSDORFF)
+        return ob_metric_scratch(S);
+    return c->layout == OB_CL_GROUPS ? 2 * (size_t)S : 0;
+}
+
+/* Enqueues the kernel of the layout over n records. */
+static int launch(ob_cl *c, const ob_measure_rec *recs, int n, ob_err *err)
+{
+    if (c->layout == OB_CL_GROUPS) {
+        const size_t local = c->group, global = (size_t)n * local;
+        CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->kg, 1, NULL, &global, &local, 0, NULL, NULL));
+        return 0;
+    }
+    /* A hausdorff or normal record is heavy (thousands of evaluations): one
+     * per work-group, so the device spreads them over all its compute units (a
+     * NULL local size let PoCL put a whole batch in one group, on one thread).
+     * A radial or param record is light: groups of 32 amortize the group
+     * overhead. */
+    int light = 1;
+    for (int i = 0; i < n && light; i++)
+        light = recs[i].metric == OB_METRIC_RADIAL || recs[i].metric == OB_METRIC_PARAM;
+    const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
+    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, NULL));
+    return 0;
+fail:
+    return -1;
+}
+
 int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
 {
     ob_cl *c = ctx;
@@ -463,8 +538,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     size_t nctrl = 0, nscr = 0;
     for (int i = 0; i < n; i++) {
         nctrl += 3 * (size_t)(recs[i].base->deg + 1) + 3 * (size_t)(recs[i].approx->deg + 1);
-        if (recs[i].metric == OB_METRIC_HAUSDORFF)
-            nscr += ob_metric_scratch(S);
+        nscr += rec_scratch(c, recs[i].metric, S);
     }
     if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2)
         return -1;
@@ -484,8 +558,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
         memcpy(c->h_ctrl + pc, &a->h[0][0], 3 * (size_t)(a->deg + 1) * sizeof(double));
         pc += 3 * (size_t)(a->deg + 1);
         c->h_soff[i] = (int)ps;
-        if (recs[i].metric == OB_METRIC_HAUSDORFF)
-            ps += ob_metric_scratch(S);
+        ps += rec_scratch(c, recs[i].metric, S);
     }
     const size_t ni = (size_t)n * sizeof(int), nd = (size_t)n * sizeof(double);
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->metric, CL_FALSE, 0, ni, c->h_metric, 0, NULL, NULL));
@@ -498,20 +571,13 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->ctrl, CL_FALSE, 0, pc * sizeof(double), c->h_ctrl, 0, NULL, NULL));
     cl_mem args[] = {c->metric, c->d, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->scratch, c->err, c->tpar,
                      c->work};
-    CL_CHECK(cl.clSetKernelArg(c->k, 0, sizeof(int), &n));
-    CL_CHECK(cl.clSetKernelArg(c->k, 1, sizeof(int), &S));
-    for (cl_uint k = 0; k < sizeof args / sizeof *args; k++)
-        CL_CHECK(cl.clSetKernelArg(c->k, 2 + k, sizeof(cl_mem), &args[k]));
-    /* A hausdorff or normal record is heavy (thousands of evaluations): one
-     * per work-group, so the device spreads them over all its compute units (a
-     * NULL local size let PoCL put a whole batch in one group, on one thread).
-     * A radial or param record is light: groups of 32 amortize the group
-     * overhead. */
-    int light = 1;
-    for (int i = 0; i < n && light; i++)
-        light = recs[i].metric == OB_METRIC_RADIAL || recs[i].metric == OB_METRIC_PARAM;
-    const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
-    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, NULL));
+    cl_kernel k = c->layout == OB_CL_GROUPS ? c->kg : c->k;
+    CL_CHECK(cl.clSetKernelArg(k, 0, sizeof(int), &n));
+    CL_CHECK(cl.clSetKernelArg(k, 1, sizeof(int), &S));
+    for (cl_uint a = 0; a < sizeof args / sizeof *args; a++)
+        CL_CHECK(cl.clSetKernelArg(k, 2 + a, sizeof(cl_mem), &args[a]));
+    if (launch(c, recs, n, err))
+        goto fail;
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->err, CL_FALSE, 0, nd, c->h_err, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->tpar, CL_FALSE, 0, nd, c->h_tpar, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->work, CL_FALSE, 0, nd, c->h_work, 0, NULL, NULL));

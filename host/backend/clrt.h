@@ -49,6 +49,25 @@ double ob_cl_build_seconds(const ob_cl *cl);
  * loader or the backend is not compiled in (a line says so). */
 int ob_cl_list_devices(FILE *f);
 
+/* How a launch maps records to the device.  Both give the CPU reference's
+ * bits (tests/unit/test_opencl.c checks it):
+ *   OB_CL_GROUPS  a work-group per record, its work-items over the record's
+ *                 samples: the sample tables of hausdorff and the samples of
+ *                 the other metrics, then the scan (the default);
+ *   OB_CL_ITEMS   a work-item per record, the whole measurement serial.
+ * ob_cl_open takes the layout from $OFFBENCH_CL_LAYOUT (ob_cl_layout_env). */
+typedef enum { OB_CL_GROUPS, OB_CL_ITEMS } ob_cl_layout;
+/* The layout $OFFBENCH_CL_LAYOUT asks for: groups or items; unset or empty:
+ * groups.  Returns 0; -1 with the variable and its value in err->msg when it
+ * is anything else. */
+int ob_cl_layout_env(ob_cl_layout *layout, ob_err *err);
+void ob_cl_set_layout(ob_cl *cl, ob_cl_layout layout);
+ob_cl_layout ob_cl_get_layout(const ob_cl *cl);
+const char *ob_cl_layout_name(ob_cl_layout layout); /* "groups", "items" */
+/* Work-items per group in the group layout (the device's limit for the
+ * kernel, at most 64). */
+int ob_cl_group_size(const ob_cl *cl);
+
 /* The driver's batch backend (ob_batch_fn): ctx is an ob_cl*. */
 int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
 
