@@ -16,6 +16,11 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
         return 0;
     }
     ob_err err;
+    ob_cl_layout layout;
+    if (ob_cl_layout_env(&layout, &err)) { /* a setting, not a missing device: auto does not hide it */
+        ob_error("%s", err.msg);
+        return -1;
+    }
     if (ob_cl_open(device, cl, &err) != 0) {
         if (kind == OB_BACKEND_OPENCL || device) {
             ob_error("--backend opencl: %s", err.msg);
@@ -30,8 +35,10 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     snprintf(b->driver, sizeof b->driver, "%s", ob_cl_driver(*cl));
     snprintf(b->kernels, sizeof b->kernels, "%s", ob_cl_source(*cl));
     b->build_seconds = ob_cl_build_seconds(*cl);
-    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s", b->platform, b->device,
-            b->kernels, b->build_seconds);
+    snprintf(b->layout, sizeof b->layout, "%s", ob_cl_layout_name(ob_cl_get_layout(*cl)));
+    b->group_size = ob_cl_get_layout(*cl) == OB_CL_GROUPS ? ob_cl_group_size(*cl) : 1;
+    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s, layout %s (%d work-items per record)", b->platform,
+            b->device, b->kernels, b->build_seconds, b->layout, b->group_size);
     return 0;
 }
 

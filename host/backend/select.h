@@ -15,6 +15,8 @@ typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backe
 typedef struct {
     int opencl;                  /* 0: the CPU reference path */
     char platform[256], device[256], driver[128], kernels[512];
+    char layout[16];             /* the kernel's layout: groups or items (clrt.h) */
+    int group_size;              /* work-items per record in the group layout */
     double build_seconds;
     long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
     char why_cpu[512];           /* with auto: why OpenCL was not used */
@@ -25,8 +27,9 @@ typedef struct {
  *          timed work.
  * Outputs: *cl, or NULL when the CPU measures; *b: what and why.
  * Returns: 0; -1 after ob_error() when OpenCL was required (kind opencl, or
- *          a device named) and cannot start.  auto falls back to the CPU and
- *          says why in b->why_cpu. */
+ *          a device named) and cannot start, or $OFFBENCH_CL_LAYOUT is not a
+ *          layout (unless kind is cpu).  auto falls back to the CPU and says
+ *          why in b->why_cpu. */
 int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_cl **cl);
 
 /* Purpose: plug an opened OpenCL backend into a driver run's hooks (the

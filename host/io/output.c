@@ -162,6 +162,7 @@ static void meta_build(FILE *f, const ob_backend_info *b)
         ob_json_string(f, b->driver);
         fprintf(f, ", \"kernels\": ");
         ob_json_string(f, b->kernels);
+        fprintf(f, ", \"layout\": \"%s\", \"work_items_per_record\": %d", b->layout, b->group_size);
         fprintf(f, ", \"build_seconds\": %.3f, \"cpu_fallback_batches\": %ld},\n", b->build_seconds, b->fallbacks);
     } else {
         fprintf(f, "null,\n  \"cpu_because\": ");
