@@ -3,9 +3,9 @@
  * piece, d, metric) records, in one of two layouts (host/backend/clrt.h):
  *
  *   ob_measure_groups  a work-group per record, its work-items over the
- *                      record's samples (the default);
- *   ob_measure_batch   a work-item per record running obc_measure whole (kept
- *                      to compare with).
+ *                      record's samples (on GPUs and accelerators);
+ *   ob_measure_batch   a work-item per record running obc_measure whole (on
+ *                      CPU devices, where a group's items are a loop).
  *
  * Both give the CPU reference's bits: they run the same functions of
  * kernels/metric_core.h on the same operands, and only reorder work whose

@@ -30,12 +30,11 @@ const char *ob_cl_layout_name(ob_cl_layout layout) { return layout == OB_CL_ITEM
 int ob_cl_layout_env(ob_cl_layout *layout, ob_err *err)
 {
     const char *v = getenv("OFFBENCH_CL_LAYOUT");
-    *layout = OB_CL_GROUPS;
-    if (!v || !*v || strcmp(v, "groups") == 0)
+    if (!v || !*v)
         return 0;
-    if (strcmp(v, "items") == 0) {
-        *layout = OB_CL_ITEMS;
-        return 0;
+    if (strcmp(v, "groups") == 0 || strcmp(v, "items") == 0) {
+        *layout = strcmp(v, "items") == 0 ? OB_CL_ITEMS : OB_CL_GROUPS;
+        return 1;
     }
     ob_fail(err, "OFFBENCH_CL_LAYOUT='%.100s': expected groups or items", v);
     return -1;
@@ -308,8 +307,9 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
     *out = NULL;
     if (load_cl(err))
         return -1;
-    ob_cl_layout layout;
-    if (ob_cl_layout_env(&layout, err))
+    ob_cl_layout layout = OB_CL_GROUPS;
+    const int layout_set = ob_cl_layout_env(&layout, err);
+    if (layout_set < 0)
         return -1;
     ob_cl *c = calloc(1, sizeof *c);
     char *src = NULL;
@@ -317,7 +317,6 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
         ob_fail(err, "out of memory");
         return -1;
     }
-    c->layout = layout;
     cl_uint np = 0;
     cl_platform_id plats[16];
     cl_int e = cl.clGetPlatformIDs(16, plats, &np);
@@ -357,6 +356,13 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
             ob_fail(err, "no OpenCL device with double precision (cl_khr_fp64)");
         goto fail;
     }
+    /* the layout by the device unless the environment names one: a CPU
+     * device runs a work-group's items in a loop on one core, where the
+     * group layout only adds its barriers (0.8-0.9x the item layout on
+     * PoCL: README "Backends and performance"); a GPU wants them */
+    cl_device_type dtype = 0;
+    cl.clGetDeviceInfo(dev, CL_DEVICE_TYPE, sizeof dtype, &dtype, NULL);
+    c->layout = layout_set ? layout : (dtype & CL_DEVICE_TYPE_CPU) ? OB_CL_ITEMS : OB_CL_GROUPS;
     c->ctx = cl.clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
     CL_CHECK(e);
     c->q = cl.clCreateCommandQueue(c->ctx, dev, 0, &e);

@@ -53,13 +53,15 @@ int ob_cl_list_devices(FILE *f);
  * bits (tests/unit/test_opencl.c checks it):
  *   OB_CL_GROUPS  a work-group per record, its work-items over the record's
  *                 samples: the sample tables of hausdorff and the samples of
- *                 the other metrics, then the scan (the default);
+ *                 the other metrics, then the scan;
  *   OB_CL_ITEMS   a work-item per record, the whole measurement serial.
- * ob_cl_open takes the layout from $OFFBENCH_CL_LAYOUT (ob_cl_layout_env). */
+ * ob_cl_open takes the layout from $OFFBENCH_CL_LAYOUT (ob_cl_layout_env),
+ * else by the device: items on a CPU device (where a group's work-items are
+ * a loop on one core and the barriers cost 10-20 %), groups on the others. */
 typedef enum { OB_CL_GROUPS, OB_CL_ITEMS } ob_cl_layout;
-/* The layout $OFFBENCH_CL_LAYOUT asks for: groups or items; unset or empty:
- * groups.  Returns 0; -1 with the variable and its value in err->msg when it
- * is anything else. */
+/* The layout $OFFBENCH_CL_LAYOUT names, groups or items, into *layout.
+ * Returns 1; 0 when it is unset or empty (*layout unchanged); -1 with the
+ * variable and its value in err->msg when it is anything else. */
 int ob_cl_layout_env(ob_cl_layout *layout, ob_err *err);
 void ob_cl_set_layout(ob_cl *cl, ob_cl_layout layout);
 ob_cl_layout ob_cl_get_layout(const ob_cl *cl);

@@ -17,7 +17,7 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     }
     ob_err err;
     ob_cl_layout layout;
-    if (ob_cl_layout_env(&layout, &err)) { /* a setting, not a missing device: auto does not hide it */
+    if (ob_cl_layout_env(&layout, &err) < 0) { /* a setting, not a missing device: auto does not hide it */
         ob_error("%s", err.msg);
         return -1;
     }
@@ -37,8 +37,8 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     b->build_seconds = ob_cl_build_seconds(*cl);
     snprintf(b->layout, sizeof b->layout, "%s", ob_cl_layout_name(ob_cl_get_layout(*cl)));
     b->group_size = ob_cl_get_layout(*cl) == OB_CL_GROUPS ? ob_cl_group_size(*cl) : 1;
-    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s, layout %s (%d work-items per record)", b->platform,
-            b->device, b->kernels, b->build_seconds, b->layout, b->group_size);
+    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s, layout %s (%d work-item%s per record)",
+            b->platform, b->device, b->kernels, b->build_seconds, b->layout, b->group_size, b->group_size == 1 ? "" : "s");
     return 0;
 }
 

@@ -52,12 +52,14 @@ check 'grep -q "\"joints\": {\"open_gap_rel\": 9.9999999999999998e-13" "$T/j/met
 if $OB run $J --backend opencl --out "$T/jcl" 2>/dev/null; then
     body "$T/jcl/results.csv" > "$T/jcl.txt"
     check 'body "$T/j/results.csv" | cmp -s - "$T/jcl.txt"' "--backend opencl and cpu give the same results, joints included"
-    check 'grep -q "\"layout\": \"groups\", \"work_items_per_record\": [1-9]" "$T/jcl/meta.json"' "meta.json: the kernel's default layout"
-    OFFBENCH_CL_LAYOUT=items $OB run $J --backend opencl --out "$T/jit" 2>/dev/null
-    check '[ $? -eq 0 ] && body "$T/jit/results.csv" | cmp -s - "$T/jcl.txt" && grep -q "\"layout\": \"items\"" "$T/jit/meta.json"' \
-        "OFFBENCH_CL_LAYOUT=items: the same results, recorded in meta.json"
+    check 'grep -q "\"layout\": \"\(groups\|items\)\", \"work_items_per_record\": [1-9]" "$T/jcl/meta.json"' "meta.json: the kernel's layout"
+    for lay in groups items; do
+        OFFBENCH_CL_LAYOUT=$lay $OB run $J --backend opencl --out "$T/j$lay" 2>/dev/null
+        check '[ $? -eq 0 ] && body "$T/j$lay/results.csv" | cmp -s - "$T/jcl.txt" && grep -q "\"layout\": \"$lay\"" "$T/j$lay/meta.json"' \
+            "OFFBENCH_CL_LAYOUT=$lay: the same results, recorded in meta.json"
+    done
 else
-    skipped=$((skipped + 3))
+    skipped=$((skipped + 4))
 fi
 msg=$(OFFBENCH_CL_LAYOUT=rows $OB run $J --out "$T/jbad" 2>&1)
 check '[ $? -eq 2 ] && echo "$msg" | grep -q "OFFBENCH_CL_LAYOUT=.rows.: expected groups or items"' \
