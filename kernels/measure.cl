@@ -23,12 +23,14 @@
  *   work[i]                  the work it took (flops, counted as OBC_OPS_* say),
  *                            by which the host shares the launch's time
  */
-__kernel void ob_measure_batch(const int nrec, const int S, __global const int *metric,
-                               __global const double *d, __global const int *bdeg,
-                               __global const int *boff, __global const int *adeg,
-                               __global const int *aoff, __global const double *ctrl,
-                               __global const int *soff, __global double *scratch,
-                               __global double *err, __global double *tpar, __global double *work)
+/* The arguments of both kernels, in the order the host sets them. */
+#define OBK_ARGS                                                                                         \
+    const int nrec, const int S, __global const int *metric, __global const double *d,                   \
+        __global const int *bdeg, __global const int *boff, __global const int *adeg,                      \
+        __global const int *aoff, __global const double *ctrl, __global const int *soff,                   \
+        __global double *scratch, __global double *err, __global double *tpar, __global double *work
+
+__kernel void ob_measure_batch(OBK_ARGS)
 {
     const int i = get_global_id(0);
     if (i >= nrec)
@@ -155,12 +157,7 @@ void obg_scan(int kind, const __global double *hb, int nb, const __global double
     obc_scan_refine(kind, hb, nb, ha, na, d, S, E, E, total, best, kb, &hint, err, t);
 }
 
-__kernel void ob_measure_groups(const int nrec, const int S, __global const int *metric,
-                                __global const double *d, __global const int *bdeg,
-                                __global const int *boff, __global const int *adeg,
-                                __global const int *aoff, __global const double *ctrl,
-                                __global const int *soff, __global double *scratch,
-                                __global double *err, __global double *tpar, __global double *work)
+__kernel void ob_measure_groups(OBK_ARGS)
 {
     __local long lops[OBG_MAX];
     __local int lk[OBG_MAX];
