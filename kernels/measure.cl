@@ -14,6 +14,8 @@
  *
  * Buffers (structure of arrays, sized once per run and grown when needed):
  *   metric[i], d[i]          the record's sampled metric code and offset
+ *   stop[i]                  > 0: the measurement may end above it (obc_measure);
+ *                            else the full measurement
  *   bdeg[i], boff[i]         degree of the base piece, offset of its
  *   adeg[i], aoff[i]         homogeneous control points in ctrl (doubles)
  *   soff[i]                  offset of its scratch in scratch: 2 OBC_TABLE_SIZE(S)
@@ -26,6 +28,7 @@
 /* The arguments of both kernels, in the order the host sets them. */
 #define OBK_ARGS                                                                                         \
     const int nrec, const int S, __global const int *metric, __global const double *d,                   \
+        __global const double *stop,                                                                     \
         __global const int *bdeg, __global const int *boff, __global const int *adeg,                      \
         __global const int *aoff, __global const double *ctrl, __global const int *soff,                   \
         __global double *scratch, __global double *err, __global double *tpar, __global double *work
@@ -37,8 +40,8 @@ __kernel void ob_measure_batch(OBK_ARGS)
         return;
     double e, t;
     long ops = 0;
-    obc_measure(metric[i], ctrl + boff[i], bdeg[i], ctrl + aoff[i], adeg[i], d[i], S, scratch + soff[i], &e, &t,
-                &ops);
+    obc_measure(metric[i], ctrl + boff[i], bdeg[i], ctrl + aoff[i], adeg[i], d[i], S, stop[i], scratch + soff[i], &e,
+                &t, &ops);
     err[i] = e;
     tpar[i] = t;
     work[i] = (double)ops;
@@ -69,10 +72,11 @@ long obg_sum_ops(__local long *lops, long mine)
  * a barrier between the parts that read the earlier ones; then the two
  * sides, item 0 and item 1 each running one of them whole (a side's samples
  * chain their nearest feet, so their order is part of the result).  Item 0
- * returns the result. */
+ * returns the result.  Where A's side ends above stop the serial code does
+ * not run O's side: its result and its work are then left out. */
 void obg_hausdorff(const __global double *hb, int nb, const __global double *ha, int na, double d, int S,
-                   __global double *O, __global double *A, __local long *lops, __local double *side, double *err,
-                   double *t, long *total)
+                   double stop, __global double *O, __global double *A, __local long *lops, __local double *side,
+                   double *err, double *t, long *total)
 {
     const int lid = get_local_id(0), second = get_local_size(0) > 1 ? 1 : 0;
     const int G = (S + OBC_LANES - 1) / OBC_LANES, pb = obc_table_poly(hb, nb), pa = obc_table_poly(ha, na);
@@ -91,26 +95,32 @@ void obg_hausdorff(const __global double *hb, int nb, const __global double *ha,
     barrier(CLK_GLOBAL_MEM_FENCE);
     double e, te;
     if (lid == 0) {
-        obc_h_side_approx(hb, nb, ha, na, d, S, O, A, &ops, &e, &te);
+        obc_h_side_approx(hb, nb, ha, na, d, S, O, A, &ops, stop, &e, &te);
         side[0] = e, side[1] = te;
     }
     if (lid == second) {
-        obc_h_side_offset(hb, nb, ha, na, d, S, A, O, &ops, &e, &te);
-        side[2] = e, side[3] = te;
+        long so = 0;
+        obc_h_side_offset(hb, nb, ha, na, d, S, A, O, &so, stop, &e, &te);
+        side[2] = e, side[3] = te, side[4] = (double)so; /* a whole number, exact */
+        ops += so;
     }
     *total = obg_sum_ops(lops, ops); /* its barrier also publishes side[] */
-    if (lid == 0)
-        obc_h_pick(side[0], side[1], side[2], side[3], err, t);
+    if (lid == 0) {
+        if (side[0] > stop)
+            *total -= (long)side[4];
+        obc_h_pick(side[0], side[1], side[2], side[3], stop, err, t);
+    }
 }
 
 /* Radial, normal, param: the samples' errors over the work-items (E, their
  * work W in global scratch), then the scan's result as obc_sample_refine
- * finds it in order: the first NaN or inf sample ends the scan (its work
- * and that of the samples before it counted, none after), else the first
- * of equal maxima; item 0 refines it. */
+ * finds it in order: the first NaN or inf sample, or the first above stop,
+ * ends the scan (its work and that of the samples before it counted, none
+ * after); else the first of equal maxima; item 0 refines it (not a sample
+ * above stop: that is the result). */
 void obg_scan(int kind, const __global double *hb, int nb, const __global double *ha, int na, double d, int S,
-              __global double *E, __global double *W, __local long *lops, __local int *lk, __local double *lbest,
-              double *err, double *t, long *total)
+              double stop, __global double *E, __global double *W, __local long *lops, __local int *lk,
+              __local double *lbest, double *err, double *t, long *total)
 {
     const int lid = get_local_id(0), L = get_local_size(0);
     int hint = OBC_NO_HINT;
@@ -121,7 +131,7 @@ void obg_scan(int kind, const __global double *hb, int nb, const __global double
     }
     barrier(CLK_GLOBAL_MEM_FENCE);
     int bad = S;
-    OBG_EACH(k, S) if (isnan(E[k]) || isinf(E[k])) {
+    OBG_EACH(k, S) if (isnan(E[k]) || isinf(E[k]) || E[k] > stop) {
         bad = k;
         break;
     }
@@ -143,6 +153,11 @@ void obg_scan(int kind, const __global double *hb, int nb, const __global double
     *total = obg_sum_ops(lops, ops);
     if (lid != 0)
         return;
+    if (bad < S && !(isnan(E[bad]) || isinf(E[bad]))) { /* above stop: the result */
+        *err = E[bad];
+        *t = obc_sample_t(bad, S);
+        return;
+    }
     if (bad < S) { /* the scan ends there, as the worst */
         best = E[bad];
         kb = bad;
@@ -162,7 +177,7 @@ __kernel void ob_measure_groups(OBK_ARGS)
     __local long lops[OBG_MAX];
     __local int lk[OBG_MAX];
     __local double lbest[OBG_MAX];
-    __local double side[4];
+    __local double side[5];
     const int i = get_group_id(0); /* the same for the whole group: it returns as one */
     if (i >= nrec)
         return;
@@ -171,10 +186,12 @@ __kernel void ob_measure_groups(OBK_ARGS)
     __global double *scr = scratch + soff[i];
     double e = OBC_INF, t = 0.0;
     long ops = 0;
+    const double st = obc_stop_of(stop[i]);
     if (m == OBC_HAUSDORFF)
-        obg_hausdorff(hb, bdeg[i], ha, adeg[i], d[i], S, scr, scr + OBC_TABLE_SIZE(S), lops, side, &e, &t, &ops);
+        obg_hausdorff(hb, bdeg[i], ha, adeg[i], d[i], S, st, scr, scr + OBC_TABLE_SIZE(S), lops, side, &e, &t,
+                      &ops);
     else if (kind >= 0)
-        obg_scan(kind, hb, bdeg[i], ha, adeg[i], d[i], S, scr, scr + S, lops, lk, lbest, &e, &t, &ops);
+        obg_scan(kind, hb, bdeg[i], ha, adeg[i], d[i], S, st, scr, scr + S, lops, lk, lbest, &e, &t, &ops);
     if (get_local_id(0) == 0) {
         err[i] = e;
         tpar[i] = t;

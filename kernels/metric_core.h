@@ -20,6 +20,12 @@
  *              no normal: a point-like segment).
  * Each samples S parameters t_k = k/(S-1), takes the largest error and refines
  * it by golden-section search between its neighbours.
+ * A measurement given a stop > 0 (obc_measure) may end at the first sample
+ * whose error exceeds it: the caller only needs to know that the error is
+ * above stop (a piece that fails its level in a greedy search).  Its result
+ * is then that sample's error and parameter (a lower bound of the full
+ * error, itself above stop); wherever the full error is <= stop no sample
+ * exceeds it, and the result is the full measurement's, bit for bit.
  *
  * Written in the common subset of C11 and OpenCL C 1.2: no function pointers,
  * no recursion, no library calls beyond sqrt/fabs/fmin/fmax/isnan/isinf.
@@ -1106,7 +1112,9 @@ OBC_FN double obc_golden_max(int kind, OBC_ARGS, double a, double b, int *hint, 
 /* Sample S parameters, take the largest error, refine it between the
  * neighbours.  A NaN or infinite sample ends the scan as the worst.  Each
  * sample is asked only for errors above the running maximum (the cut), which
- * lets the Hausdorff search stop early without changing the result. */
+ * lets the Hausdorff search stop early without changing the result.  A
+ * running maximum above stop (the first sample above it, in scan order)
+ * ends the scan without the refinement: that sample is the result. */
 #define OBC_COARSE 8
 
 /* Takes sample k's error e into the scan's running maximum (best, kb), the
@@ -1141,7 +1149,7 @@ OBC_FN void obc_scan_refine(int kind, OBC_ARGS, double best, int kb, int *hint, 
     }
 }
 
-OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
+OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double stop, double *err, double *targ)
 {
     double best = -1.0;
     int kb = 0, hint = OBC_NO_HINT, bad = 0;
@@ -1154,6 +1162,11 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
             if (pass && k % step == 0)
                 continue;
             bad = obc_scan_take(obc_err_at(kind, OBC_PASS, obc_sample_t(k, S), k, best, &hint), k, &best, &kb);
+            if (best > stop) { /* exact: best is never a value settled by the cut */
+                *err = best;
+                *targ = obc_sample_t(kb, S);
+                return;
+            }
         }
     }
     obc_scan_refine(kind, OBC_PASS, best, kb, &hint, err, targ);
@@ -1162,10 +1175,10 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double *err, double *targ)
 /* ---- the two sides of the Hausdorff distance ------------------------- */
 
 /* From A to O (tgt = O's table, qry = A's): the largest distance and, where
- * it is finite, the parameter of its foot on O. */
-OBC_FN void obc_h_side_approx(OBC_ARGS, double *e, double *t)
+ * it is finite, the parameter of its foot on O (stop: obc_sample_refine). */
+OBC_FN void obc_h_side_approx(OBC_ARGS, double stop, double *e, double *t)
 {
-    obc_sample_refine(OBC_K_H_APPROX, OBC_PASS, e, t);
+    obc_sample_refine(OBC_K_H_APPROX, OBC_PASS, stop, e, t);
     if (!(isnan(*e) || isinf(*e))) {
         int hint = OBC_NO_HINT;
         double tf;
@@ -1175,16 +1188,17 @@ OBC_FN void obc_h_side_approx(OBC_ARGS, double *e, double *t)
 }
 
 /* From O to A (tgt = A's table, qry = O's): the largest distance and its
- * parameter on O. */
-OBC_FN void obc_h_side_offset(OBC_ARGS, double *e, double *t)
+ * parameter on O (stop: obc_sample_refine). */
+OBC_FN void obc_h_side_offset(OBC_ARGS, double stop, double *e, double *t)
 {
-    obc_sample_refine(OBC_K_H_OFFSET, OBC_PASS, e, t);
+    obc_sample_refine(OBC_K_H_OFFSET, OBC_PASS, stop, e, t);
 }
 
-/* The Hausdorff distance: the larger side, A's side on a tie. */
-OBC_FN void obc_h_pick(double e1, double t1, double e2, double t2, double *err, double *t)
+/* The Hausdorff distance: the larger side, A's side on a tie; A's side alone
+ * when it is above stop (the O side is then not needed). */
+OBC_FN void obc_h_pick(double e1, double t1, double e2, double t2, double stop, double *err, double *t)
 {
-    if (e1 >= e2) {
+    if (e1 > stop || e1 >= e2) {
         *err = e1;
         *t = t1;
     } else {
@@ -1205,16 +1219,23 @@ OBC_FN int obc_scan_kind(int metric)
 
 /* ---- one whole measurement ------------------------------------------- */
 
+/* The stop a measurement runs under: stop_in when it is > 0, else none
+ * (+inf: the full measurement; a zeroed record asks for that). */
+OBC_FN double obc_stop_of(double stop_in) { return stop_in > 0.0 ? stop_in : OBC_INF; }
+
 /* Purpose: the error of approximation (ha, na) against the exact d-offset of
  * base (hb, nb) under a sampled metric, and the base parameter of its maximum.
+ * stop: > 0 to allow the early end above it (see the head of this file);
+ * else the full measurement.
  * scratch: 2 OBC_TABLE_SIZE(S) doubles (hausdorff: the sample tables of O
  * and of A).  S >= 2.  *ops: the work done is added (OBC_OPS_*). */
 OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
-                        int S, OBC_G double *scratch, double *err, double *t, long *ops)
+                        int S, double stop_in, OBC_G double *scratch, double *err, double *t, long *ops)
 {
     const int kind = obc_scan_kind(metric);
+    const double stop = obc_stop_of(stop_in);
     if (kind >= 0) {
-        obc_sample_refine(kind, hb, nb, ha, na, d, S, scratch, scratch, ops, err, t);
+        obc_sample_refine(kind, hb, nb, ha, na, d, S, scratch, scratch, ops, stop, err, t);
         return;
     }
     if (metric != OBC_HAUSDORFF) {
@@ -1225,10 +1246,11 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
     OBC_G double *O = scratch, *A = scratch + OBC_TABLE_SIZE(S);
     obc_fill_table(hb, nb, d, S, O, ops);
     obc_fill_table(ha, na, 0.0, S, A, ops);
-    double e1, t1, e2, t2;
-    obc_h_side_approx(hb, nb, ha, na, d, S, O, A, ops, &e1, &t1);
-    obc_h_side_offset(hb, nb, ha, na, d, S, A, O, ops, &e2, &t2);
-    obc_h_pick(e1, t1, e2, t2, err, t);
+    double e1, t1, e2 = -1.0, t2 = 0.0;
+    obc_h_side_approx(hb, nb, ha, na, d, S, O, A, ops, stop, &e1, &t1);
+    if (!(e1 > stop))
+        obc_h_side_offset(hb, nb, ha, na, d, S, A, O, ops, stop, &e2, &t2);
+    obc_h_pick(e1, t1, e2, t2, stop, err, t);
 }
 
 #endif

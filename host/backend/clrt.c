@@ -160,10 +160,10 @@ struct ob_cl {
     double build_s;
     /* batch buffers, grown on demand */
     size_t cap_rec, cap_ctrl, cap_scr;
-    cl_mem metric, d, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
+    cl_mem metric, d, stop, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
     /* host staging */
     int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff;
-    double *h_d, *h_ctrl, *h_err, *h_tpar, *h_work;
+    double *h_d, *h_stop, *h_ctrl, *h_err, *h_tpar, *h_work;
 };
 
 int ob_cl_compiled(void) { return 1; }
@@ -296,7 +296,7 @@ static void warm_up(ob_cl *c)
     ob_bez_from_points(&approx, 1, shifted);
     const ob_metric mets[2] = {OB_METRIC_RADIAL, OB_METRIC_HAUSDORFF};
     for (int i = 0; i < 2; i++) {
-        ob_measure_rec r = {&base, &approx, 0.1, mets[i]};
+        ob_measure_rec r = {&base, &approx, 0.1, mets[i], 0.0};
         ob_errval out;
         ob_cl_measure_batch(c, &r, 1, OB_MIN_SAMPLES, &out);
     }
@@ -412,7 +412,7 @@ fail:
 
 static void release_buffers(ob_cl *c)
 {
-    cl_mem *bufs[] = {&c->metric, &c->d, &c->bdeg, &c->boff, &c->adeg, &c->aoff,
+    cl_mem *bufs[] = {&c->metric, &c->d, &c->stop, &c->bdeg, &c->boff, &c->adeg, &c->aoff,
                       &c->ctrl, &c->soff, &c->scratch, &c->err, &c->tpar, &c->work};
     for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++)
         if (*bufs[i]) {
@@ -443,6 +443,7 @@ void ob_cl_close(ob_cl *c)
     free(c->h_aoff);
     free(c->h_soff);
     free(c->h_d);
+    free(c->h_stop);
     free(c->h_ctrl);
     free(c->h_err);
     free(c->h_tpar);
@@ -477,6 +478,7 @@ static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, ob_
         GROW(aoff, h_aoff, int, n, CL_MEM_READ_ONLY);
         GROW(soff, h_soff, int, n, CL_MEM_READ_ONLY);
         GROW(d, h_d, double, n, CL_MEM_READ_ONLY);
+        GROW(stop, h_stop, double, n, CL_MEM_READ_ONLY);
         GROW(err, h_err, double, n, CL_MEM_WRITE_ONLY);
         GROW(tpar, h_tpar, double, n, CL_MEM_WRITE_ONLY);
         GROW(work, h_work, double, n, CL_MEM_WRITE_ONLY);
@@ -555,6 +557,7 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
         const ob_bez *b = recs[i].base, *a = recs[i].approx;
         c->h_metric[i] = (int)recs[i].metric;
         c->h_d[i] = recs[i].d;
+        c->h_stop[i] = recs[i].stop;
         c->h_bdeg[i] = b->deg;
         c->h_boff[i] = (int)pc;
         memcpy(c->h_ctrl + pc, &b->h[0][0], 3 * (size_t)(b->deg + 1) * sizeof(double));
@@ -569,13 +572,14 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     const size_t ni = (size_t)n * sizeof(int), nd = (size_t)n * sizeof(double);
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->metric, CL_FALSE, 0, ni, c->h_metric, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->d, CL_FALSE, 0, nd, c->h_d, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->stop, CL_FALSE, 0, nd, c->h_stop, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->bdeg, CL_FALSE, 0, ni, c->h_bdeg, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->boff, CL_FALSE, 0, ni, c->h_boff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->adeg, CL_FALSE, 0, ni, c->h_adeg, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->aoff, CL_FALSE, 0, ni, c->h_aoff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->soff, CL_FALSE, 0, ni, c->h_soff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->ctrl, CL_FALSE, 0, pc * sizeof(double), c->h_ctrl, 0, NULL, NULL));
-    cl_mem args[] = {c->metric, c->d, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->scratch, c->err, c->tpar,
+    cl_mem args[] = {c->metric, c->d, c->stop, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->scratch, c->err, c->tpar,
                      c->work};
     cl_kernel k = c->layout == OB_CL_GROUPS ? c->kg : c->k;
     CL_CHECK(cl.clSetKernelArg(k, 0, sizeof(int), &n));

@@ -113,11 +113,14 @@ typedef struct {
     const ob_bez *approx;
     double d;
     ob_metric metric;   /* radial, normal or hausdorff (bound is always on the CPU) */
+    double stop;        /* > 0: only whether the error exceeds stop matters where
+                           it does (ob_measure_until); 0: the full measurement */
 } ob_measure_rec;
 
 /* A backend that measures a whole batch at once (the OpenCL kernel): fills
- * out[0..n-1] exactly as ob_measure would.  Returns 0, or -1 if it could not,
- * and then the driver measures that batch on the CPU instead. */
+ * out[0..n-1] exactly as ob_measure_until would (each record's stop).
+ * Returns 0, or -1 if it could not, and then the driver measures that batch
+ * on the CPU instead. */
 typedef int (*ob_batch_fn)(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
 
 /* One accepted piece of a job: base parameters [a, b] of base segment seg. */

@@ -54,6 +54,17 @@ int ob_clamp_samples(int samples)
     return samples < OB_MIN_SAMPLES ? OB_MIN_SAMPLES : samples > OB_MAX_SAMPLES ? OB_MAX_SAMPLES : samples;
 }
 
+int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
+                     int samples, double stop, ob_errval *out)
+{
+    if (stop > 0.0 && (m == OB_METRIC_RADIAL || m == OB_METRIC_NORMAL || m == OB_METRIC_HAUSDORFF ||
+                       m == OB_METRIC_PARAM)) {
+        out->work = 0.0;
+        return ob_metric_sampled(m, base, approx, d, samples, stop, out);
+    }
+    return ob_measure(m, base, approx, d, samples, out);
+}
+
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out)
 {

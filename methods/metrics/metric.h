@@ -72,6 +72,18 @@ typedef struct {
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out);
 
+/* Purpose: ob_measure for a caller that only needs to know whether the
+ *          error exceeds stop where it does (a piece failing its level in a
+ *          greedy search).
+ * Inputs:  stop > 0 (else, and under bound, this is ob_measure).
+ * Outputs: where the full error is <= stop, exactly ob_measure's result, bit
+ *          for bit; where it is above, possibly the error of the first sample
+ *          (in scan order) that exceeds stop, and its parameter: a value
+ *          above stop and at most the full error.  out->work: what was done.
+ * Returns: as ob_measure. */
+int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
+                     int samples, double stop, ob_errval *out);
+
 /* The sample count actually used: S clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES]. */
 int ob_clamp_samples(int samples);
 
@@ -85,5 +97,9 @@ int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, 
 int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_param(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+/* A sampled metric m (radial, normal, hausdorff, param) under a stop, as
+ * ob_measure_until. */
+int ob_metric_sampled(ob_metric m, const ob_bez *base, const ob_bez *approx, double d, int S, double stop,
+                      ob_errval *out);
 
 #endif

@@ -19,7 +19,8 @@ size_t ob_metric_scratch(int S) { return 2 * (size_t)OBC_TABLE_SIZE(ob_clamp_sam
  * the stack up to the default S, on the heap past it (at most 0.5 MiB). */
 enum { STACK_SAMPLES = 512 };
 
-static int measure_core(int code, const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
+static int measure_core(int code, const ob_bez *base, const ob_bez *approx, double d, int S, double stop,
+                        ob_errval *out)
 {
     double local[2 * OBC_TABLE_SIZE(STACK_SAMPLES)];
     S = ob_clamp_samples(S);
@@ -30,7 +31,7 @@ static int measure_core(int code, const ob_bez *base, const ob_bez *approx, doub
         return -1;
     }
     long ops = 0;
-    obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, S, scratch, &out->err,
+    obc_measure(code, &base->h[0][0], base->deg, &approx->h[0][0], approx->deg, d, S, stop, scratch, &out->err,
                 &out->t, &ops);
     out->work = (double)ops;
     if (scratch != local)
@@ -38,22 +39,28 @@ static int measure_core(int code, const ob_bez *base, const ob_bez *approx, doub
     return 0;
 }
 
+int ob_metric_sampled(ob_metric m, const ob_bez *base, const ob_bez *approx, double d, int S, double stop,
+                      ob_errval *out)
+{
+    return measure_core((int)m, base, approx, d, S, stop, out);
+}
+
 int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
-    return measure_core(OBC_RADIAL, base, approx, d, S, out);
+    return measure_core(OBC_RADIAL, base, approx, d, S, 0.0, out);
 }
 
 int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
-    return measure_core(OBC_NORMAL, base, approx, d, S, out);
+    return measure_core(OBC_NORMAL, base, approx, d, S, 0.0, out);
 }
 
 int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
-    return measure_core(OBC_HAUSDORFF, base, approx, d, S, out);
+    return measure_core(OBC_HAUSDORFF, base, approx, d, S, 0.0, out);
 }
 
 int ob_metric_param(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
 {
-    return measure_core(OBC_PARAM, base, approx, d, S, out);
+    return measure_core(OBC_PARAM, base, approx, d, S, 0.0, out);
 }

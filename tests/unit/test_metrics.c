@@ -702,9 +702,55 @@ static void test_normal_nearest_crossing(void)
           worst);
 }
 
+/* ob_measure_until: where the full error is <= stop the result is the full
+ * one bit for bit (error and parameter); where it is above, the result lies
+ * in (stop, full], and the early end happens (less work) for stops well
+ * under the error.  Every sampled metric, rough approximations of degrees 3
+ * and 5, stops from a third of the error to twice it; a stop of 0 is the
+ * full measurement; bound ignores the stop. */
+static void test_measure_until(void)
+{
+    const ob_metric mets[4] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF, OB_METRIC_PARAM};
+    const double frac[7] = {0.0, 0.3, 0.9, 0.999999, 1.0, 1.000001, 2.0};
+    int same = 0, nsame = 0, inside = 0, ninside = 0, early = 0, nlow = 0;
+    for (int c = 0; c < 40; c++) {
+        double d;
+        ob_bez base = random_base(c % 4 == 3, &d), a = rough_offset(&base, d, c % 2 ? 5 : 3, 2e-3, c % 5 == 4);
+        for (int m = 0; m < 4; m++) {
+            ob_errval full, u;
+            ob_measure(mets[m], &base, &a, d, 128, &full);
+            for (int f = 0; f < 7; f++) {
+                const double stop = frac[f] * full.err;
+                ob_measure_until(mets[m], &base, &a, d, 128, stop, &u);
+                if (!(stop > 0.0) || full.err <= stop) {
+                    nsame++;
+                    same += memcmp(&u.err, &full.err, sizeof u.err) == 0 && memcmp(&u.t, &full.t, sizeof u.t) == 0 &&
+                            u.work == full.work;
+                } else {
+                    ninside++;
+                    inside += u.err > stop && u.err <= full.err && u.work <= full.work;
+                    if (frac[f] <= 0.3) {
+                        nlow++;
+                        early += u.work < full.work;
+                    }
+                }
+            }
+        }
+        ob_errval b1, b2;
+        ob_measure(OB_METRIC_BOUND, &base, &a, d, 128, &b1);
+        ob_measure_until(OB_METRIC_BOUND, &base, &a, d, 128, 0.3 * b1.err, &b2);
+        same += memcmp(&b1.err, &b2.err, sizeof b1.err) == 0;
+        nsame++;
+    }
+    CHECK(same == nsame, "measure_until: %d of %d at or under stop are the full result bit for bit", same, nsame);
+    CHECK(inside == ninside && ninside > 0, "measure_until: %d of %d above stop in (stop, full]", inside, ninside);
+    CHECK(early == nlow && nlow > 0, "measure_until: %d of %d at a third of the error end early", early, nlow);
+}
+
 int main(void)
 {
     testlib_seed(0x2545F4914F6CDD1DULL);
+    test_measure_until();
     test_normal_nearest_crossing();
     test_straight();
     test_circle();

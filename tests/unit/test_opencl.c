@@ -5,8 +5,9 @@
  * and rational, approximations from every registered method, both signs of d,
  * the four sampled metrics) are measured by the kernel in one batch and by the
  * CPU path one by one, under both layouts of the kernel (a work-group per
- * record, a work-item per record) and at several sample counts: error,
- * parameter of the maximum and counted work must agree bit for bit.
+ * record, a work-item per record), at several sample counts and under
+ * stops (ob_measure_until): error, parameter of the maximum and counted
+ * work must agree bit for bit.
  * Without an OpenCL platform every check here is skipped (and counted so).
  */
 #include <math.h>
@@ -61,7 +62,7 @@ static int build_records(void)
             /* the first piece against its part of the base */
             ob_bez_subsegment(&base[n], fit->t[0], fit->t[1], &base[n]);
             approx[n] = fit->seg[0];
-            recs[n] = (ob_measure_rec){&base[n], &approx[n], d, mets[n % 3]};
+            recs[n] = (ob_measure_rec){&base[n], &approx[n], d, mets[n % 3], 0.0};
             n++;
         }
         free(work);
@@ -146,6 +147,26 @@ int main(void)
         CHECK(same_bits(prec, cpu, gpu, n, ln) == n, "%s: param bit for bit", ln);
         CHECK(finite > n / 2, "param: %d positive finite errors", finite);
 
+        /* under stops (from a third of each record's error to twice it,
+         * and none), every metric: ob_measure_until's bits, work included,
+         * with some records ending early */
+        static ob_measure_rec srec[NREC];
+        const double frac[5] = {0.0, 0.3, 0.999, 1.0, 2.0};
+        const ob_metric four[4] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF, OB_METRIC_PARAM};
+        int early = 0;
+        for (int i = 0; i < n; i++) {
+            ob_errval full;
+            srec[i] = recs[i];
+            srec[i].metric = four[i % 4];
+            ob_measure(srec[i].metric, srec[i].base, srec[i].approx, srec[i].d, S, &full);
+            srec[i].stop = frac[(i / 4) % 5] * full.err;
+            ob_measure_until(srec[i].metric, srec[i].base, srec[i].approx, srec[i].d, S, srec[i].stop, &cpu[i]);
+            early += cpu[i].work < full.work;
+        }
+        CHECK(ob_cl_measure_batch(cl, srec, n, S, gpu) == 0, "%s: launch with stops", ln);
+        CHECK(same_bits(srec, cpu, gpu, n, ln) == n, "%s: stops: every record bit for bit", ln);
+        CHECK(early > n / 10, "%s: stops: %d records end early", ln, early);
+
         /* a NaN control point measures as +inf on both, under every metric,
          * with the same parameter and the same work (the scan stops at the
          * first bad sample) */
@@ -155,7 +176,7 @@ int main(void)
         for (int k = 0; k < 4; k++) {
             bad[k] = approx[2 + k];
             bad[k].h[1][0] = NAN;
-            r[k] = (ob_measure_rec){recs[2 + k].base, &bad[k], recs[2 + k].d, all[k]};
+            r[k] = (ob_measure_rec){recs[2 + k].base, &bad[k], recs[2 + k].d, all[k], 0.0};
         }
         ob_errval e1[4], e2[4];
         CHECK(ob_cl_measure_batch(cl, r, 4, S, e1) == 0, "%s: NaN records launch", ln);
