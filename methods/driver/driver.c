@@ -462,8 +462,8 @@ static void batch_free(batch *b)
 }
 
 /* Measure all pieces of all fitted items of a chunk: one batch. */
-static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, itemres *res,
-                          double *eval_ns, int samples, const ob_driver_hooks *h, batch *B)
+static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                          itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B)
 {
     int n = 0;
     for (long i = 0; i < cnt; i++) {
@@ -484,7 +484,7 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
         for (int p = 0; p < fits[i].n; p++) {
             const int r = B->first[i] + p;
             ob_bez_subsegment(&sub, fits[i].t[p], fits[i].t[p + 1], &B->base[r]);
-            B->rec[r] = (ob_measure_rec){&B->base[r], &fits[i].seg[p], j->d, j->metric};
+            B->rec[r] = (ob_measure_rec){&B->base[r], &fits[i].seg[p], j->d, j->metric, stop[i]};
         }
     }
     /* sampled records to the backend in one call, the rest on the CPU */
@@ -519,7 +519,8 @@ static void measure_chunk(const ob_job *jobs, const item *its, long cnt, const o
         if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
             continue;
         const double t0 = thread_ns();
-        if (ob_measure(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, samples, &B->out[r]))
+        if (ob_measure_until(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, samples,
+                             B->rec[r].stop, &B->out[r]))
             B->out[r].err = NAN;  /* cannot be measured: reported below */
         B->ns[r] = thread_ns() - t0;
     }
@@ -1020,6 +1021,40 @@ static void chunk_reps(const item *its, long cnt, const jstate *js, int *rep)
     }
 }
 
+/* Purpose: the stop of one item's measurement (ob_measure_rec.stop).
+ * Returns: its error level where only whether the error exceeds it
+ *          matters: a greedy or optimal probe that fails only narrows the
+ *          bracket on its end (decide_greedy, decide_optimal), unless it
+ *          would end the search with not even a sliver passing (its error
+ *          is then reported); else 0, the full measurement: for mid and
+ *          maxerr (a failing piece's error drives the stall rule and the
+ *          split point), final pieces and that sliver. */
+static double item_stop(const ob_job *j, const item *it, int full_probes)
+{
+    if (full_probes || it->final || (j->split != OB_SPLIT_GREEDY && j->split != OB_SPLIT_OPTIMAL))
+        return 0.0;
+    if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
+        return it->level;
+    /* decide_greedy's test of the bracket after a failing probe */
+    const int sliver = !(it->lo > it->a) && it->b - it->lo <= GREEDY_EPS * (it->end - it->a);
+    return sliver ? 0.0 : j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol;
+}
+
+/* stop[i] for the items that measure (rep[i] == i): the largest of the
+ * stops of the items taking that fit, 0 when any needs it in full. */
+static void chunk_stops(const ob_job *jobs, const item *its, long cnt, const int *rep, int full_probes,
+                        double *stop)
+{
+    for (long i = 0; i < cnt; i++) {
+        const double s = item_stop(&jobs[its[i].job], &its[i], full_probes);
+        const long r = rep[i];
+        if (r == i)
+            stop[i] = s;
+        else if (stop[r] > 0.0)
+            stop[r] = s > 0.0 ? fmax(stop[r], s) : 0.0;
+    }
+}
+
 /* Items that take another's fit get its results (and are charged its cost). */
 static void copy_shared(long cnt, const int *rep, itemres *res, fitjoints *fj, double *fit_ns, double *eval_ns)
 {
@@ -1047,6 +1082,7 @@ typedef struct {
     ob_fit *fits;       /* chunk entries each, from here to rep */
     itemres *res;
     double *fit_ns, *eval_ns;
+    double *stop;       /* each measuring item's stop (chunk_stops) */
     fitjoints *fj;
     int *rep;
     int *grp;           /* njobs: each job's share group */
@@ -1067,11 +1103,13 @@ static int drun_alloc(drun *R)
     R->res = malloc(nc * sizeof *R->res);
     R->fit_ns = malloc(nc * sizeof *R->fit_ns);
     R->eval_ns = malloc(nc * sizeof *R->eval_ns);
+    R->stop = malloc(nc * sizeof *R->stop);
     R->fj = malloc(nc * sizeof *R->fj);
     R->rep = malloc(nc * sizeof *R->rep);
     R->grp = share_groups(R->jobs, R->njobs);
     const int bad = batch_alloc(&R->B, R->o.chunk);
-    return !bad && R->js && R->work && R->fits && R->res && R->fit_ns && R->eval_ns && R->fj && R->rep && R->grp
+    return !bad && R->js && R->work && R->fits && R->res && R->fit_ns && R->eval_ns && R->stop && R->fj && R->rep &&
+                   R->grp
                ? 0 : -1;
 }
 
@@ -1085,6 +1123,7 @@ static void drun_free(drun *R)
     free(R->res);
     free(R->fit_ns);
     free(R->eval_ns);
+    free(R->stop);
     batch_free(&R->B);
     free(R->fj);
     free(R->grp);
@@ -1193,7 +1232,8 @@ static int run_chunk(drun *R, const item *its, long cnt)
     chunk_reps(its, cnt, R->js, R->rep);
     fit_chunk(R, its, cnt);
     joints_chunk(R->js, its, cnt, R->fits, R->res, R->fj);  /* the ends and inner joints (joints.h) */
-    measure_chunk(R->jobs, its, cnt, R->fits, R->res, R->eval_ns, R->o.samples, &R->h, &R->B);
+    chunk_stops(R->jobs, its, cnt, R->rep, R->o.full_probes, R->stop);
+    measure_chunk(R->jobs, its, cnt, R->fits, R->stop, R->res, R->eval_ns, R->o.samples, &R->h, &R->B);
     copy_shared(cnt, R->rep, R->res, R->fj, R->fit_ns, R->eval_ns);
     for (long i = 0; i < cnt; i++) {
         const int job = its[i].job;

@@ -145,6 +145,12 @@ typedef struct {
     int max_segments;   /* per job */
     int inflections;    /* 1: split at inflections first (forced for OB_CAP_CONVEX) */
     int chunk;          /* pieces per fit/measure batch (bounds memory) */
+    /* 1: measure every probe of the greedy and optimal searches in full.  By
+     * default a probe whose error exceeds its level is measured only until a
+     * sample shows that (ob_measure_until): the results are the same, bit for
+     * bit, only the measuring time (eval_ns) differs; tests and bench set it
+     * to show both */
+    int full_probes;
     /* > 0: a job whose thread time (fit_ns + eval_ns) passes this ends with
      * status timeout.  The driver works level by level over all jobs, so a
      * job's own clock is the time spent on it, not the run's wall time; a

@@ -409,6 +409,72 @@ static void test_determinism(void)
     ob_curve_free(&c[1]);
 }
 
+/* 1 when two runs of the same job gave the same outputs, bit for bit (all
+ * but the times). */
+static int same_outputs(const ob_job *a, const ob_job *b)
+{
+    return a->status == b->status && a->ctrl_points == b->ctrl_points && a->segments == b->segments &&
+           a->out_degree == b->out_degree && memcmp(&a->max_err, &b->max_err, sizeof a->max_err) == 0 &&
+           strcmp(a->message, b->message) == 0 && memcmp(&a->max_gap, &b->max_gap, sizeof a->max_gap) == 0 &&
+           memcmp(&a->max_kink, &b->max_kink, sizeof a->max_kink) == 0 && a->continuity == b->continuity &&
+           a->open_joints == b->open_joints;
+}
+
+/* Greedy and optimal probes measured only until they are known to fail
+ * (the default) give the results of probes measured in full
+ * (full_probes), for every registered method under greedy, for ahn and
+ * cubic-opt under optimal (ten times greedy's fits), under hausdorff and normal,
+ * with two tolerances per job group (their pieces are shared; the job at
+ * the smaller one measures them, and must stop at the larger level), on
+ * both sides of ex1 (d = 1 has offset cusps). */
+static void test_probe_stops(void)
+{
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
+    enum { NJ = 2 * 2 * 2 * 64 };
+    static ob_job ref[NJ], got[NJ];
+    int n = 0;
+    for (int sign = -1; sign <= 1; sign += 2)
+        for (int split = OB_SPLIT_GREEDY; split <= OB_SPLIT_OPTIMAL; split++)
+            for (int mi = 0; mi < ob_method_count(); mi++) {
+                const ob_method *m = ob_methods[mi];
+                const int in = split == OB_SPLIT_GREEDY || strcmp(m->name, "cubic-opt") == 0 ||
+                               strcmp(m->name, "ahn") == 0;
+                for (int metric = 0; in && metric < 2 && n + 2 <= NJ; metric++)
+                    for (int t = 0; t < 2; t++) {
+                        ob_job *j = &ref[n++];
+                        memset(j, 0, sizeof *j);
+                        j->curve = &c;
+                        j->d = sign;
+                        j->method = m;
+                        j->metric = metric ? OB_METRIC_NORMAL : OB_METRIC_HAUSDORFF;
+                        j->split = (ob_split)split;
+                        j->tol = t ? 1e-2 : 1e-3; /* the smaller first: it measures the shared pieces */
+                    }
+            }
+    memcpy(got, ref, sizeof ref);
+    ob_driver_opts o = fast_opts();
+    o.full_probes = 1;
+    ob_driver_run(ref, (size_t)n, &o, NULL);
+    o.full_probes = 0;
+    ob_driver_run(got, (size_t)n, &o, NULL);
+    int same = 0;
+    double full_ns = 0.0, stop_ns = 0.0;
+    for (int i = 0; i < n; i++) {
+        const int eq = same_outputs(&ref[i], &got[i]);
+        same += eq;
+        full_ns += ref[i].eval_ns;
+        stop_ns += got[i].eval_ns;
+        if (!eq)
+            fprintf(stderr, "%s %s %s d %g tol %g: full %s %ld %a \"%s\", stopped %s %ld %a \"%s\"\n",
+                    ref[i].method->name, ob_split_name(ref[i].split), ob_metric_name(ref[i].metric), ref[i].d,
+                    ref[i].tol, ob_status_name(ref[i].status), ref[i].ctrl_points, ref[i].max_err, ref[i].message,
+                    ob_status_name(got[i].status), got[i].ctrl_points, got[i].max_err, got[i].message);
+    }
+    CHECK(n > 2 * ob_method_count() && same == n, "probe stops: %d of %d jobs as with probes in full", same, n);
+    fprintf(stderr, "probe stops: measuring %.3g s in full, %.3g s with stops\n", full_ns * 1e-9, stop_ns * 1e-9);
+    ob_curve_free(&c);
+}
+
 /* The span log: the accepted pieces tile [0, 1] of the base, and refitting
  * them with the method reproduces the job's segment and control-point counts
  * (what draw and trace rely on). */
@@ -509,5 +575,6 @@ int main(void)
     test_retry_and_counts();
     test_retry_chains();
     test_determinism();
+    test_probe_stops();
     return check_done();
 }
