@@ -30,6 +30,10 @@
  *   fit_per_job/M,   per method of that run (CPU): the median over its jobs
  *   eval_per_job/M   of the fit time (its own thread CPU time) and of the
  *                    measuring time, seconds (rate: jobs/s of that work)
+ *   greedy_run       the greedy rule on that set (all methods, 3 tolerances,
+ *                    CPU): jobs per second with the probes that stop once they
+ *                    fail (the default), and as greedy_run/full_probes with
+ *                    every probe measured in full (the same results)
  */
 #include <errno.h>
 #include <math.h>
@@ -197,7 +201,7 @@ static void make_batch(int n, ob_bez *base, ob_bez *approx, ob_measure_rec *recs
         char msg[64];
         cobb->fit(&base[i], &args, NULL, &fit, msg, sizeof msg);
         approx[i] = fit.seg[0];
-        recs[i] = (ob_measure_rec){&base[i], &approx[i], args.d, metric};
+        recs[i] = (ob_measure_rec){&base[i], &approx[i], args.d, metric, 0.0};
     }
 }
 
@@ -210,16 +214,18 @@ static void cpu_batch(const ob_measure_rec *recs, int n, int S, ob_errval *out, 
 
 /* ---- whole runs --------------------------------------------------------- */
 
-/* Every method at 5 tolerances on the curves of set, hausdorff, mid split.
- * keep: NULL, or where the jobs go (with their timings; the caller frees). */
-static double random_run(const ob_curveset *set, const ob_driver_opts *o, const ob_driver_hooks *h, size_t *njobs,
-                         ob_job **keep)
+static const double five_tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
+
+/* Every method at the ntol tolerances tols on the curves of set, hausdorff,
+ * the split rule split.  keep: NULL, or where the jobs go (with their
+ * timings; the caller frees).  Returns the wall time, seconds. */
+static double random_run(const ob_curveset *set, ob_split split, const double *tols, int ntol,
+                         const ob_driver_opts *o, const ob_driver_hooks *h, size_t *njobs, ob_job **keep)
 {
-    static const double tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
     const int nm = ob_method_count();
     size_t n = 0;
     for (int c = 0; c < set->n; c++)
-        n += (size_t)set->v[c].nd * nm * 5;
+        n += (size_t)set->v[c].nd * nm * ntol;
     ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
     if (!jobs)
         return -1.0;
@@ -227,13 +233,13 @@ static double random_run(const ob_curveset *set, const ob_driver_opts *o, const 
     for (int c = 0; c < set->n; c++)
         for (int di = 0; di < set->v[c].nd; di++)
             for (int m = 0; m < nm; m++)
-                for (int t = 0; t < 5; t++) {
+                for (int t = 0; t < ntol; t++) {
                     ob_job *j = &jobs[k++];
                     j->curve = &set->v[c];
                     j->d = set->v[c].d[di];
                     j->method = ob_methods[m];
                     j->metric = OB_METRIC_HAUSDORFF;
-                    j->split = OB_SPLIT_MID;
+                    j->split = split;
                     j->tol = tols[t];
                 }
     double t0 = now_s();
@@ -488,8 +494,28 @@ static void bench_whole_runs(bench_out *b, ob_cl *cl, int N)
 
 }
 
+/* The greedy rule on the random set (all methods, 1e-2 ... 1e-4, CPU) with
+ * every probe measured in full and with probes that stop once they fail
+ * (the default; the same results): jobs per second of each. */
+static void bench_probe_stops(bench_out *b, const ob_curveset *set, int N)
+{
+    static const double tols[] = {1e-2, 1e-3, 1e-4};
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    size_t nj = 0;
+    o.full_probes = 1;
+    const double full = random_run(set, OB_SPLIT_GREEDY, tols, 3, &o, NULL, &nj, NULL);
+    row(b, "greedy_run/full_probes", "cpu", N, (double)nj, full, "jobs/s");
+    o.full_probes = 0;
+    const double stop = random_run(set, OB_SPLIT_GREEDY, tols, 3, &o, NULL, &nj, NULL);
+    row(b, "greedy_run", "cpu", N, (double)nj, stop, "jobs/s");
+    printf("greedy run (all methods, 3 tolerances: %zu jobs): %.0f jobs/s with every probe measured in full, %.0f "
+           "with probes that stop once they fail (x%.2f)\n", nj, nj / full, nj / stop, full / stop);
+}
+
 /* All methods at 5 tolerances on a fixed random set, on the CPU and with
- * OpenCL (cl, or NULL); then each method's median times per job. */
+ * OpenCL (cl, or NULL); then each method's median times per job; then the
+ * greedy rule with and without probe stops. */
 static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
 {
     ob_err cerr;
@@ -500,13 +526,13 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         omp_set_num_threads(N);
         size_t nj = 0;
         ob_job *kept = NULL;
-        double c = random_run(&rset, &o, NULL, &nj, &kept);
+        double c = random_run(&rset, OB_SPLIT_MID, five_tols, 5, &o, NULL, &nj, &kept);
         row(b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
         printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
                rset.n, ob_method_count(), nj, nj / c);
         if (cl) {
             const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
-            double g = random_run(&rset, &o, &clh, &nj, NULL);
+            double g = random_run(&rset, OB_SPLIT_MID, five_tols, 5, &o, &clh, &nj, NULL);
             row(b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
             printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);
         }
@@ -514,6 +540,7 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         if (kept)
             per_method_times(b, kept, nj, N);
         free(kept);
+        bench_probe_stops(b, &rset, N);
     }
     ob_curveset_free(&rset);
 }
