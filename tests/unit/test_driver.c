@@ -210,7 +210,12 @@ static ob_fit_status nan_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_
     out->seg[0].h[1][0] = NAN;
     return OB_FIT_OK;
 }
-static int same_degree(int n, int r) { (void)r; return n; }
+static int same_degree(int n, int r, const double *par)
+{
+    (void)r;
+    (void)par;
+    return n;
+}
 
 static void test_failures_are_contained(void)
 {
