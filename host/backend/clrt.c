@@ -579,8 +579,8 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->aoff, CL_FALSE, 0, ni, c->h_aoff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->soff, CL_FALSE, 0, ni, c->h_soff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->ctrl, CL_FALSE, 0, pc * sizeof(double), c->h_ctrl, 0, NULL, NULL));
-    cl_mem args[] = {c->metric, c->d, c->stop, c->bdeg, c->boff, c->adeg, c->aoff, c->ctrl, c->soff, c->scratch, c->err, c->tpar,
-                     c->work};
+    cl_mem args[] = {c->metric, c->d,    c->stop,    c->bdeg, c->boff, c->adeg, c->aoff,
+                     c->ctrl,   c->soff, c->scratch, c->err,  c->tpar, c->work};
     cl_kernel k = c->layout == OB_CL_GROUPS ? c->kg : c->k;
     CL_CHECK(cl.clSetKernelArg(k, 0, sizeof(int), &n));
     CL_CHECK(cl.clSetKernelArg(k, 1, sizeof(int), &S));

@@ -38,7 +38,8 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     snprintf(b->layout, sizeof b->layout, "%s", ob_cl_layout_name(ob_cl_get_layout(*cl)));
     b->group_size = ob_cl_get_layout(*cl) == OB_CL_GROUPS ? ob_cl_group_size(*cl) : 1;
     ob_info("OpenCL %s / %s, kernels from %s built in %.2f s, layout %s (%d work-item%s per record)",
-            b->platform, b->device, b->kernels, b->build_seconds, b->layout, b->group_size, b->group_size == 1 ? "" : "s");
+            b->platform, b->device, b->kernels, b->build_seconds, b->layout, b->group_size,
+            b->group_size == 1 ? "" : "s");
     return 0;
 }
 

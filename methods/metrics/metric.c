@@ -54,30 +54,26 @@ int ob_clamp_samples(int samples)
     return samples < OB_MIN_SAMPLES ? OB_MIN_SAMPLES : samples > OB_MAX_SAMPLES ? OB_MAX_SAMPLES : samples;
 }
 
+/* The one dispatcher: ob_measure is this with no stop. */
 int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                      int samples, double stop, ob_errval *out)
-{
-    if (stop > 0.0 && (m == OB_METRIC_RADIAL || m == OB_METRIC_NORMAL || m == OB_METRIC_HAUSDORFF ||
-                       m == OB_METRIC_PARAM)) {
-        out->work = 0.0;
-        return ob_metric_sampled(m, base, approx, d, samples, stop, out);
-    }
-    return ob_measure(m, base, approx, d, samples, out);
-}
-
-int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
-               int samples, ob_errval *out)
 {
     out->work = 0.0;
     switch (m) {
     case OB_METRIC_BOUND: return ob_metric_bound(base, approx, d, out);
-    case OB_METRIC_RADIAL: return ob_metric_radial(base, approx, d, samples, out);
-    case OB_METRIC_NORMAL: return ob_metric_normal(base, approx, d, samples, out);
-    case OB_METRIC_HAUSDORFF: return ob_metric_hausdorff(base, approx, d, samples, out);
-    case OB_METRIC_PARAM: return ob_metric_param(base, approx, d, samples, out);
+    case OB_METRIC_RADIAL:
+    case OB_METRIC_NORMAL:
+    case OB_METRIC_HAUSDORFF:
+    case OB_METRIC_PARAM: return ob_metric_sampled(m, base, approx, d, samples, stop, out);
     default: break;
     }
     out->err = INFINITY;
     out->t = 0.0;
     return -1;
+}
+
+int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
+               int samples, ob_errval *out)
+{
+    return ob_measure_until(m, base, approx, d, samples, 0.0, out);
 }
