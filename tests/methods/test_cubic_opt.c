@@ -18,7 +18,10 @@
  *     d = 0 (exact);
  *  6. the offset's cusps as breaks: ob_bez_offset_cusps against a reference
  *     bisection, and the driver's greedy pieces of cubic-opt (which asks for
- *     the breaks, OB_CAP_CUSP_BREAKS) end at both cusps of liu2002_ex1, d = 1.
+ *     the breaks, OB_CAP_CUSP_BREAKS) end at both cusps of liu2002_ex1, d = 1;
+ *  7. the fit's own split (split = 1): pieces that meet tol under the
+ *     metric, each (to 2 %) the longest that does, greedy's count through
+ *     the driver's mid rule on liu2002_ex1, a status on degenerate bases.
  * The reference geometry (points, derivatives, curvature) is testlib's, not
  * the library's; errors are measured by dense sampling here or by the
  * library's hausdorff metric (tested on its own in test_metrics).
@@ -39,20 +42,34 @@ enum { MSGLEN = 160 };
 
 static const ob_method *M;
 
-static ob_fit_status fit_with(const ob_bez *base, double d, int refine, ob_fit *f, char *msg)
+/* Parameter vector: the defaults with refine and split set. */
+static void params(double *par, int refine, int split)
 {
-    double par[OB_MAX_PARAMS];
     ob_param_defaults(M, par);
-    const int k = ob_param_find(M, "refine");
+    const int k = ob_param_find(M, "refine"), ks = ob_param_find(M, "split");
+    CHECK(k >= 0 && ks >= 0, "cubic-opt has the parameters refine and split");
     if (k >= 0)
         par[k] = refine;
+    if (ks >= 0)
+        par[ks] = split;
+}
+
+static ob_fit_status fit_full(const ob_bez *base, double d, double tol, int refine, int split, ob_fit *f, char *msg)
+{
+    double par[OB_MAX_PARAMS];
+    params(par, refine, split);
     void *work = malloc(M->work_size);
-    const ob_fit_args a = {d, 1e-3, par};
+    const ob_fit_args a = {d, tol, par};
     msg[0] = '\0';
     memset(f, 0, sizeof *f);
     ob_fit_status st = M->fit(base, &a, work, f, msg, MSGLEN);
     free(work);
     return st;
+}
+
+static ob_fit_status fit_with(const ob_bez *base, double d, int refine, ob_fit *f, char *msg)
+{
+    return fit_full(base, d, 1e-3, refine, 0, f, msg);
 }
 
 static ob_fit_status fit(const ob_bez *base, double d, ob_fit *f, char *msg) { return fit_with(base, d, 1, f, msg); }
@@ -408,6 +425,106 @@ static void test_cusp_breaks(void)
     ob_curve_free(&c);
 }
 
+/* ---- 7. the fit's own split (split = 1) --------------------------------- */
+
+/* Pieces of f: t from 0 to 1, increasing; finite. */
+static int pieces_ordered(const ob_fit *f)
+{
+    int ok = f->n >= 1 && f->t[0] == 0.0 && f->t[f->n] == 1.0 && fit_finite(f);
+    for (int i = 0; i < f->n; i++)
+        ok &= f->t[i + 1] > f->t[i];
+    return ok;
+}
+
+/* The error of a fit of the base's piece [a, b] (split off). */
+static double piece_err(const ob_bez *base, double a, double b, double d)
+{
+    ob_bez sub;
+    ob_fit f;
+    char msg[MSGLEN];
+    ob_bez_subsegment(base, a, b, &sub);
+    return fit_full(&sub, d, 1.0, 1, 0, &f, msg) == OB_FIT_OK ? fit_max_err(OB_METRIC_HAUSDORFF, &sub, &f, d, 1024)
+                                                              : NAN;
+}
+
+/* The driver's count for liu2002_ex1: split rule `split`, parameter split `own`. */
+static long driver_count(double d, double tol, ob_split split, int own, double *max_err)
+{
+    double par[OB_MAX_PARAMS];
+    params(par, 1, own);
+    ob_curve c = fixture_curve("liu2002_ex1", 3, LIU, d);
+    ob_job j;
+    fixture_job(&j, &c, M, OB_METRIC_HAUSDORFF, split, tol);
+    j.params = par;
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    const int rc = ob_driver_run(&j, 1, &o, NULL);
+    ob_curve_free(&c);
+    *max_err = j.max_err;
+    return rc == 0 && j.status == OB_OK ? j.ctrl_points : -1;
+}
+
+/* split = 1 on liu2002_ex1 (one piece between its offset cusps, d = 1):
+ * every piece meets tol under the metric, each piece but a stretch's last
+ * is (to 2 %) the longest that does, and the driver (mid) reaches greedy's
+ * count; degenerate bases end with a status, ordered finite pieces. */
+static void test_own_split(void)
+{
+    const ob_bez liu = make(3, LIU, NULL);
+    CHECK(!ob_method_fit_uses_tol(M, NULL), "split = 0: the fit ignores the tolerance");
+    double par[OB_MAX_PARAMS];
+    params(par, 1, 1);
+    CHECK(ob_method_fit_uses_tol(M, par), "split = 1: the fit reads the tolerance");
+    static const double ds[2] = {-1.0, 1.0}, tols[3] = {1e-3, 1e-4, 1e-5};
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 3; k++) {
+            const double d = ds[i], tol = tols[k];
+            ob_fit f;
+            char msg[MSGLEN];
+            const ob_fit_status st = fit_full(&liu, d, tol, 1, 1, &f, msg);
+            CHECK(st == OB_FIT_OK && pieces_ordered(&f), "own split d %g tol %g: %s (%s), ordered pieces",
+                  d, tol, ob_fit_status_name(st), msg);
+            if (st != OB_FIT_OK)
+                continue;
+            double tc[4];
+            const int nc = ob_bez_offset_cusps(&liu, d, tc, 4);
+            for (int p = 0; p < f.n; p++) {
+                const double a = f.t[p], b = f.t[p + 1], e = piece_err(&liu, a, b, d);
+                CHECK(e <= tol, "own split d %g tol %g: piece [%.6f, %.6f] errs %.4g", d, tol, a, b, e);
+                int stretch_end = b == 1.0;
+                for (int c = 0; c < nc; c++)
+                    stretch_end |= fabs(b - tc[c]) < 1e-12;
+                if (stretch_end)
+                    continue;
+                const double e2 = piece_err(&liu, a, fmin(1.0, b + 0.02 * (b - a)), d);
+                CHECK(e2 > 0.99 * tol, "own split d %g tol %g: piece [%.6f, %.6f] 2 %% longer still errs %.4g",
+                      d, tol, a, b, e2);
+            }
+            double eg, eo;
+            const long ng = driver_count(d, tol, OB_SPLIT_GREEDY, 0, &eg),
+                       no = driver_count(d, tol, OB_SPLIT_MID, 1, &eo);
+            CHECK(no == ng && eo <= tol, "own split d %g tol %g: driver (mid) %ld ctrl points (max_err %.3g), "
+                  "greedy %ld", d, tol, no, eo, ng);
+            printf("own split: d %+g tol %g: %d pieces, driver mid %ld, greedy %ld ctrl points\n", d, tol, f.n,
+                   no, ng);
+        }
+    static const double loop[4][2] = {{0, 0}, {2, 2}, {-2, 2}, {0, 0}};
+    static const double cusp[4][2] = {{0, 0}, {1, 1}, {0, 1}, {1, 0}};
+    static const double flat[4][2] = {{0, 0}, {0, 0}, {1, 1}, {1, 1}};
+    const struct { const char *name; const double (*xy)[2]; double d; } deg[] = {
+        {"closed loop, d = 0", loop, 0.0}, {"closed loop, d = 0.1", loop, 0.1},
+        {"cusp of the base", cusp, 0.1}, {"straight, collapsed handles", flat, 0.3},
+    };
+    for (size_t i = 0; i < sizeof deg / sizeof deg[0]; i++) {
+        const ob_bez C = make(3, deg[i].xy, NULL);
+        ob_fit f;
+        char msg[MSGLEN];
+        const ob_fit_status st = fit_full(&C, deg[i].d, 1e-6, 1, 1, &f, msg);
+        CHECK(st == OB_FIT_OK ? pieces_ordered(&f) : msg[0] != '\0', "own split, %s: %s (%s)", deg[i].name,
+              ob_fit_status_name(st), msg);
+    }
+}
+
 int main(void)
 {
     M = ob_method_find("cubic-opt");
@@ -423,5 +540,6 @@ int main(void)
     test_parameterization();
     test_degenerate();
     test_cusp_breaks();
+    test_own_split();
     return check_done();
 }
