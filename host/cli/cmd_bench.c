@@ -34,6 +34,11 @@
  *                    CPU): jobs per second with the probes that stop once they
  *                    fail (the default), and as greedy_run/full_probes with
  *                    every probe measured in full (the same results)
+ *   own_split        cubic-opt alone on that set at 1e-2 ... 1e-5: the
+ *                    driver's greedy rule (split = 0) against the fit's own
+ *                    split under the mid rule (split = 1): jobs per second,
+ *                    the median fit time per job of each (fit_per_job/
+ *                    cubic-opt/greedy, .../own) and their control points
  */
 #include <errno.h>
 #include <math.h>
@@ -513,9 +518,85 @@ static void bench_probe_stops(bench_out *b, const ob_curveset *set, int N)
            "with probes that stop once they fail (x%.2f)\n", nj, nj / full, nj / stop, full / stop);
 }
 
+/* The median of the fit times of n jobs, seconds (v: n doubles of scratch). */
+static double median_fit(const ob_job *jobs, size_t n, double *v)
+{
+    for (size_t i = 0; i < n; i++)
+        v[i] = jobs[i].fit_ns * 1e-9;
+    qsort(v, n, sizeof *v, cmp_dbl);
+    return n ? v[n / 2] : 0.0;
+}
+
+/* cubic-opt on the random set, 1e-2 ... 1e-5: greedy (the driver's search,
+ * every probe measured) against its own split (split = 1) under mid: the
+ * same jobs, timed in this one run, and their control points compared. */
+static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
+{
+    static const double tols[] = {1e-2, 1e-3, 1e-4, 1e-5};
+    const ob_method *m = ob_method_find("cubic-opt");
+    const int ks = m ? ob_param_find(m, "split") : -1;
+    size_t n = 0;
+    for (int c = 0; c < set->n; c++)
+        n += (size_t)set->v[c].nd * 4;
+    ob_job *jobs = calloc(2 * (n ? n : 1), sizeof *jobs);
+    double *v = malloc((n ? n : 1) * sizeof *v), par[2][OB_MAX_PARAMS];
+    if (ks < 0 || !jobs || !v) {
+        free(jobs);
+        free(v);
+        return;
+    }
+    for (int r = 0; r < 2; r++) {
+        ob_param_defaults(m, par[r]);
+        par[r][ks] = r;
+    }
+    size_t k = 0;
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < set->n; c++)
+            for (int di = 0; di < set->v[c].nd; di++)
+                for (int t = 0; t < 4; t++) {
+                    ob_job *j = &jobs[k++];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = m;
+                    j->params = par[r];
+                    j->metric = OB_METRIC_HAUSDORFF;
+                    j->split = r ? OB_SPLIT_MID : OB_SPLIT_GREEDY;
+                    j->tol = tols[t];
+                }
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    double dt[2];
+    for (int r = 0; r < 2; r++) {
+        const double t0 = now_s();
+        ob_driver_run(jobs + r * n, n, &o, NULL);
+        dt[r] = now_s() - t0;
+    }
+    long cp[2] = {0, 0}, fewer = 0, more = 0, both = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (jobs[i].status != OB_OK || jobs[n + i].status != OB_OK)
+            continue;  /* a failed job's count is 0 */
+        both++;
+        cp[0] += jobs[i].ctrl_points;
+        cp[1] += jobs[n + i].ctrl_points;
+        fewer += jobs[n + i].ctrl_points < jobs[i].ctrl_points;
+        more += jobs[n + i].ctrl_points > jobs[i].ctrl_points;
+    }
+    const double fg = median_fit(jobs, n, v), fo = median_fit(jobs + n, n, v);
+    row(b, "own_split/greedy", "cpu", N, (double)n, dt[0], "jobs/s");
+    row(b, "own_split/own", "cpu", N, (double)n, dt[1], "jobs/s");
+    row(b, "fit_per_job/cubic-opt/greedy", "cpu", N, 1.0, fg, "jobs/s");
+    row(b, "fit_per_job/cubic-opt/own", "cpu", N, 1.0, fo, "jobs/s");
+    printf("cubic-opt's own split (%zu jobs, 1e-2 ... 1e-5): %.0f jobs/s against greedy's %.0f (x%.2f); median "
+           "fit per job %.3g ms against %.3g; on the %ld jobs ok in both, control points %ld against %ld (x%.3f; "
+           "%ld jobs fewer, %ld more)\n", n, n / dt[1], n / dt[0], dt[0] / dt[1], fo * 1e3, fg * 1e3, both, cp[1],
+           cp[0], cp[0] ? (double)cp[1] / cp[0] : 0.0, fewer, more);
+    free(jobs);
+    free(v);
+}
+
 /* All methods at 5 tolerances on a fixed random set, on the CPU and with
  * OpenCL (cl, or NULL); then each method's median times per job; then the
- * greedy rule with and without probe stops. */
+ * greedy rule with and without probe stops; then cubic-opt's own split. */
 static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
 {
     ob_err cerr;
@@ -541,6 +622,7 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
             per_method_times(b, kept, nj, N);
         free(kept);
         bench_probe_stops(b, &rset, N);
+        bench_own_split(b, &rset, N);
     }
     ob_curveset_free(&rset);
 }
