@@ -361,15 +361,37 @@ static int alternants(const co_err *E, int *idx)
     return n;
 }
 
+/* The error at sample j into E (Newton from near's parameter, else from
+ * the previous sample's); 0, or -1 (E->max = +inf) when Newton fails. */
+static int sample_error(const co_cubic *c, const double P[4][2], const co_work *W, int j, double d,
+                        const co_err *near, co_err *E)
+{
+    E->u[j] = near ? near->u[j] : j == 1 ? W->t[1] : E->u[j - 1];
+    if (normal_error(c, P, W->C[j], W->T[j], d, &E->u[j], &E->e[j], &E->ja[j], &E->jb[j])) {
+        E->max = INFINITY;
+        E->nalt = 0;
+        return -1;
+    }
+    E->max = fmax(E->max, fabs(E->e[j]));
+    return 0;
+}
+
 /* Purpose: the error of cubic c at the samples of W, its alternants and
  *          its estimate.
  * Inputs:  near: NULL, or the record of a nearby cubic (its intersection
- *          parameters start Newton).
+ *          parameters start Newton); bound: the record is wanted only when
+ *          its estimate is below this (+inf: always).
+ * Outputs: *E; when the estimate reaches bound, E->max >= bound and the
+ *          rest of E is incomplete (the caller discards it).
  * Method:  normal_error at each sample, from near's parameter or else
- *          continued from the previous intersection; each alternant at the vertex of the parabola
- *          through its sample and the neighbours (the ends count, e = 0),
- *          evaluated there when that is larger. */
-static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, const co_err *near, co_err *E)
+ *          continued from the previous intersection (with near, the samples
+ *          where near's error is within half its estimate go first: each
+ *          sample's result depends on near alone, so the order changes
+ *          nothing but how soon a bound is seen); each alternant at the
+ *          vertex of the parabola through its sample and the neighbours
+ *          (the ends count, e = 0), evaluated there when that is larger. */
+static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, const co_err *near, double bound,
+                        co_err *E)
 {
     double P[4][2];
     cubic_points(c, P);
@@ -378,15 +400,14 @@ static void cubic_error(const co_cubic *c, const co_work *W, int ns, double d, c
     E->u[0] = 0.0;
     E->u[ns + 1] = 1.0;
     E->max = 0.0;
-    for (int j = 1; j <= ns; j++) {
-        E->u[j] = near ? near->u[j] : j == 1 ? W->t[1] : E->u[j - 1];
-        if (normal_error(c, P, W->C[j], W->T[j], d, &E->u[j], &E->e[j], &E->ja[j], &E->jb[j])) {
-            E->max = INFINITY;
-            E->nalt = 0;
-            return;
+    const double first = near ? 0.5 * near->max : INFINITY;
+    for (int pass = near ? 0 : 1; pass < 2; pass++)
+        for (int j = 1; j <= ns; j++) {
+            if (near && (fabs(near->e[j]) >= first) != (pass == 0))
+                continue;
+            if (sample_error(c, P, W, j, d, near, E) || E->max >= bound)
+                return;
         }
-        E->max = fmax(E->max, fabs(E->e[j]));
-    }
     int idx[CO_MAX_SAMPLES];
     E->nalt = alternants(E, idx);
     const double h = 1.0 / (ns + 1);
@@ -508,7 +529,7 @@ static double try_step(co_cubic *c, const co_work *W, int ns, double d, co_err *
     t.b = fmin(AMAX, fmax(AMIN, c->b + db));
     if (t.a == c->a && t.b == c->b)
         return 0.0;
-    cubic_error(&t, W, ns, d, E, trial);
+    cubic_error(&t, W, ns, d, E, E->max, trial);
     if (!(trial->max < E->max))
         return 0.0;
     const double gain = E->max - trial->max;
@@ -674,7 +695,7 @@ static ob_fit_status fit_stretch(const ob_bez *base, double d, int ns, int refin
         for (int k = 0; k < n; k++) {
             c.a = as[k];
             c.b = bs[k];
-            cubic_error(&c, W, ns, d, NULL, E);
+            cubic_error(&c, W, ns, d, NULL, best->max, E);
             if (E->max < best->max) {
                 *best = *E;
                 ba = as[k];
