@@ -91,8 +91,9 @@ static const ob_param cubic_opt_params[CP_COUNT] = {
     {"split", 0,
      "0: one cubic per stretch between offset cusps, the driver's split rule finds the pieces "
      "(default); 1: the fit splits each stretch itself, the longest pieces whose own estimate "
-     "meets the job's tolerance (kurbo's model: one call per piece, the driver measures and "
-     "splits only what the metric rejects; use with --split mid)", 0, 1, 1},
+     "meets the job's tolerance (kurbo's model: the driver measures only the result; under "
+     "--split greedy its first probe, the whole piece, then passes at once, and where the metric "
+     "rejects a result greedy finds the longest prefix the fit can cover)", 0, 1, 1},
 };
 
 /* The error record of a cubic: signed errors at the samples (0 at the

@@ -36,7 +36,7 @@
  *                    every probe measured in full (the same results)
  *   own_split        cubic-opt alone on that set at 1e-2 ... 1e-5: the
  *                    driver's greedy rule (split = 0) against the fit's own
- *                    split under the mid rule (split = 1): jobs per second,
+ *                    split, also under greedy (split = 1): jobs per second,
  *                    the median fit time per job of each (fit_per_job/
  *                    cubic-opt/greedy, .../own) and their control points
  */
@@ -527,8 +527,8 @@ static double median_fit(const ob_job *jobs, size_t n, double *v)
     return n ? v[n / 2] : 0.0;
 }
 
-/* cubic-opt on the random set, 1e-2 ... 1e-5: greedy (the driver's search,
- * every probe measured) against its own split (split = 1) under mid: the
+/* cubic-opt on the random set, 1e-2 ... 1e-5, greedy: the driver's search
+ * (every probe measured) against the fit's own split (split = 1): the
  * same jobs, timed in this one run, and their control points compared. */
 static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
 {
@@ -560,7 +560,7 @@ static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
                     j->method = m;
                     j->params = par[r];
                     j->metric = OB_METRIC_HAUSDORFF;
-                    j->split = r ? OB_SPLIT_MID : OB_SPLIT_GREEDY;
+                    j->split = OB_SPLIT_GREEDY;
                     j->tol = tols[t];
                 }
     ob_driver_opts o;

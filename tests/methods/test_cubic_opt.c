@@ -21,7 +21,8 @@
  *     the breaks, OB_CAP_CUSP_BREAKS) end at both cusps of liu2002_ex1, d = 1;
  *  7. the fit's own split (split = 1): pieces that meet tol under the
  *     metric, each (to 2 %) the longest that does, greedy's count through
- *     the driver's mid rule on liu2002_ex1, a status on degenerate bases.
+ *     the driver's greedy and mid rules on liu2002_ex1, a status on
+ *     degenerate bases.
  * The reference geometry (points, derivatives, curvature) is testlib's, not
  * the library's; errors are measured by dense sampling here or by the
  * library's hausdorff metric (tested on its own in test_metrics).
@@ -466,8 +467,8 @@ static long driver_count(double d, double tol, ob_split split, int own, double *
 
 /* split = 1 on liu2002_ex1 (one piece between its offset cusps, d = 1):
  * every piece meets tol under the metric, each piece but a stretch's last
- * is (to 2 %) the longest that does, and the driver (mid) reaches greedy's
- * count; degenerate bases end with a status, ordered finite pieces. */
+ * is (to 2 %) the longest that does, and the driver (greedy, mid) reaches
+ * greedy's count; degenerate bases end with a status, ordered finite pieces. */
 static void test_own_split(void)
 {
     const ob_bez liu = make(3, LIU, NULL);
@@ -500,13 +501,14 @@ static void test_own_split(void)
                 CHECK(e2 > 0.99 * tol, "own split d %g tol %g: piece [%.6f, %.6f] 2 %% longer still errs %.4g",
                       d, tol, a, b, e2);
             }
-            double eg, eo;
+            double eg, eo, em;
             const long ng = driver_count(d, tol, OB_SPLIT_GREEDY, 0, &eg),
-                       no = driver_count(d, tol, OB_SPLIT_MID, 1, &eo);
-            CHECK(no == ng && eo <= tol, "own split d %g tol %g: driver (mid) %ld ctrl points (max_err %.3g), "
-                  "greedy %ld", d, tol, no, eo, ng);
-            printf("own split: d %+g tol %g: %d pieces, driver mid %ld, greedy %ld ctrl points\n", d, tol, f.n,
-                   no, ng);
+                       no = driver_count(d, tol, OB_SPLIT_GREEDY, 1, &eo),
+                       nm = driver_count(d, tol, OB_SPLIT_MID, 1, &em);
+            CHECK(no == ng && eo <= tol && nm == ng && em <= tol, "own split d %g tol %g: driver greedy %ld / mid "
+                  "%ld ctrl points (max_err %.3g / %.3g), greedy without it %ld", d, tol, no, nm, eo, em, ng);
+            printf("own split: d %+g tol %g: %d pieces, driver greedy %ld, mid %ld, greedy alone %ld ctrl points\n",
+                   d, tol, f.n, no, nm, ng);
         }
     static const double loop[4][2] = {{0, 0}, {2, 2}, {-2, 2}, {0, 0}};
     static const double cusp[4][2] = {{0, 0}, {1, 1}, {0, 1}, {1, 0}};
