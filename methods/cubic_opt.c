@@ -733,32 +733,17 @@ static const double SPLIT_PREC = 1e-3;
  * at 0.99 20, at 0.97 23: pieces shorter than they need be) */
 static const double SPLIT_LEVEL = 0.99;
 
-/* Append piece [a, b] of base with fit seg to out.  Returns -1 when out is full. */
-static int append_piece(ob_fit *out, const ob_bez *seg, double b)
-{
-    if (out->n >= OB_MAX_PIECES)
-        return -1;
-    out->seg[out->n] = *seg;
-    out->t[++out->n] = b;
-    return 0;
-}
-
-/* The fit and estimate of the piece [a, b] of base (the whole base when
- * that is [0, 1]); a piece that asks for a smaller one has estimate +inf. */
-static ob_fit_status fit_piece(const ob_bez *base, double a, double b, double d, int ns, int refine_on, int hermite,
-                               co_work *W, ob_bez *seg, double *est, char *msg, size_t msglen)
+/* The fit (fit_stretch) of the piece [a, b] of base, the whole base when
+ * that is [0, 1]. */
+static ob_fit_status fit_piece(const ob_bez *base, double a, double b, double d, int ns, int refine_on, co_work *W,
+                               ob_bez *seg, double *est, char *msg, size_t msglen)
 {
     ob_bez sub;
     if (a == 0.0 && b == 1.0)
         sub = *base;
     else
         ob_bez_subsegment(base, a, b, &sub);
-    ob_fit_status st = fit_stretch(&sub, d, ns, refine_on, hermite, W, seg, est, msg, msglen);
-    if (st == OB_FIT_RETRY_SMALLER) {
-        *est = INFINITY;
-        st = OB_FIT_OK;
-    }
-    return st;
+    return fit_stretch(&sub, d, ns, refine_on, 0, W, seg, est, msg, msglen);
 }
 
 /* The next length to probe: between the longest passing length lo (error
@@ -784,20 +769,26 @@ static double next_length(double lo, double elo, double hi, double ehi, double t
  *          most tau, appended to out.
  * Method:  for each piece from s: the rest [s, t1] first, then lengths from
  *          next_length until the passing and failing lengths are within
- *          SPLIT_PREC of each other or SPLIT_PROBES fits; where none passes,
- *          the rest is one piece as it is (the driver's metric rejects it and
- *          the driver splits, or ends the job at an error floor).
- * Returns  OB_FIT_OK; OB_FIT_RETRY_SMALLER when out fills up; OB_FIT_FAIL. */
+ *          SPLIT_PROBES fits (a probe that asks for a smaller piece fails);
+ *          where none passes, or the piece would be the last that room
+ *          allows, the rest is one piece as it is: the driver's metric
+ *          rejects it, and the driver's rule splits it or ends the job at an
+ *          error floor, as for any method.
+ * Inputs:  room: the most pieces this stretch may append (>= 1).
+ * Returns  OB_FIT_OK; OB_FIT_FAIL, or OB_FIT_RETRY_SMALLER when the rest
+ *          as one piece asks for it (a closed piece), with msg. */
 static ob_fit_status split_stretch(const ob_bez *base, double t0, double t1, double d, int ns, int refine_on,
-                                   double tau, co_work *W, ob_fit *out, char *msg, size_t msglen)
+                                   double tau, int room, co_work *W, ob_fit *out, char *msg, size_t msglen)
 {
-    for (double s = t0; s < t1;) {
+    for (double s = t0; s < t1; room--) {
         ob_bez seg, okseg;
         double lo = 0.0, elo = 0.0, hi = t1 - s, ehi = INFINITY, h = hi, e;
-        for (int k = 0; k < SPLIT_PROBES; k++) {
+        for (int k = 0; k < SPLIT_PROBES && room > 1; k++) {
             const double b = h == t1 - s ? t1 : s + h;
-            const ob_fit_status st = fit_piece(base, s, b, d, ns, refine_on, 0, W, &seg, &e, msg, msglen);
-            if (st != OB_FIT_OK)
+            ob_fit_status st = fit_piece(base, s, b, d, ns, refine_on, W, &seg, &e, msg, msglen);
+            if (st == OB_FIT_RETRY_SMALLER)
+                e = INFINITY;
+            else if (st != OB_FIT_OK)
                 return st;
             if (e <= tau) {
                 lo = h;
@@ -813,13 +804,14 @@ static ob_fit_status split_stretch(const ob_bez *base, double t0, double t1, dou
                 break;
             h = next_length(lo, elo, hi, ehi, tau);
         }
-        if (lo == 0.0 && fit_piece(base, s, t1, d, ns, refine_on, 0, W, &okseg, &e, msg, msglen) != OB_FIT_OK)
-            return OB_FIT_FAIL;
-        const double b = lo == 0.0 || s + lo >= t1 ? t1 : s + lo;
-        if (append_piece(out, &okseg, b)) {
-            ob_method_msg(msg, msglen, "more than %d pieces by the fit's own split", OB_MAX_PIECES);
-            return OB_FIT_RETRY_SMALLER;
+        if (lo == 0.0) {
+            const ob_fit_status st = fit_piece(base, s, t1, d, ns, refine_on, W, &okseg, &e, msg, msglen);
+            if (st != OB_FIT_OK)
+                return st;
         }
+        const double b = lo == 0.0 || s + lo >= t1 ? t1 : s + lo;
+        out->seg[out->n] = okseg;
+        out->t[++out->n] = b;
         s = b;
     }
     return OB_FIT_OK;
@@ -852,8 +844,10 @@ static ob_fit_status cubic_opt_fit(const ob_bez *base, const ob_fit_args *a, voi
             continue;  /* a cusp at an end or next to another: no sliver */
         ob_fit_status st;
         if (own_split && !hermite) {
-            st = split_stretch(base, out->t[out->n], t1, a->d, ns, refine_on, SPLIT_LEVEL * a->tol, work, out, msg,
-                               msglen);
+            /* leave a piece for each stretch still to come */
+            const int room = OB_MAX_PIECES - out->n - (nc - i);
+            st = split_stretch(base, out->t[out->n], t1, a->d, ns, refine_on, SPLIT_LEVEL * a->tol, room, work, out,
+                               msg, msglen);
         } else {
             ob_bez sub;
             double est;

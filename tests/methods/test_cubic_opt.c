@@ -448,8 +448,9 @@ static double piece_err(const ob_bez *base, double a, double b, double d)
                                                               : NAN;
 }
 
-/* The driver's count for liu2002_ex1: split rule `split`, parameter split `own`. */
-static long driver_count(double d, double tol, ob_split split, int own, double *max_err)
+/* The driver's count for liu2002_ex1: split rule `split`, parameter split
+ * `own`; -1 unless the job is ok (its status into *status if not NULL). */
+static long driver_job(double d, double tol, ob_split split, int own, double *max_err, ob_status *status)
 {
     double par[OB_MAX_PARAMS];
     params(par, 1, own);
@@ -462,7 +463,14 @@ static long driver_count(double d, double tol, ob_split split, int own, double *
     const int rc = ob_driver_run(&j, 1, &o, NULL);
     ob_curve_free(&c);
     *max_err = j.max_err;
+    if (status)
+        *status = rc == 0 ? j.status : OB_FAIL;
     return rc == 0 && j.status == OB_OK ? j.ctrl_points : -1;
+}
+
+static long driver_count(double d, double tol, ob_split split, int own, double *max_err)
+{
+    return driver_job(d, tol, split, own, max_err, NULL);
 }
 
 /* split = 1 on liu2002_ex1 (one piece between its offset cusps, d = 1):
@@ -510,6 +518,14 @@ static void test_own_split(void)
             printf("own split: d %+g tol %g: %d pieces, driver greedy %ld, mid %ld, greedy alone %ld ctrl points\n",
                    d, tol, f.n, no, nm, ng);
         }
+    /* below the method's round-off: an error floor (limit), as without
+     * split, not a chain of retries ending in fail */
+    double ef;
+    ob_status sf, s0;
+    driver_job(-1.0, 1e-15, OB_SPLIT_GREEDY, 1, &ef, &sf);
+    driver_job(-1.0, 1e-15, OB_SPLIT_GREEDY, 0, &ef, &s0);
+    CHECK(sf == OB_LIMIT && s0 == OB_LIMIT, "own split at tol 1e-15: status %s (without it %s), limit expected",
+          ob_status_name(sf), ob_status_name(s0));
     static const double loop[4][2] = {{0, 0}, {2, 2}, {-2, 2}, {0, 0}};
     static const double cusp[4][2] = {{0, 0}, {1, 1}, {0, 1}, {1, 0}};
     static const double flat[4][2] = {{0, 0}, {0, 0}, {1, 1}, {1, 1}};
