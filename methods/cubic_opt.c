@@ -769,7 +769,8 @@ static double next_length(double lo, double elo, double hi, double ehi, double t
  *          most tau, appended to out.
  * Method:  for each piece from s: the rest [s, t1] first, then lengths from
  *          next_length until the passing and failing lengths are within
- *          SPLIT_PROBES fits (a probe that asks for a smaller piece fails);
+ *          SPLIT_PREC of each other or after SPLIT_PROBES fits (a probe that
+ *          asks for a smaller piece fails);
  *          where none passes, or the piece would be the last that room
  *          allows, the rest is one piece as it is: the driver's metric
  *          rejects it, and the driver's rule splits it or ends the job at an
