@@ -221,32 +221,44 @@ static void cpu_batch(const ob_measure_rec *recs, int n, int S, ob_errval *out, 
 
 static const double five_tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
 
+/* The jobs of every curve of set and offset, method (only, with parameter
+ * values par; NULL: every method at its defaults) and tolerance of tols,
+ * hausdorff, split rule split, into jobs (NULL: only counted).  Returns
+ * their number. */
+static size_t fill_jobs(ob_job *jobs, const ob_curveset *set, const ob_method *only, const double *par,
+                        ob_split split, const double *tols, int ntol)
+{
+    const int nm = only ? 1 : ob_method_count();
+    size_t k = 0;
+    for (int c = 0; c < set->n; c++)
+        for (int di = 0; di < set->v[c].nd; di++)
+            for (int m = 0; m < nm; m++)
+                for (int t = 0; t < ntol; t++, k++) {
+                    if (!jobs)
+                        continue;
+                    ob_job *j = &jobs[k];
+                    j->curve = &set->v[c];
+                    j->d = set->v[c].d[di];
+                    j->method = only ? only : ob_methods[m];
+                    j->params = par;
+                    j->metric = OB_METRIC_HAUSDORFF;
+                    j->split = split;
+                    j->tol = tols[t];
+                }
+    return k;
+}
+
 /* Every method at the ntol tolerances tols on the curves of set, hausdorff,
  * the split rule split.  keep: NULL, or where the jobs go (with their
  * timings; the caller frees).  Returns the wall time, seconds. */
 static double random_run(const ob_curveset *set, ob_split split, const double *tols, int ntol,
                          const ob_driver_opts *o, const ob_driver_hooks *h, size_t *njobs, ob_job **keep)
 {
-    const int nm = ob_method_count();
-    size_t n = 0;
-    for (int c = 0; c < set->n; c++)
-        n += (size_t)set->v[c].nd * nm * ntol;
+    const size_t n = fill_jobs(NULL, set, NULL, NULL, split, tols, ntol);
     ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
     if (!jobs)
         return -1.0;
-    size_t k = 0;
-    for (int c = 0; c < set->n; c++)
-        for (int di = 0; di < set->v[c].nd; di++)
-            for (int m = 0; m < nm; m++)
-                for (int t = 0; t < ntol; t++) {
-                    ob_job *j = &jobs[k++];
-                    j->curve = &set->v[c];
-                    j->d = set->v[c].d[di];
-                    j->method = ob_methods[m];
-                    j->metric = OB_METRIC_HAUSDORFF;
-                    j->split = split;
-                    j->tol = tols[t];
-                }
+    fill_jobs(jobs, set, NULL, NULL, split, tols, ntol);
     double t0 = now_s();
     ob_driver_run(jobs, n, o, h);
     double dt = now_s() - t0;
@@ -535,9 +547,7 @@ static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
     static const double tols[] = {1e-2, 1e-3, 1e-4, 1e-5};
     const ob_method *m = ob_method_find("cubic-opt");
     const int ks = m ? ob_param_find(m, "split") : -1;
-    size_t n = 0;
-    for (int c = 0; c < set->n; c++)
-        n += (size_t)set->v[c].nd * 4;
+    const size_t n = fill_jobs(NULL, set, m, NULL, OB_SPLIT_GREEDY, tols, 4);
     ob_job *jobs = calloc(2 * (n ? n : 1), sizeof *jobs);
     double *v = malloc((n ? n : 1) * sizeof *v), par[2][OB_MAX_PARAMS];
     if (ks < 0 || !jobs || !v) {
@@ -549,20 +559,8 @@ static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
         ob_param_defaults(m, par[r]);
         par[r][ks] = r;
     }
-    size_t k = 0;
     for (int r = 0; r < 2; r++)
-        for (int c = 0; c < set->n; c++)
-            for (int di = 0; di < set->v[c].nd; di++)
-                for (int t = 0; t < 4; t++) {
-                    ob_job *j = &jobs[k++];
-                    j->curve = &set->v[c];
-                    j->d = set->v[c].d[di];
-                    j->method = m;
-                    j->params = par[r];
-                    j->metric = OB_METRIC_HAUSDORFF;
-                    j->split = OB_SPLIT_GREEDY;
-                    j->tol = tols[t];
-                }
+        fill_jobs(jobs + r * n, set, m, par[r], OB_SPLIT_GREEDY, tols, 4);
     ob_driver_opts o;
     ob_driver_defaults(&o);
     double dt[2];
