@@ -746,31 +746,73 @@ static ob_fit_status fit_piece(const ob_bez *base, double a, double b, double d,
     return fit_stretch(&sub, d, ns, refine_on, 0, W, seg, est, msg, msglen);
 }
 
-/* The next length to probe: between the longest passing length lo (error
- * elo, 0 when none) and the shortest failing one hi (ehi), where the error
- * is modelled as c h^6 (the G1 cubic's order) through the nearest probes:
- * log-log interpolation when both are known, else the order from hi, kept
- * at least a twentieth of the bracket inside it. */
-static double next_length(double lo, double elo, double hi, double ehi, double tau)
+/* The search for one piece's end: the longest passing length lo (its
+ * error elo; 0 while none passed), the shortest failing one hi (ehi; +inf
+ * while none failed), and the last two probes (h1, e1 the latest). */
+typedef struct {
+    double lo, elo, hi, ehi;
+    double h0, e0, h1, e1;
+} co_probes;
+
+static void probe_record(co_probes *p, double h, double e, double tau)
 {
-    double h;
-    if (lo > 0.0 && elo > 0.0 && isfinite(ehi))
-        h = lo * pow(hi / lo, log(tau / elo) / log(ehi / elo));
-    else if (isfinite(ehi) && ehi > 0.0)
-        h = hi * pow(tau / ehi, 1.0 / 6.0);
-    else
-        h = 0.5 * (lo + hi);
-    const double w = hi - lo, h0 = lo + 0.05 * w, h1 = hi - 0.05 * w;
-    return isfinite(h) ? fmin(h1, fmax(h0, h)) : 0.5 * (lo + hi);
+    if (e <= tau) {
+        p->lo = h;
+        p->elo = e;
+    } else {
+        p->hi = h;
+        p->ehi = e;
+    }
+    p->h0 = p->h1;
+    p->e0 = p->e1;
+    p->h1 = h;
+    p->e1 = e;
+}
+
+/* Whether the search is done: the latest probe passed within the window
+ * (its error at least (1 - 6 SPLIT_PREC) tau: under the c h^6 model within
+ * SPLIT_PREC of the longest passing length), or the passing and failing
+ * lengths are within SPLIT_PREC of each other. */
+static int probes_done(const co_probes *p, double tau)
+{
+    if (p->lo > 0.0 && p->h1 == p->lo && p->elo >= (1.0 - 6.0 * SPLIT_PREC) * tau)
+        return 1;
+    return p->lo > 0.0 && p->hi - p->lo <= SPLIT_PREC * p->lo;
+}
+
+/* The next length to probe, aimed at the middle of the window, (1 - 3
+ * SPLIT_PREC) tau, with the error modelled as c h^p: a secant in log-log
+ * through the last two probes (p the order they show, taken when it is
+ * 0.5 ... 50: away from the asymptotic regime the error grows slower or
+ * faster than the G1 cubic's h^6, and a fixed order crept towards the end
+ * a few per cent per probe there), else log-log interpolation between the
+ * longest passing and the shortest failing length, else p = 6 from the
+ * shortest failing one.  Kept at least a twentieth of the bracket inside
+ * it. */
+static double next_length(const co_probes *p, double tau)
+{
+    const double aim = (1.0 - 3.0 * SPLIT_PREC) * tau;
+    double h = 0.5 * (p->lo + p->hi), q = 0.0;
+    const int two = p->h0 > 0.0 && p->h0 != p->h1 && p->e0 > 0.0 && p->e1 > 0.0 && isfinite(p->e0) &&
+                    isfinite(p->e1);
+    if (two)
+        q = log(p->e1 / p->e0) / log(p->h1 / p->h0);
+    if (q >= 0.5 && q <= 50.0)
+        h = p->h1 * pow(aim / p->e1, 1.0 / q);
+    else if (p->lo > 0.0 && p->elo > 0.0 && isfinite(p->ehi))
+        h = p->lo * pow(p->hi / p->lo, log(aim / p->elo) / log(p->ehi / p->elo));
+    else if (isfinite(p->ehi) && p->ehi > 0.0)
+        h = p->hi * pow(aim / p->ehi, 1.0 / 6.0);
+    const double w = p->hi - p->lo, h0 = p->lo + 0.05 * w, h1 = p->hi - 0.05 * w;
+    return isfinite(h) ? fmin(h1, fmax(h0, h)) : 0.5 * (p->lo + p->hi);
 }
 
 /* Purpose: cover the stretch [t0, t1] of base (no offset cusp inside) with
  *          the longest pieces, one after the other, whose own estimate is at
  *          most tau, appended to out.
  * Method:  for each piece from s: the rest [s, t1] first, then lengths from
- *          next_length until the passing and failing lengths are within
- *          SPLIT_PREC of each other or after SPLIT_PROBES fits (a probe that
- *          asks for a smaller piece fails);
+ *          next_length until probes_done or after SPLIT_PROBES fits (a
+ *          probe that asks for a smaller piece fails);
  *          where none passes, or the piece would be the last that room
  *          allows, the rest is one piece as it is: the driver's metric
  *          rejects it, and the driver's rule splits it or ends the job at an
@@ -783,7 +825,8 @@ static ob_fit_status split_stretch(const ob_bez *base, double t0, double t1, dou
 {
     for (double s = t0; s < t1; room--) {
         ob_bez seg, okseg;
-        double lo = 0.0, elo = 0.0, hi = t1 - s, ehi = INFINITY, h = hi, e;
+        co_probes p = {0.0, 0.0, t1 - s, INFINITY, 0.0, 0.0, 0.0, 0.0};
+        double h = t1 - s, e;
         for (int k = 0; k < SPLIT_PROBES && room > 1; k++) {
             const double b = h == t1 - s ? t1 : s + h;
             ob_fit_status st = fit_piece(base, s, b, d, ns, refine_on, W, &seg, &e, msg, msglen);
@@ -791,26 +834,19 @@ static ob_fit_status split_stretch(const ob_bez *base, double t0, double t1, dou
                 e = INFINITY;
             else if (st != OB_FIT_OK)
                 return st;
-            if (e <= tau) {
-                lo = h;
-                elo = e;
+            probe_record(&p, h, e, tau);
+            if (e <= tau)
                 okseg = seg;
-                if (b == t1)
-                    break;
-            } else {
-                hi = h;
-                ehi = e;
-            }
-            if (lo > 0.0 && hi - lo <= SPLIT_PREC * lo)
+            if ((e <= tau && b == t1) || probes_done(&p, tau))
                 break;
-            h = next_length(lo, elo, hi, ehi, tau);
+            h = next_length(&p, tau);
         }
-        if (lo == 0.0) {
+        if (p.lo == 0.0) {
             const ob_fit_status st = fit_piece(base, s, t1, d, ns, refine_on, W, &okseg, &e, msg, msglen);
             if (st != OB_FIT_OK)
                 return st;
         }
-        const double b = lo == 0.0 || s + lo >= t1 ? t1 : s + lo;
+        const double b = p.lo == 0.0 || s + p.lo >= t1 ? t1 : s + p.lo;
         out->seg[out->n] = okseg;
         out->t[++out->n] = b;
         s = b;
