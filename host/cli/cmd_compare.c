@@ -16,7 +16,10 @@
  * max_segments, inflection_split and seed must be equal (absent on one side
  * counts as different), and so must every method_params.M.* and
  * method_versions.M key of each method M that has rows on both sides (a key
- * on one side only counts as different).  Keys of methods that only one side
+ * on one side only counts as different, but for a method_params key that
+ * holds the parameter's default in this build: the other run predates the
+ * parameter, which was added with a default that keeps the output; a note
+ * says so).  Keys of methods that only one side
  * ran, or neither, are not checked (a note says how many differ); a group
  * missing from one meta.json entirely is not checked (a note says so).
  * From the rows: when both runs have rows and their sets of metrics (or of

@@ -4,6 +4,8 @@
  */
 #include "host/compare/compare.h"
 
+#include "methods/method.h"
+
 #include <errno.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -175,8 +177,26 @@ static int shares_value(const ob_res_table *a, const ob_res_table *b, int metric
     return 0;
 }
 
+/* 1 when e, a key method_params.M.P, names a parameter P of method M in
+ * this build and holds its default: a run whose meta.json lacks the key
+ * predates the parameter, and a parameter is added with a default that keeps
+ * the method's output (a change of output bumps the method's version). */
+static int holds_default(const ob_json_entry *e, const char *method, size_t gl)
+{
+    const ob_method *m = ob_method_find(method);
+    const char *name = e->path + gl + 1 + strlen(method) + 1;
+    const int k = m ? ob_param_find(m, name) : -1;
+    if (k < 0 || e->type != OB_JSON_NUMBER)
+        return 0;
+    char *end;
+    const double v = strtod(e->value, &end);
+    return *end == '\0' && v == m->params[k].def;
+}
+
 /* method_params.* or method_versions.* (group): a key of a method both runs
- * ran must be on both sides with the same value. */
+ * ran must be on both sides with the same value; a method_params key on one
+ * side only counts as equal when it holds the parameter's default in this
+ * build (holds_default; a note says so). */
 static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *group, ob_cmp_result *r)
 {
     const size_t gl = strlen(group);
@@ -206,6 +226,12 @@ static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *g
             snprintf(method, sizeof method, "%.*s", (int)(dot ? (size_t)(dot - m) : strlen(m)), m);
             if (!ran(&b->res, method) || !ran(&n->res, method)) {
                 ignored++;
+                continue;
+            }
+            if (!o && dot && strcmp(group, "method_params") == 0 && holds_default(e, method, gl)) {
+                if (ob_strlist_addf(&r->notes, "%s is absent in %s: taken as its default %s", e->path, y->label,
+                                    e->value))
+                    return -1;
                 continue;
             }
             const ob_json_entry *eb = side ? o : e, *en = side ? e : o;

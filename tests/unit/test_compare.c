@@ -698,6 +698,58 @@ static void verdicts_rank_test(const meta_spec *m)
     }
 }
 
+/* A side with the cubic-opt row rows and the meta.json whose method_params
+ * are params (a JSON object body). */
+static void load_params(ob_cmp_side *s, const char *label, const char *params)
+{
+    char text[2048];
+    ob_err err = {""};
+    load(s, label, "c1,1,cubic-opt,hausdorff,greedy,0.01,7,2,3,0.002,ok,0,2000000,,f\n", NULL, NULL);
+    snprintf(text, sizeof text,
+             "{\"compiler\": \"gcc 12\", \"cflags\": \"-O2\", \"backend\": \"cpu\", \"opencl\": null,"
+             " \"omp_threads\": 2, \"seed\": null, \"samples_per_segment\": 256, \"max_depth\": 40,"
+             " \"max_segments\": 20000, \"inflection_split\": true, \"method_params\": {%s},"
+             " \"method_versions\": {\"cubic-opt\": 1}, \"reps\": 1}",
+             params);
+    CHECK(ob_json_flatten(text, strlen(text), "meta.json", &s->meta, &err) == 0, "meta: %s", err.msg);
+    s->has_meta = 1;
+}
+
+/* compare: a parameter that one run's meta.json does not have (a parameter
+ * added since that run) is that parameter's default in this build: equal
+ * to it, comparable with a note; any other value, or a key this build does
+ * not know, not comparable. */
+static void test_param_added(void)
+{
+    static const struct {
+        const char *base, *nw;
+        int status;
+        const char *text;
+    } c[] = {
+        {"\"cubic-opt.samples\": 24", "\"cubic-opt.samples\": 24, \"cubic-opt.split\": 0", 0,
+         "method_params.cubic-opt.split is absent in BASE: taken as its default 0"},
+        {"\"cubic-opt.samples\": 24, \"cubic-opt.split\": 0", "\"cubic-opt.samples\": 24", 0,
+         "method_params.cubic-opt.split is absent in NEW: taken as its default 0"},
+        {"\"cubic-opt.samples\": 24", "\"cubic-opt.samples\": 24, \"cubic-opt.split\": 1", 3,
+         "method_params.cubic-opt.split (absent) vs 1"},
+        {"\"cubic-opt.samples\": 24", "\"cubic-opt.samples\": 24, \"cubic-opt.nosuch\": 0", 3,
+         "method_params.cubic-opt.nosuch (absent) vs 0"},
+    };
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+        ob_cmp_opts o = ob_cmp_defaults();
+        ob_cmp_side b, n;
+        ob_cmp_result r;
+        load_params(&b, "BASE", c[i].base);
+        load_params(&n, "NEW", c[i].nw);
+        const int st = run(&b, &n, &o, &r);
+        CHECK(st == c[i].status && has_text(c[i].status ? &r.incomparable : &r.notes, c[i].text),
+              "parameter on one side only, case %zu: status %d (want %d), \"%s\"", i, st, c[i].status, c[i].text);
+        ob_cmp_result_free(&r);
+        ob_cmp_side_free(&n);
+        ob_cmp_side_free(&b);
+    }
+}
+
 /* compare: the verdicts, case by case; the base side is shared as it was loaded. */
 static void test_verdicts(void)
 {
@@ -727,5 +779,6 @@ int main(void)
     test_json();
     test_csv();
     test_verdicts();
+    test_param_added();
     return check_done();
 }
