@@ -60,8 +60,8 @@
  * No loop runs more than a fixed count, and every output is checked
  * finite.
  * The output is polynomial (rational bases are sampled like any other) and
- * not in the base's parameter (normal or hausdorff metric).  The fit does
- * not read the tolerance.
+ * not in the base's parameter (normal or hausdorff metric).  The fit reads
+ * the tolerance only with split = 1 (its own split: split_stretch).
  */
 #include "methods/method.h"
 
