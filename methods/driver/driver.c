@@ -586,6 +586,12 @@ static void joints_chunk(const jstate *js, const item *its, long cnt, const ob_f
     }
 }
 
+/* Accept the item's whole fit. */
+static void accept_item(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj)
+{
+    accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
+}
+
 /* The optimal rule at the end of one pass over its stretch: the next
  * level, or the final pass.  Phase 0 (at tol) gives the target count; a
  * pass of phase 1 is feasible when it covers the stretch in at most target
@@ -664,12 +670,6 @@ typedef struct {
     int retry, pass, full;
     char msg[160];
 } verdict;
-
-/* Accept the item's whole fit. */
-static void accept_item(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj)
-{
-    accept(j, s, it->seg, it->a, it->b, r->n, r->ctrl_add, r->maxdeg, r->err, fj);
-}
 
 /* mid / maxerr: the two halves of a piece that is to be split (cut at the
  * middle, or at the largest error kept MAXERR_MARGIN from the ends), or, for
