@@ -629,10 +629,20 @@ static void optimal_next_pass(item *g, int covered)
  *          bisected geometrically between an infeasible and a feasible one;
  *          the final pass (phase 2, in decide) accepts the pieces at the
  *          lowest feasible level found.  Every pass fits the same pieces
- *          as a greedy run at that tolerance would. */
-static int decide_optimal(const ob_job *j, jstate *s, const item *it, const itemres *r, int pass, itemvec *next)
+ *          as a greedy run at that tolerance would.  A stretch whose first
+ *          probe of phase 0 (the whole of it) passes is accepted at once:
+ *          the target is then 1 and the final pass would fit and measure
+ *          that same piece again. */
+static int decide_optimal(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj, int pass,
+                          itemvec *next)
 {
     item g = *it;
+    if (g.phase == 0 && pass && it->a == g.start && it->b >= g.end) {
+        /* the whole stretch is one piece at tol: the final pass would fit
+         * and measure this same piece again (target 1) and accept it */
+        accept_item(j, s, it, r, fj);
+        return 0;
+    }
     if (pass) {
         g.lo = it->b;
         g.pass_err = r->err;
@@ -843,7 +853,7 @@ static int decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, co
     v.full = j->segments + s->pending + 1 >= o->max_segments;
 
     if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)
-        return decide_optimal(j, s, it, r, v.pass, next);
+        return decide_optimal(j, s, it, r, fj, v.pass, next);
     if (j->split == OB_SPLIT_MID || j->split == OB_SPLIT_MAXERR)
         return decide_split(j, s, it, r, fj, o, &v, next);
     return decide_greedy(j, s, it, r, fj, o, &v, next);

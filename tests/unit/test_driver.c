@@ -320,6 +320,48 @@ static void test_retry_and_counts(void)
     ob_curve_free(&c);
 }
 
+/* The optimal rule fits a stretch that one piece covers at tol once: its
+ * final pass would fit and measure that same piece again.  tiller is exact
+ * on a line (its offset is the control polygon's), so every job here is one
+ * piece; a stretch of several pieces still gets its passes. */
+static long counted_calls;
+static ob_fit_status counted_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
+{
+    __atomic_add_fetch(&counted_calls, 1, __ATOMIC_RELAXED);
+    return ob_method_find("tiller")->fit(b, a, w, out, msg, len);
+}
+
+static void test_optimal_one_piece(void)
+{
+    const ob_method *til = ob_method_find("tiller");
+    const ob_method counted = {.name = "counted", .citation = "test", .continuity = til->continuity,
+                               .caps = til->caps, .out_degree = til->out_degree, .work_size = til->work_size,
+                               .fit = counted_fit};
+    const double line[4][2] = {{0, 0}, {1.0 / 3, 0.1}, {2.0 / 3, 0.2}, {1, 0.3}};
+    ob_curve c = fixture_curve("line", 3, line, 0.1);
+    ob_job j;
+    fixture_job(&j, &c, &counted, OB_METRIC_HAUSDORFF, OB_SPLIT_OPTIMAL, 1e-6);
+    counted_calls = 0;
+    const ob_driver_opts o = fast_opts();
+    ob_driver_run(&j, 1, &o, NULL);
+    CHECK(j.status == OB_OK && j.segments == 1 && j.ctrl_points == 4 && counted_calls == 1,
+          "optimal, a line: %s, %d segments, %ld points, %ld fits (one piece: one fit)", ob_status_name(j.status),
+          j.segments, j.ctrl_points, counted_calls);
+    ob_curve_free(&c);
+    c = fixture_curve("ex1", 3, fixture_liu_ex1, -1.0);
+    ob_job g;
+    fixture_job(&g, &c, &counted, OB_METRIC_HAUSDORFF, OB_SPLIT_GREEDY, 1e-3);
+    fixture_job(&j, &c, &counted, OB_METRIC_HAUSDORFF, OB_SPLIT_OPTIMAL, 1e-3);
+    ob_driver_run(&g, 1, &o, NULL);
+    counted_calls = 0;
+    ob_driver_run(&j, 1, &o, NULL);
+    CHECK(g.segments > 1 && j.status == OB_OK && j.segments <= g.segments && j.max_err <= 1e-3 &&
+              counted_calls > 2 * j.segments,
+          "optimal, ex1 d = -1 at 1e-3: %d segments (greedy %d), max_err %g (greedy %g), %ld fits", j.segments,
+          g.segments, j.max_err, g.max_err, counted_calls);
+    ob_curve_free(&c);
+}
+
 /* A method that asks for a smaller piece wherever the piece covers a point
  * of its "pole" set, whatever its size: the failure at the retry limit is
  * found without fitting the whole binary tree of halvings below (the base
@@ -574,6 +616,7 @@ int main(void)
     test_counting_and_tolerance();
     test_greedy_not_worse();
     test_optimal();
+    test_optimal_one_piece();
     test_limits();
     test_presplit();
     test_failures_are_contained();
