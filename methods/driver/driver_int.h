@@ -1,0 +1,159 @@
+/*
+ * driver_int.h - the driver's internal vocabulary, shared by its files (not
+ * part of the API: driver.h is).
+ *   jobs.c          a job's bookkeeping, its first pieces, its outputs; share groups
+ *   rules.c         the split rules: what becomes of one measured piece
+ *   steps.c         fit and measure pieces, their joints, the chunk helpers
+ *   engine_level.c  the level engine
+ */
+#ifndef OB_DRIVER_INT_H
+#define OB_DRIVER_INT_H
+
+#include "methods/driver/driver.h"
+#include "methods/core/grow.h"
+
+/* greedy bisection stops when the bracket on the end parameter is this
+ * fraction of the stretch still to cover */
+static const double GREEDY_EPS = 1e-4;
+/* optimal: the bisection on the common error level stops when its bracket
+ * is within this ratio, or after OPT_ROUNDS passes */
+static const double OPT_RATIO = 1.02;
+enum { OPT_ROUNDS = 12 };
+/* maxerr split keeps this fraction of the piece on either side */
+static const double MAXERR_MARGIN = 0.05;
+/* A piece whose error has not dropped below STALL_RATIO of its parent's over
+ * STALL_LEVELS successive splits cannot reach the tolerance by subdivision
+ * (an error floor of the method, e.g. Lee's circle approximation under the
+ * Hausdorff metric); it is accepted and the job ends with status limit.
+ * Convergent methods gain a factor 4 to 16 per split, so this never fires for
+ * them; slowly converging pieces (a factor 2) are not taken for stalled. */
+static const double STALL_RATIO = 0.9;
+enum { STALL_LEVELS = 4 };
+/* A method asks for a smaller piece when its output would not fit (too many
+ * arcs, spans or a pole); a few halvings cure that.  A piece still asking
+ * after this many halvings below its initial size never will: the job fails
+ * (instead of halving down to the segment limit). */
+enum { RETRY_LEVELS = 12 };
+
+/* What the joints need of one fit (joints.h): the start of its first piece,
+ * the end of its last, and the joints between its own pieces. */
+typedef struct {
+    ob_end first, last;
+    ob_joint_stats in;
+    int count_open;     /* open inner joints counted in ctrl_points (none for a
+                           method's own representation: it has its own count) */
+} fitjoints;
+
+/* One pending piece of one job. */
+typedef struct {
+    int job, seg, depth;
+    int grp;            /* the job's share group (drv_share_groups) */
+    double a, b;        /* the piece fitted now: base parameters of segment seg */
+    double end;         /* greedy: end of the stretch being covered */
+    double lo, hi;      /* greedy: longest passing / shortest failing end so far */
+    double pass_err;    /* greedy: results of the candidate [a, lo] */
+    int pass_ctrl_add, pass_maxdeg, pass_n;
+    fitjoints pass_fj;  /* greedy: the joints of the candidate [a, lo] */
+    int final;          /* greedy: accept this fit whatever its error */
+    double parent_err;  /* mid/maxerr: the error of the piece this one was split from */
+    int stall;          /* successive splits without a real drop of the error */
+    int chain_to;       /* > 0: the leftmost piece of a chain of requests for a
+                           smaller piece, already fitted down to this depth
+                           (drv_probe_retry_chain): not fitted again above it */
+    /* optimal (decide_optimal): greedy passes over the stretch [start, end]
+     * at an error level; phase 0 counts the pieces at tol, 1 bisects the
+     * level, 2 is the final pass (the greedy code, at the level) */
+    int phase, pieces, target, rounds;
+    double start, level, elo, ehi, pass_max;
+} item;
+
+typedef struct {
+    item *v;
+    size_t n, cap;
+} itemvec;
+
+/* Per-job bookkeeping the caller does not see. */
+typedef struct {
+    long ctrl_add;  /* sum over accepted fits of the control points each adds
+                       beyond the shared start point */
+    long pending;   /* items of this job still queued */
+    int dead;       /* failed or skipped: drop its remaining items */
+    int finished;   /* counted as done for progress */
+    int floored;    /* a piece hit an error floor: keep the rest as they are */
+    ob_span_log *spans; /* NULL, or where accepted pieces go */
+    /* joints: the ends of every accepted fit until the job is finalized */
+    double gap_tol;     /* a joint is open past this (joints.h) */
+    struct fitends *ends;
+    int nends, capends;
+    int ends_oom;       /* an end could not be stored */
+    ob_joint_stats st;  /* inner joints of the accepted fits, then (finalized) all */
+    long open_count;    /* joints counted twice in ctrl_points */
+    int joined;         /* the joints between fits are measured, ends freed */
+} jstate;
+
+/* The ends of one accepted fit over [a, ...] of base segment seg. */
+typedef struct fitends {
+    int seg;
+    double a;
+    ob_end first, last;
+} fitends;
+
+/* Results of fitting and measuring one item. */
+typedef struct {
+    ob_fit_status st;       /* the method's, or OB_FIT_FAIL where its output
+                               is not usable (piece count, not measurable) */
+    int ctrl_add, maxdeg, n;
+    double err, t;          /* t: base parameter of the largest error */
+    int chain_to;           /* > 0: asks for a smaller piece, and so do its
+                               leftmost descendants down to this depth, the
+                               retry or depth limit (drv_probe_retry_chain) */
+    char msg[160];
+} itemres;
+
+/* The measurements of one batch: every piece of every fitted item. */
+typedef struct {
+    ob_bez *base;          /* base sub-piece of each record */
+    ob_measure_rec *rec;
+    ob_errval *out;
+    double *ns;
+    int *first;            /* first record of each item (nitems + 1 entries) */
+    int *sampled;          /* indices of the records a batch backend takes */
+    ob_measure_rec *srec;
+    ob_errval *sout;
+} batch;
+
+/* jobs.c */
+int drv_push(itemvec *q, const item *it);
+void drv_job_end(ob_job *j, jstate *s, ob_status st, const char *msg);
+int drv_check_applicable(ob_job *j, jstate *s);
+int drv_plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, itemvec *out);
+int drv_span_cmp(const void *x, const void *y);
+void drv_accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg, double err, const fitjoints *fj);
+void drv_accept_item(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj);
+void drv_finalize(ob_job *j, jstate *s);
+int *drv_share_groups(const ob_job *jobs, size_t njobs);
+
+/* rules.c */
+int drv_decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj, const ob_driver_opts *o, itemvec *next);
+double drv_item_stop(const ob_job *j, const item *it, int full_probes);
+
+/* steps.c */
+double drv_wall_ns(void);
+double drv_thread_ns(void);
+double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit, itemres *r);
+double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, void *work, ob_fit *fit, itemres *r);
+int drv_batch_alloc(batch *b, int chunk);
+void drv_batch_free(batch *b);
+void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop, itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B);
+void drv_joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res, fitjoints *fj);
+int drv_same_piece(const item *x, const item *y);
+int drv_item_share_cmp(const void *x, const void *y);
+long drv_chunk_count(const itemvec *cur, size_t start, int chunk);
+void drv_chunk_reps(const item *its, long cnt, const jstate *js, int *rep);
+void drv_chunk_stops(const ob_job *jobs, const item *its, long cnt, const int *rep, int full_probes, double *stop);
+void drv_copy_shared(long cnt, const int *rep, itemres *res, fitjoints *fj, double *fit_ns, double *eval_ns);
+
+/* engine_level.c */
+int drv_run_level(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks);
+
+#endif
