@@ -37,7 +37,8 @@
 #   --site DIR      NIGHTLY_SITE       the report (default HISTORY/site)
 # Environment: NIGHTLY_RANDOM=N:SEED overrides the random set (a baseline
 # made with another set is not comparable: compare exits 3), OFFBENCH_THREADS
-# the thread count (default: OpenMP's).
+# the thread count (default: OpenMP's), NIGHTLY_BACKEND the backend (default
+# opencl: the kernel through PoCL on a machine without a GPU).
 set -u
 cd "$(dirname "$0")/.."
 out=out/nightly
@@ -69,6 +70,10 @@ case "${history%/}/" in "${out%/}/"*)
 esac
 random=${NIGHTLY_RANDOM:-250:2026}
 threads=${OFFBENCH_THREADS:+--threads $OFFBENCH_THREADS}
+# The nightly measures through OpenCL on the machine's CPU (PoCL) by name:
+# --backend auto now takes the CPU backend where there is no GPU, and the
+# kernel path is what the nightly guards (NIGHTLY_BACKEND=cpu to skip it).
+backend=${NIGHTLY_BACKEND:-opencl}
 base=results/baseline
 start=$(date +%s)
 # the commit the run is built from, kept for the history (HEAD may move
@@ -111,7 +116,7 @@ run() {  # name, then run options
     t0=$(date +%s)
     # shellcheck disable=SC2086
     ./offbench run --methods all --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
-        $threads "$@" --out "$out/$name" 2>"$out/$name.log"
+        $threads --backend "$backend" "$@" --out "$out/$name" 2>"$out/$name.log"
     rc=$?
     echo "nightly: $name: exit $rc in $(($(date +%s) - t0)) s ($(tail -n 1 "$out/$name.log"))" >&2
     [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; finish 2 "run $name"; }

@@ -51,8 +51,9 @@ int ob_cl_loader_status(char *msg, size_t len)
     snprintf(msg, len, "not compiled in (the OpenCL headers were missing at build time)");
     return -1;
 }
-int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
+int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err)
 {
+    (void)gpu_only;
     (void)device_substr;
     *out = NULL;
     ob_fail(err, "this build has no OpenCL backend (the OpenCL headers were missing at build time)");
@@ -302,7 +303,7 @@ static void warm_up(ob_cl *c)
     }
 }
 
-int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
+int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err)
 {
     *out = NULL;
     if (load_cl(err))
@@ -340,7 +341,9 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
             if (device_substr && *device_substr && !strstr(full, device_substr))
                 continue;
             saw_match = 1;
-            if (!has_fp64(devs[k]))
+            cl_device_type ty = 0;
+            cl.clGetDeviceInfo(devs[k], CL_DEVICE_TYPE, sizeof ty, &ty, NULL);
+            if (!has_fp64(devs[k]) || (gpu_only && !(ty & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR))))
                 continue;
             dev = devs[k];
             snprintf(c->platform, sizeof c->platform, "%s", pn);
@@ -352,6 +355,8 @@ int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err)
         if (device_substr && *device_substr && !saw_match)
             ob_fail(err, "--device: no OpenCL device matches '%s' (see './offbench list devices')",
                     device_substr);
+        else if (gpu_only)
+            ob_fail(err, "no OpenCL GPU or accelerator with double precision (cl_khr_fp64)");
         else
             ob_fail(err, "no OpenCL device with double precision (cl_khr_fp64)");
         goto fail;

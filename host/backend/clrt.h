@@ -26,13 +26,14 @@ int ob_cl_loader_status(char *msg, size_t len);
 
 /* Purpose: open the first OpenCL device that supports double precision and
  *          whose "PLATFORM DEVICE" name contains device_substr (NULL: any),
+ *          a GPU or an accelerator only when gpu_only is nonzero,
  *          load kernels/measure.cl with kernels/metric_core.h prepended (from
  *          $OFFBENCH_KERNELS, ./kernels, kernels/ beside the program, or the
  *          copy compiled in) and build it.
  * Errors:  returns 0; -1 with the reason in err->msg: no loader, no platform, no
  *          matching device, no fp64, a failing call (named), or the build log
  *          of a failed build. */
-int ob_cl_open(const char *device_substr, ob_cl **out, ob_err *err);
+int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err);
 
 /* Always safe to call (NULL included). */
 void ob_cl_close(ob_cl *cl);

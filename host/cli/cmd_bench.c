@@ -39,6 +39,13 @@
  *                    split, also under greedy (split = 1): jobs per second,
  *                    the median fit time per job of each (fit_per_job/
  *                    cubic-opt/greedy, .../own) and their control points
+ *   engines_random100_7/ENGINE[/model16|/model64]
+ *                    all methods at 5 tolerances on --random 100:7 (10 with
+ *                    --quick) through each engine on all threads, the same
+ *                    rows checked: rate is the efficiency, work / (threads x
+ *                    wall), measured, and modelled at 16 and 64 threads
+ *                    from the run's own trace (bench_engines.c); with OpenCL
+ *                    each engine's wall and its records per launch
  */
 #include <errno.h>
 #include <math.h>
@@ -55,6 +62,7 @@
 #include "host/cli/commands.h"
 #include "host/io/curvefile.h"
 #include "host/io/datadir.h"
+#include "host/cli/bench_engines.h"
 #include "host/cli/cliopts.h"
 #include "host/diag.h"
 #include "host/io/random.h"
@@ -394,7 +402,7 @@ static ob_cl *bench_open_cl(bench_out *b)
 {
     ob_cl *cl = NULL;
     ob_err err;
-    if (ob_cl_open(NULL, &cl, &err) != 0) {
+    if (ob_cl_open(NULL, 0, &cl, &err) != 0) {
         printf("OpenCL: not available (%s); its rows are missing\n", err.msg);
         cl = NULL;
     } else {
@@ -592,6 +600,30 @@ static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
     free(v);
 }
 
+/* The engines on a random set large enough to model 16 and 64 threads from
+ * (bench_engines.c): all methods at 5 tolerances, mid, hausdorff. */
+static void bench_engines(bench_out *b, ob_cl *cl, int N, int quick)
+{
+    ob_err cerr;
+    ob_curveset set = {0};
+    char what[64];
+    const long ncurves = quick ? 10 : 100;
+    snprintf(what, sizeof what, "engines_random%ld_7", ncurves);
+    if (ob_random_append(&set, 7, ncurves, NULL, 0, &cerr) == 0) {
+        const size_t n = fill_jobs(NULL, &set, NULL, NULL, OB_SPLIT_MID, five_tols, 5);
+        ob_job *jobs = calloc(n ? n : 1, sizeof *jobs);
+        if (jobs) {
+            fill_jobs(jobs, &set, NULL, NULL, OB_SPLIT_MID, five_tols, 5);
+            omp_set_num_threads(N);
+            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
+            if (ob_bench_engines(b->csv, jobs, n, what, cl ? &clh : NULL) != 0)
+                ob_error("bench: the engines' rows differ (or memory ran out): see above");
+        }
+        free(jobs);
+    }
+    ob_curveset_free(&set);
+}
+
 /* All methods at 5 tolerances on a fixed random set, on the CPU and with
  * OpenCL (cl, or NULL); then each method's median times per job; then the
  * greedy rule with and without probe stops; then cubic-opt's own split. */
@@ -623,6 +655,7 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         bench_own_split(b, &rset, N);
     }
     ob_curveset_free(&rset);
+    bench_engines(b, cl, N, quick);
 }
 
 int ob_cmd_bench(int argc, char **argv)

@@ -304,6 +304,22 @@ static void meta_host(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
     fprintf(f, "],\n");
 }
 
+/* meta.json: the engine that scheduled the work and what it did (none of
+ * it changes a row: README "Engines"). */
+static void meta_engine(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
+{
+    const ob_engine_stats *e = &rec->engine;
+    const double eff = e->threads > 0 && e->wall_ns > 0 ? e->work_ns / (e->threads * e->wall_ns) : 0.0;
+    fprintf(f, "  \"engine\": {\"name\": \"%s\", \"asked\": \"%s\", \"chunk\": %d, \"threads\": %d, "
+               "\"groups\": %ld, \"wall_seconds\": %.6f, \"work_seconds\": %.6f, \"efficiency\": %.4f, "
+               "\"helped_seconds\": %.6f, \"backend_launches\": %ld, \"backend_records\": %ld, "
+               "\"doc\": \"work: thread time of the fits and measurements run, a piece shared by several jobs "
+               "once; efficiency: work / (threads x wall) of the driver; backend_records / backend_launches: the "
+               "batch size a batch backend got\"},\n",
+            ob_engine_name(e->engine), ob_engine_name(o->driver.engine), o->driver.chunk, e->threads, e->groups,
+            e->wall_ns * 1e-9, e->work_ns * 1e-9, eff, e->helped_ns * 1e-9, e->launches, e->records);
+}
+
 int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
                   double wall_seconds)
 {
@@ -316,6 +332,7 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
     meta_settings(f, o);
     meta_definitions(f, o, rec);
     meta_host(f, o, rec);
+    meta_engine(f, o, rec);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
     fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);

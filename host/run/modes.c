@@ -108,6 +108,7 @@ int ob_run_plain(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char *wh
     h.progress_ctx = &bar;
     h.job_done = progress_job_done;
     h.job_done_ctx = &pc;
+    h.stats = &c->rec->engine;
     double t0 = now_s();
     int rc = ob_driver_run(jobs, njobs, &c->o->driver, &h);
     *wall = now_s() - t0;

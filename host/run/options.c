@@ -194,7 +194,7 @@ static int same_param(const char *a, const char *b)
 enum {
     RO_CURVES, RO_CURVE, RO_RANDOM, RO_METHODS, RO_TOLS, RO_METRIC, RO_SPLIT, RO_BACKEND, RO_DEVICE,
     RO_THREADS, RO_SAMPLES, RO_MAX_DEPTH, RO_MAX_SEGMENTS, RO_INFLECTIONS, RO_PARAM, RO_JOB_TIMEOUT,
-    RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT,
+    RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT, RO_ENGINE, RO_CHUNK,
 };
 
 const ob_flag ob_run_flags[] = {
@@ -208,6 +208,9 @@ const ob_flag ob_run_flags[] = {
     {"backend", "B", "auto (default), opencl or cpu", RO_BACKEND, OB_FLAG_ONCE},
     {"device", "NAME", "the OpenCL device whose name contains NAME", RO_DEVICE, OB_FLAG_ONCE},
     {"threads", "N", "OpenMP threads (default: all cores)", RO_THREADS, OB_FLAG_ONCE},
+    {"engine", "E", "how work is scheduled: auto (default), group or level; never changes a row", RO_ENGINE,
+     OB_FLAG_ONCE},
+    {"chunk", "N", "pieces per fit/measure batch (default 512); never changes a row", RO_CHUNK, OB_FLAG_ONCE},
     {"samples", "S", "samples per piece of the sampled metrics (default 256)", RO_SAMPLES, OB_FLAG_ONCE},
     {"max-depth", "N", "subdivision depth limit (default 40)", RO_MAX_DEPTH, OB_FLAG_ONCE},
     {"max-segments", "N", "pieces per job limit (default 20000)", RO_MAX_SEGMENTS, OB_FLAG_ONCE},
@@ -292,6 +295,13 @@ static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *
         return 0;
     case RO_DEVICE: o->device = v; return 0;
     case RO_THREADS: return parse_int(opt, v, 1, 1024, &o->threads);
+    case RO_ENGINE:
+        if (ob_engine_parse(v, &o->driver.engine)) {
+            ob_error("--engine: unknown engine '%s' (auto, group, level)", v);
+            return -1;
+        }
+        return 0;
+    case RO_CHUNK: return parse_int(opt, v, 1, 1 << 20, &o->driver.chunk);
     case RO_SAMPLES: return parse_int(opt, v, OB_MIN_SAMPLES, OB_MAX_SAMPLES, &o->driver.samples);
     case RO_MAX_DEPTH: return parse_int(opt, v, 1, 60, &o->driver.max_depth);
     case RO_MAX_SEGMENTS: return parse_int(opt, v, 1, 10000000, &o->driver.max_segments);

@@ -12,6 +12,7 @@
 
 #include "host/backend/select.h"
 #include "host/run/hostinfo.h"
+#include "methods/driver/driver.h"
 
 typedef struct {
     uint64_t data_hash;          /* FNV-1a of the selected curves' content
@@ -27,6 +28,8 @@ typedef struct {
                                     repetitions (nondeterminism) */
     ob_backend_info binfo;
     ob_loadavg load;             /* the load average during the run (hostinfo.h) */
+    ob_engine_stats engine;      /* what the driver's engine did (the last run
+                                    of a --reps series) */
 } ob_run_record;
 
 #endif

@@ -18,14 +18,6 @@
 
 #include "methods/driver/driver.h"
 
-/* Purpose: the estimated cost of a job, in milliseconds of thread time on the
- *          development machine: the method's median per job in the nightly
- *          baseline, scaled by the base curve's size (sum over its segments
- *          of degree + 1, relative to one cubic) and by tol^(-1/4) relative
- *          to 1e-3 (a fourth-order method's segment count).  An estimate for
- *          balancing only. */
-double ob_job_cost(const ob_job *j);
-
 /* Purpose: the shard of every job: shard_of[i] in 0..n-1 for jobs[0..njobs).
  * Returns 0, or -1 without memory. */
 int ob_shard_assign(const ob_job *jobs, size_t njobs, int n, int *shard_of);

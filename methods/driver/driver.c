@@ -43,7 +43,36 @@ void ob_driver_defaults(ob_driver_opts *o)
     o->chunk = 512;
 }
 
+static const char *const engine_names[OB_ENGINE_COUNT] = {"auto", "level", "group"};
+
+const char *ob_engine_name(ob_engine e) { return (e >= 0 && e < OB_ENGINE_COUNT) ? engine_names[e] : "?"; }
+
+int ob_engine_parse(const char *name, ob_engine *e)
+{
+    for (int i = 0; i < OB_ENGINE_COUNT; i++)
+        if (strcmp(name, engine_names[i]) == 0) {
+            *e = (ob_engine)i;
+            return 0;
+        }
+    return -1;
+}
+
+/* auto: the group engine on the CPU; the level engine feeds a batch
+ * backend chunks of records from all groups at once. */
+static ob_engine engine_for(const drv_run *R)
+{
+    if (R->o.engine == OB_ENGINE_LEVEL || R->o.engine == OB_ENGINE_GROUP)
+        return R->o.engine;
+    return R->h.batch ? OB_ENGINE_LEVEL : OB_ENGINE_GROUP;
+}
+
 int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks)
 {
-    return drv_run_level(jobs, njobs, opts, hooks);
+    drv_run R;
+    int rc = drv_run_start(&R, jobs, njobs, opts, hooks);
+    R.st.engine = engine_for(&R);
+    if (rc == 0)
+        rc = R.st.engine == OB_ENGINE_GROUP ? drv_run_group(&R) : drv_run_level(&R);
+    drv_run_end(&R, rc);
+    return rc;
 }

@@ -137,6 +137,63 @@ typedef struct {
     int oom;            /* a span could not be stored: the log is incomplete */
 } ob_span_log;
 
+/* How the work is scheduled (README "Engines"); no engine changes a result.
+ *   level  every pending piece of every job, level by level, in chunks: the
+ *          threads fit a chunk, one batch measures it, one thread decides
+ *          (barriers between); a batch backend gets the chunk's records;
+ *   group  the share groups (jobs that differ only in tol and share pieces)
+ *          are the unit of work: threads take whole groups, largest
+ *          predicted cost first, and run each to completion with no barrier
+ *          between groups; threads left without a group help the groups
+ *          still running (their fits and measurements as tasks);
+ *   auto   group on the CPU, level with a batch backend. */
+typedef enum { OB_ENGINE_AUTO = 0, OB_ENGINE_LEVEL, OB_ENGINE_GROUP, OB_ENGINE_COUNT } ob_engine;
+const char *ob_engine_name(ob_engine e);
+int ob_engine_parse(const char *name, ob_engine *e);
+
+/* What an engine did (ob_driver_hooks.stats): the figures of its
+ * efficiency, (work_ns) / (threads x wall_ns). */
+typedef struct {
+    ob_engine engine;   /* the engine that ran (never auto) */
+    int threads;        /* OpenMP threads it had */
+    double wall_ns;     /* ob_driver_run's wall time */
+    double work_ns;     /* thread time of the fits and measurements it ran,
+                           a piece shared by several jobs counted once */
+    double helped_ns;   /* group: of work_ns, what threads ran for a group
+                           that another thread held (the tail) */
+    long groups;        /* share groups */
+    long launches;      /* batch backend calls */
+    long records;       /* records the batch backend measured */
+} ob_engine_stats;
+
+/* A trace of a run's task times, to model other thread counts
+ * (ob_trace_makespan): a sequence of phases, each some serial time then
+ * tasks that threads take in order, grain at a time, as OpenMP's dynamic
+ * schedule does.  The level engine's phases are each chunk's fits and its
+ * measurements (the decisions and sorting serial); the group engine's are
+ * the planning and the groups (a group's whole thread time one task). */
+typedef struct {
+    size_t first, n;    /* tasks task[first .. first + n - 1] */
+    int grain;
+    double serial_ns;   /* before the tasks, on one thread */
+} ob_trace_phase;
+
+typedef struct {
+    double *task;
+    size_t ntask, captask;
+    ob_trace_phase *phase;
+    size_t nphase, capphase;
+    double work_ns;     /* as ob_engine_stats.work_ns */
+    int oom;            /* a task or phase could not be stored */
+} ob_trace;
+
+/* Purpose: the modelled wall time of a traced run on `threads` threads: a
+ *          list schedule of each phase's tasks (the earliest free thread
+ *          takes the next grain), phases one after the other.
+ * Returns: ns; 0 for an empty trace. */
+double ob_trace_makespan(const ob_trace *t, int threads);
+void ob_trace_free(ob_trace *t);
+
 /* How the driver works: settings that decide results (samples, limits) and
  * the run's budgets.  A plain value: a run configuration holds one. */
 typedef struct {
@@ -145,6 +202,7 @@ typedef struct {
     int max_segments;   /* per job */
     int inflections;    /* 1: split at inflections first (forced for OB_CAP_CONVEX) */
     int chunk;          /* pieces per fit/measure batch (bounds memory) */
+    ob_engine engine;   /* how the work is scheduled (no result depends on it) */
     /* 1: measure every probe of the greedy and optimal searches in full.  By
      * default a probe whose error exceeds its level is measured only until a
      * sample shows that (ob_measure_until): the results are the same, bit for
@@ -172,23 +230,40 @@ typedef struct {
     ob_batch_fn batch;  /* NULL: measure on the CPU with OpenMP */
     void *batch_ctx;
     long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */
-    /* if not NULL: called from the calling thread after every batch with the
-     * number of finished jobs */
+    /* if not NULL: called after every batch with the number of finished
+     * jobs, from one thread at a time (the calling thread with the level
+     * engine; under the engine's lock with the group engine) */
     void (*progress)(void *ctx, size_t done, size_t total);
     void *progress_ctx;
     /* if not NULL: njobs logs, zeroed by the caller; spans[i] receives the
      * accepted pieces of job i (draw and trace refit them to show the
      * approximation: fits are deterministic) */
     ob_span_log *spans;
-    /* if not NULL: called from the calling thread as soon as job i is
-     * finished, its outputs final (rows can be saved as jobs finish) */
+    /* if not NULL: called as soon as job i is finished, its outputs final
+     * (rows can be saved as jobs finish), from one thread at a time like
+     * progress.  The order is stable for any thread count: the level
+     * engine's decisions' order; the group engine's groups in its schedule
+     * order (a group's jobs told once all groups before it are), each
+     * group's jobs in the order they finished */
     void (*job_done)(void *ctx, size_t i);
     void *job_done_ctx;
     /* if not NULL: read between batches; once nonzero (a signal handler sets
      * it) the driver stops, and jobs not finished get status fail with the
      * message "interrupted" (job_done is not called for them) */
     const volatile sig_atomic_t *stop;
+    ob_engine_stats *stats; /* if not NULL: what the engine did */
+    ob_trace *trace;        /* if not NULL (zeroed by the caller): the task
+                               times, for ob_trace_makespan */
 } ob_driver_hooks;
+
+/* Purpose: the estimated cost of a job, in milliseconds of thread time on the
+ *          development machine: the method's median per job in the nightly
+ *          baseline, scaled by the base curve's size (sum over its segments
+ *          of degree + 1, relative to one cubic) and by tol^(-1/4) relative
+ *          to 1e-3 (a fourth-order method's segment count).  An estimate for
+ *          balancing only: --shard's partition, the group engine's
+ *          schedule, the progress bar. */
+double ob_job_cost(const ob_job *j);
 
 void ob_driver_defaults(ob_driver_opts *o);
 

@@ -4,7 +4,11 @@
  *   jobs.c          a job's bookkeeping, its first pieces, its outputs; share groups
  *   rules.c         the split rules: what becomes of one measured piece
  *   steps.c         fit and measure pieces, their joints, the chunk helpers
+ *   run.c           what every engine shares: the run's state, a chunk's
+ *                   work and decisions, a job's end
  *   engine_level.c  the level engine
+ *   engine_group.c  the group engine
+ *   trace.c         task traces and the schedule model
  */
 #ifndef OB_DRIVER_INT_H
 #define OB_DRIVER_INT_H
@@ -79,6 +83,7 @@ typedef struct {
     long pending;   /* items of this job still queued */
     int dead;       /* failed or skipped: drop its remaining items */
     int finished;   /* counted as done for progress */
+    int told;       /* its end was passed to the engine (drv_chunk_decide) */
     int floored;    /* a piece hit an error floor: keep the rest as they are */
     ob_span_log *spans; /* NULL, or where accepted pieces go */
     /* joints: the ends of every accepted fit until the job is finalized */
@@ -120,7 +125,43 @@ typedef struct {
     int *sampled;          /* indices of the records a batch backend takes */
     ob_measure_rec *srec;
     ob_errval *sout;
+    int backend_n;         /* records the batch backend measured (0: none) */
+    double backend_wall;   /* its wall time, ns */
 } batch;
+
+/* How a chunk's loops run: a team of all threads (the level engine, outside
+ * any parallel region), as tasks other threads may take (inside one), or on
+ * the calling thread alone. */
+typedef enum { DRV_SERIAL = 0, DRV_TEAM, DRV_TASKS } drv_how;
+
+/* The buffers of one chunk of items: one set for the level engine, one per
+ * thread for the group engine. */
+typedef struct {
+    int chunk;          /* entries of each buffer */
+    ob_fit *fits;
+    itemres *res;
+    double *fit_ns, *eval_ns;
+    double *stop;       /* each measuring item's stop (drv_chunk_stops) */
+    fitjoints *fj;
+    int *rep;
+    batch B;
+} drv_scratch;
+
+/* One driver run, whatever the engine: its jobs, settings, hooks, each
+ * job's bookkeeping and share group, the methods' work areas. */
+typedef struct {
+    ob_job *jobs;
+    size_t njobs;
+    ob_driver_opts o;
+    ob_driver_hooks h;
+    jstate *js;
+    int *grp;           /* njobs: each job's share group */
+    int ngroups;
+    size_t wsize;       /* the largest work area a method asks for */
+    char *work;         /* wsize bytes per thread */
+    size_t done;        /* jobs finished */
+    ob_engine_stats st; /* what the engine did (hooks.stats gets a copy) */
+} drv_run;
 
 /* jobs.c */
 int drv_push(itemvec *q, const item *it);
@@ -128,13 +169,15 @@ void drv_job_end(ob_job *j, jstate *s, ob_status st, const char *msg);
 int drv_check_applicable(ob_job *j, jstate *s);
 int drv_plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, itemvec *out);
 int drv_span_cmp(const void *x, const void *y);
-void drv_accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg, double err, const fitjoints *fj);
+void drv_accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg, double err,
+                const fitjoints *fj);
 void drv_accept_item(ob_job *j, jstate *s, const item *it, const itemres *r, const fitjoints *fj);
 void drv_finalize(ob_job *j, jstate *s);
 int *drv_share_groups(const ob_job *jobs, size_t njobs);
 
 /* rules.c */
-int drv_decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj, const ob_driver_opts *o, itemvec *next);
+int drv_decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const fitjoints *fj,
+               const ob_driver_opts *o, itemvec *next);
 double drv_item_stop(const ob_job *j, const item *it, int full_probes);
 
 /* steps.c */
@@ -144,8 +187,11 @@ double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit,
 double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, void *work, ob_fit *fit, itemres *r);
 int drv_batch_alloc(batch *b, int chunk);
 void drv_batch_free(batch *b);
-void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop, itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B);
-void drv_joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res, fitjoints *fj);
+void drv_for(drv_how how, long n, long min_par, int grain, void (*fn)(const void *ctx, long i), const void *ctx);
+void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                       itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B, drv_how how);
+void drv_joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res,
+                      fitjoints *fj, drv_how how);
 int drv_same_piece(const item *x, const item *y);
 int drv_item_share_cmp(const void *x, const void *y);
 long drv_chunk_count(const itemvec *cur, size_t start, int chunk);
@@ -153,7 +199,23 @@ void drv_chunk_reps(const item *its, long cnt, const jstate *js, int *rep);
 void drv_chunk_stops(const ob_job *jobs, const item *its, long cnt, const int *rep, int full_probes, double *stop);
 void drv_copy_shared(long cnt, const int *rep, itemres *res, fitjoints *fj, double *fit_ns, double *eval_ns);
 
-/* engine_level.c */
-int drv_run_level(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks);
+/* run.c */
+int drv_run_start(drv_run *R, ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks);
+int drv_plan_all(drv_run *R, itemvec *plans);
+int drv_job_finished(drv_run *R, size_t i);
+void drv_run_end(drv_run *R, int rc);
+int drv_scratch_alloc(drv_scratch *S, int chunk);
+void drv_scratch_free(drv_scratch *S);
+double drv_chunk_work(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how);
+int drv_chunk_decide(drv_run *R, drv_scratch *S, const item *its, long cnt, itemvec *next,
+                     int (*finished)(void *ctx, size_t job), void *ctx);
+
+/* trace.c */
+int drv_trace_task(ob_trace *t, double ns);
+int drv_trace_phase(ob_trace *t, size_t first, int grain, double serial_ns);
+
+/* the engines */
+int drv_run_level(drv_run *R);
+int drv_run_group(drv_run *R);
 
 #endif

@@ -301,3 +301,14 @@ int *drv_share_groups(const ob_job *jobs, size_t njobs)
     free(r);
     return grp;
 }
+
+double ob_job_cost(const ob_job *j)
+{
+    /* the method's own figure (method.h), else 2 ms */
+    const double ms = j->method->cost_ms > 0 ? j->method->cost_ms : 2.0;
+    double size = 0.0;
+    for (int s = 0; s < j->curve->nseg; s++)
+        size += j->curve->seg[s].deg + 1;
+    const double tol = j->tol > 0 ? j->tol : 1e-3;
+    return ms * (size / 4.0) * pow(tol / 1e-3, -0.25);
+}

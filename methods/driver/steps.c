@@ -124,9 +124,94 @@ void drv_batch_free(batch *b)
     free(b->sout);
 }
 
+void drv_for(drv_how how, long n, long min_par, int grain, void (*fn)(const void *ctx, long i), const void *ctx)
+{
+    if (how == DRV_TEAM && n >= min_par) {
+#pragma omp parallel for schedule(dynamic, grain)
+        for (long i = 0; i < n; i++)
+            fn(ctx, i);
+    } else if (how == DRV_TASKS && n >= min_par) {
+#pragma omp taskloop grainsize(grain)
+        for (long i = 0; i < n; i++)
+            fn(ctx, i);
+    } else {
+        for (long i = 0; i < n; i++)
+            fn(ctx, i);
+    }
+}
+
+/* What the loops of one chunk's measuring read. */
+typedef struct {
+    const ob_job *jobs;
+    const item *its;
+    const ob_fit *fits;
+    const double *stop;
+    const itemres *res;
+    int samples;
+    batch *B;
+    int backend_ok;     /* the backend measured the sampled records */
+} chunk_ctx;
+
+/* The records of item i: its base sub-pieces cut, one per piece of its fit. */
+static void make_records(const void *ctx, long i)
+{
+    const chunk_ctx *c = ctx;
+    if (c->res[i].st != OB_FIT_OK)
+        return;
+    const ob_job *j = &c->jobs[c->its[i].job];
+    ob_bez sub;
+    ob_bez_subsegment(&j->curve->seg[c->its[i].seg], c->its[i].a, c->its[i].b, &sub);
+    for (int p = 0; p < c->fits[i].n; p++) {
+        const int r = c->B->first[i] + p;
+        ob_bez_subsegment(&sub, c->fits[i].t[p], c->fits[i].t[p + 1], &c->B->base[r]);
+        c->B->rec[r] = (ob_measure_rec){&c->B->base[r], &c->fits[i].seg[p], j->d, j->metric, c->stop[i]};
+    }
+}
+
+/* Record r measured on the CPU (unless the backend did), its thread time
+ * kept. */
+static void measure_record(const void *ctx, long r)
+{
+    const chunk_ctx *c = ctx;
+    batch *B = c->B;
+    if (c->backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
+        return;
+    const double t0 = drv_thread_ns();
+    if (ob_measure_until(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, c->samples,
+                         B->rec[r].stop, &B->out[r]))
+        B->out[r].err = NAN;  /* cannot be measured: reported below */
+    B->ns[r] = drv_thread_ns() - t0;
+}
+
+/* The sampled records B->srec[0..ns-1] to the batch backend; its wall time
+ * in *wall.  Engines that measure from several threads at once
+ * (DRV_TASKS, DRV_SERIAL inside a parallel region) take turns: a backend
+ * holds one queue.  1 when the backend measured them. */
+static int call_backend(const ob_driver_hooks *h, batch *B, int ns, int samples, drv_how how, double *wall)
+{
+    int ok;
+    if (how == DRV_TEAM) {
+        const double t0 = drv_wall_ns();
+        ok = h->batch(h->batch_ctx, B->srec, ns, samples, B->sout) == 0;
+        *wall = drv_wall_ns() - t0;
+        if (!ok && h->batch_fallbacks)
+            (*h->batch_fallbacks)++;
+        return ok;
+    }
+#pragma omp critical(drv_backend)
+    {
+        const double t0 = drv_wall_ns();
+        ok = h->batch(h->batch_ctx, B->srec, ns, samples, B->sout) == 0;
+        *wall = drv_wall_ns() - t0;
+        if (!ok && h->batch_fallbacks)
+            (*h->batch_fallbacks)++;
+    }
+    return ok;
+}
+
 /* Measure all pieces of all fitted items of a chunk: one batch. */
 void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
-                          itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B)
+                       itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B, drv_how how)
 {
     int n = 0;
     for (long i = 0; i < cnt; i++) {
@@ -137,19 +222,8 @@ void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_f
     B->first[cnt] = n;
     /* the records: base sub-pieces cut in parallel (a level of one item, as
      * greedy bisection often makes, runs without waking the other threads) */
-#pragma omp parallel for schedule(dynamic, 8) if (cnt > 1)
-    for (long i = 0; i < cnt; i++) {
-        if (res[i].st != OB_FIT_OK)
-            continue;
-        const ob_job *j = &jobs[its[i].job];
-        ob_bez sub;
-        ob_bez_subsegment(&j->curve->seg[its[i].seg], its[i].a, its[i].b, &sub);
-        for (int p = 0; p < fits[i].n; p++) {
-            const int r = B->first[i] + p;
-            ob_bez_subsegment(&sub, fits[i].t[p], fits[i].t[p + 1], &B->base[r]);
-            B->rec[r] = (ob_measure_rec){&B->base[r], &fits[i].seg[p], j->d, j->metric, stop[i]};
-        }
-    }
+    const chunk_ctx cc = {jobs, its, fits, stop, res, samples, B, 0};
+    drv_for(how, cnt, 2, 8, make_records, &cc);
     /* sampled records to the backend in one call, the rest on the CPU */
     int ns = 0;
     if (h->batch)
@@ -157,13 +231,16 @@ void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_f
             if (B->rec[r].metric != OB_METRIC_BOUND)
                 B->sampled[ns++] = r;
     int backend_ok = 0;
+    B->backend_n = 0;
+    B->backend_wall = 0.0;
     if (ns > 0) {
         for (int k = 0; k < ns; k++)
             B->srec[k] = B->rec[B->sampled[k]];
-        const double t0 = drv_wall_ns();
-        backend_ok = h->batch(h->batch_ctx, B->srec, ns, samples, B->sout) == 0;
-        const double wall = drv_wall_ns() - t0;
+        double wall;
+        backend_ok = call_backend(h, B, ns, samples, how, &wall);
         if (backend_ok) {
+            B->backend_n = ns;
+            B->backend_wall = wall;
             /* one launch measured them all: each record's share of its wall
              * time is its share of the work (the kernel counts it) */
             double total = 0.0;
@@ -173,20 +250,10 @@ void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_f
                 B->out[B->sampled[k]] = B->sout[k];
                 B->ns[B->sampled[k]] = total > 0.0 ? wall * (B->sout[k].work / total) : wall / ns;
             }
-        } else if (h->batch_fallbacks) {
-            (*h->batch_fallbacks)++;
         }
     }
-#pragma omp parallel for schedule(dynamic, 4) if (n > 1)
-    for (int r = 0; r < n; r++) {
-        if (backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
-            continue;
-        const double t0 = drv_thread_ns();
-        if (ob_measure_until(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, samples,
-                             B->rec[r].stop, &B->out[r]))
-            B->out[r].err = NAN;  /* cannot be measured: reported below */
-        B->ns[r] = drv_thread_ns() - t0;
-    }
+    const chunk_ctx mc = {jobs, its, fits, stop, res, samples, B, backend_ok};
+    drv_for(how, n, 2, 4, measure_record, &mc);
     /* per item: the largest error over its pieces, at a base parameter */
     for (long i = 0; i < cnt; i++) {
         itemres *r = &res[i];
@@ -237,16 +304,28 @@ static void fit_joints(const ob_fit *fit, double gap_tol, fitjoints *fj)
 
 /* The joints of every fitted item of a chunk (items whose fit failed get
  * none). */
-void drv_joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res,
-                         fitjoints *fj)
+typedef struct {
+    const jstate *js;
+    const item *its;
+    const ob_fit *fits;
+    const itemres *res;
+    fitjoints *fj;
+} joints_ctx;
+
+static void item_joints(const void *ctx, long i)
 {
-#pragma omp parallel for schedule(dynamic, 16) if (cnt > 64)
-    for (long i = 0; i < cnt; i++) {
-        if (res[i].st == OB_FIT_OK)
-            fit_joints(&fits[i], js[its[i].job].gap_tol, &fj[i]);
-        else
-            memset(&fj[i], 0, sizeof fj[i]);
-    }
+    const joints_ctx *c = ctx;
+    if (c->res[i].st == OB_FIT_OK)
+        fit_joints(&c->fits[i], c->js[c->its[i].job].gap_tol, &c->fj[i]);
+    else
+        memset(&c->fj[i], 0, sizeof c->fj[i]);
+}
+
+void drv_joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res,
+                      fitjoints *fj, drv_how how)
+{
+    const joints_ctx c = {js, its, fits, res, fj};
+    drv_for(how, cnt, 65, 16, item_joints, &c);
 }
 
 /* 1 when items x and y fit the same piece for the same share group. */

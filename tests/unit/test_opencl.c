@@ -93,7 +93,7 @@ int main(void)
     testlib_seed(0x5DEECE66DULL);
     ob_cl *cl = NULL;
     ob_err err = {""};
-    if (ob_cl_open(NULL, &cl, &err) != 0) {
+    if (ob_cl_open(NULL, 0, &cl, &err) != 0) {
         fprintf(stderr, "no OpenCL: %s\n", err.msg);
         /* no loader, platform or fp64 device: skipped; a device that does
          * not build the kernel (or a failing call) is a failure */

@@ -1,0 +1,314 @@
+/*
+ * test_engines.c - how the work is scheduled never changes an answer
+ * (driver.h, ob_engine): every engine, at 1, 2 and 7 threads and at chunk
+ * sizes from 1 to the default, gives every job the same outputs, bit for
+ * bit (timings aside) and the same accepted pieces; the group engine tells
+ * each job once, in the same order at any thread count; a stopped run keeps
+ * what it finished; the schedule model (ob_trace_makespan) is a list
+ * schedule.  The jobs: random curves of every family, every registered
+ * method, every split rule, a sampled metric and the bound, tolerances
+ * that share pieces.
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/io/random.h"
+#include "methods/driver/driver.h"
+#include "tests/check.h"
+
+static const double tols[3] = {1e-1, 1e-2, 1e-3};
+
+enum { NCURVES = 8 };
+
+typedef struct {
+    ob_job *jobs;
+    size_t n;
+    ob_curve *curves;   /* NCURVES, where the jobs point */
+} jobset;
+
+/* The jobs: 8 random curves (one per family) x their offsets x every method
+ * x one split rule (by method, so that all four are covered) x 3 tols, the
+ * hausdorff metric; and tiller under the bound and mid. */
+static jobset make_jobs(void)
+{
+    jobset s;
+    memset(&s, 0, sizeof s);
+    s.curves = calloc(NCURVES, sizeof *s.curves);
+    size_t cap = 0;
+    for (int c = 0; c < NCURVES; c++) {
+        CHECK(ob_random_curve(5, c, &s.curves[c]) == 0, "random curve %d", c);
+        for (int m = 0; ob_methods[m]; m++)
+            cap += (size_t)s.curves[c].nd * 3 + 3;
+    }
+    s.jobs = calloc(cap + 64, sizeof *s.jobs);
+    for (int c = 0; c < NCURVES; c++)
+        for (int k = 0; k < s.curves[c].nd; k++)
+            for (int m = 0; ob_methods[m]; m++)
+                for (int t = 0; t < 3; t++) {
+                    ob_job *j = &s.jobs[s.n++];
+                    j->curve = &s.curves[c];
+                    j->d = s.curves[c].d[k];
+                    j->method = ob_methods[m];
+                    j->metric = m == 0 && c % 2 ? OB_METRIC_BOUND : OB_METRIC_HAUSDORFF;
+                    j->split = (ob_split)((m + c) % OB_SPLIT_COUNT);
+                    j->tol = tols[t];
+                }
+    return s;
+}
+
+static void free_jobs(jobset *s)
+{
+    free(s->jobs);
+    for (int c = 0; c < NCURVES; c++)
+        ob_curve_free(&s->curves[c]);
+    free(s->curves);
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* Every output but the timings, bit for bit. */
+static int same_job(const ob_job *a, const ob_job *b)
+{
+    return a->status == b->status && a->ctrl_points == b->ctrl_points && a->segments == b->segments &&
+           a->out_degree == b->out_degree && same_bits(a->max_err, b->max_err) &&
+           strcmp(a->message, b->message) == 0 && same_bits(a->max_gap, b->max_gap) &&
+           same_bits(a->max_kink, b->max_kink) && a->continuity == b->continuity && a->joints == b->joints &&
+           a->open_joints == b->open_joints;
+}
+
+static int same_spans(const ob_span_log *a, const ob_span_log *b)
+{
+    if (a->n != b->n || a->oom || b->oom)
+        return 0;
+    for (int k = 0; k < a->n; k++)
+        if (a->v[k].seg != b->v[k].seg || !same_bits(a->v[k].a, b->v[k].a) || !same_bits(a->v[k].b, b->v[k].b))
+            return 0;
+    return 1;
+}
+
+/* The order in which jobs were told finished. */
+typedef struct {
+    size_t *order;
+    size_t n;
+    int *told;
+    int twice;
+} tellings;
+
+static void on_done(void *ctx, size_t i)
+{
+    tellings *t = ctx;
+    if (t->told[i]++)
+        t->twice++;
+    t->order[t->n++] = i;
+}
+
+typedef struct {
+    ob_job *jobs;
+    ob_span_log *spans;
+    tellings told;
+    ob_engine_stats st;
+    int rc;
+} outcome;
+
+static outcome run(const jobset *s, ob_engine e, int threads, int chunk)
+{
+    outcome r;
+    memset(&r, 0, sizeof r);
+    r.jobs = malloc(s->n * sizeof *r.jobs);
+    memcpy(r.jobs, s->jobs, s->n * sizeof *r.jobs);
+    r.spans = calloc(s->n, sizeof *r.spans);
+    r.told.order = malloc(s->n * sizeof *r.told.order);
+    r.told.told = calloc(s->n, sizeof *r.told.told);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    o.samples = 64;
+    o.engine = e;
+    o.chunk = chunk;
+    ob_driver_hooks h;
+    memset(&h, 0, sizeof h);
+    h.spans = r.spans;
+    h.job_done = on_done;
+    h.job_done_ctx = &r.told;
+    h.stats = &r.st;
+    omp_set_num_threads(threads);
+    r.rc = ob_driver_run(r.jobs, s->n, &o, &h);
+    return r;
+}
+
+static void outcome_free(outcome *r, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(r->spans[i].v);
+    free(r->spans);
+    free(r->jobs);
+    free(r->told.order);
+    free(r->told.told);
+}
+
+static void check_same(const jobset *s, const outcome *ref, const outcome *got, const char *what)
+{
+    size_t bad = 0, first = 0;
+    for (size_t i = 0; i < s->n; i++)
+        if (!same_job(&ref->jobs[i], &got->jobs[i]) || !same_spans(&ref->spans[i], &got->spans[i]))
+            if (bad++ == 0)
+                first = i;
+    CHECK(got->rc == 0 && bad == 0, "%s: %zu of %zu jobs differ from the level engine at 1 thread (first: "
+          "%s d=%g %s %s tol %g: %s %ld %.17g vs %s %ld %.17g)", what, bad, s->n, s->jobs[first].curve->id,
+          s->jobs[first].d, s->jobs[first].method->name, ob_split_name(s->jobs[first].split),
+          s->jobs[first].tol, ob_status_name(ref->jobs[first].status), ref->jobs[first].ctrl_points,
+          ref->jobs[first].max_err, ob_status_name(got->jobs[first].status), got->jobs[first].ctrl_points,
+          got->jobs[first].max_err);
+    CHECK(got->told.n == s->n && got->told.twice == 0, "%s: %zu of %zu jobs told, %d twice", what, got->told.n,
+          s->n, got->told.twice);
+}
+
+static void test_equivalence(const jobset *s)
+{
+    outcome ref = run(s, OB_ENGINE_LEVEL, 1, 512);
+    CHECK(ref.st.engine == OB_ENGINE_LEVEL && ref.st.groups > 0 && ref.st.work_ns > 0,
+          "the level engine says what it did (%ld groups, %.3g s of work)", ref.st.groups, ref.st.work_ns * 1e-9);
+    outcome group1 = run(s, OB_ENGINE_GROUP, 1, 512);
+    check_same(s, &ref, &group1, "engine group, 1 thread, chunk 512");
+    const struct {
+        ob_engine e;
+        int threads, chunk;
+    } cfg[] = {{OB_ENGINE_LEVEL, 2, 512}, {OB_ENGINE_LEVEL, 7, 512}, {OB_ENGINE_LEVEL, 2, 3},
+               {OB_ENGINE_GROUP, 2, 512}, {OB_ENGINE_GROUP, 7, 512},
+               {OB_ENGINE_GROUP, 2, 1},   {OB_ENGINE_GROUP, 7, 5},   {OB_ENGINE_AUTO, 2, 512}};
+    for (size_t k = 0; k < sizeof cfg / sizeof cfg[0]; k++) {
+        char what[96];
+        snprintf(what, sizeof what, "engine %s, %d threads, chunk %d", ob_engine_name(cfg[k].e), cfg[k].threads,
+                 cfg[k].chunk);
+        outcome got = run(s, cfg[k].e, cfg[k].threads, cfg[k].chunk);
+        check_same(s, &ref, &got, what);
+        const ob_engine ran = cfg[k].e == OB_ENGINE_AUTO ? OB_ENGINE_GROUP : cfg[k].e;
+        CHECK(got.st.engine == ran && got.st.threads == cfg[k].threads, "%s: ran %s on %d threads", what,
+              ob_engine_name(got.st.engine), got.st.threads);
+        if (ran == OB_ENGINE_GROUP)
+            CHECK(got.told.n == group1.told.n &&
+                      memcmp(got.told.order, group1.told.order, got.told.n * sizeof *got.told.order) == 0,
+                  "%s: jobs told in the same order as at 1 thread", what);
+        outcome_free(&got, s->n);
+    }
+    /* the group engine tells a group's jobs together, groups by predicted
+     * cost: not the level engine's order, but every job once */
+    CHECK(group1.told.n == s->n, "group engine: every job told (%zu of %zu)", group1.told.n, s->n);
+    outcome_free(&group1, s->n);
+    outcome_free(&ref, s->n);
+}
+
+/* A stop after a few jobs: the run returns 1, the jobs it told are final
+ * and equal to the full run's, the others are "interrupted". */
+static const volatile sig_atomic_t *stop_flag;
+static volatile sig_atomic_t stop_now;
+static size_t stop_after, stop_seen;
+
+static void stop_on_done(void *ctx, size_t i)
+{
+    on_done(ctx, i);
+    if (++stop_seen >= stop_after)
+        stop_now = 1;
+}
+
+static void test_stop(const jobset *s, ob_engine e)
+{
+    outcome ref = run(s, OB_ENGINE_LEVEL, 2, 512);
+    outcome r;
+    memset(&r, 0, sizeof r);
+    r.jobs = malloc(s->n * sizeof *r.jobs);
+    memcpy(r.jobs, s->jobs, s->n * sizeof *r.jobs);
+    r.told.order = malloc(s->n * sizeof *r.told.order);
+    r.told.told = calloc(s->n, sizeof *r.told.told);
+    r.spans = calloc(s->n, sizeof *r.spans);
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    o.samples = 64;
+    o.engine = e;
+    ob_driver_hooks h;
+    memset(&h, 0, sizeof h);
+    stop_now = 0;
+    stop_seen = 0;
+    stop_after = s->n / 4;
+    stop_flag = &stop_now;
+    h.stop = stop_flag;
+    h.job_done = stop_on_done;
+    h.job_done_ctx = &r.told;
+    omp_set_num_threads(2);
+    const int rc = ob_driver_run(r.jobs, s->n, &o, &h);
+    size_t bad = 0, interrupted = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (r.told.told[i])
+            bad += !same_job(&r.jobs[i], &ref.jobs[i]);
+        else
+            interrupted += r.jobs[i].status == OB_FAIL && strcmp(r.jobs[i].message, "interrupted") == 0;
+    }
+    CHECK(rc == 1 && r.told.n >= stop_after && r.told.n < s->n,
+          "engine %s stopped after %zu jobs: rc %d, %zu told of %zu", ob_engine_name(e), stop_after, rc, r.told.n,
+          s->n);
+    CHECK(bad == 0 && interrupted == s->n - r.told.n,
+          "engine %s stopped: %zu told jobs differ from the full run, %zu of %zu others interrupted",
+          ob_engine_name(e), bad, interrupted, s->n - r.told.n);
+    outcome_free(&r, s->n);
+    outcome_free(&ref, s->n);
+}
+
+/* The model: a list schedule, grain tasks at a time to the earliest free
+ * thread, phases one after the other with their serial time. */
+static void test_model(void)
+{
+    double task[] = {3, 3, 2, 2, 2, 5, 1, 1};
+    ob_trace_phase ph[2] = {{0, 5, 1, 1.0}, {5, 3, 2, 0.5}};
+    ob_trace t = {task, 8, 8, ph, 2, 2, 0, 0};
+    /* phase 1 on 2 threads: 3 | 3, then 2 -> 5, 2 -> 5, 2 -> 7: 7, +1 serial;
+     * phase 2, grain 2: {5, 1} = 6 | {1} = 1: 6, +0.5 serial */
+    CHECK(ob_trace_makespan(&t, 2) == 14.5, "2 threads: %g (14.5 wanted)", ob_trace_makespan(&t, 2));
+    CHECK(ob_trace_makespan(&t, 1) == 20.5, "1 thread: the sum, %g (20.5 wanted)", ob_trace_makespan(&t, 1));
+    /* phase 1 on 64: the longest task, 3; phase 2: 6 */
+    CHECK(ob_trace_makespan(&t, 64) == 10.5, "64 threads: %g (10.5 wanted)", ob_trace_makespan(&t, 64));
+}
+
+/* The traces of a real run: each engine's model at its own thread count is
+ * at most the work it traced and at least the work over the threads. */
+static void test_traces(const jobset *s)
+{
+    for (int e = OB_ENGINE_LEVEL; e <= OB_ENGINE_GROUP; e++) {
+        ob_job *jobs = malloc(s->n * sizeof *jobs);
+        memcpy(jobs, s->jobs, s->n * sizeof *jobs);
+        ob_driver_opts o;
+        ob_driver_defaults(&o);
+        o.samples = 64;
+        o.engine = (ob_engine)e;
+        ob_trace tr;
+        memset(&tr, 0, sizeof tr);
+        ob_driver_hooks h;
+        memset(&h, 0, sizeof h);
+        h.trace = &tr;
+        omp_set_num_threads(2);
+        ob_driver_run(jobs, s->n, &o, &h);
+        double sum = 0.0;
+        for (size_t k = 0; k < tr.ntask; k++)
+            sum += tr.task[k];
+        const double m1 = ob_trace_makespan(&tr, 1), m16 = ob_trace_makespan(&tr, 16);
+        CHECK(!tr.oom && tr.nphase >= 2 && sum >= 0.9 * tr.work_ns && m1 >= sum && m16 <= m1 && m16 >= sum / 16,
+              "engine %s: trace of %zu tasks in %zu phases, %.3g s of tasks for %.3g s of work, model 1 thread "
+              "%.3g s, 16 threads %.3g s", ob_engine_name((ob_engine)e), tr.ntask, tr.nphase, sum * 1e-9,
+              tr.work_ns * 1e-9, m1 * 1e-9, m16 * 1e-9);
+        ob_trace_free(&tr);
+        free(jobs);
+    }
+}
+
+int main(void)
+{
+    test_model();
+    jobset s = make_jobs();
+    CHECK(s.n > 300, "%zu jobs", s.n);
+    test_equivalence(&s);
+    test_stop(&s, OB_ENGINE_LEVEL);
+    test_stop(&s, OB_ENGINE_GROUP);
+    test_traces(&s);
+    free_jobs(&s);
+    return check_done();
+}
