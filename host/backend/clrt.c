@@ -8,6 +8,8 @@
 #define _GNU_SOURCE
 #include "host/diag.h"
 #include "host/backend/clrt.h"
+#include "host/backend/clcache.h"
+#include "host/run/shard.h"
 
 #include <dlfcn.h>
 #include <math.h>
@@ -64,6 +66,8 @@ const char *ob_cl_platform(const ob_cl *cl) { (void)cl; return ""; }
 const char *ob_cl_device(const ob_cl *cl) { (void)cl; return ""; }
 const char *ob_cl_driver(const ob_cl *cl) { (void)cl; return ""; }
 const char *ob_cl_source(const ob_cl *cl) { (void)cl; return ""; }
+const char *ob_cl_cache_status(const ob_cl *cl) { (void)cl; return ""; }
+int ob_cl_is_gpu(const ob_cl *cl) { (void)cl; return 0; }
 double ob_cl_build_seconds(const ob_cl *cl) { (void)cl; return 0.0; }
 int ob_cl_list_devices(FILE *f)
 {
@@ -74,6 +78,25 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
 {
     (void)ctx, (void)recs, (void)n, (void)samples, (void)out;
     return -1;
+}
+int ob_cl_submit(ob_cl *c, int slot, const ob_measure_rec *recs, int n, int samples)
+{
+    (void)c, (void)slot, (void)recs, (void)n, (void)samples;
+    return -1;
+}
+int ob_cl_wait(ob_cl *c, int slot, ob_errval *out, double *device_ns)
+{
+    (void)c, (void)slot, (void)out;
+    *device_ns = 0.0;
+    return -1;
+}
+int ob_cl_batch_submit(void *ctx, int slot, const ob_measure_rec *recs, int n, int samples)
+{
+    return ob_cl_submit(ctx, slot, recs, n, samples);
+}
+int ob_cl_batch_wait(void *ctx, int slot, ob_errval *out, double *device_ns)
+{
+    return ob_cl_wait(ctx, slot, out, device_ns);
 }
 
 #else
@@ -89,7 +112,8 @@ int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int sample
     X(clGetProgramBuildInfo) X(clCreateKernel) X(clCreateBuffer) X(clSetKernelArg)            \
     X(clEnqueueWriteBuffer) X(clEnqueueNDRangeKernel) X(clEnqueueReadBuffer) X(clFinish)      \
     X(clReleaseMemObject) X(clReleaseKernel) X(clReleaseProgram) X(clReleaseCommandQueue)     \
-    X(clReleaseContext) X(clGetKernelWorkGroupInfo)
+    X(clReleaseContext) X(clGetKernelWorkGroupInfo) X(clGetProgramInfo) X(clCreateProgramWithBinary)      \
+    X(clFlush) X(clWaitForEvents) X(clGetEventProfilingInfo) X(clReleaseEvent)
 
 static struct {
 #define X(f) __typeof__(&f) f;
@@ -150,6 +174,18 @@ static const char *cl_errname(cl_int e)
 
 /* ---- the runtime ------------------------------------------------------ */
 
+/* The buffers of one batch in flight: device buffers grown on demand, the
+ * host staging they are written from and read into, and the events of its
+ * kernel and of its last read (ob_cl_submit, ob_cl_wait). */
+typedef struct {
+    size_t cap_rec, cap_ctrl, cap_scr;
+    cl_mem metric, d, stop, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
+    int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff;
+    double *h_d, *h_stop, *h_ctrl, *h_err, *h_tpar, *h_work;
+    cl_event kernel, done;  /* NULL: nothing in flight */
+    int n;                  /* records in flight */
+} clslot;
+
 struct ob_cl {
     cl_context ctx;
     cl_command_queue q;
@@ -159,12 +195,9 @@ struct ob_cl {
     size_t group;        /* work-items per group of kg */
     char platform[256], device[256], driver[128], source[512];
     double build_s;
-    /* batch buffers, grown on demand */
-    size_t cap_rec, cap_ctrl, cap_scr;
-    cl_mem metric, d, stop, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
-    /* host staging */
-    int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff;
-    double *h_d, *h_stop, *h_ctrl, *h_err, *h_tpar, *h_work;
+    char cache[600];     /* what the binary cache did (clcache.h) */
+    int gpu;             /* CL_DEVICE_TYPE_GPU or _ACCELERATOR */
+    clslot slot[OB_CL_SLOTS];
 };
 
 int ob_cl_compiled(void) { return 1; }
@@ -182,6 +215,8 @@ const char *ob_cl_platform(const ob_cl *c) { return c ? c->platform : ""; }
 const char *ob_cl_device(const ob_cl *c) { return c ? c->device : ""; }
 const char *ob_cl_driver(const ob_cl *c) { return c ? c->driver : ""; }
 const char *ob_cl_source(const ob_cl *c) { return c ? c->source : ""; }
+const char *ob_cl_cache_status(const ob_cl *c) { return c ? c->cache : ""; }
+int ob_cl_is_gpu(const ob_cl *c) { return c ? c->gpu : 0; }
 double ob_cl_build_seconds(const ob_cl *c) { return c ? c->build_s : 0.0; }
 void ob_cl_set_layout(ob_cl *c, ob_cl_layout layout)
 {
@@ -303,6 +338,114 @@ static void warm_up(ob_cl *c)
     }
 }
 
+/* The build options: part of the cache key. */
+static const char BUILD_OPTIONS[] = "-cl-std=CL1.2";
+
+/* The cache key of src built for dev (clcache.h): what can change the
+ * binary.  NULL without memory. */
+static char *cache_key(const ob_cl *c, cl_device_id dev, const char *src)
+{
+    char version[256] = "";
+    cl.clGetDeviceInfo(dev, CL_DEVICE_VERSION, sizeof version - 1, version, NULL);
+    const size_t n = strlen(src);
+    char *key = malloc(2048);
+    if (key)
+        snprintf(key, 2048, "offbench OpenCL program\nplatform=%s\ndevice=%s\ndriver=%s\ndevice_version=%s\n"
+                 "options=%s\nsource_bytes=%zu\nsource_fnv1a=%016llx\n", c->platform, c->device, c->driver,
+                 version, BUILD_OPTIONS, n, (unsigned long long)ob_fnv1a(OB_FNV_BASIS, src, n));
+    return key;
+}
+
+/* The program from a cached binary, when the cache holds one for key that
+ * the driver takes and builds.  1 then, else 0 (c->cache says why). */
+static int program_from_cache(ob_cl *c, cl_device_id dev, const char *key, const char *path)
+{
+    size_t n = 0;
+    char why[300];
+    unsigned char *bin = ob_clcache_read(path, key, &n, why, sizeof why);
+    if (!bin) {
+        snprintf(c->cache, sizeof c->cache, "miss: %s", why);
+        return 0;
+    }
+    cl_int e, st = CL_SUCCESS;
+    const unsigned char *bins[1] = {bin};
+    c->prog = cl.clCreateProgramWithBinary(c->ctx, 1, &dev, &n, bins, &st, &e);
+    free(bin);
+    if (e == CL_SUCCESS && st == CL_SUCCESS &&
+        cl.clBuildProgram(c->prog, 1, &dev, BUILD_OPTIONS, NULL, NULL) == CL_SUCCESS) {
+        snprintf(c->cache, sizeof c->cache, "hit: %.580s", path);
+        return 1;
+    }
+    if (c->prog)
+        cl.clReleaseProgram(c->prog);
+    c->prog = NULL;
+    snprintf(c->cache, sizeof c->cache, "miss: the driver refused the cached binary (%s)",
+             cl_errname(e != CL_SUCCESS ? e : st));
+    return 0;
+}
+
+/* A built program's binary into the cache (c->cache says what became of
+ * it). */
+static void program_to_cache(ob_cl *c, const char *key, const char *path)
+{
+    size_t n = 0;
+    unsigned char *bin = NULL;
+    char why[300] = "";
+    if (cl.clGetProgramInfo(c->prog, CL_PROGRAM_BINARY_SIZES, sizeof n, &n, NULL) != CL_SUCCESS || n == 0 ||
+        !(bin = malloc(n))) {
+        snprintf(why, sizeof why, "the driver gave no binary");
+    } else {
+        unsigned char *bins[1] = {bin};
+        if (cl.clGetProgramInfo(c->prog, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) != CL_SUCCESS)
+            snprintf(why, sizeof why, "the driver gave no binary");
+        else
+            ob_clcache_write(path, key, bin, n, why, sizeof why);
+    }
+    free(bin);
+    const size_t had = strlen(c->cache);
+    snprintf(c->cache + had, sizeof c->cache - had, "; %s", why[0] ? why : "built and stored");
+}
+
+/* Purpose: c->prog built for dev from src: from the binary cache when it
+ *          holds this source for this device, driver and options, else
+ *          from the source (and then stored in the cache).
+ * Returns: 0; -1 with the build log in err (a failed source build). */
+static int build_program(ob_cl *c, cl_device_id dev, const char *src, ob_err *err)
+{
+    char path[4200], why[300];
+    char *key = cache_key(c, dev, src);
+    const int cached = key && ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0;
+    if (!key)
+        snprintf(c->cache, sizeof c->cache, "off (out of memory)");
+    else if (!cached)
+        snprintf(c->cache, sizeof c->cache, "%s", why);
+    if (cached && program_from_cache(c, dev, key, path)) {
+        free(key);
+        return 0;
+    }
+    cl_int e;
+    const char *srcs[1] = {src};
+    c->prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
+    if (e != CL_SUCCESS) {
+        ob_fail(err, "clCreateProgramWithSource failed: %s (%d)", cl_errname(e), (int)e);
+        free(key);
+        return -1;
+    }
+    e = cl.clBuildProgram(c->prog, 1, &dev, BUILD_OPTIONS, NULL, NULL);
+    if (e != CL_SUCCESS) {
+        char log[8192] = "";
+        cl.clGetProgramBuildInfo(c->prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
+        ob_fail(err, "clBuildProgram failed: %s (%d); build log of %s:\n%s", cl_errname(e), (int)e,
+                c->source, log);
+        free(key);
+        return -1;
+    }
+    if (cached)
+        program_to_cache(c, key, path);
+    free(key);
+    return 0;
+}
+
 int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err)
 {
     *out = NULL;
@@ -368,30 +511,21 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
     cl_device_type dtype = 0;
     cl.clGetDeviceInfo(dev, CL_DEVICE_TYPE, sizeof dtype, &dtype, NULL);
     c->layout = layout_set ? layout : (dtype & CL_DEVICE_TYPE_CPU) ? OB_CL_ITEMS : OB_CL_GROUPS;
+    c->gpu = (dtype & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR)) != 0;
     c->ctx = cl.clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
     CL_CHECK(e);
-    c->q = cl.clCreateCommandQueue(c->ctx, dev, 0, &e);
+    /* profiling: the kernel's own time (ob_cl_wait), not the host's wait */
+    c->q = cl.clCreateCommandQueue(c->ctx, dev, CL_QUEUE_PROFILING_ENABLE, &e);
     CL_CHECK(e);
     src = kernel_source(c->source, sizeof c->source);
     if (!src) {
         ob_fail(err, "cannot read the kernel sources (kernels/metric_core.h, kernels/measure.cl)");
         goto fail;
     }
-    const char *srcs[1] = {src};
-    c->prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
-    CL_CHECK(e);
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    e = cl.clBuildProgram(c->prog, 1, &dev, "-cl-std=CL1.2", NULL, NULL);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    c->build_s = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
-    if (e != CL_SUCCESS) {
-        char log[8192] = "";
-        cl.clGetProgramBuildInfo(c->prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
-        ob_fail(err, "clBuildProgram failed: %s (%d); build log of %s:\n%s", cl_errname(e), (int)e,
-                c->source, log);
+    if (build_program(c, dev, src, err) != 0)
         goto fail;
-    }
     c->k = cl.clCreateKernel(c->prog, "ob_measure_batch", &e);
     CL_CHECK(e);
     c->kg = cl.clCreateKernel(c->prog, "ob_measure_groups", &e);
@@ -415,10 +549,10 @@ fail:
     return -1;
 }
 
-static void release_buffers(ob_cl *c)
+static void release_buffers(clslot *sl)
 {
-    cl_mem *bufs[] = {&c->metric, &c->d, &c->stop, &c->bdeg, &c->boff, &c->adeg, &c->aoff,
-                      &c->ctrl, &c->soff, &c->scratch, &c->err, &c->tpar, &c->work};
+    cl_mem *bufs[] = {&sl->metric, &sl->d, &sl->stop, &sl->bdeg, &sl->boff, &sl->adeg, &sl->aoff,
+                      &sl->ctrl, &sl->soff, &sl->scratch, &sl->err, &sl->tpar, &sl->work};
     for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++)
         if (*bufs[i]) {
             cl.clReleaseMemObject(*bufs[i]);
@@ -426,11 +560,42 @@ static void release_buffers(ob_cl *c)
         }
 }
 
+/* The slot's events released (what was in flight is forgotten). */
+static void release_events(clslot *sl)
+{
+    if (sl->kernel)
+        cl.clReleaseEvent(sl->kernel);
+    if (sl->done)
+        cl.clReleaseEvent(sl->done);
+    sl->kernel = sl->done = NULL;
+}
+
+static void slot_free(clslot *sl)
+{
+    release_events(sl);
+    release_buffers(sl);
+    free(sl->h_metric);
+    free(sl->h_bdeg);
+    free(sl->h_boff);
+    free(sl->h_adeg);
+    free(sl->h_aoff);
+    free(sl->h_soff);
+    free(sl->h_d);
+    free(sl->h_stop);
+    free(sl->h_ctrl);
+    free(sl->h_err);
+    free(sl->h_tpar);
+    free(sl->h_work);
+}
+
 void ob_cl_close(ob_cl *c)
 {
     if (!c)
         return;
-    release_buffers(c);
+    if (c->q)
+        cl.clFinish(c->q);  /* nothing left in flight that writes the staging */
+    for (int k = 0; k < OB_CL_SLOTS; k++)
+        slot_free(&c->slot[k]);
     if (c->k)
         cl.clReleaseKernel(c->k);
     if (c->kg)
@@ -441,40 +606,28 @@ void ob_cl_close(ob_cl *c)
         cl.clReleaseCommandQueue(c->q);
     if (c->ctx)
         cl.clReleaseContext(c->ctx);
-    free(c->h_metric);
-    free(c->h_bdeg);
-    free(c->h_boff);
-    free(c->h_adeg);
-    free(c->h_aoff);
-    free(c->h_soff);
-    free(c->h_d);
-    free(c->h_stop);
-    free(c->h_ctrl);
-    free(c->h_err);
-    free(c->h_tpar);
-    free(c->h_work);
     free(c);
 }
 
 /* Grows a device buffer and its host staging array to hold n elements. */
 #define GROW(buf, host, type, n, flags)                                                 \
     do {                                                                                \
-        void *nh_ = realloc(c->host, (n) * sizeof(type));                               \
+        void *nh_ = realloc(sl->host, (n) * sizeof(type));                              \
         if (!nh_) {                                                                     \
             ob_fail(err, "out of memory");                                     \
             goto fail;                                                                  \
         }                                                                               \
-        c->host = nh_;                                                                  \
-        if (c->buf)                                                                     \
-            cl.clReleaseMemObject(c->buf);                                              \
-        c->buf = cl.clCreateBuffer(c->ctx, flags, (n) * sizeof(type), NULL, &e);         \
+        sl->host = nh_;                                                                 \
+        if (sl->buf)                                                                    \
+            cl.clReleaseMemObject(sl->buf);                                             \
+        sl->buf = cl.clCreateBuffer(c->ctx, flags, (n) * sizeof(type), NULL, &e);        \
         CL_CHECK(e);                                                                    \
     } while (0)
 
-static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, ob_err *err)
+static int ensure_capacity(ob_cl *c, clslot *sl, size_t nrec, size_t nctrl, size_t nscr, ob_err *err)
 {
     cl_int e;
-    if (nrec > c->cap_rec) {
+    if (nrec > sl->cap_rec) {
         size_t n = nrec + nrec / 2;
         GROW(metric, h_metric, int, n, CL_MEM_READ_ONLY);
         GROW(bdeg, h_bdeg, int, n, CL_MEM_READ_ONLY);
@@ -487,25 +640,25 @@ static int ensure_capacity(ob_cl *c, size_t nrec, size_t nctrl, size_t nscr, ob_
         GROW(err, h_err, double, n, CL_MEM_WRITE_ONLY);
         GROW(tpar, h_tpar, double, n, CL_MEM_WRITE_ONLY);
         GROW(work, h_work, double, n, CL_MEM_WRITE_ONLY);
-        c->cap_rec = n;
+        sl->cap_rec = n;
     }
-    if (nctrl > c->cap_ctrl) {
+    if (nctrl > sl->cap_ctrl) {
         size_t n = nctrl + nctrl / 2;
         GROW(ctrl, h_ctrl, double, n, CL_MEM_READ_ONLY);
-        c->cap_ctrl = n;
+        sl->cap_ctrl = n;
     }
-    if (nscr > c->cap_scr || !c->scratch) {
+    if (nscr > sl->cap_scr || !sl->scratch) {
         size_t n = nscr > 0 ? nscr + nscr / 2 : 1;
-        if (c->scratch)
-            cl.clReleaseMemObject(c->scratch);
-        c->scratch = cl.clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, n * sizeof(double), NULL, &e);
+        if (sl->scratch)
+            cl.clReleaseMemObject(sl->scratch);
+        sl->scratch = cl.clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, n * sizeof(double), NULL, &e);
         CL_CHECK(e);
-        c->cap_scr = n;
+        sl->cap_scr = n;
     }
     return 0;
 fail:
-    c->cap_rec = c->cap_ctrl = c->cap_scr = 0;
-    release_buffers(c);
+    sl->cap_rec = sl->cap_ctrl = sl->cap_scr = 0;
+    release_buffers(sl);
     return -1;
 }
 
@@ -519,11 +672,11 @@ static size_t rec_scratch(const ob_cl *c, ob_metric m, int S)
 }
 
 /* Enqueues the kernel of the layout over n records. */
-static int launch(ob_cl *c, const ob_measure_rec *recs, int n, ob_err *err)
+static int launch(ob_cl *c, const ob_measure_rec *recs, int n, cl_event *ev, ob_err *err)
 {
     if (c->layout == OB_CL_GROUPS) {
         const size_t local = c->group, global = (size_t)n * local;
-        CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->kg, 1, NULL, &global, &local, 0, NULL, NULL));
+        CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->kg, 1, NULL, &global, &local, 0, NULL, ev));
         return 0;
     }
     /* A hausdorff or normal record is heavy (thousands of evaluations): one
@@ -535,77 +688,136 @@ static int launch(ob_cl *c, const ob_measure_rec *recs, int n, ob_err *err)
     for (int i = 0; i < n && light; i++)
         light = recs[i].metric == OB_METRIC_RADIAL || recs[i].metric == OB_METRIC_PARAM;
     const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
-    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, ev));
     return 0;
 fail:
     return -1;
 }
 
-int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
+/* The slot's staging filled from recs; 0, or -1 (too large, memory). */
+static int stage(ob_cl *c, clslot *sl, const ob_measure_rec *recs, int n, int S, size_t *pc_out, ob_err *err)
 {
-    ob_cl *c = ctx;
-    ob_err why, *err = &why; /* the name CL_CHECK writes to */
-    if (!c || n <= 0)
-        return -1;
-    const int S = ob_clamp_samples(samples);
     size_t nctrl = 0, nscr = 0;
     for (int i = 0; i < n; i++) {
         nctrl += 3 * (size_t)(recs[i].base->deg + 1) + 3 * (size_t)(recs[i].approx->deg + 1);
         nscr += rec_scratch(c, recs[i].metric, S);
     }
-    if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2)
+    if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2) {
+        ob_fail(err, "a batch too large for 32-bit offsets");
         return -1;
-    if (ensure_capacity(c, (size_t)n, nctrl, nscr, err))
+    }
+    if (ensure_capacity(c, sl, (size_t)n, nctrl, nscr, err))
         return -1;
     size_t pc = 0, ps = 0;
     for (int i = 0; i < n; i++) {
         const ob_bez *b = recs[i].base, *a = recs[i].approx;
-        c->h_metric[i] = (int)recs[i].metric;
-        c->h_d[i] = recs[i].d;
-        c->h_stop[i] = recs[i].stop;
-        c->h_bdeg[i] = b->deg;
-        c->h_boff[i] = (int)pc;
-        memcpy(c->h_ctrl + pc, &b->h[0][0], 3 * (size_t)(b->deg + 1) * sizeof(double));
+        sl->h_metric[i] = (int)recs[i].metric;
+        sl->h_d[i] = recs[i].d;
+        sl->h_stop[i] = recs[i].stop;
+        sl->h_bdeg[i] = b->deg;
+        sl->h_boff[i] = (int)pc;
+        memcpy(sl->h_ctrl + pc, &b->h[0][0], 3 * (size_t)(b->deg + 1) * sizeof(double));
         pc += 3 * (size_t)(b->deg + 1);
-        c->h_adeg[i] = a->deg;
-        c->h_aoff[i] = (int)pc;
-        memcpy(c->h_ctrl + pc, &a->h[0][0], 3 * (size_t)(a->deg + 1) * sizeof(double));
+        sl->h_adeg[i] = a->deg;
+        sl->h_aoff[i] = (int)pc;
+        memcpy(sl->h_ctrl + pc, &a->h[0][0], 3 * (size_t)(a->deg + 1) * sizeof(double));
         pc += 3 * (size_t)(a->deg + 1);
-        c->h_soff[i] = (int)ps;
+        sl->h_soff[i] = (int)ps;
         ps += rec_scratch(c, recs[i].metric, S);
     }
+    *pc_out = pc;
+    return 0;
+}
+
+int ob_cl_submit(ob_cl *c, int slot, const ob_measure_rec *recs, int n, int samples)
+{
+    ob_err why, *err = &why; /* the name CL_CHECK writes to */
+    if (!c || n <= 0 || slot < 0 || slot >= OB_CL_SLOTS)
+        return -1;
+    clslot *sl = &c->slot[slot];
+    if (sl->done)  /* a batch still in flight in this slot: its staging is in use */
+        return -1;
+    const int S = ob_clamp_samples(samples);
+    size_t pc = 0;
+    if (stage(c, sl, recs, n, S, &pc, err))
+        goto fail;
     const size_t ni = (size_t)n * sizeof(int), nd = (size_t)n * sizeof(double);
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->metric, CL_FALSE, 0, ni, c->h_metric, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->d, CL_FALSE, 0, nd, c->h_d, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->stop, CL_FALSE, 0, nd, c->h_stop, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->bdeg, CL_FALSE, 0, ni, c->h_bdeg, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->boff, CL_FALSE, 0, ni, c->h_boff, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->adeg, CL_FALSE, 0, ni, c->h_adeg, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->aoff, CL_FALSE, 0, ni, c->h_aoff, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->soff, CL_FALSE, 0, ni, c->h_soff, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, c->ctrl, CL_FALSE, 0, pc * sizeof(double), c->h_ctrl, 0, NULL, NULL));
-    cl_mem args[] = {c->metric, c->d,    c->stop,    c->bdeg, c->boff, c->adeg, c->aoff,
-                     c->ctrl,   c->soff, c->scratch, c->err,  c->tpar, c->work};
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->metric, CL_FALSE, 0, ni, sl->h_metric, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->d, CL_FALSE, 0, nd, sl->h_d, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->stop, CL_FALSE, 0, nd, sl->h_stop, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->bdeg, CL_FALSE, 0, ni, sl->h_bdeg, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->boff, CL_FALSE, 0, ni, sl->h_boff, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->adeg, CL_FALSE, 0, ni, sl->h_adeg, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->aoff, CL_FALSE, 0, ni, sl->h_aoff, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->soff, CL_FALSE, 0, ni, sl->h_soff, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->ctrl, CL_FALSE, 0, pc * sizeof(double), sl->h_ctrl, 0, NULL, NULL));
+    cl_mem args[] = {sl->metric, sl->d,    sl->stop,    sl->bdeg, sl->boff, sl->adeg, sl->aoff,
+                     sl->ctrl,   sl->soff, sl->scratch, sl->err,  sl->tpar, sl->work};
     cl_kernel k = c->layout == OB_CL_GROUPS ? c->kg : c->k;
     CL_CHECK(cl.clSetKernelArg(k, 0, sizeof(int), &n));
     CL_CHECK(cl.clSetKernelArg(k, 1, sizeof(int), &S));
     for (cl_uint a = 0; a < sizeof args / sizeof *args; a++)
         CL_CHECK(cl.clSetKernelArg(k, 2 + a, sizeof(cl_mem), &args[a]));
-    if (launch(c, recs, n, err))
+    if (launch(c, recs, n, &sl->kernel, err))
         goto fail;
-    CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->err, CL_FALSE, 0, nd, c->h_err, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->tpar, CL_FALSE, 0, nd, c->h_tpar, 0, NULL, NULL));
-    CL_CHECK(cl.clEnqueueReadBuffer(c->q, c->work, CL_FALSE, 0, nd, c->h_work, 0, NULL, NULL));
-    CL_CHECK(cl.clFinish(c->q));
-    for (int i = 0; i < n; i++) {
-        out[i].err = c->h_err[i];
-        out[i].t = c->h_tpar[i];
-        out[i].work = c->h_work[i];
+    CL_CHECK(cl.clEnqueueReadBuffer(c->q, sl->err, CL_FALSE, 0, nd, sl->h_err, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueReadBuffer(c->q, sl->tpar, CL_FALSE, 0, nd, sl->h_tpar, 0, NULL, NULL));
+    CL_CHECK(cl.clEnqueueReadBuffer(c->q, sl->work, CL_FALSE, 0, nd, sl->h_work, 0, NULL, &sl->done));
+    CL_CHECK(cl.clFlush(c->q));
+    sl->n = n;
+    return 0;
+fail:
+    /* what was enqueued finishes before the staging is used again */
+    cl.clFinish(c->q);
+    release_events(sl);
+    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", n, why.msg);
+    return -1;
+}
+
+int ob_cl_wait(ob_cl *c, int slot, ob_errval *out, double *device_ns)
+{
+    ob_err why, *err = &why; /* the name CL_CHECK writes to */
+    *device_ns = 0.0;
+    if (!c || slot < 0 || slot >= OB_CL_SLOTS || !c->slot[slot].done)
+        return -1;
+    clslot *sl = &c->slot[slot];
+    CL_CHECK(cl.clWaitForEvents(1, &sl->done));
+    cl_ulong t0 = 0, t1 = 0;
+    if (sl->kernel &&
+        cl.clGetEventProfilingInfo(sl->kernel, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL) == CL_SUCCESS &&
+        cl.clGetEventProfilingInfo(sl->kernel, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL) == CL_SUCCESS &&
+        t1 > t0)
+        *device_ns = (double)(t1 - t0);
+    release_events(sl);
+    for (int i = 0; i < sl->n; i++) {
+        out[i].err = sl->h_err[i];
+        out[i].t = sl->h_tpar[i];
+        out[i].work = sl->h_work[i];
     }
     return 0;
 fail:
-    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", n, why.msg);
+    cl.clFinish(c->q);
+    release_events(sl);
+    ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", sl->n, why.msg);
     return -1;
+}
+
+int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
+{
+    double device_ns;
+    if (ob_cl_submit(ctx, 0, recs, n, samples) != 0)
+        return -1;
+    return ob_cl_wait(ctx, 0, out, &device_ns);
+}
+
+int ob_cl_batch_submit(void *ctx, int slot, const ob_measure_rec *recs, int n, int samples)
+{
+    return ob_cl_submit(ctx, slot, recs, n, samples);
+}
+
+int ob_cl_batch_wait(void *ctx, int slot, ob_errval *out, double *device_ns)
+{
+    return ob_cl_wait(ctx, slot, out, device_ns);
 }
 
 int ob_cl_list_devices(FILE *f)

@@ -44,6 +44,11 @@ const char *ob_cl_device(const ob_cl *cl);
 const char *ob_cl_driver(const ob_cl *cl);
 const char *ob_cl_source(const ob_cl *cl);   /* where the kernel text came from */
 double ob_cl_build_seconds(const ob_cl *cl);
+/* What the program binary cache did at open (clcache.h): "hit: FILE",
+ * "miss: WHY; built and stored" (or why it was not stored), or "off (WHY)". */
+const char *ob_cl_cache_status(const ob_cl *cl);
+/* 1 when the device is a GPU or an accelerator (CL_DEVICE_TYPE). */
+int ob_cl_is_gpu(const ob_cl *cl);
 
 /* Purpose: print one line per OpenCL device (platform, device, type, compute
  * units, fp64, driver).  Returns the number of devices, -1 if there is no
@@ -71,7 +76,31 @@ const char *ob_cl_layout_name(ob_cl_layout layout); /* "groups", "items" */
  * kernel, at most 64). */
 int ob_cl_group_size(const ob_cl *cl);
 
-/* The driver's batch backend (ob_batch_fn): ctx is an ob_cl*. */
+/* The driver's batch backend (ob_batch_fn): ctx is an ob_cl*.  Submits in
+ * slot 0 and waits. */
 int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
+
+/* Batches in flight at once: one measured on the device while the host
+ * prepares the next (the overlap engine, driver.h). */
+enum { OB_CL_SLOTS = 2 };
+
+/* Purpose: start measuring n records in slot 0 or 1 and return at once: the
+ *          records' data is copied (recs may change after), the commands
+ *          flushed to the device.
+ * Returns: 0; -1 (a failing call, named by ob_info; the slot busy or out of
+ *          range): nothing is in flight in the slot, measure on the CPU. */
+int ob_cl_submit(ob_cl *cl, int slot, const ob_measure_rec *recs, int n, int samples);
+
+/* Purpose: wait for the slot's batch: out[0..n-1] as ob_measure_until
+ *          gives them; *device_ns the kernel's own time from its profiling
+ *          event (0 when the driver gives none).
+ * Returns: 0; -1 when nothing was in flight or a call failed (measure the
+ *          batch on the CPU). */
+int ob_cl_wait(ob_cl *cl, int slot, ob_errval *out, double *device_ns);
+
+/* The same as the driver's asynchronous backend (ob_driver_hooks): ctx is
+ * an ob_cl*. */
+int ob_cl_batch_submit(void *ctx, int slot, const ob_measure_rec *recs, int n, int samples);
+int ob_cl_batch_wait(void *ctx, int slot, ob_errval *out, double *device_ns);
 
 #endif

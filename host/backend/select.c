@@ -40,11 +40,13 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     snprintf(b->driver, sizeof b->driver, "%s", ob_cl_driver(*cl));
     snprintf(b->kernels, sizeof b->kernels, "%s", ob_cl_source(*cl));
     b->build_seconds = ob_cl_build_seconds(*cl);
+    snprintf(b->cache, sizeof b->cache, "%s", ob_cl_cache_status(*cl));
     snprintf(b->layout, sizeof b->layout, "%s", ob_cl_layout_name(ob_cl_get_layout(*cl)));
     b->group_size = ob_cl_get_layout(*cl) == OB_CL_GROUPS ? ob_cl_group_size(*cl) : 1;
-    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s, layout %s (%d work-item%s per record)",
-            b->platform, b->device, b->kernels, b->build_seconds, b->layout, b->group_size,
-            b->group_size == 1 ? "" : "s");
+    b->gpu = ob_cl_is_gpu(*cl);
+    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s (binary cache %.4s), layout %s (%d work-item%s "
+            "per record)", b->platform, b->device, b->kernels, b->build_seconds, b->cache, b->layout,
+            b->group_size, b->group_size == 1 ? "" : "s");
     return 0;
 }
 
@@ -53,6 +55,12 @@ void ob_backend_hooks(ob_cl *cl, ob_backend_info *b, ob_driver_hooks *h)
     if (!cl)
         return;
     h->batch = ob_cl_measure_batch;
+    h->batch_submit = ob_cl_batch_submit;
+    h->batch_wait = ob_cl_batch_wait;
+    h->batch_overlap = b->gpu;  /* on a CPU device overlap only oversubscribes the cores */
     h->batch_ctx = cl;
+    /* a GPU wants tens of thousands of records a launch; a CPU device
+     * (PoCL) gains nothing from more than the CPU path's chunk */
+    h->batch_chunk = b->gpu ? OB_GPU_CHUNK : 0;
     h->batch_fallbacks = &b->fallbacks;
 }

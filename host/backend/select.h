@@ -17,7 +17,9 @@ typedef struct {
     char platform[256], device[256], driver[128], kernels[512];
     char layout[16];             /* the kernel's layout: groups or items (clrt.h) */
     int group_size;              /* work-items per record in the group layout */
+    int gpu;                     /* the device is a GPU or an accelerator */
     double build_seconds;
+    char cache[600];             /* the program binary cache (ob_cl_cache_status) */
     long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
     char why_cpu[512];           /* with auto: why OpenCL was not used */
 } ob_backend_info;
@@ -36,5 +38,9 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
  *          batch measurer; batches given back counted in b->fallbacks).
  *          cl NULL: the CPU measures, h unchanged. */
 void ob_backend_hooks(ob_cl *cl, ob_backend_info *b, ob_driver_hooks *h);
+
+/* Pieces per batch on a GPU or accelerator (ob_driver_hooks.batch_chunk):
+ * about 20,000 records a launch at the level engine's 2-3 pieces a fit. */
+enum { OB_GPU_CHUNK = 8192 };
 
 #endif

@@ -48,6 +48,10 @@ static int run_engine(const ob_job *tmpl, size_t n, ob_engine e, const ob_driver
     if (backend) {
         h.batch = backend->batch;
         h.batch_ctx = backend->batch_ctx;
+        h.batch_chunk = backend->batch_chunk;
+        h.batch_submit = backend->batch_submit;
+        h.batch_wait = backend->batch_wait;
+        h.batch_overlap = backend->batch_overlap;
     }
     h.stats = &r->st;
     h.trace = &r->tr;
@@ -104,8 +108,12 @@ static void report_backend(FILE *csv, const char *what, const engine_run *r, dou
 {
     const double per = r->st.launches > 0 ? (double)r->st.records / r->st.launches : 0.0;
     printf("  %-6s opencl  %2d threads: %6.2f s wall (x%.2f the level engine on the CPU); %ld launches, %.0f "
-           "records each\n", ob_engine_name(r->st.engine), r->st.threads, r->st.wall_ns * 1e-9,
+           "records each", ob_engine_name(r->st.engine), r->st.threads, r->st.wall_ns * 1e-9,
            cpu_wall_ns / r->st.wall_ns, r->st.launches, per);
+    if (r->st.device_ns > 0)
+        printf("; device busy %.2f s, %.0f %% of it hidden behind fits", r->st.device_ns * 1e-9,
+               100 * (1.0 - r->st.blocked_ns / r->st.device_ns));
+    printf("\n");
     fprintf(csv, "%s/%s,opencl,%d,%ld,%.6f,%.6g,records/launch\n", what, ob_engine_name(r->st.engine),
             r->st.threads, r->st.records, r->st.wall_ns * 1e-9, per);
 }
@@ -129,7 +137,10 @@ int ob_bench_engines(FILE *csv, const ob_job *jobs, size_t n, const char *what, 
         ob_engine e;
         const ob_driver_hooks *h;
         const char *backend;
-    } runs[] = {{OB_ENGINE_GROUP, NULL, "cpu"}, {OB_ENGINE_LEVEL, cl, "opencl"}, {OB_ENGINE_GROUP, cl, "opencl"}};
+    } runs[] = {{OB_ENGINE_GROUP, NULL, "cpu"},
+                {OB_ENGINE_LEVEL, cl, "opencl"},
+                {OB_ENGINE_GROUP, cl, "opencl"},
+                {OB_ENGINE_DEVICE, cl, "opencl"}};
     size_t bad = 0;
     double wall_group_cpu = 0.0;
     for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {

@@ -45,7 +45,9 @@
  *                    rows checked: rate is the efficiency, work / (threads x
  *                    wall), measured, and modelled at 16 and 64 threads
  *                    from the run's own trace (bench_engines.c); with OpenCL
- *                    each engine's wall and its records per launch
+ *                    each engine's wall and its records per launch (the device
+ *                    engine: the device's busy time and the share of it hidden
+ *                    behind fits)
  */
 #include <errno.h>
 #include <math.h>
@@ -59,6 +61,7 @@
 #include "kernels/metric_core.h"
 #include "methods/driver/driver.h"
 #include "host/backend/clrt.h"
+#include "host/backend/select.h"
 #include "host/cli/commands.h"
 #include "host/io/curvefile.h"
 #include "host/io/datadir.h"
@@ -509,7 +512,8 @@ static void bench_whole_runs(bench_out *b, ob_cl *cl, int N)
         printf("whole run (%zu jobs, hausdorff): %.2f s on 1 thread, %.2f s on %d: speedup x%.2f\n", nj, r1, rN, N,
                r1 / rN);
         if (cl) {
-            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
+            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl,
+                                         .batch_chunk = ob_cl_is_gpu(cl) ? OB_GPU_CHUNK : 0};
             double g = whole_run(N, &set, &o, &clh, &nj);
             row(b, "run", "opencl", N, (double)nj, g, "jobs/s");
             printf("whole run with the OpenCL backend: %.2f s (x%.2f vs CPU on %d threads)\n", g, rN / g, N);
@@ -615,7 +619,10 @@ static void bench_engines(bench_out *b, ob_cl *cl, int N, int quick)
         if (jobs) {
             fill_jobs(jobs, &set, NULL, NULL, OB_SPLIT_MID, five_tols, 5);
             omp_set_num_threads(N);
-            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
+            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl,
+                                         .batch_submit = ob_cl_batch_submit, .batch_wait = ob_cl_batch_wait,
+                                         .batch_overlap = ob_cl_is_gpu(cl),
+                                         .batch_chunk = ob_cl_is_gpu(cl) ? OB_GPU_CHUNK : 0};
             if (ob_bench_engines(b->csv, jobs, n, what, cl ? &clh : NULL) != 0)
                 ob_error("bench: the engines' rows differ (or memory ran out): see above");
         }
@@ -642,7 +649,8 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
                rset.n, ob_method_count(), nj, nj / c);
         if (cl) {
-            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl};
+            const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl,
+                                         .batch_chunk = ob_cl_is_gpu(cl) ? OB_GPU_CHUNK : 0};
             double g = random_run(&rset, OB_SPLIT_MID, five_tols, 5, &o, &clh, &nj, NULL);
             row(b, "random_run", "opencl", N, (double)nj, g, "jobs/s");
             printf(", %.0f with OpenCL (x%.2f)", nj / g, c / g);

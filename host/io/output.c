@@ -163,7 +163,9 @@ static void meta_build(FILE *f, const ob_backend_info *b)
         fprintf(f, ", \"kernels\": ");
         ob_json_string(f, b->kernels);
         fprintf(f, ", \"layout\": \"%s\", \"work_items_per_record\": %d", b->layout, b->group_size);
-        fprintf(f, ", \"build_seconds\": %.3f, \"cpu_fallback_batches\": %ld},\n", b->build_seconds, b->fallbacks);
+        fprintf(f, ", \"build_seconds\": %.3f, \"binary_cache\": ", b->build_seconds);
+        ob_json_string(f, b->cache);
+        fprintf(f, ", \"cpu_fallback_batches\": %ld},\n", b->fallbacks);
     } else {
         fprintf(f, "null,\n  \"cpu_because\": ");
         ob_json_string(f, b->why_cpu);
@@ -313,11 +315,14 @@ static void meta_engine(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
     fprintf(f, "  \"engine\": {\"name\": \"%s\", \"asked\": \"%s\", \"chunk\": %d, \"threads\": %d, "
                "\"groups\": %ld, \"wall_seconds\": %.6f, \"work_seconds\": %.6f, \"efficiency\": %.4f, "
                "\"helped_seconds\": %.6f, \"backend_launches\": %ld, \"backend_records\": %ld, "
+               "\"device_seconds\": %.6f, \"blocked_seconds\": %.6f, "
                "\"doc\": \"work: thread time of the fits and measurements run, a piece shared by several jobs "
                "once; efficiency: work / (threads x wall) of the driver; backend_records / backend_launches: the "
-               "batch size a batch backend got\"},\n",
-            ob_engine_name(e->engine), ob_engine_name(o->driver.engine), o->driver.chunk, e->threads, e->groups,
-            e->wall_ns * 1e-9, e->work_ns * 1e-9, eff, e->helped_ns * 1e-9, e->launches, e->records);
+               "batch size a batch backend got; device engine: device_seconds the kernels' own time, "
+               "blocked_seconds the time the threads waited for them (the rest was hidden behind fits)\"},\n",
+            ob_engine_name(e->engine), ob_engine_name(o->driver.engine), e->chunk, e->threads, e->groups,
+            e->wall_ns * 1e-9, e->work_ns * 1e-9, eff, e->helped_ns * 1e-9, e->launches, e->records,
+            e->device_ns * 1e-9, e->blocked_ns * 1e-9);
 }
 
 int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,

@@ -208,9 +208,9 @@ const ob_flag ob_run_flags[] = {
     {"backend", "B", "auto (default), opencl or cpu", RO_BACKEND, OB_FLAG_ONCE},
     {"device", "NAME", "the OpenCL device whose name contains NAME", RO_DEVICE, OB_FLAG_ONCE},
     {"threads", "N", "OpenMP threads (default: all cores)", RO_THREADS, OB_FLAG_ONCE},
-    {"engine", "E", "how work is scheduled: auto (default), group or level; never changes a row", RO_ENGINE,
+    {"engine", "E", "how work is scheduled: auto (default), group, level or device; never changes a row", RO_ENGINE,
      OB_FLAG_ONCE},
-    {"chunk", "N", "pieces per fit/measure batch (default 512); never changes a row", RO_CHUNK, OB_FLAG_ONCE},
+    {"chunk", "N", "pieces per fit/measure batch (default 512, 8192 on a GPU); never changes a row", RO_CHUNK, OB_FLAG_ONCE},
     {"samples", "S", "samples per piece of the sampled metrics (default 256)", RO_SAMPLES, OB_FLAG_ONCE},
     {"max-depth", "N", "subdivision depth limit (default 40)", RO_MAX_DEPTH, OB_FLAG_ONCE},
     {"max-segments", "N", "pieces per job limit (default 20000)", RO_MAX_SEGMENTS, OB_FLAG_ONCE},
@@ -297,7 +297,7 @@ static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *
     case RO_THREADS: return parse_int(opt, v, 1, 1024, &o->threads);
     case RO_ENGINE:
         if (ob_engine_parse(v, &o->driver.engine)) {
-            ob_error("--engine: unknown engine '%s' (auto, group, level)", v);
+            ob_error("--engine: unknown engine '%s' (auto, group, level, device)", v);
             return -1;
         }
         return 0;

@@ -40,10 +40,10 @@ void ob_driver_defaults(ob_driver_opts *o)
     o->max_depth = 40;
     o->max_segments = 20000;
     o->inflections = 1;
-    o->chunk = 512;
+    o->chunk = 0;  /* auto: the batch backend's size, else OB_CPU_CHUNK */
 }
 
-static const char *const engine_names[OB_ENGINE_COUNT] = {"auto", "level", "group"};
+static const char *const engine_names[OB_ENGINE_COUNT] = {"auto", "level", "group", "device"};
 
 const char *ob_engine_name(ob_engine e) { return (e >= 0 && e < OB_ENGINE_COUNT) ? engine_names[e] : "?"; }
 
@@ -57,13 +57,22 @@ int ob_engine_parse(const char *name, ob_engine *e)
     return -1;
 }
 
-/* auto: the group engine on the CPU; the level engine feeds a batch
- * backend chunks of records from all groups at once. */
+/* auto: the group engine on the CPU; with a batch backend, chunks of
+ * records from all groups at once, overlapped with the fits where the
+ * backend runs beside the threads.  The device engine needs an
+ * asynchronous backend: without one it is the level engine. */
 static ob_engine engine_for(const drv_run *R)
 {
-    if (R->o.engine == OB_ENGINE_LEVEL || R->o.engine == OB_ENGINE_GROUP)
-        return R->o.engine;
-    return R->h.batch ? OB_ENGINE_LEVEL : OB_ENGINE_GROUP;
+    const int async = R->h.batch_submit && R->h.batch_wait;
+    switch (R->o.engine) {
+    case OB_ENGINE_LEVEL:
+    case OB_ENGINE_GROUP: return R->o.engine;
+    case OB_ENGINE_DEVICE: return async ? OB_ENGINE_DEVICE : OB_ENGINE_LEVEL;
+    default: break;
+    }
+    if (!R->h.batch)
+        return OB_ENGINE_GROUP;
+    return async && R->h.batch_overlap ? OB_ENGINE_DEVICE : OB_ENGINE_LEVEL;
 }
 
 int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const ob_driver_hooks *hooks)
@@ -72,7 +81,9 @@ int ob_driver_run(ob_job *jobs, size_t njobs, const ob_driver_opts *opts, const 
     int rc = drv_run_start(&R, jobs, njobs, opts, hooks);
     R.st.engine = engine_for(&R);
     if (rc == 0)
-        rc = R.st.engine == OB_ENGINE_GROUP ? drv_run_group(&R) : drv_run_level(&R);
+        rc = R.st.engine == OB_ENGINE_GROUP    ? drv_run_group(&R)
+             : R.st.engine == OB_ENGINE_DEVICE ? drv_run_device(&R)
+                                               : drv_run_level(&R);
     drv_run_end(&R, rc);
     return rc;
 }

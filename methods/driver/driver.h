@@ -123,6 +123,14 @@ typedef struct {
  * on the CPU instead. */
 typedef int (*ob_batch_fn)(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out);
 
+/* The same, asynchronous, for the device engine: submit starts measuring a
+ * batch in slot 0 or 1 and returns at once (the records are copied); wait
+ * finishes that slot's batch into out, with the device's own time for it
+ * in *device_ns (0: unknown).  Each returns 0, or -1 and then the driver
+ * measures that batch on the CPU. */
+typedef int (*ob_batch_submit_fn)(void *ctx, int slot, const ob_measure_rec *recs, int n, int samples);
+typedef int (*ob_batch_wait_fn)(void *ctx, int slot, ob_errval *out, double *device_ns);
+
 /* One accepted piece of a job: base parameters [a, b] of base segment seg. */
 typedef struct {
     int seg;
@@ -146,8 +154,15 @@ typedef struct {
  *          predicted cost first, and run each to completion with no barrier
  *          between groups; threads left without a group help the groups
  *          still running (their fits and measurements as tasks);
- *   auto   group on the CPU, level with a batch backend. */
-typedef enum { OB_ENGINE_AUTO = 0, OB_ENGINE_LEVEL, OB_ENGINE_GROUP, OB_ENGINE_COUNT } ob_engine;
+ *   device the level engine's chunks in two cohorts of share groups, for an
+ *          asynchronous batch backend (a GPU): the threads fit one cohort's
+ *          chunk while the device measures the other's (double buffering);
+ *   auto   group on the CPU; with a batch backend, device where the backend
+ *          runs beside the CPU's threads (batch_overlap: a GPU), else level
+ *          (a CPU device such as PoCL: overlapping only oversubscribes). */
+typedef enum {
+    OB_ENGINE_AUTO = 0, OB_ENGINE_LEVEL, OB_ENGINE_GROUP, OB_ENGINE_DEVICE, OB_ENGINE_COUNT
+} ob_engine;
 const char *ob_engine_name(ob_engine e);
 int ob_engine_parse(const char *name, ob_engine *e);
 
@@ -164,6 +179,10 @@ typedef struct {
     long groups;        /* share groups */
     long launches;      /* batch backend calls */
     long records;       /* records the batch backend measured */
+    double device_ns;   /* device: the kernels' own time (profiling events) */
+    double blocked_ns;  /* device: the time the threads waited for the device
+                           (device_ns - blocked_ns of it was hidden behind fits) */
+    int chunk;          /* pieces per batch it used (ob_driver_opts.chunk) */
 } ob_engine_stats;
 
 /* A trace of a run's task times, to model other thread counts
@@ -194,6 +213,10 @@ typedef struct {
 double ob_trace_makespan(const ob_trace *t, int threads);
 void ob_trace_free(ob_trace *t);
 
+/* Pieces per batch without a batch backend that asks for more: the level
+ * engine's chunk of all groups' pieces, the group engine's of one group's. */
+enum { OB_CPU_CHUNK = 512 };
+
 /* How the driver works: settings that decide results (samples, limits) and
  * the run's budgets.  A plain value: a run configuration holds one. */
 typedef struct {
@@ -201,7 +224,8 @@ typedef struct {
     int max_depth;      /* pieces are not split below 2^-max_depth */
     int max_segments;   /* per job */
     int inflections;    /* 1: split at inflections first (forced for OB_CAP_CONVEX) */
-    int chunk;          /* pieces per fit/measure batch (bounds memory) */
+    int chunk;          /* pieces per fit/measure batch (bounds memory); 0:
+                           the batch backend's batch_chunk, else OB_CPU_CHUNK */
     ob_engine engine;   /* how the work is scheduled (no result depends on it) */
     /* 1: measure every probe of the greedy and optimal searches in full.  By
      * default a probe whose error exceeds its level is measured only until a
@@ -229,6 +253,13 @@ typedef struct {
 typedef struct {
     ob_batch_fn batch;  /* NULL: measure on the CPU with OpenMP */
     void *batch_ctx;
+    ob_batch_submit_fn batch_submit; /* both or neither: the device engine */
+    ob_batch_wait_fn batch_wait;
+    int batch_overlap;  /* 1: the backend runs beside the CPU's threads (a
+                           GPU): engine auto takes the device engine */
+    int batch_chunk;    /* > 0: the pieces per batch the backend wants
+                           (a GPU: tens of thousands of records per launch),
+                           used when ob_driver_opts.chunk is 0 */
     long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */
     /* if not NULL: called after every batch with the number of finished
      * jobs, from one thread at a time (the calling thread with the level

@@ -8,6 +8,7 @@
  *                   work and decisions, a job's end
  *   engine_level.c  the level engine
  *   engine_group.c  the group engine
+ *   engine_device.c the device engine
  *   trace.c         task traces and the schedule model
  */
 #ifndef OB_DRIVER_INT_H
@@ -125,6 +126,7 @@ typedef struct {
     int *sampled;          /* indices of the records a batch backend takes */
     ob_measure_rec *srec;
     ob_errval *sout;
+    int nsampled;          /* records for the batch backend (srec, sampled) */
     int backend_n;         /* records the batch backend measured (0: none) */
     double backend_wall;   /* its wall time, ns */
 } batch;
@@ -188,6 +190,11 @@ double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, 
 int drv_batch_alloc(batch *b, int chunk);
 void drv_batch_free(batch *b);
 void drv_for(drv_how how, long n, long min_par, int grain, void (*fn)(const void *ctx, long i), const void *ctx);
+int drv_measure_prepare(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                        const itemres *res, int samples, const ob_driver_hooks *h, batch *B, drv_how how);
+void drv_measure_backend_done(batch *B, double ns);
+void drv_measure_finish(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                        itemres *res, double *eval_ns, int samples, batch *B, int backend_ok, drv_how how);
 void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
                        itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B, drv_how how);
 void drv_joints_chunk(const jstate *js, const item *its, long cnt, const ob_fit *fits, const itemres *res,
@@ -207,6 +214,8 @@ void drv_run_end(drv_run *R, int rc);
 int drv_scratch_alloc(drv_scratch *S, int chunk);
 void drv_scratch_free(drv_scratch *S);
 double drv_chunk_work(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how);
+void drv_chunk_fit(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how);
+double drv_chunk_account(drv_run *R, drv_scratch *S, long cnt);
 int drv_chunk_decide(drv_run *R, drv_scratch *S, const item *its, long cnt, itemvec *next,
                      int (*finished)(void *ctx, size_t job), void *ctx);
 
@@ -217,5 +226,6 @@ int drv_trace_phase(ob_trace *t, size_t first, int grain, double serial_ns);
 /* the engines */
 int drv_run_level(drv_run *R);
 int drv_run_group(drv_run *R);
+int drv_run_device(drv_run *R);
 
 #endif

@@ -50,7 +50,8 @@ int drv_run_start(drv_run *R, ob_job *jobs, size_t njobs, const ob_driver_opts *
     if (hooks)
         R->h = *hooks;
     if (R->o.chunk < 1)
-        R->o.chunk = 1;
+        R->o.chunk = R->h.batch && R->h.batch_chunk > 0 ? R->h.batch_chunk : OB_CPU_CHUNK;
+    R->st.chunk = R->o.chunk;
     R->st.threads = omp_get_max_threads();
     R->js = calloc(njobs ? njobs : 1, sizeof *R->js);
     R->wsize = 1;
@@ -239,12 +240,31 @@ static void trace_chunk(ob_trace *t, const drv_scratch *S, long cnt)
  *          once). */
 double drv_chunk_work(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how)
 {
+    drv_chunk_fit(R, S, its, cnt, how);
+    drv_measure_chunk(R->jobs, its, cnt, S->fits, S->stop, S->res, S->eval_ns, R->o.samples, &R->h, &S->B, how);
+    if (how == DRV_TEAM && R->h.trace)
+        trace_chunk(R->h.trace, S, cnt);
+    return drv_chunk_account(R, S, cnt);
+}
+
+/* Purpose: the first half of a chunk's work: each piece fitted once per
+ *          share group (S->rep), its joints, each measurement's stop. */
+void drv_chunk_fit(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how)
+{
     drv_chunk_reps(its, cnt, R->js, S->rep);
     const fit_ctx fc = {R, S, its};
     drv_for(how, cnt, 2, 4, fit_one, &fc);
     drv_joints_chunk(R->js, its, cnt, S->fits, S->res, S->fj, how);  /* the ends and inner joints (joints.h) */
     drv_chunk_stops(R->jobs, its, cnt, S->rep, R->o.full_probes, S->stop);
-    drv_measure_chunk(R->jobs, its, cnt, S->fits, S->stop, S->res, S->eval_ns, R->o.samples, &R->h, &S->B, how);
+}
+
+/* Purpose: the last step of a chunk's work, once it is measured: the
+ *          batch backend's figures counted, the shared results copied to
+ *          the items that take them.
+ * Returns: the thread time of the fits and measurements run (a shared
+ *          piece once). */
+double drv_chunk_account(drv_run *R, drv_scratch *S, long cnt)
+{
     double work = 0.0;
     for (long i = 0; i < cnt; i++)
         if (S->rep[i] == i)
@@ -255,8 +275,6 @@ double drv_chunk_work(drv_run *R, drv_scratch *S, const item *its, long cnt, drv
 #pragma omp atomic
         R->st.records += S->B.backend_n;
     }
-    if (how == DRV_TEAM && R->h.trace)
-        trace_chunk(R->h.trace, S, cnt);
     drv_copy_shared(cnt, S->rep, S->res, S->fj, S->fit_ns, S->eval_ns);
     return work;
 }

@@ -209,9 +209,13 @@ static int call_backend(const ob_driver_hooks *h, batch *B, int ns, int samples,
     return ok;
 }
 
-/* Measure all pieces of all fitted items of a chunk: one batch. */
-void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
-                       itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B, drv_how how)
+/* Purpose: the records of a chunk's measurement: every piece of every
+ *          fitted item against its base sub-piece (B->rec, B->first); the
+ *          sampled ones a batch backend takes listed in B->srec (ns of
+ *          them; none without hooks.batch).
+ * Returns: the number of records. */
+int drv_measure_prepare(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                        const itemres *res, int samples, const ob_driver_hooks *h, batch *B, drv_how how)
 {
     int n = 0;
     for (long i = 0; i < cnt; i++) {
@@ -225,36 +229,46 @@ void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_f
     const chunk_ctx cc = {jobs, its, fits, stop, res, samples, B, 0};
     drv_for(how, cnt, 2, 8, make_records, &cc);
     /* sampled records to the backend in one call, the rest on the CPU */
-    int ns = 0;
-    if (h->batch)
-        for (int r = 0; r < n; r++)
-            if (B->rec[r].metric != OB_METRIC_BOUND)
-                B->sampled[ns++] = r;
-    int backend_ok = 0;
+    B->nsampled = 0;
     B->backend_n = 0;
     B->backend_wall = 0.0;
-    if (ns > 0) {
-        for (int k = 0; k < ns; k++)
-            B->srec[k] = B->rec[B->sampled[k]];
-        double wall;
-        backend_ok = call_backend(h, B, ns, samples, how, &wall);
-        if (backend_ok) {
-            B->backend_n = ns;
-            B->backend_wall = wall;
-            /* one launch measured them all: each record's share of its wall
-             * time is its share of the work (the kernel counts it) */
-            double total = 0.0;
-            for (int k = 0; k < ns; k++)
-                total += B->sout[k].work;
-            for (int k = 0; k < ns; k++) {
-                B->out[B->sampled[k]] = B->sout[k];
-                B->ns[B->sampled[k]] = total > 0.0 ? wall * (B->sout[k].work / total) : wall / ns;
+    if (h->batch)
+        for (int r = 0; r < n; r++)
+            if (B->rec[r].metric != OB_METRIC_BOUND) {
+                B->srec[B->nsampled] = B->rec[r];
+                B->sampled[B->nsampled++] = r;
             }
-        }
+    return n;
+}
+
+/* Purpose: the backend's results (B->sout) in their records, each charged
+ *          its share of the launch's ns (wall, or the device's time) by the
+ *          work it took (the kernel counts it). */
+void drv_measure_backend_done(batch *B, double ns)
+{
+    double total = 0.0;
+    const int k_n = B->nsampled;
+    for (int k = 0; k < k_n; k++)
+        total += B->sout[k].work;
+    for (int k = 0; k < k_n; k++) {
+        B->out[B->sampled[k]] = B->sout[k];
+        B->ns[B->sampled[k]] = total > 0.0 ? ns * (B->sout[k].work / total) : ns / k_n;
     }
+    B->backend_n = k_n;
+    B->backend_wall = ns;
+}
+
+/* Purpose: the rest of a prepared measurement (drv_measure_prepare): the
+ *          records the backend did not take (backend_ok 0: all of them)
+ *          measured on the CPU, then per item the largest error over its
+ *          pieces, at a base parameter, its pieces' degrees, its
+ *          measuring time. */
+void drv_measure_finish(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                        itemres *res, double *eval_ns, int samples, batch *B, int backend_ok, drv_how how)
+{
+    const int n = B->first[cnt];
     const chunk_ctx mc = {jobs, its, fits, stop, res, samples, B, backend_ok};
     drv_for(how, n, 2, 4, measure_record, &mc);
-    /* per item: the largest error over its pieces, at a base parameter */
     for (long i = 0; i < cnt; i++) {
         itemres *r = &res[i];
         eval_ns[i] = 0.0;
@@ -284,6 +298,22 @@ void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_f
         if (fit->ctrl_points > 0)  /* the method's own representation, e.g. a B-spline */
             r->ctrl_add = (int)(fit->ctrl_points - 1);
     }
+}
+
+/* Measure all pieces of all fitted items of a chunk: one batch (the
+ * backend's launch in the calling thread, between prepare and finish). */
+void drv_measure_chunk(const ob_job *jobs, const item *its, long cnt, const ob_fit *fits, const double *stop,
+                       itemres *res, double *eval_ns, int samples, const ob_driver_hooks *h, batch *B, drv_how how)
+{
+    drv_measure_prepare(jobs, its, cnt, fits, stop, res, samples, h, B, how);
+    int backend_ok = 0;
+    if (B->nsampled > 0) {
+        double wall;
+        backend_ok = call_backend(h, B, B->nsampled, samples, how, &wall);
+        if (backend_ok)
+            drv_measure_backend_done(B, wall);
+    }
+    drv_measure_finish(jobs, its, cnt, fits, stop, res, eval_ns, samples, B, backend_ok, how);
 }
 
 /* The joints of one fit's pieces (joints.h); fit->n >= 1. */

@@ -18,7 +18,7 @@
 #include "methods/driver/driver.h"
 #include "tests/check.h"
 
-static const double tols[3] = {1e-1, 1e-2, 1e-3};
+static const double tols[3] = {1e-1, 1e-2, 3e-3};
 
 enum { NCURVES = 8 };
 
@@ -28,8 +28,19 @@ typedef struct {
     ob_curve *curves;   /* NCURVES, where the jobs point */
 } jobset;
 
+/* Every split rule over the jobs; optimal (about ten times greedy's fits)
+ * only for methods whose fits are cheap, to keep the test short. */
+static ob_split split_of(const ob_method *m, int mi, int c)
+{
+    static const char *const cheap[] = {"tiller", "cobb", "ahn", "interp", "elber"};
+    for (size_t k = 0; k < sizeof cheap / sizeof *cheap; k++)
+        if (strcmp(m->name, cheap[k]) == 0)
+            return (ob_split)((mi + c) % OB_SPLIT_COUNT);
+    return (ob_split)((mi + c) % OB_SPLIT_OPTIMAL);
+}
+
 /* The jobs: 8 random curves (one per family) x their offsets x every method
- * x one split rule (by method, so that all four are covered) x 3 tols, the
+ * x one split rule (by method and curve, all four covered) x 3 tols, the
  * hausdorff metric; and tiller under the bound and mid. */
 static jobset make_jobs(void)
 {
@@ -52,7 +63,7 @@ static jobset make_jobs(void)
                     j->d = s.curves[c].d[k];
                     j->method = ob_methods[m];
                     j->metric = m == 0 && c % 2 ? OB_METRIC_BOUND : OB_METRIC_HAUSDORFF;
-                    j->split = (ob_split)((m + c) % OB_SPLIT_COUNT);
+                    j->split = split_of(ob_methods[m], m, c);
                     j->tol = tols[t];
                 }
     return s;
@@ -112,7 +123,50 @@ typedef struct {
     int rc;
 } outcome;
 
-static outcome run(const jobset *s, ob_engine e, int threads, int chunk)
+/* A batch backend that measures on the CPU, synchronous or asynchronous
+ * (two slots; every `fail_every`-th submission or wait fails, and the driver
+ * must then measure on the CPU itself). */
+enum { BK_NONE = 0, BK_SYNC, BK_ASYNC, BK_ASYNC_FAILING };
+typedef struct {
+    ob_measure_rec *recs[2];
+    int n[2], samples[2];
+    long calls;
+    int fail_every;
+} fake_backend;
+
+static int fake_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)
+{
+    (void)ctx;
+    for (int i = 0; i < n; i++)
+        if (ob_measure_until(recs[i].metric, recs[i].base, recs[i].approx, recs[i].d, samples, recs[i].stop,
+                             &out[i]))
+            out[i].err = NAN;
+    return 0;
+}
+
+static int fake_submit(void *ctx, int slot, const ob_measure_rec *recs, int n, int samples)
+{
+    fake_backend *f = ctx;
+    if (f->fail_every && ++f->calls % f->fail_every == 0)
+        return -1;
+    free(f->recs[slot]);
+    f->recs[slot] = malloc((size_t)n * sizeof *recs);
+    memcpy(f->recs[slot], recs, (size_t)n * sizeof *recs);
+    f->n[slot] = n;
+    f->samples[slot] = samples;
+    return 0;
+}
+
+static int fake_wait(void *ctx, int slot, ob_errval *out, double *device_ns)
+{
+    fake_backend *f = ctx;
+    *device_ns = 1e3 * f->n[slot];
+    if (f->fail_every && ++f->calls % f->fail_every == 0)
+        return -1;
+    return fake_batch(ctx, f->recs[slot], f->n[slot], f->samples[slot], out);
+}
+
+static outcome run_with(const jobset *s, ob_engine e, int threads, int chunk, int backend)
 {
     outcome r;
     memset(&r, 0, sizeof r);
@@ -123,7 +177,7 @@ static outcome run(const jobset *s, ob_engine e, int threads, int chunk)
     r.told.told = calloc(s->n, sizeof *r.told.told);
     ob_driver_opts o;
     ob_driver_defaults(&o);
-    o.samples = 64;
+    o.samples = 32;
     o.engine = e;
     o.chunk = chunk;
     ob_driver_hooks h;
@@ -132,10 +186,23 @@ static outcome run(const jobset *s, ob_engine e, int threads, int chunk)
     h.job_done = on_done;
     h.job_done_ctx = &r.told;
     h.stats = &r.st;
+    fake_backend fb = {{NULL, NULL}, {0, 0}, {0, 0}, 0, backend == BK_ASYNC_FAILING ? 3 : 0};
+    if (backend != BK_NONE) {
+        h.batch = fake_batch;
+        h.batch_ctx = &fb;
+    }
+    if (backend == BK_ASYNC || backend == BK_ASYNC_FAILING) {
+        h.batch_submit = fake_submit;
+        h.batch_wait = fake_wait;
+    }
     omp_set_num_threads(threads);
     r.rc = ob_driver_run(r.jobs, s->n, &o, &h);
+    free(fb.recs[0]);
+    free(fb.recs[1]);
     return r;
 }
+
+static outcome run(const jobset *s, ob_engine e, int threads, int chunk) { return run_with(s, e, threads, chunk, BK_NONE); }
 
 static void outcome_free(outcome *r, size_t n)
 {
@@ -173,17 +240,33 @@ static void test_equivalence(const jobset *s)
     check_same(s, &ref, &group1, "engine group, 1 thread, chunk 512");
     const struct {
         ob_engine e;
-        int threads, chunk;
-    } cfg[] = {{OB_ENGINE_LEVEL, 2, 512}, {OB_ENGINE_LEVEL, 7, 512}, {OB_ENGINE_LEVEL, 2, 3},
-               {OB_ENGINE_GROUP, 2, 512}, {OB_ENGINE_GROUP, 7, 512},
-               {OB_ENGINE_GROUP, 2, 1},   {OB_ENGINE_GROUP, 7, 5},   {OB_ENGINE_AUTO, 2, 512}};
+        int threads, chunk, backend;
+        ob_engine ran;
+    } cfg[] = {{OB_ENGINE_LEVEL, 2, 512, BK_NONE, OB_ENGINE_LEVEL},
+               {OB_ENGINE_LEVEL, 7, 512, BK_NONE, OB_ENGINE_LEVEL},
+               {OB_ENGINE_LEVEL, 2, 3, BK_NONE, OB_ENGINE_LEVEL},
+               {OB_ENGINE_GROUP, 2, 512, BK_NONE, OB_ENGINE_GROUP},
+               {OB_ENGINE_GROUP, 7, 512, BK_NONE, OB_ENGINE_GROUP},
+               {OB_ENGINE_GROUP, 2, 1, BK_NONE, OB_ENGINE_GROUP},
+               {OB_ENGINE_GROUP, 7, 5, BK_NONE, OB_ENGINE_GROUP},
+               {OB_ENGINE_AUTO, 2, 512, BK_NONE, OB_ENGINE_GROUP},
+               {OB_ENGINE_AUTO, 2, 512, BK_SYNC, OB_ENGINE_LEVEL},
+               {OB_ENGINE_GROUP, 2, 512, BK_SYNC, OB_ENGINE_GROUP},
+               {OB_ENGINE_DEVICE, 2, 512, BK_SYNC, OB_ENGINE_LEVEL},
+               {OB_ENGINE_DEVICE, 2, 512, BK_ASYNC, OB_ENGINE_DEVICE},
+               {OB_ENGINE_DEVICE, 7, 5, BK_ASYNC, OB_ENGINE_DEVICE},
+               {OB_ENGINE_DEVICE, 1, 64, BK_ASYNC_FAILING, OB_ENGINE_DEVICE}};
     for (size_t k = 0; k < sizeof cfg / sizeof cfg[0]; k++) {
-        char what[96];
-        snprintf(what, sizeof what, "engine %s, %d threads, chunk %d", ob_engine_name(cfg[k].e), cfg[k].threads,
-                 cfg[k].chunk);
-        outcome got = run(s, cfg[k].e, cfg[k].threads, cfg[k].chunk);
+        char what[128];
+        static const char *const bk[] = {"none", "sync", "async", "async, failing"};
+        snprintf(what, sizeof what, "engine %s, %d threads, chunk %d, backend %s", ob_engine_name(cfg[k].e),
+                 cfg[k].threads, cfg[k].chunk, bk[cfg[k].backend]);
+        outcome got = run_with(s, cfg[k].e, cfg[k].threads, cfg[k].chunk, cfg[k].backend);
         check_same(s, &ref, &got, what);
-        const ob_engine ran = cfg[k].e == OB_ENGINE_AUTO ? OB_ENGINE_GROUP : cfg[k].e;
+        const ob_engine ran = cfg[k].ran;
+        if (cfg[k].backend != BK_NONE)
+            CHECK(got.st.launches > 0 && got.st.records > 0, "%s: %ld launches, %ld records", what,
+                  got.st.launches, got.st.records);
         CHECK(got.st.engine == ran && got.st.threads == cfg[k].threads, "%s: ran %s on %d threads", what,
               ob_engine_name(got.st.engine), got.st.threads);
         if (ran == OB_ENGINE_GROUP)
@@ -224,7 +307,7 @@ static void test_stop(const jobset *s, ob_engine e)
     r.spans = calloc(s->n, sizeof *r.spans);
     ob_driver_opts o;
     ob_driver_defaults(&o);
-    o.samples = 64;
+    o.samples = 32;
     o.engine = e;
     ob_driver_hooks h;
     memset(&h, 0, sizeof h);
@@ -278,7 +361,7 @@ static void test_traces(const jobset *s)
         memcpy(jobs, s->jobs, s->n * sizeof *jobs);
         ob_driver_opts o;
         ob_driver_defaults(&o);
-        o.samples = 64;
+        o.samples = 32;
         o.engine = (ob_engine)e;
         ob_trace tr;
         memset(&tr, 0, sizeof tr);
