@@ -110,7 +110,7 @@ else
                 l=$(meta "$d/meta.json" backend_launches)
                 r=$(meta "$d/meta.json" backend_records)
                 row "$(printf '%.14s' "$dev") $lay $e" "$w" "$(awk -v a="$cpu_all_wall" -v b="$w" 'BEGIN{printf "x%.2f", a/b}')" \
-                    "-" "$(awk -v l="$l" -v r="$r" 'BEGIN{printf "%.0f", l > 0 ? r / l : 0}')" "$(same "$ref" "$d/results.csv")"
+                    "-" "$(awk -v l="$l" -v r="$r" 'BEGIN{printf "%.0f", (l > 0 ? r / l : 0)}')" "$(same "$ref" "$d/results.csv")"
             done
         done
     done
