@@ -65,33 +65,32 @@ static double modelled(const engine_run *r, int P)
     return span > 0 ? r->tr.work_ns / (P * span) : 0.0;
 }
 
-/* The threads' time, threads x wall, split into the work, the time a
- * traced task spent beyond its fits and measurements (decisions, sorting),
- * serial time with the other threads waiting, and the rest (waiting at a
- * barrier or in the tail, and what the trace does not see). */
-static void where_it_went(const engine_run *r, double *work, double *in_task, double *serial, double *rest)
+/* The threads' time, threads x wall, split into the work (fits and
+ * measurements), the decisions and sorting (the level engine's on one
+ * thread while the others wait at its barrier: counted for all threads;
+ * the group engine's in its groups' own threads), and the rest: waiting
+ * (barriers, the tail) and what the trace does not see (joints, making
+ * the records, taking tasks, the lock that tells jobs finished). */
+static void where_it_went(const engine_run *r, double *work, double *decide, double *rest)
 {
-    double tasks = 0.0, ser = 0.0;
-    for (size_t k = 0; k < r->tr.ntask; k++)
-        tasks += r->tr.task[k];
+    double ser = 0.0;
     for (size_t p = 0; p < r->tr.nphase; p++)
-        ser += r->tr.phase[p].serial_ns;
+        ser += r->tr.phase[p].serial_ns * (r->tr.phase[p].group >= 0 ? 1 : r->st.threads);
     const double all = r->st.threads * r->st.wall_ns;
     *work = r->st.work_ns / all;
-    *in_task = fmax(0.0, tasks - r->st.work_ns) / all;
-    *serial = ser * r->st.threads / all;
-    *rest = 1.0 - *work - *in_task - *serial;
+    *decide = ser / all;
+    *rest = 1.0 - *work - *decide;
 }
 
 /* A CPU run: its efficiency, where the rest went, its model at 16 and 64. */
 static void report_cpu(FILE *csv, const char *what, const engine_run *r)
 {
-    double w, t, s, rest;
-    where_it_went(r, &w, &t, &s, &rest);
+    double w, s, rest;
+    where_it_went(r, &w, &s, &rest);
     const char *e = ob_engine_name(r->st.engine);
-    printf("  %-6s cpu     %2d threads: %6.2f s wall, efficiency %5.1f %% (in-task overhead %4.1f %%, serial "
-           "%4.1f %%, waiting %4.1f %%); modelled %5.1f %% at %d, %5.1f %% at 16, %5.1f %% at 64\n",
-           e, r->st.threads, r->st.wall_ns * 1e-9, 100 * w, 100 * t, 100 * s, 100 * rest,
+    printf("  %-6s cpu     %2d threads: %6.2f s wall, efficiency %5.1f %% (decisions %4.1f %%, waiting and "
+           "untraced %4.1f %%); modelled %5.1f %% at %d, %5.1f %% at 16, %5.1f %% at 64\n",
+           e, r->st.threads, r->st.wall_ns * 1e-9, 100 * w, 100 * s, 100 * rest,
            100 * modelled(r, r->st.threads), r->st.threads, 100 * modelled(r, 16), 100 * modelled(r, 64));
     fprintf(csv, "%s/%s,cpu,%d,%ld,%.6f,%.6g,efficiency\n", what, e, r->st.threads, r->st.groups,
             r->st.wall_ns * 1e-9, w);

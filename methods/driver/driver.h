@@ -189,12 +189,18 @@ typedef struct {
  * (ob_trace_makespan): a sequence of phases, each some serial time then
  * tasks that threads take in order, grain at a time, as OpenMP's dynamic
  * schedule does.  The level engine's phases are each chunk's fits and its
- * measurements (the decisions and sorting serial); the group engine's are
- * the planning and the groups (a group's whole thread time one task). */
+ * measurements (the decisions and sorting serial).  The group engine's are
+ * the planning, then each group's chunks in schedule order (group >= 0: a
+ * chunk's items are its tasks, its decisions its serial time), modelled as
+ * the engine runs them: a thread takes the next group and runs its chunks
+ * one after the other; threads left without a group help with the tasks of
+ * the chunks of the groups still running. */
 typedef struct {
     size_t first, n;    /* tasks task[first .. first + n - 1] */
     int grain;
     double serial_ns;   /* before the tasks, on one thread */
+    int group;          /* -1: a phase of all threads; >= 0: a chunk of the
+                           group at that schedule position */
 } ob_trace_phase;
 
 typedef struct {

@@ -222,6 +222,7 @@ int drv_chunk_decide(drv_run *R, drv_scratch *S, const item *its, long cnt, item
 /* trace.c */
 int drv_trace_task(ob_trace *t, double ns);
 int drv_trace_phase(ob_trace *t, size_t first, int grain, double serial_ns);
+int drv_trace_append(ob_trace *t, const ob_trace *part);
 
 /* the engines */
 int drv_run_level(drv_run *R);

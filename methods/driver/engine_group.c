@@ -34,7 +34,8 @@ typedef struct {
     size_t *told;       /* njobs: each group's finished jobs, in its slice */
     itemvec *plans;     /* each job's first pieces (drv_plan_all) */
     char *ran;          /* per schedule position: the group ran (or gave up) */
-    double *task_ns;    /* per schedule position: the group's thread time */
+    ob_trace *gtr;      /* per schedule position, when tracing: the group's
+                           chunks, moved into hooks.trace in schedule order */
     int next;           /* the next schedule position to take */
     int commit;         /* positions told up to here */
     int abort;          /* nonzero: take no more groups (-1 memory or the
@@ -68,8 +69,8 @@ static int build_groups(gengine *G)
     G->members = malloc((nj ? nj : 1) * sizeof *G->members);
     G->told = malloc((nj ? nj : 1) * sizeof *G->told);
     G->ran = calloc(ng ? ng : 1, 1);
-    G->task_ns = calloc(ng ? ng : 1, sizeof *G->task_ns);
-    if (!G->g || !G->order || !G->members || !G->told || !G->ran || !G->task_ns)
+    G->gtr = R->h.trace ? calloc(ng ? ng : 1, sizeof *G->gtr) : NULL;
+    if (!G->g || !G->order || !G->members || !G->told || !G->ran || (R->h.trace && !G->gtr))
         return -1;
     for (size_t i = 0; i < nj; i++) {
         group *gr = &G->g[R->grp[i]];
@@ -119,10 +120,24 @@ static int aborted(gengine *G)
  *          first pieces, then level after level of its own items, each
  *          level sorted as the level engine sorts it, in chunks.
  * Returns: 0, -1 (memory), 1 (stopped or the run aborted: given up). */
-static int run_group(gengine *G, int g, drv_scratch *S, itemvec *cur, itemvec *next, double *helped)
+/* The trace of one chunk of a group: its items' fits and measurements (a
+ * shared one once) as tasks, its decisions (and its level's sorting) as
+ * serial time. */
+static void trace_chunk(ob_trace *gt, const drv_scratch *S, long cnt, double serial_ns, int pos)
+{
+    const size_t first = gt->ntask;
+    for (long i = 0; i < cnt; i++)
+        if (S->rep[i] == i && S->fit_ns[i] + S->eval_ns[i] > 0.0)
+            drv_trace_task(gt, S->fit_ns[i] + S->eval_ns[i]);
+    if (drv_trace_phase(gt, first, 4, serial_ns) == 0)
+        gt->phase[gt->nphase - 1].group = pos;
+}
+
+static int run_group(gengine *G, int pos, drv_scratch *S, itemvec *cur, itemvec *next, double *helped)
 {
     drv_run *R = G->R;
-    group *gr = &G->g[g];
+    group *gr = &G->g[G->order[pos]];
+    ob_trace *gt = G->gtr ? &G->gtr[pos] : NULL;
     cur->n = 0;
     for (size_t k = 0; k < gr->n; k++) {
         itemvec *p = &G->plans[G->members[gr->first + k]];
@@ -135,7 +150,9 @@ static int run_group(gengine *G, int g, drv_scratch *S, itemvec *cur, itemvec *n
     void *ctx[2] = {G, gr};
     while (cur->n > 0) {
         next->n = 0;
+        double serial = drv_thread_ns();
         qsort(cur->v, cur->n, sizeof *cur->v, drv_item_share_cmp);
+        serial = drv_thread_ns() - serial;
         long cnt;
         for (size_t start = 0; start < cur->n; start += (size_t)cnt) {
             cnt = drv_chunk_count(cur, start, R->o.chunk);
@@ -149,8 +166,12 @@ static int run_group(gengine *G, int g, drv_scratch *S, itemvec *cur, itemvec *n
                 *helped += fmax(0.0, work - (drv_thread_ns() - own));
 #pragma omp atomic
             R->st.work_ns += work;
+            const double d0 = drv_thread_ns();
             if (drv_chunk_decide(R, S, cur->v + start, cnt, next, tell_later, ctx) != 0)
                 return -1;
+            if (gt)
+                trace_chunk(gt, S, cnt, serial + drv_thread_ns() - d0, pos);
+            serial = 0.0;
             if ((R->h.stop && *R->h.stop) || aborted(G))
                 return 1;
         }
@@ -165,6 +186,10 @@ static int run_group(gengine *G, int g, drv_scratch *S, itemvec *cur, itemvec *n
 static void tell_group(gengine *G, int pos)
 {
     const group *gr = &G->g[G->order[pos]];
+    if (G->gtr) {
+        drv_trace_append(G->R->h.trace, &G->gtr[pos]);
+        ob_trace_free(&G->gtr[pos]);
+    }
     for (size_t k = 0; k < gr->ntold && !G->hook_fired; k++)
         if (drv_job_finished(G->R, G->told[gr->first + k]) != 0) {
             G->hook_fired = 1;
@@ -212,9 +237,7 @@ static void worker(gengine *G)
         pos = G->next++;
         if (pos >= R->ngroups)
             break;
-        const double t0 = drv_thread_ns(), h0 = helped;
-        const int rc = run_group(G, G->order[pos], &S, &cur, &next, &helped);
-        G->task_ns[pos] = drv_thread_ns() - t0 + (helped - h0);
+        const int rc = run_group(G, pos, &S, &cur, &next, &helped);
         commit(G, pos, rc);
     }
 #pragma omp atomic
@@ -236,7 +259,9 @@ static void gengine_free(gengine *G)
     free(G->members);
     free(G->told);
     free(G->ran);
-    free(G->task_ns);
+    for (int k = 0; G->gtr && k < G->R->ngroups; k++)
+        ob_trace_free(&G->gtr[k]);
+    free(G->gtr);
 }
 
 /* Purpose: run a started run (drv_run_start) with the group engine.
@@ -259,12 +284,6 @@ int drv_run_group(drv_run *R)
                 tell_group(&G, pos);
         if (G.hook_fired)
             rc = -1;
-    }
-    if (R->h.trace && rc == 0) {
-        const size_t first = R->h.trace->ntask;
-        for (int pos = 0; pos < R->ngroups; pos++)
-            drv_trace_task(R->h.trace, G.task_ns[pos]);
-        drv_trace_phase(R->h.trace, first, 1, 0.0);
     }
     gengine_free(&G);
     return rc;

@@ -342,7 +342,7 @@ static void test_stop(const jobset *s, ob_engine e)
 static void test_model(void)
 {
     double task[] = {3, 3, 2, 2, 2, 5, 1, 1};
-    ob_trace_phase ph[2] = {{0, 5, 1, 1.0}, {5, 3, 2, 0.5}};
+    ob_trace_phase ph[2] = {{0, 5, 1, 1.0, -1}, {5, 3, 2, 0.5, -1}};
     ob_trace t = {task, 8, 8, ph, 2, 2, 0, 0};
     /* phase 1 on 2 threads: 3 | 3, then 2 -> 5, 2 -> 5, 2 -> 7: 7, +1 serial;
      * phase 2, grain 2: {5, 1} = 6 | {1} = 1: 6, +0.5 serial */
@@ -350,6 +350,21 @@ static void test_model(void)
     CHECK(ob_trace_makespan(&t, 1) == 20.5, "1 thread: the sum, %g (20.5 wanted)", ob_trace_makespan(&t, 1));
     /* phase 1 on 64: the longest task, 3; phase 2: 6 */
     CHECK(ob_trace_makespan(&t, 64) == 10.5, "64 threads: %g (10.5 wanted)", ob_trace_makespan(&t, 64));
+    /* the group engine: group 0 one chunk of four tasks of 4, group 1 one
+     * task of 1; on 2 threads the second thread finishes group 1 at 1 and
+     * helps with group 0: 17 of work end at 9 (16 without the help) */
+    double gtask[] = {4, 4, 4, 4, 1};
+    ob_trace_phase gph[3] = {{0, 0, 1, 0.0, -1}, {0, 4, 1, 0.0, 0}, {4, 1, 1, 0.0, 1}};
+    ob_trace g = {gtask, 5, 5, gph, 3, 3, 0, 0};
+    CHECK(ob_trace_makespan(&g, 2) == 9.0, "group engine, 2 threads: %g (9 wanted)", ob_trace_makespan(&g, 2));
+    CHECK(ob_trace_makespan(&g, 1) == 17.0, "group engine, 1 thread: %g (17 wanted)", ob_trace_makespan(&g, 1));
+    CHECK(ob_trace_makespan(&g, 8) == 4.0, "group engine, 8 threads: %g (4 wanted)", ob_trace_makespan(&g, 8));
+    /* a group's next chunk waits for its previous one: chunks of 3 and 3
+     * on 4 threads take 6, whatever the helpers */
+    double ctask[] = {3, 3};
+    ob_trace_phase cph[2] = {{0, 1, 1, 0.0, 0}, {1, 1, 1, 0.0, 0}};
+    ob_trace c2 = {ctask, 2, 2, cph, 2, 2, 0, 0};
+    CHECK(ob_trace_makespan(&c2, 4) == 6.0, "chained chunks: %g (6 wanted)", ob_trace_makespan(&c2, 4));
 }
 
 /* The traces of a real run: each engine's model at its own thread count is
