@@ -11,42 +11,32 @@
 #include "host/diag.h"
 #include "host/io/numfmt.h"
 
-typedef struct {
-    double cost;
-    size_t i;
-} costed;
-
-static int by_cost_desc(const void *a, const void *b)
-{
-    const costed *x = a, *y = b;
-    if (x->cost != y->cost)
-        return x->cost > y->cost ? -1 : 1;
-    return (x->i > y->i) - (x->i < y->i);
-}
-
 int ob_shard_assign(const ob_job *jobs, size_t njobs, int n, int *shard_of)
 {
-    costed *c = malloc((njobs ? njobs : 1) * sizeof *c);
+    double *cost = calloc(njobs ? njobs : 1, sizeof *cost);
+    size_t *order = malloc((njobs ? njobs : 1) * sizeof *order);
     double *load = calloc((size_t)(n > 0 ? n : 1), sizeof *load);
-    if (!c || !load) {
-        free(c);
-        free(load);
-        return -1;
-    }
+    int rc = -1;
+    if (!cost || !order || !load)
+        goto out;
     for (size_t i = 0; i < njobs; i++)
-        c[i] = (costed){ob_job_cost(&jobs[i]), i};
-    qsort(c, njobs, sizeof *c, by_cost_desc);
+        cost[i] = ob_job_cost(&jobs[i]);
+    if (ob_cost_order(cost, njobs, order))
+        goto out;
     for (size_t k = 0; k < njobs; k++) {
         int best = 0;
         for (int s = 1; s < n; s++)
             if (load[s] < load[best])
                 best = s;
-        shard_of[c[k].i] = best;
-        load[best] += c[k].cost;
+        shard_of[order[k]] = best;
+        load[best] += cost[order[k]];
     }
-    free(c);
+    rc = 0;
+out:
+    free(cost);
+    free(order);
     free(load);
-    return 0;
+    return rc;
 }
 
 int ob_shard_parse(const char *opt, const char *spec, int *k, int *n)

@@ -3,10 +3,13 @@
  *
  * A job is (curve, d, method, metric, split, tol).  The driver first cuts each
  * base segment into pieces at inflections (and, for methods with max_turn, where
- * the tangent has turned by max_turn), then works level by level over all
- * pending pieces of all jobs at once: fit every piece (OpenMP threads), measure
- * every fit (one batch: the place where the OpenCL kernel plugs in), then split
- * the pieces whose error exceeds tol.
+ * the tangent has turned by max_turn), then works level by level over the
+ * pending pieces: fit every piece, measure every fit (in batches: the place
+ * where the OpenCL kernel plugs in), then split the pieces whose error
+ * exceeds tol.  Jobs that differ only in tol share pieces (a share group);
+ * a group decides in its own fixed order, and an engine (ob_engine) only
+ * decides when and where its work runs: all levels of all groups at once
+ * (level, device) or one group at a time per thread (group).
  *
  * Split rules:
  *   mid     at the parametric midpoint;
@@ -240,8 +243,8 @@ typedef struct {
      * to show both */
     int full_probes;
     /* > 0: a job whose thread time (fit_ns + eval_ns) passes this ends with
-     * status timeout.  The driver works level by level over all jobs, so a
-     * job's own clock is the time spent on it, not the run's wall time; a
+     * status timeout.  A job's own clock is the thread time spent on it,
+     * not the run's wall time (its work is interleaved with others'); a
      * single fit that never returns is not interrupted (SISL has its own
      * deadline).  Timeouts depend on the machine: a run where any job times
      * out is not reproducible across thread counts or machines. */
@@ -301,6 +304,12 @@ typedef struct {
  *          balancing only: --shard's partition, the group engine's
  *          schedule, the progress bar. */
 double ob_job_cost(const ob_job *j);
+
+/* Purpose: order[0..n-1]: the indices 0..n-1 by decreasing cost[], ties by
+ *          increasing index (the same order every run: the longest first,
+ *          as a list schedule wants).
+ * Returns: 0, or -1 without memory. */
+int ob_cost_order(const double *cost, size_t n, size_t *order);
 
 void ob_driver_defaults(ob_driver_opts *o);
 

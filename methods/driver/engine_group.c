@@ -44,21 +44,6 @@ typedef struct {
     int idle;           /* threads without a group: they help the rest */
 } gengine;
 
-/* A group and its predicted cost, for the schedule's sort. */
-typedef struct {
-    double cost;
-    int id;
-} costed;
-
-/* Decreasing cost, then increasing id: a total order, the same every run. */
-static int by_cost(const void *x, const void *y)
-{
-    const costed *a = x, *b = y;
-    if (a->cost != b->cost)
-        return a->cost > b->cost ? -1 : 1;
-    return a->id < b->id ? -1 : a->id > b->id;
-}
-
 /* The groups, their members in job order, and the schedule.  0 or -1. */
 static int build_groups(gengine *G)
 {
@@ -87,16 +72,17 @@ static int build_groups(gengine *G)
         group *gr = &G->g[R->grp[i]];
         G->members[gr->first + gr->n++] = i;
     }
-    costed *c = malloc((ng ? ng : 1) * sizeof *c);
-    if (!c)
-        return -1;
-    for (size_t k = 0; k < ng; k++)
-        c[k] = (costed){G->g[k].cost, (int)k};
-    qsort(c, ng, sizeof *c, by_cost);
-    for (size_t k = 0; k < ng; k++)
-        G->order[k] = c[k].id;
-    free(c);
-    return 0;
+    double *cost = malloc((ng ? ng : 1) * sizeof *cost);
+    size_t *order = malloc((ng ? ng : 1) * sizeof *order);
+    const int ok = cost && order;
+    for (size_t k = 0; ok && k < ng; k++)
+        cost[k] = G->g[k].cost;
+    const int rc = ok ? ob_cost_order(cost, ng, order) : -1;
+    for (size_t k = 0; rc == 0 && k < ng; k++)
+        G->order[k] = (int)order[k];
+    free(cost);
+    free(order);
+    return rc;
 }
 
 /* A job of the running group ends: kept, told when the group is committed. */

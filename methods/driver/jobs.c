@@ -312,3 +312,31 @@ double ob_job_cost(const ob_job *j)
     const double tol = j->tol > 0 ? j->tol : 1e-3;
     return ms * (size / 4.0) * pow(tol / 1e-3, -0.25);
 }
+
+/* A cost and its index, for ob_cost_order's sort. */
+typedef struct {
+    double cost;
+    size_t i;
+} costed;
+
+static int by_cost_desc(const void *a, const void *b)
+{
+    const costed *x = a, *y = b;
+    if (x->cost != y->cost)
+        return x->cost > y->cost ? -1 : 1;
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+int ob_cost_order(const double *cost, size_t n, size_t *order)
+{
+    costed *c = malloc((n ? n : 1) * sizeof *c);
+    if (!c)
+        return -1;
+    for (size_t i = 0; i < n; i++)
+        c[i] = (costed){cost[i], i};
+    qsort(c, n, sizeof *c, by_cost_desc);
+    for (size_t k = 0; k < n; k++)
+        order[k] = c[k].i;
+    free(c);
+    return 0;
+}
