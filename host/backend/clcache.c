@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "host/io/fsutil.h"
+#include "host/io/outfile.h"
 #include "host/run/shard.h"
 
 static const char MAGIC[8] = {'O', 'B', 'C', 'L', 'B', 'I', 'N', '1'};
@@ -102,7 +103,7 @@ unsigned char *ob_clcache_read(const char *path, const char *key, size_t *n, cha
 int ob_clcache_write(const char *path, const char *key, const unsigned char *bin, size_t n, char *why,
                      size_t wlen)
 {
-    char dir[4096], tmp[4200];
+    char dir[4096];
     snprintf(dir, sizeof dir, "%s", path);
     char *slash = strrchr(dir, '/');
     if (slash)
@@ -111,21 +112,25 @@ int ob_clcache_write(const char *path, const char *key, const unsigned char *bin
         snprintf(why, wlen, "cannot create %s: %s", dir, strerror(errno));
         return -1;
     }
-    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        snprintf(why, wlen, "cannot write %s: %s", tmp, strerror(errno));
+    ob_outfile o;  /* PATH.PID.tmp (processes share the cache), never through a link */
+    ob_err err;
+    if (ob_outfile_open(&o, path, 1, &err) != 0) {
+        snprintf(why, wlen, "%s", err.msg);
         return -1;
     }
+    FILE *f = o.f;
     const uint64_t klen = strlen(key), blen = n;
     const uint64_t sum = ob_fnv1a(ob_fnv1a(OB_FNV_BASIS, key, klen), bin, n);
-    int ok = fwrite(MAGIC, 1, 8, f) == 8 && fwrite(&klen, sizeof klen, 1, f) == 1 &&
-             fwrite(key, 1, klen, f) == klen && fwrite(&blen, sizeof blen, 1, f) == 1 &&
-             fwrite(&sum, sizeof sum, 1, f) == 1 && fwrite(bin, 1, n, f) == n;
-    ok = (fclose(f) == 0) && ok;
-    if (!ok || rename(tmp, path) != 0) {
-        snprintf(why, wlen, "cannot write %s: %s", path, strerror(errno));
-        unlink(tmp);
+    const int ok = fwrite(MAGIC, 1, 8, f) == 8 && fwrite(&klen, sizeof klen, 1, f) == 1 &&
+                   fwrite(key, 1, klen, f) == klen && fwrite(&blen, sizeof blen, 1, f) == 1 &&
+                   fwrite(&sum, sizeof sum, 1, f) == 1 && fwrite(bin, 1, n, f) == n;
+    if (!ok) {
+        snprintf(why, wlen, "cannot write %s: %s", o.tmp, strerror(errno));
+        ob_outfile_discard(&o);
+        return -1;
+    }
+    if (ob_outfile_commit(&o, 0, &err) != 0) {
+        snprintf(why, wlen, "%s", err.msg);
         return -1;
     }
     return 0;

@@ -58,6 +58,7 @@
 #include <time.h>
 
 #include "host/io/fsutil.h"
+#include "host/io/outfile.h"
 #include "kernels/metric_core.h"
 #include "methods/driver/driver.h"
 #include "host/backend/clrt.h"
@@ -679,11 +680,13 @@ int ob_cmd_bench(int argc, char **argv)
     }
     char path[4200];
     snprintf(path, sizeof path, "%s/bench.csv", a.out);
-    bench_out b = {fopen(path, "w")};
-    if (!b.csv) {
-        ob_error("%s: cannot write: %s", path, strerror(errno));
+    ob_outfile of;  /* written afresh, never through a link (outfile.h) */
+    ob_err err;
+    if (ob_outfile_open(&of, path, 0, &err) != 0) {
+        ob_error("%s", err.msg);
         return 1;
     }
+    bench_out b = {of.f};
     fprintf(b.csv, "what,backend,threads,items,seconds,rate,unit\n");
     const int N = omp_get_num_procs();
     double peak[2], vpeak;
@@ -695,7 +698,10 @@ int ob_cmd_bench(int argc, char **argv)
         bench_random(&b, cl, N, a.quick);
     }
     ob_cl_close(cl);
-    fclose(b.csv);
+    if (ob_outfile_commit(&of, 0, &err) != 0) {  /* the rows so far, as before, also when rc != 0 */
+        ob_error("%s", err.msg);
+        return 1;
+    }
     if (rc != 0)
         return 1;
     printf("wrote %s\n", path);

@@ -52,6 +52,7 @@
 #include "host/io/export.h"
 #include "host/view/jobview.h"
 #include "host/io/numfmt.h"
+#include "host/io/outfile.h"
 #include "host/io/output.h"
 #include "host/view/svg.h"
 
@@ -558,6 +559,8 @@ static int run_cmd(int trace, int argc, char **argv)
     }
     status = ob_jobview_open(&v, cmd, a.have_d, a.d);
     FILE *f = NULL;
+    ob_outfile of = {0};  /* --out FILE: written afresh, never through a link */
+    ob_err err;
     const int to_stdout = trace && (!a.out || strcmp(a.out, "-") == 0);
     if (status == 0 && !to_stdout) {
         const char *const inputs[] = {v.o.curves_file};
@@ -565,11 +568,11 @@ static int run_cmd(int trace, int argc, char **argv)
             status = 2;
     }
     if (status == 0) {
-        f = to_stdout ? stdout : fopen(a.out, "w");
-        if (!f) {
-            ob_error("--out: cannot write '%s': %s", a.out, strerror(errno));
+        if (!to_stdout && ob_outfile_open(&of, a.out, 0, &err) != 0) {
+            ob_error("--out: %s", err.msg);
             status = 1;
         }
+        f = to_stdout ? stdout : of.f;
     }
     if (status == 0)
         status = ob_jobview_run(&v);
@@ -594,16 +597,16 @@ static int run_cmd(int trace, int argc, char **argv)
         if (status == 0 && v.o.export_dir)  /* --export DIR: the job's approximation (host/io/export.h) */
             status = ob_export_single(v.o.export_dir, &v.job, v.samples, &v.spans);
     }
-    if (f && !to_stdout && fclose(f) != 0 && status == 0) {
-        ob_error("%s: writing '%s' failed: %s", cmd, a.out, strerror(errno));
+    if (f && !to_stdout && status == 0 && ob_outfile_commit(&of, 0, &err) != 0) {
+        ob_error("%s: %s", cmd, err.msg);
         status = 1;
     }
     if (f && to_stdout && fflush(stdout) != 0 && status == 0) {
         ob_error("%s: writing standard output failed", cmd);
         status = 1;
     }
-    if (f && !to_stdout && status != 0)
-        remove(a.out);
+    if (!to_stdout)
+        ob_outfile_discard(&of);  /* a failed draw leaves --out as it was */
     ob_jobview_close(&v);
     return status;
 }

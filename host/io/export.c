@@ -11,6 +11,7 @@
 #include "host/io/fsutil.h"
 #include "host/diag.h"
 #include "host/io/numfmt.h"
+#include "host/io/outfile.h"
 
 void ob_export_stem(char *buf, size_t len, const ob_job *j)
 {
@@ -60,16 +61,19 @@ static int write_one(const char *dir, const char *stem, const char *ext, writer_
 {
     char path[4400];
     snprintf(path, sizeof path, "%s/%s.%s", dir, stem, ext);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        ob_error("--export: cannot write '%s': %s", path, strerror(errno));
+    ob_outfile o;
+    ob_err err;
+    if (ob_outfile_open(&o, path, 0, &err) != 0) {
+        ob_error("--export: %s", err.msg);
         return -1;
     }
-    int rc = w(f, j, samples, a);
-    rc |= ferror(f) ? -1 : 0;
-    if (fclose(f) != 0 || rc != 0) {
+    if (w(o.f, j, samples, a) != 0) {
         ob_error("--export: writing '%s' failed", path);
-        remove(path);
+        ob_outfile_discard(&o);
+        return -1;
+    }
+    if (ob_outfile_commit(&o, 0, &err) != 0) {
+        ob_error("--export: %s", err.msg);
         return -1;
     }
     return 0;
@@ -126,11 +130,13 @@ static int write_index(const char *dir, const ob_job *jobs, size_t njobs)
 {
     char path[4200], stem[400], num[40];
     snprintf(path, sizeof path, "%s/index.csv", dir);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        ob_error("--export: cannot write '%s': %s", path, strerror(errno));
+    ob_outfile o;
+    ob_err err;
+    if (ob_outfile_open(&o, path, 0, &err) != 0) {
+        ob_error("--export: %s", err.msg);
         return -1;
     }
+    FILE *f = o.f;
     fputs("curve,d,method,tol,status,max_err,segments,stem\n", f);
     for (size_t i = 0; i < njobs; i++) {
         const ob_job *j = &jobs[i];
@@ -147,9 +153,8 @@ static int write_index(const char *dir, const ob_job *jobs, size_t njobs)
         ob_export_stem(stem, sizeof stem, j);
         fprintf(f, ",%d,%s\n", has ? j->segments : 0, has ? stem : "");
     }
-    const int bad = ferror(f);
-    if (fclose(f) != 0 || bad) {
-        ob_error("--export: writing '%s' failed", path);
+    if (ob_outfile_commit(&o, 0, &err) != 0) {
+        ob_error("--export: %s", err.msg);
         return -1;
     }
     return 0;

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "host/io/fsutil.h"
+#include "host/io/outfile.h"
 #include "host/diag.h"
 
 int ob_mkdir_p(const char *dir)
@@ -41,31 +42,28 @@ int ob_mkdir_p(const char *dir)
 }
 
 /* Writes DIR/NAME through a temporary file and a rename, so a reader never
- * sees a half-written file. */
+ * sees a half-written file, and a link at either name is never followed. */
 int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx)
 {
-    char path[4200], tmp[4210];
+    char path[4200];
+    ob_outfile o;
+    ob_err err;
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        ob_error("%s: cannot write: %s", tmp, strerror(errno));
+    if (ob_outfile_open(&o, path, 0, &err) != 0) {
+        ob_error("%s", err.msg);
         return -1;
     }
-    int rc = writer(f, ctx);
-    if (fclose(f) != 0 || rc != 0) {
-        ob_error("%s: write failed", tmp);
-        remove(tmp);
+    if (writer(o.f, ctx) != 0) {
+        ob_error("%s: write failed", o.tmp);
+        ob_outfile_discard(&o);
         return -1;
     }
-    if (rename(tmp, path) != 0) {
-        ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
-        remove(tmp);
+    if (ob_outfile_commit(&o, 0, &err) != 0) {
+        ob_error("%s", err.msg);
         return -1;
     }
     return 0;
 }
-
 
 /* The owner of a run directory: a POSIX record lock (fcntl F_SETLK) on
  * DIR/.lock, which the kernel releases when the process ends however it
@@ -77,11 +75,9 @@ int ob_lock_dir(const char *dir, int *fd_out, ob_err *err)
     char path[4200];
     snprintf(path, sizeof path, "%s/.lock", dir);
     *fd_out = -1;
-    const int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-    if (fd < 0) {
-        ob_fail(err, "%s: cannot create the lock file: %s", path, strerror(errno));
-        return -1;
-    }
+    const int fd = ob_open_in_place(path, O_RDWR | O_CREAT, err);  /* a link there: refused, -2 */
+    if (fd < 0)
+        return fd;
     struct flock fl;
     memset(&fl, 0, sizeof fl);
     fl.l_type = F_WRLCK;
@@ -215,46 +211,38 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
 /* Every file of the set to NAME.tmp (flushed and fsync'ed), and only when all
  * of them are complete the renames, in the caller's order.  A failed write
  * (disk full, a size limit) therefore changes none of the files; the
- * temporaries go. */
+ * temporaries go.  A link at any name is replaced, never followed (outfile.h). */
 int ob_write_set_atomically(const char *dir, const ob_out_file *files, size_t n)
 {
-    char path[4200], tmp[4210];
-    size_t done = 0;
-    int ok = 1;
-    for (; done < n && ok; done++) {
-        snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[done].name);
-        FILE *f = fopen(tmp, "w");
-        if (!f) {
-            ob_error("%s: cannot write: %s", tmp, strerror(errno));
-            break;
-        }
-        int rc = files[done].writer(f, files[done].ctx);
-        if (rc == 0 && (fflush(f) != 0 || fsync(fileno(f)) != 0))
-            rc = -1;
-        if (fclose(f) != 0 || rc != 0) {
-            ob_error("%s: write failed", tmp);
-            ok = 0;
-        }
-    }
-    if (!ok || done < n) {
-        for (size_t i = 0; i < done + (done < n); i++) {
-            snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[i].name);
-            remove(tmp);
-        }
+    ob_outfile *o = calloc(n ? n : 1, sizeof *o);
+    if (!o) {
+        ob_error("%s: out of memory", dir);
         return -1;
     }
-    for (size_t i = 0; i < n; i++) {
+    char path[4200];
+    ob_err err;
+    int ok = 1;
+    for (size_t i = 0; i < n && ok; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
-        snprintf(tmp, sizeof tmp, "%s.tmp", path);
-        if (rename(tmp, path) != 0) {
-            ob_error("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
-            for (size_t k = i; k < n; k++) {
-                snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, files[k].name);
-                remove(tmp);
-            }
-            return -1;
+        if (ob_outfile_open(&o[i], path, 0, &err) != 0)
+            ok = 0;
+        else if (files[i].writer(o[i].f, files[i].ctx) != 0) {
+            ob_fail(&err, "%s: write failed", o[i].tmp);
+            ok = 0;
+        } else {
+            ok = ob_outfile_finish(&o[i], 1, &err) == 0;
         }
     }
+    for (size_t i = 0; i < n && ok; i++)  /* results.csv is the caller's last */
+        ok = ob_outfile_publish(&o[i], &err) == 0;
+    if (!ok) {
+        ob_error("%s", err.msg);
+        for (size_t i = 0; i < n; i++)
+            ob_outfile_discard(&o[i]);
+        free(o);
+        return -1;
+    }
+    free(o);
     const int dfd = open(dir, O_RDONLY);  /* the renames themselves to disk */
     if (dfd >= 0) {
         (void)fsync(dfd);

@@ -13,7 +13,8 @@
 int ob_mkdir_p(const char *dir);
 
 /* Writes DIR/NAME through NAME.tmp and a rename (a reader never sees half a
- * file); writer returns 0 or -1.  Returns 0, or -1 after ob_error(). */
+ * file; a link at either name is replaced, never followed: outfile.h);
+ * writer returns 0 or -1.  Returns 0, or -1 after ob_error(). */
 int ob_write_atomically(const char *dir, const char *name, int (*writer)(FILE *, void *), void *ctx);
 
 /* One file of a set written together (ob_write_set_atomically). */
@@ -29,6 +30,7 @@ typedef struct {
  * size limit) leaves every file as it was.  A crash between the renames
  * (no write is left then, only the renames) can leave new companions
  * beside the old results.csv, never a new results.csv beside old ones.
+ * A link at any of the names is replaced, never followed (outfile.h).
  * Returns 0, or -1 after ob_error(). */
 int ob_write_set_atomically(const char *dir, const ob_out_file *files, size_t n);
 
@@ -45,7 +47,8 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
  * dir/.lock (which gets our pid), held until the process ends (the kernel
  * drops it however the process ends).  Returns 0 with the descriptor in
  * *fd (keep it open); -2 when another process holds it (err names dir and
- * the holder's pid); -1 when the file cannot be created or locked (err). */
+ * the holder's pid) or dir/.lock is a symbolic or hard link (refused, never
+ * followed: err names it); -1 when the file cannot be created or locked. */
 int ob_lock_dir(const char *dir, int *fd, ob_err *err);
 
 #endif

@@ -6,6 +6,7 @@
 #include "host/run/journal.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
@@ -16,6 +17,7 @@
 
 #include "buildinfo.h"
 #include "host/io/numfmt.h"
+#include "host/io/outfile.h"
 #include "host/io/output.h"
 #include "host/io/slurp.h"
 
@@ -273,82 +275,100 @@ int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
     return 1;
 }
 
-/* Creates the journal afresh: first line and header. */
+/* Creates the journal afresh: first line and header, through a new file
+ * renamed over the name (a link there is replaced, never followed); the
+ * rows go on to the same file. */
 static int create(ob_journal *j, const char *fp, ob_err *err)
 {
-    j->f = fopen(j->path, "w");
-    if (!j->f) {
-        ob_fail(err, "%s: cannot write: %s", j->path, strerror(errno));
+    ob_outfile o;
+    if (ob_outfile_open(&o, j->path, 0, err) != 0)
+        return -1;
+    fprintf(o.f, "%s%s\n%s\n", MAGIC, fp, ob_results_header());
+    if (fflush(o.f) != 0 || ferror(o.f)) {
+        ob_fail(err, "%s: write failed", o.tmp);
+        ob_outfile_discard(&o);
         return -1;
     }
-    fprintf(j->f, "%s%s\n%s\n", MAGIC, fp, ob_results_header());
-    if (fflush(j->f) != 0) {
-        ob_fail(err, "%s: write failed", j->path);
+    FILE *f = o.f;
+    if (ob_outfile_publish(&o, err) != 0)  /* on failure it closed f */
         return -1;
-    }
+    j->f = f;
     return 0;
 }
 
-/* Reads an existing journal into *restored; cuts a partial last line. */
-static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, ob_err *err)
+/* The checks and the cut of reopen on the journal's text; takes fd (the
+ * journal opened for appending): the rows go on through it, or it is
+ * closed. */
+static int continue_journal(ob_journal *j, int fd, const char *text, size_t len, const char *fp,
+                            ob_res_table *restored, ob_err *err)
 {
-    char *text;
-    size_t len;
-    if (ob_slurp(j->path, &text, &len, err) != 0)
-        return -1;
     const char *nl = memchr(text, '\n', len);
     if (!nl) {  /* killed while the first line was written: nothing saved */
-        free(text);
+        close(fd);
         return create(j, fp, err);
     }
     const size_t first = (size_t)(nl - text);
     if (first < sizeof MAGIC - 1 || memcmp(text, MAGIC, sizeof MAGIC - 1) != 0) {
-        ob_fail(err, "%s:1: not an offbench journal", j->path);
-        free(text);
-        return -1;
+        close(fd);
+        return ob_fail(err, "%s:1: not an offbench journal", j->path);
     }
     const size_t fplen = first - (sizeof MAGIC - 1);
     if (fplen != strlen(fp) || memcmp(text + sizeof MAGIC - 1, fp, fplen) != 0) {
         char *was = strndup(text + sizeof MAGIC - 1, fplen), diff[512];
         ob_fingerprint_diff(was ? was : "", fp, diff, sizeof diff);
         free(was);
-        ob_fail(err, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
-                "same options and build, or start afresh (another --out, or --force)", j->path, diff);
-        free(text);
-        return -1;
+        close(fd);
+        return ob_fail(err, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
+                       "same options and build, or start afresh (another --out, or --force)", j->path, diff);
     }
     size_t keep = len;
     while (keep > first + 1 && text[keep - 1] != '\n')
         keep--;
-    if (keep < len && truncate(j->path, (off_t)keep) != 0) {
-        ob_fail(err, "%s: cannot cut the partial last line: %s", j->path, strerror(errno));
-        free(text);
-        return -1;
-    }
     const char *body = text + first + 1;
     const size_t blen = keep - (first + 1);
     const char *hend = memchr(body, '\n', blen);
     if (hend && ((size_t)(hend - body) != strlen(ob_results_header()) ||
                  memcmp(body, ob_results_header(), strlen(ob_results_header())) != 0)) {
         /* rows of another build's columns cannot be continued or restored */
-        ob_fail(err, "%s:2: written by another version of offbench (its columns differ): run again "
-                "without --resume", j->path);
+        close(fd);
+        return ob_fail(err, "%s:2: written by another version of offbench (its columns differ): run again "
+                       "without --resume", j->path);
+    }
+    if (!(blen > 0 && memchr(body, '\n', blen))) {  /* not even the header line */
+        close(fd);
+        return create(j, fp, err);
+    }
+    if (ob_res_parse_at(body, blen, j->path, 2, restored, err) != 0) {  /* body is line 2 on */
+        close(fd);
+        return -1;
+    }
+    if (keep < len && ftruncate(fd, (off_t)keep) != 0) {
+        ob_fail(err, "%s: cannot cut the partial last line: %s", j->path, strerror(errno));
+        close(fd);
+        return -1;
+    }
+    if (!(j->f = fdopen(fd, "a"))) {
+        ob_fail(err, "%s: cannot append: %s", j->path, strerror(errno));
+        close(fd);
+        return -1;
+    }
+    return 0;
+}
+
+/* Reads an existing journal into *restored; cuts a partial last line; goes
+ * on appending to it (never through a link: ob_open_in_place). */
+static int reopen(ob_journal *j, const char *fp, ob_res_table *restored, ob_err *err)
+{
+    char *text;
+    size_t len;
+    if (ob_slurp(j->path, &text, &len, err) != 0)
+        return -1;
+    const int fd = ob_open_in_place(j->path, O_WRONLY | O_APPEND, err);
+    if (fd < 0) {
         free(text);
         return -1;
     }
-    int rc = 0;
-    if (blen > 0 && memchr(body, '\n', blen)) {  /* a header line at least */
-        rc = ob_res_parse_at(body, blen, j->path, 2, restored, err);  /* body is line 2 on */
-        if (rc == 0) {
-            j->f = fopen(j->path, "a");
-            if (!j->f) {
-                ob_fail(err, "%s: cannot append: %s", j->path, strerror(errno));
-                rc = -1;
-            }
-        }
-    } else {
-        rc = create(j, fp, err);
-    }
+    int rc = continue_journal(j, fd, text, len, fp, restored, err);
     free(text);
     return rc;
 }

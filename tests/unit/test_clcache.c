@@ -1,7 +1,8 @@
 /*
  * test_clcache.c - the OpenCL program binary cache (host/backend/clcache.h):
  * a stored binary comes back only for its own key and intact; a corrupt,
- * truncated, foreign or other-format file is ignored, never trusted.  Then,
+ * truncated, foreign or other-format file is ignored, never trusted; a link
+ * at the file or its temporary is replaced, never written through.  Then,
  * on an OpenCL device (PoCL here): the first open builds and stores, the
  * second reads the cache, a cached program measures as the CPU does, a
  * corrupted cache file is rebuilt, a changed kernel source builds anew,
@@ -70,6 +71,22 @@ static void test_files(void)
     unsigned char *got = ob_clcache_read(path, key, &n, why, sizeof why);
     CHECK(got && n == sizeof bin && memcmp(got, bin, n) == 0, "read back whole");
     free(got);
+    /* a link planted at the file or at its temporary (PATH.PID.tmp) is
+     * replaced, never written through: its target keeps its bytes */
+    char victim[300], tmp[4300];
+    snprintf(victim, sizeof victim, "%s/victim", dir);
+    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    const char *at[] = {path, tmp};
+    for (int i = 0; i < 2; i++) {
+        write_bytes(victim, "precious", 8);
+        unlink(at[i]);
+        CHECK(symlink(victim, at[i]) == 0, "symlink at %s", at[i]);
+        CHECK(ob_clcache_write(path, key, bin, sizeof bin, why, sizeof why) == 0 && file_size(victim) == 8,
+              "a link at %s: written (%s), its target kept (%ld bytes)", at[i], why, file_size(victim));
+        got = ob_clcache_read(path, key, &n, why, sizeof why);
+        CHECK(got && n == sizeof bin && access(tmp, F_OK) != 0, "a link at %s: the cache file replaces it", at[i]);
+        free(got);
+    }
     /* the same file asked for with another key: foreign */
     CHECK(ob_clcache_read(path, other, &n, why, sizeof why) == NULL && strstr(why, "another"), "foreign: %s",
           why);
