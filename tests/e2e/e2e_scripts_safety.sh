@@ -70,4 +70,98 @@ $HIST prune --history "$Q" --keep-days 1 2>/dev/null
 check '[ -d "$Q/$(stamp 8)_b_new one" ] && [ ! -d "$Q/$(stamp 9)_a_old one" ] && [ -d "$Q/one" ]' \
     "prune: the newest run kept even when spaced and too old, the other gone, 'one' kept: $(ls "$Q" | tr '\n' '|')"
 
+# --- report.py: odd entries in the store ------------------------------------------
+S=$T/store
+HDR="curve,d,method,metric,split,tol,ctrl_points,status,fit_ns,eval_ns"
+mkgood() {  # DIR DAY: a run with one published row
+    mkdir -p "$1/published"
+    printf '{"name": "x", "date": "2026-01-0%sT00:00:00Z", "commit": "abcdef%s", "commit_short": "abcdef%s", "status": 0}\n' \
+        "$2" "$2" "$2" > "$1/run.json"
+    printf '%s\nc1,0.1,tiller,hausdorff,mid,0.01,1%s,ok,1000,200\n' "$HDR" "$2" > "$1/published/results.csv"
+    echo '{"cpu_model": "x"}' > "$1/published/meta.json"
+    echo "log $2" > "$1/published.log"
+}
+R1=2026-01-01T000000Z_abcdef1_h R2=2026-01-02T000000Z_abcdef2_h R3=2026-01-03T000000Z_abcdef3_h
+BADNAME=$(printf 'caf\351.log')
+R8=$(printf '2026-01-08T000000Z_abcdef8_h\351')
+for r in "$R1:1" "$R2:2" "$R3:3" "$R8:8"; do mkgood "$S/${r%:*}" "${r##*:}"; done
+echo '{oops' > "$S/$R1/published/meta.json"                  # malformed meta.json
+mkdir -p "$T/outside"
+head -c 2000000 /dev/zero > "$T/outside/big.bin"
+ln -s /dev/zero "$S/$R2/zero.log"                           # the 6 GB of the issue
+ln -s "$T/outside/big.bin" "$S/$R2/big.csv"                 # a big file outside the store
+ln -s "$T/outside" "$S/$R2/outdir"                          # a directory outside
+ln -s "../../$R1/published/results.csv" "$S/$R2/published/link.csv"  # a link inside the store
+mkfifo "$S/$R2/pipe.log"
+echo "dear" > "$S/$R2/$BADNAME"                             # a name that is not UTF-8
+echo "secret" > "$S/$R2/secret.log"; chmod 000 "$S/$R2/secret.log"
+rm "$S/$R3/published/meta.json"; mkfifo "$S/$R3/published/meta.json"  # reading it would hang
+mkdir -p "$S/2026-01-04T000000Z_abcdef4_h"; echo '{"status": 0,' > "$S/2026-01-04T000000Z_abcdef4_h/run.json"
+mkdir -p "$S/2026-01-05T000000Z_abcdef5_h"; ln -s "../$R1/run.json" "$S/2026-01-05T000000Z_abcdef5_h/run.json"
+mkdir -p "$S/2026-01-06T000000Z_abcdef6_h"
+$PY -c 'import sys; open(sys.argv[1], "w").write("[" * 200000 + "]" * 200000)' "$S/2026-01-06T000000Z_abcdef6_h/run.json"
+mkdir -p "$S/2026-01-07T000000Z_abcdef7_h"
+echo '{"status": "x", "date": null, "seconds": [1], "host": {"a": 1}, "commit_short": "abcdef7", "stage": "\udcff"}' > "$S/2026-01-07T000000Z_abcdef7_h/run.json"
+# report SITE [--copy-files]: at most 60 s and 10 MB per file written, so
+# that a report that follows /dev/zero or blocks on a FIFO fails, not hangs
+report() {
+    site=$1; shift
+    (ulimit -f 20000; timeout 60 "$PY" "$ROOT/scripts/report.py" "$S" --out "$site" "$@") 2>"$T/rerr"
+}
+# resolves SITE/index.html: every relative href, percent-decoded, exists
+links_ok() {
+    "$PY" - "$1" <<'EOF'
+import html, os, re, sys, urllib.parse
+site = sys.argv[1]
+text = open(os.path.join(site, "index.html"), encoding="utf-8").read()
+bad = [h for h in re.findall(r'href="([^"#:]+)"', text)
+       if not os.path.exists(os.path.join(os.fsencode(site), urllib.parse.unquote_to_bytes(html.unescape(h))))]
+print(" ".join(bad))
+sys.exit(1 if bad else 0)
+EOF
+}
+nrows() { grep -o '<tr class="run[ "][^>]*data-commit="abcdef[0-9]"' "$1" | wc -l; }
+for mode in link copy; do
+    site=$T/site-$mode
+    if [ $mode = copy ]; then report "$site" --copy-files; else report "$site"; fi
+    rc=$?
+    check '[ $rc -eq 0 ] && [ -s "$site/index.html" ]' "report.py ($mode): built in spite of the odd entries: exit $rc, $(tail -n 5 "$T/rerr")"
+    check '[ "$(nrows "$site/index.html")" -eq 5 ]' "report.py ($mode): the 5 readable runs shown: $(nrows "$site/index.html")"
+    check '$PY -c "import sys; open(sys.argv[1], encoding=\"utf-8\").read()" "$site/index.html"' "report.py ($mode): the page is UTF-8"
+    for w in "$R2/zero.log" "$R2/big.csv" "$R2/outdir" "$R2/published/link.csv" "$R2/pipe.log" \
+             "$R3/published/meta.json" "$R1/published/meta.json" \
+             2026-01-04T000000Z_abcdef4_h/run.json 2026-01-05T000000Z_abcdef5_h/run.json 2026-01-06T000000Z_abcdef6_h/run.json; do
+        check 'grep -qF -- "$w" "$T/rerr"' "report.py ($mode): a warning names $w: $(cat "$T/rerr")"
+    done
+    check '! grep -q "zero\.log\"\|big\.csv\"\|pipe\.log\"\|link\.csv\"\|outdir\"" "$site/index.html"' \
+        "report.py ($mode): no link to a link or a FIFO"
+    check 'grep -q "zero.log" "$site/index.html" && grep -q "pipe.log" "$site/index.html"' \
+        "report.py ($mode): the odd entries flagged on the page"
+    bad_links=$(links_ok "$site")
+    check '[ $? -eq 0 ] && grep -q "caf%E9.log" "$site/index.html"' \
+        "report.py ($mode): every link resolves, the non-UTF-8 name percent-encoded: $bad_links"
+done
+C=$T/site-copy/runs
+check '[ -f "$C/$R2/published/results.csv" ] && [ -f "$C/$R2/run.json" ] && [ -f "$C/$R2/$BADNAME" ] && [ -f "$C/$R8/published/results.csv" ]' \
+    "--copy-files: the regular files copied, odd names too"
+check '[ ! -e "$C/$R2/zero.log" ] && [ ! -e "$C/$R2/big.csv" ] && [ ! -e "$C/$R2/pipe.log" ] && [ ! -e "$C/$R2/outdir" ] && [ ! -e "$C/$R2/published/link.csv" ]' \
+    "--copy-files: no link, FIFO or directory outside copied"
+check '[ "$(du -sk "$T/site-copy" | cut -f1)" -lt 500 ]' "--copy-files: the site is small: $(du -sk "$T/site-copy" | cut -f1) kB"
+# an unreadable file: only a user other than root cannot read it
+if [ "$(id -u)" -ne 0 ]; then
+    report "$T/site-u" --copy-files; rc=$?
+elif command -v setpriv >/dev/null 2>&1; then
+    chmod 755 "$T"; mkdir -p "$T/site-u"; chown 65534 "$T/site-u"
+    (ulimit -f 20000; timeout 60 setpriv --reuid=65534 --regid=65534 --clear-groups \
+        "$PY" "$ROOT/scripts/report.py" "$S" --out "$T/site-u" --copy-files) 2>"$T/rerr"; rc=$?
+else
+    rc=skip
+fi
+if [ "$rc" = skip ]; then
+    skipped=$((skipped + 1))
+else
+    check '[ "$rc" -eq 0 ] && grep -q "secret.log" "$T/rerr" && [ -f "$T/site-u/runs/$R2/published/results.csv" ] && [ "$(nrows "$T/site-u/index.html")" -eq 5 ]' \
+        "--copy-files with an unreadable file: a warning naming it, the rest copied: exit $rc, $(cat "$T/rerr")"
+fi
+
 e2e_done
