@@ -164,4 +164,35 @@ else
         "--copy-files with an unreadable file: a warning naming it, the rest copied: exit $rc, $(cat "$T/rerr")"
 fi
 
+# --- merge --out a directory another process has locked -----------------------------
+R="--random 4:5 --methods tiller --tols 1e-2 --backend cpu --threads 1"
+$OB run $R --shard 0/2 --out "$T/sh0" >/dev/null 2>&1 && $OB run $R --shard 1/2 --out "$T/sh1" >/dev/null 2>&1
+check '[ $? -eq 0 ]' "two shards"
+# hold DIR/.lock as run does (an fcntl write lock), pid written, until killed
+hold() {
+    mkdir -p "$1"
+    "$PY" -c 'import fcntl, os, sys, time
+fd = os.open(sys.argv[1] + "/.lock", os.O_RDWR | os.O_CREAT, 0o666)
+fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+os.ftruncate(fd, 0); os.write(fd, b"%d\n" % os.getpid())
+open(sys.argv[1] + "/.held", "w").close()
+time.sleep(120)' "$1" &
+    holder=$!
+    n=0; while [ ! -e "$1/.held" ] && [ $n -lt 200 ]; do sleep 0.05; n=$((n + 1)); done
+}
+hold "$T/m"; h1=$holder
+$OB run $R --out "$T/m" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "pid $holder" "$T/e.txt"' "the stand-in holds the lock as run sees it: $(cat "$T/e.txt")"
+$OB merge "$T/sh0" "$T/sh1" --out "$T/m" >/dev/null 2>"$T/e.txt"
+rc=$?
+check '[ $rc -eq 2 ] && grep -q "$T/m/.lock" "$T/e.txt" && grep -q "pid $holder" "$T/e.txt" && [ ! -e "$T/m/results.csv" ] && [ ! -e "$T/m/meta.json" ]' \
+    "merge --out a locked directory: exit 2 naming the lock and its holder, nothing written: exit $rc, $(cat "$T/e.txt")"
+hold "$T/m2/sub"
+$OB merge "$T/sh0" "$T/sh1" --out "$T/m2/sub/" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "\.lock" "$T/e.txt" && [ ! -e "$T/m2/sub/results.csv" ]' \
+    "merge --out DIR/ (another spelling) locked: exit 2: $(cat "$T/e.txt")"
+kill "$h1" "$holder"; wait "$h1" "$holder" 2>/dev/null
+$OB merge "$T/sh0" "$T/sh1" --out "$T/m" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 0 ] && [ -s "$T/m/results.csv" ]' "merge once the lock is free: $(cat "$T/e.txt")"
+
 e2e_done
