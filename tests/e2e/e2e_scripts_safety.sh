@@ -195,4 +195,57 @@ kill "$h1" "$holder"; wait "$h1" "$holder" 2>/dev/null
 $OB merge "$T/sh0" "$T/sh1" --out "$T/m" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 0 ] && [ -s "$T/m/results.csv" ]' "merge once the lock is free: $(cat "$T/e.txt")"
 
+# --- slurm_array.sh: values passed through literally --------------------------------
+# a project directory with a stand-in offbench that writes its arguments,
+# one per line (NUL-free), to $ARGS_FILE
+PJ="$T/pro 'j\" \$(touch $T/pwned1) \`touch $T/pwned2\`; touch $T/pwned3"
+mkdir -p "$PJ/scripts" "$T/sbin"
+cp "$ROOT/scripts/slurm_array.sh" "$PJ/scripts/"
+cat > "$PJ/offbench" <<'EOF'
+#!/bin/sh
+: > "$ARGS_FILE"
+for a in "$@"; do printf '%s\0' "$a" >> "$ARGS_FILE"; done
+EOF
+chmod +x "$PJ/offbench"
+# sbatch stand-in: keeps each batch script and its arguments, prints an id
+cat > "$T/sbin/sbatch" <<'EOF'
+#!/bin/sh
+n=$(ls "$SB_DIR" | grep -c '^job.*\.sh$')
+cat > "$SB_DIR/job$n.sh"
+for a in "$@"; do printf '%s\0' "$a"; done > "$SB_DIR/job$n.args"
+echo "10$n"
+EOF
+chmod +x "$T/sbin/sbatch"
+SB=$T/sb; mkdir -p "$SB"
+OUTD="$T/o u't\"  \$(touch $T/pwned4) \`touch $T/pwned5\`; touch $T/pwned6 %j \$HOME
+x"
+P1="--param" P2="tiller.x=\$(touch $T/pwned7);\`touch $T/pwned8\` 'q\" \$HOME *" P3="--methods" P4="a b;c"
+SB_DIR=$SB PATH="$T/sbin:$PATH" sh "$PJ/scripts/slurm_array.sh" 3 "$OUTD" -- "$P1" "$P2" "$P3" "$P4" >"$T/sl.out" 2>&1
+rc=$?
+check '[ $rc -eq 0 ] && [ -f "$SB/job0.sh" ] && [ -f "$SB/job1.sh" ] && [ -d "$OUTD/logs" ]' \
+    "slurm_array.sh with odd OUT, project directory and options: submitted: exit $rc, $(cat "$T/sl.out")"
+check 'sh -n "$SB/job0.sh" && sh -n "$SB/job1.sh"' "the batch scripts parse (sh -n)"
+# the NUL-separated arguments file, as lines with the NULs shown as |
+args() { tr '\0' '|' < "$1"; }
+for k in 1 0; do
+    ARGS_FILE=$T/a$k SLURM_ARRAY_TASK_ID=$k SLURM_CPUS_PER_TASK=2 sh "$SB/job0.sh" >/dev/null 2>"$T/job.err"
+    check '[ "$(args "$T/a$k")" = "run|$P1|$P2|$P3|$P4|--shard|$k/3|--threads|2|--out|$OUTD/shard-$k|" ]' \
+        "array task $k: offbench run gets the options and OUT literally: $(args "$T/a$k" 2>&1) $(cat "$T/job.err")"
+done
+mkdir -p "$OUTD/shard-1"; : > "$OUTD/shard-1/results.journal.csv"
+ARGS_FILE=$T/ar SLURM_ARRAY_TASK_ID=1 SLURM_CPUS_PER_TASK=2 sh "$SB/job0.sh" >/dev/null 2>&1
+check '[ "$(args "$T/ar")" = "run|$P1|$P2|$P3|$P4|--shard|1/3|--threads|2|--resume|$OUTD/shard-1|" ]' \
+    "a requeued task with a journal resumes \$OUT/shard-K literally: $(args "$T/ar")"
+mkdir -p "$OUTD/shard-0" "$OUTD/shard-2"
+ARGS_FILE=$T/am sh "$SB/job1.sh" >/dev/null 2>&1
+check '[ "$(args "$T/am")" = "merge|$OUTD/shard-0|$OUTD/shard-1|$OUTD/shard-2|--out|$OUTD/merged|" ]' \
+    "the merge job gets the shard directories and OUT literally: $(args "$T/am")"
+# has_arg FILE VALUE: VALUE is one of the NUL-separated arguments in FILE
+has_arg() { "$PY" -c 'import sys; sys.exit(0 if sys.argv[2].encode() in open(sys.argv[1], "rb").read().split(b"\0") else 1)' "$1" "$2"; }
+check 'has_arg "$SB/job0.args" "--output=$(printf %s "$OUTD" | sed "s/%/%%/g")/logs/shard-%a.log" && has_arg "$SB/job1.args" "--output=$(printf %s "$OUTD" | sed "s/%/%%/g")/logs/merge.log"' \
+    "sbatch --output: OUT with its % doubled (Slurm's file name patterns): $(args "$SB/job0.args")"
+check '[ -z "$(ls "$T" | grep pwned)" ]' "nothing in the values was run: $(ls "$T" | grep pwned | tr '\n' ' ')"
+SBATCH_CPUS='2; touch x' SB_DIR=$SB PATH="$T/sbin:$PATH" sh "$PJ/scripts/slurm_array.sh" 3 "$OUTD" -- --x >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q SBATCH_CPUS "$T/e.txt"' "SBATCH_CPUS that is not a count: exit 2 naming it: $(cat "$T/e.txt")"
+
 e2e_done
