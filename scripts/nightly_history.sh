@@ -19,10 +19,12 @@
 #   sh scripts/nightly_history.sh prune --history DIR [--keep N] [--keep-days D]
 #       removes the oldest runs beyond the N newest, and runs older than D
 #       days (by the time in the name); 0 (the default) keeps all.  The
-#       newest run is never removed; only directories named like a run and
-#       holding a run.json are touched.
+#       newest run is never removed; only directories (not links) named like
+#       a run and holding a run.json are touched, whatever their names hold.
 # Exit status: 0 done, 2 bad usage or a copy that failed (said on stderr).
 set -u
+LC_ALL=C   # byte order for the glob over run names; no locale's text
+export LC_ALL
 
 die() { echo "nightly_history: $*" >&2; exit 2; }
 need() { [ "$2" -ge 2 ] || die "$1 needs a value"; }
@@ -126,17 +128,18 @@ record() {
     echo "$hist/$name"
 }
 
-# runs DIR: the run directories of the store, oldest first (names begin
-# with the UTC time, so the name order is the time order)
-runs() {
-    for r in "$1"/*/; do
-        r=${r%/}
-        [ -f "$r/run.json" ] || continue
-        case "${r##*/}" in
-            [0-9][0-9][0-9][0-9]-[0-9][0-9]-[0-9][0-9]T[0-9][0-9][0-9][0-9][0-9][0-9]Z_*) echo "${r##*/}" ;;
-        esac
-    done | LC_ALL=C sort
+# is_run PATH: PATH is one of the store's runs: a directory (not a link)
+# named like a run (STAMP_..., the UTC time first) holding a run.json
+is_run() {
+    [ -d "$1" ] && [ ! -L "$1" ] && [ -f "$1/run.json" ] || return 1
+    case "${1##*/}" in
+        [0-9][0-9][0-9][0-9]-[0-9][0-9]-[0-9][0-9]T[0-9][0-9][0-9][0-9][0-9][0-9]Z_*) return 0 ;;
+    esac
+    return 1
 }
+
+# stamp_num STAMP: 2026-12-02T031205Z as 20261202031205 (for comparing)
+stamp_num() { printf '%s' "$1" | tr -cd 0-9; }
 
 prune() {
     hist="" keep=0 days=0
@@ -152,22 +155,29 @@ prune() {
     is_count "$keep" || die "--keep needs a count of runs (0: all), not '$keep'"
     is_count "$days" || die "--keep-days needs a number of days (0: no age limit), not '$days'"
     [ -d "$hist" ] || return 0
-    list=$(runs "$hist")
-    total=$(printf '%s\n' "$list" | grep -c .)
+    # the runs become the positional parameters, oldest first (the glob
+    # sorts by name, LC_ALL=C, and names begin with the UTC time): a name is
+    # never split or read back as text, so spaces, newlines or glob
+    # characters in it cannot make it another name
+    set --
+    for r in "$hist"/*; do
+        is_run "$r" && set -- "$@" "$r"
+    done
+    total=$#
     [ "$total" -le 1 ] && return 0
-    newest=$(printf '%s\n' "$list" | tail -n 1)
+    eval "newest=\${$total}"
     cutoff=""
-    [ "$days" -gt 0 ] && cutoff=$(date -u -d "@$(($(date +%s) - days * 86400))" +%Y-%m-%dT%H%M%SZ)
+    [ "$days" -gt 0 ] && cutoff=$(stamp_num "$(date -u -d "@$(($(date +%s) - days * 86400))" +%Y-%m-%dT%H%M%SZ)")
     i=0
-    for r in $list; do
+    for r in "$@"; do
         i=$((i + 1))
         [ "$r" = "$newest" ] && continue
+        name=${r##*/}
         old=0
         [ "$keep" -gt 0 ] && [ $((total - i)) -ge "$keep" ] && old=1
-        [ -n "$cutoff" ] && [ "$(printf '%s\n%s\n' "${r%%_*}" "$cutoff" | LC_ALL=C sort | head -n 1)" = "${r%%_*}" ] \
-            && [ "${r%%_*}" != "$cutoff" ] && old=1
+        [ -n "$cutoff" ] && [ "$(stamp_num "${name%%_*}")" -lt "$cutoff" ] && old=1
         [ $old -eq 1 ] || continue
-        rm -rf "${hist:?}/$r" && echo "nightly_history: pruned $r" >&2
+        rm -rf -- "$r" && printf 'nightly_history: pruned %s\n' "$name" >&2
     done
     return 0
 }

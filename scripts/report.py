@@ -14,8 +14,9 @@ ctrl_points, failures (fail or timeout), limits; time: the method total
 (fit_ns + eval_ns over its rows) with the interquartile range of the
 per-repetition totals of samples.csv as its spread.  Steps: see
 scripts/report_steps.py (the rule is printed on the page too).  Links to each
-run's files are relative (into the store, or with --copy-files into
-SITE_DIR/runs/).  Standard library only; no network when viewed: charts are
+run's regular files are relative (into the store, or with --copy-files into
+SITE_DIR/runs/); a symbolic link, FIFO or device in a run is a warning, never
+followed, read or copied (report_data.open_regular).  Standard library only; no network when viewed: charts are
 inline SVG, the little script is inline.
 Exit status: 0 written (problems with a run's files are warnings on stderr
 and on the page), 2 bad usage or an unreadable store or unwritable site."""
@@ -24,6 +25,7 @@ import argparse
 import os
 import shutil
 import sys
+import urllib.parse
 from html import escape
 
 sys.dont_write_bytecode = True  # no __pycache__ in the checkout
@@ -82,23 +84,51 @@ def page(title, body):
             "<script>%s</script>\n</body></html>\n" % (escape(title), CSS, body, JS))
 
 
-def run_files(run, site, copy):
-    """(label, href) for each file of the run, relative to the site."""
+def href(path, site):
+    """The link from SITE to PATH: relative, each byte that is not plain
+    ASCII percent-encoded (names need not be UTF-8)."""
+    return urllib.parse.quote(os.fsencode(os.path.relpath(path, site).replace(os.sep, "/")), safe="/")
+
+
+def copy_file(src, dst):
+    """Copies the regular file SRC of the store to DST through DST.tmp: SRC
+    is opened by report_data.open_regular, so a symbolic link (to /dev/zero,
+    to a file outside the store), a FIFO or a device is refused, never
+    followed or read; DST.tmp is never a link either."""
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    tmp = dst + ".tmp"
+    try:
+        with report_data.open_regular(src, "rb") as fi:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW | os.O_CLOEXEC, 0o644)
+            with os.fdopen(fd, "wb") as fo:
+                shutil.copyfileobj(fi, fo, 1 << 20)
+        os.replace(tmp, dst)
+    except BaseException:
+        if os.path.lexists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def place_files(run, site, copy, warn):
+    """(label, href) for each regular file of the run (run.files; nothing
+    else is listed), relative to the site; with COPY, into SITE/runs/ (a
+    file that cannot be copied is flagged and not listed)."""
     out = []
-    for dirpath, _, files in sorted(os.walk(run.path)):
-        for f in sorted(files):
-            src = os.path.join(dirpath, f)
-            rel = os.path.relpath(src, run.path)
-            if copy:
-                dst = os.path.join(site, "runs", run.name, rel)
-                os.makedirs(os.path.dirname(dst), exist_ok=True)
-                shutil.copyfile(src, dst)
-                src = dst
-            out.append((rel, os.path.relpath(src, site).replace(os.sep, "/")))
+    for rel in run.files:
+        src = os.path.join(run.path, rel)
+        if copy:
+            dst = os.path.join(site, "runs", run.dirname, rel)
+            try:
+                copy_file(src, dst)
+            except OSError as e:
+                run.flag("%s (not copied)" % e, warn)
+                continue
+            src = dst
+        out.append((report_data.shown(rel), href(src, site)))
     return out
 
 
-def run_rows(runs, series, site, copy):
+def run_rows(runs, series):
     """The runs table, newest first."""
     steps_at = {}
     for se in series:
@@ -111,7 +141,7 @@ def run_rows(runs, series, site, copy):
         failed = r.status not in (0, 1, 3)
         cls = "run" + (" failed" if failed else "") + (" regression" if r.status == 1 else "")
         notable = "yes" if steps_at.get(i) or failed or r.status == 1 else "no"
-        files = " ".join('<a href="%s">%s</a>' % (escape(h), escape(l)) for l, h in run_files(r, site, copy))
+        files = " ".join('<a href="%s">%s</a>' % (escape(h), escape(l)) for l, h in r.links)
         probs = "".join('<div class="warn">%s</div>' % escape(p) for p in r.problems)
         out.append('<tr class="%s" id="run-%s" data-run="%s" data-commit="%s" data-status="%s" data-host="%s" '
                    'data-notable="%s"><td class="num">%d</td><td class="date">%s</td><td><code>%s</code>%s</td><td>%s</td>'
@@ -189,16 +219,20 @@ def set_table(runs, s, series):
 def latest_compare(runs):
     """The newest run's report.md, preformatted."""
     for r in reversed(runs):
-        p = os.path.join(r.path, "report.md")
-        if os.path.isfile(p):
-            with open(p, encoding="utf-8", errors="replace") as f:
+        if "report.md" not in r.files:
+            continue
+        try:
+            with report_data.open_regular(os.path.join(r.path, "report.md"), encoding="utf-8",
+                                          errors="replace") as f:
                 text = f.read()
-            return ('<p>From run %s (commit <code>%s</code>).</p><pre id="latest-compare">%s</pre>'
+        except OSError:
+            continue  # unreadable: the runs table says so
+        return ('<p>From run %s (commit <code>%s</code>).</p><pre id="latest-compare">%s</pre>'
                     % (escape(r.name), escape(r.short), escape(text)))
     return '<p id="latest-compare">No run has a compare report.</p>'
 
 
-def index_page(store, runs, series, sets, site, copy):
+def index_page(store, runs, series, sets):
     head = ('<h1>offbench nightly history</h1><p id="summary">%d runs in <code>%s</code>%s.</p>'
             % (len(runs), escape(os.path.abspath(store)),
                (", %s to %s" % (escape(runs[0].date), escape(runs[-1].date))) if runs else ""))
@@ -210,7 +244,7 @@ def index_page(store, runs, series, sets, site, copy):
             'job changes, crosses runs without figures.</p>']
     body += [set_table(runs, s, series) for s in sets]
     body += ['<h2>Runs</h2><label><input type="checkbox" id="only-notable"> only runs with a step, a '
-             'regression or a failure</label>', run_rows(runs, series, site, copy),
+             'regression or a failure</label>', run_rows(runs, series),
              '<h2>Latest compare report</h2>', latest_compare(runs)]
     return page("offbench nightly history", "\n".join(body))
 
@@ -273,15 +307,20 @@ def build(store, site, copy):
     series = [Series(runs, s, m) for s in sets
               for m in sorted({m for r in runs for m in r.sets.get(s, {})})]
     os.makedirs(site, exist_ok=True)
-    write(os.path.join(site, "index.html"), index_page(store, runs, series, sets, site, copy))
+    for r in runs:
+        r.links = place_files(r, site, copy, warn)
+    write(os.path.join(site, "index.html"), index_page(store, runs, series, sets))
     for m in sorted({se.method for se in series}):
         write(os.path.join(site, method_href(m)), method_page(runs, m, series))
     return len(warnings)
 
 
 def write(path, text):
+    """TEXT into PATH through PATH.tmp, as UTF-8; what cannot be UTF-8 (a
+    name's bytes or a lone surrogate that shown() did not see) becomes '?'
+    rather than stopping the report."""
     tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
+    with open(tmp, "w", encoding="utf-8", errors="replace") as f:
         f.write(text)
     os.replace(tmp, path)
 

@@ -17,7 +17,9 @@
  * reason names results.csv and the line); rows whose keys, in job order, do
  * not hash to the run's plan_hash (from meta.json's plan_seed).  Rows
  * are copied as text, so the merged file is byte for byte what the shards
- * wrote, in job order.  Exit 1: the output cannot be written.
+ * wrote, in job order.  Like run, merge takes --out's lock (DIR/.lock,
+ * ob_take_run_dir): exit 2 while another process holds it.  Exit 1: the
+ * output cannot be written.
  *
  * meta.json: the meta.json of shard 0 with "shard" set to null and
  * "merged_shards" added, "jobs" the whole run's, "wall_seconds" the longest
@@ -28,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "host/io/fsutil.h"
 #include "host/io/columns.h"
@@ -488,6 +491,7 @@ int ob_cmd_merge(int argc, char **argv)
     shard_in *sh = NULL;
     int *who = NULL;
     size_t *row = NULL;
+    int lock_fd = -1;
     if (!in)
         return 1;
     const ob_flagset flags = {merge_flags, 1, NULL, NULL, "options", apply_merge_flag, &out};
@@ -526,11 +530,10 @@ int ob_cmd_merge(int argc, char **argv)
     double wall;
     if (map_rows(sh, nin, in, total, who, row, &wall) != 0 || check_plan_hash(sh, in, total, who, row) != 0)
         goto done;
-    if (ob_mkdir_p(out) != 0) {
-        ob_error("merge: --out: cannot create '%s': %s", out, strerror(errno));
-        status = 1;
+    /* the run directory's lock, as run takes it: no run (and no other
+     * merge) writes there while the merged files are written */
+    if ((status = ob_take_run_dir("merge", out, 1, &lock_fd)) != 0)
         goto done;
-    }
     merged m = {sh, nin, total, who, row, wall};
     ob_out_file set[3];  /* all or none, results.csv renamed last */
     size_t nset = 0;
@@ -542,6 +545,8 @@ int ob_cmd_merge(int argc, char **argv)
     if (status == 0)
         ob_info("merged %d shards, %zu jobs, into %s/results.csv", nin, total, out);
 done:
+    if (lock_fd >= 0)
+        close(lock_fd);  /* the lock goes with it */
     for (int i = 0; sh && i < nin; i++)
         shard_free(&sh[i]);
     free(sh);

@@ -7,7 +7,6 @@
  * Every step returns GO_ON or the command's exit status (commands.h: 0, 1
  * a run-time failure, 2 bad input, 128 + signal when interrupted).
  */
-#include <errno.h>
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
@@ -125,9 +124,7 @@ static void remove_stale(const char *dir)
 static int claim_dir(run_cmd *r)
 {
     const ob_run_opts *o = &r->o;
-    ob_err err;
     struct stat st;
-    int lrc = 0;
     const char *const inputs[] = {o->curves_file};
     if (ob_check_out_not_input("run", o->out_dir, 1, inputs, 1) != 0)
         return 2;  /* the curve file would sit among (or be) the run's outputs */
@@ -135,14 +132,9 @@ static int claim_dir(run_cmd *r)
         ob_error("--resume: %s does not exist: nothing to resume", o->out_dir);
         return 2;
     }
-    if (!o->resume_dir && ob_mkdir_p(o->out_dir) != 0) {
-        ob_error("--out: cannot create '%s': %s", o->out_dir, strerror(errno));
-        return 1;
-    }
-    if ((lrc = ob_lock_dir(o->out_dir, &r->lock_fd, &err)) != 0) {
-        ob_error("%s", err.msg);
-        return lrc == -2 ? 2 : 1;
-    }
+    const int trc = ob_take_run_dir("run", o->out_dir, !o->resume_dir, &r->lock_fd);
+    if (trc != 0)
+        return trc;
     if (o->resume_dir)
         return 0;
     char jp[4200];

@@ -119,6 +119,22 @@ int ob_lock_dir(const char *dir, int *fd_out, ob_err *err)
     return 0;
 }
 
+int ob_take_run_dir(const char *cmd, const char *dir, int create, int *fd)
+{
+    ob_err err;
+    *fd = -1;
+    if (create && ob_mkdir_p(dir) != 0) {
+        ob_error("%s: --out: cannot create '%s': %s", cmd, dir, strerror(errno));
+        return 1;
+    }
+    const int lrc = ob_lock_dir(dir, fd, &err);
+    if (lrc != 0) {
+        ob_error("%s: --out: %s", cmd, err.msg);
+        return lrc == -2 ? 2 : 1;
+    }
+    return 0;
+}
+
 /* stat of path's directory and its last name (for a path that need not
  * exist); 0 or -1. */
 static int parent_of(const char *path, struct stat *dst, const char **base)

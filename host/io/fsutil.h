@@ -51,5 +51,14 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
  * followed: err names it); -1 when the file cannot be created or locked. */
 int ob_lock_dir(const char *dir, int *fd, ob_err *err);
 
+/* How every command that writes a run directory (run, merge) takes it:
+ * creates dir and its parents when create is set, then takes its lock
+ * (ob_lock_dir), saying why not (ob_error, prefixed "cmd: --out").  Returns
+ * 0 with the lock's descriptor in *fd (keep it open until the last file is
+ * written); else the exit status: 2 when another process holds the lock
+ * (the message names the lock file and the holder's pid), 1 when dir
+ * cannot be created or locked. */
+int ob_take_run_dir(const char *cmd, const char *dir, int create, int *fd);
+
 #endif
 
