@@ -40,10 +40,10 @@ static struct ob_strmap_slot *find(const ob_strmap *m, const char *key, size_t l
     }
 }
 
-/* Doubles the table (first 64 slots) and puts every key back. */
+/* Doubles the table (first 16 slots: many maps are small) and puts every key back. */
 static int rehash(ob_strmap *m)
 {
-    const size_t nc = m->cap ? 2 * m->cap : 64;
+    const size_t nc = m->cap ? 2 * m->cap : 16;
     struct ob_strmap_slot *old = m->slot, *ns;
     if (nc < m->cap || nc > SIZE_MAX / sizeof *ns || !(ns = malloc(nc * sizeof *ns)))
         return -1;
@@ -63,7 +63,7 @@ static int rehash(ob_strmap *m)
 static int keep_key(ob_strmap *m, const char *key, size_t len, size_t *off)
 {
     if (m->kcap - m->klen < len + 1) {
-        size_t nc = m->kcap ? m->kcap : 4096;
+        size_t nc = m->kcap ? m->kcap : 256;
         while (nc - m->klen < len + 1 && nc < SIZE_MAX / 2)
             nc *= 2;
         char *nk = nc - m->klen >= len + 1 ? realloc(m->keys, nc) : NULL;
