@@ -18,7 +18,9 @@
 
 typedef struct {
     struct ob_strmap_slot *slot; /* cap slots, cap a power of two (or 0) */
-    size_t cap, n;
+    size_t cap;
+    struct ob_strmap_entry *e;   /* the n keys in the order put (ecap) */
+    size_t n, ecap;
     char *keys;                  /* the keys, NUL-terminated, back to back */
     size_t klen, kcap;
 } ob_strmap;
