@@ -10,6 +10,7 @@
 
 #include "host/compare/hlshift.h"
 #include "host/compare/ranktest.h"
+#include "host/io/strmap.h"
 
 /* ---- join and verdicts ---- */
 
@@ -65,15 +66,27 @@ static const char *time_interval(double *xn, int kn, double *xb, int kb, const o
     return *hi / *lo > ob_cmp_noise_width(o) ? "noisy" : NULL;
 }
 
-static int method_index(ob_cmp_result *r, const char *m)
+/* The methods of the join: r->ms grown by doubling (cap), found by name in
+ * ix, so that n rows of n methods cost n, not n x n. */
+typedef struct {
+    ob_strmap ix;
+    int cap;
+} method_table;
+
+/* The index of method m in r->ms (added when new), or -1 out of memory. */
+static int method_index(ob_cmp_result *r, method_table *t, const char *m)
 {
-    for (int i = 0; i < r->nms; i++)
-        if (strcmp(r->ms[i].method, m) == 0)
-            return i;
-    ob_method_sum *nv = realloc(r->ms, (size_t)(r->nms + 1) * sizeof *nv);
-    if (!nv)
-        return -1;
-    r->ms = nv;
+    const long i = ob_strmap_put(&t->ix, m, r->nms);
+    if (i != -1)
+        return i >= 0 ? (int)i : -1;
+    if (r->nms >= t->cap) {
+        const int cap = r->nms < 8 ? 16 : 2 * r->nms;
+        ob_method_sum *nv = realloc(r->ms, (size_t)cap * sizeof *nv);
+        if (!nv)
+            return -1;  /* the map then names a method r->ms lacks: the comparison fails */
+        r->ms = nv;
+        t->cap = cap;
+    }
     memset(&r->ms[r->nms], 0, sizeof *r->ms);
     r->ms[r->nms].method = m;
     r->ms[r->nms].p = NAN;
@@ -178,16 +191,38 @@ static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res
     return add_change_ci(r, k, "time", b, n, ratio, p, lo, hi, "");
 }
 
-/* Per-repetition totals over the judged rows of method mi on one side
- * (a repetition counts when every one of those rows has it); their count. */
-static int method_totals(const pair *pr, int np, int mi, int new_side, int maxrep, double *tot)
+/* The pairs of each method together: order[start[mi] .. start[mi + 1])
+ * are the indices in pr of method mi's pairs, in file order (a counting
+ * sort), so that each per-method pass reads its own pairs only (methods x
+ * pairs would be quadratic).  0, or -1 out of memory. */
+static int group_by_method(const pair *pr, int np, int nms, int **order, int **start)
+{
+    int *o = malloc((size_t)(np ? np : 1) * sizeof *o), *st = calloc((size_t)nms + 2, sizeof *st);
+    *order = o;
+    *start = st;
+    if (!o || !st)
+        return -1;
+    for (int i = 0; i < np; i++)
+        st[pr[i].m + 2]++;
+    for (int m = 2; m < nms + 2; m++)
+        st[m] += st[m - 1];
+    for (int i = 0; i < np; i++)  /* st[m + 1]: the next place of method m */
+        o[st[pr[i].m + 1]++] = i;
+    return 0;
+}
+
+/* Per-repetition totals over the judged rows of one method (its pairs
+ * pr[grp[0..ng)]) on one side (a repetition counts when every one of those
+ * rows has it); their count. */
+static int method_totals(const pair *pr, const int *grp, int ng, int new_side, int maxrep, double *tot)
 {
     int k = 0;
     for (int rep = 0; rep < maxrep; rep++) {
         double sum = 0;
         int complete = 1, rows = 0;
-        for (int i = 0; i < np && complete; i++) {
-            if (pr[i].m != mi || !pr[i].judged)
+        for (int g = 0; g < ng && complete; g++) {
+            const int i = grp[g];
+            if (!pr[i].judged)
                 continue;
             const ob_res_row *row = new_side ? pr[i].n : pr[i].b;
             complete = row->rep_t && !isnan(row->rep_t[rep]);
@@ -200,15 +235,16 @@ static int method_totals(const pair *pr, int np, int mi, int new_side, int maxre
     return k;
 }
 
-static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, int np,
-                          const ob_cmp_opts *o, ob_cmp_result *r, double *xb, double *xn)
+static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, const int *order,
+                          const int *start, const ob_cmp_opts *o, ob_cmp_result *r, double *xb, double *xn)
 {
     for (int mi = 0; mi < r->nms; mi++) {
         ob_method_sum *m = &r->ms[mi];
         if (!(m->n_t > 0) || !r->timing)
             continue;
-        m->reps_base = method_totals(pr, np, mi, 0, bs->res.maxrep, xb);
-        m->reps_new = method_totals(pr, np, mi, 1, ns->res.maxrep, xn);
+        const int *grp = order + start[mi], ng = start[mi + 1] - start[mi];
+        m->reps_base = method_totals(pr, grp, ng, 0, bs->res.maxrep, xb);
+        m->reps_new = method_totals(pr, grp, ng, 1, ns->res.maxrep, xn);
         const int tested = m->reps_base >= 2 && m->reps_new >= 2;
         if (tested) {
             m->p = ob_mann_whitney(xn, m->reps_new, xb, m->reps_base).p;
@@ -284,6 +320,29 @@ static int strict_reasons(const ob_cmp_opts *o, ob_cmp_result *r)
     return rc;
 }
 
+/* The geometric means of new/base of each method over its joined pairs. */
+static void method_means(const pair *pr, const int *order, const int *start, ob_cmp_result *r)
+{
+    for (int mi = 0; mi < r->nms; mi++) {
+        ob_method_sum *m = &r->ms[mi];
+        double s[3] = {0, 0, 0};
+        int c[3] = {0, 0, 0};
+        for (int g = start[mi]; g < start[mi + 1]; g++) {
+            const ob_res_row *b = pr[order[g]].b, *n = pr[order[g]].n;
+            if (b->ctrl_points > 0 && n->ctrl_points > 0)
+                s[0] += log((double)n->ctrl_points / (double)b->ctrl_points), c[0]++;
+            if (isfinite(b->max_err) && isfinite(n->max_err) && b->max_err > 0 && n->max_err > 0)
+                s[1] += log(n->max_err / b->max_err), c[1]++;
+            if (pr[order[g]].judged)
+                s[2] += log((n->fit_ns + n->eval_ns) / (b->fit_ns + b->eval_ns)), c[2]++;
+        }
+        m->n_cp = c[0], m->n_err = c[1], m->n_t = c[2];
+        m->gm_cp = c[0] ? exp(s[0] / c[0]) : NAN;
+        m->gm_err = c[1] ? exp(s[1] / c[1]) : NAN;
+        m->gm_t = c[2] ? exp(s[2] / c[2]) : NAN;
+    }
+}
+
 int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     const ob_res_table *bt = &bs->res, *nt = &ns->res;
@@ -292,13 +351,14 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
     char *matched = calloc((size_t)(nt->n ? nt->n : 1), 1);
     double *xb = malloc((size_t)(maxrep ? maxrep : 1) * sizeof *xb);
     double *xn = malloc((size_t)(maxrep ? maxrep : 1) * sizeof *xn);
-    int np = 0, rc = -1;
+    int np = 0, rc = -1, *order = NULL, *start = NULL;
+    method_table mt = {{0}, r->nms};
     r->t_rows_count = !o->method_timing_only;
     if (!pr || !matched || !xb || !xn)
         goto done;
     for (int i = 0; i < bt->n; i++) {
         const ob_res_row *b = &bt->v[i], *n = ob_res_find(nt, b);
-        int mi = method_index(r, b->method);
+        int mi = method_index(r, &mt, b->method);
         if (mi < 0)
             goto done;
         if (!n) {
@@ -323,28 +383,10 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
             if (add_change(r, OB_CH_NEW, "status", NULL, &nt->v[j], NAN, NAN))
                 goto done;
         }
-    /* geometric means of new/base per method */
-    for (int mi = 0; mi < r->nms; mi++) {
-        ob_method_sum *m = &r->ms[mi];
-        double s[3] = {0, 0, 0};
-        int c[3] = {0, 0, 0};
-        for (int i = 0; i < np; i++) {
-            if (pr[i].m != mi)
-                continue;
-            const ob_res_row *b = pr[i].b, *n = pr[i].n;
-            if (b->ctrl_points > 0 && n->ctrl_points > 0)
-                s[0] += log((double)n->ctrl_points / (double)b->ctrl_points), c[0]++;
-            if (isfinite(b->max_err) && isfinite(n->max_err) && b->max_err > 0 && n->max_err > 0)
-                s[1] += log(n->max_err / b->max_err), c[1]++;
-            if (pr[i].judged)
-                s[2] += log((n->fit_ns + n->eval_ns) / (b->fit_ns + b->eval_ns)), c[2]++;
-        }
-        m->n_cp = c[0], m->n_err = c[1], m->n_t = c[2];
-        m->gm_cp = c[0] ? exp(s[0] / c[0]) : NAN;
-        m->gm_err = c[1] ? exp(s[1] / c[1]) : NAN;
-        m->gm_t = c[2] ? exp(s[2] / c[2]) : NAN;
-    }
-    judge_methods(bs, ns, pr, np, o, r, xb, xn);
+    if (group_by_method(pr, np, r->nms, &order, &start) != 0)
+        goto done;
+    method_means(pr, order, start, r);
+    judge_methods(bs, ns, pr, order, start, o, r, xb, xn);
     rc = joints_note(bs, ns, pr, np, r) || strict_reasons(o, r) ? -1 : 0;
     if (rc == 0 && r->timing && bs->has_samples && ns->has_samples) {
         int reps = bt->maxrep < nt->maxrep ? bt->maxrep : nt->maxrep, need = 2;
@@ -357,6 +399,9 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
                                  reps, ob_mw_min_p(reps, reps), o->alpha, need, need);
     }
 done:
+    ob_strmap_free(&mt.ix);
+    free(order);
+    free(start);
     free(pr);
     free(matched);
     free(xb);

@@ -4,6 +4,7 @@
  */
 #include "host/compare/compare.h"
 
+#include "host/io/strmap.h"
 #include "methods/method.h"
 
 #include <errno.h>
@@ -144,36 +145,41 @@ static const char *shown(const ob_json_entry *e)
     return e ? e->value : "(absent)";
 }
 
-/* 1 when method m has rows in t. */
-static int ran(const ob_res_table *t, const char *m)
+/* The columns whose distinct values the checks need. */
+enum { COL_METHOD, COL_METRIC, COL_SPLIT, NCOLS };
+
+static const char *column(const ob_res_row *r, int col)
+{
+    return col == COL_METHOD ? r->method : col == COL_METRIC ? r->metric : r->split;
+}
+
+/* The distinct values of column col of t, into the map m (value -> its
+ * first row): the checks ask one map, not every row, for each value, so
+ * that they stay linear in the rows and keys read.  0, or -1 no memory. */
+static int distinct(const ob_res_table *t, int col, ob_strmap *m)
 {
     for (int i = 0; i < t->n; i++)
-        if (strcmp(t->v[i].method, m) == 0)
-            return 1;
+        if (ob_strmap_put(m, column(t->v + i, col), i) == -2)
+            return -1;
     return 0;
 }
 
-/* "a, b, c": the distinct values of a column (metric or split) of t. */
-static void value_set(const ob_res_table *t, int metric, char *buf, size_t len)
+/* "a,b,c": the distinct values of column col of t, in the order of rows. */
+static void value_set(const ob_res_table *t, int col, const ob_strmap *m, char *buf, size_t len)
 {
     buf[0] = '\0';
     size_t used = 0;
-    for (int i = 0; i < t->n; i++) {
-        const char *v = metric ? t->v[i].metric : t->v[i].split;
-        int seen = 0;
-        for (int j = 0; j < i && !seen; j++)
-            seen = strcmp(v, metric ? t->v[j].metric : t->v[j].split) == 0;
-        if (!seen && used < len)
-            used += (size_t)snprintf(buf + used, len - used, "%s%s", used ? "," : "", v);
-    }
+    for (int i = 0; i < t->n && used < len; i++)
+        if (ob_strmap_get(m, column(t->v + i, col)) == i)  /* the value's first row */
+            used += (size_t)snprintf(buf + used, len - used, "%s%s", used ? "," : "", column(t->v + i, col));
 }
 
-static int shares_value(const ob_res_table *a, const ob_res_table *b, int metric)
+/* 1 when a row of b has a value of column col that a has (in am). */
+static int shares_value(const ob_strmap *am, const ob_res_table *b, int col)
 {
-    for (int i = 0; i < a->n; i++)
-        for (int j = 0; j < b->n; j++)
-            if (strcmp(metric ? a->v[i].metric : a->v[i].split, metric ? b->v[j].metric : b->v[j].split) == 0)
-                return 1;
+    for (int j = 0; j < b->n; j++)
+        if (ob_strmap_get(am, column(b->v + j, col)) >= 0)
+            return 1;
     return 0;
 }
 
@@ -197,7 +203,8 @@ static int holds_default(const ob_json_entry *e, const char *method, size_t gl)
  * ran must be on both sides with the same value; a method_params key on one
  * side only counts as equal when it holds the parameter's default in this
  * build (holds_default; a note says so). */
-static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *group, ob_cmp_result *r)
+static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const ob_strmap *mb, const ob_strmap *mn,
+                       const char *group, ob_cmp_result *r)
 {
     const size_t gl = strlen(group);
     int on_b = 0, on_n = 0, ignored = 0;
@@ -224,7 +231,7 @@ static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *g
             char method[256];
             const char *m = e->path + gl + 1, *dot = strchr(m, '.');
             snprintf(method, sizeof method, "%.*s", (int)(dot ? (size_t)(dot - m) : strlen(m)), m);
-            if (!ran(&b->res, method) || !ran(&n->res, method)) {
+            if (ob_strmap_get(mb, method) < 0 || ob_strmap_get(mn, method) < 0) {
                 ignored++;
                 continue;
             }
@@ -245,15 +252,35 @@ static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const char *g
     return 0;
 }
 
+/* metric and split: the runs must share a value of each.  cols: the
+ * distinct values of each side (distinct()). */
+static int check_values(const ob_cmp_side *b, const ob_cmp_side *n, ob_strmap cols[2][NCOLS], ob_cmp_result *r)
+{
+    char sb[512], sn[512];
+    int rc = 0;
+    for (int col = COL_METRIC; b->res.n && n->res.n && col <= COL_SPLIT; col++)
+        if (!shares_value(&cols[0][col], &n->res, col)) {
+            value_set(&b->res, col, &cols[0][col], sb, sizeof sb);
+            value_set(&n->res, col, &cols[1][col], sn, sizeof sn);
+            rc |= ob_strlist_addf(&r->incomparable, "%s differs: %s vs %s", col == COL_METRIC ? "metric" : "split",
+                                  sb, sn);
+        }
+    return rc;
+}
+
 int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     static const char *const same[] = {"samples_per_segment", "max_depth", "max_segments", "inflection_split",
                                        "seed"};
     static const char *const timing[] = {"compiler", "cflags", "backend", "opencl.device", "opencl.driver",
                                          "omp_threads", "cpu_model"};
-    char sb[512], sn[512];
+    ob_strmap cols[2][NCOLS];
+    memset(cols, 0, sizeof cols);
     int rc = 0;
-    r->checked = b->has_meta && n->has_meta;
+    for (int side = 0; side < 2; side++)
+        for (int col = 0; col < NCOLS && !rc; col++)
+            rc = distinct(side ? &n->res : &b->res, col, &cols[side][col]);
+    r->checked = !rc && b->has_meta && n->has_meta;
     r->timing = !o->no_timing;
     if (r->checked) {
         for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
@@ -261,8 +288,8 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
             if (!ob_json_same(eb, en))
                 rc |= ob_strlist_addf(&r->incomparable, "%s %s vs %s", same[k], shown(eb), shown(en));
         }
-        rc |= check_group(b, n, "method_params", r);
-        rc |= check_group(b, n, "method_versions", r);
+        rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_params", r);
+        rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_versions", r);
         for (size_t k = 0; k < sizeof timing / sizeof timing[0]; k++) {
             const ob_json_entry *eb = ob_json_get(&b->meta, timing[k]), *en = ob_json_get(&n->meta, timing[k]);
             if (!ob_json_same(eb, en))
@@ -284,14 +311,11 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
         if (w && w->type == OB_JSON_ARRAY && strcmp(w->value, "[]") != 0)
             rc |= ob_strlist_addf(&r->notes, "%s's run warned (meta.json warnings): %.700s", sd->label, w->value);
     }
-    if (b->res.n && n->res.n) {
-        for (int metric = 1; metric >= 0; metric--)
-            if (!shares_value(&b->res, &n->res, metric)) {
-                value_set(&b->res, metric, sb, sizeof sb);
-                value_set(&n->res, metric, sn, sizeof sn);
-                rc |= ob_strlist_addf(&r->incomparable, "%s differs: %s vs %s", metric ? "metric" : "split", sb, sn);
-            }
-    }
+    if (!rc)
+        rc = check_values(b, n, cols, r);
+    for (int side = 0; side < 2; side++)
+        for (int col = 0; col < NCOLS; col++)
+            ob_strmap_free(&cols[side][col]);
     if (rc) {
         ob_fail(err, "out of memory");
         return -1;

@@ -36,6 +36,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "host/io/strmap.h"
 #include "methods/core/bspline.h"
 #include "methods/core/grow.h"
 
@@ -84,6 +85,9 @@ typedef struct {
     const ob_curveset *set;
     ob_curve *v;              /* curves parsed so far (not yet in set) */
     int n, cap;
+    ob_strmap *ids;           /* id -> index: set->v[i] below set->n, then
+                                 v[i - set->n] (a hash look-up per curve, not
+                                 a scan of all before it) */
     block b;
     double vals[LINE_MAX_BYTES / 2 + 1]; /* numbers of the current line */
 } parser;
@@ -194,17 +198,15 @@ static int numbers(parser *P, char *rest, const char *kw, int min, int max)
     return n;
 }
 
-/* Where an id is already used ("FILE:LINE"), or NULL. */
-static const ob_curve *find_id(const parser *P, const char *id)
+/* Records id as the next curve's; the curve that already has it, or NULL
+ * (*oom set when out of memory). */
+static const ob_curve *claim_id(const parser *P, const char *id, int *oom)
 {
-    if (P->set)
-        for (int i = 0; i < P->set->n; i++)
-            if (!strcmp(P->set->v[i].id, id))
-                return &P->set->v[i];
-    for (int i = 0; i < P->n; i++)
-        if (!strcmp(P->v[i].id, id))
-            return &P->v[i];
-    return NULL;
+    const long i = ob_strmap_put(P->ids, id, (long)P->set->n + P->n);
+    *oom = i == -2;
+    if (i < 0)
+        return NULL;
+    return i < P->set->n ? &P->set->v[i] : &P->v[i - P->set->n];
 }
 
 static int kw_curve(parser *P, char *rest)
@@ -220,10 +222,13 @@ static int kw_curve(parser *P, char *rest)
         return perr(P, P->line, "'curve' takes one id (no spaces)");
     if (check_name(P, "id", id))
         return -1;
-    const ob_curve *dup = find_id(P, id);
+    int oom;
+    const ob_curve *dup = claim_id(P, id, &oom);
     if (dup)
         return perr(P, P->line, "duplicate id '%s' (first defined at %s:%d)", id, dup->file,
                     dup->line);
+    if (oom)
+        return perr(P, P->line, "out of memory");
     block_clear(b);
     b->open = 1;
     b->line = P->line;
@@ -596,8 +601,11 @@ static int parse_all(parser *P, const char *text, size_t len)
     return 0;
 }
 
-int ob_curves_parse(const char *text, size_t len, const char *name,
-                    ob_curveset *set, ob_err *err)
+/* ob_curves_parse with ids, the index of set's ids (claim_id), which
+ * gets the ids of the text's curves too (also when it fails: then the
+ * caller drops it). */
+static int parse_indexed(const char *text, size_t len, const char *name, ob_curveset *set, ob_strmap *ids,
+                         ob_err *err)
 {
     parser *P = calloc(1, sizeof *P);
     if (!P)
@@ -605,6 +613,7 @@ int ob_curves_parse(const char *text, size_t len, const char *name,
     P->name = name ? name : "<input>";
     P->err = err;
     P->set = set;
+    P->ids = ids;
     int rc = -1;
     if (!set)
         perr(P, 0, "no curve set given");
@@ -640,6 +649,25 @@ int ob_curves_parse(const char *text, size_t len, const char *name,
     return rc;
 }
 
+/* The index of the ids of set (claim_id); 0, or -1 out of memory. */
+static int index_ids(const ob_curveset *set, ob_strmap *ids)
+{
+    for (int i = 0; set && i < set->n; i++)
+        if (ob_strmap_put(ids, set->v[i].id, i) == -2)
+            return -1;
+    return 0;
+}
+
+int ob_curves_parse(const char *text, size_t len, const char *name,
+                    ob_curveset *set, ob_err *err)
+{
+    ob_strmap ids = {0};
+    int rc = index_ids(set, &ids) ? ob_fail(err, "%s:0: out of memory", name ? name : "<input>")
+                                  : parse_indexed(text, len, name, set, &ids, err);
+    ob_strmap_free(&ids);
+    return rc;
+}
+
 /* "PATH: message" for errors that are not about a line; returns -1. */
 static int ferr(ob_err *err, const char *path, const char *fmt, ...)
 {
@@ -651,7 +679,8 @@ static int ferr(ob_err *err, const char *path, const char *fmt, ...)
     return ob_fail(err, "%s: %s", path, buf);
 }
 
-int ob_curves_load_file(const char *path, ob_curveset *set, ob_err *err)
+/* ob_curves_load_file with ids, the index of set's ids (parse_indexed). */
+static int load_indexed(const char *path, ob_curveset *set, ob_strmap *ids, ob_err *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -706,8 +735,16 @@ int ob_curves_load_file(const char *path, ob_curveset *set, ob_err *err)
         free(buf);
         return ferr(err, path, "file too large (the limit is 64 MiB)");
     }
-    int rc = ob_curves_parse(buf, n, path, set, err);
+    int rc = parse_indexed(buf, n, path, set, ids, err);
     free(buf);
+    return rc;
+}
+
+int ob_curves_load_file(const char *path, ob_curveset *set, ob_err *err)
+{
+    ob_strmap ids = {0};
+    int rc = index_ids(set, &ids) ? ferr(err, path, "out of memory") : load_indexed(path, set, &ids, err);
+    ob_strmap_free(&ids);
     return rc;
 }
 
@@ -749,6 +786,11 @@ int ob_curves_load_dir(const char *dir, ob_curveset *set, ob_err *err)
 
     /* all or nothing: curves of files loaded before a failing one are dropped */
     const int n0 = set ? set->n : 0;
+    /* one index of ids for all the files: indexing the set afresh for each
+     * would cost files x curves */
+    ob_strmap ids = {0};
+    if (!rc && index_ids(set, &ids))
+        rc = ferr(err, dir, "out of memory");
     size_t dl = strlen(dir);
     int slash = dl && dir[dl - 1] == '/';
     for (size_t i = 0; i < n && !rc; i++) {
@@ -759,9 +801,10 @@ int ob_curves_load_dir(const char *dir, ob_curveset *set, ob_err *err)
             break;
         }
         snprintf(path, len, "%s%s%s", dir, slash ? "" : "/", names[i]);
-        rc = ob_curves_load_file(path, set, err);
+        rc = load_indexed(path, set, &ids, err);
         free(path);
     }
+    ob_strmap_free(&ids);
     if (rc && set) {
         for (int i = n0; i < set->n; i++)
             ob_curve_free(&set->v[i]);

@@ -58,9 +58,11 @@ static const char *describe(parser *p, char *buf, size_t len)
 
 static int add_entry(parser *p, const char *value, size_t vlen, ob_json_type type, int line)
 {
-    for (int i = 0; i < p->out->n; i++)
-        if (strcmp(p->out->v[i].path, p->path) == 0)
-            return fail(p, "key \"%s\" given twice (first on line %d)", p->path, p->out->v[i].line);
+    const long first = ob_strmap_put(&p->out->ix, p->path, p->out->n);
+    if (first == -2)
+        return fail(p, "out of memory");
+    if (first >= 0)
+        return fail(p, "key \"%s\" given twice (first on line %d)", p->path, p->out->v[first].line);
     if (p->out->n == p->out->cap) {
         int cap = p->out->cap ? 2 * p->out->cap : 64;
         ob_json_entry *nv = realloc(p->out->v, (size_t)cap * sizeof *nv);
@@ -158,16 +160,26 @@ static size_t put_utf8(char *o, unsigned cp)
     return 4;
 }
 
+/* The bytes from s up to the string's closing quote (or to end): the
+ * decoded string is never longer. */
+static size_t raw_len(const char *s, const char *end)
+{
+    const char *q = s;
+    while (q < end && *q != '"')
+        q += *q == '\\' && q + 1 < end ? 2 : 1;
+    return (size_t)(q - s);
+}
+
 /* A string at p->s (on its opening quote), decoded into a malloc'd buffer
  * (*out, NULL when out is NULL: then only validated). */
 static int parse_string(parser *p, char **out, size_t *outlen)
 {
     p->s++; /* the quote */
-    const char *start = p->s;
-    /* decoded text is never longer than the source */
+    /* sized by this string, not the rest of the file: n strings must not
+     * cost n times the file in allocations */
     char *buf = NULL, *o = NULL;
     if (out) {
-        buf = o = malloc((size_t)(p->end - start) + 1);
+        buf = o = malloc(raw_len(p->s, p->end) + 1);
         if (!buf)
             return fail(p, "out of memory");
     }
@@ -430,6 +442,7 @@ void ob_json_free(ob_json_flat *f)
     for (int i = 0; i < f->n; i++)
         free(f->v[i].path);
     free(f->v);
+    ob_strmap_free(&f->ix);
     f->v = NULL;
     f->n = f->cap = 0;
 }
@@ -437,8 +450,7 @@ void ob_json_free(ob_json_flat *f)
 int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat *out, ob_err *err)
 {
     parser p = {text, text + len, name, 1, 0, err, out, ""};
-    out->v = NULL;
-    out->n = out->cap = 0;
+    memset(out, 0, sizeof *out);
     char what[32];
     if (len >= 3 && memcmp(text, "\xef\xbb\xbf", 3) == 0)
         p.s += 3;
@@ -468,8 +480,7 @@ int ob_json_load(const char *path, ob_json_flat *out, ob_err *err)
 {
     char *text;
     size_t len;
-    out->v = NULL;
-    out->n = out->cap = 0;
+    memset(out, 0, sizeof *out);
     if (ob_slurp_max(path, OB_JSON_LIMIT, &text, &len, err))
         return -1;
     int rc = ob_json_flatten(text, len, path, out, err);
@@ -479,10 +490,8 @@ int ob_json_load(const char *path, ob_json_flat *out, ob_err *err)
 
 const ob_json_entry *ob_json_get(const ob_json_flat *f, const char *path)
 {
-    for (int i = 0; f && i < f->n; i++)
-        if (strcmp(f->v[i].path, path) == 0)
-            return &f->v[i];
-    return NULL;
+    const long i = f ? ob_strmap_get(&f->ix, path) : -1;
+    return i >= 0 && i < f->n ? &f->v[i] : NULL;
 }
 
 int ob_json_same(const ob_json_entry *a, const ob_json_entry *b)

@@ -15,6 +15,7 @@
 #define OB_METAJSON_H
 
 #include <stddef.h>
+#include "host/io/strmap.h"
 #include "methods/core/err.h"
 
 enum { OB_JSON_MAX_DEPTH = 32 };
@@ -38,6 +39,8 @@ typedef struct {
 typedef struct {
     ob_json_entry *v;
     int n, cap;
+    ob_strmap ix;       /* key path -> index in v: look-ups and the duplicate
+                           check in constant time, not a scan of v */
 } ob_json_flat;
 
 /* Purpose: parse text[0..len) (a file named `name` for messages) and
@@ -53,7 +56,8 @@ int ob_json_flatten(const char *text, size_t len, const char *name, ob_json_flat
 #define OB_JSON_LIMIT ((size_t)64 << 20)
 int ob_json_load(const char *path, ob_json_flat *out, ob_err *err);
 
-/* The entry of a key path, or NULL. */
+/* The entry of a key path, or NULL (a hash look-up: callers may ask for
+ * every key of a large file). */
 const ob_json_entry *ob_json_get(const ob_json_flat *f, const char *path);
 
 /* 1 when a and b are the same value: numbers compared as doubles (1e1 ==

@@ -52,6 +52,7 @@
 #include <string.h>
 
 #include "host/diag.h"
+#include "host/io/strmap.h"
 
 const char *const ob_random_family_names[OB_RND_NFAMILIES] = {
     "cubic", "quintic", "septic", "rational", "inflection", "tight", "loop", "degenerate"};
@@ -509,6 +510,25 @@ static long *selected_indices(uint64_t seed, long n, char *const *ids, int nids,
     return v;
 }
 
+/* Ids must stay unique across everything loaded: 0 when no curve before n0
+ * (only those that look like random ids can) has the id of one from n0 on,
+ * else -1 with the message.  The new ids go into a hash map, so that a
+ * file of n "rnd" ids and n random curves cost n, not n x n. */
+static int random_ids_clash(const ob_curveset *set, int n0, ob_err *err)
+{
+    ob_strmap fresh = {0};
+    int rc = 0;
+    for (int k = n0; k < set->n && rc == 0; k++)
+        if (ob_strmap_put(&fresh, set->v[k].id, k) == -2)
+            rc = ob_fail(err, "--random: out of memory");
+    for (int i = 0; i < n0 && rc == 0; i++)
+        if (strncmp(set->v[i].id, "rnd", 3) == 0 && ob_strmap_get(&fresh, set->v[i].id) >= 0)
+            rc = ob_fail(err, "--random: curve id '%s' is also defined at %s:%d", set->v[i].id, set->v[i].file,
+                         set->v[i].line);
+    ob_strmap_free(&fresh);
+    return rc;
+}
+
 int ob_random_append(ob_curveset *set, uint64_t seed, long n, char *const *ids, int nids,
                      ob_err *err)
 {
@@ -548,20 +568,10 @@ int ob_random_append(ob_curveset *set, uint64_t seed, long n, char *const *ids, 
         return -1;
     }
     set->n = (int)(n0 + count);
-    /* Ids must stay unique across everything loaded: only ids that look like
-     * random ids can clash. */
-    for (int i = 0; i < n0; i++) {
-        if (strncmp(set->v[i].id, "rnd", 3) != 0)
-            continue;
-        for (long k = 0; k < count; k++)
-            if (strcmp(set->v[i].id, set->v[n0 + k].id) == 0) {
-                ob_fail(err, "--random: curve id '%s' is also defined at %s:%d", set->v[i].id,
-                        set->v[i].file, set->v[i].line);
-                for (long q = 0; q < count; q++)
-                    ob_curve_free(&set->v[n0 + q]);
-                set->n = n0;
-                return -1;
-            }
-    }
-    return 0;
+    if (random_ids_clash(set, n0, err) == 0)
+        return 0;
+    for (long q = 0; q < count; q++)
+        ob_curve_free(&set->v[n0 + q]);
+    set->n = n0;
+    return -1;
 }
