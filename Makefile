@@ -8,6 +8,7 @@
 #   make report     the HTML report of the nightly history (out/history/site/index.html)
 #   make report-screenshot  results/report.png from the test's synthetic history (Chromium)
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
+#   make perf       scaling checks that compare times (readers linear in their input)
 #   make MPI=1      ./offbench built with Open MPI (mpirun -n P ./offbench run ...)
 #   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
@@ -52,7 +53,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run FORCE
+.PHONY: all test perf soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -119,6 +120,11 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h host/
 
 test: $(BIN) $(TEST_BIN)
 	@OFFBENCH=$(abspath $(BIN)) sh tests/run_all.sh $(TEST_BIN) $(TEST_SH)
+
+# Scaling checks that compare times (not in `make test`: the machines are
+# shared): each reader is linear in its input (tests/perf/perf_linear.c).
+perf: $(BUILD)/tests/perf/perf_linear
+	@$(BUILD)/tests/perf/perf_linear
 
 # The soak test, longer than in `make test` (README "Testing").
 SOAK_KILLS ?= 200
