@@ -76,8 +76,9 @@
  * a server process, one per calling thread, forked on first use: the fit
  * sends the segment and the arguments down a pipe and reads the result
  * (status, order, knots, vertices) with a deadline (sisl.timeout seconds of
- * the server's CPU time, default 20); past it the server is killed (and
- * started afresh by the next fit) and the fit fails with that reason.
+ * the server's CPU time, default 20, enforced by the kernel through
+ * RLIMIT_CPU in whole seconds, rounded up); past it the server ends (and
+ * is started afresh by the next fit) and the fit fails with that reason.
  * Outside the sanitizer builds each s1360 call may grow the server's data
  * by 1 GiB, so a runaway allocation ends at once.  Both limits are the
  * call's own, not the machine's or the server's history: CPU time, not
@@ -130,8 +131,9 @@ static const ob_param sisl_params[] = {
      "s1360's maximal step length amax; 0 (default) = SISL's own choice, which its manual "
      "gives as the longest side of the curve's bounding box", 0, 1e12, 0},
     {"timeout", 20.0,
-     "CPU seconds one s1360 call may take (it runs in a child process, killed past this; the fit "
-     "then fails): s1360 loops without end on some inputs.  Our choice; 0.1..3600", 0.1, 3600, 0},
+     "CPU seconds one s1360 call may take, counted in whole seconds rounded up (it runs in a child "
+     "process, ended past this; the fit then fails): s1360 loops without end on some inputs.  Our "
+     "choice; 0.1..3600", 0.1, 3600, 0},
 };
 
 /* s1360's result as plain arrays (ik order, in vertices, idim 2, ikind 1). */
@@ -162,6 +164,7 @@ static int xfer_all(int fd, void *buf, size_t n, int writing)
 typedef struct {
     int n, rational;
     double d, tol, amax;
+    double timeout;     /* CPU seconds the call may take (RLIMIT_CPU in the server) */
     double coef[3 * (OB_MAX_DEG + 1)];
 } sisl_request;
 
@@ -170,6 +173,10 @@ typedef struct {
 #else
 #define SERVER_MEMORY_NOTE "its memory, without crashing"
 #endif
+
+/* A server holding this much more data than when it started (a fork
+ * starts with the parent's, which can be large) is started afresh. */
+#define SERVER_RESTART_BYTES (256UL << 20)
 
 /* The data the server holds now (VmData: what RLIMIT_DATA counts), bytes;
  * 0 when /proc cannot tell.  Plain open and read: the server is the child
@@ -209,18 +216,45 @@ static void cap_next_call(void)
 #endif
 }
 
-/* The server: answer requests until the parent goes away; never returns. */
+/* Past its CPU limit the server ends at once: the parent sees the pipe
+ * close and the fit fails "did not finish". */
+static void cpu_limit_reached(int sig)
+{
+    (void)sig;
+    _exit(3);
+}
+
+/* The next s1360 call may use `seconds` of CPU time more (the soft limit,
+ * whole seconds rounded up: the kernel then sends SIGXCPU). */
+static void cpu_limit_next_call(double seconds)
+{
+    struct rusage ru;
+    struct rlimit rl;
+    if (getrusage(RUSAGE_SELF, &ru) != 0 || getrlimit(RLIMIT_CPU, &rl) != 0)
+        return;
+    const double used = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    const rlim_t want = (rlim_t)ceil(used + seconds);
+    rl.rlim_cur = rl.rlim_max == RLIM_INFINITY || want < rl.rlim_max ? want : rl.rlim_max;
+    setrlimit(RLIMIT_CPU, &rl);
+}
+
+/* The server: answer requests until the parent goes away; never returns.
+ * The reply's sixth word asks the parent to start a fresh server: this one
+ * has grown SERVER_RESTART_BYTES past what it started with. */
 static void server_loop(int in, int out)
 {
+    signal(SIGXCPU, cpu_limit_reached);
+    const unsigned long data0 = data_bytes();
     sisl_request q;
     while (xfer_all(in, &q, sizeof q, 0) == 0) {
         cap_next_call();
+        cpu_limit_next_call(q.timeout);
         double knots[2 * (OB_MAX_DEG + 1)];
         for (int i = 0; i <= q.n; i++) {
             knots[i] = 0.0;
             knots[q.n + 1 + i] = 1.0;
         }
-        int hdr[5] = {0, 0, 0, 0, 0};
+        int hdr[6] = {0, 0, 0, 0, 0, 0};
         SISLCurve *pc = newCurve(q.n + 1, q.n + 1, knots, q.coef, q.rational ? 2 : 1, 2, 1);
         SISLCurve *rc = NULL;
         double enorm[3] = {0.0, 0.0, 1.0};
@@ -231,6 +265,7 @@ static void server_loop(int in, int out)
         if (rc && rc->in > 0 && rc->ik > 0 && rc->idim > 0) {
             hdr[1] = rc->ik, hdr[2] = rc->in, hdr[3] = rc->idim, hdr[4] = rc->ikind;
         }
+        hdr[5] = data_bytes() > data0 + SERVER_RESTART_BYTES;
         int ok = xfer_all(out, hdr, sizeof hdr, 1) == 0;
         if (ok && hdr[1])
             ok = xfer_all(out, rc->et, (size_t)(rc->in + rc->ik) * sizeof(double), 1) == 0 &&
@@ -310,70 +345,21 @@ static double now_s(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* CPU time (user + system) the server has used, seconds; -1 when /proc
- * cannot tell. */
-static double server_cpu_s(pid_t pid)
-{
-    char path[64], buf[1024];
-    snprintf(path, sizeof path, "/proc/%ld/stat", (long)pid);
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return -1.0;
-    const size_t n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    /* after the command name (in parentheses, may hold spaces): state is
-     * field 3, utime and stime fields 14 and 15 */
-    const char *p = strrchr(buf, ')');
-    unsigned long ut, st;
-    if (!p || sscanf(p + 1, " %*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lu %lu", &ut, &st) != 2)
-        return -1.0;
-    return (double)(ut + st) / (double)sysconf(_SC_CLK_TCK);
-}
-
-/* The data the server holds (VmData), bytes; 0 when /proc cannot tell. */
-static unsigned long server_data_bytes(pid_t pid)
-{
-    char path[64];
-    snprintf(path, sizeof path, "/proc/%ld/statm", (long)pid);
-    FILE *f = fopen(path, "r");
-    unsigned long v[6] = {0, 0, 0, 0, 0, 0};
-    if (f) {
-        if (fscanf(f, "%lu %lu %lu %lu %lu %lu", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]) != 6)
-            v[5] = 0;
-        fclose(f);
-    }
-    return v[5] * (unsigned long)sysconf(_SC_PAGESIZE);
-}
-
-/* A server holding more data than this after a call is started afresh. */
-#define SERVER_RESTART_BYTES (256UL << 20)
-
-/* The deadline of one call: its CPU time in the server, and a wall-clock
- * backstop for a server that does not run at all. */
-typedef struct {
-    double cpu0, cpu_limit, wall_end;
-} deadline_t;
-
 /* Reads n bytes from the server before the deadline: 0, 1 timed out, -1 the
- * server died.  Wakes every quarter second to look at the server's CPU
- * time. */
-static int read_deadline(int fd, void *buf, size_t n, const deadline_t *dl)
+ * server died (or ended itself past its CPU limit). */
+static int read_deadline(int fd, void *buf, size_t n, double deadline)
 {
     char *p = buf;
     while (n > 0) {
-        const double left = dl->wall_end - now_s();
+        const double left = deadline - now_s();
         if (left <= 0)
             return 1;
-        const double cpu = server_cpu_s(srv.pid);
-        if (cpu >= 0.0 && dl->cpu0 >= 0.0 && cpu - dl->cpu0 > dl->cpu_limit)
-            return 1;
         struct pollfd pf = {fd, POLLIN, 0};
-        int pr = poll(&pf, 1, left < 0.25 ? (int)(left * 1000) + 1 : 250);
+        int pr = poll(&pf, 1, (int)(left * 1000) + 1);
         if (pr < 0 && errno == EINTR)
             continue;
         if (pr == 0)
-            continue;  /* the deadlines are looked at above */
+            return 1;
         if (pr < 0)
             return -1;
         ssize_t r = read(fd, p, n);
@@ -402,13 +388,15 @@ static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, 
     ign.sa_handler = SIG_IGN;
     sigaction(SIGPIPE, &ign, &old);
     sisl_request copy = *q;
-    /* the wall-clock backstop is generous: a loaded machine slows the
-     * server down, and only its CPU time decides */
-    const deadline_t deadline = {server_cpu_s(srv.pid), timeout, now_s() + 10.0 * timeout + 60.0};
+    copy.timeout = timeout;
+    /* the server's CPU time decides (RLIMIT_CPU there); this wall-clock
+     * backstop, for a server that does not run at all, is generous: a
+     * loaded machine slows the server down */
+    const double deadline = now_s() + 10.0 * timeout + 60.0;
     int wrc = xfer_all(srv.to, &copy, sizeof copy, 1);
     sigaction(SIGPIPE, &old, NULL);
-    int hdr[5];
-    int rc = wrc ? -1 : read_deadline(srv.from, hdr, sizeof hdr, &deadline);
+    int hdr[6];
+    int rc = wrc ? -1 : read_deadline(srv.from, hdr, sizeof hdr, deadline);
     if (rc == 0) {
         r->stat = hdr[0], r->ik = hdr[1], r->in = hdr[2], r->idim = hdr[3], r->ikind = hdr[4];
         if (r->ik > 0) {
@@ -422,15 +410,15 @@ static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, 
                 ob_method_msg(msg, msglen, "out of memory reading SISL's result");
                 return -1;
             }
-            rc = read_deadline(srv.from, r->et, nk * sizeof(double), &deadline);
+            rc = read_deadline(srv.from, r->et, nk * sizeof(double), deadline);
             if (rc == 0)
-                rc = read_deadline(srv.from, r->ecoef, nc * sizeof(double), &deadline);
+                rc = read_deadline(srv.from, r->ecoef, nc * sizeof(double), deadline);
         }
     }
     if (rc == 0) {
         /* a server grown large (SISL does not free everything on every
-         * path) is started afresh: each call's limit is its own anyway */
-        if (server_data_bytes(srv.pid) > SERVER_RESTART_BYTES)
+         * path) is started afresh: each call's limits are its own anyway */
+        if (hdr[5])
             server_stop(SIGKILL);
         return 0;
     }

@@ -30,6 +30,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "tests/check.h"
@@ -676,8 +678,60 @@ static void test_runaway(void)
     ob_curveset_free(&set);
 }
 
+/* A short fit (hundredths of a second of CPU time in s1360: the piece
+ * [0.996094, 1] of --random 200:7 curve 55, d -0.1536, 21,173 spans) with a
+ * limit of 0.1 s of the server's CPU time must finish whatever the
+ * machine's load.
+ * 24 processes spin on the machine's cores meanwhile (a dozen per core
+ * here): with the wall-clock deadline of before, the call took seconds of
+ * wall time and failed "did not finish".  Twice on one thread: the second
+ * call, on the same server, gets the same answer. */
+static void test_load_and_history(void)
+{
+    ob_curve c;
+    if (ob_random_curve(7, 55, &c) != 0 || c.nd < 1) {
+        CHECK(0, "random curve 55");
+        return;
+    }
+    const ob_method *sm = ob_method_find("sisl");
+    double par[OB_MAX_PARAMS];
+    ob_param_defaults(sm, par);
+    par[1] = 0.1; /* timeout: CPU seconds (the server counts whole seconds) */
+    ob_bez sub;
+    ob_bez_subsegment(&c.seg[0], 0.996094, 1.0, &sub);
+    enum { NSPIN = 24 };
+    pid_t spin[NSPIN];
+    int nspin = 0;
+    for (int k = 0; k < NSPIN; k++) {
+        const pid_t p = fork();
+        if (p == 0) {
+            alarm(30); /* never outlives the test */
+            for (volatile unsigned long x = 0;; x++)
+                ;
+        }
+        if (p > 0)
+            spin[nspin++] = p;
+    }
+    static ob_fit f;
+    char m1[160] = "", m2[160] = "";
+    ob_fit_args a = {c.d[0], 1e-5, par};
+    const ob_fit_status s1 = sm->fit(&sub, &a, NULL, &f, m1, sizeof m1);
+    const ob_fit_status s2 = sm->fit(&sub, &a, NULL, &f, m2, sizeof m2);
+    for (int k = 0; k < nspin; k++) {
+        kill(spin[k], SIGKILL);
+        waitpid(spin[k], NULL, 0);
+    }
+    CHECK(nspin == NSPIN, "%d spinning processes", nspin);
+    CHECK(s1 == OB_FIT_RETRY_SMALLER && strstr(m1, "spans, more than") && !strstr(m1, "did not finish"),
+          "under load, the fit ends as it does on an idle machine: %s '%s'", ob_fit_status_name(s1), m1);
+    CHECK(s2 == s1 && strcmp(m1, m2) == 0, "the second call on the same server: %s '%s' (first '%s')",
+          ob_fit_status_name(s2), m2, m1);
+    ob_curve_free(&c);
+}
+
 int main(void)
 {
+    test_load_and_history();
     test_runaway();
     test_structure();
     test_lines();
