@@ -6,6 +6,7 @@
 
 #include "buildinfo.h"
 #include "host/backend/clrt.h"
+#include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
@@ -67,6 +68,9 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
+        const int prc = ob_cli_no_options("  (the build: version, git commit, flags, OpenCL loader)", argc - 1, argv + 1);
+        if (prc != OB_CLI_OK)
+            return prc == OB_CLI_HELP ? 0 : 2;
         char cl[512];
         ob_cl_loader_status(cl, sizeof cl);
         printf("offbench %s\ngit commit: %s\ngit dirty: %s\ncompiler: gcc %s\ncflags: %s\nOpenCL: %s\n", OB_VERSION,
@@ -75,6 +79,9 @@ static int dispatch(int argc, char **argv)
         return 0;
     }
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+        const int prc = ob_cli_no_options("  (every command)", argc - 1, argv + 1);
+        if (prc != OB_CLI_OK)
+            return prc == OB_CLI_HELP ? 0 : 2;
         fputs(usage, stdout);
         return 0;
     }
