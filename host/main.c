@@ -10,6 +10,7 @@
 #include "host/cli/commands.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
+#include "host/run/stack.h"
 #include "host/san_options.h"
 
 /* The version is the date of the commit built (there are no numbered
@@ -90,9 +91,14 @@ static int dispatch(int argc, char **argv)
     return 2;
 }
 
-/* Under mpirun (a build with MPI) every rank runs the command; see mpirun.h. */
+/* Under mpirun (a build with MPI) every rank runs the command; see mpirun.h.
+ * The thread stacks are checked first (stack.h). */
 int main(int argc, char **argv)
 {
+    /* every command may run fits on OpenMP threads: a stack too small for
+     * them would crash one mid-run with SIGSEGV; refuse it before any work */
+    if (ob_stack_check() != 0)
+        return 2;
     if (ob_mpi_init(&argc, &argv) != 0) {
         ob_error("MPI could not start");
         return 1;
