@@ -6,9 +6,11 @@
 
 #include "buildinfo.h"
 #include "host/backend/clrt.h"
+#include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
+#include "host/run/stack.h"
 #include "host/san_options.h"
 
 /* The version is the date of the commit built (there are no numbered
@@ -67,6 +69,9 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
+        const int prc = ob_cli_no_options("  (the build: version, git commit, flags, OpenCL loader)", argc - 1, argv + 1);
+        if (prc != OB_CLI_OK)
+            return prc == OB_CLI_HELP ? 0 : 2;
         char cl[512];
         ob_cl_loader_status(cl, sizeof cl);
         printf("offbench %s\ngit commit: %s\ngit dirty: %s\ncompiler: gcc %s\ncflags: %s\nOpenCL: %s\n", OB_VERSION,
@@ -75,6 +80,9 @@ static int dispatch(int argc, char **argv)
         return 0;
     }
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+        const int prc = ob_cli_no_options("  (every command)", argc - 1, argv + 1);
+        if (prc != OB_CLI_OK)
+            return prc == OB_CLI_HELP ? 0 : 2;
         fputs(usage, stdout);
         return 0;
     }
@@ -83,9 +91,14 @@ static int dispatch(int argc, char **argv)
     return 2;
 }
 
-/* Under mpirun (a build with MPI) every rank runs the command; see mpirun.h. */
+/* Under mpirun (a build with MPI) every rank runs the command; see mpirun.h.
+ * The thread stacks are checked first (stack.h). */
 int main(int argc, char **argv)
 {
+    /* every command may run fits on OpenMP threads: a stack too small for
+     * them would crash one mid-run with SIGSEGV; refuse it before any work */
+    if (ob_stack_check() != 0)
+        return 2;
     if (ob_mpi_init(&argc, &argv) != 0) {
         ob_error("MPI could not start");
         return 1;

@@ -32,6 +32,8 @@ import re
 import sys
 import xml.etree.ElementTree as ET
 
+import svgsyntax
+
 PROG = "svg2curves"
 VALUE_LIMIT = 1e12   # host/io/curvefile.c: |numbers| <= 1e12
 SCALE_MIN = 1e-50    # smallest nonzero coordinate, weight, |d|, extent
@@ -52,6 +54,10 @@ HIDDEN_TAGS = ("defs", "symbol", "clipPath", "mask", "marker", "pattern")
 
 class Refused(Exception):
     """A curve the .curves reader would refuse (message says which rule)."""
+
+
+class BadInput(Exception):
+    """The SVG file cannot be converted (message says what is wrong): exit 2."""
 
 
 def fmt(x):
@@ -374,14 +380,34 @@ def check_curve(pts, segs, offsets):
             raise Refused(f"offset {d!r} is below 1e-12 times its largest coordinate {M:.3g}")
 
 
-def xml_report(path, seen_ids, note):
+def read_xml(path):
+    """The document's root element, or raises BadInput saying why it is not
+    an SVG document whose geometry attributes are well formed (svgelements
+    would drop what follows an error unreported: svgsyntax.py)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as ex:
+        raise BadInput(f"cannot read: {ex.strerror or ex}")
+    if not data.strip():
+        raise BadInput("empty file (no XML)")
+    try:
+        root = ET.fromstring(data)
+    except ET.ParseError as ex:
+        raise BadInput(f"not well-formed XML ({ex})")
+    except (ValueError, LookupError) as ex:  # an unknown or wrong encoding declared
+        raise BadInput(f"cannot decode the XML ({ex})")
+    if root.tag not in ("{" + SVG_NS + "}svg", "svg"):
+        raise BadInput(f"the root element is <{root.tag}>, not <svg>: not an SVG document")
+    bad = svgsyntax.syntax_errors(root, SVG_NS)
+    if bad:
+        raise BadInput("; ".join(bad[:5]) + (f"; and {len(bad) - 5} more" if len(bad) > 5 else ""))
+    return root
+
+
+def xml_report(root, seen_ids, note):
     """Elements svgelements does not turn into geometry: unsupported or
     unknown SVG elements, and shapes it drops unreported (zero size)."""
-    try:
-        tree = ET.parse(path)
-    except (ET.ParseError, OSError) as ex:
-        return str(ex)
-
     def walk(el, hidden):
         if not isinstance(el.tag, str) or not el.tag.startswith("{" + SVG_NS + "}"):
             return  # comments, other namespaces (inkscape:, sodipodi:)
@@ -403,8 +429,7 @@ def xml_report(path, seen_ids, note):
         for ch in el:
             walk(ch, hidden or tag in HIDDEN_TAGS)
 
-    walk(tree.getroot(), False)
-    return None
+    walk(root, False)
 
 
 def parse_offsets(s):
@@ -449,6 +474,8 @@ def parse_args(argv):
 
 
 def main(argv):
+    # file names are bytes: one that is not UTF-8 is printed as it was given
+    sys.stderr.reconfigure(errors="surrogateescape")
     a = parse_args(argv)
     try:
         import svgelements as se
@@ -460,11 +487,25 @@ def main(argv):
         print(f"{PROG}: --prefix '{a.prefix[:50]}': at most 40 of letters, digits, '_', '-', '.', '/'",
               file=sys.stderr)
         return 2
+    try:
+        return convert(a, se)
+    except Exception as ex:  # a case the checks miss: still "FILE: what", exit 2, no traceback
+        print(f"{PROG}: {a.svg}: cannot convert ({type(ex).__name__}: {str(ex)[:200]})", file=sys.stderr)
+        return 2
+
+
+def convert(a, se):
+    """Converts a.svg to a.out; the exit status."""
     def note(msg):
         print(f"{PROG}: {a.svg}: {msg}", file=sys.stderr)
 
     if not os.path.isfile(a.svg):
         print(f"{PROG}: {a.svg}: not a readable file", file=sys.stderr)
+        return 2
+    try:
+        root = read_xml(a.svg)
+    except BadInput as ex:
+        print(f"{PROG}: {a.svg}: {ex}", file=sys.stderr)
         return 2
     try:
         doc = se.SVG.parse(a.svg, reify=False)
@@ -484,10 +525,7 @@ def main(argv):
             conv.element(e, i, root_inv)
         except Exception as ex:  # whatever svgelements hands over: named, never a crash
             conv.skip(f"{element_name(e, tag_of(e, se), i)}: cannot convert ({ex}); left out")
-    bad = xml_report(a.svg, {e.id for e in shapes if e.id}, conv.skip)
-    if bad:
-        print(f"{PROG}: {a.svg}: {bad}", file=sys.stderr)
-        return 2
+    xml_report(root, {e.id for e in shapes if e.id}, conv.skip)
     if not conv.curves:
         print(f"{PROG}: {a.svg}: no curve to write", file=sys.stderr)
         return 2
@@ -498,7 +536,12 @@ def main(argv):
     text = (f"# written by scripts/svg2curves.py from {safe_text(os.path.basename(a.svg))} "
             f"(--y {a.y}, --units {a.units}, --closed {a.closed})\n\n" + "\n".join(conv.curves))
     if a.out == "-":
-        sys.stdout.write(text)
+        try:
+            sys.stdout.write(text)
+            sys.stdout.flush()
+        except OSError as ex:
+            print(f"{PROG}: standard output: cannot write: {ex.strerror or ex}", file=sys.stderr)
+            return 2
     else:
         try:
             with open(a.out, "w", encoding="utf-8") as f:

@@ -57,7 +57,8 @@ void ob_cli_help(FILE *f, const char *cmd, const char *synopsis, const ob_flagse
             fprintf(f, "  %-26s %s%s\n", lhs, g->help, g->rule == OB_FLAG_REPEAT ? " (repeatable)" : "");
         }
     }
-    fputs("\nEvery option also takes the form --name=value.  See README.md for more.\n", f);
+    if (nsets > 0)
+        fputs("\nEvery option also takes the form --name=value.  See README.md for more.\n", f);
 }
 
 /* The flags the command takes, in table order, with where each came from. */
@@ -125,8 +126,24 @@ static void report_unknown(const char *cmd, const char *opt, const flagindex *x)
         ob_error("%s: unknown option '%s'", cmd, opt);
 }
 
+/* An option's value given as the next word must not be '--' (it ends the
+ * options) nor look like an option ("--out --force" forgot the value);
+ * --name=VALUE takes any value. */
+static int check_value(const char *opt, const char *word, char **argv, int optind_now)
+{
+    if (!word || word != argv[optind_now - 1] || strncmp(word, "--", 2) != 0)
+        return OB_CLI_OK;
+    if (!word[2])
+        ob_error("%s: missing value ('--' ends the options; write %s=-- for a value '--')", opt, opt);
+    else
+        ob_error("%s: missing value (the next word '%s' is an option; write %s=VALUE for a value that begins "
+                 "with '--')",
+                 opt, word, opt);
+    return OB_CLI_ERROR;
+}
+
 /* Applies option c (getopt_long's return) of x; 0, or OB_CLI_ERROR. */
-static int apply_one(const ob_flagset *sets, flagindex *x, int c)
+static int apply_one(const ob_flagset *sets, flagindex *x, int c, char **argv)
 {
     const int i = c - 256;
     const ob_flag *g = x->flag[i];
@@ -137,8 +154,27 @@ static int apply_one(const ob_flagset *sets, flagindex *x, int c)
                  g->rule == OB_FLAG_LIST ? "; list all values in one comma list" : "");
         return OB_CLI_ERROR;
     }
+    if (g->value && check_value(opt, optarg, argv, optind) != OB_CLI_OK)
+        return OB_CLI_ERROR;
     const ob_flagset *s = &sets[x->set[i]];
     return s->apply(s->ctx, g->id, opt, g->value ? optarg : NULL) ? OB_CLI_ERROR : OB_CLI_OK;
+}
+
+/* Takes arg as the next operand; 0, or OB_CLI_ERROR naming it when the
+ * command takes no more (after '--' too: nothing is dropped). */
+static int take_operand(const char *cmd, const char *arg, int after_dashes, int npos_max, char **pos, int *np)
+{
+    if (*np < npos_max) {
+        pos[(*np)++] = (char *)arg;
+        return OB_CLI_OK;
+    }
+    const char *why = after_dashes ? "after '--' every argument is an operand" : "options are --NAME VALUE";
+    if (npos_max == 0)
+        ob_error("%s: unexpected argument '%s' (%s takes no operands; %s)", cmd, arg, cmd, why);
+    else
+        ob_error("%s: unexpected argument '%s' (%s takes at most %d operand%s; %s)", cmd, arg, cmd, npos_max,
+                 npos_max > 1 ? "s" : "", why);
+    return OB_CLI_ERROR;
 }
 
 int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int argc, char **argv, int npos_max,
@@ -160,12 +196,7 @@ int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int ar
             ob_cli_help(stdout, cmd, synopsis, sets, nsets);
             rc = OB_CLI_HELP;
         } else if (c == 1) {
-            if (np >= npos_max) {
-                ob_error("%s: unexpected argument '%s' (options are --NAME VALUE)", cmd, optarg);
-                rc = OB_CLI_ERROR;
-            } else {
-                pos[np++] = optarg;
-            }
+            rc = take_operand(cmd, optarg, 0, npos_max, pos, &np);
         } else if (c == ':') {
             written(argv[optind - 1], buf, sizeof buf);
             ob_error("%s: missing value", buf);
@@ -178,11 +209,19 @@ int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int ar
                 report_unknown(cmd, buf, &x);
             rc = OB_CLI_ERROR;
         } else {
-            rc = apply_one(sets, &x, c);
+            rc = apply_one(sets, &x, c, argv);
         }
     }
+    /* getopt_long stops at the first '--': what follows is all operands */
+    for (int i = optind; rc == OB_CLI_OK && i < argc; i++)
+        rc = take_operand(cmd, argv[i], 1, npos_max, pos, &np);
     free_index(&x);
     if (npos)
         *npos = np;
     return rc;
+}
+
+int ob_cli_no_options(const char *synopsis, int argc, char **argv)
+{
+    return ob_cli_parse(synopsis, NULL, 0, argc, argv, 0, NULL, NULL);
 }

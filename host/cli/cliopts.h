@@ -8,8 +8,8 @@
  * the function that applies its options to that table's context.  The parser
  * owns the rules every command shares: an unknown option, a missing value,
  * an option given twice (unless the table says it repeats) and a stray
- * argument are errors that name the option; --help (or -h) prints the
- * tables to stdout.
+ * argument (before or after '--') are errors that name the option or the
+ * argument; --help (or -h) prints the tables to stdout.
  */
 #ifndef OB_CLIOPTS_H
 #define OB_CLIOPTS_H
@@ -51,15 +51,27 @@ enum { OB_CLI_OK = 0, OB_CLI_HELP = 1, OB_CLI_ERROR = 2 };
 /* Purpose: parse argv[1..argc-1] (argv[0]: the command's name) against the
  *          flag tables, applying each option in command-line order.
  * Inputs:  synopsis: what --help prints after "usage: ./offbench CMD ";
- *          npos_max: how many positional arguments the command takes (they
- *          may come before, between or after the options); pos receives
- *          them (may be NULL when npos_max is 0).
+ *          npos_max: how many positional arguments (operands) the command
+ *          takes (they may come before, between or after the options, and
+ *          every argument after the first '--' is one, even one that looks
+ *          like an option or is '--'); pos receives them (may be NULL when
+ *          npos_max is 0).  One operand more is an error naming it: nothing
+ *          on the command line is ever ignored.  An option's value given as
+ *          the next word may not be '--' or begin with '--' (--name=VALUE
+ *          may).
  * Outputs: *npos: the positional arguments found (may be NULL).
  * Returns: OB_CLI_OK; OB_CLI_HELP after printing the help to stdout (the
  *          command then exits 0); OB_CLI_ERROR after ob_error() naming the
  *          option or argument (exit 2), or when an apply function failed. */
 int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int argc, char **argv, int npos_max,
                  char **pos, int *npos);
+
+/* Purpose: parse the arguments of a command that takes neither options nor
+ *          operands (list methods, --version): --help, '--' and the refusal
+ *          of anything else are the shared parser's.
+ * Inputs:  synopsis as for ob_cli_parse; argv[0] the command's name.
+ * Returns: as ob_cli_parse. */
+int ob_cli_no_options(const char *synopsis, int argc, char **argv);
 
 /* An ob_flag_apply for a directory (ctx: a const char **): refuses an empty
  * name. */

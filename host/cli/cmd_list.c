@@ -186,9 +186,16 @@ static int list_curves(int argc, char **argv)
     return fflush(stdout) == 0 ? 0 : 1;
 }
 
+/* list SUBJECT [its options]: the subject is list's operand, so "list --
+ * SUBJECT ..." is "list SUBJECT -- ...": what follows is all operands, which
+ * the subject's parser refuses (a subject takes none). */
 int ob_cmd_list(int argc, char **argv)
 {
-    if (argc < 2) {
+    if (argc > 2 && strcmp(argv[1], "--") == 0) {
+        argv[1] = argv[2];
+        argv[2] = (char *)"--";
+    }
+    if (argc < 2 || strcmp(argv[1], "--") == 0) {
         ob_error("list: what? methods, metrics, curves, columns or devices");
         return 2;
     }
@@ -201,12 +208,25 @@ int ob_cmd_list(int argc, char **argv)
              "  devices   the OpenCL devices found");
         return 0;
     }
+    /* the parser's messages and help name the command as "list SUBJECT" */
+    static const char *const named[][2] = {{"curves", "list curves"},   {"methods", "list methods"},
+                                           {"metrics", "list metrics"}, {"columns", "list columns"},
+                                           {"devices", "list devices"}};
+    for (size_t i = 0; i < sizeof named / sizeof named[0]; i++)
+        if (strcmp(argv[1], named[i][0]) == 0)
+            argv[1] = (char *)named[i][1];
+    if (strcmp(argv[1], "list curves") == 0)
+        return list_curves(argc, argv);
+    if (strncmp(argv[1], "list ", 5) == 0) {
+        const int prc = ob_cli_no_options("(no options)", argc - 1, argv + 1);
+        if (prc != OB_CLI_OK)
+            return prc == OB_CLI_HELP ? 0 : 2;
+        argv[1] += 5;
+    }
     if (strcmp(argv[1], "methods") == 0)
         return list_methods();
     if (strcmp(argv[1], "metrics") == 0)
         return list_metrics();
-    if (strcmp(argv[1], "curves") == 0)
-        return list_curves(argc, argv);
     if (strcmp(argv[1], "columns") == 0)
         return list_columns();
     if (strcmp(argv[1], "devices") == 0) {

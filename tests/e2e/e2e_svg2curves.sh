@@ -15,7 +15,7 @@ CONV=$ROOT/scripts/svg2curves.py
 CHECK=$ROOT/tests/e2e/svgcheck.py
 HAND=$ROOT/tests/data/svg/hand.svg
 
-NCHECKS=53
+NCHECKS=82
 if ! "$PY" -c 'import svgelements' >/dev/null 2>&1; then
     echo "e2e_svg2curves: $PY cannot import svgelements (apt-get install python3-svgelements): skipped"
     echo "0 passed, 0 failed, $NCHECKS skipped"
@@ -183,6 +183,59 @@ conv "$T/empty.svg" --d 1 2>"$T/e5" >/dev/null
 check '[ $? -eq 2 ] && grep -q "no curve to write" "$T/e5" && grep -q "unsupported element (text)" "$T/e5"' "no paths: exit 2"
 conv "$T/mix.svg" --d 1 --prefix "a b" 2>"$T/e6" >/dev/null
 check '[ $? -eq 2 ] && grep -q -- "--prefix" "$T/e6"' "a bad --prefix refused"
+
+# --- hostile files: each exits 2 with "FILE: what is wrong", no traceback, nothing written ---
+# hostile NAME TEXT: converts $T/h/NAME (already written), expects exit 2 and
+# "svg2curves: $T/h/NAME: ...TEXT" on stderr
+mkdir -p "$T/h"
+hostile() {
+    conv "$T/h/$1" --d 1 --out "$T/h/out.curves" >/dev/null 2>"$T/h/err"; rc=$? pat="svg2curves: $T/h/$1: " txt=$2
+    check '[ $rc -eq 2 ] && grep -qF -- "$pat" "$T/h/err" && grep -qF -- "$txt" "$T/h/err" && no_trace "$T/h/err" &&
+           [ ! -e "$T/h/out.curves" ]' "$1: exit 2, '$txt' (rc $rc): $(head -c 400 "$T/h/err")"
+    rm -f "$T/h/out.curves"
+}
+SVG='<svg xmlns="http://www.w3.org/2000/svg">'
+OKP='<path id="ok" d="M 0 0 L 10 0"/>'   # a good path beside the bad: nothing may be lost silently
+printf 'hello world\n' > "$T/h/notxml.svg";               hostile notxml.svg "not well-formed XML"
+printf '%s<path d="M 0 0 L 1 1"/>' "$SVG" > "$T/h/trunc.svg"; hostile trunc.svg "not well-formed XML"
+printf '%s<path d="M 0 0 L 1 1"' "$SVG" > "$T/h/trunc2.svg";  hostile trunc2.svg "not well-formed XML"
+: > "$T/h/empty.svg";                                     hostile empty.svg "empty file"
+printf ' \n\t\n' > "$T/h/blank.svg";                      hostile blank.svg "empty file"
+printf '%s\377\376<path d="M 0 0 L 1 1"/></svg>' "$SVG" > "$T/h/bytes.svg"; hostile bytes.svg "not well-formed XML"
+printf '%s<path id="p\351" d="M 0 0 L 1 1"/></svg>' "$SVG" > "$T/h/latin.svg"; hostile latin.svg "not well-formed XML"
+printf '<?xml version="1.0" encoding="bogus"?>%s%s</svg>' "$SVG" "$OKP" > "$T/h/enc.svg"; hostile enc.svg "bogus"
+printf '<html><body/></html>' > "$T/h/html.svg";          hostile html.svg "not an SVG document"
+printf '%s%s<path id="p" d="M 0 0 L 1x 1e 2"/></svg>' "$SVG" "$OKP" > "$T/h/num.svg"
+hostile num.svg '<path id="p">: attribute d: at character 10 ('"'x 1e 2'"'): expected a number (argument 2 of '"'L'"')'
+printf '%s%s<path id="p" d="M 0 0 L 1 1 X 3 4 L 5 5"/></svg>' "$SVG" "$OKP" > "$T/h/cmd.svg"
+hostile cmd.svg "<path id=\"p\">: attribute d: at character 13 ('X 3 4 L 5 5'): 'X' is not a path command"
+printf '%s%s<path d="L 1 1"/></svg>' "$SVG" "$OKP" > "$T/h/nomove.svg"; hostile nomove.svg "<path> number 2 of the file: attribute d: at character 1"
+printf '%s%s<path id="p" d="M 0 0 C 1 2 3 4 5"/></svg>' "$SVG" "$OKP" > "$T/h/short.svg"; hostile short.svg "at the end: expected a number (argument 6 of 'C')"
+printf '%s%s<path id="p" d="M 0 0 A 5 5 0 2 1 9 9"/></svg>' "$SVG" "$OKP" > "$T/h/flag.svg"; hostile flag.svg "expected an arc flag 0 or 1"
+printf '%s%s<path id="p" d="M 0 0 L 1e400 1"/></svg>' "$SVG" "$OKP" > "$T/h/inf.svg"; hostile inf.svg "the number 1e400 is out of range"
+printf '%s%s<path id="p" d="M 0 0 A 1e999 5 0 0 1 9 9"/></svg>' "$SVG" "$OKP" > "$T/h/infarc.svg"; hostile infarc.svg "out of range"
+printf '%s<path id="p" d="M 0 0 L 1e300 1"/></svg>' "$SVG" > "$T/h/huge.svg"; hostile huge.svg "beyond +-1e12"
+printf '%s<g transform="rotate(abc)">%s</g></svg>' "$SVG" "$OKP" > "$T/h/tr.svg"; hostile tr.svg "<g> number 1 of the file: attribute transform"
+printf '%s<path transform="scale(1e999)" d="M 0 0 L 1 1"/></svg>' "$SVG" > "$T/h/trbig.svg"; hostile trbig.svg "out of range"
+printf '%s%s<polyline id="q" points="0 0 10 10 20"/></svg>' "$SVG" "$OKP" > "$T/h/odd.svg"; hostile odd.svg "an odd number of coordinates (5)"
+printf '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 0 0">%s</svg>' "$OKP" > "$T/h/vb0.svg"; hostile vb0.svg "attribute viewBox: width and height must be positive"
+printf '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10">%s</svg>' "$OKP" > "$T/h/vb3.svg"; hostile vb3.svg "expected 4 numbers"
+printf '%s<path id="z" d="M 5 5 A 0 0 0 0 1 5 5"/></svg>' "$SVG" > "$T/h/arc0.svg"; hostile arc0.svg "no curve to write"
+hostile missing.svg "not a readable file"
+mkdir -p "$T/h/dir.svg";                                   hostile dir.svg "not a readable file"
+nm=$(printf 'n\377.svg'); printf '%s<path d="M 0 0 L 1x"/></svg>' "$SVG" > "$T/h/$nm"; hostile "$nm" "attribute d"
+# an arc with a zero radius to another point is a line (SVG 1.1, F.6.2), not an error
+printf '%s<path id="r0" d="M 0 0 A 0 5 0 0 1 10 0"/></svg>' "$SVG" > "$T/h/arcline.svg"
+conv "$T/h/arcline.svg" --d 1 --out "$T/h/arcline.curves" 2>"$T/h/err"
+check '[ $? -eq 0 ] && no_trace "$T/h/err" && grep -q "^  bezier 1" "$T/h/arcline.curves"' "an arc of radius 0: a line, exit 0: $(cat "$T/h/err")"
+# nesting deeper than Python's recursion limit: no traceback either way
+"$PY" -c 'print("<svg xmlns=\"http://www.w3.org/2000/svg\">" + "<g>" * 5000 + "<path d=\"M 0 0 L 1 1\"/>" + "</g>" * 5000 + "</svg>")' > "$T/h/deep.svg"
+conv "$T/h/deep.svg" --d 1 --out "$T/h/deep.curves" >/dev/null 2>"$T/h/err"; rc=$?
+check '{ [ $rc -eq 0 ] || { [ $rc -eq 2 ] && grep -q "deep.svg: " "$T/h/err"; }; } && no_trace "$T/h/err"' "5000 nested groups: no traceback (rc $rc): $(head -c 300 "$T/h/err")"
+# a well-formed file still converts with the syntax checked (commas, implied commands, packed flags)
+printf '%s<path id="w" d="M0,0 10,0,L10,10a5 5 0 0010 10 z" transform="translate(1) rotate(30 0 0),scale(2)"/><polygon id="g" points="0,0 5,0 5 5"/></svg>' "$SVG" > "$T/h/good.svg"
+conv "$T/h/good.svg" --d 1 --out "$T/h/good.curves" 2>"$T/h/err"
+check '[ $? -eq 0 ] && [ "$(ids "$T/h/good.curves")" = "w g " ]' "well-formed compact syntax converts: $(cat "$T/h/err")"
 
 # --- (2) a drawing made by hand ---
 conv "$HAND" --d 1,-0.5 --out "$T/hand.curves" 2>"$T/hand.err"
