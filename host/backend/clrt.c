@@ -9,6 +9,7 @@
 #include "host/diag.h"
 #include "host/backend/clrt.h"
 #include "host/backend/clcache.h"
+#include "host/backend/kernsrc.h"
 #include "host/run/shard.h"
 
 #include <dlfcn.h>
@@ -66,6 +67,7 @@ const char *ob_cl_platform(const ob_cl *cl) { (void)cl; return ""; }
 const char *ob_cl_device(const ob_cl *cl) { (void)cl; return ""; }
 const char *ob_cl_driver(const ob_cl *cl) { (void)cl; return ""; }
 const char *ob_cl_source(const ob_cl *cl) { (void)cl; return ""; }
+uint64_t ob_cl_kernel_hash(const ob_cl *cl) { (void)cl; return 0; }
 const char *ob_cl_cache_status(const ob_cl *cl) { (void)cl; return ""; }
 int ob_cl_is_gpu(const ob_cl *cl) { (void)cl; return 0; }
 double ob_cl_build_seconds(const ob_cl *cl) { (void)cl; return 0.0; }
@@ -194,6 +196,7 @@ struct ob_cl {
     ob_cl_layout layout;
     size_t group;        /* work-items per group of kg */
     char platform[256], device[256], driver[128], source[512];
+    uint64_t kernel_hash; /* of the text built (kernsrc.h) */
     double build_s;
     char cache[600];     /* what the binary cache did (clcache.h) */
     int gpu;             /* CL_DEVICE_TYPE_GPU or _ACCELERATOR */
@@ -215,6 +218,7 @@ const char *ob_cl_platform(const ob_cl *c) { return c ? c->platform : ""; }
 const char *ob_cl_device(const ob_cl *c) { return c ? c->device : ""; }
 const char *ob_cl_driver(const ob_cl *c) { return c ? c->driver : ""; }
 const char *ob_cl_source(const ob_cl *c) { return c ? c->source : ""; }
+uint64_t ob_cl_kernel_hash(const ob_cl *c) { return c ? c->kernel_hash : 0; }
 const char *ob_cl_cache_status(const ob_cl *c) { return c ? c->cache : ""; }
 int ob_cl_is_gpu(const ob_cl *c) { return c ? c->gpu : 0; }
 double ob_cl_build_seconds(const ob_cl *c) { return c ? c->build_s : 0.0; }
@@ -225,91 +229,6 @@ void ob_cl_set_layout(ob_cl *c, ob_cl_layout layout)
 }
 ob_cl_layout ob_cl_get_layout(const ob_cl *c) { return c ? c->layout : OB_CL_GROUPS; }
 int ob_cl_group_size(const ob_cl *c) { return c ? (int)c->group : 0; }
-
-struct ob_embedded_file {
-    const char *name;
-    const char *text;
-};
-extern const struct ob_embedded_file ob_embedded_kernels[];
-
-static char *read_file(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = NULL;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        long n = ftell(f);
-        if (n >= 0 && n < (1L << 24) && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n + 1))) {
-            if (fread(buf, 1, (size_t)n, f) != (size_t)n) {
-                free(buf);
-                buf = NULL;
-            } else {
-                buf[n] = '\0';
-            }
-        }
-    }
-    fclose(f);
-    return buf;
-}
-
-static int is_dir(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
-}
-
-/* The kernel text: metric_core.h then measure.cl, from the first kernels
- * directory found, else the copies compiled in. */
-static char *kernel_source(char *where, size_t wlen)
-{
-    char dir[4096] = "";
-    const char *env = getenv("OFFBENCH_KERNELS");
-    if (env && *env)
-        snprintf(dir, sizeof dir, "%s", env);
-    else if (is_dir("kernels"))
-        snprintf(dir, sizeof dir, "kernels");
-    else {
-        ssize_t n = readlink("/proc/self/exe", dir, sizeof dir - 16);
-        dir[n > 0 ? n : 0] = '\0';
-        char *slash = strrchr(dir, '/');
-        if (slash)
-            strcpy(slash + 1, "kernels");
-        if (!is_dir(dir))
-            dir[0] = '\0';
-    }
-    char *core = NULL, *body = NULL;
-    if (dir[0]) {
-        char p1[4200], p2[4200];
-        snprintf(p1, sizeof p1, "%s/metric_core.h", dir);
-        snprintf(p2, sizeof p2, "%s/measure.cl", dir);
-        core = read_file(p1);
-        body = read_file(p2);
-        /* a long path is cut: it only names the source in meta.json */
-        const size_t n = strlen(dir) < wlen ? strlen(dir) : wlen - 1;
-        memcpy(where, dir, n);
-        where[n] = '\0';
-    }
-    if (!core || !body) {
-        free(core);
-        free(body);
-        core = body = NULL;
-        for (int i = 0; ob_embedded_kernels[i].name; i++) {
-            const char *nm = ob_embedded_kernels[i].name;
-            if (strstr(nm, "metric_core.h"))
-                core = strdup(ob_embedded_kernels[i].text);
-            else if (strstr(nm, "measure.cl"))
-                body = strdup(ob_embedded_kernels[i].text);
-        }
-        snprintf(where, wlen, "embedded copy of kernels/");
-    }
-    char *src = NULL;
-    if (core && body && (src = malloc(strlen(core) + strlen(body) + 2)))
-        sprintf(src, "%s\n%s", core, body);
-    free(core);
-    free(body);
-    return src;
-}
 
 static int has_fp64(cl_device_id dev)
 {
@@ -517,11 +436,13 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
     /* profiling: the kernel's own time (ob_cl_wait), not the host's wait */
     c->q = cl.clCreateCommandQueue(c->ctx, dev, CL_QUEUE_PROFILING_ENABLE, &e);
     CL_CHECK(e);
-    src = kernel_source(c->source, sizeof c->source);
+    src = ob_kernel_source(c->source, sizeof c->source);
     if (!src) {
-        ob_fail(err, "cannot read the kernel sources (kernels/metric_core.h, kernels/measure.cl)");
+        ob_fail(err, "cannot read the kernel sources metric_core.h and measure.cl in $OFFBENCH_KERNELS (%.300s)",
+                c->source);
         goto fail;
     }
+    c->kernel_hash = ob_kernel_hash(src);
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (build_program(c, dev, src, err) != 0)

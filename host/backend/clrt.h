@@ -10,6 +10,7 @@
 #define OB_CLRT_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "methods/driver/driver.h"
@@ -27,9 +28,8 @@ int ob_cl_loader_status(char *msg, size_t len);
 /* Purpose: open the first OpenCL device that supports double precision and
  *          whose "PLATFORM DEVICE" name contains device_substr (NULL: any),
  *          a GPU or an accelerator only when gpu_only is nonzero,
- *          load kernels/measure.cl with kernels/metric_core.h prepended (from
- *          $OFFBENCH_KERNELS, ./kernels, kernels/ beside the program, or the
- *          copy compiled in) and build it.
+ *          load kernels/measure.cl with kernels/metric_core.h prepended (the
+ *          copy compiled in, or $OFFBENCH_KERNELS: kernsrc.h) and build it.
  * Errors:  returns 0; -1 with the reason in err->msg: no loader, no platform, no
  *          matching device, no fp64, a failing call (named), or the build log
  *          of a failed build. */
@@ -43,6 +43,7 @@ const char *ob_cl_platform(const ob_cl *cl);
 const char *ob_cl_device(const ob_cl *cl);
 const char *ob_cl_driver(const ob_cl *cl);
 const char *ob_cl_source(const ob_cl *cl);   /* where the kernel text came from */
+uint64_t ob_cl_kernel_hash(const ob_cl *cl); /* FNV-1a of that text (kernsrc.h) */
 double ob_cl_build_seconds(const ob_cl *cl);
 /* What the program binary cache did at open (clcache.h): "hit: FILE",
  * "miss: WHY; built and stored" (or why it was not stored), or "off (WHY)". */

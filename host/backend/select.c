@@ -3,6 +3,7 @@
  */
 #include <stdio.h>
 
+#include "host/backend/kernsrc.h"
 #include "host/backend/select.h"
 #include "host/diag.h"
 
@@ -14,6 +15,7 @@
  * cpu never tries.  The kernel is built here, once, before any timed work. */
 int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_cl **cl)
 {
+    b->kernel_hash = ob_embedded_kernel_hash();
     if (kind == OB_BACKEND_CPU) {
         snprintf(b->why_cpu, sizeof b->why_cpu, "--backend cpu");
         return 0;
@@ -39,6 +41,7 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     snprintf(b->device, sizeof b->device, "%s", ob_cl_device(*cl));
     snprintf(b->driver, sizeof b->driver, "%s", ob_cl_driver(*cl));
     snprintf(b->kernels, sizeof b->kernels, "%s", ob_cl_source(*cl));
+    b->kernel_hash = ob_cl_kernel_hash(*cl);
     b->build_seconds = ob_cl_build_seconds(*cl);
     snprintf(b->cache, sizeof b->cache, "%s", ob_cl_cache_status(*cl));
     snprintf(b->layout, sizeof b->layout, "%s", ob_cl_layout_name(ob_cl_get_layout(*cl)));

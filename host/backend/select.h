@@ -15,6 +15,8 @@ typedef enum { OB_BACKEND_AUTO = 0, OB_BACKEND_OPENCL, OB_BACKEND_CPU } ob_backe
 typedef struct {
     int opencl;                  /* 0: the CPU reference path */
     char platform[256], device[256], driver[128], kernels[512];
+    uint64_t kernel_hash;        /* of the kernel text: the one built, or the
+                                    compiled-in one on the CPU (kernsrc.h) */
     char layout[16];             /* the kernel's layout: groups or items (clrt.h) */
     int group_size;              /* work-items per record in the group layout */
     int gpu;                     /* the device is a GPU or an accelerator */

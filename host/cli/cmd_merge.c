@@ -291,7 +291,7 @@ static int load_shard(shard_in *s, const char *dir)
 /* What every shard of one run has in common. */
 static int check_same(const shard_in *a, const shard_in *b)
 {
-    static const char *const keys[] = {"plan_hash", "plan_seed", "jobs_total", "git_commit", "compiler", "cflags", "reps"};
+    static const char *const keys[] = {"data_hash", "kernel_fnv1a", "plan_hash", "plan_seed", "jobs_total", "git_commit", "compiler", "cflags", "reps"};
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
         if (!ob_json_same(ob_json_get(&a->meta, keys[k]), ob_json_get(&b->meta, keys[k]))) {
             ob_error("merge: %s and %s are not shards of one run: %s %s vs %s", a->dir, b->dir, keys[k],

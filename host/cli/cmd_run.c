@@ -84,7 +84,8 @@ static int plan_run(run_cmd *r)
         ob_error("no jobs: the selected curves have no offsets");
         return 2;
     }
-    char *fp = ob_run_fingerprint(o, r->where);
+    r->rec.data_hash = ob_curves_hash(o, &r->set);
+    char *fp = ob_run_fingerprint(o, r->where, r->rec.data_hash);
     if (!fp) {
         ob_error("out of memory");
         return 1;
@@ -93,7 +94,6 @@ static int plan_run(run_cmd *r)
     r->rec.plan_hash = ob_plan_hash(r->jobs, r->njobs, fp);
     r->rec.plan_seed = ob_plan_seed(fp);
     free(fp);
-    r->rec.data_hash = ob_curves_hash(o, &r->set);
     if (r->ranks > 1 && !ob_mpi_all_equal(r->rec.plan_hash)) {
         ob_error("rank %d: the ranks were started with other arguments or data (plan hash differs)", ob_mpi_rank());
         return 2;

@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 struct ob_embedded_file {
@@ -15,35 +14,14 @@ struct ob_embedded_file {
 };
 extern const struct ob_embedded_file ob_embedded_files[];
 
-static int is_dir(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
-}
-
 int ob_load_default_curves(ob_curveset *set, char *where, size_t wlen, ob_err *err)
 {
-    char dir[4096];
+    /* no ./datasets, no datasets/ beside the program: a run started beside
+     * another checkout would silently use other curves (issue 36) */
     const char *env = getenv("OFFBENCH_DATA");
     if (env && *env) {
         snprintf(where, wlen, "%s", env);
         return ob_curves_load_dir(env, set, err);
-    }
-    if (is_dir("datasets")) {
-        snprintf(where, wlen, "datasets");
-        return ob_curves_load_dir("datasets", set, err);
-    }
-    ssize_t n = readlink("/proc/self/exe", dir, sizeof dir - 16);
-    if (n > 0) {
-        dir[n] = '\0';
-        char *slash = strrchr(dir, '/');
-        if (slash) {
-            strcpy(slash + 1, "datasets");
-            if (is_dir(dir)) {
-                snprintf(where, wlen, "%s", dir);
-                return ob_curves_load_dir(dir, set, err);
-            }
-        }
     }
     snprintf(where, wlen, "embedded copy of datasets/");
     for (int i = 0; ob_embedded_files[i].name; i++) {

@@ -1,9 +1,11 @@
 /*
  * datadir.h - where the default curves come from.
  *
- * In order: the directory in $OFFBENCH_DATA; ./datasets; datasets/ beside the
- * executable; else the copies of the datasets/ curve files compiled into the program
- * (so `./offbench run` works from anywhere).
+ * The directory in $OFFBENCH_DATA when set, else the copies of the datasets/
+ * curve files compiled into the program: a datasets/ directory in the working
+ * directory or beside the program is not read, so the curves do not depend on
+ * where a run starts (issue 36; --curves FILE names other curves, and
+ * meta.json's data_hash tells any two curve sets apart).
  */
 #ifndef OB_DATADIR_H
 #define OB_DATADIR_H

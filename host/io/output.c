@@ -349,6 +349,10 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
         fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
     else
         fprintf(f, "  \"shard\": null,\n");
+    /* the identity of what decides the numbers (README "What a run
+     * directory guarantees"): the curves' content and the kernel text */
+    fprintf(f, "  \"data_hash\": \"%016" PRIx64 "\",\n  \"kernel_fnv1a\": \"%016" PRIx64 "\",\n", rec->data_hash,
+            rec->binfo.kernel_hash);
     fprintf(f, "  \"jobs_total\": %zu,\n  \"plan_hash\": \"%016" PRIx64 "\",\n  \"plan_seed\": \"%016" PRIx64 "\",\n",
             rec->jobs_total, rec->plan_hash, rec->plan_seed);
     fprintf(f, "  \"wall_seconds\": %.3f,\n  \"argv\": [", wall_seconds);

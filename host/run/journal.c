@@ -30,15 +30,18 @@ static double mono_s(void)
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-char *ob_run_fingerprint(const ob_run_opts *o, const char *where)
+char *ob_run_fingerprint(const ob_run_opts *o, const char *where, uint64_t data_hash)
 {
-    size_t cap = 4096, n = 0;
+    size_t cap = 4096 + strlen(where), n = 0; /* the data path and the hash fit */
     char *s = malloc(cap);
     if (!s)
         return NULL;
     n += (size_t)snprintf(s, cap, "samples=%d max_depth=%d max_segments=%d inflections=%d job_timeout=%.17g data=%s",
                           o->driver.samples, o->driver.max_depth, o->driver.max_segments, o->driver.inflections,
                           o->driver.job_timeout_ns, where);
+    /* the curves' content, not just their path: shards or MPI ranks that
+     * loaded other curves under one name get other plan hashes */
+    n += (size_t)snprintf(s + n, cap - n, " data_hash=%016" PRIx64, data_hash);
     for (int m = 0; ob_methods[m]; m++)
         for (int k = 0; k < ob_methods[m]->nparams; k++) {
             char num[40];
@@ -125,6 +128,8 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, cons
     fp_tok(&b, "data", where);
     snprintf(v, sizeof v, "%016" PRIx64, rec->data_hash);
     fp_tok(&b, "data_hash", v);
+    snprintf(v, sizeof v, "%016" PRIx64, rec->binfo.kernel_hash);
+    fp_tok(&b, "kernel_fnv1a", v);
     if (!o->curve_ids) {
         fp_tok(&b, "curves", "all");
     } else {
@@ -203,6 +208,7 @@ static void key_label(const char *key, size_t klen, char *out, size_t len)
         {"job_timeout", "--job-timeout"},
         {"data", "the data source (--curves / --random)"},
         {"data_hash", "the curve data (the content of the loaded curves changed)"},
+        {"kernel_fnv1a", "the kernel text (kernel_fnv1a: $OFFBENCH_KERNELS or the compiled-in copy)"},
         {"curves", "--curve"},
         {"methods", "--methods"},
         {"tols", "--tols"},

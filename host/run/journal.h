@@ -36,8 +36,9 @@ typedef struct {
 
 /* Purpose: the options that decide a run's results, as one line of text
  *          (samples, limits, inflections, job timeout, every method
- *          parameter, the data source); malloc'd, NULL without memory. */
-char *ob_run_fingerprint(const ob_run_opts *o, const char *where);
+ *          parameter, the data source and its content hash); malloc'd, NULL
+ *          without memory. */
+char *ob_run_fingerprint(const ob_run_opts *o, const char *where, uint64_t data_hash);
 
 /* Purpose: everything that decides a resumed run's results and job set, as
  *          one line of " key=value" tokens (values %-escaped): the options
