@@ -252,6 +252,32 @@ static int check_group(const ob_cmp_side *b, const ob_cmp_side *n, const ob_strm
     return 0;
 }
 
+/* The identity keys (README "What a run directory guarantees"): another
+ * kernel text changes the numbers, so kernel_fnv1a must agree; data_hash
+ * covers the selected curves, which two comparable runs may choose
+ * differently (rows are matched by curve), so a difference is a note.  A
+ * key on one side only (a run from before it existed) is a note too. */
+static int check_identity(const ob_cmp_side *b, const ob_cmp_side *n, ob_cmp_result *r)
+{
+    static const char *const keys[] = {"kernel_fnv1a", "data_hash"};
+    int rc = 0;
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        const ob_json_entry *eb = ob_json_get(&b->meta, keys[k]), *en = ob_json_get(&n->meta, keys[k]);
+        if (ob_json_same(eb, en))
+            continue;
+        if (!eb || !en)
+            rc |= ob_strlist_addf(&r->notes, "%s is not recorded in the meta.json of %s: not checked", keys[k],
+                                  eb ? n->label : b->label);
+        else if (k == 0)
+            rc |= ob_strlist_addf(&r->incomparable, "%s %s vs %s (another kernel text: $OFFBENCH_KERNELS)",
+                                  keys[k], shown(eb), shown(en));
+        else
+            rc |= ob_strlist_addf(&r->notes, "%s %s vs %s: the curve sets differ (another selection or content)",
+                                  keys[k], shown(eb), shown(en));
+    }
+    return rc;
+}
+
 /* metric and split: the runs must share a value of each.  cols: the
  * distinct values of each side (distinct()). */
 static int check_values(const ob_cmp_side *b, const ob_cmp_side *n, ob_strmap cols[2][NCOLS], ob_cmp_result *r)
@@ -290,6 +316,7 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
         }
         rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_params", r);
         rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_versions", r);
+        rc |= check_identity(b, n, r);
         for (size_t k = 0; k < sizeof timing / sizeof timing[0]; k++) {
             const ob_json_entry *eb = ob_json_get(&b->meta, timing[k]), *en = ob_json_get(&n->meta, timing[k]);
             if (!ob_json_same(eb, en))
