@@ -10,6 +10,7 @@
 #include "host/cli/commands.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
+#include "host/run/signals.h"
 #include "host/run/stack.h"
 #include "host/san_options.h"
 
@@ -103,7 +104,10 @@ int main(int argc, char **argv)
         ob_error("MPI could not start");
         return 1;
     }
-    const int rc = dispatch(argc, argv);
+    /* one handler for every command: each long loop polls the flag, and a
+     * stopped command ends with 128 + the signal (signals.h) */
+    ob_signals_install();
+    const int rc = ob_stop_status(dispatch(argc, argv));
     ob_mpi_finalize();
     return rc;
 }

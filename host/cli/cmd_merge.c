@@ -41,6 +41,7 @@
 #include "host/io/output.h"
 #include "host/io/results_csv.h"
 #include "host/run/shard.h"
+#include "host/run/signals.h"
 #include "host/io/slurp.h"
 
 typedef struct {
@@ -512,7 +513,7 @@ int ob_cmd_merge(int argc, char **argv)
     if (!sh)
         goto done;
     for (int i = 0; i < nin; i++)
-        if (load_shard(&sh[i], in[i]) != 0)
+        if (ob_stop_signal() || load_shard(&sh[i], in[i]) != 0)
             goto done;
     for (int i = 1; i < nin; i++)
         if (check_same(&sh[0], &sh[i]) != 0)
@@ -541,10 +542,12 @@ int ob_cmd_merge(int argc, char **argv)
     if (sh[0].smp_text)
         set[nset++] = (ob_out_file){"samples.csv", write_samples_cb, &m};
     set[nset++] = (ob_out_file){"results.csv", write_results_cb, &m};
-    status = ob_write_set_atomically(out, set, nset) == 0 ? 0 : 1;
+    status = ob_stop_signal() || ob_write_set_atomically(out, set, nset) != 0 ? 1 : 0;
     if (status == 0)
         ob_info("merged %d shards, %zu jobs, into %s/results.csv", nin, total, out);
 done:
+    if (ob_stop_signal() && status != 0)  /* the set is written whole or not at all */
+        status = ob_stop_exit("merge: nothing written to %s; run the command again", out);
     if (lock_fd >= 0)
         close(lock_fd);  /* the lock goes with it */
     for (int i = 0; sh && i < nin; i++)

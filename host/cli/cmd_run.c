@@ -26,6 +26,7 @@
 #include "host/run/mpirun.h"
 #include "host/run/plan.h"
 #include "host/run/shard.h"
+#include "host/run/signals.h"
 
 enum { GO_ON = -1 };
 
@@ -163,13 +164,10 @@ static int unfinished(run_cmd *r, int drc)
     const ob_run_opts *o = &r->o;
     ob_journal_close(&r->journal, 0);  /* the journal keeps the finished jobs' rows */
     if (drc == 1) {
-        const int sig = ob_stop_signal();
         if (o->reps > 0)
-            ob_error("interrupted by signal %d: nothing written (a run with --reps cannot be resumed)", sig);
-        else
-            ob_error("interrupted by signal %d: the finished jobs' rows are in %s; run the same command with "
-                     "--resume %s to finish", sig, r->journal.path, o->out_dir);
-        return 128 + sig;
+            return ob_stop_exit("nothing written (a run with --reps cannot be resumed)");
+        return ob_stop_exit("the finished jobs' rows are in %s; run the same command with --resume %s to finish",
+                            r->journal.path, o->out_dir);
     }
     /* jobs that never ran are no results: nothing is written */
     if (o->reps > 0)
@@ -185,7 +183,6 @@ static int unfinished(run_cmd *r, int drc)
 static int run_jobs(run_cmd *r)
 {
     const ob_run_opts *o = &r->o;
-    ob_catch_stop_signals();
     ob_run_ctx c = {o, &r->rec, {.stop = ob_stop_flag()}};
     ob_backend_hooks(r->cl, &r->rec.binfo, &c.hooks);
     c.hooks.spans = r->spans;

@@ -23,6 +23,7 @@
 #include "host/cli/cliopts.h"
 #include "host/diag.h"
 #include "host/run/progress.h"
+#include "host/run/signals.h"
 #include "host/tables/published.h"
 #include "host/tables/tables.h"
 
@@ -321,6 +322,8 @@ static int run_slots(ob_tab_plan *pl, const ob_run_opts *o, const ob_driver_hook
             pl->slots[idx[k]].job = jobs[k];
             pl->slots[idx[k]].job.params = keep;
         }
+        if (drc == 1)
+            break;  /* a signal: the caller says so */
         if (drc != 0) {
             ob_error("ran out of memory; unfinished jobs are marked fail");
             rc = -1;
@@ -468,7 +471,13 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     clock_gettime(CLOCK_MONOTONIC, &t0);
     ob_driver_hooks hooks = {0};
     ob_backend_hooks(cl, &binfo, &hooks);
+    hooks.stop = ob_stop_flag();
     int rrc = run_slots(&pl, &o, &hooks);
+    if (ob_stop_signal()) {  /* half the jobs are no table: none is written */
+        status = ob_stop_exit("nothing written to %s (a tables.csv or tables.md there is an earlier run's); "
+                              "run the command again", o.out_dir);
+        goto done;
+    }
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
     ob_tab_out out = {&pl, &pub, where, &o, wall};

@@ -12,6 +12,7 @@
 #include "host/diag.h"
 #include "host/io/numfmt.h"
 #include "host/io/outfile.h"
+#include "host/run/signals.h"
 
 void ob_export_stem(char *buf, size_t len, const ob_job *j)
 {
@@ -183,7 +184,8 @@ int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job
         return 1;
     }
     /* jobs in parallel (each writes its own files; methods keep no state,
-     * as in the driver); the first failure stops the rest */
+     * as in the driver); the first failure, or a signal, stops the rest: a
+     * job started finishes its files (each is renamed into place whole) */
     long done = 0;
     int failed = 0;
     const int samples = ob_clamp_samples(o->driver.samples);
@@ -192,7 +194,7 @@ int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job
         int stop;
 #pragma omp atomic read
         stop = failed;
-        if (stop || (jobs[i].status != OB_OK && jobs[i].status != OB_LIMIT))
+        if (stop || ob_stop_signal() || (jobs[i].status != OB_OK && jobs[i].status != OB_LIMIT))
             continue;
         if (ob_export_job(o->export_dir, &jobs[i], samples, &logs[i]) != 0) {
 #pragma omp atomic write
@@ -200,6 +202,10 @@ int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job
         }
         done++;
     }
+    if (ob_stop_signal() && !failed)
+        return ob_stop_exit("--export interrupted after %ld of %zu jobs: %s holds those jobs' files and no "
+                            "index.csv (results.csv is complete); run the command again to export them all",
+                            done, njobs, o->export_dir);
     if (failed || write_index(o->export_dir, jobs, njobs) != 0)
         return 1;
     ob_info("exported %ld approximations of %zu jobs to %s", done, njobs, o->export_dir);

@@ -1,9 +1,8 @@
 /*
  * modes.c - the ways a run runs its jobs: once, journaled (resumable), with
- * timed repetitions; and the signals that stop it (see modes.h).
+ * timed repetitions (see modes.h).
  */
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -13,36 +12,6 @@
 #include "host/run/progress.h"
 #include "host/run/shard.h"
 #include "host/run/spread.h"
-
-/* SIGINT / SIGTERM: the driver stops at the next batch; a second signal
- * acts as usual (SA_RESETHAND). */
-static volatile sig_atomic_t stop_signal = 0;
-
-static void on_stop_signal(int sig)
-{
-    stop_signal = sig;
-}
-
-void ob_catch_stop_signals(void)
-{
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_stop_signal;
-    sa.sa_flags = SA_RESETHAND | SA_RESTART;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-}
-
-const volatile sig_atomic_t *ob_stop_flag(void) { return &stop_signal; }
-
-int ob_stop_signal(void) { return (int)stop_signal; }
-
-void ob_note_stop(int sig)
-{
-    if (!stop_signal)
-        stop_signal = sig;
-}
 
 static double now_s(void)
 {

@@ -1,8 +1,9 @@
 /*
  * modes.h - the ways a run runs its jobs through the driver: once (with its
  * progress bar), journaled (rows saved as jobs finish; --resume restores
- * them), and with --reps timed repetitions after a warm-up; and the signals
- * (SIGINT, SIGTERM) that stop a run between batches.
+ * them), and with --reps timed repetitions after a warm-up.  SIGINT and
+ * SIGTERM stop a run between batches (the driver reads ob_stop_flag(),
+ * signals.h).
  *
  * Every mode returns the driver's status: 0; -1 out of memory; 1 stopped by
  * a signal; ob_run_journaled also 2 when the journal cannot be used (said
@@ -45,14 +46,5 @@ int ob_run_reps(const ob_run_ctx *c, ob_job *jobs, size_t njobs, double *fit, do
  * Outputs: *restored_n: how many jobs were restored; *wall. */
 int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char *where, ob_journal *jr, double *wall,
                      size_t *restored_n);
-
-/* Purpose: from now on SIGINT / SIGTERM stop the run at the next batch (the
- *          driver reads ob_stop_flag()); a second signal acts as usual. */
-void ob_catch_stop_signals(void);
-const volatile sig_atomic_t *ob_stop_flag(void);
-/* The signal that stopped the run, 0 if none. */
-int ob_stop_signal(void);
-/* Records sig as the stop (when none was): another MPI rank was stopped. */
-void ob_note_stop(int sig);
 
 #endif
