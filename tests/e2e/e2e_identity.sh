@@ -4,11 +4,13 @@
 # datasets/ directory in the working directory is not picked up; meta.json
 # records kernel_fnv1a and data_hash; --resume, merge and compare check them.
 . "$(dirname "$0")/lib_e2e.sh"
+# the sources of the checkout (the program may be build-san/offbench)
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 KR="curve d method metric split tol ctrl_points segments out_degree max_err status"
 metakey() { sed -n "s/.*\"$2\": \"\\([0-9a-f]*\\)\".*/\\1/p" "$1/meta.json" | head -n 1; }
 # a kernel copy whose errors are doubled: it changes every max_err
 mkdir -p "$T/wd"
-cp -r "$(dirname "$OB")/kernels" "$T/wd/kernels"
+cp -r "$ROOT/kernels" "$T/wd/kernels"
 sed -i 's/err\[i\] = e;/err[i] = 2.0 * e;/' "$T/wd/kernels/measure.cl"
 check 'grep -q "2.0 \* e" "$T/wd/kernels/measure.cl"' "the test's kernel copy is modified"
 RUN="run --backend opencl --methods cobb --tols 1e-1"
@@ -45,16 +47,16 @@ $OB run --backend cpu --methods cobb --tols 1e-1 --out "$T/cpu" >/dev/null 2>&1
 kp=$(metakey "$T/cpu" kernel_fnv1a); dh=$(metakey "$T/cpu" data_hash)
 check '[ -n "$kp" ] && [ -n "$dh" ]' "the CPU run's meta.json has kernel_fnv1a '$kp' and data_hash '$dh'"
 # a datasets/ in the working directory is not picked up either
-cp -r "$(dirname "$OB")/datasets" "$T/wd/datasets"
+cp -r "$ROOT/datasets" "$T/wd/datasets"
 sed -i 's/^  point  0.3      -2.5$/  point  0.3      -2.4/' "$T/wd/datasets/published.curves"
 (cd "$T/wd" && unset OFFBENCH_DATA && $OB list curves >"$T/wd.lc" 2>&1)
 check 'grep -q "^# curves from embedded" "$T/wd.lc"' "./datasets is not picked up: $(head -n 1 "$T/wd.lc")"
 # merge: shards computed on different curve content are refused
-cp "$(dirname "$OB")/datasets/published.curves" "$T/c.curves"
+cp "$ROOT/datasets/published.curves" "$T/c.curves"
 M="run --backend cpu --methods cobb --tols 1e-1 --curves $T/c.curves"
 $OB $M --shard 0/2 --out "$T/s1" >/dev/null 2>&1
 sed -i 's/^  point  0.3      -2.5$/  point  0.3      -2.4/' "$T/c.curves"
-check '! cmp -s "$T/c.curves" "$(dirname "$OB")/datasets/published.curves"' "the test's curve file is modified"
+check '! cmp -s "$T/c.curves" "$ROOT/datasets/published.curves"' "the test's curve file is modified"
 $OB $M --shard 1/2 --out "$T/s2" >/dev/null 2>&1
 check '[ "$(metakey "$T/s1" data_hash)" != "$(metakey "$T/s2" data_hash)" ]' "the shards' data_hash differ"
 $OB merge "$T/s1" "$T/s2" --out "$T/m" >/dev/null 2>"$T/m.err"
