@@ -43,8 +43,10 @@ mkdir -p "$T/t"
 expect tables 143 "nothing written" "$T/t"
 check "[ ! -e $T/t/tables.csv ]" "tables: tables.csv written by stopped tables"
 
-# run without --export: the driver stops, the journal is kept
-stopped run INT "$T/r3/results.journal.csv" "$OB" $RUN --out "$T/r3"
+# run without --export: the driver stops, the journal is kept (a run long
+# enough, several seconds, that the signal comes while the driver works)
+LONG="run --random 200:3 --methods tiller,cobb,ahn --tols 1e-3,1e-4,1e-5"
+stopped run INT "$T/r3/results.journal.csv" "$OB" $LONG --out "$T/r3"
 expect run 130 "resume" "$T/r3"
 check "[ -e $T/r3/results.journal.csv ]" "run: the journal is gone"
 
