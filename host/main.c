@@ -100,13 +100,15 @@ int main(int argc, char **argv)
      * them would crash one mid-run with SIGSEGV; refuse it before any work */
     if (ob_stack_check() != 0)
         return 2;
+    /* one stop flag for every command: each long loop polls it, and a
+     * stopped command ends with 128 + the signal (signals.h); installed
+     * before MPI, OpenMP or OpenCL start a thread, so that every thread
+     * leaves SIGINT/SIGTERM to the one watcher */
+    ob_signals_install();
     if (ob_mpi_init(&argc, &argv) != 0) {
         ob_error("MPI could not start");
         return 1;
     }
-    /* one handler for every command: each long loop polls the flag, and a
-     * stopped command ends with 128 + the signal (signals.h) */
-    ob_signals_install();
     const int rc = ob_stop_status(dispatch(argc, argv));
     ob_mpi_finalize();
     return rc;

@@ -1,16 +1,21 @@
 /*
- * signals.h - SIGINT and SIGTERM, for every command: one handler (installed
- * once, by main) records the signal in a process-wide flag; every long loop
- * polls it and stops at its next step; the command ends with exit status
- * 128 + the signal and a line saying what it left behind.  A second signal
- * acts as usual (kills), for a loop that does not poll.
+ * signals.h - SIGINT and SIGTERM, for every command: blocked in every
+ * thread and taken by one watcher thread (installed once, by main, before
+ * any other thread), which records the signal in a process-wide flag; every
+ * long loop polls it and stops at its next step; the command ends with
+ * exit status 128 + the signal and a line saying what it left behind.  A
+ * second signal within a second of the first is the same stop (timeout(1)
+ * sends each twice); one after that acts as usual (kills), for a loop that
+ * does not poll.  Children forked after it keep both blocked.
  */
 #ifndef OB_SIGNALS_H
 #define OB_SIGNALS_H
 
 #include <signal.h>
 
-/* Purpose: from now on SIGINT / SIGTERM set the stop flag. */
+/* Purpose: from now on SIGINT / SIGTERM sent to the process set the stop
+ *          flag (a signal raise()d at one thread stays pending: send it with
+ *          kill(getpid(), sig)). */
 void ob_signals_install(void);
 
 /* The flag the driver reads (ob_driver_hooks.stop): the signal, 0 if none. */
