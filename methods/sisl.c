@@ -73,7 +73,7 @@
  * --random 500:7: a degenerate cubic cut down to a piece 7e-7 long) it
  * loops, growing an array by realloc without end (4 GB and counting, inside
  * s1360).  A library call cannot be stopped from outside, so s1360 runs in
- * a server process, one per calling thread, forked on first use: the fit
+ * a server process, one per calling thread, started on first use: the fit
  * sends the segment and the arguments down a pipe and reads the result
  * (status, order, knots, vertices) with a deadline (sisl.timeout seconds of
  * the server's CPU time, default 20, enforced by the kernel through
@@ -88,10 +88,18 @@
  * a server serves depends on the threads and the engine: issue 35 found 6
  * rows of --random 200:7 whose messages changed with the engine that way).  A fork per fit cost 0.6 ms of system time (a 500-curve run
  * spent 2 of its 4 minutes in fork); a round trip costs microseconds.
- * glibc keeps malloc usable in the child of a threaded process; the server
- * calls nothing but SISL, read and write, and closes every descriptor but
- * its two pipe ends so each server sees EOF, and exits, when the program
- * ends.
+ * The server is this program executed afresh (fork, then exec of
+ * /proc/self/exe with the pipe ends in OFFBENCH_SISL_SERVER; a constructor
+ * makes that image serve before main), not a fork that goes on running:
+ * the child of a threaded process inherits every lock another thread held
+ * at the fork, and once a sanitizer's allocator lock left a server waiting
+ * in malloc for ever (its fit failed at the deadline: one row differed, in
+ * about 30 sanitizer runs of the group engine).  Between fork and exec the
+ * child only closes descriptors; the server holds nothing but its two pipe
+ * ends and the standard three, so each server sees EOF, and exits, when
+ * the program ends.  It inherits the blocked SIGINT/SIGTERM
+ * (host/run/signals.c): a terminal's Ctrl-C to the process group does not
+ * end it under its parent, which ends it when it stops.
  *
  * Parameter: max_step, s1360's "maximal step length" amax; 0 (the default)
  * leaves the step to SISL (its manual: the longest side of the curve's
@@ -99,6 +107,7 @@
  * liu2002_ex1 (d 1, tol 1e-3): amax 0, 1, 3, 10 give 49 vertices, 0.5 gives
  * 43, 0.1 gives 85, 1e-4 gives 7375 (so amax <= tol is not ignored).
  */
+#define _GNU_SOURCE /* pipe2 */
 #include "methods/method.h"
 
 #include <errno.h>
@@ -111,6 +120,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -174,13 +184,12 @@ typedef struct {
 #define SERVER_MEMORY_NOTE "its memory, without crashing"
 #endif
 
-/* A server holding this much more data than when it started (a fork
- * starts with the parent's, which can be large) is started afresh. */
+/* A server holding this much more data than when it started is started
+ * afresh. */
 #define SERVER_RESTART_BYTES (256UL << 20)
 
 /* The data the server holds now (VmData: what RLIMIT_DATA counts), bytes;
- * 0 when /proc cannot tell.  Plain open and read: the server is the child
- * of a threaded process. */
+ * 0 when /proc cannot tell. */
 static unsigned long data_bytes(void)
 {
     char buf[256];
@@ -303,39 +312,130 @@ static void server_stop(int sig)
     srv.to = srv.from = -1;
 }
 
+/* The environment variable that makes a process the server: "IN,OUT", the
+ * two pipe ends it inherited (set only in the environment of the image the
+ * fit starts). */
+#define SERVER_ENV "OFFBENCH_SISL_SERVER"
+#define SERVER_ARGV0 "offbench-sisl-server"
+
+/* Runs before main in every program that links this method (offbench and
+ * the tests): the image started by server_start() serves and never
+ * returns; any other process goes on.  Both ends must be pipes. */
+__attribute__((constructor)) static void serve_if_server(void)
+{
+    const char *v = getenv(SERVER_ENV);
+    int in = -1, out = -1;
+    char tail = 0;
+    if (!v || sscanf(v, "%d,%d%c", &in, &out, &tail) != 2)
+        return;
+    struct stat si, so;
+    if (fstat(in, &si) != 0 || fstat(out, &so) != 0 || !S_ISFIFO(si.st_mode) || !S_ISFIFO(so.st_mode))
+        _exit(126);
+    server_loop(in, out);
+}
+
+/* The environment of the server: ours and SERVER_ENV (made before the
+ * fork: the child may only exec).  NULL when out of memory. */
+static char **server_environ(const char *var)
+{
+    extern char **environ;
+    size_t n = 0;
+    while (environ[n])
+        n++;
+    char **env = malloc((n + 2) * sizeof *env);
+    if (!env)
+        return NULL;
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (strncmp(environ[i], SERVER_ENV "=", sizeof SERVER_ENV) != 0)
+            env[k++] = environ[i];
+    env[k++] = (char *)var;
+    env[k] = NULL;
+    return env;
+}
+
+/* Between fork and exec the child of a threaded process may only make
+ * async-signal-safe calls (every lock another thread held at the fork
+ * stays held in the child: a sanitizer's allocator lock once left a
+ * server waiting in malloc for ever): close what is not its own, exec
+ * this program afresh, or report exec's errno on `status` and end. */
+static void exec_server(int keep_in, int keep_out, int status, int maxfd, char *const envp[])
+{
+    for (int fd = 3; fd < maxfd; fd++)
+        if (fd != keep_in && fd != keep_out && fd != status)
+            close(fd);
+    char *const argv[] = {(char *)SERVER_ARGV0, NULL};
+    execve("/proc/self/exe", argv, envp);
+    const int e = errno;
+    ssize_t w = write(status, &e, sizeof e);
+    (void)w;
+    _exit(127);
+}
+
+/* The request, reply and exec-status pipes, close-on-exec; 0, or -1 with
+ * errno (none left open). */
+static int open_pipes(int req[2], int rep[2], int st[2])
+{
+    if (pipe2(req, O_CLOEXEC) != 0)
+        return -1;
+    if (pipe2(rep, O_CLOEXEC) == 0) {
+        if (pipe2(st, O_CLOEXEC) == 0)
+            return 0;
+        const int e = errno;
+        close(rep[0]), close(rep[1]);
+        errno = e;
+    }
+    const int e = errno;
+    close(req[0]), close(req[1]);
+    errno = e;
+    return -1;
+}
+
+/* Purpose: start this thread's server: this program executed afresh (the
+ *          constructor above makes it serve), its two pipe ends named in
+ *          its environment.  Returns 0, or -1 with the reason in msg. */
 static int server_start(char *msg, size_t msglen)
 {
-    int req[2], rep[2];
-    if (pipe(req) != 0) {
+    int req[2], rep[2], st[2];
+    if (open_pipes(req, rep, st) != 0) {
         ob_method_msg(msg, msglen, "cannot start the SISL process: pipe: %s", strerror(errno));
         return -1;
     }
-    if (pipe(rep) != 0) {
-        ob_method_msg(msg, msglen, "cannot start the SISL process: pipe: %s", strerror(errno));
-        close(req[0]);
-        close(req[1]);
-        return -1;
-    }
-    pid_t pid = fork();
-    if (pid < 0) {
-        ob_method_msg(msg, msglen, "cannot start the SISL process: fork: %s", strerror(errno));
-        close(req[0]), close(req[1]), close(rep[0]), close(rep[1]);
-        return -1;
-    }
-    if (pid == 0) {
-        /* keep only our two ends: other servers must see EOF when the parent ends */
-        long maxfd = sysconf(_SC_OPEN_MAX);
-        for (int fd = 3; fd < (maxfd > 0 && maxfd < 65536 ? maxfd : 1024); fd++)
-            if (fd != req[0] && fd != rep[1])
-                close(fd);
-        server_loop(req[0], rep[1]);
-    }
+    /* the server's ends stay open across exec, the rest close */
+    fcntl(req[0], F_SETFD, 0);
+    fcntl(rep[1], F_SETFD, 0);
+    char var[64];
+    snprintf(var, sizeof var, SERVER_ENV "=%d,%d", req[0], rep[1]);
+    char **envp = server_environ(var);
+    const long om = sysconf(_SC_OPEN_MAX);
+    const int maxfd = om > 0 && om < 65536 ? (int)om : 1024;
+    pid_t pid = envp ? fork() : -1;
+    if (pid == 0)
+        exec_server(req[0], rep[1], st[1], maxfd, envp);
+    int why = !envp ? ENOMEM : pid < 0 ? errno : 0;
+    free(envp);
     close(req[0]);
     close(rep[1]);
-    srv.pid = pid;
-    srv.to = req[1];
-    srv.from = rep[0];
-    return 0;
+    close(st[1]);
+    ssize_t got = -1;
+    if (pid > 0)
+        while ((got = read(st[0], &why, sizeof why)) < 0 && errno == EINTR)
+            ;
+    close(st[0]);
+    if (pid > 0 && got == 0) {  /* EOF: the exec closed it, the server runs */
+        srv.pid = pid;
+        srv.to = req[1];
+        srv.from = rep[0];
+        return 0;
+    }
+    close(req[1]);
+    close(rep[0]);
+    if (pid > 0)
+        while (waitpid(pid, NULL, 0) < 0 && errno == EINTR)
+            ;
+    ob_method_msg(msg, msglen, "cannot start the SISL process: %s: %s", pid > 0 ? "exec /proc/self/exe" : "fork",
+                  strerror(got > 0 ? why : pid > 0 ? EIO : why));
+    return -1;
 }
 
 static double now_s(void)

@@ -24,6 +24,7 @@
  *  - the parameter max_step reaches s1360;
  *  - fits made on several OpenMP threads at once equal the serial ones.
  */
+#include <dirent.h>
 #include <fcntl.h>
 #include <math.h>
 #include <sisl.h>
@@ -729,8 +730,82 @@ static void test_load_and_history(void)
     ob_curve_free(&c);
 }
 
+/* The SISL server is a fresh process image, not a fork of the caller that
+ * goes on running the caller's code: a fork of a threaded process inherits
+ * every lock another thread held at that moment (a sanitizer's allocator
+ * lock left one server waiting in malloc forever, and its fit failed after
+ * the deadline: one row of 324 differed, once in ~30 sanitizer runs).  Its
+ * command line is the server's own, and it holds no descriptor but its
+ * two pipe ends and the standard three. */
+static void server_cmdline(pid_t pid, char *buf, size_t len)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/proc/%d/cmdline", (int)pid);
+    buf[0] = 0;
+    FILE *f = fopen(path, "rb");
+    if (f) {
+        size_t n = fread(buf, 1, len - 1, f);
+        buf[n] = 0;
+        fclose(f);
+    }
+}
+
+static int count_fds(pid_t pid)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/proc/%d/fd", (int)pid);
+    DIR *d = opendir(path);
+    int n = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += e->d_name[0] != '.';
+    if (d)
+        closedir(d);
+    return n;
+}
+
+static void test_fresh_server(void)
+{
+    const ob_method *sm = ob_method_find("sisl");
+    double par[OB_MAX_PARAMS];
+    ob_param_defaults(sm, par);
+    ob_bez C = make(3, LIU, NULL);
+    ob_fit f;
+    char msg[160] = "";
+    ob_fit_args a = {1.0, 1e-2, par};
+    CHECK(sm->fit(&C, &a, NULL, &f, msg, sizeof msg) == OB_FIT_OK, "fit: %s", msg);
+    /* this thread's server: the child of this process that the fit started */
+    int found = 0;
+    DIR *d = opendir("/proc");
+    for (struct dirent *e; d && (e = readdir(d));) {
+        const int pid = atoi(e->d_name);
+        char path[64], stat[512];
+        snprintf(path, sizeof path, "/proc/%d/stat", pid);
+        FILE *fs = pid > 0 ? fopen(path, "r") : NULL;
+        if (!fs)
+            continue;
+        size_t n = fread(stat, 1, sizeof stat - 1, fs);
+        fclose(fs);
+        stat[n] = 0;
+        const char *rp = strrchr(stat, ')');
+        int ppid = 0;
+        char state;
+        if (!rp || sscanf(rp + 1, " %c %d", &state, &ppid) != 2 || ppid != (int)getpid())
+            continue;
+        char cmd[256];
+        server_cmdline(pid, cmd, sizeof cmd);
+        found++;
+        CHECK(strcmp(cmd, "offbench-sisl-server") == 0, "the server %d runs its own image: cmdline '%s'", pid, cmd);
+        CHECK(count_fds(pid) == 5, "the server %d holds 5 descriptors (0, 1, 2, its two pipe ends): %d", pid,
+              count_fds(pid));
+    }
+    if (d)
+        closedir(d);
+    CHECK(found == 1, "one server process for this thread: %d", found);
+}
+
 int main(void)
 {
+    test_fresh_server();
     test_load_and_history();
     test_runaway();
     test_structure();
