@@ -133,7 +133,7 @@ soak: $(BIN)
 	@OFFBENCH=$(abspath $(BIN)) SOAK_KILLS=$(SOAK_KILLS) SOAK_RUN="$(SOAK_RUN)" $(if $(SOAK_SEED),SOAK_SEED=$(SOAK_SEED)) SOAK_VERBOSE=1 sh tests/e2e/e2e_soak.sh
 
 run: $(BIN)
-	./$(BIN) run --out out/run
+	./$(BIN) run --out out/run --force
 	@echo "wrote out/run/results.csv and out/run/meta.json"
 
 # The published tables, cell by cell, their plots, and the README section

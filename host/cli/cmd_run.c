@@ -109,7 +109,8 @@ static int plan_run(run_cmd *r)
 }
 
 /* A fresh run owns its directory: the files of an earlier run there go
- * (a journal only with --force: without it the run was refused before). */
+ * (only with --force: without it a finished or interrupted run there was
+ * refused before). */
 static void remove_stale(const char *dir)
 {
     static const char *const names[] = {"results.csv", "meta.json", "samples.csv", "shard.csv",
@@ -143,6 +144,12 @@ static int claim_dir(run_cmd *r)
     if (!o->force && stat(jp, &st) == 0) {
         ob_error("%s holds an interrupted run (%s): finish it with --resume %s, choose another --out, "
                  "or add --force to discard it and start afresh", o->out_dir, jp, o->out_dir);
+        return 2;
+    }
+    snprintf(jp, sizeof jp, "%s/results.csv", o->out_dir);
+    if (!o->force && stat(jp, &st) == 0) {
+        ob_error("%s holds a finished run (%s): choose another --out, or add --force to replace it", o->out_dir,
+                 jp);
         return 2;
     }
     remove_stale(o->out_dir);

@@ -221,7 +221,7 @@ const ob_flag ob_run_flags[] = {
     {"shard", "K/N", "run shard K of N (merge the shards with 'merge')", RO_SHARD, OB_FLAG_ONCE},
     {"out", "DIR", "output directory (default out)", RO_OUT, OB_FLAG_ONCE},
     {"resume", "DIR", "finish the interrupted run in DIR", RO_RESUME, OB_FLAG_ONCE},
-    {"force", NULL, "start afresh over an interrupted run's journal", RO_FORCE, OB_FLAG_ONCE},
+    {"force", NULL, "replace the finished run in --out, or start afresh over an interrupted one's journal (without it both are refused)", RO_FORCE, OB_FLAG_ONCE},
     {"export", "DIR", "each job's approximation as JSON, .curves, DXF and SVG", RO_EXPORT, OB_FLAG_ONCE},
 };
 const int ob_run_nflags = (int)(sizeof ob_run_flags / sizeof ob_run_flags[0]);

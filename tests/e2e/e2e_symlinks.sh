@@ -47,7 +47,7 @@ rm -rf "$T/r"
 $OB run $R --out "$T/r" >/dev/null 2>&1
 plant s "$T/r/results.csv"; v1=$V
 plant h "$T/r/meta.json"; v2=$V
-$OB run $R --out "$T/r" >/dev/null 2>"$T/err"
+$OB run $R --force --out "$T/r" >/dev/null 2>"$T/err"
 check '[ $? -eq 0 ] && intact "$v1" && intact "$v2" && replaced "$T/r/results.csv" && replaced "$T/r/meta.json"' \
     "rerun over links at results.csv and meta.json: $(cat "$T/err")"
 
@@ -88,7 +88,7 @@ for name in $S.json $S.curves $S.dxf $S.svg index.csv $S.json.tmp index.csv.tmp;
     for kind in s h; do
         rm -rf "$T/x"
         plant $kind "$T/x/$name"
-        $OB run $R --out "$T/rx" --export "$T/x" >/dev/null 2>"$T/err"
+        $OB run $R --force --out "$T/rx" --export "$T/x" >/dev/null 2>"$T/err"
         rc=$?
         check 'intact "$V" && [ $rc -eq 0 ] && replaced "$T/x/${name%.tmp}" && [ ! -e "$T/x/$name.tmp" ]' \
             "--export with a $kind-link at $name: exit $rc: $(cat "$T/err")"

@@ -76,11 +76,24 @@ body "$T/o/results.csv" > "$T/o.body"
 cp "$T/i.journal" "$T/i/results.journal.csv"
 $OB run $L --force --out "$T/i" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 0 ] && body "$T/i/results.csv" | cmp -s - "$T/o.body" && [ ! -e "$T/i/results.journal.csv" ]' "--force over a journal runs afresh: $(tail -n 2 "$T/e.txt")"
+# a finished run in --out is never replaced silently: refused (exit 2,
+# naming the file and --force), its files untouched; --force replaces it
+$OB run $S --methods tiller --out "$T/f" >/dev/null 2>&1
+cp "$T/f/results.csv" "$T/f.before"
+for extra in "" "--split maxerr" "--shard 1/2" "--reps 1"; do
+    $OB run $S --methods tiller $extra --out "$T/f" >/dev/null 2>"$T/e.txt"
+    check '[ $? -eq 2 ] && grep -q "holds a finished run" "$T/e.txt" && grep -q -- "--force" "$T/e.txt" && cmp -s "$T/f/results.csv" "$T/f.before"' \
+        "a finished run in --out is refused ($extra): $(cat "$T/e.txt")"
+done
+$OB run $S --methods cobb --force --out "$T/f" >/dev/null 2>&1
+check '[ $? -eq 0 ] && grep -q ",cobb," "$T/f/results.csv" && ! grep -q ",tiller," "$T/f/results.csv"' \
+    "--force replaces a finished run"
+
 # stale files of an earlier run do not survive a new run
 $OB run $S --methods tiller --reps 1 --out "$T/s" >/dev/null 2>&1
-$OB run $S --methods tiller --shard 1/2 --out "$T/s" >/dev/null 2>&1
+$OB run $S --methods tiller --shard 1/2 --force --out "$T/s" >/dev/null 2>&1
 check '[ -s "$T/s/shard.csv" ] && [ ! -e "$T/s/samples.csv" ]' "a shard run leaves no samples.csv of the run before"
-$OB run $S --methods tiller --out "$T/s" >/dev/null 2>&1
+$OB run $S --methods tiller --force --out "$T/s" >/dev/null 2>&1
 check '[ $? -eq 0 ] && [ ! -e "$T/s/shard.csv" ] && [ ! -e "$T/s/samples.csv" ]' "a plain run leaves no shard.csv: $(ls "$T/s")"
 
 # 4. jobs that never ran (out of memory, through the test hook) are not results
