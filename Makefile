@@ -12,6 +12,7 @@
 #   make MPI=1      ./offbench built with Open MPI (mpirun -n P ./offbench run ...)
 #   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
+#   make check-method M=NAME  the method contract (methods/CONTRACT.md) on one method
 
 CC      ?= gcc
 SAN     ?= 0
@@ -53,7 +54,8 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test perf soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run FORCE
+.PHONY: all test perf soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run \
+        check-method FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -120,6 +122,17 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h host/
 
 test: $(BIN) $(TEST_BIN)
 	@OFFBENCH=$(abspath $(BIN)) sh tests/run_all.sh $(TEST_BIN) $(TEST_SH)
+
+# The method contract's broken test methods (not in the library)
+$(BUILD)/tests/methods/test_methods: tests/methods/contract_fixtures.h
+
+# The method contract (methods/CONTRACT.md) on one method: a registered one,
+# template (methods/TEMPLATE.c) or a fixture of
+# tests/methods/contract_fixtures.h.  Failures name the rule and what to do.
+check-method: $(BUILD)/tests/methods/test_methods
+	@if [ -z "$(M)" ]; then \
+	    echo "usage: make check-method M=NAME (a name from ./offbench list methods, or template)" >&2; exit 2; fi
+	@$(BUILD)/tests/methods/test_methods --method '$(M)'
 
 # Scaling checks that compare times (not in `make test`: the machines are
 # shared): each reader is linear in its input (tests/perf/perf_linear.c).
