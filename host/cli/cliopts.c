@@ -141,12 +141,12 @@ static void report_unknown(const char *cmd, const char *opt, const flagindex *x)
         if (strncmp(x->flag[i]->name, opt + 2, len) == 0 && n++ < 8)
             snprintf(which + strlen(which), sizeof which - strlen(which), "%s--%s", n > 1 ? ", " : "",
                      x->flag[i]->name);
-    if (strncmp(opt, "--", 2) == 0 && n > 1)
+    if (strncmp(opt, "--", 2) == 0 && n > 1) {
         ob_error("%s: '%s' is ambiguous: %s", cmd, opt, which);
-    else {
-        char note[96];
-        ob_error("%s: unknown option '%s'%s", cmd, opt, option_note(opt, x, note, sizeof note));
+        return;
     }
+    char note[96];
+    ob_error("%s: unknown option '%s'%s", cmd, opt, option_note(opt, x, note, sizeof note));
 }
 
 /* An option's value given as the next word must not be '--' (it ends the

@@ -238,6 +238,6 @@ int ob_cmd_list(int argc, char **argv)
     static const char *const subjects[] = {"methods", "metrics", "curves", "columns", "devices"};
     char note[64];
     ob_error("list: unknown subject '%s' (methods, metrics, curves, columns, devices)%s", argv[1],
-             ob_suggest_note(argv[1], subjects, 5, note, sizeof note));
+             ob_suggest_note(argv[1], subjects, (int)(sizeof subjects / sizeof subjects[0]), note, sizeof note));
     return 2;
 }

@@ -9,7 +9,13 @@
 
 #include "methods/method.h"
 
-enum { SUGGEST_MAX_LEN = 256, SUGGEST_CAP = 2, SUGGEST_MAX_COMMANDS = 64, SUGGEST_COMMAND_LEN = 32 };
+enum {
+    SUGGEST_MAX_LEN = 256,     /* longer words get no suggestion */
+    SUGGEST_CAP = 2,           /* the most edits a suggestion is away */
+    SUGGEST_MAX_METHODS = 128, /* names taken from the registry */
+    SUGGEST_MAX_COMMANDS = 64, /* and from the usage text */
+    SUGGEST_COMMAND_LEN = 32,
+};
 
 static int same_char(char a, char b)
 {
@@ -96,7 +102,7 @@ const char *ob_suggest_note(const char *word, const char *const *names, int n, c
 
 const char *ob_suggest_method_note(const char *name, char *buf, size_t len)
 {
-    const char *names[SUGGEST_MAX_COMMANDS * 2];
+    const char *names[SUGGEST_MAX_METHODS];
     int n = 0;
     for (int i = 0; ob_methods[i] && n < (int)(sizeof names / sizeof names[0]); i++)
         names[n++] = ob_methods[i]->name;
