@@ -12,6 +12,10 @@
 #   make MPI=1      ./offbench built with Open MPI (mpirun -n P ./offbench run ...)
 #   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
+#   make check-method M=NAME  the method contract (methods/CONTRACT.md) on one method
+#   make man        the manual page, build/offbench.1, from the commands' --help
+#   make install PREFIX=/usr/local [DESTDIR=]  the program, its manual page and the
+#                   bash and zsh completions (make uninstall removes them)
 
 CC      ?= gcc
 SAN     ?= 0
@@ -53,7 +57,8 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test perf soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run FORCE
+.PHONY: all test perf soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run \
+        check-method man install uninstall FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -120,6 +125,44 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libob.a tests/check.h tests/testlib.h host/
 
 test: $(BIN) $(TEST_BIN)
 	@OFFBENCH=$(abspath $(BIN)) sh tests/run_all.sh $(TEST_BIN) $(TEST_SH)
+
+# The method contract's broken test methods (not in the library)
+$(BUILD)/tests/methods/test_methods: tests/methods/contract_fixtures.h
+
+# The method contract (methods/CONTRACT.md) on one method: a registered one,
+# template (methods/TEMPLATE.c) or a fixture of
+# tests/methods/contract_fixtures.h.  Failures name the rule and what to do.
+check-method: $(BUILD)/tests/methods/test_methods
+	@if [ -z "$(M)" ]; then \
+	    echo "usage: make check-method M=NAME (a name from ./offbench list methods, or template)" >&2; exit 2; fi
+	@$(BUILD)/tests/methods/test_methods --method '$(M)'
+
+# The manual page, generated from the program's own --help (scripts/manpage.sh).
+MAN := $(BUILD)/offbench.1
+man: $(MAN)
+
+$(MAN): $(BIN) scripts/manpage.sh
+	sh scripts/manpage.sh ./$(BIN) > $@.tmp && mv $@.tmp $@
+
+# make install PREFIX=... DESTDIR=...: the program (with its data and kernels
+# built in), the manual page and the shell completions; make uninstall
+# removes exactly those files (directories are left).
+PREFIX      ?= /usr/local
+BINDIR      := $(PREFIX)/bin
+MAN1DIR     := $(PREFIX)/share/man/man1
+BASHCOMPDIR := $(PREFIX)/share/bash-completion/completions
+ZSHCOMPDIR  := $(PREFIX)/share/zsh/site-functions
+INSTALLED   := $(BINDIR)/offbench $(MAN1DIR)/offbench.1 $(BASHCOMPDIR)/offbench $(ZSHCOMPDIR)/_offbench
+
+install: $(BIN) $(MAN)
+	install -d "$(DESTDIR)$(BINDIR)" "$(DESTDIR)$(MAN1DIR)" "$(DESTDIR)$(BASHCOMPDIR)" "$(DESTDIR)$(ZSHCOMPDIR)"
+	install -m 755 $(BIN) "$(DESTDIR)$(BINDIR)/offbench"
+	install -m 644 $(MAN) "$(DESTDIR)$(MAN1DIR)/offbench.1"
+	install -m 644 scripts/completion/offbench.bash "$(DESTDIR)$(BASHCOMPDIR)/offbench"
+	install -m 644 scripts/completion/_offbench "$(DESTDIR)$(ZSHCOMPDIR)/_offbench"
+
+uninstall:
+	rm -f $(foreach f,$(INSTALLED),"$(DESTDIR)$(f)")
 
 # Scaling checks that compare times (not in `make test`: the machines are
 # shared): each reader is linear in its input (tests/perf/perf_linear.c).

@@ -8,6 +8,7 @@
 #include "host/backend/clrt.h"
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
+#include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
 #include "host/run/signals.h"
@@ -87,7 +88,8 @@ static int dispatch(int argc, char **argv)
         fputs(usage, stdout);
         return 0;
     }
-    ob_error("unknown command '%s'", cmd);
+    char note[96];
+    ob_error("unknown command '%s'%s", cmd, ob_suggest_command(usage, cmd, note, sizeof note));
     fputs(usage, stderr);
     return 2;
 }

@@ -910,7 +910,7 @@ const ob_method ob_method_cubic_opt = {
     .citation = "G1 cubic offsets, area/moment candidates (kurbo 0.11) refined to the minimax along normals "
                 "(offbench issue 19)",
     .continuity = "G1",
-    .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_CUSP_BREAKS,
+    .caps = OB_CAP_POLY_OUT | OB_CAP_RATIONAL_IN | OB_CAP_CUSP_BREAKS | OB_CAP_INTERP_ENDS,
     .max_turn = 0.0,
     .out_degree = ob_degree_three,
     .cost_ms = 1.4, /* tiller's 2.06 scaled by their ratio on --random 40:2026 */

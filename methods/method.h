@@ -10,8 +10,11 @@
  * That msg (char *msg, size_t msglen) is the CSV message column, data and not
  * an error report, so it is not an ob_err (methods/core/err.h).
  *
- * Adding a method: write methods/NAME.c exporting `const ob_method
- * ob_method_NAME`, and add one line to methods/registry.c.
+ * Adding a method: copy methods/TEMPLATE.c (a small working method, every
+ * field commented) to methods/NAME.c, add the line OB_METHOD(NAME) to
+ * methods/registry.def, and run `make check-method M=NAME`: the contract
+ * every method keeps, what the generic tests check and how a method declares
+ * an exception, is methods/CONTRACT.md.
  */
 #ifndef OB_METHOD_H
 #define OB_METHOD_H
@@ -79,7 +82,10 @@ typedef struct {
 
 enum { OB_MAX_PARAMS = 8 };
 
-/* Capability flags. */
+/* Capability flags.  Some only tell the generic contract test
+ * (methods/CONTRACT.md) what to expect: OB_CAP_INTERP_ENDS turns a check on,
+ * OB_CAP_ORIENTED, OB_CAP_TOL_DRIVEN and OB_CAP_NONMONOTONE each turn one
+ * off.  None of those changes what a run computes. */
 enum {
     OB_CAP_POLY_OUT     = 1u << 0,  /* output is polynomial for polynomial input */
     OB_CAP_RATIONAL_OUT = 1u << 1,  /* output is rational */
@@ -95,6 +101,12 @@ enum {
     OB_CAP_CUSP_BREAKS  = 1u << 7,  /* the driver cuts the initial pieces at the offset's cusps
                                        (ob_bez_offset_cusps): the method fits up to a cusp, not
                                        across it */
+    OB_CAP_INTERP_ENDS  = 1u << 8,  /* the approximation passes through the exact offset's end
+                                       points C(0) + d N(0) and C(1) + d N(1) (the contract test
+                                       checks it to 1e-12) */
+    OB_CAP_NONMONOTONE  = 1u << 9,  /* halving a piece need not lower the method's error (for a
+                                       reason other than OB_CAP_TOL_DRIVEN): the contract test's
+                                       halving rule is not applied; the driver still splits */
 };
 
 typedef struct ob_method {

@@ -1,5 +1,6 @@
 /*
- * registry.c - the list of all methods.  Adding a method is one line here.
+ * registry.c - the list of all methods (read from registry.def: adding a
+ * method is one line there) and the helpers every method file shares.
  */
 #include "methods/method.h"
 
@@ -8,33 +9,15 @@
 #include <math.h>
 #include <string.h>
 
-extern const ob_method ob_method_tiller, ob_method_cobb, ob_method_coquillart, ob_method_elber,
-    ob_method_interp, ob_method_kim2018, ob_method_ahn;
-extern const ob_method ob_method_exact, ob_method_lee;
-extern const ob_method ob_method_zhao, ob_method_zhao_rational, ob_method_hoschek;
-extern const ob_method ob_method_liu, ob_method_chebyshev, ob_method_lstsq;
-extern const ob_method ob_method_sisl, ob_method_bspline_lsq;
-extern const ob_method ob_method_cubic_opt;
+/* The methods of registry.def: first their declarations, then the list. */
+#define OB_METHOD(id) extern const ob_method ob_method_##id;
+#include "methods/registry.def"
+#undef OB_METHOD
 
 const ob_method *const ob_methods[] = {
-    &ob_method_tiller,
-    &ob_method_cobb,
-    &ob_method_coquillart,
-    &ob_method_elber,
-    &ob_method_interp,
-    &ob_method_liu,
-    &ob_method_chebyshev,
-    &ob_method_lstsq,
-    &ob_method_kim2018,
-    &ob_method_ahn,
-    &ob_method_lee,
-    &ob_method_zhao,
-    &ob_method_zhao_rational,
-    &ob_method_hoschek,
-    &ob_method_bspline_lsq,
-    &ob_method_cubic_opt,
-    &ob_method_exact,
-    &ob_method_sisl,
+#define OB_METHOD(id) &ob_method_##id,
+#include "methods/registry.def"
+#undef OB_METHOD
     NULL,
 };
 

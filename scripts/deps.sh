@@ -13,6 +13,8 @@
 #   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
 #   DXF read-back test (tests/e2e/e2e_export.sh) and results/export's figure:
 #                          python3-ezdxf (optional: the test is skipped without it)
+#   zsh completion test (tests/e2e/e2e_completion.sh): zsh (optional: the
+#                          zsh half of the test is skipped without it)
 #   browser test of the nightly report (tests/e2e/e2e_report.sh) and
 #   results/report.png:    chromium-headless-shell, only with OB_DEPS_BROWSER=1
 #                          (optional: never fails the build; the browser
@@ -73,6 +75,8 @@ optional_py() { # MODULE PACKAGE WHAT
 optional_py matplotlib python3-matplotlib "the plots"
 optional_py svgelements python3-svgelements "scripts/svg2curves.py"
 optional_py ezdxf python3-ezdxf "the DXF read-back test"
+# Optional: zsh, to test the zsh completion (scripts/completion/_offbench).
+command -v zsh >/dev/null 2>&1 || optional_apt zsh "the zsh completion test"
 
 # Optional, asked for with OB_DEPS_BROWSER=1 (about 100 MB): a headless
 # Chromium for the nightly report's browser test and its screenshot.

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/cli/suggest.h"
 #include "host/diag.h"
 
 /* Whether the space-ended list names `name`. */
@@ -110,6 +111,26 @@ static void written(const char *arg, char *buf, size_t len)
     snprintf(buf, len, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
 }
 
+/* " (did you mean '--NAME'?)" for an unknown option, over the options the
+ * command takes and --help, into buf (or ""). */
+static const char *option_note(const char *opt, const flagindex *x, char *buf, size_t len)
+{
+    char(*full)[64] = malloc(((size_t)x->n + 1) * sizeof *full);
+    const char **names = malloc(((size_t)x->n + 1) * sizeof *names);
+    buf[0] = '\0';
+    if (full && names) {
+        for (int i = 0; i < x->n; i++) {
+            snprintf(full[i], sizeof full[i], "--%s", x->flag[i]->name);
+            names[i] = full[i];
+        }
+        names[x->n] = "--help";
+        ob_suggest_note(opt, names, x->n + 1, buf, len);
+    }
+    free(full);
+    free(names);
+    return buf;
+}
+
 /* An option getopt_long did not take: unknown, or an abbreviation of several. */
 static void report_unknown(const char *cmd, const char *opt, const flagindex *x)
 {
@@ -120,10 +141,12 @@ static void report_unknown(const char *cmd, const char *opt, const flagindex *x)
         if (strncmp(x->flag[i]->name, opt + 2, len) == 0 && n++ < 8)
             snprintf(which + strlen(which), sizeof which - strlen(which), "%s--%s", n > 1 ? ", " : "",
                      x->flag[i]->name);
-    if (strncmp(opt, "--", 2) == 0 && n > 1)
+    if (strncmp(opt, "--", 2) == 0 && n > 1) {
         ob_error("%s: '%s' is ambiguous: %s", cmd, opt, which);
-    else
-        ob_error("%s: unknown option '%s'", cmd, opt);
+        return;
+    }
+    char note[96];
+    ob_error("%s: unknown option '%s'%s", cmd, opt, option_note(opt, x, note, sizeof note));
 }
 
 /* An option's value given as the next word must not be '--' (it ends the

@@ -48,6 +48,7 @@
 #include "host/io/fsutil.h"
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
+#include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/io/export.h"
 #include "host/view/jobview.h"
@@ -90,7 +91,9 @@ static int apply_draw_flag(void *ctx, int id, const char *opt, const char *val)
     switch (id) {
     case DO_METHOD:
         if (!ob_method_find(val)) {
-            ob_error("--method: unknown method '%s' (see './offbench list methods')", val);
+            char note[128];
+            ob_error("--method: unknown method '%s' (see './offbench list methods')%s", val,
+                     ob_suggest_method_note(val, note, sizeof note));
             return -1;
         }
         a->method = val;

@@ -13,6 +13,7 @@
 #include "host/io/curvefile.h"
 #include "host/io/datadir.h"
 #include "host/cli/cliopts.h"
+#include "host/cli/suggest.h"
 #include "host/io/columns.h"
 #include "host/diag.h"
 #include "host/io/numfmt.h"
@@ -234,6 +235,9 @@ int ob_cmd_list(int argc, char **argv)
         printf("# --backend cpu: the C reference path with OpenMP (always available)\n");
         return 0;
     }
-    ob_error("list: unknown subject '%s' (methods, metrics, curves, columns, devices)", argv[1]);
+    static const char *const subjects[] = {"methods", "metrics", "curves", "columns", "devices"};
+    char note[64];
+    ob_error("list: unknown subject '%s' (methods, metrics, curves, columns, devices)%s", argv[1],
+             ob_suggest_note(argv[1], subjects, (int)(sizeof subjects / sizeof subjects[0]), note, sizeof note));
     return 2;
 }

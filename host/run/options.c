@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "host/cli/cliopts.h"
+#include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/io/numfmt.h"
 #include "host/io/random.h"
@@ -87,7 +88,9 @@ static int parse_methods(const char *s, ob_run_opts *o)
     for (int i = 0; i < n && rc == 0; i++) {
         const ob_method *m = ob_method_find(names[i]);
         if (!m) {
-            ob_error("--methods: unknown method '%s' (see './offbench list methods')", names[i]);
+            char note[128];
+            ob_error("--methods: unknown method '%s' (see './offbench list methods')%s", names[i],
+                     ob_suggest_method_note(names[i], note, sizeof note));
             rc = -1;
             break;
         }
@@ -157,7 +160,8 @@ static int parse_param(const char *s, ob_run_opts *o)
     *dot = *eq = '\0';
     const ob_method *m = ob_method_find(buf);
     if (!m) {
-        ob_error("--param: unknown method '%.100s'", buf);
+        char note[160];
+        ob_error("--param: unknown method '%.100s'%s", buf, ob_suggest_method_note(buf, note, sizeof note));
         goto out;
     }
     int k = ob_param_find(m, dot + 1);

@@ -7,12 +7,28 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/io/datadir.h"
 #include "host/io/random.h"
 #include "host/run/plan.h"
 #include "host/run/shard.h"
 #include "methods/core/offdeg.h"
+
+/* " (did you mean 'ID'?)" for an unknown curve id, over the ids of set,
+ * into buf (or ""). */
+static const char *curve_note(const ob_curveset *set, const char *id, char *buf, size_t len)
+{
+    const char **names = malloc((size_t)(set->n > 0 ? set->n : 1) * sizeof *names);
+    buf[0] = '\0';
+    if (names) {
+        for (int i = 0; i < set->n; i++)
+            names[i] = set->v[i].id;
+        ob_suggest_note(id, names, set->n, buf, len);
+    }
+    free(names);
+    return buf;
+}
 
 int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen)
 {
@@ -37,7 +53,9 @@ int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size
     }
     for (int i = 0; i < o->ncurve_ids; i++)
         if (ob_curveset_find(set, o->curve_ids[i]) < 0) {
-            ob_error("--curve: no curve '%s' in %s (see './offbench list curves')", o->curve_ids[i], where);
+            char note[160];
+            ob_error("--curve: no curve '%s' in %s (see './offbench list curves')%s", o->curve_ids[i], where,
+                     curve_note(set, o->curve_ids[i], note, sizeof note));
             return -1;
         }
     return 0;

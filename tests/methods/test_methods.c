@@ -1,15 +1,18 @@
 /*
  * test_methods.c - the offset approximation methods, reached via the registry.
  *
- * Two kinds of checks:
- *  1. Contract checks run over EVERY registered method, so a new method is
- *     covered as soon as it is added to registry.c: status and message, piece
- *     structure, declared output degree, polynomial output when promised,
- *     finite control points, end-point interpolation (for the methods that are
- *     documented to interpolate), error decreasing under halving, determinism,
- *     no writes outside the caller's storage (guard bytes), and the symmetry
- *     "offset of the reversed curve by -d is the same point set".
- *  2. Properties the papers claim for tiller (exact on straight segments,
+ * Three kinds of checks:
+ *  1. The method contract (methods/CONTRACT.md), run over EVERY registered
+ *     method and methods/TEMPLATE.c, so a new method is covered as soon as
+ *     its line is in methods/registry.def.  Each check belongs to a named
+ *     rule; a failure prints the rule's name, what was seen, the rule and
+ *     what to do.  `test_methods --method NAME` (`make check-method M=NAME`)
+ *     runs the contract on that one method alone.
+ *  2. The contract's self-test: deliberately broken methods
+ *     (contract_fixtures.h) each fail exactly the rule they break, a
+ *     declared exception is honoured, CONTRACT.md documents every rule, and
+ *     the registry keeps its order.
+ *  3. Properties the papers claim for tiller (exact on straight segments,
  *     translated legs), cobb (P_j + d N(j/n), weights kept) and ahn (Ahn 2023
  *     Prop. 3.3 and section 3.2: degree n+3, C1 and G2 Hermite interpolation
  *     of the offset, a normal field approximant with (N^a)' parallel to C').
@@ -20,15 +23,20 @@
  * Convention (curve.h): left normal N = (-y', x')/|C'|, d > 0 to the left.
  */
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "tests/check.h"
+#include "host/cli/suggest.h"
 #include "methods/core/curve.h"
 #include "methods/method.h"
 #include "methods/metrics/metric.h"
+#include "tests/methods/contract_fixtures.h"
 #include "tests/testlib.h"
+
+extern const ob_method ob_method_template; /* methods/TEMPLATE.c: checked, not registered */
 
 static const double DS[] = {0.3, -0.3, 1.0, -1.0};
 enum { ND = sizeof DS / sizeof DS[0], MAXC = 8, MSGLEN = 128, GUARD = 64 };
@@ -36,6 +44,164 @@ enum { ND = sizeof DS / sizeof DS[0], MAXC = 8, MSGLEN = 128, GUARD = 64 };
 static ob_bez curves[MAXC];
 static char cname[MAXC][32];
 static int ncurves;
+
+/* ---- the contract's rules (methods/CONTRACT.md has each, with why) -------- */
+
+typedef enum {
+    R_FIELDS, R_NAME, R_VERSION, R_COST, R_PARAMS, R_STATUS, R_STORAGE, R_INPUT, R_PIECES, R_DEGREE,
+    R_FINITE, R_POLY, R_ENDS, R_DETERMINISTIC, R_TOL, R_HALVING, R_REVERSAL, R_COUNT
+} rule_id;
+
+typedef struct {
+    const char *id;   /* the rule's name in messages and in methods/CONTRACT.md */
+    const char *rule; /* what every method does */
+    const char *todo; /* what to do when it fails */
+} rule_doc;
+
+static const rule_doc RULES[R_COUNT] = {
+    [R_FIELDS] = {"fields", ".name, .fit and .out_degree are set",
+                  "fill them in (methods/TEMPLATE.c comments every field)"},
+    [R_NAME] = {"name", "the name is 1 to 31 lower-case letters, digits and '-', and names this method alone",
+                "rename it: the name goes unquoted into results.csv and into --methods A,B and --param METHOD.NAME"},
+    [R_VERSION] = {"version", ".version >= 1", "set .version = 1 (and add 1 whenever the output changes on purpose)"},
+    [R_COST] = {"cost", "0 < .cost_ms < 1e4 (the --shard cost model)",
+                "set .cost_ms to the median thread ms per job (1 will do until it is measured)"},
+    [R_PARAMS] = {"params",
+                  "every parameter has a name, a doc and a range [min, max] holding its default; --param takes exactly "
+                  "that range; fit() takes both ends of it",
+                  "fix the ob_param entry (min < max, def inside, whole numbers when .integer), and let fit() accept "
+                  "every value in the range"},
+    [R_STATUS] = {"status",
+                  "on the test curves (convex, regular) fit() returns OB_FIT_OK, or OB_FIT_SKIP / OB_FIT_RETRY_SMALLER "
+                  "with a reason in msg; never OB_FIT_FAIL, and halves and the reversed curve fit too",
+                  "make the fit succeed on a plain convex piece; say why in msg when it skips or asks for a smaller "
+                  "piece (ob_method_msg)"},
+    [R_STORAGE] = {"storage",
+                   "fit() writes nothing outside *out, work[0, work_size) and msg[0, msglen), and ends msg with a NUL",
+                   "raise .work_size to the scratch space fit() uses; write msg with ob_method_msg"},
+    [R_INPUT] = {"input", "fit() leaves the base segment untouched",
+                 "work on a copy of the segment (the driver reads it again after the fit)"},
+    [R_PIECES] = {"pieces", "1 <= out->n <= OB_MAX_PIECES, and 0 = t[0] < t[1] < ... < t[n] = 1",
+                  "use ob_fit_single for one piece; the t[] of several pieces increase from 0 to 1"},
+    [R_DEGREE] = {"degree", "every piece has the degree .out_degree gives (for the input's degree and the parameters)",
+                  "make .out_degree return the degree fit() produces, or raise the pieces to it (ob_bez_elevate)"},
+    [R_FINITE] = {"finite", "every control point and weight is finite",
+                  "return OB_FIT_FAIL with the reason instead of non-finite points"},
+    [R_POLY] = {"poly-out", "with OB_CAP_POLY_OUT, polynomial input gives pieces whose weights are all 1",
+                "drop OB_CAP_POLY_OUT from .caps, or make the output polynomial"},
+    [R_ENDS] = {"ends",
+                "with OB_CAP_INTERP_ENDS, the first piece starts at C(0) + d N(0) and the last ends at C(1) + d N(1) "
+                "(to 1e-12)",
+                "drop OB_CAP_INTERP_ENDS from .caps, or interpolate the offset's end points"},
+    [R_DETERMINISTIC] = {"deterministic", "two fits of the same input give the same bits",
+                         "keep no state between calls: no static variables, no clock, no unseeded random numbers"},
+    [R_TOL] = {"tol", "when .fit_uses_tol is NULL (or says 0), the fit gives the same bits at any tolerance",
+               "set .fit_uses_tol = ob_fit_uses_tol_always (or a function of the parameters) when fit() reads a->tol"},
+    [R_HALVING] = {"halving",
+                   "the Hausdorff error of the fits of a piece's two halves is below the whole piece's (a fit of "
+                   "several pieces: not above)",
+                   "make the error fall with the piece's size (the driver's subdivision relies on it); or, when it "
+                   "need not by design, declare it in .caps (OB_CAP_TOL_DRIVEN: the accuracy comes from the "
+                   "tolerance; OB_CAP_NONMONOTONE: any other reason) and say why in the method's header"},
+    [R_REVERSAL] = {"reversal",
+                    "the reversed curve offset by -d (the same point set) gets the same Hausdorff error (to 1e-9)",
+                    "make the fit independent of the parameter's direction; or, when it depends on it by design, "
+                    "declare OB_CAP_ORIENTED in .caps and say why in the method's header"},
+};
+
+/* The contract's state for the method being checked. */
+typedef struct {
+    int quiet;                        /* record only (the self-test of the fixtures) */
+    unsigned failed;                  /* one bit per rule that failed */
+    int nfail[R_COUNT], nskip[R_COUNT];
+    long held;                        /* checks that held */
+} contract_state;
+
+static contract_state K;
+
+enum { SHOW_PER_RULE = 3 };
+
+static void contract_begin(int quiet)
+{
+    memset(&K, 0, sizeof K);
+    K.quiet = quiet;
+}
+
+/* Prints a failure: every failure's first SHOW_PER_RULE, and with the first
+ * of each rule the rule and what to do. */
+static void rule_report(rule_id r, const char *method, const char *what)
+{
+    if (K.nfail[r] <= SHOW_PER_RULE)
+        fprintf(stderr, "FAIL [%s] %s: %s\n", RULES[r].id, method, what);
+    if (K.nfail[r] == 1)
+        fprintf(stderr, "  the rule: %s\n  what to do: %s\n  (methods/CONTRACT.md, rule `%s`)\n", RULES[r].rule,
+                RULES[r].todo, RULES[r].id);
+    if (K.nfail[r] == SHOW_PER_RULE + 1)
+        fprintf(stderr, "  (more [%s] failures of %s are counted, not shown)\n", RULES[r].id, method);
+}
+
+/* One check of rule r on method m: counts it (a CHECK), and on failure
+ * reports what was seen (fmt).  Returns ok. */
+static int rule(int ok, rule_id r, const ob_method *m, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+static int rule(int ok, rule_id r, const ob_method *m, const char *fmt, ...)
+{
+    if (ok) {
+        K.held++;
+        if (!K.quiet)
+            check_passed++;
+        return 1;
+    }
+    K.failed |= 1u << r;
+    K.nfail[r]++;
+    if (K.quiet)
+        return 0;
+    check_failed++;
+    char what[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    rule_report(r, m->name ? m->name : "(unnamed)", what);
+    return 0;
+}
+
+/* Rule r is not applied to m (a declared exception); said once per method. */
+static void rule_skip(rule_id r, const ob_method *m, const char *why)
+{
+    if (K.quiet)
+        return;
+    check_skipped++;
+    if (K.nskip[r]++ == 0)
+        fprintf(stderr, "SKIP [%s] %s: %s\n", RULES[r].id, m->name, why);
+}
+
+/* The names of the rules in mask, space-separated, into buf. */
+static const char *rule_names(unsigned mask, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    for (int r = 0; r < R_COUNT; r++)
+        if (mask & (1u << r))
+            snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", buf[0] ? " " : "", RULES[r].id);
+    if (!buf[0])
+        snprintf(buf, len, "(none)");
+    return buf;
+}
+
+/* The line that ends a method's contract. */
+static void contract_end(const ob_method *m)
+{
+    if (K.quiet)
+        return;
+    if (!K.failed) {
+        fprintf(stderr, "contract %s: every rule held (%ld checks)\n", m->name, K.held);
+        return;
+    }
+    fprintf(stderr, "contract %s: FAILED:", m->name);
+    for (int r = 0; r < R_COUNT; r++)
+        if (K.failed & (1u << r))
+            fprintf(stderr, " %s (%d)", RULES[r].id, K.nfail[r]);
+    fprintf(stderr, "\n  (the first failure of each rule above says what to do; methods/CONTRACT.md)\n");
+}
 
 /* ---- small helpers ---------------------------------------------------- */
 
@@ -97,11 +263,11 @@ static ob_fit_status run_fit_tol(const ob_method *m, const ob_bez *base, double 
     ob_param_defaults(m, par);
     const ob_fit_args args = {d, tol, par};
     ob_fit_status st = m->fit(base, &args, work, &g->fit, mbuf, MSGLEN);
-    CHECK(guard_ok(g->pre, GUARD) && guard_ok(g->post, GUARD), "%s: wrote outside ob_fit", m->name);
-    CHECK(guard_ok(work + m->work_size, GUARD), "%s: wrote past work_size %zu", m->name, m->work_size);
-    CHECK(guard_ok((unsigned char *)mbuf + MSGLEN, GUARD) && memchr(mbuf, 0, MSGLEN),
-          "%s: message not terminated within msglen", m->name);
-    CHECK(memcmp(&copy, base, sizeof copy) == 0, "%s: modified its input", m->name);
+    rule(guard_ok(g->pre, GUARD) && guard_ok(g->post, GUARD), R_STORAGE, m, "wrote outside the ob_fit");
+    rule(guard_ok(work + m->work_size, GUARD), R_STORAGE, m, "wrote past work_size (%zu bytes)", m->work_size);
+    rule(guard_ok((unsigned char *)mbuf + MSGLEN, GUARD) && memchr(mbuf, 0, MSGLEN), R_STORAGE, m,
+         "message not terminated within msglen (%d)", MSGLEN);
+    rule(memcmp(&copy, base, sizeof copy) == 0, R_INPUT, m, "the base segment changed during the fit");
     *out = g->fit;
     memcpy(msg, mbuf, MSGLEN);
     msg[MSGLEN - 1] = '\0';
@@ -143,17 +309,6 @@ static double fit_error(ob_metric metric, const ob_bez *base, const ob_fit *f, d
         worst = fmax(worst, e.err);
     }
     return worst;
-}
-
-/* Methods whose construction interpolates the offset's end points (README
- * "Methods"). */
-static int interpolates_ends(const ob_method *m)
-{
-    static const char *const names[] = {"tiller", "cobb", "ahn", "kim2018", "liu", "interp", "cubic-opt", NULL};
-    for (int i = 0; names[i]; i++)
-        if (strcmp(names[i], m->name) == 0)
-            return 1;
-    return 0;
 }
 
 /* ---- test curves -------------------------------------------------------- */
@@ -213,23 +368,23 @@ static void make_curves(void)
     }
 }
 
-/* ---- 1 + 5: contract checks for every method ----------------------------- */
+/* ---- 1: the contract, one method at a time --------------------------------- */
 
-static void check_structure(const ob_method *m, const char *cn, const ob_bez *C, double d,
-                            const ob_fit *f)
+static void check_structure(const ob_method *m, const char *cn, const ob_bez *C, double d, const ob_fit *f)
 {
-    CHECK(f->n >= 1 && f->n <= OB_MAX_PIECES, "%s/%s/%g: %d pieces", m->name, cn, d, f->n);
-    if (f->n < 1 || f->n > OB_MAX_PIECES)
+    const int n_ok = f->n >= 1 && f->n <= OB_MAX_PIECES;
+    rule(n_ok, R_PIECES, m, "%s d=%g: %d pieces", cn, d, f->n);
+    if (!n_ok)
         return;
     int incr = f->t[0] == 0.0 && f->t[f->n] == 1.0;
     for (int i = 0; i < f->n; i++)
         incr &= f->t[i] < f->t[i + 1];
-    CHECK(incr, "%s/%s/%g: t[0]=0 < ... < t[n]=1", m->name, cn, d);
+    rule(incr, R_PIECES, m, "%s d=%g: t[0]=%g, t[n]=%g, or not increasing", cn, d, f->t[0], f->t[f->n]);
     int want = ob_method_out_degree(m, C->deg, C->rational, NULL);
     for (int i = 0; i < f->n; i++) {
         const ob_bez *s = &f->seg[i];
-        CHECK(s->deg == want, "%s/%s/%g: piece %d degree %d, out_degree says %d", m->name, cn, d,
-              i, s->deg, want);
+        rule(s->deg == want, R_DEGREE, m, "%s d=%g: piece %d has degree %d, out_degree says %d", cn, d, i, s->deg,
+             want);
         if (s->deg < 0 || s->deg > OB_MAX_DEG)
             continue;
         int finite = 1, poly = 1;
@@ -237,89 +392,278 @@ static void check_structure(const ob_method *m, const char *cn, const ob_bez *C,
             finite &= isfinite(s->h[k][0]) && isfinite(s->h[k][1]) && isfinite(s->h[k][2]);
             poly &= s->h[k][2] == 1.0;
         }
-        CHECK(finite, "%s/%s/%g: piece %d has non-finite control points", m->name, cn, d, i);
+        rule(finite, R_FINITE, m, "%s d=%g: piece %d has non-finite control points", cn, d, i);
         if ((m->caps & OB_CAP_POLY_OUT) && !C->rational)
-            CHECK(poly, "%s/%s/%g: piece %d: weights not all 1 (OB_CAP_POLY_OUT)", m->name, cn, d, i);
+            rule(poly, R_POLY, m, "%s d=%g: piece %d has a weight other than 1", cn, d, i);
     }
-    if (interpolates_ends(m)) {
+    if (m->caps & OB_CAP_INTERP_ENDS) {
         double o[2], a[2];
         ob_bez_offset_point(C, 0.0, d, o);
         ob_bez_point(&f->seg[0], 0.0, a);
-        CHECK(dist2d(o, a) < 1e-12, "%s/%s/%g: start %.17g,%.17g vs offset %.17g,%.17g", m->name,
-              cn, d, a[0], a[1], o[0], o[1]);
+        rule(dist2d(o, a) < 1e-12, R_ENDS, m, "%s d=%g: start %.17g,%.17g, the offset's %.17g,%.17g", cn, d, a[0],
+             a[1], o[0], o[1]);
         ob_bez_offset_point(C, 1.0, d, o);
         ob_bez_point(&f->seg[f->n - 1], 1.0, a);
-        CHECK(dist2d(o, a) < 1e-12, "%s/%s/%g: end %.17g,%.17g vs offset %.17g,%.17g", m->name, cn,
-              d, a[0], a[1], o[0], o[1]);
+        rule(dist2d(o, a) < 1e-12, R_ENDS, m, "%s d=%g: end %.17g,%.17g, the offset's %.17g,%.17g", cn, d, a[0],
+             a[1], o[0], o[1]);
+    }
+}
+
+/* A fit that claims to ignore the tolerance gives the same bits at any (the
+ * driver then shares it among the jobs that differ in tol only). */
+static void check_tol(const ob_method *m, const char *cn, const ob_bez *C, double d, const ob_fit *f)
+{
+    static ob_fit f2;
+    char msg[MSGLEN];
+    if (ob_method_fit_uses_tol(m, NULL))
+        return;
+    const double tols[2] = {1e-1, 1e-6};
+    for (int k = 0; k < 2; k++) {
+        ob_fit_status st = run_fit_tol(m, C, d, tols[k], &f2, msg);
+        rule(st == OB_FIT_OK && same_fit(f, &f2), R_TOL, m, "%s d=%g: the fit at tol %g differs from the fit at 1e-3",
+             cn, d, tols[k]);
+    }
+}
+
+/* Halving reduces the Hausdorff error (unless the method declares that it
+ * need not). */
+static void check_halving(const ob_method *m, const char *cn, const ob_bez *C, double d, const ob_fit *f,
+                          double whole)
+{
+    static ob_fit h0, h1;
+    char msg[MSGLEN];
+    if (!(whole > 1e-6))
+        return;
+    if (m->caps & (OB_CAP_TOL_DRIVEN | OB_CAP_NONMONOTONE)) {
+        rule_skip(R_HALVING, m, (m->caps & OB_CAP_TOL_DRIVEN) ? "the method declares OB_CAP_TOL_DRIVEN"
+                                                              : "the method declares OB_CAP_NONMONOTONE");
+        return;
+    }
+    ob_bez L, R;
+    ob_bez_subsegment(C, 0.0, 0.5, &L);
+    ob_bez_subsegment(C, 0.5, 1.0, &R);
+    ob_fit_status s0 = run_fit(m, &L, d, &h0, msg), s1 = run_fit(m, &R, d, &h1, msg);
+    rule((s0 == OB_FIT_OK || s0 == OB_FIT_RETRY_SMALLER) && (s1 == OB_FIT_OK || s1 == OB_FIT_RETRY_SMALLER), R_STATUS,
+         m, "%s d=%g: the halves' fits: %s, %s (%s)", cn, d, ob_fit_status_name(s0), ob_fit_status_name(s1), msg);
+    if (s0 != OB_FIT_OK || s1 != OB_FIT_OK)
+        return;
+    double e0 = fit_error(OB_METRIC_HAUSDORFF, &L, &h0, d);
+    double e1 = fit_error(OB_METRIC_HAUSDORFF, &R, &h1, d);
+    /* a fit of several pieces (split at offset cusps, say) may keep its worst
+     * piece whole in one half: then no larger */
+    const double allow = f->n > 1 ? whole * (1 + 1e-6) : whole;
+    rule(fmax(e0, e1) < whole || (f->n > 1 && fmax(e0, e1) <= allow), R_HALVING, m,
+         "%s d=%g: Hausdorff error %.3g of the whole piece (%d pieces), %.3g and %.3g of its halves", cn, d, whole,
+         f->n, e0, e1);
+}
+
+/* The reversed curve offset by -d is the same point set: the same error. */
+static void check_reversal(const ob_method *m, const char *cn, const ob_bez *C, double d, double whole)
+{
+    static ob_fit f2;
+    char msg[MSGLEN];
+    ob_bez Cr = reversed(C);
+    ob_fit_status sr = run_fit(m, &Cr, -d, &f2, msg);
+    rule(sr == OB_FIT_OK || sr == OB_FIT_RETRY_SMALLER, R_STATUS, m, "%s d=%g: the reversed curve's fit: %s (%s)", cn,
+         d, ob_fit_status_name(sr), msg);
+    if (m->caps & OB_CAP_ORIENTED)
+        rule_skip(R_REVERSAL, m, "the method declares OB_CAP_ORIENTED");
+    else if (sr == OB_FIT_OK && f2.n >= 1 && f2.n <= OB_MAX_PIECES) {
+        double er = fit_error(OB_METRIC_HAUSDORFF, &Cr, &f2, -d);
+        rule(fabs(er - whole) <= 1e-9, R_REVERSAL, m, "%s d=%g: Hausdorff error %.17g, reversed with -d %.17g", cn,
+             d, whole, er);
     }
 }
 
 static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, double d)
 {
-    static ob_fit f, f2, h0, h1;
+    static ob_fit f, f2;
     char msg[MSGLEN];
     ob_fit_status st = run_fit(m, C, d, &f, msg);
-    CHECK(st == OB_FIT_OK || ((st == OB_FIT_SKIP || st == OB_FIT_RETRY_SMALLER) && msg[0]), "%s/%s/%g: status %s (%s)",
-          m->name, cn, d, ob_fit_status_name(st), msg);
+    rule(st == OB_FIT_OK || ((st == OB_FIT_SKIP || st == OB_FIT_RETRY_SMALLER) && msg[0]), R_STATUS, m,
+         "%s d=%g: %s (%s)", cn, d, ob_fit_status_name(st), msg[0] ? msg : "no reason given");
     if (st != OB_FIT_OK)
         return;
     check_structure(m, cn, C, d, &f);
     if (f.n < 1 || f.n > OB_MAX_PIECES)
         return;
-
-    /* determinism */
     ob_fit_status st2 = run_fit(m, C, d, &f2, msg);
-    CHECK(st2 == OB_FIT_OK && same_fit(&f, &f2), "%s/%s/%g: two fits differ", m->name, cn, d);
-
-    /* a fit that claims to ignore the tolerance gives the same bits at any
-     * (the driver then shares it among the jobs that differ in tol only) */
-    if (!ob_method_fit_uses_tol(m, NULL)) {
-        const double tols[2] = {1e-1, 1e-6};
-        for (int k = 0; k < 2; k++) {
-            ob_fit_status st3 = run_fit_tol(m, C, d, tols[k], &f2, msg);
-            CHECK(st3 == OB_FIT_OK && same_fit(&f, &f2), "%s/%s/%g: the fit at tol %g differs from the fit at 1e-3 "
-                  "(the method does not declare fit_uses_tol)", m->name, cn, d, tols[k]);
-        }
-    }
-
-    /* halving reduces the Hausdorff error (unless the method's accuracy is set
-     * by the tolerance, not by the piece) */
+    rule(st2 == OB_FIT_OK && same_fit(&f, &f2), R_DETERMINISTIC, m, "%s d=%g: two fits of the same input differ", cn,
+         d);
+    check_tol(m, cn, C, d, &f);
     double whole = fit_error(OB_METRIC_HAUSDORFF, C, &f, d);
-    CHECK(isfinite(whole), "%s/%s/%g: error %g", m->name, cn, d, whole);
-    if (whole > 1e-6 && (m->caps & OB_CAP_TOL_DRIVEN))
-        SKIP("halving: the method declares OB_CAP_TOL_DRIVEN");
-    else if (whole > 1e-6) {
-        ob_bez L, R;
-        ob_bez_subsegment(C, 0.0, 0.5, &L);
-        ob_bez_subsegment(C, 0.5, 1.0, &R);
-        ob_fit_status s0 = run_fit(m, &L, d, &h0, msg), s1 = run_fit(m, &R, d, &h1, msg);
-        CHECK((s0 == OB_FIT_OK || s0 == OB_FIT_RETRY_SMALLER) && (s1 == OB_FIT_OK || s1 == OB_FIT_RETRY_SMALLER),
-              "%s/%s/%g: halves: %s %s", m->name, cn, d, ob_fit_status_name(s0), ob_fit_status_name(s1));
-        if (s0 == OB_FIT_OK && s1 == OB_FIT_OK) {
-            double e0 = fit_error(OB_METRIC_HAUSDORFF, &L, &h0, d);
-            double e1 = fit_error(OB_METRIC_HAUSDORFF, &R, &h1, d);
-            /* a fit of several pieces (split at offset cusps, say) may keep
-             * its worst piece whole in one half: then no larger */
-            const double allow = f.n > 1 ? whole * (1 + 1e-6) : whole;
-            CHECK(fmax(e0, e1) < whole || (f.n > 1 && fmax(e0, e1) <= allow), "%s/%s/%g: halves %.3g %.3g, "
-                  "whole %.3g (%d pieces)", m->name, cn, d, e0, e1, whole, f.n);
-        }
-    }
+    rule(isfinite(whole), R_FINITE, m, "%s d=%g: Hausdorff error %g", cn, d, whole);
+    check_halving(m, cn, C, d, &f, whole);
+    check_reversal(m, cn, C, d, whole);
+}
 
-    /* symmetry: the reversed curve offset by -d is the same point set */
-    ob_bez Cr = reversed(C);
-    ob_fit_status sr = run_fit(m, &Cr, -d, &f2, msg);
-    CHECK(sr == OB_FIT_OK || sr == OB_FIT_RETRY_SMALLER, "%s/%s/%g: reversed: %s (%s)", m->name, cn, d,
-          ob_fit_status_name(sr), msg);
-    if (m->caps & OB_CAP_ORIENTED)
-        SKIP("reversal symmetry: the method declares OB_CAP_ORIENTED");
-    else if (sr == OB_FIT_OK && f2.n >= 1 && f2.n <= OB_MAX_PIECES) {
-        double er = fit_error(OB_METRIC_HAUSDORFF, &Cr, &f2, -d);
-        CHECK_NEAR(er, whole, 1e-9, "reversed curve, -d: hausdorff error");
+/* Whether s is 1 to 31 lower-case letters, digits and '-'. */
+static int plain_name(const char *s)
+{
+    size_t n = 0;
+    for (; s[n]; n++)
+        if (!((s[n] >= 'a' && s[n] <= 'z') || (s[n] >= '0' && s[n] <= '9') || s[n] == '-'))
+            return 0;
+    return n >= 1 && n <= 31;
+}
+
+/* fit() itself takes both ends of parameter k's range (on liu2002_ex1: any
+ * status, but not a complaint about the parameter), and gives pieces of the
+ * degree out_degree says for those values. */
+static void check_param_ends(const ob_method *m, int k)
+{
+    const ob_param *p = &m->params[k];
+    static const double ends_skip_slow = 1000; /* a timeout or pass count above this is not run */
+    char msg[256];
+    for (int e = 0; e < 2; e++) {
+        double par[OB_MAX_PARAMS];
+        ob_param_defaults(m, par);
+        par[k] = e ? p->max : p->min;
+        if (par[k] > ends_skip_slow && p->integer)
+            continue;
+        if (strcmp(m->name, "sisl") == 0 && strcmp(p->name, "timeout") == 0)
+            continue;
+        void *work = m->work_size ? malloc(m->work_size) : NULL;
+        ob_fit f;
+        msg[0] = '\0';
+        const ob_fit_args a = {0.5, 1e-2, par};
+        ob_fit_status st = m->fit(&curves[0], &a, work, &f, msg, sizeof msg);
+        free(work);
+        rule(st == OB_FIT_OK || st == OB_FIT_RETRY_SMALLER || !(strstr(msg, "range") || strstr(msg, "must be")),
+             R_PARAMS, m, "%s = %g: fit refuses a value inside the range: %s", p->name, par[k], msg);
+        const int want = ob_method_out_degree(m, curves[0].deg, curves[0].rational, par);
+        for (int i = 0; st == OB_FIT_OK && i < f.n; i++)
+            rule(f.seg[i].deg == want, R_DEGREE, m, "%s = %g: piece %d has degree %d, out_degree says %d", p->name,
+                 par[k], i, f.seg[i].deg, want);
     }
 }
 
-/* ---- 2: tiller ------------------------------------------------------------ */
+/* Every parameter has a documented range (method.h) that holds its default,
+ * and ob_param_check (what --param applies) accepts exactly that range. */
+static void test_param_ranges(const ob_method *m)
+{
+    char msg[256];
+    rule(m->nparams >= 0 && m->nparams <= OB_MAX_PARAMS && (m->nparams == 0 || m->params), R_PARAMS, m,
+         "%d parameters (0 to OB_MAX_PARAMS, with .params set)", m->nparams);
+    if (m->nparams < 0 || m->nparams > OB_MAX_PARAMS || (m->nparams > 0 && !m->params))
+        return;
+    for (int k = 0; k < m->nparams; k++) {
+        const ob_param *p = &m->params[k];
+        rule(p->name && p->name[0] && p->doc && p->doc[0], R_PARAMS, m, "parameter %d has no name or no doc", k);
+        if (!p->name)
+            continue;
+        rule(isfinite(p->min) && isfinite(p->max) && p->min < p->max, R_PARAMS, m, "%s: range %g..%g", p->name,
+             p->min, p->max);
+        rule(p->def >= p->min && p->def <= p->max, R_PARAMS, m, "%s: default %g outside %g..%g", p->name, p->def,
+             p->min, p->max);
+        if (p->integer)
+            rule(p->min == floor(p->min) && p->max == floor(p->max) && p->def == floor(p->def), R_PARAMS, m,
+                 "%s: a whole-number parameter with a range or default that is not whole", p->name);
+        rule(ob_param_check(m, p, p->def, msg, sizeof msg) == 0, R_PARAMS, m, "%s: default refused", p->name);
+        rule(ob_param_check(m, p, p->min, msg, sizeof msg) == 0, R_PARAMS, m, "%s: min refused", p->name);
+        rule(ob_param_check(m, p, p->max, msg, sizeof msg) == 0, R_PARAMS, m, "%s: max refused", p->name);
+        const double below = p->integer ? p->min - 1 : nextafter(p->min, -INFINITY);
+        const double above = p->integer ? p->max + 1 : nextafter(p->max, INFINITY);
+        rule(ob_param_check(m, p, below, msg, sizeof msg) != 0 && strstr(msg, p->name) && strstr(msg, "range"),
+             R_PARAMS, m, "%s: %g not refused with a message naming it: %s", p->name, below, msg);
+        rule(ob_param_check(m, p, above, msg, sizeof msg) != 0, R_PARAMS, m, "%s: %g not refused", p->name, above);
+        rule(ob_param_check(m, p, NAN, msg, sizeof msg) != 0, R_PARAMS, m, "%s: nan not refused", p->name);
+        if (p->integer)
+            rule(ob_param_check(m, p, p->min + 0.5, msg, sizeof msg) != 0, R_PARAMS, m, "%s: %g not refused (not whole)",
+                 p->name, p->min + 0.5);
+        check_param_ends(m, k);
+    }
+}
+
+/* The whole contract on method m (registered: in ob_methods). */
+static void contract_run(const ob_method *m, int registered)
+{
+    if (!rule(m->name && m->name[0] && m->fit && m->out_degree, R_FIELDS, m, ".name, .fit or .out_degree missing"))
+        return;
+    rule(plain_name(m->name), R_NAME, m, "the name '%s'", m->name);
+    const ob_method *found = ob_method_find(m->name);
+    rule(found == m || (!registered && !found), R_NAME, m, "another registered method is called '%s'", m->name);
+    rule(m->version >= 1, R_VERSION, m, "version %d", m->version);
+    rule(m->cost_ms > 0 && m->cost_ms < 1e4, R_COST, m, "cost_ms %g", m->cost_ms);
+    test_param_ranges(m);
+    for (int c = 0; c < ncurves; c++)
+        for (int k = 0; k < ND; k++)
+            test_generic(m, cname[c], &curves[c], DS[k]);
+    if (m->caps & OB_CAP_RATIONAL_IN) {
+        ob_bez qc = quarter_circle(2.5, 0);
+        for (int k = 0; k < ND; k++)
+            test_generic(m, "quarter circle r 2.5", &qc, DS[k]);
+    }
+}
+
+/* ---- 2: the contract's self-test -------------------------------------------- */
+
+/* Each fixture fails exactly the rule it breaks; a declared exception passes. */
+static void test_fixtures(void)
+{
+    static const struct {
+        const char *name;
+        unsigned expect;
+    } want[] = {
+        {"broken-halving", 1u << R_HALVING},
+        {"broken-halving-declared", 0u},
+        {"broken-degree", 1u << R_DEGREE},
+        {"broken-state", 1u << R_DETERMINISTIC},
+    };
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+        const ob_method *m = NULL;
+        for (int k = 0; k < NFIXTURES; k++)
+            if (strcmp(fixture_methods[k].name, want[i].name) == 0)
+                m = &fixture_methods[k];
+        CHECK(m != NULL, "fixture %s", want[i].name);
+        if (!m)
+            continue;
+        contract_begin(1);
+        contract_run(m, 0);
+        const unsigned got = K.failed;
+        contract_begin(0);
+        char g[256], w[256];
+        CHECK(got == want[i].expect, "fixture %s: the rules that failed: %s; expected: %s", m->name,
+              rule_names(got, g, sizeof g), rule_names(want[i].expect, w, sizeof w));
+    }
+}
+
+/* methods/CONTRACT.md has a section for every rule the test applies (a
+ * heading "### `ID`"). */
+static void test_contract_doc(void)
+{
+    FILE *f = fopen("methods/CONTRACT.md", "r");
+    if (!f) {
+        SKIP("methods/CONTRACT.md not found (run from the checkout's root)");
+        return;
+    }
+    static char doc[1 << 17];
+    const size_t n = fread(doc, 1, sizeof doc - 1, f);
+    doc[n] = '\0';
+    fclose(f);
+    for (int r = 0; r < R_COUNT; r++) {
+        char head[64];
+        snprintf(head, sizeof head, "\n### `%s`", RULES[r].id);
+        CHECK(strstr(doc, head) != NULL, "methods/CONTRACT.md documents rule %s (a heading '### `%s`')", RULES[r].id,
+              RULES[r].id);
+    }
+}
+
+/* registry.def keeps the order the methods had (it is the order of the
+ * jobs in results.csv); new methods come after these. */
+static void test_registry_order(void)
+{
+    static const char *const order[] = {"tiller", "cobb",       "coquillart", "elber",         "interp",
+                                        "liu",    "chebyshev",  "lstsq",      "kim2018",       "ahn",
+                                        "lee",    "zhao",       "zhao-rational", "hoschek",    "bspline-lsq",
+                                        "cubic-opt", "exact",   "sisl"};
+    for (size_t i = 0; i < sizeof order / sizeof order[0]; i++)
+        CHECK(ob_methods[i] && strcmp(ob_methods[i]->name, order[i]) == 0, "registered method %zu is %s, was %s", i,
+              ob_methods[i] ? ob_methods[i]->name : "(end)", order[i]);
+    CHECK(ob_method_find("template") == NULL, "methods/TEMPLATE.c is not registered");
+}
+
+/* ---- 3: tiller ------------------------------------------------------------ */
 
 static void test_tiller(void)
 {
@@ -423,7 +767,7 @@ static void test_cobb(void)
         check_cobb_points(m, "quarter circle", &qc, DS[k]);
 }
 
-/* ---- 4: ahn ----------------------------------------------------------------- */
+/* ---- 3: ahn ----------------------------------------------------------------- */
 
 static void check_ahn_hermite(const ob_method *m, const char *cn, const ob_bez *C, double d0)
 {
@@ -556,85 +900,78 @@ static void test_ahn(void)
     }
 }
 
-/* Every parameter of every registered method has a documented range
- * (method.h) that holds its default, and ob_param_check (what --param
- * applies) accepts exactly that range; fit() does not reject a value at
- * either end of it. */
-static void test_param_ranges(const ob_method *m)
+/* ---- main: every method, or one (--method NAME) ----------------------------- */
+
+/* The method called name: registered, the template, or a fixture; NULL if none. */
+static const ob_method *find_any(const char *name, int *registered)
 {
-    char msg[256];
-    CHECK(m->nparams >= 0 && m->nparams <= OB_MAX_PARAMS && (m->nparams == 0 || m->params),
-          "%s: %d parameters", m->name, m->nparams);
-    for (int k = 0; k < m->nparams; k++) {
-        const ob_param *p = &m->params[k];
-        CHECK(p->name && p->name[0] && p->doc && p->doc[0], "%s: parameter %d has a name and a doc", m->name, k);
-        CHECK(isfinite(p->min) && isfinite(p->max) && p->min < p->max, "%s.%s: range %g..%g", m->name, p->name,
-              p->min, p->max);
-        CHECK(p->def >= p->min && p->def <= p->max, "%s.%s: default %g inside %g..%g", m->name, p->name, p->def,
-              p->min, p->max);
-        if (p->integer)
-            CHECK(p->min == floor(p->min) && p->max == floor(p->max) && p->def == floor(p->def),
-                  "%s.%s: whole-number range and default", m->name, p->name);
-        CHECK(ob_param_check(m, p, p->def, msg, sizeof msg) == 0, "%s.%s: default accepted", m->name, p->name);
-        CHECK(ob_param_check(m, p, p->min, msg, sizeof msg) == 0, "%s.%s: min accepted", m->name, p->name);
-        CHECK(ob_param_check(m, p, p->max, msg, sizeof msg) == 0, "%s.%s: max accepted", m->name, p->name);
-        const double below = p->integer ? p->min - 1 : nextafter(p->min, -INFINITY);
-        const double above = p->integer ? p->max + 1 : nextafter(p->max, INFINITY);
-        CHECK(ob_param_check(m, p, below, msg, sizeof msg) != 0 && strstr(msg, p->name) && strstr(msg, "range"),
-              "%s.%s: %g refused with a message naming it: %s", m->name, p->name, below, msg);
-        CHECK(ob_param_check(m, p, above, msg, sizeof msg) != 0, "%s.%s: %g refused", m->name, p->name, above);
-        CHECK(ob_param_check(m, p, NAN, msg, sizeof msg) != 0, "%s.%s: nan refused", m->name, p->name);
-        if (p->integer)
-            CHECK(ob_param_check(m, p, p->min + 0.5, msg, sizeof msg) != 0, "%s.%s: %g refused (not whole)",
-                  m->name, p->name, p->min + 0.5);
-        /* fit() itself takes both ends (on liu2002_ex1: any status, but not
-         * a complaint about the parameter) */
-        static const double ends_skip_slow = 1000; /* a timeout or pass count above this is not run */
-        for (int e = 0; e < 2; e++) {
-            double par[OB_MAX_PARAMS];
-            ob_param_defaults(m, par);
-            par[k] = e ? p->max : p->min;
-            if (par[k] > ends_skip_slow && p->integer)
-                continue;
-            if (strcmp(m->name, "sisl") == 0 && strcmp(p->name, "timeout") == 0)
-                continue;
-            void *work = m->work_size ? malloc(m->work_size) : NULL;
-            ob_fit f;
-            msg[0] = '\0';
-            const ob_fit_args a = {0.5, 1e-2, par};
-            ob_fit_status st = m->fit(&curves[0], &a, work, &f, msg, sizeof msg);
-            free(work);
-            CHECK(st == OB_FIT_OK || st == OB_FIT_RETRY_SMALLER || !(strstr(msg, "range") || strstr(msg, "must be")),
-                  "%s.%s = %g: fit refuses a value inside the range: %s", m->name, p->name, par[k], msg);
-            /* the degree the method declares for these values is every piece's */
-            const int want = ob_method_out_degree(m, curves[0].deg, curves[0].rational, par);
-            for (int i = 0; st == OB_FIT_OK && i < f.n; i++)
-                CHECK(f.seg[i].deg == want, "%s.%s = %g: piece %d has degree %d, out_degree says %d", m->name,
-                      p->name, par[k], i, f.seg[i].deg, want);
-        }
-    }
+    const ob_method *m = ob_method_find(name);
+    *registered = m != NULL;
+    if (m)
+        return m;
+    if (strcmp(name, ob_method_template.name) == 0)
+        return &ob_method_template;
+    for (int k = 0; k < NFIXTURES; k++)
+        if (strcmp(name, fixture_methods[k].name) == 0)
+            return &fixture_methods[k];
+    return NULL;
 }
 
-int main(void)
+static int unknown_method(const char *name)
 {
-    make_curves();
-    CHECK(ob_methods[0] != NULL, "at least one method registered");
-    ob_bez qc = quarter_circle(2.5, 0);
-    for (int i = 0; ob_methods[i]; i++) {
-        const ob_method *m = ob_methods[i];
-        CHECK(m->name && m->name[0] && m->fit && m->out_degree, "method %d incomplete", i);
-        CHECK(m->version >= 1, "%s: has a version (meta.json method_versions), got %d", m->name, m->version);
-        CHECK(ob_method_find(m->name) == m, "%s: found by name", m->name);
-        CHECK(m->cost_ms > 0 && m->cost_ms < 1e4, "%s: a cost for --shard's model (cost_ms, method.h), got %g",
-              m->name, m->cost_ms);
-        test_param_ranges(m);
-        for (int c = 0; c < ncurves; c++)
-            for (int k = 0; k < ND; k++)
-                test_generic(m, cname[c], &curves[c], DS[k]);
-        if (m->caps & OB_CAP_RATIONAL_IN)
-            for (int k = 0; k < ND; k++)
-                test_generic(m, "quarter circle r 2.5", &qc, DS[k]);
+    const char *names[128];
+    int n = 0;
+    for (int i = 0; ob_methods[i] && n < 120; i++)
+        names[n++] = ob_methods[i]->name;
+    names[n++] = ob_method_template.name;
+    for (int k = 0; k < NFIXTURES && n < 128; k++)
+        names[n++] = fixture_methods[k].name;
+    char note[128];
+    fprintf(stderr, "test_methods: unknown method '%s'%s: one of './offbench list methods', template (methods/TEMPLATE.c)"
+            " or a fixture of tests/methods/contract_fixtures.h\n", name, ob_suggest_note(name, names, n, note, sizeof note));
+    return 2;
+}
+
+/* test_methods --method NAME: the contract on NAME alone. */
+static int check_one(const char *name)
+{
+    int registered;
+    const ob_method *m = find_any(name, &registered);
+    if (!m)
+        return unknown_method(name);
+    contract_begin(0);
+    contract_run(m, registered);
+    contract_end(m);
+    return check_done();
+}
+
+int main(int argc, char **argv)
+{
+    const char *only = NULL;
+    if (argc == 3 && strcmp(argv[1], "--method") == 0)
+        only = argv[2];
+    else if (argc == 2 && strncmp(argv[1], "--method=", 9) == 0)
+        only = argv[1] + 9;
+    else if (argc != 1) {
+        fprintf(stderr, "usage: test_methods [--method NAME]   (no option: every method, the self-test and the "
+                        "papers' properties)\n");
+        return 2;
     }
+    make_curves();
+    if (only)
+        return check_one(only);
+    CHECK(ob_methods[0] != NULL, "at least one method registered");
+    for (int i = 0; ob_methods[i]; i++) {
+        contract_begin(0);
+        contract_run(ob_methods[i], 1);
+        contract_end(ob_methods[i]);
+    }
+    contract_begin(0);
+    contract_run(&ob_method_template, 0);
+    contract_end(&ob_method_template);
+    test_fixtures();
+    test_contract_doc();
+    test_registry_order();
     test_tiller();
     test_cobb();
     test_ahn();
