@@ -193,17 +193,20 @@ static int distinct(const ob_res_table *t, row_field field, const char ***out, i
     return 0;
 }
 
-/* "a, b, c" of v[0..n) into buf. */
+/* "a, b, c" of v[0..n) into buf: the first 10, then how many in all. */
 static void join_names(const char **v, int n, char *buf, size_t len)
 {
+    enum { SHOWN = 10 };
     size_t k = 0;
     buf[0] = '\0';
-    for (int i = 0; i < n && k + 1 < len; i++) {
+    for (int i = 0; i < n && i < SHOWN; i++) {
         int w = snprintf(buf + k, len - k, "%s%s", i ? ", " : "", v[i]);
         if (w < 0 || (size_t)w >= len - k)
-            break;
+            return;
         k += (size_t)w;
     }
+    if (n > SHOWN)
+        snprintf(buf + k, len - k, ", ... (%d in all)", n);
 }
 
 /* The one value of field the summary keeps: `want` (an option; opt names
@@ -250,7 +253,13 @@ static int check_list(const ob_res_table *t, const char *name, const ob_sum_list
             continue;
         if (field == field_method && !ob_method_find(l->v[i]))
             return ob_fail(err, "%s: unknown method '%s' (see './offbench list methods')", opt, l->v[i]);
-        return ob_fail(err, "%s: no rows of %s '%s' in %s", opt, what, l->v[i], name);
+        const char **v;
+        int n;
+        char list[1024] = "";
+        if (distinct(t, field, &v, &n) == 0)
+            join_names(v, n, list, sizeof list);
+        free(v);
+        return ob_fail(err, "%s: no rows of %s '%s' in %s (it has %s)", opt, what, l->v[i], name, list);
     }
     return 0;
 }
