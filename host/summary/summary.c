@@ -494,6 +494,22 @@ static int check_filter(const ob_res_table *t, const char *name, const ob_sum_fi
     return 0;
 }
 
+/* Every value of l has a kept row (a value whose rows are all of another
+ * metric, split, or left out by another list would be a silent gap). */
+static int check_kept(const ob_res_table *t, const char *name, const char *kept, const ob_sum_list *l, row_field field,
+                      const char *opt, const char *what, ob_err *err)
+{
+    for (int i = 0; l && i < l->n; i++) {
+        int found = 0;
+        for (int r = 0; r < t->n && !found; r++)
+            found = kept[r] && strcmp(field(&t->v[r]), l->v[i]) == 0;
+        if (!found)
+            return ob_fail(err, "%s: the rows of %s '%s' in %s are all left out by the other filters (--metric, --split, "
+                           "--methods, --curves, --family)", opt, what, l->v[i], name);
+    }
+    return 0;
+}
+
 int ob_summary_build(const ob_res_table *t, const char *name, const ob_sum_filter *f, ob_summary *s, ob_err *err)
 {
     memset(s, 0, sizeof *s);
@@ -510,6 +526,12 @@ int ob_summary_build(const ob_res_table *t, const char *name, const ob_sum_filte
         free(kept);
         return ob_fail(err, "%s: no rows left after the filters (metric %s, split %s and the lists given)", name, metric,
                        split);
+    }
+    if (check_kept(t, name, kept, f->methods, field_method, "--methods", "method", err) ||
+        check_kept(t, name, kept, f->curves, field_curve, "--curves", "curve", err) ||
+        check_kept(t, name, kept, f->families, ob_sum_family, "--family", "family", err)) {
+        free(kept);
+        return -1;
     }
     ob_strmap pairs = {0};
     int rc = collect_axes(s, t, kept, nkept, f, &pairs);

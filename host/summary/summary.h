@@ -145,7 +145,8 @@ static inline int ob_sum_fat(const ob_summary *s, int f, int m, int k) { return 
  * Errors:  returns 0; -1 with a message in err (the caller exits 2):
  *          a value of --methods, --curves or --family no row has ("--methods:
  *          unknown method 'x'" when it is no method of this build, else "no
- *          rows of method 'x' in NAME"), a --metric or --split no row has,
+ *          rows of method 'x' in NAME"), or whose rows the other filters
+ *          all leave out, a --metric or --split no row has,
  *          rows of several metrics (or splits) and no --metric (--split) to
  *          choose one, no row left, no memory. */
 int ob_summary_build(const ob_res_table *t, const char *name, const ob_sum_filter *f, ob_summary *s, ob_err *err);

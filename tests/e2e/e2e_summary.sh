@@ -7,7 +7,8 @@
 # option; exit 1 for an output that cannot be written).
 # Uses $OFFBENCH (set by make) or ./offbench.
 . "$(dirname "$0")/lib_e2e.sh"
-PY=python3
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
 
 $OB run --random 8:3 --methods tiller,cobb --tols 1e-1,1e-2 --threads 2 --out "$T/r" 2>/dev/null
 check '[ $? -eq 0 ] && [ -s "$T/r/results.csv" ]' "offbench run --random 8:3"

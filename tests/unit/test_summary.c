@@ -340,6 +340,13 @@ static void test_filters(const ob_res_table *t)
         f.metric = "bound";
         CHECK(ob_summary_build(&two, "two.csv", &f, &s, &err) == 0 && s.run.njobs == 1, "--metric bound: its one row");
         ob_summary_free(&s);
+        ob_sum_list_parse("--curves", "c1,c2", &curves, &err);
+        f.curves = &curves;
+        CHECK(ob_summary_build(&two, "two.csv", &f, &s, &err) == -1 && strstr(err.msg, "--curves") &&
+                  strstr(err.msg, "'c2'") && strstr(err.msg, "left out"),
+              "a curve whose rows are all of another metric: %s", err.msg);
+        f.curves = NULL;
+        ob_sum_list_free(&curves);
         ob_res_free(&two);
     }
     free(text);
