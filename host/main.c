@@ -32,6 +32,8 @@ static const char usage[] =
     "  ./offbench merge  DIR... --out DIR   (the shards of one run into its results.csv)\n"
     "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
+    "  ./offbench summary RUN_DIR [--format md|csv|latex] [--out FILE] [--methods LIST] [--curves ID,...]\n"
+    "                    [--family F] [--metric M] [--baseline RUN_DIR2]   (the paper table of a run)\n"
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
     "  ./offbench measure --curve ID --d D --approx FILE [--curves FILE] [--metric M|all] [--samples S]\n"
@@ -60,6 +62,8 @@ static int dispatch(int argc, char **argv)
         return ob_cmd_compare(argc - 1, argv + 1);
     if (strcmp(cmd, "atlas") == 0)
         return ob_cmd_atlas(argc - 1, argv + 1);
+    if (strcmp(cmd, "summary") == 0)
+        return ob_cmd_summary(argc - 1, argv + 1);
     if (strcmp(cmd, "merge") == 0)
         return ob_cmd_merge(argc - 1, argv + 1);
     if (strcmp(cmd, "draw") == 0)

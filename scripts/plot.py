@@ -1,23 +1,28 @@
 #!/usr/bin/python3
 """Plot the results of `./offbench run` (results.csv) or `./offbench trace`.
 
-Usage: scripts/plot.py RESULTS.csv [--out DIR] [--curve ID,...] [--max-curves N]
-                       [--formats png,svg]
-       scripts/plot.py --trace TRACE.csv [--out DIR] [--formats png,svg]
+Usage: scripts/plot.py RESULTS.csv [--out DIR] [--methods LIST] [--highlight M]
+                       [--curve ID,...] [--per-curve] [--max-curves N]
+                       [--format svg|pdf|png[,...]]
+       scripts/plot.py --trace TRACE.csv [--out DIR] [--format ...]
 
 From RESULTS.csv (columns read by name) it writes into DIR (default: the
-directory of RESULTS.csv + /plots), each as PNG and SVG:
+directory of RESULTS.csv + /plots), each in every --format (default svg: vector
+output, text kept as text; pdf embeds TrueType fonts; png for screens):
   ctrl_<curve>_d<d>      control points against tolerance, log-log, one line per
                          method, stricter tolerance to the right; `limit` points
                          hollow; fail/skip jobs are listed in a footnote.  One
-                         file per (curve, d) of the curves of family `published`
-                         plus at most --max-curves (default 12) others, or of
-                         the curves given by --curve.
-  summary_families       per family of the random curves (ids rnd<seed>_<n>):
-                         the median control points of each method against the
-                         tolerance, with the interquartile range as a band.
+                         file per (curve, d) of the curves that are not random
+                         (family `published` first) up to --max-curves (default
+                         12) others; random curves (ids rnd<seed>_<n>) only with
+                         --per-curve; or the curves given by --curve.
+  summary_families       per family of the random curves: the median control
+                         points of each method against the tolerance, with the
+                         interquartile range as a band.
   time_per_job           per method, the distribution of fit_ns + eval_ns per
                          job (box plot, log axis), methods sorted by median.
+--methods a,b plots only those methods (in that order); --highlight M draws M
+in colour over the others in grey, in every plot.
 From TRACE.csv (columns curve,d,method,metric,split,tol,seg,piece,t,u,err,x,y;
 default DIR: the directory of TRACE.csv + /plots):
   trace_<curve>_<method> the error against the curve parameter u, with the
@@ -27,7 +32,8 @@ Prints the paths written.  Exits 2, naming the file and line, on a missing
 file, a missing column or a malformed number; a file without plottable rows
 writes nothing and exits 0.
 
-Needs matplotlib: run it as /usr/bin/python3 (Debian's python3-matplotlib).
+Needs matplotlib and numpy: run it as /usr/bin/python3 (Debian's
+python3-matplotlib); without them it says which interpreter lacks what.
 """
 import argparse
 import math
@@ -38,11 +44,26 @@ import textwrap
 
 import csvrows  # scripts/csvrows.py, beside this file
 
+DEBIAN_PYTHON = "/usr/bin/python3"
+
+
+def missing_module(name):
+    """The message for a module this interpreter cannot import: which
+    interpreter (another Python than Debian's often lacks the packages), and
+    what to install."""
+    exe = sys.executable or "python3"
+    msg = (f"plot.py: {name} is not installed for {exe} (Python {sys.version_info[0]}."
+           f"{sys.version_info[1]}); on Debian: apt-get install python3-{name} (or 'make deps')")
+    if os.path.realpath(exe) != os.path.realpath(DEBIAN_PYTHON) and os.path.exists(DEBIAN_PYTHON):
+        msg += f" and run it with {DEBIAN_PYTHON}, whose packages those are"
+    return msg
+
+
 try:
     import matplotlib
-except ImportError:
-    sys.exit(f"{os.path.basename(sys.argv[0])}: matplotlib is not installed: apt-get install python3-matplotlib "
-             "(or run 'make deps')")
+    import numpy  # noqa: F401  (matplotlib needs it; named here if it is what is missing)
+except ImportError as e:
+    sys.exit(missing_module(e.name if e.name in ("matplotlib", "numpy") else "matplotlib"))
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -63,6 +84,10 @@ RANDOM_ID = re.compile(r"^rnd\d+_\d+$")
 
 # Reproducible SVG output (no random ids, no date): nightly plots diff cleanly.
 matplotlib.rcParams["svg.hashsalt"] = "offbench"
+# Plots for papers: SVG text stays text (editable, searchable), PDF embeds
+# TrueType fonts (journals refuse Type 3)
+matplotlib.rcParams["svg.fonttype"] = "none"
+matplotlib.rcParams["pdf.fonttype"] = 42
 matplotlib.rcParams["axes.titlesize"] = 11
 matplotlib.rcParams["legend.fontsize"] = 8
 
@@ -121,13 +146,47 @@ PALETTE = tuple(plt.get_cmap("tab10").colors) + (
     "#e7298a", "#5254a3", "#b5cf6b")
 
 
-def method_styles(methods):
-    """A (colour, marker, line style) per method, distinct for many methods and
-    the same in every plot of one results file."""
+GREY = "#a6a6a6"           # the methods not highlighted
+HIGHLIGHT = PALETTE[0]     # the one highlighted
+
+
+class Style:
+    """How one method is drawn: colour, marker, line style, line width, marker
+    size and z-order (the highlighted method over the grey ones)."""
+
+    def __init__(self, colour, marker, dash, width=1.4, msize=6.5, z=2):
+        self.colour, self.marker, self.dash = colour, marker, dash
+        self.width, self.msize, self.z = width, msize, z
+
+
+def method_styles(methods, highlight=None):
+    """A Style per method, distinct for many methods and the same in every plot
+    of one results file; with highlight, that method in colour and the others
+    grey, thinner and underneath."""
     n = len(PALETTE)
-    return {m: (PALETTE[i % n], MARKERS[(i + i // n) % len(MARKERS)],
-                "-" if i % (2 * n) < 10 else (0, (4, 1.5)))
-            for i, m in enumerate(methods)}
+    out = {}
+    for i, m in enumerate(methods):
+        marker = MARKERS[(i + i // n) % len(MARKERS)]
+        if highlight is None:
+            out[m] = Style(PALETTE[i % n], marker, "-" if i % (2 * n) < 10 else (0, (4, 1.5)))
+        elif m == highlight:
+            out[m] = Style(HIGHLIGHT, marker, "-", width=2.2, msize=7, z=4)
+        else:
+            out[m] = Style(GREY, marker, "-", width=1.0, msize=4.5, z=1)
+    return out
+
+
+def legend_handles(keys, method_of, style, highlight, handle):
+    """The legend's entries: handle(key) for every key, or with highlight the
+    highlighted method's keys and one grey entry naming the others."""
+    if highlight is None:
+        return [handle(k) for k in keys]
+    mine = [handle(k) for k in keys if method_of[k] == highlight]
+    others = [k for k in keys if method_of[k] != highlight]
+    if others:
+        text = textwrap.fill("other methods (grey): " + ", ".join(others), 44)
+        mine.append(Line2D([], [], color=GREY, linewidth=1.0, label=text))
+    return mine
 
 
 def fmt_num(v):
@@ -211,7 +270,7 @@ class Writer:
             die(f"cannot create {self.outdir}: {e.strerror}")
         for ext in self.formats:
             path = os.path.join(self.outdir, f"{name}.{ext}")
-            meta = {"Date": None} if ext in ("svg", "pdf") else {}
+            meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None}}.get(ext, {})
             try:
                 fig.savefig(path, dpi=110, bbox_inches="tight" if tight else None,
                             metadata=meta)
@@ -250,15 +309,16 @@ def tol_list(tols, all_tols):
     return "tol " + ", ".join(fmt_num(t) for t in sorted(set(tols), reverse=True))
 
 
-def plot_ctrl(curve, d, rows, style, keyof, meta_line, writer):
+def plot_ctrl(curve, d, rows, style, keyof, meta_line, writer, highlight=None):
     keys = unique(keyof(r) for r in rows)
     all_tols = unique(r["tol"] for r in rows)
     fig, ax = plt.subplots(figsize=(8.2, 5.0))
-    handles, dropped = [], []
+    drawn, dropped, labels = [], [], {}
+    method_of = {keyof(r): r["method"] for r in rows}
     for key in keys:
         mine = [r for r in rows if keyof(r) == key]
         method = mine[0]["method"]
-        colour, marker, dash = style[method]
+        st = style[method]
         pts = sorted((r["tol"], r["ctrl_points"], r["status"]) for r in mine
                      if r["status"] in PLOTTED and r["ctrl_points"] and r["ctrl_points"] > 0)
         nocount = [r for r in mine if r["status"] in PLOTTED and not (r["ctrl_points"] or 0) > 0]
@@ -273,27 +333,32 @@ def plot_ctrl(curve, d, rows, style, keyof, meta_line, writer):
             dropped.append(f"{key}: no control point count at "
                            f"{tol_list([r['tol'] for r in nocount], all_tols)}")
         degs = unique(r["out_degree"] for r in mine if r["status"] in PLOTTED and r["out_degree"])
-        label = key + (f" (deg {degs[0]})" if len(degs) == 1 else "")
+        labels[key] = key + (f" (deg {degs[0]})" if len(degs) == 1 else "")
         if not pts:
             continue
         x = [p[0] for p in pts]
         y = [p[1] for p in pts]
-        ax.plot(x, y, color=colour, linestyle=dash, linewidth=1.4, alpha=0.9, zorder=2)
-        for want, face in (("ok", colour), ("limit", "white")):
+        ax.plot(x, y, color=st.colour, linestyle=st.dash, linewidth=st.width, alpha=0.9, zorder=st.z)
+        for want, face in (("ok", st.colour), ("limit", "white")):
             sel = [(a, b) for a, b, s in pts if s == want]
             if sel:
-                ax.plot(*zip(*sel), linestyle="none", marker=marker, markersize=6.5,
-                        markerfacecolor=face, markeredgecolor=colour, markeredgewidth=1.3,
-                        zorder=3)
-        handles.append(Line2D([], [], color=colour, linestyle=dash, marker=marker,
-                              markersize=6.5, label=label))
-    if not handles:
+                ax.plot(*zip(*sel), linestyle="none", marker=st.marker, markersize=st.msize,
+                        markerfacecolor=face, markeredgecolor=st.colour, markeredgewidth=1.3,
+                        zorder=st.z + 0.5)
+        drawn.append(key)
+    if not drawn:
         plt.close(fig)
         return False
+
+    def handle(k):
+        s = style[method_of[k]]
+        return Line2D([], [], color=s.colour, linestyle=s.dash, marker=s.marker,
+                      markersize=s.msize, label=labels[k])
+    handles = legend_handles(drawn, method_of, style, highlight, handle)
     tol_axis(ax, all_tols)
     count_axis(ax)
-    ax.set_xlabel("tolerance (maximum error, curve units; stricter →)")
-    ax.set_ylabel("control points (count)")
+    ax.set_xlabel("tolerance (maximum error, curve units, log scale; stricter →)")
+    ax.set_ylabel("control points (count, log scale)")
     fam = rows[0]["family"]
     ax.set_title(f"{curve}" + (f" ({fam})" if fam else "") + f", d = {d}: "
                  "control points vs tolerance" + meta_line)
@@ -309,7 +374,7 @@ def plot_ctrl(curve, d, rows, style, keyof, meta_line, writer):
     return True
 
 
-def choose_curves(path, rows, wanted, max_curves):
+def choose_curves(path, rows, wanted, max_curves, per_curve=False):
     curves = unique(r["curve"] for r in rows)
     if wanted is not None:
         unknown = [c for c in wanted if c not in curves]
@@ -321,7 +386,11 @@ def choose_curves(path, rows, wanted, max_curves):
     for r in rows:
         family.setdefault(r["curve"], r["family"])
     published = [c for c in curves if family[c] == "published"]
-    others = [c for c in curves if family[c] != "published"]
+    random = [c for c in curves if family[c] != "published" and RANDOM_ID.match(c)]
+    if random and not per_curve:
+        note(f"{path}: {len(random)} random curves are summarized per family (summary_families), "
+             "not plotted one by one (--per-curve for that)")
+    others = [c for c in curves if family[c] != "published" and (per_curve or not RANDOM_ID.match(c))]
     if len(others) > max_curves:
         note(f"{path}: {len(others) - max_curves} of {len(others)} other curves not plotted "
              f"one by one (--max-curves {max_curves})")
@@ -337,7 +406,7 @@ def meta_suffix(rows):
 
 # ---------------------------------------------------------------- 2. families
 
-def plot_families(rows, style, keyof, writer, path):
+def plot_families(rows, style, keyof, writer, path, highlight=None):
     rnd = [r for r in rows if RANDOM_ID.match(r["curve"])]
     if not rnd:
         note(f"{path}: no random curves (ids rnd<seed>_<n>): summary_families not written")
@@ -352,7 +421,8 @@ def plot_families(rows, style, keyof, writer, path):
     # the axes are not shared (matplotlib is slow at that): common limits instead
     # fixed margins, no bbox_inches="tight" (slow with many axes): the legend
     # goes in a column of its own on the right
-    reserve = 0.8 + 0.07 * max(len(k) for k in keys + ["interquartile range"])
+    texts = [h.get_label() for h in legend_handles(keys, method_of, style, highlight, lambda k: Line2D([], [], label=k))]
+    reserve = 0.8 + 0.07 * max(len(line) for t in texts + ["interquartile range"] for line in t.split("\n"))
     width = 4.3 * ncols + 0.3 + reserve
     fig, axes = plt.subplots(nrows, ncols, squeeze=False,
                              figsize=(width, 3.3 * nrows + 0.9))
@@ -372,7 +442,7 @@ def plot_families(rows, style, keyof, writer, path):
                 if (fam, key) in groups:
                     absent.append(key)
                 continue
-            colour, marker, dash = style[mine[0]["method"]]
+            st = style[mine[0]["method"]]
             tols = sorted(unique(r["tol"] for r in mine))
             med, lo, hi = [], [], []
             for t in tols:
@@ -381,9 +451,10 @@ def plot_families(rows, style, keyof, writer, path):
                 lo.append(q1)
                 med.append(q2)
                 hi.append(q3)
-            ax.fill_between(tols, lo, hi, color=colour, alpha=0.13, linewidth=0)
-            ax.plot(tols, med, color=colour, linestyle=dash, marker=marker, markersize=4.5,
-                    linewidth=1.3)
+            ax.fill_between(tols, lo, hi, color=st.colour, alpha=0.13, linewidth=0,
+                            zorder=st.z - 0.5)
+            ax.plot(tols, med, color=st.colour, linestyle=st.dash, marker=st.marker,
+                    markersize=st.msize * 0.7, linewidth=st.width * 0.95, zorder=st.z)
             drawn.add(key)
             ylo, yhi = min(ylo, min(lo)), max(yhi, max(hi))
         ax.set_title(f"{fam}: {ncurves} (curve, d) pair{'s' if ncurves != 1 else ''}",
@@ -404,11 +475,14 @@ def plot_families(rows, style, keyof, writer, path):
         if i % ncols:
             ax.tick_params(labelleft=False)
         else:
-            ax.set_ylabel("control points (count)")
+            ax.set_ylabel("control points (count, log scale)")
         if i + ncols >= nf:  # lowest in its column
-            ax.set_xlabel("tolerance (stricter →)")
-    handles = [Line2D([], [], color=style[method_of[k]][0], marker=style[method_of[k]][1],
-                      linestyle=style[method_of[k]][2], label=k) for k in keys if k in drawn]
+            ax.set_xlabel("tolerance (curve units, log scale; stricter →)")
+
+    def handle(k):
+        s = style[method_of[k]]
+        return Line2D([], [], color=s.colour, marker=s.marker, linestyle=s.dash, label=k)
+    handles = legend_handles([k for k in keys if k in drawn], method_of, style, highlight, handle)
     handles.append(Patch(color="0.5", alpha=0.3, label="interquartile range"))
     fig.suptitle("Median control points per random family (ok and limit jobs; "
                  "band: 25th–75th percentile)" + meta_suffix(rnd).replace("\n", " "),
@@ -451,7 +525,7 @@ def plot_time(rows, style, keyof, writer, path):
                     medianprops={"color": "black", "linewidth": 1.4},
                     flierprops={"marker": ".", "markersize": 3, "alpha": 0.5})
     for k, box, fl in zip(keys, bp["boxes"], bp["fliers"]):
-        colour = style[method_of[k]][0]
+        colour = style[method_of[k]].colour
         box.set_facecolor(colour)
         box.set_alpha(0.75)
         fl.set_markeredgecolor(colour)
@@ -464,7 +538,7 @@ def plot_time(rows, style, keyof, writer, path):
     ax.set_xlim(10 ** math.floor(math.log10(lo)), 10 ** math.ceil(math.log10(hi)))
     ax.xaxis.set_major_formatter(FuncFormatter(fmt_seconds))
     ax.grid(True, axis="x", which="major", alpha=0.35)
-    ax.set_xlabel("time per job: fit + evaluation (fit_ns + eval_ns), log scale")
+    ax.set_xlabel("time per job: fit + evaluation (fit_ns + eval_ns; seconds, log scale)")
     ncurves = len(unique((r["curve"], r["d"]) for r in timed))
     ax.set_title(f"Time per job by method, fastest median on top\n"
                  f"{len(timed)} jobs on {ncurves} (curve, d) pairs; skipped jobs omitted"
@@ -549,8 +623,28 @@ def plot_trace(path, outdir, formats):
 
 # ---------------------------------------------------------------- main
 
-def plot_results(path, outdir, formats, wanted, max_curves):
+def select_methods(path, rows, methods, highlight):
+    """The rows of the --methods (in that order), and the method order; exits
+    2 naming a listed or highlighted method without rows."""
+    present = unique(r["method"] for r in rows)
+    if methods is not None:
+        unknown = [m for m in methods if m not in present]
+        if unknown:
+            die(f"{path}: --methods: no rows for method{'s' if len(unknown) > 1 else ''} "
+                f"{', '.join(unknown)} (the file has {', '.join(present)})")
+        rows = [r for r in rows if r["method"] in methods]
+        present = methods
+    if highlight is not None and highlight not in present:
+        die(f"{path}: --highlight {highlight}: no rows for that method"
+            + (" among --methods" if methods is not None else "")
+            + f" (methods: {', '.join(present)})")
+    return rows, present
+
+
+def plot_results(path, outdir, formats, wanted, max_curves, methods=None, highlight=None,
+                 per_curve=False):
     rows = read_results(path)
+    rows, order = select_methods(path, rows, methods, highlight)
     writer = Writer(outdir, formats)
     plottable = [r for r in rows if r["status"] in PLOTTED
                  and r["ctrl_points"] and r["ctrl_points"] > 0]
@@ -558,35 +652,54 @@ def plot_results(path, outdir, formats, wanted, max_curves):
         note(f"{path}: no plottable rows (status ok or limit with control points): "
              "nothing written")
         return writer
-    methods = unique(r["method"] for r in rows)
-    style = method_styles(methods)
+    style = method_styles(order, highlight)
     keyof = series_key(rows)
-    for curve in choose_curves(path, rows, wanted, max_curves):
+    for curve in choose_curves(path, rows, wanted, max_curves, per_curve):
         crows = [r for r in rows if r["curve"] == curve]
         for d in unique(r["d"] for r in crows):
             drows = [r for r in crows if r["d"] == d]
             dtext = exact_num(d)
-            if not plot_ctrl(curve, dtext, drows, style, keyof, meta_suffix(drows), writer):
+            if not plot_ctrl(curve, dtext, drows, style, keyof, meta_suffix(drows), writer,
+                             highlight):
                 note(f"{path}: {curve}, d = {dtext}: no ok/limit rows: not plotted")
-    plot_families(rows, style, keyof, writer, path)
+    plot_families(rows, style, keyof, writer, path, highlight)
     plot_time(rows, style, keyof, writer, path)
     return writer
+
+
+def comma_list(ap, opt, text):
+    """The values of a comma list option (None when not given); an empty list
+    or a value given twice is a usage error (exit 2)."""
+    if text is None:
+        return None
+    values = [c.strip() for c in text.split(",") if c.strip()]
+    if not values:
+        ap.error(f"{opt}: empty list")
+    twice = [v for v in unique(values) if values.count(v) > 1]
+    if twice:
+        ap.error(f"{opt}: {', '.join(twice)} given twice")
+    return values
 
 
 def main(argv):
     ap = argparse.ArgumentParser(
         prog="plot.py", description="Plot offbench results.csv or trace CSV files.",
-        usage="%(prog)s RESULTS.csv [--out DIR] [--curve ID,...] [--max-curves N] "
-              "[--formats png,svg]\n       %(prog)s --trace TRACE.csv [--out DIR]")
+        usage="%(prog)s RESULTS.csv [--out DIR] [--methods LIST] [--highlight M] "
+              "[--curve ID,...] [--per-curve] [--max-curves N] [--format svg|pdf|png[,...]]\n"
+              "       %(prog)s --trace TRACE.csv [--out DIR] [--format ...]")
     ap.add_argument("results", nargs="?", help="results.csv written by ./offbench run")
     ap.add_argument("--trace", metavar="TRACE.csv", help="CSV written by ./offbench trace")
     ap.add_argument("--out", metavar="DIR", help="output directory (default: beside the input, "
                     "in plots/)")
+    ap.add_argument("--methods", metavar="LIST", help="only these methods, in this order")
+    ap.add_argument("--highlight", metavar="M", help="draw method M in colour, the others in grey")
     ap.add_argument("--curve", metavar="ID,...", help="plot only these curves one by one")
+    ap.add_argument("--per-curve", action="store_true",
+                    help="plot random curves one by one too (default: their family summary only)")
     ap.add_argument("--max-curves", metavar="N", type=int, default=12,
                     help="at most N curves not of family 'published' (default 12)")
-    ap.add_argument("--formats", metavar="LIST", default="png,svg",
-                    help="comma-separated file formats (default png,svg)")
+    ap.add_argument("--format", "--formats", dest="formats", metavar="LIST", default="svg",
+                    help="comma-separated file formats: svg (default), pdf, png, ...")
     a = ap.parse_args(argv[1:])
     if (a.results is None) == (a.trace is None):
         ap.error("give either RESULTS.csv or --trace TRACE.csv")
@@ -597,21 +710,21 @@ def main(argv):
     plt.close("all")
     bad = [f for f in formats if f not in supported]
     if not formats or bad:
-        ap.error(f"--formats: unsupported {', '.join(bad) or '(empty)'}; "
+        ap.error(f"--format: unsupported {', '.join(bad) or '(empty)'}; "
                  f"choose from {', '.join(sorted(supported))}")
     src = a.trace if a.trace is not None else a.results
     outdir = a.out or os.path.join(os.path.dirname(os.path.abspath(src)), "plots")
     if a.trace is not None:
-        if a.curve is not None:
-            ap.error("--curve applies to RESULTS.csv, not to --trace")
+        for opt, given in (("--curve", a.curve is not None), ("--methods", a.methods is not None),
+                           ("--highlight", a.highlight is not None), ("--per-curve", a.per_curve)):
+            if given:
+                ap.error(f"{opt} applies to RESULTS.csv, not to --trace")
         writer = plot_trace(a.trace, outdir, formats)
     else:
-        wanted = None
-        if a.curve is not None:
-            wanted = unique(c.strip() for c in a.curve.split(",") if c.strip())
-            if not wanted:
-                ap.error("--curve: empty list")
-        writer = plot_results(a.results, outdir, formats, wanted, a.max_curves)
+        wanted = comma_list(ap, "--curve", a.curve)
+        methods = comma_list(ap, "--methods", a.methods)
+        writer = plot_results(a.results, outdir, formats, wanted, a.max_curves, methods,
+                              a.highlight, a.per_curve)
     for p in writer.written:
         print(p)
 

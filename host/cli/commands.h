@@ -31,6 +31,10 @@ int ob_cmd_measure(int argc, char **argv);
  * refused set or bad input; 1 output not writable). */
 int ob_cmd_merge(int argc, char **argv);
 
+/* summary RUN_DIR [options]: the paper table of a run (0; 2 bad input; 1
+ * output not writable). */
+int ob_cmd_summary(int argc, char **argv);
+
 /* atlas [--out DIR]: the Offset Atlas against the exact offset degrees. */
 int ob_cmd_atlas(int argc, char **argv);
 

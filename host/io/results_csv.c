@@ -255,6 +255,7 @@ static int csv_row(csv_reader *r, int *line, int nh)
 static const char *read_row(char **f, const int *at, int has_joints, ob_res_row *row)
 {
     const char *bad = read_key(f, at, row);
+    row->family = at[17] >= 0 ? f[at[17]] : "";
     row->status = f[at[10]];
     row->message = f[at[13]];
     row->max_err_text = f[at[9]];
@@ -307,7 +308,7 @@ static int index_rows(ob_res_table *t, csv_reader *r, int line)
 
 static int parse_owned(char *buf, size_t len, const char *name, int first_line, ob_res_table *t, ob_err *err)
 {
-    /* required, then the optional joint columns (NREQ on) */
+    /* required, then the optional joint columns and family (NREQ on) */
     /* the names from the column table (columns.h), in the order of at[] */
     const char *const cols[] = {
         ob_columns[OB_COL_CURVE].name,      ob_columns[OB_COL_D].name,          ob_columns[OB_COL_METHOD].name,
@@ -315,7 +316,7 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         ob_columns[OB_COL_CTRL_POINTS].name, ob_columns[OB_COL_SEGMENTS].name,  ob_columns[OB_COL_OUT_DEGREE].name,
         ob_columns[OB_COL_MAX_ERR].name,    ob_columns[OB_COL_STATUS].name,     ob_columns[OB_COL_FIT_NS].name,
         ob_columns[OB_COL_EVAL_NS].name,    ob_columns[OB_COL_MESSAGE].name,    ob_columns[OB_COL_MAX_GAP].name,
-        ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name};
+        ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name, ob_columns[OB_COL_FAMILY].name};
     enum { NCOL = sizeof cols / sizeof cols[0], NREQ = 14 };
     int at[NCOL];
     memset(t, 0, sizeof *t);
@@ -332,6 +333,7 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         goto fail;
     }
     t->has_joints = njc == 3;
+    t->has_family = at[17] >= 0;
     for (;;) {
         const int got = csv_row(&r, &line, nh);
         if (got == 0)

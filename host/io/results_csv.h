@@ -5,7 +5,8 @@
  * results.csv: a header naming the columns, then one row per job.  Columns
  * are found by name (any order, extra columns ignored); required:
  * curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,
- * status,fit_ns,eval_ns,message (`family`, written by run, is not needed).
+ * status,fit_ns,eval_ns,message.  Optional: family (written by run; a file
+ * without it reads family "" on every row, has_family 0).
  * Optional: max_gap, max_kink, continuity (the joints; files written before
  * they existed have none, and are read all the same: has_joints 0).
  * Fields may be quoted ("a, b" with "" for a quote, newlines inside quotes),
@@ -34,6 +35,7 @@ typedef struct {
     double fit_ns, eval_ns;
     double max_gap, max_kink;  /* NAN when empty or the column is absent */
     const char *continuity;  /* "" when empty or absent */
+    const char *family;      /* "" when empty or the column is absent */
     int line;                /* first line of the row in the file */
     const double *rep_t;     /* samples.csv: fit_ns + eval_ns of repetition r
                                 at rep_t[r - 1], NAN where absent; NULL without */
@@ -48,6 +50,7 @@ typedef struct {
     double *rep_t;           /* n x maxrep sample times (owned), or NULL */
     int maxrep;              /* largest rep in samples.csv; 0 without */
     int has_joints;          /* the header has max_gap, max_kink and continuity */
+    int has_family;          /* the header has family */
 } ob_res_table;
 
 /* Purpose: parse the text of a results.csv named `name` (copied: the caller
