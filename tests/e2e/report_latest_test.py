@@ -281,6 +281,10 @@ def svg_checks():
     check(re.search(r"<svg[^>]*>\s*<title>summed ctrl_points", s) is not None, "sparkline: a title of its own")
     big = report_svg.chart(pts, runs, [], "summed ctrl_points", "ctrl")
     check(big.count('class="hit"') == 3 and "a000003" in big, "the large chart: hover areas too")
+    flat = report_svg.chart([(0, 5, None, None), (2, 5, None, None)], runs, [], "t", "ms", width=220, height=40,
+                            small=True)
+    check(re.findall(r'<text class="([a-z ]+)"[^>]*>([^<]*)</text>', flat) == [("min max", "5")],
+          "a flat sparkline: one label: %s" % re.findall(r"<text[^>]*>[^<]*</text>", flat))
     empty = report_svg.chart([], runs, [], "t", "ms", width=220, height=40, small=True)
     check("<svg" in empty and 'class="hit"' not in empty, "a chart without points")
 
