@@ -25,6 +25,40 @@ pass=$((pass + ${up:-0})); fail=$((fail + ${uf:-1})); skipped=$((skipped + ${us:
 [ "${uf:-1}" -eq 0 ] || cat "$T/lint" >&2
 grep -q "skipped" "$T/lint" && grep -v "passed" "$T/lint"
 
+# without PyYAML (python -S: no dist-packages) the lint is skipped and says why
+"$PY" -S "$ROOT/tests/e2e/ci_recipes_check.py" "$ROOT" > "$T/nolint" 2>&1
+check '[ $? -eq 0 ] && grep -q "no PyYAML (Debian python3-yaml)" "$T/nolint" && grep -q "^0 passed, 0 failed, [1-9][0-9]* skipped$" "$T/nolint"' \
+    "lint without PyYAML: skipped with the reason: $(cat "$T/nolint")"
+# the lint catches what it is there for: each broken copy of a recipe fails
+# with its reason (skipped with the lint when there is no PyYAML)
+NBROKEN=8
+if grep -q "skipped" "$T/lint"; then
+    skipped=$((skipped + NBROKEN))
+else
+    # broken FILE SED-PROGRAM EXPECTED-TEXT WHAT
+    broken() {
+        rm -rf "$T/r0" && mkdir -p "$T/r0" && cp -R "$ROOT/scripts" "$ROOT/Makefile" "$T/r0/"
+        sed -i "$2" "$T/r0/scripts/ci/$1"
+        if cmp -s "$T/r0/scripts/ci/$1" "$ROOT/scripts/ci/$1"; then bad "broken $1: the edit '$2' changed nothing"; return; fi
+        "$PY" "$ROOT/tests/e2e/ci_recipes_check.py" "$T/r0" > "$T/bl" 2>&1
+        check '[ $? -ne 0 ] && grep -q -- "$3" "$T/bl"' "lint: $4: $(grep FAIL "$T/bl" | head -n 3)"
+    }
+    broken github-nightly.yml 's|sh scripts/nightly.sh --out out/nightly|make nightly|' "make nightly: make turns" \
+        "make nightly refused"
+    broken gitlab-nightly.yml 's|sh scripts/nightly.sh|sh scripts/nightlyy.sh|' "no such script" "a missing script"
+    broken github-nightly.yml 's|1) echo "::error title=nightly: regression::see the report and report.md (exit 1)"; exit 1 ;;|1) echo regression ;;|' \
+        "nightly exit 1: the job should fail, it would pass" "a regression that passes the job"
+    broken gitlab-nightly.yml 's|    - exit $status|    - echo done|' "nightly exit 2: the job should fail, it would pass" \
+        "the exit status dropped"
+    broken gitlab-nightly.yml 's|^    when: always$|    when: on_success|' "cached, also after a failed night" \
+        "the store not saved after a failed night"
+    broken github-nightly.yml '/Save the history store/,/key:/d' "saved after the nightly" "no cache save"
+    broken gitlab-nightly.yml 's|ca-certificates git gcc make python3 curl unzip|ca-certificates git gcc make python3 unzip|' \
+        "curl: its package curl is not installed" "a tool the image lacks"
+    broken gitlab-nightly.yml "s|    - 'echo \"nightly: exit status \$status\"'|    - echo \"nightly: exit status \$status\"|" \
+        "a line of text, not" "an unquoted colon makes a mapping"
+fi
+
 # --- the store from a published site ---------------------------------------------
 NIGHTLY_COMMIT_URL=none
 export NIGHTLY_COMMIT_URL
