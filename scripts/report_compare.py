@@ -116,15 +116,18 @@ def norm(text):
 
 def sections(text, names):
     """report.md cut at its headings named as a run set (any level, any
-    case): [(name, the text up to the next such heading)], in order; one
+    case, the name alone or first: "## published", "### Random set: 250
+    curves"): [(name, the text up to the next such heading)], in order; one
     (None, TEXT) when no heading names a set."""
     want = {norm(n): n for n in names}
     cuts = []
     lines = text.splitlines()
     for k, line in enumerate(lines):
         m = HEADING.match(line)
-        if m and norm(m.group(2)) in want:
-            cuts.append((k, want[norm(m.group(2))]))
+        h = norm(m.group(2)) if m else ""
+        hit = next((want[w] for w in want if w and (h == w or h.startswith(w + " "))), None)
+        if hit is not None:
+            cuts.append((k, hit))
     if not cuts:
         return [(None, text)]
     out = []

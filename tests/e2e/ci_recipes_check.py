@@ -233,7 +233,6 @@ def github(root, y):
     lint_commands(name, runs, root, apt_packages(runs))
     env = dict(y.get("env") or {})
     hist = str(env.get("NIGHTLY_HISTORY", "out/history"))
-    ids = [s.get("id") for s in steps]
     k_n = next((k for k, s in enumerate(steps) if "scripts/nightly.sh" in str(s.get("run", ""))), None)
     check(k_n is not None and steps[k_n].get("id"), "%s: the nightly step has an id" % name)
     if k_n is None:

@@ -75,16 +75,16 @@ strip() { sed -e "s|$1|STORE|g" "$2"; }
 check '[ "$(strip "$T/r" "$T/site-r/index.html" | sed "s|\.\./r/|../X/|g")" = "$(strip "$T/h" "$T/site-h/index.html" | sed "s|\.\./h/|../X/|g")" ]' \
     "history_from_site: the restored store gives the same report"
 # a run already there stays as it is; the others come back
-rm -rf "$T/r/$(ls "$T/r" | grep _aaaaaaa_)"
-echo mine > "$T/r/$(ls "$T/r" | grep _bbbbbbb_)/report.md"
+rm -rf "$T"/r/*_aaaaaaa_*
+for d in "$T"/r/*_bbbbbbb_*; do echo mine > "$d/report.md"; done
 $FROM "$T/public" "$T/r" 2>"$T/err"
-check '[ $? -eq 0 ] && [ $(ls "$T/r" | wc -l) -eq 5 ] && [ "$(cat "$T/r/$(ls "$T/r" | grep _bbbbbbb_)/report.md")" = mine ] && grep -q "1 runs restored" "$T/err"' \
+check '[ $? -eq 0 ] && [ $(ls "$T/r" | wc -l) -eq 5 ] && [ "$(cat "$T"/r/*_bbbbbbb_*/report.md)" = mine ] && grep -q "1 runs restored" "$T/err"' \
     "history_from_site: only the missing run copied: $(cat "$T/err")"
 check '[ -z "$(ls -A "$T/r" | grep "^\.")" ]' "history_from_site: no temporary directory left"
 # not runs: the site's own files, a directory without run.json, a link
 mkdir -p "$T/public/runs/2026-01-01T000000Z_x_y" "$T/public/runs/notarun"
 echo '{}' > "$T/public/runs/notarun/run.json"
-ln -s "$T/h/$(ls "$T/h" | grep _ccccccc_)" "$T/public/runs/2026-01-02T000000Z_l_l"
+for d in "$T"/h/*_ccccccc_*; do ln -s "$d" "$T/public/runs/2026-01-02T000000Z_l_l"; done
 $FROM "$T/public" "$T/r2" 2>/dev/null
 check '[ $(ls "$T/r2" | wc -l) -eq 5 ] && [ ! -e "$T/r2/notarun" ] && [ ! -e "$T/r2/2026-01-01T000000Z_x_y" ] && [ ! -e "$T/r2/2026-01-02T000000Z_l_l" ]' \
     "history_from_site: only directories named and made like runs: $(ls "$T/r2" | tr '\n' ' ')"

@@ -124,6 +124,9 @@ def section_checks():
     check([n for n, _ in s] == ["published", "random"], "sections at another level, any case: %s" % [n for n, _ in s])
     p = report_compare.parse_compare_md(dict(s).get("published", ""))
     check(p["table"] is not None and p["table"].rows[0][0] == "tiller", "another heading for the per-method table")
+    other = NIGHTLY.replace("## published", "## Published runs (1,680 jobs)").replace("## random", "## random: 250:2026")
+    s = report_compare.sections(other, ["published", "random"])
+    check([n for n, _ in s] == ["published", "random"], "set headings with more words: %s" % [n for n, _ in s])
     # no set headings at all (compare's report alone): one unnamed section
     s = report_compare.sections(COMPARE_1, ["published", "random"])
     check(len(s) == 1 and s[0][0] is None, "no set headings: one section: %s" % [n for n, _ in s])
