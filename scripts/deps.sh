@@ -15,6 +15,8 @@
 #                          python3-ezdxf (optional: the test is skipped without it)
 #   zsh completion test (tests/e2e/e2e_completion.sh): zsh (optional: the
 #                          zsh half of the test is skipped without it)
+#   lint of the CI recipes (tests/e2e/e2e_ci_recipes.sh, scripts/ci/*.yml):
+#                          python3-yaml (optional: the lint is skipped without it)
 #   browser test of the nightly report (tests/e2e/e2e_report.sh) and
 #   results/report.png:    chromium-headless-shell, only with OB_DEPS_BROWSER=1
 #                          (optional: never fails the build; the browser
@@ -47,7 +49,8 @@ fi
 # python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py),
 # python3-svgelements for scripts/svg2curves.py (SVG paths to .curves),
 # python3-ezdxf for the DXF read-back of `run --export` (tests/e2e/e2e_export.sh)
-# and results/export/*.png (scripts/dxf_png.py).
+# and results/export/*.png (scripts/dxf_png.py), python3-yaml for the lint of
+# the CI recipes in scripts/ci/ (tests/e2e/e2e_ci_recipes.sh).
 # Installed when missing and possible; never fail the build: the C build does
 # not need them, and their tests count as skipped without them.
 optional_apt() { # PACKAGE WHAT: installs PACKAGE when root with apt-get, else says how
@@ -77,6 +80,7 @@ optional_py svgelements python3-svgelements "scripts/svg2curves.py"
 optional_py ezdxf python3-ezdxf "the DXF read-back test"
 # Optional: zsh, to test the zsh completion (scripts/completion/_offbench).
 command -v zsh >/dev/null 2>&1 || optional_apt zsh "the zsh completion test"
+optional_py yaml python3-yaml "the CI recipes' lint"
 
 # Optional, asked for with OB_DEPS_BROWSER=1 (about 100 MB): a headless
 # Chromium for the nightly report's browser test and its screenshot.

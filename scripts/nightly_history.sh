@@ -10,7 +10,8 @@
 #       UTC time, e.g. 2026-12-02T031205Z; COMMIT the short commit; HOST the
 #       machine's name) and prints that directory.  Per run set (published,
 #       random): results.csv, samples.csv, meta.json, the run's log; beside
-#       them report.md, compare-*.err, build.log and run.json (status N, its
+#       them report.md, compare-*.err, compare-*.json (compare --format json,
+#       when the nightly wrote it), build.log and run.json (status N, its
 #       meaning, the stage that ended the run, commit, dirty flag, host,
 #       time).  STAGE "build" copies only build.log: OUT then still holds the
 #       previous night's files.  A failed run is recorded all the same.
@@ -46,7 +47,7 @@ copy_run() {
     o=$1 d=$2
     [ -f "$o/build.log" ] && { cp "$o/build.log" "$d/" || return 1; }
     [ "$3" = build ] && return 0
-    for f in "$o"/report.md "$o"/compare-*.err "$o"/*.log; do
+    for f in "$o"/report.md "$o"/compare-*.err "$o"/compare-*.json "$o"/*.log; do
         [ -f "$f" ] && { cp "$f" "$d/" || return 1; }
     done
     for set in "$o"/*/; do

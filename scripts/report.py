@@ -6,9 +6,11 @@
 
 HISTORY_DIR is the store scripts/nightly.sh fills (scripts/nightly_history.sh):
 one directory per run holding run.json and per run set (published, random)
-results.csv, samples.csv and meta.json.  Writes SITE_DIR/index.html (the
-runs, the steps, per run set and method the latest figures with small
-charts, the step rule, the latest compare report) and SITE_DIR/method-M.html
+results.csv, samples.csv and meta.json.  Writes SITE_DIR/index.html (first
+the latest run's verdict, its exit status from run.json, and its comparison
+with the baseline per run set as HTML tables (scripts/report_compare.py);
+then the steps, per run set and method the latest figures with small
+charts, the step rule, the runs, report.md as written) and SITE_DIR/method-M.html
 per method (charts and a table per run).  Quality per method: summed
 ctrl_points, failures (fail or timeout), limits; time: the method total
 (fit_ns + eval_ns over its rows) with the interquartile range of the
@@ -16,13 +18,17 @@ per-repetition totals of samples.csv as its spread.  Steps: see
 scripts/report_steps.py (the rule is printed on the page too).  Links to each
 run's regular files are relative (into the store, or with --copy-files into
 SITE_DIR/runs/); a symbolic link, FIFO or device in a run is a warning, never
-followed, read or copied (report_data.open_regular).  Standard library only; no network when viewed: charts are
-inline SVG, the little script is inline.
+followed, read or copied (report_data.open_regular).  Commits link to
+their page when --commit-url, NIGHTLY_COMMIT_URL or the checkout's GitHub
+or GitLab remote gives a template (scripts/report_commits.py).  Standard
+library only; no network when viewed: charts are inline SVG, the little
+script is inline; the only links out of the site are the commit links.
 Exit status: 0 written (problems with a run's files are warnings on stderr
 and on the page), 2 bad usage or an unreadable store or unwritable site."""
 
 import argparse
 import os
+import re
 import shutil
 import sys
 import urllib.parse
@@ -30,6 +36,8 @@ from html import escape
 
 sys.dont_write_bytecode = True  # no __pycache__ in the checkout
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_commits  # noqa: E402
+import report_compare  # noqa: E402
 import report_data  # noqa: E402
 import report_steps  # noqa: E402
 from report_svg import chart  # noqa: E402
@@ -40,7 +48,15 @@ table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding
 th{background:#f3f3f3}td.date{white-space:nowrap}td.num{text-align:right}td.step{background:#fadbd8;font-weight:bold}
 tr.failed td.status{background:#f5b7b1}tr.regression td.status{background:#fdebd0}
 pre{background:#f8f8f8;border:1px solid #ddd;padding:.5em;overflow:auto;max-height:30em;font-size:12px}
-.rule{background:#eef5fb;border-left:4px solid #2e86c1;padding:.4em .8em}.warn{color:#a04000}"""
+.rule{background:#eef5fb;border-left:4px solid #2e86c1;padding:.4em .8em}.warn{color:#a04000}
+#latest{border:1px solid #ddd;padding:.2em 1em 1em;margin-bottom:1.5em}
+.verdict{font-size:20px;padding:.4em .8em;margin:.5em 0;border-left:8px solid #7f8c8d;background:#f2f3f4}
+.verdict-ok{border-color:#1e8449;background:#e9f7ef}.verdict-regression{border-color:#c0392b;background:#fdedec}
+.verdict-error{border-color:#6c3483;background:#f4ecf7}.verdict-not-comparable{border-color:#b9770e;background:#fef5e7}
+.badge{font-size:12px;font-weight:normal;padding:1px 6px;border-radius:3px;background:#eee}
+.badge-ok{background:#d5f5e3}.badge-regression{background:#fadbd8}.badge-error{background:#e8daef}
+.badge-not-comparable{background:#fdebd0}td.v-regression{background:#fadbd8;font-weight:bold}
+td.v-improvement{background:#d5f5e3}a.commit{text-decoration:none}"""
 
 # shows only the runs with a step or a failure when the box is ticked; the
 # body's data-ready="yes" tells a test that the script ran to its end
@@ -128,6 +144,19 @@ def place_files(run, site, copy, warn):
     return out
 
 
+def commit_cell(r):
+    """The run's short commit, a link when the page has a commit link
+    template (report_commits), and "(dirty)" when the tree had changes."""
+    url = report_commits.commit_url(COMMIT_TEMPLATE[0], r.commit)
+    c = "<code>%s</code>" % escape(r.short)
+    if url:
+        c = '<a class="commit" href="%s">%s</a>' % (escape(url), c)
+    return c + (" (dirty)" if r.dirty else "")
+
+
+COMMIT_TEMPLATE = [None]  # set by build(): the commit link template or None
+
+
 def run_rows(runs, series):
     """The runs table, newest first."""
     steps_at = {}
@@ -144,11 +173,11 @@ def run_rows(runs, series):
         files = " ".join('<a href="%s">%s</a>' % (escape(h), escape(l)) for l, h in r.links)
         probs = "".join('<div class="warn">%s</div>' % escape(p) for p in r.problems)
         out.append('<tr class="%s" id="run-%s" data-run="%s" data-commit="%s" data-status="%s" data-host="%s" '
-                   'data-notable="%s"><td class="num">%d</td><td class="date">%s</td><td><code>%s</code>%s</td><td>%s</td>'
+                   'data-notable="%s"><td class="num">%d</td><td class="date">%s</td><td>%s</td><td>%s</td>'
                    '<td class="status">%s %s</td><td>%s</td><td class="num">%s</td><td class="num%s">%d</td>'
                    '<td>%s%s</td></tr>'
                    % (cls, escape(r.name), escape(r.name), escape(r.short), escape(str(r.status)), escape(r.host),
-                      notable, i + 1, escape(r.date), escape(r.short), " (dirty)" if r.dirty else "",
+                      notable, i + 1, escape(r.date), commit_cell(r),
                       escape(r.host), escape(str(r.status)), escape(r.status_text), escape(r.stage),
                       "-" if r.seconds is None else escape(str(r.seconds)), " step" if steps_at.get(i) else "", steps_at.get(i, 0), files, probs))
     out.append("</table>")
@@ -162,16 +191,18 @@ def step_rows(runs, series):
         for i, kind, text in se.quality + se.time:
             rows.append((i, se.set, se.method, kind, text))
     if not rows:
-        return '<p id="no-steps">No steps.</p>'
+        return ('<p id="no-steps">No steps between the runs of this history (%d run%s): steps compare each run '
+                'with the runs before it. The comparison of the latest run with the baseline, and the verdict, '
+                'are at the top of the page.</p>' % (len(runs), "" if len(runs) == 1 else "s"))
     out = ['<table id="step-table"><tr><th>run</th><th>commit</th><th>set</th><th>method</th><th>kind</th>'
            '<th>change</th></tr>']
     for i, s, m, kind, text in sorted(rows, key=lambda t: (-t[0], t[1], t[2], t[3])):
         r = runs[i]
         out.append('<tr class="%s" data-run="%s" data-commit="%s" data-set="%s" data-method="%s" data-kind="%s">'
-                   '<td>%s</td><td><code>%s</code></td><td>%s</td><td><a href="%s">%s</a></td><td>%s</td>'
+                   '<td>%s</td><td>%s</td><td>%s</td><td><a href="%s">%s</a></td><td>%s</td>'
                    '<td>%s</td></tr>'
                    % ("step" if kind != "jobs" else "jobs", escape(r.name), escape(r.short), escape(s), escape(m),
-                      kind, escape(r.date), escape(r.short), escape(s), method_href(m), escape(m), kind,
+                      kind, escape(r.date), commit_cell(r), escape(s), method_href(m), escape(m), kind,
                       escape(text)))
     out.append("</table>")
     return "\n".join(out)
@@ -209,15 +240,18 @@ def set_table(runs, s, series):
                    % (escape(s), escape(se.method), method_href(se.method), escape(se.method), m["rows"], m["ctrl"],
                       m["fail"] + m["timeout"], m["limit"], fmt_ms(m["time_ns"]),
                       fmt_ms(m["iqr_ns"]) if m["iqr_ns"] is not None else "-",
-                      chart(q, runs, se.marks(("quality", "jobs")), width=180, height=34, small=True),
-                      chart(t, runs, se.marks(("time",)), width=180, height=34, small=True),
+                      chart(q, runs, se.marks(("quality", "jobs")), "%s %s: summed ctrl_points" % (s, se.method),
+                            "ctrl", width=220, height=40, small=True),
+                      chart(t, runs, se.marks(("time",)), "%s %s: method total time" % (s, se.method), "ms",
+                            width=220, height=40, small=True),
                       " step" if nsteps else "", nsteps))
     out.append("</table>")
     return "\n".join(out)
 
 
 def latest_compare(runs):
-    """The newest run's report.md, preformatted."""
+    """The newest run's report.md as it is (the section at the top shows
+    it as tables), folded."""
     for r in reversed(runs):
         if "report.md" not in r.files:
             continue
@@ -227,17 +261,126 @@ def latest_compare(runs):
                 text = f.read()
         except OSError:
             continue  # unreadable: the runs table says so
-        return ('<p>From run %s (commit <code>%s</code>).</p><pre id="latest-compare">%s</pre>'
-                    % (escape(r.name), escape(r.short), escape(text)))
+        return ('<details><summary>report.md of run %s (commit %s), as scripts/nightly.sh wrote it</summary>'
+                '<pre id="latest-compare">%s</pre></details>' % (escape(r.name), commit_cell(r), escape(text)))
     return '<p id="latest-compare">No run has a compare report.</p>'
 
 
-def index_page(store, runs, series, sets):
-    head = ('<h1>offbench nightly history</h1><p id="summary">%d runs in <code>%s</code>%s.</p>'
-            % (len(runs), escape(os.path.abspath(store)),
+def link_to(r, label):
+    """An <a> to the run's file LABEL (its link in the runs table), or the
+    name as text when the run has no such file."""
+    for l, h in r.links:
+        if l == label:
+            return '<a href="%s">%s</a>' % (escape(h), escape(l))
+    return "<code>%s</code>" % escape(label)
+
+
+def stage_files(r):
+    """The files that tell why a run ended at its stage."""
+    if r.stage == "build":
+        want = ["build.log"]
+    elif r.stage.startswith("run "):
+        want = [r.stage[4:] + ".log"]
+    else:
+        want = ["report.md"] + [l for l, _ in r.links if l.startswith("compare-")]
+    return [w for w in want if any(l == w for l, _ in r.links)]
+
+
+def compare_table(entry, methods):
+    """One set's per-method comparison as an HTML table."""
+    t = entry["table"]
+    vcol = next((k for k, h in enumerate(t.header) if h.strip().lower() == "verdict"), None)
+    out = ['<table class="compare-methods" data-set="%s" data-source="%s"><tr>%s</tr>'
+           % (escape(entry["name"] or ""), escape(entry["source"] or ""),
+              "".join("<th>%s</th>" % escape(h) for h in t.header))]
+    for row in t.rows:
+        cells = []
+        for k, c in enumerate(row):
+            cls = []
+            if t.align[k] == "right":
+                cls.append("num")
+            if k == vcol and c:
+                cls.append("v-" + re.sub(r"[^a-z-]", "", c.split()[0].lower()))
+            text = escape(c)
+            if k == 0 and c in methods:
+                text = '<a href="%s">%s</a>' % (method_href(c), text)
+            cells.append('<td%s>%s</td>' % (' class="%s"' % " ".join(cls) if cls else "", text))
+        out.append('<tr class="compare-method" data-method="%s">%s</tr>' % (escape(row[0]), "".join(cells)))
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def latest_section(runs, latest, methods):
+    """The top of the page: the newest run's verdict, which is its exit
+    status in run.json (the nightly's exit code), and its comparison with
+    the baseline per run set as HTML tables."""
+    if not runs:
+        return ('<section id="latest"><h2>Latest run</h2><p>No runs in the store yet.</p></section>')
+    r = runs[-1]
+    cls, word = report_compare.verdict_of(r.status)
+    out = ['<section id="latest" data-run="%s"><h2>Latest run: %s</h2>' % (escape(r.name), escape(word)),
+           '<div id="verdict" class="verdict verdict-%s" data-status="%s"><strong class="verdict-word">%s</strong>'
+           ' &mdash; nightly exit status %s</div>'
+           % (cls, escape(str(r.status)), escape(word[:1].upper() + word[1:]), escape(str(r.status))),
+           '<p class="run-facts">Run <a href="#run-%s">%s</a>, commit %s, host %s%s. The verdict is the exit '
+           'status of scripts/nightly.sh as run.json records it (0 no regression, 1 regression, 2 error, 3 not '
+           'comparable)%s.%s</p>'
+           % (escape(r.name), escape(r.date), commit_cell(r), escape(r.host),
+              (", %s s" % escape(str(r.seconds))) if r.seconds is not None else "",
+              "; below, per run set, compare's verdict and per-method table against the committed baseline "
+              "(results/baseline/)" if latest.sets else "",
+              " It is the first run of this history: there is nothing to draw a step from yet."
+              if len(runs) == 1 else "")]
+    if r.status not in (0, 1, 3) or r.stage not in ("compare", ""):
+        files = stage_files(r)
+        out.append('<p class="stage">The run ended at stage <b>%s</b>%s.</p>'
+                   % (escape(r.stage or "unknown"),
+                      (": see " + ", ".join(link_to(r, f) for f in files)) if files else ""))
+    if latest.mismatch:
+        out.append('<p class="warn mismatch">%s.</p>' % escape(latest.mismatch))
+    for e in latest.sets:
+        name = e["name"] or "comparison"
+        badge = ""
+        if e["status"] is not None:
+            bc, bw = report_compare.verdict_of(e["status"])
+            badge = ' <span class="badge badge-%s">%s (exit %d)</span>' % (bc, escape(bw), e["status"])
+        elif e["err"]:
+            badge = ' <span class="badge badge-error">no verdict: see compare\'s messages</span>'
+        out.append('<div class="compare-set" data-set="%s" data-status="%s"><h3>%s%s</h3>'
+                   % (escape(e["name"] or ""), "" if e["status"] is None else e["status"], escape(name), badge))
+        if e["summary"]:
+            out.append('<p class="compare-summary">%s</p>' % escape(e["summary"]))
+        if e["reasons"]:
+            out.append('<ul class="reasons">%s</ul>'
+                       % "".join("<li>not comparable: %s</li>" % escape(x) for x in e["reasons"]))
+        if e["notes"]:
+            out.append('<ul class="notes">%s</ul>' % "".join("<li>note: %s</li>" % escape(x) for x in e["notes"]))
+        if e["table"] is not None:
+            out.append(compare_table(e, methods))
+        elif e["status"] in (0, 1):
+            out.append('<p class="no-table warn">No per-method table could be read; see %s.</p>'
+                       % link_to(r, e["source"] or "report.md"))
+        if e["err"]:
+            lines = e["err"].splitlines()
+            out.append('<div class="compare-err"><b>compare\'s messages</b> (%s)<pre>%s%s</pre></div>'
+                       % (link_to(r, "compare-%s.err" % e["name"]) if e["name"] else "stderr",
+                          escape("\n".join(lines[:20])), "\n..." if len(lines) > 20 else ""))
+        out.append("</div>")
+    if not latest.sets and r.stage in ("compare", ""):
+        out.append('<p class="warn">This run has no compare output%s.</p>'
+                   % ("" if "report.md" not in r.files else ": see " + link_to(r, "report.md")))
+    out.append("</section>")
+    return "\n".join(out)
+
+
+def index_page(store, runs, series, sets, latest):
+    head = ('<h1>offbench nightly history</h1><p id="summary">%d run%s in <code>%s</code>%s.</p>'
+            % (len(runs), "" if len(runs) == 1 else "s", escape(os.path.abspath(store)),
                (", %s to %s" % (escape(runs[0].date), escape(runs[-1].date))) if runs else ""))
     rule = '<p class="rule" id="step-rule"><b>Step rule.</b> %s</p>' % escape(report_steps.rule_text())
-    body = [head, '<h2>Steps</h2>', step_rows(runs, series), rule, '<h2>Methods</h2>',
+    methods = {se.method for se in series}
+    body = [head, latest_section(runs, latest, methods), '<h2>Steps</h2>', step_rows(runs, series), rule,
+            '<h2>Methods</h2>',
             '<p>Latest run\'s figures per method; ctrl is the summed control points, fail counts status fail '
             'and timeout, time the method total fit_ns + eval_ns (ms), its IQR that of the per-repetition '
             'totals (samples.csv). Charts: one point per run in run order; red bands mark steps, grey '
@@ -245,7 +388,7 @@ def index_page(store, runs, series, sets):
     body += [set_table(runs, s, series) for s in sets]
     body += ['<h2>Runs</h2><label><input type="checkbox" id="only-notable"> only runs with a step, a '
              'regression or a failure</label>', run_rows(runs, series),
-             '<h2>Latest compare report</h2>', latest_compare(runs)]
+             '<h2>Full compare report</h2>', latest_compare(runs)]
     return page("offbench nightly history", "\n".join(body))
 
 
@@ -282,24 +425,33 @@ def method_table(runs, se):
         qcell = ('<td class="step" data-kind="quality">%s</td>' % escape(q[i]) if i in q else
                  '<td class="jobs">%s</td>' % escape(j[i]) if i in j else "<td></td>")
         tcell = '<td class="step" data-kind="time">%s</td>' % escape(tt[i]) if i in tt else "<td></td>"
-        out.append('<tr class="run" data-run="%s" data-commit="%s"><td class="date">%s</td><td><code>%s</code></td>'
+        out.append('<tr class="run" data-run="%s" data-commit="%s"><td class="date">%s</td><td>%s</td>'
                    '<td class="num">%d</td><td class="num">%d</td><td class="num">%d</td><td class="num">%d</td>%s'
                    '<td class="num">%s</td><td class="num">%s</td>%s</tr>'
-                   % (escape(r.name), escape(r.short), escape(r.date), escape(r.short), m["rows"], m["ctrl"],
+                   % (escape(r.name), escape(r.short), escape(r.date), commit_cell(r), m["rows"], m["ctrl"],
                       m["fail"] + m["timeout"], m["limit"], qcell, fmt_ms(m["time_ns"]),
                       fmt_ms(m["iqr_ns"]) if m["iqr_ns"] is not None else "-", tcell))
     out.append("</table>")
     return "\n".join(out)
 
 
-def build(store, site, copy):
-    """Reads the store and writes the site; returns the warnings' count."""
+def build(store, site, copy, commit_url=None):
+    """Reads the store and writes the site; returns the warnings' count.
+    COMMIT_URL: the commit link template (None: NIGHTLY_COMMIT_URL, else
+    the checkout's remote; see report_commits)."""
     warnings = []
 
     def warn(text):
         warnings.append(text)
         print("report: " + text, file=sys.stderr)
 
+    env = dict(os.environ)
+    if commit_url is not None:
+        env[report_commits.ENV] = commit_url
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    COMMIT_TEMPLATE[0], problem = report_commits.commit_template(env, lambda: report_commits.git_remote(root))
+    if problem:
+        warn(problem)
     runs = report_data.load_store(store, warn)
     sets = []
     for r in runs:
@@ -309,7 +461,8 @@ def build(store, site, copy):
     os.makedirs(site, exist_ok=True)
     for r in runs:
         r.links = place_files(r, site, copy, warn)
-    write(os.path.join(site, "index.html"), index_page(store, runs, series, sets))
+    latest = report_compare.load_latest(runs[-1], warn) if runs else report_compare.Latest()
+    write(os.path.join(site, "index.html"), index_page(store, runs, series, sets, latest))
     for m in sorted({se.method for se in series}):
         write(os.path.join(site, method_href(m)), method_page(runs, m, series))
     return len(warnings)
@@ -330,12 +483,15 @@ def main(argv):
     ap.add_argument("history", metavar="HISTORY_DIR")
     ap.add_argument("--out", required=True, metavar="SITE_DIR")
     ap.add_argument("--copy-files", action="store_true", help="copy each run's files into SITE_DIR/runs/")
+    ap.add_argument("--commit-url", metavar="TEMPLATE",
+                    help="link commits to TEMPLATE with {sha} for the commit id ('none': no links; default: "
+                         "NIGHTLY_COMMIT_URL, else the checkout's GitHub or GitLab remote)")
     a = ap.parse_args(argv)
     if not os.path.isdir(a.history):
         print("report: %s: no such directory" % a.history, file=sys.stderr)
         return 2
     try:
-        build(a.history, a.out, a.copy_files)
+        build(a.history, a.out, a.copy_files, a.commit_url)
     except OSError as e:
         print("report: %s" % e, file=sys.stderr)
         return 2

@@ -2,7 +2,12 @@
 over the runs (x: the run's position in run order, labelled with its short
 commit), an optional spread bar per point, the steps as marked groups
 (<g class="step" data-run=... data-kind=...>) and runs without figures as
-crosses (<g class="missing" data-run=...>).  No scripts, no external
+crosses (<g class="missing" data-run=...>).  Values: the large charts have a
+y axis with three ticks; the small ones (sparklines) their minimum and
+maximum at the left (<text class="min">, <text class="max">; one <text
+class="min max"> when they are equal); in both,
+hovering over a run's column shows its commit, date, value and spread (a
+transparent <rect class="hit"> with a <title>).  No scripts, no external
 resources: the page works offline."""
 
 from html import escape
@@ -14,11 +19,12 @@ def chart(points, runs, marks, title="", unit="", width=640, height=200, small=F
     """points: [(run index, y, lo, hi)] (lo/hi None: no bar); runs: the
     Run objects in order (for labels and data-run); marks: [(run index,
     kind, text)].  Returns the <svg> element as text."""
-    pad_l, pad_r, pad_t, pad_b = (4, 4, 4, 4) if small else (64, 12, 22, 46)
+    pad_l, pad_r, pad_t, pad_b = (34, 4, 5, 5) if small else (64, 12, 22, 46)
     w, h = width - pad_l - pad_r, height - pad_t - pad_b
     ys = [p[1] for p in points] + [p[3] for p in points if p[3] is not None] \
         + [p[2] for p in points if p[2] is not None]
     lo, hi = (min(ys), max(ys)) if ys else (0, 1)
+    ymin, ymax = lo, hi
     if hi == lo:
         lo, hi = lo - 1 if lo >= 1 else 0, hi + 1
     n = max(len(runs), 1)
@@ -32,9 +38,14 @@ def chart(points, runs, marks, title="", unit="", width=640, height=200, small=F
     out = ['<svg xmlns="http://www.w3.org/2000/svg" class="chart%s" width="%d" height="%d" '
            'viewBox="0 0 %d %d" role="img" aria-label="%s">'
            % (" small" if small else "", width, height, width, height, escape(title))]
+    if title:
+        out.append("<title>%s%s</title>" % (escape(title), (" (%s)" % escape(unit)) if unit else ""))
     if not small:
         out += axes(pad_l, pad_t, w, h, lo, hi, title, unit, runs, px)
+    elif points:
+        out += min_max(pad_l, pad_t, h, ymin, ymax, py)
     out += bars_and_line(points, px, py)
+    out += hits(points, runs, unit, px, pad_t, h, w / n)
     out += mark_groups(marks, runs, px, pad_t, h, small)
     out += missing(points, runs, px, pad_t + h, small)
     out.append("</svg>")
@@ -57,6 +68,35 @@ def axes(x0, y0, w, h, lo, hi, title, unit, runs, px):
             continue
         out.append('<text x="%.1f" y="%d" font-size="9" text-anchor="end" transform="rotate(-40 %.1f %d)">%s</text>'
                    % (px(i), y0 + h + 12, px(i), y0 + h + 12, escape(r.short)))
+    return out
+
+
+def min_max(x0, y0, h, ymin, ymax, py):
+    """A sparkline's value labels: its maximum at the top, its minimum at
+    the bottom (spreads included), each beside a faint rule at its height."""
+    if ymin == ymax:  # flat: one label, at the line
+        return ['<text class="min max" x="%d" y="%.1f" font-size="9" fill="#555" text-anchor="end" '
+                'dominant-baseline="middle">%s</text>' % (x0 - 3, py(ymin), fmt(ymin))]
+    out = []
+    for cls, y, base in (("max", ymax, "hanging"), ("min", ymin, "auto")):
+        yy = py(y)
+        out.append('<line x1="%d" y1="%.1f" x2="%d" y2="%.1f" stroke="#e5e5e5"/>' % (x0 - 2, yy, x0 + 2, yy))
+        out.append('<text class="%s" x="%d" y="%.1f" font-size="9" fill="#555" text-anchor="end" '
+                   'dominant-baseline="%s">%s</text>' % (cls, x0 - 3, y0 if cls == "max" else y0 + h, base, fmt(y)))
+    return out
+
+
+def hits(points, runs, unit, px, y0, h, col):
+    """A transparent column per point whose title is the run and its value
+    (what the browser shows on hover)."""
+    out = []
+    u = (" " + unit) if unit else ""
+    for i, y, lo, hi in points:
+        r = runs[i]
+        spread = (" (IQR %s..%s%s)" % (fmt(lo), fmt(hi), u)) if lo is not None and hi is not None else ""
+        out.append('<rect class="hit" x="%.1f" y="%d" width="%.1f" height="%d" fill="transparent">'
+                   '<title>%s %s: %s%s%s</title></rect>'
+                   % (px(i) - col / 2, y0, col, h, escape(r.short), escape(r.date), fmt(y), escape(u), escape(spread)))
     return out
 
 
@@ -108,6 +148,6 @@ def missing(points, runs, px, ybase, small):
 
 def fmt(y):
     """A tick or tooltip value: integers as such, else 4 significant digits."""
-    if abs(y - round(y)) < 1e-9 and abs(y) < 1e12:
+    if abs(y - round(y)) < 1e-9 and abs(y) < 1e12 or 1e4 <= abs(y) < 1e12:
         return "%d" % round(y)
     return "%.4g" % y
