@@ -312,31 +312,6 @@ static int check_same(const shard_in *a, const shard_in *b)
     return 0;
 }
 
-/* The merged meta.json: shard 0's with the shard lines rewritten. */
-static int write_meta(FILE *f, const shard_in *s0, int nshards, size_t total, double wall)
-{
-    const char *p = s0->meta_text, *end = s0->meta_text + s0->meta_len;
-    int seen = 0;
-    while (p < end) {
-        const char *nl = memchr(p, '\n', (size_t)(end - p));
-        const size_t len = nl ? (size_t)(nl - p) + 1 : (size_t)(end - p);
-        if (strncmp(p, "  \"shard\": ", 11) == 0) {
-            fprintf(f, "  \"shard\": null,\n  \"merged_shards\": %d,\n", nshards);
-            seen |= 1;
-        } else if (strncmp(p, "  \"jobs\": ", 10) == 0) {
-            fprintf(f, "  \"jobs\": %zu,\n", total);
-            seen |= 2;
-        } else if (strncmp(p, "  \"wall_seconds\": ", 18) == 0) {
-            fprintf(f, "  \"wall_seconds\": %.3f,\n", wall);
-            seen |= 4;
-        } else {
-            fwrite(p, 1, len, f);
-        }
-        p += len;
-    }
-    return seen == 7 && !ferror(f) ? 0 : -1;
-}
-
 typedef struct {
     const shard_in *sh;
     int nsh;
@@ -370,11 +345,7 @@ static int write_samples_cb(FILE *f, void *ctx)
 static int write_meta_cb(FILE *f, void *ctx)
 {
     const merged *m = ctx;
-    const shard_in *s0 = &m->sh[0];
-    for (int i = 1; i < m->nsh; i++)
-        if (m->sh[i].k == 0)
-            s0 = &m->sh[i];
-    return write_meta(f, s0, m->nsh, m->total, m->wall);
+    return ob_merge_write_meta(f, m->sh, m->nsh, m->total, m->wall);
 }
 
 static const ob_flag merge_flags[] = {
