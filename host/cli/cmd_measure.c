@@ -114,12 +114,15 @@ static void put_num(FILE *f, double x)
 /* One CSV row. */
 static void row(FILE *f, ob_metric m, const ob_mres *r)
 {
-    fprintf(f, "%s,%s,", ob_metric_name(m), r->applies ? "ok" : "n/a");
+    fprintf(f, "%s,%s,", ob_metric_name(m), ob_mres_status(r));
     if (r->applies) {
         put_num(f, r->err);
         fprintf(f, ",%d,%d,", r->piece, r->seg);
         put_num(f, r->t);
-        fputs(",\n", f);
+        fputc(',', f);
+        if (!r->ok)
+            fprintf(f, "\"%s\"", r->why);
+        fputc('\n', f);
     } else {
         fprintf(f, ",,,,\"%s\"\n", r->why);
     }
