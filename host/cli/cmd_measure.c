@@ -139,6 +139,8 @@ static int measure(const measure_args *a, ob_run_opts *o)
     if (ob_load_run_curves(o, &set, where, sizeof where) != 0)
         goto out;
     const ob_curve *c = &set.v[ob_curveset_find(&set, o->curve_ids[0])];
+    if (ob_check_option_d("measure", c, a->d) != 0)
+        goto out;  /* status 2: a d the curve's file would refuse (curvefile.h) */
     if (ob_approx_read(a->approx, &ap, &err) != 0 ||
         ob_approx_match(c, a->d, &ap, a->approx, &err) != 0) {
         ob_error("%s", err.msg);
