@@ -74,6 +74,7 @@ $(BUILD)/buildinfo.h: FORCE
 	@{ echo "#define OB_GIT_COMMIT \"$$(git rev-parse --verify -q HEAD 2>/dev/null || echo unknown)\""; \
 	   echo "#define OB_GIT_DIRTY $$(if git diff --quiet HEAD -- 2>/dev/null; then echo 0; else echo 1; fi)"; \
 	   echo "#define OB_CFLAGS \"$(strip $(CFLAGS))\""; \
+	   printf '#define OB_DATASETS_DIR "%s"\n' "$$(printf '%s' '$(CURDIR)/datasets' | sed 's/[\\"]/\\&/g')"; \
 	   echo "#define OB_GIT_DATE \"$$(git log -1 --format=%cd --date=format:%Y.%m.%d 2>/dev/null || echo unknown)\""; \
 	   for p in SISL:libsisl-dev FLINT:libflint-dev OCL_ICD:ocl-icd-libopencl1; do \
 	     echo "#define OB_PKG_$${p%%:*} \"$$(dpkg-query -W -f='$${Version}' $${p#*:} 2>/dev/null | head -n 1 | tr -d '"\\' || true)\""; \
@@ -106,7 +107,7 @@ $(BUILD)/tests/unit/test_table_lanes: private CFLAGS += -fno-math-errno
 $(BUILD)/embedded_%.o: $(BUILD)/embedded_%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
-$(BUILD)/host/io/output.o $(BUILD)/host/run/journal.o $(BUILD)/host/main.o: $(BUILD)/buildinfo.h
+$(BUILD)/host/io/output.o $(BUILD)/host/run/journal.o $(BUILD)/host/main.o $(BUILD)/host/io/export_dir.o: $(BUILD)/buildinfo.h
 
 $(BUILD)/libob.a: $(LIB_OBJ)
 	@rm -f $@

@@ -51,6 +51,7 @@
 #include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/io/export.h"
+#include "host/io/export_dir.h"
 #include "host/view/jobview.h"
 #include "host/io/numfmt.h"
 #include "host/io/outfile.h"
@@ -570,6 +571,8 @@ static int run_cmd(int trace, int argc, char **argv)
         if (ob_check_out_not_input(cmd, a.out, 0, inputs, 1) != 0)
             status = 2;
     }
+    if (status == 0 && v.o.export_dir && ob_export_check_dir(cmd, v.o.export_dir, v.o.curves_file) != 0)
+        status = 2;  /* the export would become input (export_dir.h) */
     if (status == 0) {
         if (!to_stdout && ob_outfile_open(&of, a.out, 0, &err) != 0) {
             ob_error("--out: %s", err.msg);

@@ -114,12 +114,15 @@ static void put_num(FILE *f, double x)
 /* One CSV row. */
 static void row(FILE *f, ob_metric m, const ob_mres *r)
 {
-    fprintf(f, "%s,%s,", ob_metric_name(m), r->applies ? "ok" : "n/a");
+    fprintf(f, "%s,%s,", ob_metric_name(m), ob_mres_status(r));
     if (r->applies) {
         put_num(f, r->err);
         fprintf(f, ",%d,%d,", r->piece, r->seg);
         put_num(f, r->t);
-        fputs(",\n", f);
+        fputc(',', f);
+        if (!r->ok)
+            fprintf(f, "\"%s\"", r->why);
+        fputc('\n', f);
     } else {
         fprintf(f, ",,,,\"%s\"\n", r->why);
     }
@@ -136,6 +139,8 @@ static int measure(const measure_args *a, ob_run_opts *o)
     if (ob_load_run_curves(o, &set, where, sizeof where) != 0)
         goto out;
     const ob_curve *c = &set.v[ob_curveset_find(&set, o->curve_ids[0])];
+    if (ob_check_option_d("measure", c, a->d) != 0)
+        goto out;  /* status 2: a d the curve's file would refuse (curvefile.h) */
     if (ob_approx_read(a->approx, &ap, &err) != 0 ||
         ob_approx_match(c, a->d, &ap, a->approx, &err) != 0) {
         ob_error("%s", err.msg);

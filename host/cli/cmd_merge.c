@@ -21,9 +21,14 @@
  * ob_take_run_dir): exit 2 while another process holds it.  Exit 1: the
  * output cannot be written.
  *
- * meta.json: the meta.json of shard 0 with "shard" set to null and
- * "merged_shards" added, "jobs" the whole run's, "wall_seconds" the longest
- * shard's.
+ * meta.json: the meta.json of shard 0 with "shard" set to null,
+ * "merged_shards" and "shards" (each shard's backend, threads, host, ...)
+ * added, "jobs" the whole run's, "wall_seconds" the longest shard's, and
+ * "mixed" for a value the shards do not share (merge_meta.c, merge.h).
+ *
+ * --export: shards that exported into one directory each wrote
+ * index.shardK-of-N.csv there; merge checks them against the shards' rows
+ * and writes that directory's index.csv, in job order (merge_export.c).
  */
 #include <errno.h>
 #include <inttypes.h>
@@ -35,6 +40,7 @@
 #include "host/io/fsutil.h"
 #include "host/io/columns.h"
 #include "host/cli/commands.h"
+#include "host/cli/merge.h"
 #include "host/cli/cliopts.h"
 #include "host/diag.h"
 #include "host/io/metajson.h"
@@ -44,19 +50,8 @@
 #include "host/run/signals.h"
 #include "host/io/slurp.h"
 
-typedef struct {
-    const char *dir;
-    ob_json_flat meta;
-    char *meta_text, *res_text, *idx_text, *smp_text;
-    size_t meta_len, res_len, idx_len, smp_len;
-    char **lines;        /* data lines of results.csv (into res_text) */
-    size_t nlines;
-    char **slines;       /* data lines of samples.csv, or NULL */
-    size_t nslines;
-    size_t *idx;         /* job index of each line */
-    uint64_t *key;       /* the hash of its job's key (shard.csv "key") */
-    int k, n, reps;
-} shard_in;
+typedef ob_shard_in shard_in;
+
 
 static void shard_free(shard_in *s)
 {
@@ -109,9 +104,7 @@ static int row_key(const char *line, char *buf, size_t cap, const char *key[6])
     return 0;
 }
 
-/* Splits text into lines in place (LF or CRLF); *hdr gets the first line,
- * *v the others (blank lines dropped). */
-static int split_lines(char *text, size_t len, char **hdr, char ***v, size_t *n)
+int ob_merge_split_lines(char *text, size_t len, char **hdr, char ***v, size_t *n)
 {
     size_t cap = 64;
     *v = malloc(cap * sizeof **v);
@@ -196,7 +189,7 @@ static int shard_results(shard_in *s, const char *dir)
         ob_error("merge: %s", err.msg);
         return -1;
     }
-    if (split_lines(s->res_text, s->res_len, &hdr, &s->lines, &s->nlines) != 0) {
+    if (ob_merge_split_lines(s->res_text, s->res_len, &hdr, &s->lines, &s->nlines) != 0) {
         ob_error("merge: out of memory");
         return -1;
     }
@@ -220,7 +213,7 @@ static int shard_index(shard_in *s, const char *dir)
         ob_error("merge: %s", err.msg);
         return -1;
     }
-    if (split_lines(s->idx_text, s->idx_len, &hdr, &il, &ni) != 0 || !hdr || strcmp(hdr, "job,key") != 0 ||
+    if (ob_merge_split_lines(s->idx_text, s->idx_len, &hdr, &il, &ni) != 0 || !hdr || strcmp(hdr, "job,key") != 0 ||
         ni != s->nlines) {
         free(il);
         ob_error("merge: %s: expected the header 'job,key' and one index per row of results.csv (%zu)", path,
@@ -273,7 +266,7 @@ static int shard_samples(shard_in *s, const char *dir)
     if (probe) {
         fclose(probe);
         if (ob_slurp(path, &s->smp_text, &s->smp_len, &err) != 0 ||
-            split_lines(s->smp_text, s->smp_len, &hdr, &s->slines, &s->nslines) != 0 || !hdr ||
+            ob_merge_split_lines(s->smp_text, s->smp_len, &hdr, &s->slines, &s->nslines) != 0 || !hdr ||
             strcmp(hdr, OB_SAMPLES_HEADER) != 0 || s->nslines != s->nlines * (size_t)s->reps) {
             ob_error("merge: %s: expected %d rows per job of results.csv", path, s->reps);
             return -1;
@@ -319,31 +312,6 @@ static int check_same(const shard_in *a, const shard_in *b)
     return 0;
 }
 
-/* The merged meta.json: shard 0's with the shard lines rewritten. */
-static int write_meta(FILE *f, const shard_in *s0, int nshards, size_t total, double wall)
-{
-    const char *p = s0->meta_text, *end = s0->meta_text + s0->meta_len;
-    int seen = 0;
-    while (p < end) {
-        const char *nl = memchr(p, '\n', (size_t)(end - p));
-        const size_t len = nl ? (size_t)(nl - p) + 1 : (size_t)(end - p);
-        if (strncmp(p, "  \"shard\": ", 11) == 0) {
-            fprintf(f, "  \"shard\": null,\n  \"merged_shards\": %d,\n", nshards);
-            seen |= 1;
-        } else if (strncmp(p, "  \"jobs\": ", 10) == 0) {
-            fprintf(f, "  \"jobs\": %zu,\n", total);
-            seen |= 2;
-        } else if (strncmp(p, "  \"wall_seconds\": ", 18) == 0) {
-            fprintf(f, "  \"wall_seconds\": %.3f,\n", wall);
-            seen |= 4;
-        } else {
-            fwrite(p, 1, len, f);
-        }
-        p += len;
-    }
-    return seen == 7 && !ferror(f) ? 0 : -1;
-}
-
 typedef struct {
     const shard_in *sh;
     int nsh;
@@ -377,11 +345,7 @@ static int write_samples_cb(FILE *f, void *ctx)
 static int write_meta_cb(FILE *f, void *ctx)
 {
     const merged *m = ctx;
-    const shard_in *s0 = &m->sh[0];
-    for (int i = 1; i < m->nsh; i++)
-        if (m->sh[i].k == 0)
-            s0 = &m->sh[i];
-    return write_meta(f, s0, m->nsh, m->total, m->wall);
+    return ob_merge_write_meta(f, m->sh, m->nsh, m->total, m->wall);
 }
 
 static const ob_flag merge_flags[] = {
@@ -493,6 +457,7 @@ int ob_cmd_merge(int argc, char **argv)
     int *who = NULL;
     size_t *row = NULL;
     int lock_fd = -1;
+    ob_merge_export xp = {0};
     if (!in)
         return 1;
     const ob_flagset flags = {merge_flags, 1, NULL, NULL, "options", apply_merge_flag, &out};
@@ -529,7 +494,8 @@ int ob_cmd_merge(int argc, char **argv)
     for (size_t j = 0; j < total; j++)
         who[j] = -1;
     double wall;
-    if (map_rows(sh, nin, in, total, who, row, &wall) != 0 || check_plan_hash(sh, in, total, who, row) != 0)
+    if (map_rows(sh, nin, in, total, who, row, &wall) != 0 || check_plan_hash(sh, in, total, who, row) != 0 ||
+        ob_merge_export_load(sh, nin, who, row, total, &xp) != 0)
         goto done;
     /* the run directory's lock, as run takes it: no run (and no other
      * merge) writes there while the merged files are written */
@@ -545,11 +511,14 @@ int ob_cmd_merge(int argc, char **argv)
     status = ob_stop_signal() || ob_write_set_atomically(out, set, nset) != 0 ? 1 : 0;
     if (status == 0)
         ob_info("merged %d shards, %zu jobs, into %s/results.csv", nin, total, out);
+    if (status == 0 && ob_merge_export_write(&xp) != 0)
+        status = 1;  /* --export: the shards' indexes into index.csv (merge.h) */
 done:
     if (ob_stop_signal() && status != 0)  /* the set is written whole or not at all */
         status = ob_stop_exit("merge: nothing written to %s; run the command again", out);
     if (lock_fd >= 0)
         close(lock_fd);  /* the lock goes with it */
+    ob_merge_export_free(&xp);
     for (int i = 0; sh && i < nin; i++)
         shard_free(&sh[i]);
     free(sh);

@@ -294,6 +294,23 @@ static int check_values(const ob_cmp_side *b, const ob_cmp_side *n, ob_strmap co
     return rc;
 }
 
+/* A merged run's key whose shards differ (merge.h): its value, or that of
+ * the object holding it ("opencl" for "opencl.device"), is "mixed".  Two
+ * such runs are never the same setting: each shard's may differ. */
+static int is_mixed(const ob_json_flat *meta, const char *key)
+{
+    char top[64];
+    const ob_json_entry *e = ob_json_get(meta, key);
+    if (e && e->type == OB_JSON_STRING && strcmp(e->value, "mixed") == 0)
+        return 1;
+    const char *dot = strchr(key, '.');
+    if (!dot || (size_t)(dot - key) >= sizeof top)
+        return 0;
+    snprintf(top, sizeof top, "%.*s", (int)(dot - key), key);
+    e = ob_json_get(meta, top);
+    return e && e->type == OB_JSON_STRING && strcmp(e->value, "mixed") == 0;
+}
+
 int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     static const char *const same[] = {"samples_per_segment", "max_depth", "max_segments", "inflection_split",
@@ -319,8 +336,12 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
         rc |= check_identity(b, n, r);
         for (size_t k = 0; k < sizeof timing / sizeof timing[0]; k++) {
             const ob_json_entry *eb = ob_json_get(&b->meta, timing[k]), *en = ob_json_get(&n->meta, timing[k]);
-            if (!ob_json_same(eb, en))
-                rc |= ob_strlist_addf(&r->timing_diffs, "%s: %s vs %s", timing[k], shown(eb), shown(en));
+            const int mixed = is_mixed(&b->meta, timing[k]) || is_mixed(&n->meta, timing[k]);
+            if (!ob_json_same(eb, en) || mixed)
+                rc |= ob_strlist_addf(&r->timing_diffs, "%s: %s vs %s%s", timing[k],
+                                      is_mixed(&b->meta, timing[k]) ? "mixed" : shown(eb),
+                                      is_mixed(&n->meta, timing[k]) ? "mixed" : shown(en),
+                                      mixed ? " (merged shards that differ: meta.json \"shards\")" : "");
         }
         if (r->timing_diffs.n)
             r->timing = 0;

@@ -319,17 +319,33 @@ static int kw_point(parser *P, char *rest, int homogeneous)
     return 0;
 }
 
+int ob_offset_check(double d, double coord_max, char *why, size_t len)
+{
+    if (d == 0)
+        snprintf(why, len, "offset distance 0 (must be != 0)");
+    else if (!isfinite(d))
+        snprintf(why, len, "offset distance %g is not a finite number", d);
+    else if (fabs(d) < SCALE_MIN)
+        snprintf(why, len, "offset distance %.17g is too small (|d| must be 1e-50 to 1e12)", d);
+    else if (fabs(d) > VALUE_LIMIT)
+        snprintf(why, len, "offset distance %.17g is too large (|d| must be 1e-50 to 1e12)", d);
+    else if (!(fabs(d) >= SCALE_REL * coord_max))
+        snprintf(why, len, "offset %.17g is below 1e-12 times its largest coordinate %.3g", d, coord_max);
+    else
+        return 0;
+    return -1;
+}
+
 static int kw_offset(parser *P, char *rest)
 {
     block *b = &P->b;
     int n = numbers(P, rest, "offset", 1, INT_MAX);
     if (n < 0)
         return -1;
+    char why[200];
     for (int i = 0; i < n; i++) {
-        if (P->vals[i] == 0)
-            return perr(P, P->line, "offset distance 0 (must be != 0)");
-        if (fabs(P->vals[i]) < SCALE_MIN)
-            return perr(P, P->line, "offset distance %.17g is too small (|d| must be 1e-50 to 1e12)", P->vals[i]);
+        if (ob_offset_check(P->vals[i], 0.0, why, sizeof why) != 0)  /* the scale's part at `end` */
+            return perr(P, P->line, "%s", why);
         /* a job is (curve, d, method, tol): the same d twice would be two
          * jobs with one key, which compare and --resume refuse */
         for (size_t k = 0; k < b->offs.n; k++)
@@ -433,10 +449,10 @@ static int check_block_scale(parser *P, double *M_out)
                     "curve '%s': its control polygon spans %.3g, too small to measure (at least 1e-50 and 1e-12 "
                     "times its largest coordinate %.3g)",
                     b->id, E, M);
+    char why[200];
     for (size_t k = 0; k < b->offs.n; k++)
-        if (!(fabs(b->offs.v[k]) >= SCALE_REL * M))
-            return perr(P, L, "curve '%s': offset %.17g is below 1e-12 times its largest coordinate %.3g", b->id,
-                        b->offs.v[k], M);
+        if (ob_offset_check(b->offs.v[k], M, why, sizeof why) != 0)
+            return perr(P, L, "curve '%s': %s", b->id, why);
     *M_out = M;
     return 0;
 }
@@ -524,6 +540,7 @@ static int kw_end(parser *P, char *rest)
     memcpy(c->file, P->name, k);
     c->file[k] = '\0';
     c->line = L;
+    c->coord_max = M;
     P->n++;
     block_clear(b);
     return 0;

@@ -47,6 +47,20 @@ int ob_curves_load_file(const char *path, ob_curveset *set, ob_err *err);
  * Errors:  -1 with message as above; -1 with "DIR: ..." if unreadable. */
 int ob_curves_load_dir(const char *dir, ob_curveset *set, ob_err *err);
 
+/* Purpose: the one check of an offset distance d, for every command that
+ *          takes one: a curve file's `offset` line, and --d of draw, trace
+ *          and measure (so none of them takes a d the format refuses).
+ * Inputs:  d; coord_max, the largest |coordinate| of the curve
+ *          (ob_curve.coord_max; 0: only the absolute limits apply).
+ * Rules:   d finite and != 0; 1e-50 <= |d| <= 1e12 (the format's number
+ *          range; below, C + dN rounds to C or underflows the metrics);
+ *          |d| >= 1e-12 coord_max (below, d is round-off of the
+ *          coordinates: the offset is measured as the curve itself).
+ * Returns: 0; -1 with the reason in why (no FILE:LINE or option: the caller
+ *          says where, e.g. "offset distance 1e-60 is too small (|d| must
+ *          be 1e-50 to 1e12)"). */
+int ob_offset_check(double d, double coord_max, char *why, size_t len);
+
 /* Index of the curve with this id, or -1. */
 int ob_curveset_find(const ob_curveset *set, const char *id);
 

@@ -7,7 +7,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "host/io/export_dir.h"
 #include "host/io/fsutil.h"
 #include "host/diag.h"
 #include "host/io/numfmt.h"
@@ -112,8 +114,7 @@ int ob_export_prepare(const ob_run_opts *o, int mpi_ranks, size_t njobs, ob_span
         ob_error("--export: not with %s", why);
         return 2;
     }
-    const char *const inputs[] = {o->curves_file};
-    if (ob_check_out_not_input("run --export", o->export_dir, 1, inputs, 1) != 0)
+    if (ob_export_check_dir("run", o->export_dir, o->curves_file) != 0)
         return 2;
     /* one log more than jobs, its cap -1: the end mark, so that
      * ob_export_finish and ob_export_free need no count */
@@ -126,11 +127,14 @@ int ob_export_prepare(const ob_run_opts *o, int mpi_ranks, size_t njobs, ob_span
     return 0;
 }
 
-/* DIR/index.csv: one row per job. */
-static int write_index(const char *dir, const ob_job *jobs, size_t njobs)
+/* Whether job j has an approximation to export (ok or limit). */
+static int has_approx(const ob_job *j) { return j->status == OB_OK || j->status == OB_LIMIT; }
+
+/* DIR/NAME (index.csv, or a shard's index): one row per job. */
+static int write_index(const char *dir, const char *name, const ob_job *jobs, size_t njobs)
 {
     char path[4200], stem[400], num[40];
-    snprintf(path, sizeof path, "%s/index.csv", dir);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     ob_outfile o;
     ob_err err;
     if (ob_outfile_open(&o, path, 0, &err) != 0) {
@@ -138,10 +142,10 @@ static int write_index(const char *dir, const ob_job *jobs, size_t njobs)
         return -1;
     }
     FILE *f = o.f;
-    fputs("curve,d,method,tol,status,max_err,segments,stem\n", f);
+    fprintf(f, "%s\n", OB_EXPORT_INDEX_HEADER);
     for (size_t i = 0; i < njobs; i++) {
         const ob_job *j = &jobs[i];
-        const int has = j->status == OB_OK || j->status == OB_LIMIT;
+        const int has = has_approx(j);
         fprintf(f, "%s,", j->curve->id);
         ob_export_num(f, j->d, 0);
         fprintf(f, ",%s,", j->method->name);
@@ -161,15 +165,65 @@ static int write_index(const char *dir, const ob_job *jobs, size_t njobs)
     return 0;
 }
 
-int ob_export_single(const char *dir, const ob_job *j, int samples, const ob_span_log *log)
+/* The stems of jobs[0..n) into m: those with an approximation (approx 1),
+ * or all.  0, or -1 out of memory. */
+static int stem_set(const ob_job *jobs, size_t n, int approx, ob_strmap *m)
+{
+    char stem[400];
+    for (size_t i = 0; i < n; i++) {
+        if (approx && !has_approx(&jobs[i]))
+            continue;
+        ob_export_stem(stem, sizeof stem, &jobs[i]);
+        if (ob_strmap_put(m, stem, 0) == -2)
+            return -1;
+    }
+    return 0;
+}
+
+/* Before the export writes: create dir, remove its index (index.csv; a
+ * shard's own index too: a reader never takes an earlier one for this
+ * run's), and the names the export owns that this one will not write
+ * (export_dir.h): for a plain export every other stem and shard index, for
+ * a shard only its own jobs' stems without an approximation.  0, or 1
+ * after ob_error(). */
+static int begin_dir(const char *dir, const ob_job *jobs, size_t njobs, int shard_k, int shard_n)
 {
     if (ob_mkdir_p(dir) != 0) {
         ob_error("--export: cannot create '%s': %s", dir, strerror(errno));
         return 1;
     }
-    if ((j->status == OB_OK || j->status == OB_LIMIT) && ob_export_job(dir, j, samples, log) != 0)
+    ob_strmap keep = {0}, scope = {0};
+    ob_err err;
+    int rc = stem_set(jobs, njobs, 1, &keep) || (shard_n > 0 && stem_set(jobs, njobs, 0, &scope)) ? -1 : 0;
+    if (rc != 0)
+        ob_error("--export: out of memory");
+    char own[64];
+    ob_export_index_name(own, sizeof own, shard_k, shard_n);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, own);
+    if (rc == 0 && unlink(path) != 0 && errno != ENOENT) {
+        ob_error("--export: %s: cannot remove the earlier index: %s", path, strerror(errno));
+        rc = -1;
+    }
+    const ob_prune_rule rule = {&keep, shard_n > 0 ? &scope : NULL, shard_n > 0 ? -1 : 0, 1};
+    long removed = 0;
+    if (rc == 0 && (rc = ob_export_prune(dir, &rule, &removed, &err)) != 0)
+        ob_error("--export: %s", err.msg);
+    if (rc == 0 && removed > 0)
+        ob_info("--export: removed %ld files of %s that are not this %s's", removed, dir,
+                shard_n > 0 ? "shard" : "export");
+    ob_strmap_free(&keep);
+    ob_strmap_free(&scope);
+    return rc == 0 ? 0 : 1;
+}
+
+int ob_export_single(const char *dir, const ob_job *j, int samples, const ob_span_log *log)
+{
+    if (begin_dir(dir, j, 1, 0, 0) != 0)
         return 1;
-    return write_index(dir, j, 1) != 0 ? 1 : 0;
+    if (has_approx(j) && ob_export_job(dir, j, samples, log) != 0)
+        return 1;
+    return write_index(dir, "index.csv", j, 1) != 0 ? 1 : 0;
 }
 
 int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job *jobs, int status)
@@ -179,10 +233,8 @@ int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job
     size_t njobs = 0;
     while (logs[njobs].cap != -1)
         njobs++;
-    if (ob_mkdir_p(o->export_dir) != 0) {
-        ob_error("--export: cannot create '%s': %s", o->export_dir, strerror(errno));
+    if (begin_dir(o->export_dir, jobs, njobs, o->shard_k, o->shard_n) != 0)
         return 1;
-    }
     /* jobs in parallel (each writes its own files; methods keep no state,
      * as in the driver); the first failure, or a signal, stops the rest: a
      * job started finishes its files (each is renamed into place whole) */
@@ -194,7 +246,7 @@ int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job
         int stop;
 #pragma omp atomic read
         stop = failed;
-        if (stop || ob_stop_signal() || (jobs[i].status != OB_OK && jobs[i].status != OB_LIMIT))
+        if (stop || ob_stop_signal() || !has_approx(&jobs[i]))
             continue;
         if (ob_export_job(o->export_dir, &jobs[i], samples, &logs[i]) != 0) {
 #pragma omp atomic write
@@ -202,13 +254,16 @@ int ob_export_finish(const ob_run_opts *o, const ob_span_log *logs, const ob_job
         }
         done++;
     }
+    char index[64];
+    ob_export_index_name(index, sizeof index, o->shard_k, o->shard_n);
     if (ob_stop_signal() && !failed)
         return ob_stop_exit("--export interrupted after %ld of %zu jobs: %s holds those jobs' files and no "
-                            "index.csv (results.csv is complete); run the command again to export them all",
-                            done, njobs, o->export_dir);
-    if (failed || write_index(o->export_dir, jobs, njobs) != 0)
+                            "%s (results.csv is complete); run the command again to export them all",
+                            done, njobs, o->export_dir, index);
+    if (failed || write_index(o->export_dir, index, jobs, njobs) != 0)
         return 1;
-    ob_info("exported %ld approximations of %zu jobs to %s", done, njobs, o->export_dir);
+    ob_info("exported %ld approximations of %zu jobs to %s (%s%s)", done, njobs, o->export_dir, index,
+            o->shard_n > 0 ? "; merge combines the shards' indexes into index.csv" : "");
     return 0;
 }
 

@@ -135,6 +135,9 @@ int ob_take_run_dir(const char *cmd, const char *dir, int create, int *fd)
     return 0;
 }
 
+static int check_not_input(const char *cmd, const char *opt, const char *out, int out_is_dir, const char *const *in,
+                           size_t nin);
+
 /* stat of path's directory and its last name (for a path that need not
  * exist); 0 or -1. */
 static int parent_of(const char *path, struct stat *dst, const char **base)
@@ -195,6 +198,17 @@ static int lies_in(const char *path, const struct stat *d)
 
 int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, const char *const *in, size_t nin)
 {
+    return check_not_input(cmd, "--out", out, out_is_dir, in, nin);
+}
+
+int ob_check_dir_not_input(const char *cmd, const char *opt, const char *dir, const char *const *in, size_t nin)
+{
+    return check_not_input(cmd, opt, dir, 1, in, nin);
+}
+
+static int check_not_input(const char *cmd, const char *opt, const char *out, int out_is_dir, const char *const *in,
+                           size_t nin)
+{
     struct stat os, ps;
     const char *obase = NULL;
     const int exists = stat(out, &os) == 0;
@@ -214,10 +228,10 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
             clash = parent_of(in[i], &ips, &ibase) == 0 && same_node(&ips, &ps) && strcmp(ibase, obase) == 0;
         }
         if (clash) {
-            ob_error("%s: --out %s %s the input %s: it would be overwritten; choose another --out", cmd, out,
+            ob_error("%s: %s %s %s the input %s: it would be overwritten; choose another %s", cmd, opt, out,
                      exists && (out_is_dir || S_ISDIR(os.st_mode)) && !(stat(in[i], &is) == 0 && same_node(&is, &os))
                          ? "holds" : "is",
-                     in[i]);
+                     in[i], opt);
             return -1;
         }
     }
@@ -265,4 +279,17 @@ int ob_write_set_atomically(const char *dir, const ob_out_file *files, size_t n)
         close(dfd);
     }
     return 0;
+}
+
+int ob_abs_path(const char *path, char *buf, size_t len)
+{
+    char cwd[4096];
+    if (path[0] == '/')
+        return snprintf(buf, len, "%s", path) < (int)len ? 0 : -1;
+    if (!getcwd(cwd, sizeof cwd)) {
+        snprintf(buf, len, "%s", path);
+        return -1;
+    }
+    const int slash = cwd[0] && cwd[strlen(cwd) - 1] != '/';
+    return snprintf(buf, len, "%s%s%s", cwd, slash ? "/" : "", path) < (int)len ? 0 : -1;
 }

@@ -43,6 +43,18 @@ int ob_write_set_atomically(const char *dir, const ob_out_file *files, size_t n)
  * ob_error() naming both paths (the command exits 2). */
 int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, const char *const *in, size_t nin);
 
+/* Purpose: as ob_check_out_not_input for a directory given by option opt
+ *          (e.g. "--export"): refuses a dir that is, or holds, an input;
+ *          the message names opt.
+ * Returns: 0, or -1 after ob_error(). */
+int ob_check_dir_not_input(const char *cmd, const char *opt, const char *dir, const char *const *in, size_t nin);
+
+/* Purpose: path made absolute (the current directory before a relative
+ *          one; nothing resolved), for records such as meta.json.
+ * Returns: 0 with buf filled; -1 when it does not fit or the current
+ *          directory cannot be read (buf then holds path as given). */
+int ob_abs_path(const char *path, char *buf, size_t len);
+
 /* Makes this process the owner of run directory dir: an exclusive lock on
  * dir/.lock (which gets our pid), held until the process ends (the kernel
  * drops it however the process ends).  Returns 0 with the descriptor in

@@ -4,6 +4,7 @@
  * count.
  */
 #include "host/io/output.h"
+#include "host/io/fsutil.h"
 
 #include <inttypes.h>
 #include <math.h>
@@ -349,6 +350,17 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
         fprintf(f, "  \"shard\": \"%d/%d\",\n", o->shard_k, o->shard_n);
     else
         fprintf(f, "  \"shard\": null,\n");
+    /* where --export writes (absolute, for merge to find the shards'
+     * indexes: export_dir.h), or null */
+    fprintf(f, "  \"export_dir\": ");
+    if (o->export_dir) {
+        char abs[4200];
+        ob_abs_path(o->export_dir, abs, sizeof abs);
+        ob_json_string(f, abs);
+    } else {
+        fputs("null", f);
+    }
+    fputs(",\n", f);
     /* the identity of what decides the numbers (README "What a run
      * directory guarantees"): the curves' content and the kernel text */
     fprintf(f, "  \"data_hash\": \"%016" PRIx64 "\",\n  \"kernel_fnv1a\": \"%016" PRIx64 "\",\n", rec->data_hash,

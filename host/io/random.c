@@ -425,6 +425,11 @@ int ob_random_curve(uint64_t seed, long index, ob_curve *c)
     c->nseg = 1;
     memcpy(c->d, d, (size_t)nd * sizeof *d);
     c->nd = nd;
+    for (int i = 0; i <= b.deg; i++) {  /* the scale of ob_offset_check */
+        double p[2];
+        ob_bez_ctrl(&b, i, p);
+        c->coord_max = fmax(c->coord_max, fmax(fabs(p[0]), fabs(p[1])));
+    }
     ob_random_id(seed, index, c->id, sizeof c->id);
     snprintf(c->file, sizeof c->file, "--random");
     c->line = 0;

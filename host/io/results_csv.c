@@ -18,6 +18,7 @@
 
 #include "host/io/numfmt.h"
 #include "host/io/slurp.h"
+#include "methods/metrics/metric.h"
 
 enum { MAX_REP = 100000 };
 
@@ -282,6 +283,8 @@ static const char *read_row(char **f, const int *at, int has_joints, ob_res_row 
     else if (strcmp(row->status, "ok") && strcmp(row->status, "limit") && strcmp(row->status, "fail") &&
              strcmp(row->status, "skip") && strcmp(row->status, "timeout"))
         bad = "status is not ok, limit, fail, skip or timeout";
+    else if (strcmp(row->status, "ok") == 0 && !ob_err_can_pass(row->max_err))
+        bad = "status ok with a max_err that is not a finite number (an error that is not finite is never ok)";
     return bad;
 }
 

@@ -9,7 +9,7 @@
 int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric m, int samples, const char *name,
                       ob_mres *r, ob_err *err)
 {
-    *r = (ob_mres){1, "", 0.0, -1, -1, NAN};
+    *r = (ob_mres){1, "", 0.0, -1, -1, NAN, 0};
     if (ob_metric_same_param(m) && !a->same_param) {
         r->applies = 0;
         r->why = "needs an approximation in the base's parameter (a file from --export of a method that keeps it)";
@@ -37,5 +37,14 @@ int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric
             r->t = p->a + (p->b - p->a) * (p->t0 + (p->t1 - p->t0) * e.t);
         }
     }
+    r->ok = ob_err_can_pass(r->err);
+    if (!r->ok)
+        r->why = "the error is not finite: the metric cannot bound a piece (a pole or a weight <= 0 of a "
+                 "rational piece?)";
     return 0;
+}
+
+const char *ob_mres_status(const ob_mres *r)
+{
+    return !r->applies ? "n/a" : r->ok ? "ok" : "fail";
 }

@@ -40,12 +40,19 @@ typedef struct {
     int piece;          /* where: the piece, its base segment and base parameter */
     int seg;
     double t;
+    int ok;             /* applies and err is finite (ob_err_can_pass); else why says why not */
 } ob_mres;
+
+/* The status `measure` writes for r: "ok", "n/a" (the metric does not
+ * apply) or "fail" (an error that is not finite is never ok). */
+const char *ob_mres_status(const ob_mres *r);
 
 /* Purpose: the error of every piece of a (all pieces linked) against the
  *          d-offset of curve c under metric m, S samples, the largest kept.
  *          bound and radial apply only when a->same_param (the pieces share
  *          the base's parameter).
+ *          r->ok 0 with r->why when the largest error is not finite (a
+ *          piece the metric cannot bound: a pole of a rational piece).
  * Returns: 0; -1 with "NAME:LINE: piece K: reason" in err->msg when a piece
  *          cannot be measured (a link to a segment c does not have; bound
  *          past its degree). */

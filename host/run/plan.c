@@ -73,6 +73,19 @@ int ob_run_selects(const ob_run_opts *o, const char *id)
 
 /* FNV-1a over the content of the curves the run uses (id, segments' degrees
  * and homogeneous control points, offsets). */
+int ob_check_option_d(const char *cmd, const ob_curve *c, double d)
+{
+    char why[200];
+    if (ob_offset_check(d, c->coord_max, why, sizeof why) == 0)
+        return 0;
+    if (c->file[0] && c->line > 0)
+        ob_error("%s: --d: curve '%s' (%s:%d): %s; the curve file would refuse it too", cmd, c->id, c->file,
+                 c->line, why);
+    else
+        ob_error("%s: --d: curve '%s': %s; a curve file would refuse it too", cmd, c->id, why);
+    return -1;
+}
+
 uint64_t ob_curves_hash(const ob_run_opts *o, const ob_curveset *set)
 {
     uint64_t h = OB_FNV_BASIS;

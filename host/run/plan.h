@@ -19,6 +19,13 @@
  * Returns: 0, or -1 after ob_error(). */
 int ob_load_run_curves(const ob_run_opts *o, ob_curveset *set, char *where, size_t wlen);
 
+/* Purpose: the --d of draw, trace and measure against curve c's own limits:
+ *          the one offset check (ob_offset_check) a curve file's `offset`
+ *          line gets, so no command takes a d the file would refuse.
+ * Returns: 0; -1 after ob_error() naming --d, the curve and where it was
+ *          defined (the command exits 2). */
+int ob_check_option_d(const char *cmd, const ob_curve *c, double d);
+
 /* Purpose: 1 if the run uses the curve of this id (--curve), else 0. */
 int ob_run_selects(const ob_run_opts *o, const char *id);
 

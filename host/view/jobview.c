@@ -42,6 +42,8 @@ int ob_jobview_open(ob_jobview *v, const char *cmd, int have_d, double d)
             return 2;
         }
         d = v->curve->d[0];
+    } else if (ob_check_option_d(cmd, v->curve, d) != 0) {
+        return 2;  /* a d the curve's file would refuse (curvefile.h) */
     }
     ob_job *j = &v->job;
     j->curve = v->curve;

@@ -40,6 +40,10 @@ typedef struct {
     double *d;          /* signed offset distances (owned) */
     char file[256];     /* where it was defined, for messages */
     int line;
+    /* the largest |coordinate| of its control points as defined (a
+     * B-spline's, before conversion): the scale the offset limits are
+     * relative to (ob_offset_check, host/io/curvefile.h); 0 when unknown */
+    double coord_max;
     /* the exact algebraic degree of its offset and whether the offset is
      * rational (offdeg.h); filled by the run command, offset_known 0 before */
     int offset_known, offset_degree, offset_rational;

@@ -217,6 +217,8 @@ void drv_finalize(ob_job *j, jstate *s)
 {
     if ((j->status == OB_OK || j->status == OB_LIMIT) && s->ends_oom)
         drv_job_end(j, s, OB_FAIL, "out of memory keeping the ends of the accepted pieces");
+    if (j->status == OB_OK && !ob_err_can_pass(j->max_err))  /* never ok with an error it cannot state */
+        drv_job_end(j, s, OB_FAIL, "the measured error is not finite");
     if (j->status == OB_OK || j->status == OB_LIMIT) {
         join_fits(j, s);
         j->ctrl_points = j->segments > 0 ? 1 + s->ctrl_add + s->open_count : 0;

@@ -299,7 +299,7 @@ int drv_decide(ob_job *jobs, jstate *js, const item *it, const itemres *r, const
     if (v.retry)
         retry_end_msg(it, r, 0, v.msg, sizeof v.msg);
     /* the optimal rule's passes are greedy at their own error level */
-    v.pass = !v.retry && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
+    v.pass = !v.retry && ob_err_can_pass(r->err) && r->err <= (j->split == OB_SPLIT_OPTIMAL ? it->level : j->tol);
     v.full = j->segments + s->pending + 1 >= o->max_segments;
 
     if (j->split == OB_SPLIT_OPTIMAL && it->phase < 2)

@@ -72,6 +72,11 @@ int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, doub
     return -1;
 }
 
+int ob_err_can_pass(double err)
+{
+    return isfinite(err);
+}
+
 int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                int samples, ob_errval *out)
 {

@@ -84,6 +84,15 @@ int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
 int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                      int samples, double stop, ob_errval *out);
 
+/* Purpose: whether a measured error may stand in an `ok` result: a finite
+ *          number.  +inf (a piece the metric cannot bound, a pole) and NaN
+ *          are never ok: the driver splits such a piece like any failing one
+ *          and never ends a job ok with it, `measure` reports it `fail`, and
+ *          the readers of results.csv (compare, merge, --resume) refuse an
+ *          ok row with it.
+ * Returns: 1 or 0. */
+int ob_err_can_pass(double err);
+
 /* The sample count actually used: S clamped to [OB_MIN_SAMPLES, OB_MAX_SAMPLES]. */
 int ob_clamp_samples(int samples);
 

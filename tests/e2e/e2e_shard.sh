@@ -23,6 +23,43 @@ check 'grep -q "\"shard\": null" "$T/m/meta.json" && grep -q "\"merged_shards\":
 $OB compare "$T/all" "$T/m" --no-timing >/dev/null 2>&1
 check '[ $? -eq 0 ]' "compare: the merged run is comparable with the unsharded one and the same"
 
+# merged meta.json: what the shards share is kept, what differs is "mixed"
+# with each shard's value in "shards" (never shard 0's presented as the run's)
+PY=/usr/bin/python3
+metaok() {  # metaok FILE EXPR: true when the Python EXPR over meta.json m holds
+    "$PY" -c 'import json, sys; m = json.load(open(sys.argv[1])); sys.exit(0 if eval("(" + sys.argv[2] + ")") else 1)' "$1" "$2"
+}
+metashow() { "$PY" -c 'import json, sys; m = json.load(open(sys.argv[1])); print(eval("(" + sys.argv[2] + ")"))' "$1" "$2" 2>&1 | head -c 300; }
+q='m["backend"] == "cpu" and isinstance(m["omp_threads"], int) and [s["shard"] for s in m["shards"]] == ["0/3", "1/3", "2/3"]'
+check 'metaok "$T/m/meta.json" "$q"' "shards that agree: backend and threads kept, shards listed in K order"
+q='all({"backend", "omp_threads", "host", "engine", "argv", "jobs", "wall_seconds", "dir"} <= set(s) for s in m["shards"])
+   and sum(s["jobs"] for s in m["shards"]) == m["jobs"] and m["wall_seconds"] == max(s["wall_seconds"] for s in m["shards"])'
+check 'metaok "$T/m/meta.json" "$q"' "every shard's backend, threads, host, engine, argv, jobs and wall time"
+R2="--random 12:5 --methods tiller,ahn --tols 1e-1,1e-3"
+$OB run $R2 --backend cpu --threads 1 --shard 0/2 --out "$T/t0" 2>/dev/null
+$OB run $R2 --backend cpu --threads 2 --shard 1/2 --out "$T/t1" 2>/dev/null
+$OB merge "$T/t1" "$T/t0" --out "$T/tm" 2>"$T/e.txt"
+q='m["omp_threads"] == "mixed" and [s["omp_threads"] for s in m["shards"]] == [1, 2] and m["engine"]["threads"] == "mixed"
+   and m["backend"] == "cpu" and m["engine"]["name"] == m["shards"][0]["engine"]["name"]'
+check 'metaok "$T/tm/meta.json" "$q"' "threads 1 and 2: mixed, each shard's listed: $(metashow "$T/tm/meta.json" 'm["omp_threads"], m.get("shards")')"
+q='m["host"]["hostname"] == m["shards"][0]["host"]["hostname"] and m["argv"] == "mixed" and m["shards"][1]["argv"][-3] == "1/2"
+   and m["timestamp"] == max(s["timestamp"] for s in m["shards"])'
+check 'metaok "$T/tm/meta.json" "$q"' "host kept where the shards agree; argv mixed, each shard's own; the last timestamp"
+$OB run $R2 --backend cpu --threads 1 --out "$T/t_all" 2>/dev/null
+$OB compare "$T/t_all" "$T/tm" > "$T/cmp.md" 2>&1
+check '[ $? -eq 0 ] && grep -q "omp_threads: 1 vs mixed" "$T/cmp.md" && grep -q "timings: \*\*not compared" "$T/cmp.md"' \
+    "compare: a merged run of mixed threads is not timed against one thread"
+$OB compare "$T/tm" "$T/tm" > "$T/cmp.md" 2>&1
+check '[ $? -eq 0 ] && grep -q "omp_threads: mixed vs mixed" "$T/cmp.md"' "compare: mixed vs mixed is not the same setting"
+if $OB run $R2 --backend opencl --shard 1/2 --out "$T/o1b" >/dev/null 2>&1; then
+    $OB merge "$T/t0" "$T/o1b" --out "$T/om" 2>"$T/e.txt"
+    q='m["backend"] == "mixed" and [s["backend"] for s in m["shards"]] == ["cpu", "opencl"] and m["opencl"] == "mixed"'
+    check 'metaok "$T/om/meta.json" "$q"' "cpu and opencl shards: backend mixed: $(metashow "$T/om/meta.json" 'm["backend"], m["opencl"]')"
+else
+    echo "e2e_shard: no OpenCL device: the mixed-backend merge is skipped"
+    skipped=$((skipped + 1))
+fi
+
 # refused sets: exit 2, saying why
 refuse() {  # expected text, then merge arguments
     want=$1; shift
@@ -82,5 +119,4 @@ for spec in 3/3 1/0 x -1/2 1/2/3 0/100001 ""; do
     check '[ $? -eq 2 ] && grep -q -- "--shard" "$T/e.txt"' "--shard '$spec': $(cat "$T/e.txt")"
 done
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+e2e_done

@@ -12,6 +12,7 @@
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -152,6 +153,57 @@ static void test_match(void)
     ob_approx_free(&a);
 }
 
+/* An error that is not finite is never ok (ob_err_can_pass): measure's
+ * status of a piece the bound metric cannot bound (a weight < 0 or 0 of a
+ * rational piece) is fail with a reason; positive weights stay ok. */
+static void test_not_finite(void)
+{
+    CHECK(!ob_err_can_pass(INFINITY) && !ob_err_can_pass(-INFINITY) && !ob_err_can_pass(NAN), "inf, -inf, nan");
+    CHECK(ob_err_can_pass(0.0) && ob_err_can_pass(1e-300) && ob_err_can_pass(1.7e308), "finite errors pass");
+    const ob_mres na = {0, "why", NAN, -1, -1, NAN, 0}, ok = {1, "", 0.1, 0, 0, 0.5, 1}, bad = {1, "x", INFINITY, 0,
+                                                                                             0, 0.5, 0};
+    CHECK(!strcmp(ob_mres_status(&na), "n/a") && !strcmp(ob_mres_status(&ok), "ok") &&
+              !strcmp(ob_mres_status(&bad), "fail"),
+          "statuses %s %s %s", ob_mres_status(&na), ob_mres_status(&ok), ob_mres_status(&bad));
+
+    const double base_xy[4][2] = {{-0.785938, 0.891849}, {-0.993306, -0.59695}, {0.3, -2.5}, {0.9, -0.2}};
+    ob_bez seg;
+    ob_bez_from_points(&seg, 3, base_xy);
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "ex1");
+    c.nseg = 1;
+    c.seg = &seg;
+    static const double weights[][4] = {{1, -1, 1, 1}, {1, 1, -0.5, 1}, {-1, 1, 1, 1}, {1, 1, 1, 1}, {1, 2, 0.5, 1}};
+    for (size_t w = 0; w < sizeof weights / sizeof weights[0]; w++) {
+        ob_approx a = {0};
+        ob_apiece *p = ob_approx_add(&a);
+        p->approx.deg = 3;
+        for (int i = 0; i < 4; i++)  /* the base moved by about d = 1 along y */
+            ob_bez_set(&p->approx, i, base_xy[i][0], base_xy[i][1] + 1.0, weights[w][i]);
+        p->has_base = 1, p->seg = 0, p->a = 0.0, p->b = 1.0, p->t0 = 0.0, p->t1 = 1.0;
+        a.same_param = 1;
+        const int positive = weights[w][0] > 0 && weights[w][1] > 0 && weights[w][2] > 0 && weights[w][3] > 0;
+        for (int m = 0; m < OB_METRIC_COUNT; m++) {
+            ob_mres r;
+            ob_err err = {""};
+            if (ob_approx_measure(&c, 1.0, &a, (ob_metric)m, 64, "w.json", &r, &err) != 0)
+                continue;  /* a metric that cannot measure it says so as an error */
+            CHECK(r.ok == (r.applies && isfinite(r.err)), "weights %zu, %s: ok %d with err %g", w,
+                  ob_metric_name((ob_metric)m), r.ok, r.err);
+            CHECK(r.ok || !r.applies || (!strcmp(ob_mres_status(&r), "fail") && strstr(r.why, "not finite")),
+                  "weights %zu, %s: status %s, why '%s'", w, ob_metric_name((ob_metric)m), ob_mres_status(&r),
+                  r.why);
+            if (m == OB_METRIC_BOUND && positive)
+                CHECK(r.ok, "weights %zu: bound of positive weights is finite: %g", w, r.err);
+            if (m == OB_METRIC_BOUND && w == 0)  /* the case of the issue: bound,ok,inf */
+                CHECK(isinf(r.err) && !r.ok && !strcmp(ob_mres_status(&r), "fail"),
+                      "weights %zu: bound gives %g, status %s", w, r.err, ob_mres_status(&r));
+        }
+        ob_approx_free(&a);
+    }
+}
+
 static unsigned long long rng = 88172645463325252ull;
 static unsigned next_rand(void)
 {
@@ -233,6 +285,7 @@ int main(void)
     test_round_trip(&j);
     test_parse_job();
     test_match();
+    test_not_finite();
     test_hostile(&j);
     test_huge_numbers();
     return check_done();

@@ -322,6 +322,21 @@ static void csv_bad(void)
     expect_csv_bad("c,1,m,hausdorff,mid,inf,10,3,3,0.5,ok,1,1,,f\n", "r.csv:2", "tol is not");
     expect_csv_bad(",1,m,hausdorff,mid,0.1,10,3,3,0.5,ok,1,1,,f\n", "r.csv:2", "must not be empty");
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.5,good,1,1,,f\n", "r.csv:2", "status");
+    /* an error that is not finite is never ok (ob_err_can_pass); other statuses may carry one */
+    expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,inf,ok,1,1,,f\n", "r.csv:2", "status ok with a max_err");
+    expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.05,ok,1,1,,f\nc,-1,m,hausdorff,mid,0.1,10,3,3,Infinity,ok,1,1,,f\n",
+                   "r.csv:3", "status ok with a max_err");
+    expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,nan,ok,1,1,,f\n", "r.csv:2", "never ok");
+    expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,,ok,1,1,,f\n", "r.csv:2", "never ok");
+    expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,1e999,ok,1,1,,f\n", "r.csv:2", "never ok");
+    {
+        const char lim[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,"
+                           "eval_ns,message,family\nc,1,m,hausdorff,mid,0.1,10,3,3,inf,limit,1,1,,f\n"
+                           "c,2,m,hausdorff,mid,0.1,0,0,0,,fail,1,1,,f\nc,3,m,hausdorff,mid,0.1,0,0,0,nan,skip,1,1,,f\n";
+        CHECK(ob_res_parse(lim, strlen(lim), "l.csv", &t, &err) == 0 && t.n == 3 && isinf(t.v[0].max_err),
+              "limit with inf, fail and skip without an error are read: %s", err.msg);
+        ob_res_free(&t);
+    }
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.5,ok,1,,,f\n", "r.csv:2", "fit_ns and eval_ns");
     expect_csv_bad("c,1,m,hausdorff,mid,0.1,10,3,3,0.5,ok,1,1,,f\n\nc,1.0,m,hausdorff,mid,1e-1,9,3,3,0.5,ok,1,1,,f\n",
                    "r.csv:4", "duplicate job c,1.0,m,hausdorff,mid,1e-1 (first on line 2)");

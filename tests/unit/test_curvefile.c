@@ -11,6 +11,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include <dirent.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -516,8 +517,87 @@ static void test_fuzz(void)
     free(orig);
 }
 
+/* The one offset check (ob_offset_check): the file's `offset` line and
+ * --d of draw, trace and measure refuse the same values. */
+static void expect_d(double d, double m, int ok, const char *want)
+{
+    char why[200] = "";
+    const int rc = ob_offset_check(d, m, why, sizeof why);
+    CHECK((rc == 0) == ok && (ok || strstr(why, want)), "d = %g, coord_max %g: rc %d '%s' (want %s '%s')", d, m, rc,
+          why, ok ? "ok" : "refused", want ? want : "");
+}
+
+/* A one-curve file of coordinate scale m with offset d: parsed or refused. */
+static int file_takes(double m, double d, ob_err *err)
+{
+    char text[400];
+    snprintf(text, sizeof text, "curve c\n  bezier 2\n  point 0 0\n  point %.17g %.17g\n  point %.17g 0\n"
+             "  offset %.17g\nend\n", m / 2, m / 2, m, d);
+    ob_curveset set = {0};
+    const int rc = ob_curves_parse(text, strlen(text), "d.curves", &set, err);
+    ob_curveset_free(&set);
+    return rc == 0;
+}
+
+static void test_offset_check(void)
+{
+    expect_d(0.0, 0, 0, "offset distance 0");
+    expect_d(-0.0, 1, 0, "offset distance 0");
+    expect_d(INFINITY, 0, 0, "not a finite");
+    expect_d(-INFINITY, 1, 0, "not a finite");
+    expect_d(NAN, 1, 0, "not a finite");
+    expect_d(1e-51, 0, 0, "too small");
+    expect_d(-1e-60, 0, 0, "too small");
+    expect_d(1e-50, 0, 1, NULL);
+    expect_d(-1e-50, 0, 1, NULL);
+    expect_d(1e12, 0, 1, NULL);
+    expect_d(-1.0000001e12, 0, 0, "too large");
+    expect_d(1e13, 1, 0, "too large");
+    expect_d(1e-7, 2e6, 0, "below 1e-12 times");
+    expect_d(-1.9e-6, 2e6, 0, "below 1e-12 times");
+    expect_d(2e-6, 2e6, 1, NULL);
+    expect_d(-2e-6, 2e6, 1, NULL);
+    expect_d(1e-40, 0, 1, NULL);  /* no scale known: only the absolute limits */
+    expect_d(0.5, 1, 1, NULL);
+
+    /* the file takes exactly what the check takes, at any scale */
+    static const double scales[] = {1e-40, 1e-6, 1, 2e6, 1e11};
+    static const double rel[] = {1e-13, 0.99e-12, 1e-12, 1.01e-12, 1e-3, 1};
+    for (size_t a = 0; a < sizeof scales / sizeof scales[0]; a++)
+        for (size_t b = 0; b < sizeof rel / sizeof rel[0]; b++)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                const double m = scales[a], d = sign * rel[b] * m;
+                ob_err err = {""};
+                char why[200];
+                const int file = file_takes(m, d, &err), check = ob_offset_check(d, m, why, sizeof why) == 0;
+                CHECK(file == check, "scale %g, d %g: the file %s ('%s'), the check %s", m, d,
+                      file ? "takes it" : "refuses it", err.msg, check ? "takes it" : "refuses it");
+            }
+
+    /* coord_max: the largest |coordinate| as defined, a B-spline's before its
+     * conversion, an hpoint's Euclidean x, y */
+    const char *full = "curve b\n  bspline 3\n  knots 0 0 0 0 1 2 2 2 2\n  point 0 0\n  point 1 0\n"
+                       "  point 2 -9\n  point 3 0\n  point 4 0\n  offset 1\nend\n"
+                       "curve h\n  bezier 1\n  hpoint 8 2 2\n  hpoint -10 1 1\n  offset 1\nend\n";
+    ob_curveset set = {0};
+    ob_err err = {""};
+    CHECK(ob_curves_parse(full, strlen(full), "m.curves", &set, &err) == 0 && set.n == 2, "coord_max file: %s",
+          err.msg);
+    if (set.n == 2) {
+        double seg_max = 0;  /* its Bezier segments reach only half of the B-spline's 9 */
+        for (int k = 0; k < set.v[0].nseg; k++)
+            for (int i = 0; i <= set.v[0].seg[k].deg; i++)
+                seg_max = fmax(seg_max, fabs(set.v[0].seg[k].h[i][1] / set.v[0].seg[k].h[i][2]));
+        CHECK(set.v[0].coord_max == 9 && seg_max < 9, "B-spline: coord_max %g (segments %g), want 9",
+              set.v[0].coord_max, seg_max);
+        CHECK(set.v[1].coord_max == 10, "hpoints: coord_max %g, want 10", set.v[1].coord_max);
+    }
+    ob_curveset_free(&set);
+}
+
 int main(void)
 {
+    test_offset_check();
     test_published();
     test_crlf_roundtrip();
     test_valid_variants();

@@ -259,6 +259,37 @@ static void test_failures_are_contained(void)
     ob_curve_free(&c);
 }
 
+/* An error that is not finite is never ok (ob_err_can_pass): a method whose
+ * pieces measure +inf (a NaN control point) ends limit or fail under every
+ * split rule and metric, even at the loosest tolerance, with no ok row; a
+ * good job of the same batch stays ok with a finite error. */
+static void test_infinite_error_never_ok(void)
+{
+    const ob_method garbage = {.name = "garbage", .citation = "test", .continuity = "G0",
+                               .caps = OB_CAP_POLY_OUT | OB_CAP_SAME_PARAM, .out_degree = same_degree, .fit = nan_fit};
+    static const ob_split splits[] = {OB_SPLIT_MID, OB_SPLIT_MAXERR, OB_SPLIT_GREEDY, OB_SPLIT_OPTIMAL};
+    static const ob_metric metrics[] = {OB_METRIC_BOUND, OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF};
+    static const double tols[] = {1e-3, 1e6};
+    ob_curve c = fixture_curve("ex1", 3, fixture_liu_ex1, 1.0);
+    ob_driver_opts o = fast_opts();
+    o.max_segments = 16;
+    o.max_depth = 6;
+    for (size_t s = 0; s < sizeof splits / sizeof splits[0]; s++)
+        for (size_t m = 0; m < sizeof metrics / sizeof metrics[0]; m++)
+            for (size_t t = 0; t < sizeof tols / sizeof tols[0]; t++) {
+                ob_job jobs[2];
+                fixture_job(&jobs[0], &c, &garbage, metrics[m], splits[s], tols[t]);
+                fixture_job(&jobs[1], &c, ob_method_find("tiller"), metrics[m], splits[s], 1e6);
+                CHECK(ob_driver_run(jobs, 2, &o, NULL) == 0, "run completes");
+                CHECK(jobs[0].status != OB_OK && (jobs[0].status != OB_LIMIT || isinf(jobs[0].max_err)),
+                      "%s, %s, tol %g: status %s, max_err %g", ob_split_name(splits[s]),
+                      ob_metric_name(metrics[m]), tols[t], ob_status_name(jobs[0].status), jobs[0].max_err);
+                CHECK(jobs[1].status == OB_OK && isfinite(jobs[1].max_err), "tiller beside it: %s %g",
+                      ob_status_name(jobs[1].status), jobs[1].max_err);
+            }
+    ob_curve_free(&c);
+}
+
 /* A method that asks for smaller pieces (its output would not fit) gets them;
  * one whose representation has its own control-point count is counted so. */
 static ob_fit_status picky_fit(const ob_bez *b, const ob_fit_args *a, void *w, ob_fit *out, char *msg, size_t len)
@@ -620,6 +651,7 @@ int main(void)
     test_limits();
     test_presplit();
     test_failures_are_contained();
+    test_infinite_error_never_ok();
     test_retry_and_counts();
     test_retry_chains();
     test_determinism();
