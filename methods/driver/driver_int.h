@@ -211,6 +211,7 @@ int drv_run_start(drv_run *R, ob_job *jobs, size_t njobs, const ob_driver_opts *
 int drv_plan_all(drv_run *R, itemvec *plans);
 int drv_job_finished(drv_run *R, size_t i);
 void drv_run_end(drv_run *R, int rc);
+void drv_progress(drv_run *R);
 int drv_scratch_alloc(drv_scratch *S, int chunk);
 void drv_scratch_free(drv_scratch *S);
 double drv_chunk_work(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how);

@@ -199,8 +199,7 @@ static void commit(gengine *G, int pos, int rc)
         }
         while (G->commit < R->ngroups && G->ran[G->commit])
             tell_group(G, G->commit++);
-        if (R->h.progress)
-            R->h.progress(R->h.progress_ctx, R->done, R->njobs);
+        drv_progress(R);
     }
 }
 

@@ -316,3 +316,17 @@ int drv_chunk_decide(drv_run *R, drv_scratch *S, const item *its, long cnt, item
     }
     return 0;
 }
+
+static void no_groups(const ob_progress_info *pi, ob_work_group *out)
+{
+    (void)pi;
+    (void)out;
+}
+
+void drv_progress(drv_run *R)
+{
+    if (!R->h.progress)
+        return;
+    const ob_progress_info pi = {R->done, R->njobs, R->st.threads, 0, 0, no_groups, R};
+    R->h.progress(R->h.progress_ctx, &pi);
+}
