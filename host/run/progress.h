@@ -33,12 +33,25 @@ enum { OB_PROGRESS_LOG_SECONDS = 10 };
  * model's own unit (ms of thread time on the development machine); the
  * groups finished take over as their cost passes this share of the run's. */
 #define OB_PROGRESS_PRIOR_SHARE 0.01
+/* Each method's groups are calibrated on their own (the model's figure is
+ * per method, and on another machine some methods are several times off
+ * where others are right); the run's unit weighs this share of the
+ * method's predicted cost. */
+#define OB_PROGRESS_KIND_PRIOR 0.05
+/* Kinds at or past this are calibrated with the run's (not a method). */
+enum { OB_PROGRESS_MAX_KINDS = 1024 };
+/* The speed of work is measured over about this much of the latest wall
+ * time: a machine shared with other jobs changes speed as they come and go,
+ * and the ETA is of the speed now. */
+enum { OB_PROGRESS_WINDOW_SECONDS = 20 };
 /* A group past its predicted cost is taken to need this share of the thread
  * time it has used so far again (not 0: it is still running, and the ETA
  * must not say 0 s for as long as it does). */
 #define OB_PROGRESS_OVERRUN 0.25
 
-/* What the estimator reads (ob_progress_estimate). */
+/* What the estimator reads (ob_progress_estimate).  The speed it assumes
+ * is the window's where there is one: thread time per wall time of the
+ * groups' threads (whole_groups) or of the run (not). */
 typedef struct {
     const ob_work_group *g; /* the run's share groups in schedule order */
     size_t n;
@@ -47,6 +60,10 @@ typedef struct {
                                schedule of groups on threads; 0, the work
                                left at the run's rate of work */
     double elapsed_s;       /* the run's wall time so far */
+    /* the work measured over the latest wall time, the groups' wall time
+     * and the run's elapsed time in that window (ob_progress keeps them);
+     * all 0: the speed over the whole run, from g and elapsed_s */
+    double win_work_ns, win_wall_ns, win_s;
 } ob_progress_in;
 
 /* The estimator's answer. */
@@ -78,8 +95,13 @@ typedef struct {
     int drawn;          /* something is on the line */
     int width;          /* columns drawn */
     double t0, last;    /* start, last redraw or line (s) */
+    double shown;       /* the work done as last shown (it never goes back) */
     ob_work_group *buf; /* the groups, read when redrawing */
     size_t cap;
+    /* the latest samples of (elapsed, work, the groups' wall time), one a
+     * second at most, oldest first: the window's speed */
+    struct { double t, work_ns, wall_ns; } samp[OB_PROGRESS_WINDOW_SECONDS + 4];
+    int nsamp;
 } ob_progress;
 
 /* Purpose: a progress display starting now (the run's elapsed time counts

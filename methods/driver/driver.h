@@ -273,6 +273,9 @@ typedef struct {
     double wall_ns;     /* the group engine: wall time since a thread took
                            it (to its end once done); 0 with the others */
     ob_work_state state;
+    int kind;           /* its method (ob_method_index; -1: none): the cost
+                           model's figure is per method, and so are its
+                           errors on another machine */
 } ob_work_group;
 
 /* What a progress callback is told (ob_driver_hooks.progress): the jobs

@@ -22,19 +22,19 @@ enum { MS = 1000000 };
 
 static ob_work_group done_g(double cost, double spent, double wall)
 {
-    return (ob_work_group){cost, spent, wall, OB_WORK_DONE};
+    return (ob_work_group){cost, spent, wall, OB_WORK_DONE, -1};
 }
 
 static ob_work_group running_g(double cost, double spent, double wall)
 {
-    return (ob_work_group){cost, spent, wall, OB_WORK_RUNNING};
+    return (ob_work_group){cost, spent, wall, OB_WORK_RUNNING, -1};
 }
 
-static ob_work_group pending_g(double cost) { return (ob_work_group){cost, 0.0, 0.0, OB_WORK_PENDING}; }
+static ob_work_group pending_g(double cost) { return (ob_work_group){cost, 0.0, 0.0, OB_WORK_PENDING, -1}; }
 
 static ob_progress_est estimate(const ob_work_group *g, size_t n, int threads, int whole, double elapsed)
 {
-    const ob_progress_in in = {g, n, threads, whole, elapsed};
+    const ob_progress_in in = {g, n, threads, whole, elapsed, 0, 0, 0};
     ob_progress_est e;
     memset(&e, 0, sizeof e);
     CHECK(ob_progress_estimate(&in, &e) == 0, "estimate");
@@ -181,6 +181,60 @@ static void test_level_engine(void)
     CHECK_NEAR(e.eta_s, 0.005, 1e-9, "at the run's rate");
 }
 
+/* Each method calibrated on its own groups: one right, one 4 times over
+ * its prediction, the finished groups mostly the first's, the pending ones
+ * mostly the second's.  The run's single ratio would say 63 ms to come;
+ * the truth is 205 ms. */
+static void test_kinds(void)
+{
+    ob_work_group g[155];
+    size_t n = 0;
+    for (int i = 0; i < 95; i++)
+        g[n++] = done_g(1, 1.0 * MS, 1.0 * MS);
+    for (int i = 0; i < 5; i++)
+        g[n++] = pending_g(1);
+    for (int i = 0; i < 5; i++)
+        g[n++] = done_g(1, 4.0 * MS, 4.0 * MS);
+    for (int i = 0; i < 50; i++)
+        g[n++] = pending_g(1);
+    const ob_progress_est one = estimate(g, n, 1, 1, 0.115);
+    for (size_t i = 0; i < n; i++)
+        g[i].kind = i < 100 ? 0 : 1;
+    const ob_progress_est e = estimate(g, n, 1, 1, 0.115);
+    const double c0 = OB_PROGRESS_PRIOR_SHARE * 155, k = (115.0 * MS + c0 * MS) / (100 + c0);
+    const double k0 = (95.0 * MS + OB_PROGRESS_KIND_PRIOR * 100 * k) / (95 + OB_PROGRESS_KIND_PRIOR * 100);
+    const double k1 = (20.0 * MS + OB_PROGRESS_KIND_PRIOR * 55 * k) / (5 + OB_PROGRESS_KIND_PRIOR * 55);
+    CHECK_NEAR(one.left_ns, 55 * k, 1e-3, "one ratio for the run");
+    CHECK_NEAR(e.left_ns, 5 * k0 + 50 * k1, 1e-3, "a ratio per method");
+    CHECK(e.left_ns > 2 * one.left_ns, "per method: %g ms to come (truth 205)", e.left_ns / MS);
+    /* a kind that is not a method index: the run's ratio */
+    for (size_t i = 0; i < n; i++)
+        g[i].kind = OB_PROGRESS_MAX_KINDS + 7;
+    const ob_progress_est big = estimate(g, n, 1, 1, 0.115);
+    CHECK_NEAR(big.left_ns, one.left_ns, 1e-3, "an out-of-range kind");
+}
+
+/* The speed now, not the run's average: the machine got twice as slow in
+ * the latest window, so the rest takes twice as long. */
+static void test_window(void)
+{
+    ob_work_group g[100];
+    for (int i = 0; i < 100; i++)
+        g[i] = i < 50 ? done_g(1, 1.0 * MS, 1.0 * MS) : pending_g(1);
+    ob_progress_in in = {g, 100, 1, 1, 0.05, 0, 0, 0};
+    ob_progress_est e;
+    CHECK(ob_progress_estimate(&in, &e) == 0, "estimate");
+    CHECK_NEAR(e.eta_s, 0.05, 1e-9, "the run's speed");
+    in.win_work_ns = 10.0 * MS;
+    in.win_wall_ns = 20.0 * MS;
+    in.win_s = 0.02;
+    CHECK(ob_progress_estimate(&in, &e) == 0, "estimate");
+    CHECK_NEAR(e.eta_s, 0.1, 1e-9, "the window's speed (groups)");
+    in.whole_groups = 0;
+    CHECK(ob_progress_estimate(&in, &e) == 0, "estimate");
+    CHECK_NEAR(e.eta_s, 0.1, 1e-9, "the window's rate (level engine)");
+}
+
 static void test_format(void)
 {
     char buf[128];
@@ -296,6 +350,8 @@ int main(void)
     test_skipped();
     test_steady();
     test_level_engine();
+    test_kinds();
+    test_window();
     test_format();
     test_driver_feed();
     return check_done();
