@@ -93,14 +93,17 @@ static double *calibrate(const ob_work_group *g, size_t n)
 }
 
 /* The predicted thread time a group still needs: its predicted cost (at
- * its method's calibration) less what it has used; past its prediction,
- * OB_PROGRESS_OVERRUN of what it has used (it is still running: not 0). */
+ * its method's calibration) less what it has used.  Near or past its
+ * prediction, OB_PROGRESS_OVERRUN x (used / predicted) of what it has used,
+ * at most as much again: still running, it is not done (never "ETA 0 s"),
+ * and the further past its prediction, the longer it is likely to run. */
 static double group_left(const ob_work_group *g, const double *k)
 {
     if (g->state == OB_WORK_DONE)
         return 0.0;
-    const double ns = k[1 + kind_of(g)] * g->cost;
-    return fmax(ns - g->spent_ns, OB_PROGRESS_OVERRUN * g->spent_ns);
+    const double ns = k[1 + kind_of(g)] * g->cost, m = g->spent_ns;
+    const double over = ns > 0 ? fmin(m, OB_PROGRESS_OVERRUN * m * m / ns) : m;
+    return fmax(ns - m, over);
 }
 
 /* Min-heap of the threads' free times (a list schedule's earliest free

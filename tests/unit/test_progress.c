@@ -89,17 +89,23 @@ static void test_long_tail(void)
 }
 
 /* A group past its predicted cost still needs time: never "ETA 0 s" while
- * it runs, and the longer it runs the longer the ETA. */
+ * it runs, and the longer it runs the longer the ETA.  Just past its
+ * prediction, a share of what it used again; far past, as much again. */
 static void test_overrun(void)
 {
-    ob_work_group g[3] = {running_g(10, 40.0 * MS, 40.0 * MS), done_g(5, 5.0 * MS, 5.0 * MS), done_g(5, 5.0 * MS, 5.0 * MS)};
-    ob_progress_est e = estimate(g, 3, 2, 1, 0.05);
+    ob_work_group g[3] = {running_g(10, 12.0 * MS, 12.0 * MS), done_g(5, 5.0 * MS, 5.0 * MS),
+                          done_g(5, 5.0 * MS, 5.0 * MS)};
+    ob_progress_est e = estimate(g, 3, 2, 1, 0.022);
     CHECK(e.eta_s > 0, "running past its prediction: ETA > 0 (got %g)", e.eta_s);
-    CHECK_NEAR(e.eta_s, OB_PROGRESS_OVERRUN * 0.04, 1e-9, "a share of what it used again");
+    CHECK_NEAR(e.eta_s, OB_PROGRESS_OVERRUN * 1.2 * 0.012, 1e-9, "1.2 times over: a share of it again");
     CHECK(e.fraction < 1.0, "not done: %g", e.fraction);
-    g[0].spent_ns = g[0].wall_ns = 80.0 * MS;
-    const ob_progress_est e2 = estimate(g, 3, 2, 1, 0.09);
+    g[0].spent_ns = g[0].wall_ns = 40.0 * MS;
+    const ob_progress_est e2 = estimate(g, 3, 2, 1, 0.05);
     CHECK(e2.eta_s > e.eta_s, "ETA grows as it overruns: %g > %g", e2.eta_s, e.eta_s);
+    CHECK_NEAR(e2.eta_s, 0.04, 1e-9, "4 times over: as much again");
+    g[0].spent_ns = g[0].wall_ns = 400.0 * MS;
+    const ob_progress_est e3 = estimate(g, 3, 2, 1, 0.41);
+    CHECK_NEAR(e3.eta_s, 0.4, 1e-9, "40 times over: as much again, not more");
 }
 
 /* A resume: the interrupted run's largest group (scheduled first) runs; no
@@ -160,7 +166,7 @@ static void test_steady(void)
     ob_work_group g[3] = {running_g(100, 0, 0), done_g(10, 10.0 * MS, 10.0 * MS), pending_g(10)};
     double last = -1.0;
     int up = 1;
-    for (int s = 1; s <= 90; s++) {
+    for (int s = 1; s <= 80; s++) {  /* within its prediction (past it, the work to come grows) */
         g[0].spent_ns = g[0].wall_ns = s * (double)MS;
         const ob_progress_est e = estimate(g, 3, 2, 1, 0.01 + s * 1e-3);
         up &= e.fraction > last;
