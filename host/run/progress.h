@@ -8,17 +8,20 @@
  * Progress is counted in work, not in jobs: the group engine runs share
  * groups largest first and tells their jobs finished in schedule order, so
  * the count of finished jobs lags (it reads 0 for as long as the first,
- * largest group runs), and the jobs of a run differ in cost by orders of
- * magnitude.  The work done is the thread time the driver measured so far
- * (finished groups and the running ones' part); the work to come is each
- * unfinished group's predicted cost (ob_job_cost, the model `--shard`
- * balances with) in the run's own units, the ratio of measured to predicted
- * cost of the groups finished so far.  The ETA is a list schedule of that
- * work on the run's threads at the rate of work measured so far: the
- * running groups where they run, then the pending ones in schedule order on
- * the earliest free thread, so the tail (a big group running alone while
- * the other threads have nothing left) counts for what it is: a group runs
- * on one thread (the helpers only take its chunks' fits).
+ * largest group runs: the "0 %, ETA ?" of a resume), and the jobs of a run
+ * differ in cost by orders of magnitude.  The work done is the thread time
+ * the driver measured so far (finished groups and the running ones' part);
+ * the work to come is each unfinished group's predicted cost (ob_job_cost,
+ * the model `--shard` balances with) in the run's own units: the ratio of
+ * measured to predicted time of the groups finished so far, per method.
+ * The ETA is a list schedule of that work on the run's threads at the
+ * speed measured over the latest OB_PROGRESS_WINDOW_SECONDS: the running
+ * groups where they run, then the pending ones in schedule order on the
+ * earliest free thread, so the tail (a big group running alone while the
+ * other threads have nothing left: the "ETA 1 s" with 65 s left) counts
+ * for its length.  A group runs on one thread: the threads left without a
+ * group help only with its chunks' fits and measurements, little where its
+ * levels hold few pieces (meta.json's helped_seconds).
  */
 #ifndef OB_PROGRESS_H
 #define OB_PROGRESS_H
