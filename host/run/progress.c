@@ -306,13 +306,22 @@ void ob_progress_cb(void *ctx, const ob_progress_info *pi)
      * says it); a terminal: ten redraws a second at most */
     const int show = p->tty ? t - p->last >= 0.1 || pi->done >= pi->total
                             : t - p->last >= OB_PROGRESS_LOG_SECONDS && pi->done < pi->total;
-    const int sample = p->nsamp == 0 || el - p->samp[p->nsamp - 1].t >= 1.0;
-    if (!show && !sample)
+    /* the estimate (O(groups), under the engine's lock) once a second, and
+     * at the end: it also samples the speed's window */
+    const int refresh = !p->estimated || el - p->est_at >= 1.0 || pi->done >= pi->total;
+    if (!show && !refresh)
         return;
-    const ob_progress_est e = estimate_now(p, pi, el);
+    if (refresh) {
+        p->est = estimate_now(p, pi, el);
+        p->est_at = el;
+        p->estimated = 1;
+    }
     if (!show)
         return;
     p->last = t;
+    ob_progress_est e = p->est;
+    if (e.eta_s >= 0)  /* between estimates it counts down */
+        e.eta_s = fmax(0.0, e.eta_s - (el - p->est_at));
     if (p->tty) {
         draw_bar(p, pi, &e, el);
     } else {

@@ -101,6 +101,9 @@ typedef struct {
     int width;          /* columns drawn */
     double t0, last;    /* start, last redraw or line (s) */
     double shown;       /* the work done as last shown (it never goes back) */
+    ob_progress_est est; /* the latest estimate, refreshed once a second */
+    double est_at;      /* its time (s since t0) */
+    int estimated;      /* est is set */
     ob_work_group *buf; /* the groups, read when redrawing */
     size_t cap;
     /* the latest samples of (elapsed, work, the groups' wall time), one a
@@ -114,7 +117,8 @@ typedef struct {
 void ob_progress_init(ob_progress *p);
 /* Purpose: the driver's progress callback (ctx: an ob_progress*): redraws
  *          the bar at most ten times a second, or writes a log line every
- *          OB_PROGRESS_LOG_SECONDS. */
+ *          OB_PROGRESS_LOG_SECONDS; estimates once a second (the groups are
+ *          read under the engine's lock), the ETA counting down between. */
 void ob_progress_cb(void *ctx, const ob_progress_info *pi);
 /* Purpose: clear the bar's line and free what the display holds. */
 void ob_progress_end(ob_progress *p);

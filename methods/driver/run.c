@@ -360,7 +360,6 @@ int drv_chunk_decide(drv_run *R, drv_scratch *S, const item *its, long cnt, item
     return 0;
 }
 
-
 /* The groups' state, in schedule order (ob_progress_info.groups). */
 static void read_groups(const ob_progress_info *pi, ob_work_group *out)
 {
