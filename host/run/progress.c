@@ -148,18 +148,21 @@ static double list_schedule(const ob_work_group *g, size_t n, int threads, const
 
 /* The ETA (s) of the work left: the list schedule at a group's speed on
  * its thread (whole_groups), else at the run's rate of work; the window's
- * speed where it has one.  -1: no rate yet; -2: no memory. */
+ * speed where work was measured in it (a window without any, one long fit,
+ * says nothing of the speed: the run's then).  -1: no rate yet; -2: no
+ * memory. */
 static double eta_of(const ob_progress_in *in, const tally *t, double left_ns, const double *k)
 {
+    const int win = in->win_work_ns > 0;
     if (!in->whole_groups) {
-        const double work = in->win_s > 0 ? in->win_work_ns : t->work_ns;
-        const double wall = in->win_s > 0 ? in->win_s : in->elapsed_s;
+        const double work = win && in->win_s > 0 ? in->win_work_ns : t->work_ns;
+        const double wall = win && in->win_s > 0 ? in->win_s : in->elapsed_s;
         return work > 0 && wall > 0 ? left_ns * wall / work : -1.0;
     }
     /* thread time per wall time of the groups' threads: below 1 on a shared
      * machine, above where threads without a group helped */
-    const double work = in->win_wall_ns > 0 ? in->win_work_ns : t->work_ns;
-    const double wall = in->win_wall_ns > 0 ? in->win_wall_ns : t->wall_ns;
+    const double work = win && in->win_wall_ns > 0 ? in->win_work_ns : t->work_ns;
+    const double wall = win && in->win_wall_ns > 0 ? in->win_wall_ns : t->wall_ns;
     if (work <= 0 || wall <= 0)
         return -1.0;
     const double span = list_schedule(in->g, in->n, in->threads > 0 ? in->threads : 1, k);

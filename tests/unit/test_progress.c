@@ -239,6 +239,14 @@ static void test_window(void)
     in.whole_groups = 0;
     CHECK(ob_progress_estimate(&in, &e) == 0, "estimate");
     CHECK_NEAR(e.eta_s, 0.1, 1e-9, "the window's rate (level engine)");
+    /* a window without work (one long fit) says nothing: the run's speed,
+     * not "ETA ?" */
+    in.win_work_ns = 0;
+    for (int whole = 0; whole <= 1; whole++) {
+        in.whole_groups = whole;
+        CHECK(ob_progress_estimate(&in, &e) == 0, "estimate");
+        CHECK_NEAR(e.eta_s, 0.05, 1e-9, "an empty window");
+    }
 }
 
 static void test_format(void)
