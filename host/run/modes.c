@@ -44,39 +44,15 @@ static int same_result(const ob_job *a, const ob_job *b)
            a->continuity == b->continuity;
 }
 
-/* The progress bar hears of every finished job (its estimated cost), then
- * whoever else listens (the journal). */
-typedef struct {
-    ob_progress *bar;
-    const ob_job *jobs;
-    void (*next)(void *ctx, size_t i);
-    void *next_ctx;
-} progress_chain;
-
-static void progress_job_done(void *ctx, size_t i)
-{
-    progress_chain *pc = ctx;
-    ob_progress_job_done(pc->bar, ob_job_cost(&pc->jobs[i]));
-    if (pc->next)
-        pc->next(pc->next_ctx, i);
-}
-
 int ob_run_plain(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char *what, double *wall)
 {
     ob_driver_hooks h = c->hooks;
-    ob_progress bar;
-    ob_progress_init(&bar);
-    double cost = 0.0;
-    for (size_t i = 0; i < njobs; i++)
-        cost += ob_job_cost(&jobs[i]);
-    ob_progress_set_cost(&bar, cost);
     if (what)
         ob_info("%s", what);
-    progress_chain pc = {&bar, jobs, h.job_done, h.job_done_ctx};
+    ob_progress bar;
+    ob_progress_init(&bar);
     h.progress = ob_progress_cb;
     h.progress_ctx = &bar;
-    h.job_done = progress_job_done;
-    h.job_done_ctx = &pc;
     h.stats = &c->rec->engine;
     double t0 = now_s();
     int rc = ob_driver_run(jobs, njobs, &c->o->driver, &h);

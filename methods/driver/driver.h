@@ -222,6 +222,10 @@ typedef struct {
 double ob_trace_makespan(const ob_trace *t, int threads);
 void ob_trace_free(ob_trace *t);
 
+/* The group engine calls hooks.progress at most this often while groups
+ * run (besides once per finished group): a display redraws about as often. */
+enum { OB_PROGRESS_TICK_MS = 100 };
+
 /* Pieces per batch without a batch backend that asks for more: the level
  * engine's chunk of all groups' pieces, the group engine's of one group's. */
 enum { OB_CPU_CHUNK = 512 };
@@ -256,6 +260,40 @@ typedef struct {
     long test_oom_after;
 } ob_driver_opts;
 
+/* One share group's work as a progress display sees it (ob_progress_info):
+ * the unit the group engine schedules, so the unit a truthful progress
+ * counts in (jobs are told finished group by group in schedule order: a
+ * count of finished jobs lags the work by as much as the largest group). */
+typedef enum { OB_WORK_PENDING = 0, OB_WORK_RUNNING, OB_WORK_DONE } ob_work_state;
+typedef struct {
+    double cost;        /* predicted: ob_job_cost of its costliest job (ms;
+                           the others share its pieces) */
+    double spent_ns;    /* thread time of its fits and measurements so far
+                           (a shared piece once, as ob_engine_stats.work_ns) */
+    double wall_ns;     /* the group engine: wall time since a thread took
+                           it (to its end once done); 0 with the others */
+    ob_work_state state;
+    int kind;           /* its method (ob_method_index; -1: none): the cost
+                           model's figure is per method, and so are its
+                           errors on another machine */
+} ob_work_group;
+
+/* What a progress callback is told (ob_driver_hooks.progress): the jobs
+ * finished, and the run's share groups, read on demand. */
+typedef struct ob_progress_info {
+    size_t done, total;     /* jobs finished (told through job_done), jobs */
+    int threads;            /* the run's OpenMP threads */
+    int whole_groups;       /* 1: a thread runs a group to its end (the group
+                               engine); 0: every thread works on every
+                               group's pieces (the level and device engines) */
+    size_t ngroups;         /* share groups */
+    /* copies every group's state to out[0 .. ngroups - 1] in schedule order
+     * (largest predicted cost first, ob_cost_order): O(ngroups), so a
+     * display calls it only when it redraws; valid only inside the callback */
+    void (*groups)(const struct ob_progress_info *pi, ob_work_group *out);
+    const void *run;        /* the driver's, for groups */
+} ob_progress_info;
+
 /* What the caller plugs into one driver run: where the measurements go and
  * what it is told as the run goes.  Every member may be NULL (zeroed: none);
  * none of them changes a result. */
@@ -270,10 +308,13 @@ typedef struct {
                            (a GPU: tens of thousands of records per launch),
                            used when ob_driver_opts.chunk is 0 */
     long *batch_fallbacks; /* if not NULL: counts batches the backend gave back */
-    /* if not NULL: called after every batch with the number of finished
-     * jobs, from one thread at a time (the calling thread with the level
-     * engine; under the engine's lock with the group engine) */
-    void (*progress)(void *ctx, size_t done, size_t total);
+    /* if not NULL: called after every batch (the level and device engines)
+     * or every finished group and, while groups run, at most
+     * OB_PROGRESS_TICK_MS apart (the group engine: a long group alone in
+     * the tail is not silent), with the jobs finished and the work so far;
+     * from one thread at a time (the calling thread with the level engine;
+     * under the engine's lock with the group engine) */
+    void (*progress)(void *ctx, const ob_progress_info *pi);
     void *progress_ctx;
     /* if not NULL: njobs logs, zeroed by the caller; spans[i] receives the
      * accepted pieces of job i (draw and trace refit them to show the

@@ -163,6 +163,18 @@ typedef struct {
     char *work;         /* wsize bytes per thread */
     size_t done;        /* jobs finished */
     ob_engine_stats st; /* what the engine did (hooks.stats gets a copy) */
+    /* each share group's work, for hooks.progress (ob_progress_info); the
+     * engines' threads update them with OpenMP atomics, the callback reads
+     * them so (drv_progress) */
+    double *gcost;      /* predicted: its costliest job's ob_job_cost */
+    size_t *gorder;     /* the schedule: groups by decreasing gcost */
+    double *gspent;     /* thread time of its fits and measurements so far */
+    int *gleft;         /* its jobs not ended yet */
+    int *gkind;         /* its method's ob_method_index */
+    double *gstart, *gend; /* the group engine: wall ns it was taken and
+                              ended (0: not yet) */
+    int whole_groups;   /* the engine runs a group on one thread to its end */
+    double last_tick;   /* wall ns of the last progress call (drv_progress_tick) */
 } drv_run;
 
 /* jobs.c */
@@ -211,6 +223,8 @@ int drv_run_start(drv_run *R, ob_job *jobs, size_t njobs, const ob_driver_opts *
 int drv_plan_all(drv_run *R, itemvec *plans);
 int drv_job_finished(drv_run *R, size_t i);
 void drv_run_end(drv_run *R, int rc);
+void drv_progress(drv_run *R);
+void drv_progress_tick(drv_run *R);
 int drv_scratch_alloc(drv_scratch *S, int chunk);
 void drv_scratch_free(drv_scratch *S);
 double drv_chunk_work(drv_run *R, drv_scratch *S, const item *its, long cnt, drv_how how);

@@ -104,8 +104,7 @@ static int complete(dengine *D, cohort *k, int slot)
     R->st.work_ns += drv_chunk_account(R, &k->S, k->cnt);
     if (drv_chunk_decide(R, &k->S, its, k->cnt, &k->next, tell_now, D) != 0)
         return -1;
-    if (R->h.progress)
-        R->h.progress(R->h.progress_ctx, R->done, R->njobs);
+    drv_progress(R);
     k->start += (size_t)k->cnt;
     k->cnt = 0;
     return 0;

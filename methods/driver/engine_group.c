@@ -19,17 +19,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* One share group: its jobs, its predicted cost, the jobs it has finished. */
+/* One share group: its jobs, the jobs it has finished (its predicted cost:
+ * drv_run's gcost). */
 typedef struct {
     size_t first, n;    /* its jobs: members[first .. first + n - 1], ascending */
-    double cost;        /* predicted: its costliest job (the others share its pieces) */
     size_t ntold;       /* jobs finished, in told[first ..] in that order */
 } group;
 
 typedef struct {
     drv_run *R;
     group *g;
-    int *order;         /* the schedule: group ids by decreasing cost */
+    const size_t *order; /* the schedule: group ids by decreasing predicted
+                            cost (drv_run's gorder) */
     size_t *members;    /* job ids, group by group */
     size_t *told;       /* njobs: each group's finished jobs, in its slice */
     itemvec *plans;     /* each job's first pieces (drv_plan_all) */
@@ -44,24 +45,22 @@ typedef struct {
     int idle;           /* threads without a group: they help the rest */
 } gengine;
 
-/* The groups, their members in job order, and the schedule.  0 or -1. */
+/* The groups and their members in job order (the schedule is drv_run's).
+ * 0 or -1. */
 static int build_groups(gengine *G)
 {
     drv_run *R = G->R;
     const size_t ng = (size_t)R->ngroups, nj = R->njobs;
     G->g = calloc(ng ? ng : 1, sizeof *G->g);
-    G->order = malloc((ng ? ng : 1) * sizeof *G->order);
+    G->order = R->gorder;
     G->members = malloc((nj ? nj : 1) * sizeof *G->members);
     G->told = malloc((nj ? nj : 1) * sizeof *G->told);
     G->ran = calloc(ng ? ng : 1, 1);
     G->gtr = R->h.trace ? calloc(ng ? ng : 1, sizeof *G->gtr) : NULL;
-    if (!G->g || !G->order || !G->members || !G->told || !G->ran || (R->h.trace && !G->gtr))
+    if (!G->g || !G->members || !G->told || !G->ran || (R->h.trace && !G->gtr))
         return -1;
-    for (size_t i = 0; i < nj; i++) {
-        group *gr = &G->g[R->grp[i]];
-        gr->n++;
-        gr->cost = fmax(gr->cost, ob_job_cost(&R->jobs[i]));
-    }
+    for (size_t i = 0; i < nj; i++)
+        G->g[R->grp[i]].n++;
     size_t at = 0;
     for (size_t k = 0; k < ng; k++) {
         G->g[k].first = at;
@@ -72,17 +71,7 @@ static int build_groups(gengine *G)
         group *gr = &G->g[R->grp[i]];
         G->members[gr->first + gr->n++] = i;
     }
-    double *cost = malloc((ng ? ng : 1) * sizeof *cost);
-    size_t *order = malloc((ng ? ng : 1) * sizeof *order);
-    const int ok = cost && order;
-    for (size_t k = 0; ok && k < ng; k++)
-        cost[k] = G->g[k].cost;
-    const int rc = ok ? ob_cost_order(cost, ng, order) : -1;
-    for (size_t k = 0; rc == 0 && k < ng; k++)
-        G->order[k] = (int)order[k];
-    free(cost);
-    free(order);
-    return rc;
+    return 0;
 }
 
 /* A job of the running group ends: kept, told when the group is committed. */
@@ -158,6 +147,7 @@ static int run_group(gengine *G, int pos, drv_scratch *S, itemvec *cur, itemvec 
             if (gt)
                 trace_chunk(gt, S, cnt, serial + drv_thread_ns() - d0, pos);
             serial = 0.0;
+            drv_progress_tick(R);  /* a long group alone in the tail keeps the display moving */
             if ((R->h.stop && *R->h.stop) || aborted(G))
                 return 1;
         }
@@ -199,8 +189,7 @@ static void commit(gengine *G, int pos, int rc)
         }
         while (G->commit < R->ngroups && G->ran[G->commit])
             tell_group(G, G->commit++);
-        if (R->h.progress)
-            R->h.progress(R->h.progress_ctx, R->done, R->njobs);
+        drv_progress(R);
     }
 }
 
@@ -223,7 +212,12 @@ static void worker(gengine *G)
         pos = G->next++;
         if (pos >= R->ngroups)
             break;
+        const size_t gid = G->order[pos];
+#pragma omp atomic write
+        R->gstart[gid] = drv_wall_ns();
         const int rc = run_group(G, pos, &S, &cur, &next, &helped);
+#pragma omp atomic write
+        R->gend[gid] = drv_wall_ns();
         commit(G, pos, rc);
     }
 #pragma omp atomic
@@ -241,7 +235,6 @@ static void gengine_free(gengine *G)
         free(G->plans[i].v);
     free(G->plans);
     free(G->g);
-    free(G->order);
     free(G->members);
     free(G->told);
     free(G->ran);
@@ -258,6 +251,7 @@ int drv_run_group(drv_run *R)
     gengine G;
     memset(&G, 0, sizeof G);
     G.R = R;
+    R->whole_groups = 1;
     G.plans = calloc(R->njobs ? R->njobs : 1, sizeof *G.plans);
     int rc = !G.plans || build_groups(&G) ? -1 : drv_plan_all(R, G.plans);
     if (rc == 0) {

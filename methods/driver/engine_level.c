@@ -39,8 +39,7 @@ static int run_levels(level *L)
             const double t0 = drv_wall_ns();
             if (drv_chunk_decide(R, &L->S, its, cnt, &L->next, tell_now, L) != 0)
                 return -1;
-            if (R->h.progress)
-                R->h.progress(R->h.progress_ctx, R->done, R->njobs);
+            drv_progress(R);
             serial += drv_wall_ns() - t0;
             if (t && t->nphase > 0)  /* the decisions (and the sorting before them): one thread */
                 t->phase[t->nphase - 1].serial_ns += serial;

@@ -34,6 +34,30 @@ static void init_jobs(drv_run *R)
     }
 }
 
+/* Each share group's predicted cost (its costliest job's: the others share
+ * its pieces), the schedule by that cost, its jobs, its work so far (none).
+ * 0, or -1 (memory). */
+static int groups_start(drv_run *R)
+{
+    const size_t ng = (size_t)R->ngroups ? (size_t)R->ngroups : 1;
+    R->gcost = calloc(ng, sizeof *R->gcost);
+    R->gorder = malloc(ng * sizeof *R->gorder);
+    R->gspent = calloc(ng, sizeof *R->gspent);
+    R->gleft = calloc(ng, sizeof *R->gleft);
+    R->gstart = calloc(ng, sizeof *R->gstart);
+    R->gend = calloc(ng, sizeof *R->gend);
+    R->gkind = calloc(ng, sizeof *R->gkind);
+    if (!R->gcost || !R->gorder || !R->gspent || !R->gleft || !R->gstart || !R->gend || !R->gkind)
+        return -1;
+    for (size_t i = 0; i < R->njobs; i++) {
+        const int g = R->grp[i];
+        R->gcost[g] = fmax(R->gcost[g], ob_job_cost(&R->jobs[i]));
+        R->gkind[g] = ob_method_index(R->jobs[i].method);  /* one method per group */
+        R->gleft[g]++;
+    }
+    return ob_cost_order(R->gcost, (size_t)R->ngroups, R->gorder);
+}
+
 /* Purpose: start a run: options (NULL: defaults), hooks (NULL: none), each
  *          job's bookkeeping and share group, the work areas.
  * Returns: 0, or -1 when memory ran out (drv_run_end still applies). */
@@ -67,7 +91,7 @@ int drv_run_start(drv_run *R, ob_job *jobs, size_t njobs, const ob_driver_opts *
             R->ngroups = R->grp[i] + 1;
     R->st.groups = R->ngroups;
     init_jobs(R);
-    return 0;
+    return groups_start(R);
 }
 
 /* Purpose: the first pieces of every job (in parallel), plans[i] for job i
@@ -96,8 +120,10 @@ int drv_plan_all(drv_run *R, itemvec *plans)
     }
     free(ns);
     for (size_t i = 0; i < R->njobs && !fail; i++) {
-        if (plans[i].n == 0)  /* skipped before any work (the hook cannot fire: nothing ran) */
+        if (plans[i].n == 0) {  /* skipped before any work (the hook cannot fire: nothing ran) */
+            R->gleft[R->grp[i]]--;
             drv_job_finished(R, i);
+        }
         R->js[i].pending = (long)plans[i].n;
     }
     return fail ? -1 : 0;
@@ -152,6 +178,17 @@ void drv_run_end(drv_run *R, int rc)
     R->js = NULL;
     R->work = NULL;
     R->grp = NULL;
+    free(R->gcost);
+    free(R->gorder);
+    free(R->gspent);
+    free(R->gleft);
+    free(R->gstart);
+    free(R->gend);
+    free(R->gkind);
+    R->gkind = NULL;
+    R->gcost = R->gspent = R->gstart = R->gend = NULL;
+    R->gorder = NULL;
+    R->gleft = NULL;
 }
 
 int drv_scratch_alloc(drv_scratch *S, int chunk)
@@ -304,15 +341,82 @@ int drv_chunk_decide(drv_run *R, drv_scratch *S, const item *its, long cnt, item
         const int job = its[i].job;
         R->jobs[job].fit_ns += S->fit_ns[i];
         R->jobs[job].eval_ns += S->eval_ns[i];
+        if (S->rep[i] == i) {  /* the group's work: a shared piece once, as work_ns */
+#pragma omp atomic
+            R->gspent[its[i].grp] += S->fit_ns[i] + S->eval_ns[i];
+        }
         if (drv_decide(R->jobs, R->js, &its[i], &S->res[i], &S->fj[i], &R->o, next))
             return -1;
         check_timeout(R, job);
         jstate *s = &R->js[job];
         if (!s->told && (s->pending == 0 || s->dead)) {
             s->told = 1;
+#pragma omp atomic
+            R->gleft[its[i].grp]--;
             if (finished(ctx, (size_t)job) != 0)
                 return -1;
         }
     }
     return 0;
+}
+
+/* The groups' state, in schedule order (ob_progress_info.groups). */
+static void read_groups(const ob_progress_info *pi, ob_work_group *out)
+{
+    const drv_run *R = pi->run;
+    const double now = drv_wall_ns();
+    for (size_t k = 0; k < pi->ngroups; k++) {
+        const size_t g = R->gorder[k];
+        double spent, start, end;
+        int left;
+#pragma omp atomic read
+        spent = R->gspent[g];
+#pragma omp atomic read
+        left = R->gleft[g];
+#pragma omp atomic read
+        start = R->gstart[g];
+#pragma omp atomic read
+        end = R->gend[g];
+        out[k].cost = R->gcost[g];
+        out[k].spent_ns = spent;
+        out[k].wall_ns = start > 0.0 ? (end > 0.0 ? end : now) - start : 0.0;
+        out[k].kind = R->gkind[g];
+        out[k].state = left <= 0 ? OB_WORK_DONE : start > 0.0 || spent > 0.0 ? OB_WORK_RUNNING : OB_WORK_PENDING;
+    }
+}
+
+/* Purpose: tell hooks.progress (if any) the jobs finished and the work so
+ *          far.  The caller makes it one thread at a time (drv_progress_tick
+ *          and the group engine's commit hold the engine's lock). */
+void drv_progress(drv_run *R)
+{
+    if (!R->h.progress)
+        return;
+    const ob_progress_info pi = {R->done, R->njobs, R->st.threads, R->whole_groups, (size_t)R->ngroups, read_groups,
+                                 R};
+#pragma omp atomic write
+    R->last_tick = drv_wall_ns();
+    R->h.progress(R->h.progress_ctx, &pi);
+}
+
+/* Purpose: drv_progress from any thread, at most OB_PROGRESS_TICK_MS apart:
+ *          the group engine's threads call it after every chunk, so a long
+ *          group (the tail) keeps the display moving between finished groups. */
+void drv_progress_tick(drv_run *R)
+{
+    if (!R->h.progress)
+        return;
+    const double now = drv_wall_ns();
+    double last;
+#pragma omp atomic read
+    last = R->last_tick;
+    if (now - last < OB_PROGRESS_TICK_MS * 1e6)
+        return;
+#pragma omp critical(drv_commit)
+    {
+#pragma omp atomic read
+        last = R->last_tick;
+        if (now - last >= OB_PROGRESS_TICK_MS * 1e6)
+            drv_progress(R);
+    }
 }
