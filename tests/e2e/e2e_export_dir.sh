@@ -120,7 +120,7 @@ rm -f "$S/index.shard1-of-3.csv"
 check '[ $? -eq 2 ] && grep -q "index.shard1-of-3.csv.*run it again" "$T/e.txt"' "a missing shard index: exit 2: $(cat "$T/e.txt")"
 # a shard run again rewrites its index (and removes a stale index.csv)
 echo old > "$S/index.csv"
-"$OB" run $R --shard 1/3 --out "$T/s1" --export "$S" 2>/dev/null
+"$OB" run $R --shard 1/3 --force --out "$T/s1" --export "$S" 2>/dev/null
 check '[ -f "$S/index.shard1-of-3.csv" ] && [ ! -e "$S/index.csv" ]' "shard 1 again: its index back, the stale index.csv gone"
 "$OB" merge "$T/s0" "$T/s1" "$T/s2" --out "$T/m3" 2>/dev/null
 check '[ $? -eq 0 ] && cmp -s "$S/index.csv" "$T/xall/index.csv"' "merged again"
@@ -130,7 +130,7 @@ for k in 0 1; do "$OB" run $R --shard $k/2 --out "$T/d$k" --export "$T/dx$k" 2>/
 check '[ $? -eq 0 ] && grep -q "different directories" "$T/e.txt" && [ ! -e "$T/dx0/index.csv" ] && [ -f "$T/dx0/index.shard0-of-2.csv" ]' \
     "shards in different directories: $(cat "$T/e.txt")"
 # only some shards exported
-"$OB" run $R --shard 1/2 --out "$T/d1" 2>/dev/null
+"$OB" run $R --shard 1/2 --force --out "$T/d1" 2>/dev/null
 "$OB" merge "$T/d0" "$T/d1" --out "$T/dm2" 2>"$T/e.txt"
 check '[ $? -eq 0 ] && grep -q "only 1 of the 2 shards ran with --export" "$T/e.txt"' "only some shards exported: $(cat "$T/e.txt")"
 # a plain run into a shard directory removes the shard indexes
