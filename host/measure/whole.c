@@ -36,22 +36,57 @@ typedef struct {
     double lb;
 } cand;
 
+/* The targets' circles in a uniform grid (CSR: cell i holds
+ * items[start[i] .. start[i + 1])); each circle in every cell its box
+ * meets; circles of no finite size in `always`. */
+typedef struct {
+    double x0, y0, h;
+    int nx, ny;
+    int *start, *items, *always, nalways;
+} grid;
+
 enum { SIDE_A = 0, SIDE_O = 1 }; /* queries on the approximation / on the offset */
+
+/* Bytes of sample tables kept per side (64 MiB: 3,900 pieces at the
+ * default 256 samples); past it the tables are recomputed as needed. */
+#define CACHE_BYTES ((size_t)64 << 20)
 
 typedef struct {
     const ob_approx *a;
     int n, S;
     double d;
     ob_bez *tile;        /* the offset's base pieces, one per piece */
-    double *tab[2];      /* tables: [SIDE_A] of the pieces, [SIDE_O] of the offset's tiles */
+    double *tab[2];      /* table caches: [SIDE_A] of the pieces, [SIDE_O] of the offset's tiles */
+    int *held[2];        /* per slot of a cache: the piece (tile) whose table it holds, or -1 */
+    int slots;           /* tables per cache */
     circle *circ[2];     /* their bounding circles */
+    grid grid[2];        /* of circ[0] and circ[1] */
     cand *cands;         /* the other targets of the current query piece, nearest circle first */
     int ncand;
+    int *stamp;          /* per target: the last candidates() call that listed it */
+    int gen;             /* candidates() calls so far */
 } whole;
 
-static double *table(const whole *w, int side, int k)
+/* The sample table of piece (side SIDE_A) or tile (SIDE_O) k into T. */
+static void fill(const whole *w, int side, int k, double *T)
 {
-    return w->tab[side] + (size_t)k * OBC_TABLE_SIZE(w->S);
+    long ops = 0;
+    const ob_bez *b = side == SIDE_A ? &w->a->v[k].approx : &w->tile[k];
+    obc_fill_table(&b->h[0][0], b->deg, side == SIDE_A ? 0.0 : w->d, w->S, T, &ops);
+}
+
+/* The table of piece (tile) k: from its side's cache, a direct-mapped one
+ * (slot k mod slots), filled when the slot holds another.  A query uses
+ * one table of each side at a time, and the pieces it asks lie near it. */
+static const double *table(const whole *w, int side, int k)
+{
+    const int slot = k % w->slots;
+    double *T = w->tab[side] + (size_t)slot * OBC_TABLE_SIZE(w->S);
+    if (w->held[side][slot] != k) {
+        fill(w, side, k, T);
+        w->held[side][slot] = k;
+    }
+    return T;
 }
 
 /* The circle that holds every block circle of table T. */
@@ -128,17 +163,131 @@ static int cmp_cand(const void *x, const void *y)
     return p->lb < q->lb ? -1 : p->lb > q->lb ? 1 : (p->j > q->j) - (p->j < q->j);
 }
 
-/* The other targets of query piece k (side s), by how near their circles
- * can come to its circle. */
+static int cmp_double(const void *x, const void *y)
+{
+    const double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* The cells [*a, *b] that the interval [lo, hi] meets along one axis. */
+static void cell_range(double lo, double hi, double x0, double h, int n, int *a, int *b)
+{
+    const double fa = floor((lo - x0) / h), fb = floor((hi - x0) / h);
+    *a = fa < 0 ? 0 : fa > n - 1 ? n - 1 : (int)fa;
+    *b = fb < 0 ? 0 : fb > n - 1 ? n - 1 : (int)fb;
+}
+
+/* Visits the cells that circle j's box meets: counts (fill 0) or files it. */
+static void grid_visit(grid *g, const circle *c, int j, int fill)
+{
+    int ia, ib, ja, jb;
+    cell_range(c->x - c->r, c->x + c->r, g->x0, g->h, g->nx, &ia, &ib);
+    cell_range(c->y - c->r, c->y + c->r, g->y0, g->h, g->ny, &ja, &jb);
+    for (int y = ja; y <= jb; y++)
+        for (int x = ia; x <= ib; x++) {
+            const int cell = y * g->nx + x;
+            if (fill)
+                g->items[g->start[cell]++] = j;
+            else
+                g->start[cell + 1]++;
+        }
+}
+
+/* The grid of n circles: cells about the size of a circle (twice the
+ * median radius), at most 4 n + 16 of them.  0, or -1 out of memory. */
+static int grid_build(grid *g, const circle *c, int n)
+{
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    double *r = malloc((size_t)(n > 0 ? n : 1) * sizeof *r);
+    int nr = 0;
+    g->always = malloc((size_t)(n > 0 ? n : 1) * sizeof *g->always);
+    if (!r || !g->always) {
+        free(r);
+        return -1;
+    }
+    for (int j = 0; j < n; j++) {
+        if (!isfinite(c[j].r)) {
+            g->always[g->nalways++] = j;
+            continue;
+        }
+        x0 = fmin(x0, c[j].x), x1 = fmax(x1, c[j].x), y0 = fmin(y0, c[j].y), y1 = fmax(y1, c[j].y);
+        r[nr++] = c[j].r;
+    }
+    qsort(r, (size_t)nr, sizeof *r, cmp_double);
+    double h = nr ? 2.0 * r[nr / 2] : 0.0; /* twice the median radius */
+    free(r);
+    const double w = nr ? fmax(x1 - x0, y1 - y0) : 0.0;
+    h = fmax(h, fmax(w / 4096.0, 1e-300));
+    g->x0 = x0, g->y0 = y0;
+    for (;; h *= 2.0) { /* at most 4 n + 16 cells */
+        g->nx = nr ? (int)((x1 - x0) / h) + 1 : 1;
+        g->ny = nr ? (int)((y1 - y0) / h) + 1 : 1;
+        if ((double)g->nx * g->ny <= 4.0 * n + 16.0)
+            break;
+    }
+    g->h = h;
+    const int cells = g->nx * g->ny;
+    if (!(g->start = calloc((size_t)cells + 1, sizeof *g->start)))
+        return -1;
+    for (int j = 0; j < n; j++)
+        if (isfinite(c[j].r))
+            grid_visit(g, &c[j], j, 0);
+    for (int i = 0; i < cells; i++)
+        g->start[i + 1] += g->start[i];
+    if (!(g->items = malloc((size_t)(g->start[cells] > 0 ? g->start[cells] : 1) * sizeof *g->items)))
+        return -1;
+    for (int j = 0; j < n; j++)
+        if (isfinite(c[j].r))
+            grid_visit(g, &c[j], j, 1);
+    for (int i = cells; i > 0; i--) /* filing moved each start to the next cell's */
+        g->start[i] = g->start[i - 1];
+    g->start[0] = 0;
+    return 0;
+}
+
+static void grid_free(grid *g)
+{
+    free(g->start);
+    free(g->items);
+    free(g->always);
+}
+
+/* Target j as a candidate of query circle q, if it can be nearer than ub. */
+static void consider(whole *w, int s, int k, int j, const circle *q, double ub)
+{
+    if (j == k || w->stamp[j] == w->gen)
+        return;
+    w->stamp[j] = w->gen;
+    const circle *t = &w->circ[!s][j];
+    const double lb = hypot(q->x - t->x, q->y - t->y) - q->r - t->r;
+    if (!(lb >= ub))
+        w->cands[w->ncand++] = (cand){j, lb};
+}
+
+/* The other targets of query piece k (side s) whose circles can come
+ * nearer to its circle than its own target's farthest reach, nearest
+ * first. */
 static void candidates(whole *w, int s, int k)
 {
-    const circle *q = &w->circ[s][k];
+    const circle *q = &w->circ[s][k], *o = &w->circ[!s][k];
+    const grid *g = &w->grid[!s];
+    const double ub = hypot(q->x - o->x, q->y - o->y) + q->r + o->r, reach = ub + q->r;
     w->ncand = 0;
-    for (int j = 0; j < w->n; j++)
-        if (j != k) {
-            const circle *t = &w->circ[!s][j];
-            w->cands[w->ncand++] = (cand){j, hypot(q->x - t->x, q->y - t->y) - q->r - t->r};
-        }
+    w->gen++;
+    for (int i = 0; i < g->nalways; i++)
+        consider(w, s, k, g->always[i], q, ub);
+    if (isfinite(reach)) {
+        int ia, ib, ja, jb;
+        cell_range(q->x - reach, q->x + reach, g->x0, g->h, g->nx, &ia, &ib);
+        cell_range(q->y - reach, q->y + reach, g->y0, g->h, g->ny, &ja, &jb);
+        for (int y = ja; y <= jb; y++)
+            for (int x = ia; x <= ib; x++)
+                for (int i = g->start[y * g->nx + x]; i < g->start[y * g->nx + x + 1]; i++)
+                    consider(w, s, k, g->items[i], q, ub);
+    } else {
+        for (int j = 0; j < w->n; j++)
+            consider(w, s, k, j, q, ub);
+    }
     qsort(w->cands, (size_t)w->ncand, sizeof *w->cands, cmp_cand);
 }
 
@@ -202,30 +351,32 @@ static double tile_t(const whole *w, const ob_cover *cv, int k, double t)
 }
 
 /* The tiles (a read link's own base piece where its tile is its range) and
- * every table and circle. */
+ * the circles of every table. */
 static void prepare(whole *w, const ob_curve *c, const ob_cover *cv)
 {
-    long ops = 0;
     for (int k = 0; k < w->n; k++) {
         const ob_apiece *p = &w->a->v[k];
         if (p->matched || cv->lo[k] != ob_apiece_base_t(p, 0.0) || cv->hi[k] != ob_apiece_base_t(p, 1.0) ||
             ob_apiece_base(c, p, &w->tile[k]) != 0)
             ob_bez_subsegment(&c->seg[p->seg], cv->lo[k], cv->hi[k], &w->tile[k]);
-        obc_fill_table(&p->approx.h[0][0], p->approx.deg, 0.0, w->S, table(w, SIDE_A, k), &ops);
-        obc_fill_table(&w->tile[k].h[0][0], w->tile[k].deg, w->d, w->S, table(w, SIDE_O, k), &ops);
-        w->circ[SIDE_A][k] = circle_of(table(w, SIDE_A, k), w->S);
-        w->circ[SIDE_O][k] = circle_of(table(w, SIDE_O, k), w->S);
+        for (int s = 0; s < 2; s++)
+            w->circ[s][k] = circle_of(table(w, s, k), w->S);
     }
 }
 
 static void whole_free(whole *w)
 {
     free(w->tile);
-    free(w->tab[0]);
-    free(w->tab[1]);
+    for (int s = 0; s < 2; s++) {
+        free(w->tab[s]);
+        free(w->held[s]);
+    }
     free(w->circ[0]);
     free(w->circ[1]);
+    grid_free(&w->grid[0]);
+    grid_free(&w->grid[1]);
     free(w->cands);
+    free(w->stamp);
 }
 
 int ob_approx_hausdorff_whole(const ob_curve *c, double d, const ob_approx *a, const ob_cover *cv, int samples,
@@ -233,18 +384,32 @@ int ob_approx_hausdorff_whole(const ob_curve *c, double d, const ob_approx *a, c
 {
     *r = (ob_mres){1, "", 0.0, -1, -1, NAN, ""};
     const size_t n = a->n > 0 ? (size_t)a->n : 1, S = (size_t)ob_clamp_samples(samples);
-    whole w = {a, a->n, (int)S, d, NULL, {NULL, NULL}, {NULL, NULL}, NULL, 0};
+    whole w;
+    memset(&w, 0, sizeof w);
+    w.a = a, w.n = a->n, w.S = (int)S, w.d = d;
     w.tile = malloc(n * sizeof *w.tile);
     w.cands = malloc(n * sizeof *w.cands);
+    w.stamp = calloc(n, sizeof *w.stamp);
+    /* tables kept per side: all of them up to CACHE_BYTES */
+    const size_t fit = CACHE_BYTES / (OBC_TABLE_SIZE(S) * sizeof(double));
+    w.slots = (int)(n < fit ? n : fit > 8 ? fit : 8);
     for (int s = 0; s < 2; s++) {
-        w.tab[s] = malloc(n * OBC_TABLE_SIZE(S) * sizeof *w.tab[s]);
+        w.tab[s] = malloc((size_t)w.slots * OBC_TABLE_SIZE(S) * sizeof *w.tab[s]);
+        w.held[s] = malloc((size_t)w.slots * sizeof *w.held[s]);
+        for (int i = 0; w.held[s] && i < w.slots; i++)
+            w.held[s][i] = -1;
         w.circ[s] = malloc(n * sizeof *w.circ[s]);
     }
-    if (!w.tile || !w.cands || !w.tab[0] || !w.tab[1] || !w.circ[0] || !w.circ[1]) {
+    if (!w.tile || !w.cands || !w.stamp || !w.tab[0] || !w.tab[1] || !w.held[0] || !w.held[1] || !w.circ[0] ||
+        !w.circ[1]) {
         whole_free(&w);
         return ob_fail(err, "hausdorff-whole: out of memory (%d pieces, %d samples)", a->n, (int)S);
     }
     prepare(&w, c, cv);
+    if (grid_build(&w.grid[0], w.circ[0], w.n) != 0 || grid_build(&w.grid[1], w.circ[1], w.n) != 0) {
+        whole_free(&w);
+        return ob_fail(err, "hausdorff-whole: out of memory (%d pieces)", a->n);
+    }
     double best = -1.0, ubest = 0.0;
     int sbest = SIDE_A, kbest = 0;
     for (int s = 0; s < 2; s++)
