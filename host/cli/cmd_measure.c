@@ -52,8 +52,8 @@ static int set_metrics(measure_args *a, const char *v)
 enum { MO_APPROX, MO_D, MO_METRIC };
 
 static const ob_flag measure_flags[] = {
-    {"approx", "FILE", "the approximation: a .curves file, --export's JSON, or DXF SPLINE entities", MO_APPROX,
-     OB_FLAG_ONCE},
+    {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
+     "(SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE)", MO_APPROX, OB_FLAG_ONCE},
     {"d", "D", "the signed offset distance it approximates", MO_D, OB_FLAG_ONCE},
     {"metric", "M|all", "bound, radial, normal, hausdorff (with hausdorff-whole), param, hausdorff-whole or all "
      "(default)", MO_METRIC, OB_FLAG_ONCE},
@@ -185,10 +185,16 @@ static int check_cover(const ob_curve *c, double d, const ob_approx *ap, const o
                 "the base's order (piece numbers are the file's)", name, k[OB_COVER_ORDER], ap->n);
     if (ob_cover_fails(cv) == 0)
         return 0;
+    int matched = 0;
+    for (int i = 0; i < ap->n; i++)
+        matched |= ap->v[i].matched;
     say_issues(ob_error, cv->fail, cv->nfail, ob_cover_fails(cv), ap, name);
     ob_error("measure: %s does not cover the d = %.17g offset of curve %s once (%d gaps, %d overlaps, %d "
-             "duplicates): measure takes a whole approximation, each part of the offset covered by one piece",
-             name, d, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE]);
+             "duplicates): measure takes a whole approximation, each part of the offset covered by one piece%s",
+             name, d, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE],
+             matched ? " (its pieces were matched to the base by projection, which near an offset's cusps can "
+                       "land on another branch: a file with base links, as --export writes, is matched exactly)"
+                     : "");
     return 2;
 }
 
