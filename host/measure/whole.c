@@ -10,11 +10,12 @@
  * upper bound of the whole's distance, not the distance.
  *
  * The engine is the hausdorff metric's (kernels/metric_core.h): sample
- * tables of every piece and of every tile of the offset, and for a query
- * point the nearest foot on one target by obc_side_dist.  Here a query asks
- * its own target first (the piece's own tile, or the tile's own piece), then
- * every other target whose bounding circle comes nearer than the best so
- * far, nearest circles first.  Each piece (tile) is scanned at its S
+ * tables of every piece and of every tile of the offset (kept in a bounded
+ * cache), and for a query point the nearest foot on one target by
+ * obc_side_dist.  Here a query asks its own target first (the piece's own
+ * tile, or the tile's own piece), then every other target whose bounding
+ * circle comes nearer than the best so far, nearest circles first (a grid
+ * of the circles lists those that can).  Each piece (tile) is scanned at its S
  * samples, every 8th first, each sample asked only for distances above the
  * running maximum (the cut: a target that settles under it ends the query),
  * and its largest sample refined by golden section, as the metric does.
@@ -38,7 +39,7 @@ typedef struct {
 
 /* The targets' circles in a uniform grid (CSR: cell i holds
  * items[start[i] .. start[i + 1])); each circle in every cell its box
- * meets; circles of no finite size in `always`. */
+ * meets; circles of no finite size, or over many cells, in `always`. */
 typedef struct {
     double x0, y0, h;
     int nx, ny;
@@ -177,12 +178,19 @@ static void cell_range(double lo, double hi, double x0, double h, int n, int *a,
     *b = fb < 0 ? 0 : fb > n - 1 ? n - 1 : (int)fb;
 }
 
-/* Visits the cells that circle j's box meets: counts (fill 0) or files it. */
+/* The cells that circle c's box meets: [*ia, *ib] x [*ja, *jb]; how many. */
+static long grid_box(const grid *g, const circle *c, int *ia, int *ib, int *ja, int *jb)
+{
+    cell_range(c->x - c->r, c->x + c->r, g->x0, g->h, g->nx, ia, ib);
+    cell_range(c->y - c->r, c->y + c->r, g->y0, g->h, g->ny, ja, jb);
+    return (long)(*ib - *ia + 1) * (*jb - *ja + 1);
+}
+
+/* Files circle j in the cells its box meets (fill 1), or counts them. */
 static void grid_visit(grid *g, const circle *c, int j, int fill)
 {
     int ia, ib, ja, jb;
-    cell_range(c->x - c->r, c->x + c->r, g->x0, g->h, g->nx, &ia, &ib);
-    cell_range(c->y - c->r, c->y + c->r, g->y0, g->h, g->ny, &ja, &jb);
+    grid_box(g, c, &ia, &ib, &ja, &jb);
     for (int y = ja; y <= jb; y++)
         for (int x = ia; x <= ib; x++) {
             const int cell = y * g->nx + x;
@@ -191,6 +199,16 @@ static void grid_visit(grid *g, const circle *c, int j, int fill)
             else
                 g->start[cell + 1]++;
         }
+}
+
+/* 1 when circle c goes in the cells: of finite size, and over at most
+ * GRID_SPREAD of them (a larger one is listed for every query instead, so
+ * that the grid holds at most GRID_SPREAD n entries). */
+enum { GRID_SPREAD = 64 };
+static int in_cells(const grid *g, const circle *c)
+{
+    int ia, ib, ja, jb;
+    return isfinite(c->r) && grid_box(g, c, &ia, &ib, &ja, &jb) <= GRID_SPREAD;
 }
 
 /* The grid of n circles: cells about the size of a circle (twice the
@@ -205,20 +223,17 @@ static int grid_build(grid *g, const circle *c, int n)
         free(r);
         return -1;
     }
-    for (int j = 0; j < n; j++) {
-        if (!isfinite(c[j].r)) {
-            g->always[g->nalways++] = j;
-            continue;
+    for (int j = 0; j < n; j++)
+        if (isfinite(c[j].r)) {
+            x0 = fmin(x0, c[j].x), x1 = fmax(x1, c[j].x), y0 = fmin(y0, c[j].y), y1 = fmax(y1, c[j].y);
+            r[nr++] = c[j].r;
         }
-        x0 = fmin(x0, c[j].x), x1 = fmax(x1, c[j].x), y0 = fmin(y0, c[j].y), y1 = fmax(y1, c[j].y);
-        r[nr++] = c[j].r;
-    }
     qsort(r, (size_t)nr, sizeof *r, cmp_double);
     double h = nr ? 2.0 * r[nr / 2] : 0.0; /* twice the median radius */
     free(r);
     const double w = nr ? fmax(x1 - x0, y1 - y0) : 0.0;
-    h = fmax(h, fmax(w / 4096.0, 1e-300));
-    g->x0 = x0, g->y0 = y0;
+    h = fmax(h, fmax(w / 4096.0, 1e-300)); /* at most 4097 cells a side */
+    g->x0 = nr ? x0 : 0.0, g->y0 = nr ? y0 : 0.0;
     for (;; h *= 2.0) { /* at most 4 n + 16 cells */
         g->nx = nr ? (int)((x1 - x0) / h) + 1 : 1;
         g->ny = nr ? (int)((y1 - y0) / h) + 1 : 1;
@@ -229,15 +244,18 @@ static int grid_build(grid *g, const circle *c, int n)
     const int cells = g->nx * g->ny;
     if (!(g->start = calloc((size_t)cells + 1, sizeof *g->start)))
         return -1;
-    for (int j = 0; j < n; j++)
-        if (isfinite(c[j].r))
+    for (int j = 0; j < n; j++) {
+        if (in_cells(g, &c[j]))
             grid_visit(g, &c[j], j, 0);
+        else
+            g->always[g->nalways++] = j;
+    }
     for (int i = 0; i < cells; i++)
         g->start[i + 1] += g->start[i];
     if (!(g->items = malloc((size_t)(g->start[cells] > 0 ? g->start[cells] : 1) * sizeof *g->items)))
         return -1;
     for (int j = 0; j < n; j++)
-        if (isfinite(c[j].r))
+        if (in_cells(g, &c[j]))
             grid_visit(g, &c[j], j, 1);
     for (int i = cells; i > 0; i--) /* filing moved each start to the next cell's */
         g->start[i] = g->start[i - 1];
