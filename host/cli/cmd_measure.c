@@ -11,8 +11,9 @@
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
- * Exit status: 0; 2 bad input (an option, the file, an unknown curve), with
- * a message naming the option or FILE:LINE; 1 standard output not writable.
+ * Exit status: 0; 2 bad input (an option, the file, an unknown curve, pieces
+ * that do not cover the offset once), with a message naming the option or
+ * FILE:LINE; 1 standard output not writable.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,19 +29,34 @@
 
 typedef struct {
     const char *approx;
-    int have_d, all;
+    int have_d;
     double d;
-    ob_metric metric;
+    int want[OB_METRIC_COUNT]; /* the per-piece metrics asked */
+    int whole;                 /* the hausdorff-whole row asked */
 } measure_args;
+
+/* The rows --metric V asks for: all (the default), hausdorff (with its
+ * whole row), hausdorff-whole alone, or one metric.  0, or -1 unknown. */
+static int set_metrics(measure_args *a, const char *v)
+{
+    ob_metric m = OB_METRIC_COUNT;
+    const int all = strcmp(v, "all") == 0, whole = strcmp(v, "hausdorff-whole") == 0;
+    if (!all && !whole && ob_metric_parse(v, &m))
+        return -1;
+    for (int k = 0; k < OB_METRIC_COUNT; k++)
+        a->want[k] = all || (ob_metric)k == m;
+    a->whole = all || whole || m == OB_METRIC_HAUSDORFF;
+    return 0;
+}
 
 enum { MO_APPROX, MO_D, MO_METRIC };
 
 static const ob_flag measure_flags[] = {
-    {"approx", "FILE", "the approximation: a .curves file, --export's JSON, or DXF SPLINE entities", MO_APPROX,
-     OB_FLAG_ONCE},
+    {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
+     "(SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE)", MO_APPROX, OB_FLAG_ONCE},
     {"d", "D", "the signed offset distance it approximates", MO_D, OB_FLAG_ONCE},
-    {"metric", "M|all", "bound, radial, normal, hausdorff or all (default: all that apply)", MO_METRIC,
-     OB_FLAG_ONCE},
+    {"metric", "M|all", "bound, radial, normal, hausdorff (with hausdorff-whole), param, hausdorff-whole or all "
+     "(default)", MO_METRIC, OB_FLAG_ONCE},
 };
 
 static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
@@ -62,9 +78,9 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         a->have_d = 1;
         return 0;
     default:
-        a->all = strcmp(v, "all") == 0;
-        if (!a->all && ob_metric_parse(v, &a->metric)) {
-            ob_error("%s: unknown metric '%s' (bound, radial, normal, hausdorff, all)", opt, v);
+        if (set_metrics(a, v)) {
+            ob_error("%s: unknown metric '%s' (bound, radial, normal, hausdorff, param, hausdorff-whole, all)", opt,
+                     v);
             return -1;
         }
         return 0;
@@ -75,7 +91,7 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
 static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
 {
     memset(a, 0, sizeof *a);
-    a->all = 1;
+    set_metrics(a, "all");
     if (ob_run_opts_init(o, argc, argv)) {
         ob_error("measure: out of memory");
         return 2;
@@ -112,27 +128,113 @@ static void put_num(FILE *f, double x)
 }
 
 /* One CSV row. */
-static void row(FILE *f, ob_metric m, const ob_mres *r)
+static void row(FILE *f, const char *metric, const ob_mres *r)
 {
-    fprintf(f, "%s,%s,", ob_metric_name(m), ob_mres_status(r));
+    fprintf(f, "%s,%s,", metric, ob_mres_status(r));
     if (r->applies) {
         put_num(f, r->err);
         fprintf(f, ",%d,%d,", r->piece, r->seg);
         put_num(f, r->t);
-        fputc(',', f);
         if (!r->ok)
-            fprintf(f, "\"%s\"", r->why);
-        fputc('\n', f);
+            fprintf(f, ",\"%s\"\n", r->why);
+        else
+            fprintf(f, r->note[0] ? ",\"%s\"\n" : ",\n", r->note);
     } else {
         fprintf(f, ",,,,\"%s\"\n", r->why);
     }
 }
 
-/* Loads, matches and measures; returns the exit status. */
+/* The entities the reader skipped, in one warning. */
+static void warn_skipped(const char *name, const ob_approx *ap)
+{
+    char buf[1024] = "";
+    size_t n = 0;
+    int listed = 0;
+    for (int i = 0; i < ap->nskipped_types && n < sizeof buf; i++) {
+        const ob_askip *k = &ap->skipped[i];
+        n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%d %s (%s line %d)", i ? ", " : "", k->count, k->type,
+                              k->count > 1 ? "the first at" : "at", k->line);
+        listed += k->count;
+    }
+    if (ap->nskipped > listed && n < sizeof buf)
+        snprintf(buf + n, sizeof buf - n, ", and %d of other types", ap->nskipped - listed);
+    ob_warn("measure: %s: skipped %d entit%s that are no pieces measure reads: %s", name, ap->nskipped,
+            ap->nskipped == 1 ? "y" : "ies", buf);
+}
+
+/* The problems kept in list (n of them, of total), one line each through
+ * report, then how many more. */
+static void say_issues(void (*report)(const char *, ...), const ob_cover_issue *list, int n, int total,
+                       const ob_approx *ap, const char *name)
+{
+    char buf[1024];
+    for (int i = 0; i < n; i++) {
+        ob_cover_text(&list[i], ap, name, buf, sizeof buf);
+        report("%s", buf);
+    }
+    if (total > n)
+        report("%s: and %d more like these", name, total - n);
+}
+
+/* Checks that the pieces cover the offset once, saying what is wrong or
+ * noteworthy; 0, or 2 after ob_error() (the file does not cover it). */
+static int check_cover(const ob_curve *c, double d, const ob_approx *ap, const ob_cover *cv, const char *name)
+{
+    const int *k = cv->count;
+    const int notes = k[OB_COVER_ORDER] + k[OB_COVER_NEAR_GAP] + k[OB_COVER_NEAR_OVERLAP];
+    say_issues(ob_warn, cv->note, cv->nnote, notes, ap, name);
+    if (k[OB_COVER_ORDER])
+        ob_warn("measure: %s: %d of its %d pieces come after a piece that lies after them on the base: measured in "
+                "the base's order (piece numbers are the file's)", name, k[OB_COVER_ORDER], ap->n);
+    if (ob_cover_fails(cv) == 0)
+        return 0;
+    int matched = 0;
+    for (int i = 0; i < ap->n; i++)
+        matched |= ap->v[i].matched;
+    say_issues(ob_error, cv->fail, cv->nfail, ob_cover_fails(cv), ap, name);
+    ob_error("measure: %s does not cover the d = %.17g offset of curve %s once (%d gaps, %d overlaps, %d "
+             "duplicates): measure takes a whole approximation, each part of the offset covered by one piece%s",
+             name, d, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE],
+             matched ? " (its pieces were matched to the base by projection, which near an offset's cusps can "
+                       "land on another branch: a file with base links, as --export writes, is matched exactly)"
+                     : "");
+    return 2;
+}
+
+/* Measures every row asked and writes the CSV; the exit status. */
+static int write_rows(const measure_args *a, const ob_curve *c, const ob_approx *ap, const ob_cover *cv,
+                      int samples)
+{
+    ob_mres res[OB_METRIC_COUNT], whole;
+    ob_err err;
+    for (int m = 0; m < OB_METRIC_COUNT; m++)
+        if (a->want[m] && ob_approx_measure(c, a->d, ap, (ob_metric)m, samples, a->approx, &res[m], &err) != 0) {
+            ob_error("%s", err.msg);
+            return 2;
+        }
+    if (a->whole && ob_approx_hausdorff_whole(c, a->d, ap, cv, samples, &whole, &err) != 0) {
+        ob_error("%s", err.msg);
+        return 2;
+    }
+    fputs("metric,status,max_err,piece,seg,t,message\n", stdout);
+    for (int m = 0; m < OB_METRIC_COUNT; m++)
+        if (a->want[m])
+            row(stdout, ob_metric_name((ob_metric)m), &res[m]);
+    if (a->whole)
+        row(stdout, "hausdorff-whole", &whole);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        ob_error("measure: writing standard output failed");
+        return 1;
+    }
+    return 0;
+}
+
+/* Loads, matches, checks the cover and measures; returns the exit status. */
 static int measure(const measure_args *a, ob_run_opts *o)
 {
     ob_curveset set = {0};
     ob_approx ap = {0};
+    ob_cover cv = {0};
     char where[4096];
     ob_err err;
     int status = 2;
@@ -141,33 +243,29 @@ static int measure(const measure_args *a, ob_run_opts *o)
     const ob_curve *c = &set.v[ob_curveset_find(&set, o->curve_ids[0])];
     if (ob_check_option_d("measure", c, a->d) != 0)
         goto out;  /* status 2: a d the curve's file would refuse (curvefile.h) */
-    if (ob_approx_read(a->approx, &ap, &err) != 0 ||
-        ob_approx_match(c, a->d, &ap, a->approx, &err) != 0) {
+    const int samples = ob_clamp_samples(o->driver.samples);
+    if (ob_approx_read(a->approx, &ap, &err) != 0) {
         ob_error("%s", err.msg);
         goto out;
     }
+    if (ap.nskipped)
+        warn_skipped(a->approx, &ap);
     if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
         ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
                 "d = %.17g: its error is not that job's max_err", a->approx, ap.job_curve, ap.job_d, c->id, a->d);
-    const int samples = ob_clamp_samples(o->driver.samples);
-    ob_mres res[OB_METRIC_COUNT];
-    for (int m = 0; m < OB_METRIC_COUNT; m++)
-        if ((a->all || (ob_metric)m == a->metric) &&
-            ob_approx_measure(c, a->d, &ap, (ob_metric)m, samples, a->approx, &res[m], &err) != 0) {
-            ob_error("%s", err.msg);
-            goto out;
-        }
-    fputs("metric,status,max_err,piece,seg,t,message\n", stdout);
-    for (int m = 0; m < OB_METRIC_COUNT; m++)
-        if (a->all || (ob_metric)m == a->metric)
-            row(stdout, (ob_metric)m, &res[m]);
-    status = fflush(stdout) != 0 || ferror(stdout) ? 1 : 0;
-    if (status)
-        ob_error("measure: writing standard output failed");
-    else
+    if (ob_approx_match(c, a->d, &ap, a->approx, &err) != 0 ||
+        ob_approx_cover(c, a->d, &ap, samples, a->approx, &cv, &err) != 0) {
+        ob_error("%s", err.msg);
+        goto out;
+    }
+    if (check_cover(c, a->d, &ap, &cv, a->approx) != 0)
+        goto out;
+    status = write_rows(a, c, &ap, &cv, samples);
+    if (status == 0)
         ob_info("measure: %d pieces of %s against %s (%s), d = %.17g, %d samples", ap.n, a->approx, c->id, where,
                 a->d, samples);
 out:
+    ob_cover_free(&cv);
     ob_approx_free(&ap);
     ob_curveset_free(&set);
     return status;

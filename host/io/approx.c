@@ -38,6 +38,34 @@ ob_apiece *ob_approx_add(ob_approx *a)
     return p;
 }
 
+void ob_approx_note_skip(ob_approx *a, const char *type, int line)
+{
+    a->nskipped++;
+    for (int i = 0; i < a->nskipped_types; i++)
+        if (strncmp(a->skipped[i].type, type, sizeof a->skipped[i].type - 1) == 0) {
+            a->skipped[i].count++;
+            return;
+        }
+    if (a->nskipped_types < OB_APPROX_SKIP_TYPES) {
+        ob_askip *k = &a->skipped[a->nskipped_types];
+        snprintf(k->type, sizeof k->type, "%s", type);
+        k->count = 1;
+        k->line = line;
+        a->nskipped_types++;
+    }
+}
+
+/* x + (y - x) u, exactly x at u = 0 and y at u = 1. */
+static double lerp_ends(double x, double y, double u)
+{
+    return u == 0.0 ? x : u == 1.0 ? y : x + (y - x) * u;
+}
+
+double ob_apiece_base_t(const ob_apiece *p, double s)
+{
+    return lerp_ends(p->a, p->b, lerp_ends(p->t0, p->t1, s));
+}
+
 int ob_apiece_base(const ob_curve *c, const ob_apiece *p, ob_bez *base)
 {
     if (!p->has_base || p->seg < 0 || p->seg >= c->nseg)
@@ -71,7 +99,7 @@ static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx 
             ob_fail(err, "out of memory");
             return -1;
         }
-        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k]};
+        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k], 0};
     }
     *segs += fit.n;
     return 0;

@@ -29,7 +29,17 @@ typedef struct {
     int fit_first;      /* 1: the first piece of its fit */
     int line;           /* where it was read (0: not read from a file) */
     ob_bez approx;      /* the approximating piece over [0, 1] */
+    int matched;        /* 1: the link was found by projection (ob_approx_match),
+                           not read: it says nothing of the parameter */
 } ob_apiece;
+
+/* Entities of a file that the reader did not take as pieces (a DXF's TEXT,
+ * HATCH, ...): their type, how many, and the line of the first. */
+enum { OB_APPROX_SKIP_TYPES = 8 };
+typedef struct {
+    char type[24];
+    int count, line;
+} ob_askip;
 
 typedef struct {
     ob_apiece *v;
@@ -40,6 +50,9 @@ typedef struct {
     int have_job;       /* 1: the file names the job that exported it */
     char job_curve[64]; /* that job's curve id and offset distance d */
     double job_d;
+    ob_askip skipped[OB_APPROX_SKIP_TYPES]; /* the first types skipped, in file order */
+    int nskipped_types;                     /* of them used */
+    int nskipped;                           /* entities skipped, of any type */
 } ob_approx;
 
 /* Always safe to call (also on a zeroed approximation). */
@@ -47,6 +60,20 @@ void ob_approx_free(ob_approx *a);
 
 /* Appends a zeroed piece and returns it, or NULL when out of memory. */
 ob_apiece *ob_approx_add(ob_approx *a);
+
+/* Purpose: note that the reader skipped an entity of type `type` (cut to
+ *          23 characters) at line `line`: counted in a->nskipped, and per
+ *          type in a->skipped (the first OB_APPROX_SKIP_TYPES types; those
+ *          of further types only in nskipped).  Never fails. */
+void ob_approx_note_skip(ob_approx *a, const char *type, int line);
+
+/* Purpose: the base parameter of piece p at its own parameter s in [0, 1]:
+ *          span [a, b] at fit parameter t0 + (t1 - t0) s, exactly a at the
+ *          start of a span (s = 0, t0 = 0) and exactly b at its end (s = 1,
+ *          t1 = 1), so that the ranges of pieces that the driver cut from
+ *          one segment meet bit for bit (measure's coverage check).
+ * Inputs:  p with has_base set. */
+double ob_apiece_base_t(const ob_apiece *p, double s);
 
 /* Purpose: the base piece that piece p approximates (p->has_base set):
  *          segment p->seg of curve c cut to [a, b], then to [t0, t1], as the

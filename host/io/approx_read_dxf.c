@@ -4,8 +4,11 @@
  * `measure`.  Each SPLINE (degree, knots 40, weights 41, control points
  * 10/20) is cut into its Bézier segments by knot insertion (bspline.h); a
  * SPLINE given only by fit points (11/21) is refused, since its curve
- * depends on the writer's interpolation.  Other entities are skipped (and
- * counted on stderr by measure).  A 999 comment "offbench piece K base
+ * depends on the writer's interpolation.  LINE, ARC, CIRCLE, ELLIPSE and
+ * LWPOLYLINE are read as exact pieces too (approx_dxf.h).  Other entities
+ * (TEXT, HATCH, POLYLINE, INSERT, ...) are skipped and noted in the
+ * approximation (ob_approx_note_skip: type, count, first line), which
+ * measure names on stderr.  A 999 comment "offbench piece K base
  * segment S ..." right before a SPLINE of one Bézier segment is its base
  * link (export_dxf.c).  Only the ENTITIES section is read (a file of bare
  * entities, without sections, too): splines of block definitions are not
@@ -17,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/io/approx_dxf.h"
 #include "methods/core/bspline.h"
 
 enum { DXF_MAX_CTRL = 100000 };
@@ -221,12 +225,40 @@ static void spline_free(spline *sp)
     memset(sp, 0, sizeof *sp);
 }
 
+/* Entities that belong to one before them (a POLYLINE's, an INSERT's):
+ * not counted as skipped on their own. */
+static int sub_entity(const char *name)
+{
+    return !strcmp(name, "VERTEX") || !strcmp(name, "SEQEND") || !strcmp(name, "ATTRIB");
+}
+
+enum { IN_NONE = 0, IN_SPLINE, IN_CURVE };
+
+/* An entity named r->val starts (in the drawing's entities): which state
+ * reads its groups; any other entity is noted as skipped. */
+static int entity_start(const dxfrd *r, spline *sp, ob_dxf_ent *ent, ob_approx *out)
+{
+    const int kind = ob_dxf_kind_of(r->val);
+    if (strcmp(r->val, "SPLINE") == 0) {
+        sp->line = r->line;
+        return IN_SPLINE;
+    }
+    if (kind >= 0) {
+        ob_dxf_ent_start(ent, (ob_dxf_kind)kind, r->line);
+        return IN_CURVE;
+    }
+    if (strcmp(r->val, "SECTION") != 0 && strcmp(r->val, "ENDSEC") != 0 && !sub_entity(r->val))
+        ob_approx_note_skip(out, r->val, r->line);
+    return IN_NONE;
+}
+
 int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err)
 {
     dxfrd r = {text, text + len, name, 0, 0, ""};
     spline sp = {0};
+    ob_dxf_ent ent = {0};
     ob_apiece link = {0};
-    int in = 0, rc = 0, eof = 0, link_sp = 0, all_sp = 1;
+    int in = IN_NONE, rc = 0, eof = 0, link_sp = 0, all_sp = 1;
     int sect = 0;  /* 0 none seen (bare entities), 1 SECTION opened, 2 ENTITIES, 3 another, 4 after ENDSEC */
     while (rc == 0 && !eof) {
         const int st = next_pair(&r, err);
@@ -235,12 +267,18 @@ int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx
             break;
         }
         eof = st == 1 || (r.code == 0 && strcmp(r.val, "EOF") == 0);
-        if (in && (eof || r.code == 0 || r.code == 999)) {  /* the SPLINE ends at the next entity or comment */
-            rc = spline_pieces(&r, &sp, &link, out, err);
-            all_sp &= link.has_base && link_sp;
+        if (in && (eof || r.code == 0 || r.code == 999)) {  /* an entity ends at the next one or a comment */
+            if (in == IN_SPLINE) {
+                rc = spline_pieces(&r, &sp, &link, out, err);
+                all_sp &= link.has_base && link_sp;
+            } else {
+                rc = ob_dxf_ent_pieces(&ent, name, out, err);
+                all_sp = 0;
+            }
             spline_free(&sp);
+            ob_dxf_ent_free(&ent);
             memset(&link, 0, sizeof link);
-            in = 0;
+            in = IN_NONE;
         }
         if (rc || eof)
             break;
@@ -254,15 +292,17 @@ int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx
         } else if (r.code == 0) {
             sect = strcmp(r.val, "SECTION") == 0 ? 1 : strcmp(r.val, "ENDSEC") == 0 ? 4 : sect;
             /* only the drawing's own entities: not block definitions */
-            in = strcmp(r.val, "SPLINE") == 0 && (sect == 0 || sect == 2);
-            sp.line = r.line;
-            if (!in)  /* a link belongs to the SPLINE right after it */
+            in = sect == 0 || sect == 2 ? entity_start(&r, &sp, &ent, out) : IN_NONE;
+            if (in != IN_SPLINE)  /* a link belongs to the SPLINE right after it */
                 memset(&link, 0, sizeof link);
-        } else if (in) {
+        } else if (in == IN_SPLINE) {
             rc = spline_group(&r, &sp, err);
+        } else if (in == IN_CURVE) {
+            rc = ob_dxf_ent_group(&ent, r.code, r.val, r.line, name, err);
         }
     }
     spline_free(&sp);
+    ob_dxf_ent_free(&ent);
     for (int i = 0; rc == 0 && i < out->n; i++)
         all_sp &= out->v[i].has_base;
     out->same_param = rc == 0 && out->n > 0 && all_sp;

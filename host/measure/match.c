@@ -114,6 +114,7 @@ static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const ch
         n1 = x;
     }
     p->has_base = 1;
+    p->matched = 1;
     p->seg = n0.seg;
     p->a = n0.t;
     p->b = n1.t;

@@ -9,12 +9,19 @@
 int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric m, int samples, const char *name,
                       ob_mres *r, ob_err *err)
 {
-    *r = (ob_mres){1, "", 0.0, -1, -1, NAN, 0};
+    *r = (ob_mres){1, "", 0.0, -1, -1, NAN, 0, ""};
     if (ob_metric_same_param(m) && !a->same_param) {
         r->applies = 0;
         r->why = "needs an approximation in the base's parameter (a file from --export of a method that keeps it)";
         return 0;
     }
+    for (int k = 0; k < a->n && ob_metric_reads_param(m); k++)
+        if (a->v[k].matched) {
+            r->applies = 0;
+            r->why = "reads each piece at the base parameter its link maps it to: the file carries no link (a "
+                     "file from --export does), and a match by projection gives none";
+            return 0;
+        }
     for (int k = 0; k < a->n; k++) {
         const ob_apiece *p = &a->v[k];
         ob_bez base;

@@ -7,7 +7,12 @@
  *   - a piece without a link on a straight base is matched to the range its
  *     ends lie over (known by construction), reversed when it runs backwards,
  *     and its error there is that of the exact offset line (0);
- *   - mutated files never crash a reader, and every error names the file.
+ *   - mutated files never crash a reader, and every error names the file;
+ *   - the DXF reader's LINE, ARC, CIRCLE, ELLIPSE and LWPOLYLINE (exact
+ *     pieces: every point on the circle or ellipse to round-off, joints bit
+ *     for bit, the direction and the object coordinate system's mirror),
+ *     the entities it skips named with their count and first line, and
+ *     its errors (hand-written files).
  */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
@@ -267,6 +272,237 @@ static void test_huge_numbers(void)
     ob_approx_free(&b);
 }
 
+/* ---- DXF entities besides SPLINE ------------------------------------------------ */
+
+/* Reads DXF text (lines joined by '\n') into a; the reader's status. */
+static int dxf(const char *text, ob_approx *a, ob_err *err)
+{
+    memset(a, 0, sizeof *a);
+    return ob_approx_read_dxf(text, strlen(text), "h.dxf", a, err);
+}
+
+/* The largest |distance from c - r| over 65 points of every piece. */
+static double off_circle(const ob_approx *a, double cx, double cy, double r)
+{
+    double worst = 0.0;
+    for (int k = 0; k < a->n; k++)
+        for (int i = 0; i <= 64; i++) {
+            double p[2];
+            ob_bez_point(&a->v[k].approx, i / 64.0, p);
+            worst = fmax(worst, fabs(hypot(p[0] - cx, p[1] - cy) - r));
+        }
+    return worst;
+}
+
+/* 1 when every piece starts where the one before ends, bit for bit (and
+ * the last ends where the first starts, when closed). */
+static int joined(const ob_approx *a, int closed)
+{
+    int ok = 1;
+    for (int k = 1; k <= a->n - !closed; k++) {
+        const ob_bez *p = &a->v[k - 1].approx, *q = &a->v[k % a->n].approx;
+        ok &= p->h[p->deg][0] / p->h[p->deg][2] == q->h[0][0] / q->h[0][2] &&
+              p->h[p->deg][1] / p->h[p->deg][2] == q->h[0][1] / q->h[0][2];
+    }
+    return ok;
+}
+
+static void point_at(const ob_approx *a, int k, double t, double p[2]) { ob_bez_point(&a->v[k].approx, t, p); }
+
+static void test_dxf_line_arc(void)
+{
+    ob_approx a;
+    ob_err err = {""};
+    int rc = dxf("0\nSECTION\n2\nENTITIES\n0\nLINE\n8\n0\n10\n0.5\n20\n-1\n30\n0\n11\n2\n21\n3\n31\n0\n"
+                 "0\nENDSEC\n0\nEOF\n", &a, &err);
+    CHECK(rc == 0 && a.n == 1 && a.v[0].approx.deg == 1 && !a.v[0].approx.rational && a.v[0].line == 6 &&
+              a.v[0].approx.h[0][0] == 0.5 && a.v[0].approx.h[0][1] == -1 && a.v[0].approx.h[1][0] == 2 &&
+              a.v[0].approx.h[1][1] == 3 && !a.v[0].has_base && !a.same_param,
+          "LINE: one piece of degree 1 from (0.5, -1) to (2, 3), at its line (%s)", err.msg);
+    ob_approx_free(&a);
+    /* 270 degrees counterclockwise from 30: three pieces of 90 */
+    rc = dxf("0\nARC\n10\n1\n20\n2\n40\n3\n50\n30\n51\n300\n", &a, &err);
+    double p[2];
+    CHECK(rc == 0 && a.n == 3 && joined(&a, 0), "ARC 30..300: 3 joined pieces (%d: %s)", a.n, err.msg);
+    CHECK(rc == 0 && off_circle(&a, 1, 2, 3) <= 1e-14, "ARC: on the circle to %.2g", off_circle(&a, 1, 2, 3));
+    for (int k = 0; k < a.n && rc == 0; k++)
+        CHECK(a.v[k].approx.deg == 2 && a.v[k].approx.rational && fabs(a.v[k].approx.h[1][2] - sqrt(0.5)) < 1e-15,
+              "ARC piece %d: rational quadratic, middle weight cos 45", k);
+    if (rc == 0 && a.n == 3) {
+        point_at(&a, 0, 0.0, p);
+        CHECK(fabs(p[0] - (1 + 3 * cos(OB_PI / 6))) < 1e-15 && fabs(p[1] - (2 + 3 * sin(OB_PI / 6))) < 1e-15,
+              "ARC starts at 30 degrees (%g, %g)", p[0], p[1]);
+        point_at(&a, 2, 1.0, p);
+        CHECK(fabs(p[0] - (1 + 3 * cos(OB_PI * 300 / 180))) < 1e-14 &&
+                  fabs(p[1] - (2 + 3 * sin(OB_PI * 300 / 180))) < 1e-14,
+              "ARC ends at 300 degrees (%g, %g)", p[0], p[1]);
+        point_at(&a, 1, 0.5, p);
+        CHECK(fabs(atan2(p[1] - 2, p[0] - 1) - OB_PI * 165 / 180) < 1e-14, "ARC runs counterclockwise: 165 degrees "
+              "in the middle");
+    }
+    ob_approx_free(&a);
+    /* across 0: 350 to 10 is 20 degrees, one piece through (1 + 3, 2) */
+    rc = dxf("0\nARC\n10\n1\n20\n2\n40\n3\n50\n350\n51\n10\n", &a, &err);
+    if (rc == 0 && a.n == 1)
+        point_at(&a, 0, 0.5, p);
+    CHECK(rc == 0 && a.n == 1 && fabs(p[0] - 4) < 1e-15 && fabs(p[1] - 2) < 1e-15,
+          "ARC 350..10: one piece through angle 0 (%d: %s)", a.n, err.msg);
+    ob_approx_free(&a);
+    /* a whole circle: four quarters, closed bit for bit */
+    rc = dxf("0\nCIRCLE\n10\n-1\n20\n0.25\n40\n0.75\n", &a, &err);
+    CHECK(rc == 0 && a.n == 4 && joined(&a, 1) && off_circle(&a, -1, 0.25, 0.75) <= 1e-15,
+          "CIRCLE: 4 pieces, closed, on the circle (%d: %s)", a.n, err.msg);
+    ob_approx_free(&a);
+    /* extrusion -z: the object coordinate system's x is -x */
+    rc = dxf("0\nARC\n10\n1\n20\n0\n40\n1\n50\n0\n51\n90\n210\n0\n220\n0\n230\n-1\n", &a, &err);
+    double q[2];
+    if (rc == 0 && a.n == 1)
+        point_at(&a, 0, 0.0, p), point_at(&a, 0, 1.0, q);
+    CHECK(rc == 0 && a.n == 1 && fabs(p[0] + 2) < 1e-15 && fabs(p[1]) < 1e-15 && fabs(q[0] + 1) < 1e-15 &&
+              fabs(q[1] - 1) < 1e-15 && off_circle(&a, -1, 0, 1) < 1e-15,
+          "ARC under extrusion -z: mirrored, from (-2, 0) to (-1, 1) (%s)", err.msg);
+    ob_approx_free(&a);
+}
+
+static void test_dxf_ellipse(void)
+{
+    ob_approx a;
+    ob_err err = {""};
+    /* major axis 2 along x, minor 0.5 of it: x^2 / 4 + y^2 = 1 */
+    int rc = dxf("0\nELLIPSE\n10\n0\n20\n0\n11\n2\n21\n0\n40\n0.5\n41\n0\n42\n6.283185307179586\n", &a, &err);
+    double worst = 0.0, p[2];
+    for (int k = 0; k < a.n; k++)
+        for (int i = 0; i <= 64; i++) {
+            point_at(&a, k, i / 64.0, p);
+            worst = fmax(worst, fabs(p[0] * p[0] / 4 + p[1] * p[1] - 1));
+        }
+    CHECK(rc == 0 && a.n == 4 && joined(&a, 1) && worst < 1e-14, "ELLIPSE: 4 pieces, closed, on it to %.2g (%s)",
+          worst, err.msg);
+    if (rc == 0 && a.n == 4)
+        point_at(&a, 0, 1.0, p);
+    CHECK(rc == 0 && a.n == 4 && fabs(p[0]) < 1e-15 && fabs(p[1] - 1) < 1e-15,
+          "ELLIPSE: the minor axis (0.5 of 2) on the major's left: (0, 1) at pi/2 (%g, %g)", p[0], p[1]);
+    ob_approx_free(&a);
+    rc = dxf("0\nELLIPSE\n10\n0\n20\n0\n11\n2\n21\n0\n40\n0.5\n41\n0\n42\n3.141592653589793\n"
+             "210\n0\n220\n0\n230\n-1\n", &a, &err);
+    if (rc == 0 && a.n == 2)
+        point_at(&a, 0, 1.0, p);
+    CHECK(rc == 0 && a.n == 2 && fabs(p[0]) < 1e-15 && fabs(p[1] + 1) < 1e-15,
+          "half an ELLIPSE under extrusion -z: 2 pieces, the minor axis on the right (%d: %g, %g)", a.n, p[0], p[1]);
+    ob_approx_free(&a);
+}
+
+static void test_dxf_polyline(void)
+{
+    ob_approx a;
+    ob_err err = {""};
+    /* a closed outline: a line, a semicircle (bulge 1) through (2, 1), a
+     * line, and the closing line */
+    int rc = dxf("0\nLWPOLYLINE\n90\n4\n70\n1\n10\n0\n20\n0\n10\n1\n20\n0\n42\n1\n10\n1\n20\n2\n10\n0\n20\n2\n",
+                 &a, &err);
+    double p[2];
+    CHECK(rc == 0 && a.n == 5 && joined(&a, 1), "LWPOLYLINE: 5 pieces, closed bit for bit (%d: %s)", a.n, err.msg);
+    if (rc == 0 && a.n == 5) {
+        CHECK(a.v[0].approx.deg == 1 && a.v[1].approx.deg == 2 && a.v[2].approx.deg == 2 && a.v[3].approx.deg == 1 &&
+                  a.v[4].approx.deg == 1,
+              "LWPOLYLINE: line, two arcs, line, closing line");
+        point_at(&a, 1, 1.0, p);
+        CHECK(fabs(p[0] - 2) < 1e-15 && fabs(p[1] - 1) < 1e-15, "bulge 1 runs counterclockwise through (2, 1): (%g, %g)",
+              p[0], p[1]);
+        ob_approx b = {0};
+        for (int k = 1; k <= 2; k++)
+            ob_approx_add(&b)->approx = a.v[k].approx;
+        CHECK(off_circle(&b, 1, 1, 1) < 1e-15, "the semicircle's pieces are on the circle");
+        ob_approx_free(&b);
+        CHECK(a.v[0].line == 8 && a.v[1].line == 12 && a.v[3].line == 18,
+              "each segment at its first vertex's line (%d, %d, %d)", a.v[0].line, a.v[1].line, a.v[3].line);
+    }
+    ob_approx_free(&a);
+    /* bulge -1: clockwise, through (0, 1); bulge 0.5 on a mirrored polyline */
+    rc = dxf("0\nLWPOLYLINE\n10\n1\n20\n0\n42\n-1\n10\n1\n20\n2\n", &a, &err);
+    if (rc == 0 && a.n == 2)
+        point_at(&a, 0, 1.0, p);
+    CHECK(rc == 0 && a.n == 2 && fabs(p[0]) < 1e-15 && fabs(p[1] - 1) < 1e-15, "bulge -1: through (0, 1) (%s)", err.msg);
+    ob_approx_free(&a);
+    rc = dxf("0\nLWPOLYLINE\n210\n0\n220\n0\n230\n-1\n10\n0\n20\n0\n42\n0.41421356237309503\n10\n2\n20\n0\n",
+             &a, &err);
+    double q[2];
+    if (rc == 0 && a.n == 1)
+        point_at(&a, 0, 0.0, p), point_at(&a, 0, 1.0, q);
+    CHECK(rc == 0 && a.n == 1 && p[0] == 0 && q[0] == -2 && off_circle(&a, -1, 1, sqrt(2.0)) < 1e-15,
+          "a quarter circle (bulge tan 22.5) under extrusion -z: from (0, 0) to (-2, 0) about (-1, 1) (%s)", err.msg);
+    ob_approx_free(&a);
+}
+
+/* The line (from 1) of the first line of text that starts with at. */
+static int line_of(const char *text, const char *at)
+{
+    int line = 1;
+    for (const char *p = text; *p; p++) {
+        if ((p == text || p[-1] == '\n') && strncmp(p, at, strlen(at)) == 0)
+            return line;
+        line += *p == '\n';
+    }
+    return -1;
+}
+
+/* Entities that are no pieces are named with their count and first line;
+ * a POLYLINE's VERTEX and SEQEND belong to it; block definitions are not
+ * the drawing's. */
+static void test_dxf_skipped(void)
+{
+    ob_approx a;
+    ob_err err = {""};
+    const char *t = "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n0\nLINE\n10\n0\n20\n0\n11\n1\n21\n1\n0\nENDBLK\n0\nENDSEC\n"
+                    "0\nSECTION\n2\nENTITIES\n0\nTEXT\n1\nhi\n0\nLINE\n10\n0\n20\n0\n11\n1\n21\n0\n0\nTEXT\n1\nho\n"
+                    "0\nPOLYLINE\n0\nVERTEX\n0\nVERTEX\n0\nSEQEND\n0\nHATCH\n"
+                    "0\nARC\n10\n0\n20\n0\n40\n1\n50\n0\n51\n90\n210\n1\n220\n0\n230\n0\n"
+                    "0\nLINE\n10\n5\n20\n5\n11\n5\n21\n5\n0\nENDSEC\n0\nEOF\n";
+    const int rc = dxf(t, &a, &err);
+    CHECK(rc == 0 && a.n == 1 && a.nskipped == 6 && a.nskipped_types == 5, "%d pieces, %d skipped of %d types (%s)",
+          a.n, a.nskipped, a.nskipped_types, err.msg);
+    static const struct { const char *type, *at; int count; } want[] = {
+        {"TEXT", "TEXT\n1\nhi", 2}, {"POLYLINE", "POLYLINE", 1}, {"HATCH", "HATCH", 1},
+        {"ARC off the XY plane", "ARC", 1}, {"LINE of length 0", "LINE\n10\n5", 1}};
+    for (int i = 0; i < 5 && rc == 0 && i < a.nskipped_types; i++)
+        CHECK(strcmp(a.skipped[i].type, want[i].type) == 0 && a.skipped[i].count == want[i].count &&
+                  a.skipped[i].line == line_of(t, want[i].at),
+              "skipped %d: %s x %d at line %d (want %s x %d at %d)", i, a.skipped[i].type, a.skipped[i].count,
+              a.skipped[i].line, want[i].type, want[i].count, line_of(t, want[i].at));
+    ob_approx_free(&a);
+    /* more types than the table holds: counted in nskipped */
+    ob_approx b = {0};
+    char name[16];
+    for (int i = 0; i < OB_APPROX_SKIP_TYPES + 3; i++) {
+        snprintf(name, sizeof name, "T%d", i);
+        ob_approx_note_skip(&b, name, i + 1);
+    }
+    CHECK(b.nskipped == OB_APPROX_SKIP_TYPES + 3 && b.nskipped_types == OB_APPROX_SKIP_TYPES,
+          "%d skipped, %d types kept", b.nskipped, b.nskipped_types);
+}
+
+/* Malformed entities: exit with FILE:LINE. */
+static void test_dxf_errors(void)
+{
+    static const struct { const char *text, *want; } bad[] = {
+        {"0\nARC\n10\n0\n20\n0\n50\n0\n51\n90\n", "h.dxf:2: ARC without group 40"},
+        {"0\nCIRCLE\n10\n0\n20\n0\n40\n-1\n", "h.dxf:2: CIRCLE of radius -1"},
+        {"0\nLINE\n10\n0\n20\n0\n11\n1\n", "h.dxf:2: LINE without group 21"},
+        {"0\nLINE\n10\n0\n20\nx\n", "h.dxf:6: group 20: 'x' is not a number"},
+        {"0\nELLIPSE\n10\n0\n20\n0\n11\n1\n21\n0\n40\n0\n", "h.dxf:2: ELLIPSE with axis ratio 0"},
+        {"0\nLWPOLYLINE\n90\n3\n10\n0\n20\n0\n10\n1\n20\n0\n", "h.dxf:2: LWPOLYLINE with 2 vertices (group 90 announces 3"},
+        {"0\nLWPOLYLINE\n10\n0\n20\n0\n", "h.dxf:2: LWPOLYLINE with 1 vertices"},
+        {"0\nLWPOLYLINE\n42\n1\n10\n0\n20\n0\n", "h.dxf:4: LWPOLYLINE: group 42 before the first vertex"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        ob_approx a;
+        ob_err err = {""};
+        CHECK(dxf(bad[i].text, &a, &err) != 0 && strstr(err.msg, bad[i].want), "bad DXF %zu: '%s' (want '%s')", i,
+              err.msg, bad[i].want);
+        ob_approx_free(&a);
+    }
+}
+
 int main(void)
 {
     ob_curve c;
@@ -288,5 +524,10 @@ int main(void)
     test_not_finite();
     test_hostile(&j);
     test_huge_numbers();
+    test_dxf_line_arc();
+    test_dxf_ellipse();
+    test_dxf_polyline();
+    test_dxf_skipped();
+    test_dxf_errors();
     return check_done();
 }

@@ -1,0 +1,290 @@
+/*
+ * approx_dxf_curves.c - DXF LINE, ARC, CIRCLE, ELLIPSE and LWPOLYLINE as
+ * exact Bézier pieces (approx_dxf.h).
+ */
+#include "host/io/approx_dxf.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/io/approx_read.h"
+
+/* The single-valued groups, in ob_dxf_ent.g and bit k of ob_dxf_ent.have. */
+static const int codes[] = {10, 20, 11, 21, 40, 41, 42, 50, 51, 70, 90, 210, 220, 230};
+enum { X0, Y0, X1, Y1, G40, G41, G42, G50, G51, G70, G90, NX, NY, NZ, NCODES };
+_Static_assert(sizeof codes / sizeof *codes == NCODES, "one slot per group code");
+
+static const char *const kind_names[] = {"LINE", "ARC", "CIRCLE", "ELLIPSE", "LWPOLYLINE"};
+
+int ob_dxf_kind_of(const char *name)
+{
+    for (int k = 0; k < (int)(sizeof kind_names / sizeof *kind_names); k++)
+        if (strcmp(name, kind_names[k]) == 0)
+            return k;
+    return -1;
+}
+
+void ob_dxf_ent_start(ob_dxf_ent *e, ob_dxf_kind kind, int line)
+{
+    memset(e, 0, sizeof *e);
+    e->kind = kind;
+    e->line = line;
+    e->announced = -1;
+}
+
+void ob_dxf_ent_free(ob_dxf_ent *e)
+{
+    free(e->v);
+    memset(e, 0, sizeof *e);
+}
+
+static int slot_of(int code)
+{
+    for (int k = 0; k < NCODES; k++)
+        if (codes[k] == code)
+            return k;
+    return -1;
+}
+
+/* A polyline vertex group: 10 starts a vertex, 20 and 42 set its y and bulge. */
+static int vertex_group(ob_dxf_ent *e, int code, double x, int line, const char *name, ob_err *err)
+{
+    if (code == 10) {
+        if (e->nv == e->cap) {
+            const int cap = e->cap ? 2 * e->cap : 16;
+            ob_dxf_vertex *v = cap < (1 << 24) ? realloc(e->v, (size_t)cap * sizeof *v) : NULL;
+            if (!v)
+                return ob_fail(err, "%s: out of memory", name);
+            e->v = v;
+            e->cap = cap;
+        }
+        e->v[e->nv++] = (ob_dxf_vertex){x, 0.0, 0.0, line};
+        return 0;
+    }
+    if (e->nv == 0)
+        return ob_fail(err, "%s:%d: LWPOLYLINE: group %d before the first vertex (group 10)", name, line, code);
+    if (code == 20)
+        e->v[e->nv - 1].y = x;
+    else
+        e->v[e->nv - 1].bulge = x;
+    return 0;
+}
+
+int ob_dxf_ent_group(ob_dxf_ent *e, int code, const char *val, int line, const char *name, ob_err *err)
+{
+    const int k = slot_of(code);
+    if (k < 0)
+        return 0; /* layer, colour, thickness, widths, ...: not the curve */
+    char *end;
+    const double x = strtod(val, &end);
+    if (!val[0] || *end || !isfinite(x))
+        return ob_fail(err, "%s:%d: group %d: '%.40s' is not a number", name, line, code, val);
+    if (e->kind == OB_DXF_LWPOLYLINE && (code == 10 || code == 20 || code == 42))
+        return vertex_group(e, code, x, line, name, err);
+    e->g[k] = x;
+    e->have |= 1 << k;
+    return 0;
+}
+
+/* ---- pieces ------------------------------------------------------------------ */
+
+/* The map of a circle or ellipse: point(a) = c + u cos a + v sin a; sx = -1
+ * mirrors x afterwards (an object coordinate system of extrusion -z). */
+typedef struct {
+    double c[2], u[2], v[2], sx;
+} conic;
+
+static void conic_point(const conic *f, double a, double p[2])
+{
+    p[0] = f->c[0] + f->u[0] * cos(a) + f->v[0] * sin(a);
+    p[1] = f->c[1] + f->u[1] * cos(a) + f->v[1] * sin(a);
+}
+
+static int add_piece(ob_approx *out, const ob_bez *b, int line, const char *name, ob_err *err)
+{
+    ob_apiece *p = ob_approx_add(out);
+    if (!p)
+        return ob_fail(err, "%s: out of memory", name);
+    p->line = line;
+    p->fit_first = 1;
+    p->approx = *b;
+    return ob_approx_check_piece(p, out->n - 1, name, err);
+}
+
+/* The pieces of the arc of f from angle a0 through sweep (signed, radians,
+ * |sweep| <= 2 pi), at most 90 degrees each, from p0 to p1 (on the arc,
+ * taken as given so that joints with neighbours are exact). */
+static int arc_pieces(const conic *f, double a0, double sweep, const double p0[2], const double p1[2], int line,
+                      const char *name, ob_approx *out, ob_err *err)
+{
+    const int n = (int)fmax(1.0, ceil(fabs(sweep) / (0.5 * OB_PI) - 1e-9));
+    const double step = sweep / n, w = cos(0.5 * fabs(step));
+    double a[2];
+    for (int i = 0; i < n; i++) {
+        double q0[2], q2[2], m[2];
+        if (i == 0)
+            q0[0] = p0[0], q0[1] = p0[1];
+        else
+            q0[0] = a[0], q0[1] = a[1];
+        if (i == n - 1)
+            q2[0] = p1[0], q2[1] = p1[1];
+        else
+            conic_point(f, a0 + (i + 1) * step, q2);
+        conic_point(f, a0 + (i + 0.5) * step, m);
+        for (int k = 0; k < 2; k++) /* the tangents' meeting point */
+            m[k] = f->c[k] + (m[k] - f->c[k]) / w;
+        ob_bez b = {0};
+        b.deg = 2;
+        ob_bez_set(&b, 0, f->sx * q0[0], q0[1], 1.0);
+        ob_bez_set(&b, 1, f->sx * m[0], m[1], w);
+        ob_bez_set(&b, 2, f->sx * q2[0], q2[1], 1.0);
+        if (add_piece(out, &b, line, name, err) != 0)
+            return -1;
+        a[0] = q2[0], a[1] = q2[1];
+    }
+    return 0;
+}
+
+/* The whole or part of the conic from a0 through sweep (> 0). */
+static int conic_pieces(const conic *f, double a0, double sweep, int line, const char *name, ob_approx *out,
+                        ob_err *err)
+{
+    double p0[2], p1[2];
+    conic_point(f, a0, p0);
+    if (sweep >= 2.0 * OB_PI * (1.0 - 1e-15))
+        p1[0] = p0[0], p1[1] = p0[1]; /* closed */
+    else
+        conic_point(f, a0 + sweep, p1);
+    return arc_pieces(f, a0, sweep, p0, p1, line, name, out, err);
+}
+
+/* x to -x under an extrusion of -z (sx = -1), +1 under +z; 0 when the
+ * entity is not in the XY plane. */
+static double mirror_of(const ob_dxf_ent *e)
+{
+    const double nx = e->have & 1 << NX ? e->g[NX] : 0.0, ny = e->have & 1 << NY ? e->g[NY] : 0.0,
+                 nz = e->have & 1 << NZ ? e->g[NZ] : 1.0;
+    if (!(fabs(nx) <= 1e-12 * fabs(nz) && fabs(ny) <= 1e-12 * fabs(nz)) || nz == 0.0)
+        return 0.0;
+    return nz < 0.0 ? -1.0 : 1.0;
+}
+
+/* The groups in `need` (bits), or an error naming the first missing. */
+static int need(const ob_dxf_ent *e, int bits, const char *name, ob_err *err)
+{
+    for (int k = 0; k < NCODES; k++)
+        if (bits & 1 << k && !(e->have & 1 << k))
+            return ob_fail(err, "%s:%d: %s without group %d", name, e->line, kind_names[e->kind], codes[k]);
+    return 0;
+}
+
+static int line_pieces(const ob_dxf_ent *e, const char *name, ob_approx *out, ob_err *err)
+{
+    if (need(e, 1 << X0 | 1 << Y0 | 1 << X1 | 1 << Y1, name, err))
+        return -1;
+    if (e->g[X0] == e->g[X1] && e->g[Y0] == e->g[Y1]) {
+        ob_approx_note_skip(out, "LINE of length 0", e->line);
+        return 0;
+    }
+    const double xy[2][2] = {{e->g[X0], e->g[Y0]}, {e->g[X1], e->g[Y1]}};
+    ob_bez b;
+    ob_bez_from_points(&b, 1, xy);
+    return add_piece(out, &b, e->line, name, err);
+}
+
+/* ARC (counterclockwise from group 50 to 51, degrees) and CIRCLE. */
+static int circle_pieces(const ob_dxf_ent *e, double sx, const char *name, ob_approx *out, ob_err *err)
+{
+    if (need(e, 1 << X0 | 1 << Y0 | 1 << G40, name, err))
+        return -1;
+    const double r = e->g[G40];
+    if (!(r > 0.0))
+        return ob_fail(err, "%s:%d: %s of radius %.17g (it must be positive)", name, e->line, kind_names[e->kind], r);
+    const conic f = {{e->g[X0], e->g[Y0]}, {r, 0.0}, {0.0, r}, sx};
+    double a0 = 0.0, sweep = 360.0;
+    if (e->kind == OB_DXF_ARC) {
+        a0 = e->have & 1 << G50 ? e->g[G50] : 0.0;
+        sweep = fmod((e->have & 1 << G51 ? e->g[G51] : 0.0) - a0, 360.0);
+        sweep += sweep <= 0.0 ? 360.0 : 0.0; /* equal angles: the whole circle */
+    }
+    return conic_pieces(&f, a0 * (OB_PI / 180.0), sweep * (OB_PI / 180.0), e->line, name, out, err);
+}
+
+/* ELLIPSE: centre 10/20, end of the major axis 11/21 (from the centre),
+ * minor over major 40, parameters 41 to 42 (radians); world coordinates,
+ * the minor axis on the extrusion's left of the major one. */
+static int ellipse_pieces(const ob_dxf_ent *e, double sx, const char *name, ob_approx *out, ob_err *err)
+{
+    if (need(e, 1 << X0 | 1 << Y0 | 1 << X1 | 1 << Y1 | 1 << G40, name, err))
+        return -1;
+    const double q = e->g[G40], mx = e->g[X1], my = e->g[Y1];
+    if (!(q > 0.0) || (mx == 0.0 && my == 0.0))
+        return ob_fail(err, "%s:%d: ELLIPSE with axis ratio %.17g and major axis (%.17g, %.17g) (a positive ratio and "
+                       "a major axis of nonzero length)", name, e->line, q, mx, my);
+    const conic f = {{e->g[X0], e->g[Y0]}, {mx, my}, {-sx * q * my, sx * q * mx}, 1.0};
+    const double a0 = e->have & 1 << G41 ? e->g[G41] : 0.0;
+    double sweep = fmod((e->have & 1 << G42 ? e->g[G42] : 2.0 * OB_PI) - a0, 2.0 * OB_PI);
+    sweep += sweep <= 1e-15 ? 2.0 * OB_PI : 0.0;
+    return conic_pieces(&f, a0, sweep, e->line, name, out, err);
+}
+
+/* One polyline segment from vertex p to q with p's bulge. */
+static int bulge_piece(const ob_dxf_vertex *p, const ob_dxf_vertex *q, double sx, const char *name, ob_approx *out,
+                       ob_err *err)
+{
+    const double dx = q->x - p->x, dy = q->y - p->y, L = hypot(dx, dy), b = p->bulge;
+    if (L == 0.0) {
+        ob_approx_note_skip(out, "LWPOLYLINE segment of length 0", p->line);
+        return 0;
+    }
+    const double P[2] = {p->x, p->y}, Q[2] = {q->x, q->y};
+    if (b == 0.0) {
+        const double xy[2][2] = {{sx * P[0], P[1]}, {sx * Q[0], Q[1]}};
+        ob_bez s;
+        ob_bez_from_points(&s, 1, xy);
+        return add_piece(out, &s, p->line, name, err);
+    }
+    /* the centre lies off the chord's middle, on its left for b > 0, by
+     * L/2 cot(theta/2) = L/2 (1 - b^2) / (2 b); theta = 4 atan b */
+    const double h = 0.5 * (1.0 - b * b) / (2.0 * b), r = L * (1.0 + b * b) / (4.0 * fabs(b));
+    const double c[2] = {0.5 * (P[0] + Q[0]) - h * dy, 0.5 * (P[1] + Q[1]) + h * dx};
+    const conic f = {{c[0], c[1]}, {r, 0.0}, {0.0, r}, sx};
+    return arc_pieces(&f, atan2(P[1] - c[1], P[0] - c[0]), 4.0 * atan(b), P, Q, p->line, name, out, err);
+}
+
+static int polyline_pieces(const ob_dxf_ent *e, double sx, const char *name, ob_approx *out, ob_err *err)
+{
+    const int closed = e->have & 1 << G70 && ((long)e->g[G70] & 1);
+    if (e->nv < 2 || (e->announced >= 0 && e->announced != e->nv))
+        return ob_fail(err, "%s:%d: LWPOLYLINE with %d vertices (group 90 announces %d; at least 2)", name, e->line,
+                       e->nv, e->announced);
+    for (int i = 0; i + 1 < e->nv + closed; i++)
+        if (bulge_piece(&e->v[i], &e->v[(i + 1) % e->nv], sx, name, out, err) != 0)
+            return -1;
+    return 0;
+}
+
+int ob_dxf_ent_pieces(ob_dxf_ent *e, const char *name, ob_approx *out, ob_err *err)
+{
+    if (e->have & 1 << G90) {
+        const double n = e->g[G90];
+        e->announced = n >= 0 && n < 1e9 && n == (int)n ? (int)n : -2;
+    }
+    if (e->kind == OB_DXF_LINE)
+        return line_pieces(e, name, out, err);
+    const double sx = mirror_of(e);
+    if (sx == 0.0) {
+        char what[24];
+        snprintf(what, sizeof what, "%s off the XY plane", kind_names[e->kind]);
+        ob_approx_note_skip(out, what, e->line);
+        return 0;
+    }
+    switch (e->kind) {
+    case OB_DXF_ARC:
+    case OB_DXF_CIRCLE: return circle_pieces(e, sx, name, out, err);
+    case OB_DXF_ELLIPSE: return ellipse_pieces(e, sx, name, out, err);
+    default: return polyline_pieces(e, sx, name, out, err);
+    }
+}
