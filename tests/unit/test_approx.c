@@ -165,8 +165,8 @@ static void test_not_finite(void)
 {
     CHECK(!ob_err_can_pass(INFINITY) && !ob_err_can_pass(-INFINITY) && !ob_err_can_pass(NAN), "inf, -inf, nan");
     CHECK(ob_err_can_pass(0.0) && ob_err_can_pass(1e-300) && ob_err_can_pass(1.7e308), "finite errors pass");
-    const ob_mres na = {0, "why", NAN, -1, -1, NAN, 0}, ok = {1, "", 0.1, 0, 0, 0.5, 1}, bad = {1, "x", INFINITY, 0,
-                                                                                             0, 0.5, 0};
+    const ob_mres na = {0, "why", NAN, -1, -1, NAN, 0, ""}, ok = {1, "", 0.1, 0, 0, 0.5, 1, ""},
+                  bad = {1, "x", INFINITY, 0, 0, 0.5, 0, ""};
     CHECK(!strcmp(ob_mres_status(&na), "n/a") && !strcmp(ob_mres_status(&ok), "ok") &&
               !strcmp(ob_mres_status(&bad), "fail"),
           "statuses %s %s %s", ob_mres_status(&na), ob_mres_status(&ok), ob_mres_status(&bad));
