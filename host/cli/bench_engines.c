@@ -8,6 +8,7 @@
  * run's rows are checked equal to the first's (timings aside).
  */
 #include "host/cli/bench_engines.h"
+#include "host/run/signals.h"
 
 #include <math.h>
 #include <omp.h>
@@ -55,6 +56,7 @@ static int run_engine(const ob_job *tmpl, size_t n, ob_engine e, const ob_driver
     }
     h.stats = &r->st;
     h.trace = &r->tr;
+    h.stop = ob_stop_flag();  /* bench discards its figures when stopped */
     return ob_driver_run(r->jobs, n, &o, &h) == 0 ? 0 : -1;
 }
 
@@ -142,7 +144,7 @@ int ob_bench_engines(FILE *csv, const ob_job *jobs, size_t n, const char *what, 
                 {OB_ENGINE_DEVICE, cl, "opencl"}};
     size_t bad = 0;
     double wall_group_cpu = 0.0;
-    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0] && !ob_stop_signal(); k++) {
         if (runs[k].h == NULL && strcmp(runs[k].backend, "opencl") == 0)
             continue;
         engine_run r;

@@ -69,6 +69,7 @@
 #include "host/cli/bench_engines.h"
 #include "host/cli/cliopts.h"
 #include "host/diag.h"
+#include "host/run/signals.h"
 #include "host/io/random.h"
 
 static double now_s(void)
@@ -260,6 +261,20 @@ static size_t fill_jobs(ob_job *jobs, const ob_curveset *set, const ob_method *o
     return k;
 }
 
+/* Every driver run of bench: the hooks given (or none) and the stop flag,
+ * so that SIGINT/SIGTERM end a long run at its next chunk (its figures are
+ * then not written: ob_cmd_bench discards the file). */
+static void bench_driver_run(ob_job *jobs, size_t n, const ob_driver_opts *o, const ob_driver_hooks *h)
+{
+    ob_driver_hooks hh;
+    if (h)
+        hh = *h;
+    else
+        memset(&hh, 0, sizeof hh);
+    hh.stop = ob_stop_flag();
+    ob_driver_run(jobs, n, o, &hh);
+}
+
 /* Every method at the ntol tolerances tols on the curves of set, hausdorff,
  * the split rule split.  keep: NULL, or where the jobs go (with their
  * timings; the caller frees).  Returns the wall time, seconds. */
@@ -272,7 +287,7 @@ static double random_run(const ob_curveset *set, ob_split split, const double *t
         return -1.0;
     fill_jobs(jobs, set, NULL, NULL, split, tols, ntol);
     double t0 = now_s();
-    ob_driver_run(jobs, n, o, h);
+    bench_driver_run(jobs, n, o, h);
     double dt = now_s() - t0;
     if (keep)
         *keep = jobs;
@@ -350,7 +365,7 @@ static double whole_run(int threads, const ob_curveset *set, const ob_driver_opt
                 }
     omp_set_num_threads(threads);
     double t0 = now_s();
-    ob_driver_run(jobs, n, o, h);
+    bench_driver_run(jobs, n, o, h);
     double dt = now_s() - t0;
     free(jobs);
     *njobs = n;
@@ -432,7 +447,7 @@ static int bench_metrics(bench_out *b, ob_cl *cl, int R, int S, int N, const dou
         goto out;
     }
     const ob_metric mets[3] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF};
-    for (int mi = 0; mi < 3; mi++) {
+    for (int mi = 0; mi < 3 && !ob_stop_signal(); mi++) {
         const ob_metric m = mets[mi];
         char what[64];
         snprintf(what, sizeof what, "samples/%s", ob_metric_name(m));
@@ -507,12 +522,13 @@ static void bench_whole_runs(bench_out *b, ob_cl *cl, int N)
         ob_driver_opts o;
         ob_driver_defaults(&o);
         size_t nj = 0;
-        double r1 = whole_run(1, &set, &o, NULL, &nj), rN = whole_run(N, &set, &o, NULL, &nj);
+        const double r1 = whole_run(1, &set, &o, NULL, &nj);
+        const double rN = ob_stop_signal() ? 0.0 : whole_run(N, &set, &o, NULL, &nj);
         row(b, "run", "cpu", 1, (double)nj, r1, "jobs/s");
         row(b, "run", "cpu", N, (double)nj, rN, "jobs/s");
         printf("whole run (%zu jobs, hausdorff): %.2f s on 1 thread, %.2f s on %d: speedup x%.2f\n", nj, r1, rN, N,
                r1 / rN);
-        if (cl) {
+        if (cl && !ob_stop_signal()) {
             const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl,
                                          .batch_chunk = ob_cl_is_gpu(cl) ? OB_GPU_CHUNK : 0};
             double g = whole_run(N, &set, &o, &clh, &nj);
@@ -579,7 +595,7 @@ static void bench_own_split(bench_out *b, const ob_curveset *set, int N)
     double dt[2];
     for (int r = 0; r < 2; r++) {
         const double t0 = now_s();
-        ob_driver_run(jobs + r * n, n, &o, NULL);
+        bench_driver_run(jobs + r * n, n, &o, NULL);
         dt[r] = now_s() - t0;
     }
     long cp[2] = {0, 0}, fewer = 0, more = 0, both = 0;
@@ -649,7 +665,7 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         row(b, "random_run", "cpu", N, (double)nj, c, "jobs/s");
         printf("random run (%d curves, all %d methods, 5 tolerances: %zu jobs): %.0f jobs/s on the CPU",
                rset.n, ob_method_count(), nj, nj / c);
-        if (cl) {
+        if (cl && !ob_stop_signal()) {
             const ob_driver_hooks clh = {.batch = ob_cl_measure_batch, .batch_ctx = cl,
                                          .batch_chunk = ob_cl_is_gpu(cl) ? OB_GPU_CHUNK : 0};
             double g = random_run(&rset, OB_SPLIT_MID, five_tols, 5, &o, &clh, &nj, NULL);
@@ -660,11 +676,14 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         if (kept)
             per_method_times(b, kept, nj, N);
         free(kept);
-        bench_probe_stops(b, &rset, N);
-        bench_own_split(b, &rset, N);
+        if (!ob_stop_signal())
+            bench_probe_stops(b, &rset, N);
+        if (!ob_stop_signal())
+            bench_own_split(b, &rset, N);
     }
     ob_curveset_free(&rset);
-    bench_engines(b, cl, N, quick);
+    if (!ob_stop_signal())
+        bench_engines(b, cl, N, quick);
 }
 
 int ob_cmd_bench(int argc, char **argv)
@@ -692,12 +711,17 @@ int ob_cmd_bench(int argc, char **argv)
     double peak[2], vpeak;
     bench_peaks(&b, N, peak, &vpeak);
     ob_cl *cl = bench_open_cl(&b);
-    int rc = bench_metrics(&b, cl, a.quick ? 200 : 2000, OB_DEFAULT_SAMPLES, N, peak, vpeak);
-    if (rc == 0) {
+    int rc = ob_stop_signal() ? 0 : bench_metrics(&b, cl, a.quick ? 200 : 2000, OB_DEFAULT_SAMPLES, N, peak, vpeak);
+    if (rc == 0 && !ob_stop_signal())
         bench_whole_runs(&b, cl, N);
+    if (rc == 0 && !ob_stop_signal())
         bench_random(&b, cl, N, a.quick);
-    }
     ob_cl_close(cl);
+    if (ob_stop_signal()) {  /* a section cut short has no figures: none are written */
+        ob_outfile_discard(&of);
+        return ob_stop_exit("bench: nothing written to %s (a bench.csv there is an earlier run's); run it again",
+                            a.out);
+    }
     if (ob_outfile_commit(&of, 0, &err) != 0) {  /* the rows so far, as before, also when rc != 0 */
         ob_error("%s", err.msg);
         return 1;
