@@ -1,8 +1,10 @@
-# offbench - build, test, run.  See README.md.
+# offbench - build, test, run.  See README.md and docs/.
 #   make            build ./offbench
 #   make test       build and run every test; last line "N passed, N failed"
 #   make run        the default job on the embedded data, into out/run
-#   make tables     reproduce the published tables into results/, plots, README
+#   make tables     reproduce the published tables into results/, plots, results/TABLES.md
+#   make docs       the generated parts of README.md and docs/: contents, command reference,
+#                   the figures quoted from the committed results (scripts/docs.py)
 #   make nightly    the nightly run compared with results/baseline/ (report in out/nightly)
 #   make accept-baseline  run the nightly configuration and make it the baseline
 #   make report     the HTML report of the nightly history (out/history/site/index.html)
@@ -57,7 +59,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test perf soak run deps clean bench tables nightly accept-baseline report report-screenshot fuzz fuzz-run \
+.PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline report report-screenshot fuzz fuzz-run \
         check-method man install uninstall FORCE
 all: $(BIN)
 
@@ -170,7 +172,7 @@ uninstall:
 perf: $(BUILD)/tests/perf/perf_linear
 	@$(BUILD)/tests/perf/perf_linear
 
-# The soak test, longer than in `make test` (README "Testing").
+# The soak test, longer than in `make test` (docs/contributing.md "Testing").
 SOAK_KILLS ?= 200
 SOAK_RUN   ?= --random 40:5 --methods tiller,cobb,ahn,zhao,lee --tols 1e-2,1e-3,1e-4 --backend cpu
 soak: $(BIN)
@@ -180,12 +182,20 @@ run: $(BIN)
 	./$(BIN) run --out out/run --force
 	@echo "wrote out/run/results.csv and out/run/meta.json"
 
-# The published tables, cell by cell, their plots, and the README section
-# generated from them (needs Debian's python3-matplotlib for the plots).
+# The published tables, cell by cell, their plots, and the section of
+# results/TABLES.md generated from them (needs Debian's python3-matplotlib for the plots).
 tables: $(BIN)
 	./$(BIN) tables --out results/tables
 	/usr/bin/python3 scripts/plot_tables.py results/tables/tables.csv results/plots
 	/usr/bin/python3 scripts/readme_tables.py results/tables/tables.md results/TABLES.md
+
+# The generated parts of README.md, docs/*.md and results/TABLES.md: each
+# docs file's contents, the command reference (each command's --help) and
+# the figures read from the committed results under results/ (the nightly
+# baseline, results/tables/, results/docs/); tests/e2e/e2e_docs.sh fails
+# when they are not current.
+docs: $(BIN)
+	/usr/bin/python3 scripts/docs.py --offbench $(abspath $(BIN))
 
 bench: $(BIN)
 	./$(BIN) bench --out out/bench
@@ -200,7 +210,7 @@ accept-baseline:
 	sh scripts/nightly.sh --accept --out out/nightly
 
 # The nightly history's HTML report (nightly.sh rebuilds it after each run;
-# NIGHTLY_HISTORY as there), and the README's screenshot of it.
+# NIGHTLY_HISTORY as there), and the screenshot of it in docs/nightly.md.
 NIGHTLY_HISTORY ?= out/history
 report:
 	/usr/bin/python3 scripts/report.py $(NIGHTLY_HISTORY) --out $(NIGHTLY_HISTORY)/site

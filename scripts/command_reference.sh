@@ -1,11 +1,12 @@
 #!/bin/sh
-# command_reference.sh - the README's command reference, generated from the
+# command_reference.sh - the command reference of docs/commands.md, generated from the
 # program's own flag tables (every command's --help), so it cannot drift
 # from what the parser accepts.
 #   sh scripts/command_reference.sh [OFFBENCH] > FILE   prints the section
-#   sh scripts/command_reference.sh --update [OFFBENCH]  rewrites it in README.md
-#                                                      (between the markers)
+#   sh scripts/command_reference.sh --update [OFFBENCH]  rewrites it in docs/commands.md
+#                                                      (between the markers; make docs does too)
 set -eu
+DOC=docs/commands.md
 update=0
 if [ "${1:-}" = "--update" ]; then update=1; shift; fi
 OB=${1:-./offbench}
@@ -34,7 +35,7 @@ section > "$tmp.sec"
 awk -v sec="$tmp.sec" '
     /^<!-- command reference: generated/ { while ((getline l < sec) > 0) print l; skip = 1; next }
     /^<!-- end of command reference -->/ { skip = 0; next }
-    !skip { print }' README.md > "$tmp"
-grep -q '^<!-- command reference: generated' "$tmp" || { echo "command_reference.sh: no markers in README.md" >&2; rm -f "$tmp" "$tmp.sec"; exit 1; }
-mv "$tmp" README.md
+    !skip { print }' "$DOC" > "$tmp"
+grep -q '^<!-- command reference: generated' "$tmp" || { echo "command_reference.sh: no markers in $DOC" >&2; rm -f "$tmp" "$tmp.sec"; exit 1; }
+mv "$tmp" "$DOC"
 rm -f "$tmp.sec"

@@ -1,6 +1,6 @@
 #!/bin/sh
 # device_check.sh - every figure of the execution engine on this machine, in
-# one call (issue 35; README "Engines"), in at most about five minutes:
+# one call (issue 35; docs/performance.md "Engines"), in at most about five minutes:
 #   1. the machine: cores, memory, CPU model, OpenCL devices, GPUs
 #   2. the CPU backend at 1, 2, 4, ... all threads, level and group engines:
 #      wall, speed-up over 1 thread, efficiency (meta.json's engine block:

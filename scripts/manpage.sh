@@ -1,6 +1,6 @@
 #!/bin/sh
 # manpage.sh - offbench(1), generated from the program's own --version,
-# --help and each command's --help (as README's command reference is), so
+# --help and each command's --help (as docs/commands.md's command reference is), so
 # the manual cannot drift from what the parser accepts.  Plain sh and sed:
 # nothing to install (help2man is not needed).
 #   sh scripts/manpage.sh [OFFBENCH] > offbench.1      (make man: build/offbench.1)
@@ -72,8 +72,9 @@ what makes two runs comparable: build, device, options, seed
 .I datasets/*.curves
 the default curves (a copy is built into the program)
 .SH SEE ALSO
-README.md in the source tree: the command reference, the methods, the
-error metrics, the curve file grammar, how to add a method.
+README.md and docs/ in the source tree: the command reference
+(docs/commands.md), the methods, the error metrics, the curve file grammar,
+how to add a method (docs/contributing.md).
 Shell completion: share/bash\-completion/completions/offbench and
 share/zsh/site\-functions/_offbench.
 EOF2

@@ -1,5 +1,5 @@
 #!/bin/sh
-# nightly_history.sh - the store of past nightly runs (README "Nightly
+# nightly_history.sh - the store of past nightly runs (docs/nightly.md "Nightly
 # history and report"): scripts/nightly.sh records each run here before its
 # output directory is overwritten the next night, and prunes old runs.
 #

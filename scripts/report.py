@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""report.py - the HTML report of the nightly history store (README
+"""report.py - the HTML report of the nightly history store (docs/nightly.md
 "Nightly history and report").
 
     /usr/bin/python3 scripts/report.py HISTORY_DIR --out SITE_DIR [--copy-files]

@@ -1,4 +1,4 @@
-"""report_commits.py - where scripts/report.py links a run's commit (README
+"""report_commits.py - where scripts/report.py links a run's commit (docs/nightly.md
 "Nightly history and report").
 
 The link is a template with {sha} for the full commit id:

@@ -1,5 +1,5 @@
 """report_compare.py - the first section of scripts/report.py's page: the
-latest run's verdict and its comparison with the baseline (README "Nightly
+latest run's verdict and its comparison with the baseline (docs/nightly.md "Nightly
 history and report").
 
 The verdict is always the run's exit status as run.json records it (the

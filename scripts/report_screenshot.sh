@@ -1,5 +1,5 @@
 #!/bin/sh
-# report_screenshot.sh OFFBENCH OUT.png - the README's picture of the nightly
+# report_screenshot.sh OFFBENCH OUT.png - the picture of the nightly
 # report (make report-screenshot): the synthetic five-night history of the
 # browser test (tests/e2e/report_fixture.sh: one quality and one time step,
 # one failed night) through scripts/report.py, photographed by headless

@@ -1,4 +1,4 @@
-"""report_steps.py - the step rule of scripts/report.py (README "Nightly
+"""report_steps.py - the step rule of scripts/report.py (docs/nightly.md "Nightly
 history and report"), apart from the HTML so that a test can check it.
 
 A step is a run where a method's figures for one run set (published,

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """same_rows.py A/results.csv B/results.csv - are two runs' rows the same,
 timing columns aside?  (Engines, thread counts, chunk sizes and devices must
-never change a row: README "Engines".)
+never change a row: docs/performance.md "Engines".)
 
 Rows are matched by their job key (curve, d, method, metric, split, tol);
 every other column except the timings (fit_ns, eval_ns, time_iqr_ns,

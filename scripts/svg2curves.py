@@ -17,7 +17,7 @@ degree in the .curves format, so in a subpath that mixes degrees the lower
 ones are degree-elevated (exactly: the same point at every parameter); one
 segment is written as `bezier`, several as a `bspline` whose interior knots
 have full multiplicity (each knot span one SVG segment or arc piece, so the
-B-spline is exactly the SVG subpath, C0 at the joins).  See README.md,
+B-spline is exactly the SVG subpath, C0 at the joins).  See docs/curves.md,
 "Curve files" / "SVG paths to .curves".
 
 Exit status: 0 when a .curves file was written (notes on stderr name every
@@ -359,7 +359,7 @@ class Converter:
 
 
 def check_curve(pts, segs, offsets):
-    """The reader's scale rules (host/io/curvefile.c, README "Curve files")."""
+    """The reader's scale rules (host/io/curvefile.c, docs/curves.md "Curve files")."""
     M = 0.0
     for x, y, w in pts:
         for v in (x, y):

@@ -1,6 +1,6 @@
 #!/bin/sh
 # history_from_site.sh SITE_DIR HISTORY_DIR - fills the nightly history
-# store from a published report (README "Nightly in CI").
+# store from a published report (docs/nightly.md "Nightly in CI").
 #
 # A site written by `scripts/report.py HISTORY --out SITE --copy-files`
 # holds a copy of every run of the store in SITE/runs/NAME/ (run.json, the

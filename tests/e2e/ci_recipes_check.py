@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """ci_recipes_check.py ROOT - the lint of the CI recipes in ROOT/scripts/ci/
-(README "Nightly in CI"); run by tests/e2e/e2e_ci_recipes.sh.  Prints each
+(docs/nightly.md "Nightly in CI"); run by tests/e2e/e2e_ci_recipes.sh.  Prints each
 failure and the line "N passed, N failed[, N skipped]".
 
 For github-nightly.yml (GitHub Actions) and gitlab-nightly.yml (GitLab CI):
@@ -18,7 +18,7 @@ For github-nightly.yml (GitHub Actions) and gitlab-nightly.yml (GitLab CI):
   every failing exit status into 2) and its exit status reaches the job:
   the lines are run, with stand-ins for the repository's scripts, for exit
   statuses 0 to 3, and the job must pass on 0, fail on 1 and 2, and warn on
-  3 (README: not comparable is a warning, the baseline needs accepting);
+  3 (docs/nightly.md: not comparable is a warning, the baseline needs accepting);
 - the history store is restored before the nightly and saved after it even
   when the night fails (actions/cache restore/save; GitLab cache with
   when: always), and the site, written with --copy-files, is published

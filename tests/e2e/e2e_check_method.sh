@@ -1,5 +1,5 @@
 #!/bin/sh
-# Adding a method (README "How to add a method", methods/CONTRACT.md):
+# Adding a method (docs/contributing.md "How to add a method", methods/CONTRACT.md):
 # `make check-method M=NAME` runs the method contract on one method and
 # passes on a good one (tiller, the unregistered template), fails on a
 # deliberately broken one naming the rule and what to do, and refuses an
@@ -49,6 +49,7 @@ check '! grep -q "OB_METHOD(template)" methods/registry.def && ! "$OB" list meth
 check '! grep -q "ob_method_tiller\|ob_method_sisl" methods/registry.c' "registry.c names no method itself (registry.def does)"
 
 # the docs a method author reads
-check 'grep -q "make check-method M=" README.md && grep -q "methods/CONTRACT.md" README.md && grep -q "TEMPLATE.c" README.md' \
-    "README points to the template, the contract and check-method"
+check 'grep -q "make check-method M=" docs/contributing.md && grep -q "methods/CONTRACT.md" docs/contributing.md && grep -q "TEMPLATE.c" docs/contributing.md' \
+    "docs/contributing.md points to the template, the contract and check-method"
+check 'grep -q "(docs/contributing.md)" README.md' "README links to docs/contributing.md"
 e2e_done

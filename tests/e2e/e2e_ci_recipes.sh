@@ -1,5 +1,5 @@
 #!/bin/sh
-# The CI recipes of scripts/ci/ (README "Nightly in CI"):
+# The CI recipes of scripts/ci/ (docs/nightly.md "Nightly in CI"):
 # - tests/e2e/ci_recipes_check.py: github-nightly.yml and gitlab-nightly.yml
 #   parse as YAML, run on a schedule, call only commands that exist (the
 #   repository's scripts and make targets, tools the image has or the

@@ -302,11 +302,11 @@ if [ "$(id -u)" != 0 ]; then
     check '[ $? -eq 1 ]' "unwritable --out exits 1"
 fi
 
-# --- the README's command reference is what the program's --help prints ---
+# --- the command reference (docs/commands.md) is what the program's --help prints ---
 sh scripts/command_reference.sh "$OB" > "$T/cmdref.md" 2>/dev/null
-awk '/^<!-- command reference: generated/{s=1} s{print} /^<!-- end of command reference -->/{s=0}' README.md > "$T/cmdref.readme"
-check 'cmp -s "$T/cmdref.md" "$T/cmdref.readme"' \
-    "README command reference is current (sh scripts/command_reference.sh --update): $(diff "$T/cmdref.readme" "$T/cmdref.md" | head -n 4 | tr '\n' ' ')"
+awk '/^<!-- command reference: generated/{s=1} s{print} /^<!-- end of command reference -->/{s=0}' docs/commands.md > "$T/cmdref.doc"
+check 'cmp -s "$T/cmdref.md" "$T/cmdref.doc"' \
+    "docs/commands.md command reference is current (make docs, or sh scripts/command_reference.sh --update): $(diff "$T/cmdref.doc" "$T/cmdref.md" | head -n 4 | tr '\n' ' ')"
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

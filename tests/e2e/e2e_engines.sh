@@ -1,5 +1,5 @@
 #!/bin/sh
-# e2e_engines.sh - how the work is scheduled never changes a row (README
+# e2e_engines.sh - how the work is scheduled never changes a row (docs/performance.md
 # "Engines"): the same run through the level and group engines, at 1, 2 and
 # 7 threads, at small and default chunk sizes, on the CPU and through
 # OpenCL (PoCL) in both kernel layouts with the level, group and device

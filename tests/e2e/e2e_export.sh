@@ -1,6 +1,6 @@
 #!/bin/sh
 # End-to-end tests of `run --export DIR`, `draw --export DIR` and `measure`
-# (README "Export and measure"):
+# (docs/export-measure.md "Export and measure"):
 # - measuring an exported approximation again (its JSON, .curves and DXF)
 #   gives the run's max_err, exactly (DXF: to 1e-12 relative for rational
 #   pieces, whose w x it rounds once), for every registered method
@@ -133,7 +133,7 @@ PYEOF
         # tiller's pieces interpolate the offset at their ends, so projection
         # finds the run's base pieces; lee's ends are off the offset by up to
         # the error, so the nearest points cut the offset elsewhere and each
-        # piece's two-sided Hausdorff distance differs (README)
+        # piece's two-sided Hausdorff distance differs (docs/export-measure.md)
         rel=1e-12; [ $m = lee ] && rel=0.5
         check 'awk -v a="$h" -v b="$e" -v r=$rel "BEGIN{exit !(a > 0 && a - b <= r * b && b - a <= r * b)}"' \
             "$m written by ezdxf: measure gives '$h', the run $e"

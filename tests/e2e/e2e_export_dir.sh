@@ -1,5 +1,5 @@
 #!/bin/sh
-# What `--export DIR` holds (README "The export directory",
+# What `--export DIR` holds (docs/export-measure.md "The export directory",
 # host/io/export_dir.h): exactly this run's files.
 # - A job that had an approximation in an earlier export and now has none
 #   (skip: the curve became rational for ahn; fail; a method dropped; a curve

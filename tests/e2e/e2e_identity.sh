@@ -1,6 +1,6 @@
 #!/bin/sh
 # e2e_identity.sh - everything that can change a number is in the run's
-# identity (README "What a run directory guarantees"): a kernels/ or
+# identity (docs/reliability.md "What a run directory guarantees"): a kernels/ or
 # datasets/ directory in the working directory is not picked up; meta.json
 # records kernel_fnv1a and data_hash; --resume, merge and compare check them.
 . "$(dirname "$0")/lib_e2e.sh"

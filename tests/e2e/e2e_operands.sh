@@ -1,5 +1,5 @@
 #!/bin/sh
-# End-to-end tests of the one rule for '--' and operands (README "Command
+# End-to-end tests of the one rule for '--' and operands (docs/commands.md "Command
 # line"): after '--' every argument is an operand, by every command; a
 # command that takes no operands refuses the first one (exit 2, naming it),
 # a command whose operands are files (compare, merge) takes them after '--',

@@ -1,5 +1,5 @@
 #!/bin/sh
-# End-to-end tests of the nightly history (README "Nightly history and
+# End-to-end tests of the nightly history (docs/nightly.md "Nightly history and
 # report"):
 # - scripts/nightly_history.sh record: a nightly output copied into
 #   STORE/STAMP_COMMIT_HOST/ with run.json (status, stage), a failed run

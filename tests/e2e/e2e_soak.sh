@@ -8,7 +8,7 @@
 # slower build, e.g. `make SAN=1 test`, gets longer ones), seeded by
 # SOAK_SEED (default the clock; printed on a failure).  SOAK_RUN: the run's
 # options (default a small one: `make test` stays well under a minute);
-# `make soak` runs a longer variant (README "Testing").
+# `make soak` runs a longer variant (docs/contributing.md "Testing").
 . "$(dirname "$0")/lib_e2e.sh"
 now() { date +%s.%N; }
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# End-to-end tests of the thread stack check (host/run/stack.c, README
+# End-to-end tests of the thread stack check (host/run/stack.c, docs/commands.md
 # "Command line"): an OMP_STACKSIZE (or GOMP_STACKSIZE, or stack limit) below
 # what offbench's threads need crashed them with SIGSEGV; now it is refused
 # before any work, exit 2, naming the setting and the minimum, and nothing is

@@ -1,5 +1,5 @@
 #!/bin/sh
-# End-to-end tests of scripts/svg2curves.py (SVG paths to .curves, README
+# End-to-end tests of scripts/svg2curves.py (SVG paths to .curves, docs/curves.md
 # "Curve files"): SVGs written here (lines, quadratics, cubics and arcs under
 # transforms) and one drawn by hand (tests/data/svg/hand.svg) convert, read
 # back with `./offbench list curves`, run with tiller, and match the SVG's

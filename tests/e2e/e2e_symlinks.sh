@@ -3,7 +3,7 @@
 # link at a name offbench writes - a run's .lock, results.csv.tmp,
 # meta.json.tmp, results.fingerprint.tmp, results.journal.csv, an --export
 # file, compare/draw/trace/tables/atlas/merge --out - never changes the
-# file it points to.  The rule (README "What a run directory guarantees"):
+# file it points to.  The rule (docs/reliability.md "What a run directory guarantees"):
 # a file written afresh replaces the link (a new file and a rename); a file
 # updated in place (.lock, a resumed journal) that is a link is refused,
 # exit 2, naming the path.

@@ -115,7 +115,7 @@ check '[ $? -eq 0 ] && grep -q "^offbench " "$T/v.txt" && grep -q "git commit" "
     "--version: $(cat "$T/v.txt")"
 if [ "$(id -u)" -eq 0 ]; then ro=/proc; else mkdir -p "$T/ro"; chmod 555 "$T/ro"; ro="$T/ro"; fi
 $OB run $S --methods tiller --out "$ro" >/dev/null 2>"$T/e.txt"
-check '[ $? -eq 1 ]' "an unwritable existing --out: exit 1 as README says: $(cat "$T/e.txt")"
+check '[ $? -eq 1 ]' "an unwritable existing --out: exit 1 as docs/commands.md says: $(cat "$T/e.txt")"
 mkdir -p "$T/cdir"
 $OB compare "$T/f/results.csv" "$T/f/results.csv" --out "$T/cdir" >/dev/null 2>&1
 check '[ ! -e "$T/cdir.tmp" ]' "compare --out DIR leaves no DIR.tmp"
