@@ -171,7 +171,7 @@ static int num_opt(const char *opt, const char *v, double lo, double hi, int ope
 }
 
 enum { CO_FORMAT, CO_OUT, CO_ERR_RTOL, CO_ERR_ATOL, CO_TIME_THRESHOLD, CO_TIME_FLOOR, CO_ALPHA, CO_MAX_ROWS,
-       CO_NO_TIMING, CO_METHOD_TIMING, CO_STRICT_TIMING };
+       CO_NO_TIMING, CO_METHOD_TIMING, CO_STRICT_TIMING, CO_TIMING_ONLY, CO_METHODS };
 
 static const ob_flag compare_flags[] = {
     {"format", "md|csv|json", "the report's format (default md)", CO_FORMAT, OB_FLAG_ONCE},
@@ -186,6 +186,9 @@ static const ob_flag compare_flags[] = {
     {"method-timing-only", NULL, "judge timing per method only, not per job", CO_METHOD_TIMING, OB_FLAG_ONCE},
     {"strict-timing", NULL, "exit 3 when timings could not be judged (no repetitions, too noisy)", CO_STRICT_TIMING,
      OB_FLAG_ONCE},
+    {"timing-only", NULL, "judge the timings only (quality, missing and new rows not judged)", CO_TIMING_ONLY,
+     OB_FLAG_ONCE},
+    {"methods", "LIST", "compare only these methods' rows (comma separated)", CO_METHODS, OB_FLAG_ONCE},
 };
 
 static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
@@ -221,6 +224,14 @@ static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
         return 0;
     case CO_NO_TIMING: o->c.no_timing = 1; return 0;
     case CO_STRICT_TIMING: o->c.strict_timing = 1; return 0;
+    case CO_TIMING_ONLY: o->c.timing_only = 1; return 0;
+    case CO_METHODS:
+        if (!*v || strspn(v, ",") || strstr(v, ",,") || v[strlen(v) - 1] == ',') {
+            ob_error("--methods: expected method names separated by commas, got '%s'", v);
+            return -1;
+        }
+        o->c.methods = v;
+        return 0;
     default: o->c.method_timing_only = 1; return 0;
     }
 }
@@ -246,6 +257,10 @@ static int parse_opts(int argc, char **argv, cmd_opts *o)
     }
     if (o->c.strict_timing && o->c.no_timing) {
         ob_error("compare: --strict-timing asks for timings to be judged, --no-timing for them not to be: pick one");
+        return -1;
+    }
+    if (o->c.timing_only && o->c.no_timing) {
+        ob_error("compare: --timing-only judges the timings alone, --no-timing no timings: pick one");
         return -1;
     }
     o->in[0] = pos[0];
@@ -304,8 +319,8 @@ int ob_cmd_compare(int argc, char **argv)
     memset(&r, 0, sizeof r);
     ob_err err;
     int status = 2;
-    if (ob_cmp_load_side(o.in[0], "BASE", &b, &err) ||
-        ob_cmp_load_side(o.in[1], "NEW", &n, &err) || ob_cmp_context(&b, &n, &o.c, &r, &err) ||
+    if (ob_cmp_load_side(o.in[0], "BASE", &b, &err) || ob_cmp_load_side(o.in[1], "NEW", &n, &err) ||
+        ob_cmp_check_methods(&b, &n, &o.c, &err) || ob_cmp_context(&b, &n, &o.c, &r, &err) ||
         (r.incomparable.n == 0 && ob_cmp_rows(&b, &n, &o.c, &r, &err))) {
         ob_error("compare: %s", err.msg);
         goto done;
@@ -313,7 +328,12 @@ int ob_cmd_compare(int argc, char **argv)
     for (int i = 0; i < r.incomparable.n; i++)
         ob_error("not comparable: %s", r.incomparable.v[i]);
     for (int i = 0; i < r.strict.n; i++)
-        ob_error("timing not judged (--strict-timing): %s", r.strict.v[i]);
+        ob_error("timing not judged%s: %s", o.c.strict_timing ? " (--strict-timing)" : "", r.strict.v[i]);
+    if (!r.incomparable.n && (r.tstate == OB_TIMING_MACHINE || r.tstate == OB_TIMING_NOISY)) {
+        char timing[2048];  /* what the report's "Timing:" line says, for the log */
+        ob_cmp_timing_text(&b, &n, &o.c, &r, 0, timing, sizeof timing);
+        ob_warn("timings %s", timing);
+    }
     const char *const inputs[] = {o.in[0], o.in[1], b.results_path, b.meta_path, b.samples_path,
                                   n.results_path, n.meta_path, n.samples_path};
     if (o.out && ob_check_out_not_input("compare", o.out, 0, inputs, sizeof inputs / sizeof inputs[0]) != 0)

@@ -77,7 +77,7 @@ fi
 mkset "$T/a5" "$T/q1" '10000000 + 10000 * r'
 mkset "$T/a5b" "$T/q2" '10000000 + 10000 * ((r * 3) % 5)'
 cmp_rc 0 "$T/q1" "$T/q2"
-check 'sed -n 4p "$T/out" | grep -q "^Timing: judged: the same machine .box-a." && ! grep -q "slower\|faster" "$T/out"' \
+check 'sed -n 4p "$T/out" | grep -q "^Timing: judged: the same machine .box-a." && ! grep -q "| slower |\|| faster |" "$T/out"' \
     "same code, same quiet machine: judged, no change: $(sed -n 4p "$T/out")"
 cmp_rc 0 "$T/q1" "$T/q2" --format csv
 check '[ "$(method_total "$T/out" tiller | cut -d, -f7)" = same ] && [ "$(method_total "$T/out" ahn | cut -d, -f7)" = same ]' \
@@ -125,7 +125,7 @@ mkset "$T/b5" "$T/other" '10000000 + 10000 * r'
 cmp_rc 0 "$T/other" "$T/slow5" --method-timing-only
 check 'grep -q "^Timing: \*\*not judged\*\*: baseline from machine .box-b. (id [0-9a-f]*), this is .box-a. (id [0-9a-f]*)" "$T/out"' \
     "another machine: not judged: $(sed -n 4p "$T/out")"
-check 'grep -q "timings not judged: baseline from machine .box-b." "$T/err" && ! grep -q "slower" "$T/out"' \
+check 'grep -q "timings not judged: baseline from machine .box-b." "$T/err" && ! grep -q "| slower |" "$T/out"' \
     "said on stderr too, and no method is slower"
 awkc 'BEGIN{OFS=","} NR==3{$c["ctrl_points"]=$c["ctrl_points"]+2} {print}' "$T/slow5/results.csv" > "$T/cp.csv"
 mkdir "$T/slowcp" && cp "$T/slow5/meta.json" "$T/slow5/samples.csv" "$T/slowcp/" && mv "$T/cp.csv" "$T/slowcp/results.csv"
@@ -147,7 +147,7 @@ cmp_rc 3 "$T/other" "$T/slow5" --strict-timing --method-timing-only
 # --- a busy machine (load above the cores): not judged: noisy, never a regression ---
 mkset "$T/a5busy" "$T/busyslow" '(m == "tiller" ? 3 : 1) * (10000000 + 10000 * r)'
 cmp_rc 0 "$T/q1" "$T/busyslow" --method-timing-only
-check 'grep -q "^Timing: \*\*not judged: noisy\*\*: NEW.s load average reached 99.00 on its [0-9]* core" "$T/out" && ! grep -q "slower" "$T/out"' \
+check 'grep -q "^Timing: \*\*not judged: noisy\*\*: NEW.s load average reached 99.00 on its [0-9]* core" "$T/out" && ! grep -q "| slower |" "$T/out"' \
     "load above the cores: not judged, noisy: $(sed -n 4p "$T/out")"
 cmp_rc 0 "$T/busyslow" "$T/q1" --method-timing-only
 check 'grep -q "BASE.s load average reached 99.00" "$T/out"' "a busy baseline likewise"
