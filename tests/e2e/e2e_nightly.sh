@@ -1,14 +1,14 @@
 #!/bin/sh
 # End-to-end tests of scripts/nightly.sh (issue 37) on a small nightly
-# configuration (NIGHTLY_METHODS tiller,hoschek, NIGHTLY_RANDOM 2:2026, the
-# CPU backend), with the program under test (NIGHTLY_BIN: no build), its
+# configuration (NIGHTLY_METHODS ahn,zhao-rational on NIGHTLY_CURVES
+# liu2002_ex1,zhao2017_septic, NIGHTLY_RANDOM 2:2026, the CPU backend), with the program under test (NIGHTLY_BIN: no build), its
 # committed baseline and the machines' baselines in scratch directories:
 # - exit status: 3 without a baseline, written to OUT/status as well;
 # - --accept-committed and --accept take the run just made (no new run);
 #   --accept refuses a run whose load exceeded its cores and a failed run;
 # - two nightly runs of one build on this machine: exit 0, timings "no
 #   change" or "not judged", never a regression;
-# - a planted slowdown (OFFBENCH_TEST_SLOW=hoschek:3: hoschek's fits done
+# - a planted slowdown (OFFBENCH_TEST_SLOW=zhao-rational:3: its fits done
 #   three times, the test hook of `run`) against a baseline recorded on
 #   this machine: a timing regression, exit 1;
 # - a planted quality change (the baseline's control points lowered): a
@@ -23,7 +23,8 @@ NS="sh $ROOT/scripts/nightly.sh"
 printf '0.00 0.00 0.00 1/100 1\n' > "$T/idle"
 printf '99.00 50.00 20.00 9/100 1\n' > "$T/busy"
 export NIGHTLY_BIN="$OB" NIGHTLY_BASELINE="$T/committed" NIGHTLY_HISTORY=none NIGHTLY_RANDOM=2:2026 \
-    NIGHTLY_METHODS=tiller,hoschek NIGHTLY_BACKEND=cpu OFFBENCH_MACHINE=e2e-box
+    NIGHTLY_METHODS=ahn,zhao-rational NIGHTLY_CURVES=liu2002_ex1,zhao2017_septic NIGHTLY_BACKEND=cpu \
+    OFFBENCH_MACHINE=e2e-box
 unset OFFBENCH_TEST_SLOW OFFBENCH_LOADAVG
 
 # nightly OUT [nightly.sh options]: one night, exit status in $rc, stderr in OUT.err
@@ -57,7 +58,7 @@ check '[ $? -eq 2 ] && grep -q "nothing to accept" "$T/err"' "--accept without a
 # --- two nightly runs of the same build on this machine: 0, never a regression ---
 nightly "$T/n1"
 check '[ $rc -eq 0 ] && [ "$(cat "$T/n1/status")" = 0 ]' "same build again: exit 0: $rc $(tail -n 5 "$T/n1.err")"
-check 'verdict "$T/n1" | grep -q "^\*\*OK: no regression\*\* (exit 0)" && ! grep -q "REGRESSION\|slower" "$T/n1/report.md"' \
+check 'verdict "$T/n1" | grep -q "^\*\*OK: no regression\*\* (exit 0)" && ! grep -q "REGRESSION\|| slower |" "$T/n1/report.md"' \
     "the report leads with OK, nothing slower: $(verdict "$T/n1")"
 check 'grep -q "^Timing: \(judged\|\*\*not judged\)" "$T/n1/report.md"' "a timing line: $(grep "^Timing:" "$T/n1/report.md" | head -n 1)"
 check 'grep -q "^## Verdict by method" "$T/n1/report.md" && [ "$(grep -n "^## " "$T/n1/report.md" | head -n 1 | cut -d: -f2-)" = "## Verdict by method" ]' \
@@ -75,11 +76,11 @@ export NIGHTLY_BASELINES="$T/machines2" OFFBENCH_LOADAVG="$T/idle"
 nightly "$T/i0"
 $NS --accept --out "$T/i0" >/dev/null 2>"$T/err"
 check '[ $? -eq 0 ]' "the idle night accepted: $(cat "$T/err")"
-OFFBENCH_TEST_SLOW=hoschek:3 nightly "$T/i1"
+OFFBENCH_TEST_SLOW=zhao-rational:3 nightly "$T/i1"
 check '[ $rc -eq 1 ] && [ "$(cat "$T/i1/status")" = 1 ] && verdict "$T/i1" | grep -q "^\*\*REGRESSION\*\* (exit 1)"' \
-    "hoschek 3x slower: exit 1: $rc $(verdict "$T/i1")"
-check 'grep -q "^| hoschek | .* | slower |" "$T/i1/report.md"' "hoschek is slower: $(grep "^| hoschek |" "$T/i1/report.md" | head -n 1)"
-check 'grep -q "\"test_slow\": \"hoschek:3\"" "$T/i1/published/meta.json"' "meta.json records the test hook"
+    "zhao-rational's fits 3x: exit 1: $rc $(verdict "$T/i1")"
+check 'grep -q "^| zhao-rational | .* | slower |" "$T/i1/report.md"' "zhao-rational is slower: $(grep "^| zhao-rational |" "$T/i1/report.md" | head -n 1)"
+check 'grep -q "\"test_slow\": \"zhao-rational:3\"" "$T/i1/published/meta.json"' "meta.json records the test hook"
 
 # --- a planted quality change: the committed baseline's control points lowered: 1 ---
 unset OFFBENCH_LOADAVG
@@ -92,22 +93,22 @@ check '[ $rc -eq 1 ] && grep -q "| ctrl_points |" "$T/q1/report.md" && grep -q "
     "a quality change is a regression: $rc $(verdict "$T/q1")"
 
 # --- noisy methods run again, at most NIGHTLY_RERUNS times ---
-# (this machine's baseline changed by hand: tiller's repetitions 2 and 4
+# (this machine's baseline changed by hand: ahn's repetitions 2 and 4
 # three times as long, so that every comparison with it is too wide to
-# judge; hoschek's ten times as long, so that it is judged faster at once)
+# judge; zhao-rational's ten times as long, so that it is judged faster at once)
 rm -rf "$T/committed" && mv "$T/committed.orig" "$T/committed"
-awkc 'BEGIN{OFS=","} NR>1 && $c["method"]=="tiller" && $c["rep"]%2==0 {$c["fit_ns"]*=3; $c["eval_ns"]*=3}
-      NR>1 && $c["method"]=="hoschek" {$c["fit_ns"]*=10; $c["eval_ns"]*=10} {print}' \
+awkc 'BEGIN{OFS=","} NR>1 && $c["method"]=="ahn" && $c["rep"]%2==0 {$c["fit_ns"]*=3; $c["eval_ns"]*=3}
+      NR>1 && $c["method"]=="zhao-rational" {$c["fit_ns"]*=10; $c["eval_ns"]*=10} {print}' \
     "$mdir/published/samples.csv" > "$T/s.csv" && mv "$T/s.csv" "$mdir/published/samples.csv"
 OFFBENCH_LOADAVG=$T/idle NIGHTLY_RERUNS=2 nightly "$T/r1"
-check '[ $rc -eq 0 ] && [ -f "$T/r1/published-rerun1/results.csv" ] && [ -f "$T/r1/published-rerun2/results.csv" ] && [ ! -e "$T/r1/published-rerun3" ]' \
+check '[ $rc -eq 0 ] && [ -f "$T/r1/reruns/1/results.csv" ] && [ -f "$T/r1/reruns/2/results.csv" ] && [ ! -e "$T/r1/reruns/3" ]' \
     "a noisy method is run again twice: $rc $(ls "$T/r1")"
-check 'grep -q "nightly: re-running the methods too noisy to judge: tiller (1 of 2)" "$T/r1.err" && ! awkc "\$c[\"method\"]==\"hoschek\"" "$T/r1/published-rerun1/results.csv" | grep -q .' \
+check 'grep -q "nightly: re-running the methods too noisy to judge: ahn (1 of 2)" "$T/r1.err" && ! awkc "\$c[\"method\"]==\"zhao-rational\"" "$T/r1/reruns/1/results.csv" | grep -q .' \
     "only the noisy method is run again: $(grep re-running "$T/r1.err")"
-check 'grep -q "^| tiller | .* | not judged: noisy | .* | re-run 2 |" "$T/r1/report.md"' \
-    "the verdict table says which run decided: $(grep "^| tiller |" "$T/r1/report.md" | head -n 1)"
-check 'grep -q "^| hoschek | .* | faster | .* | first run |" "$T/r1/report.md"' \
-    "hoschek judged on the first run: $(grep "^| hoschek |" "$T/r1/report.md" | head -n 1)"
+check 'grep -q "^| ahn | .* | not judged: noisy | .* | re-run 2 |" "$T/r1/report.md"' \
+    "the verdict table says which run decided: $(grep "^| ahn |" "$T/r1/report.md" | head -n 1)"
+check 'grep -q "^| zhao-rational | .* | faster | .* | first run |" "$T/r1/report.md"' \
+    "zhao-rational judged on the first run: $(grep "^| zhao-rational |" "$T/r1/report.md" | head -n 1)"
 
 # --- the usage ---
 $NS --reruns x >/dev/null 2>"$T/err"
