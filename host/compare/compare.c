@@ -223,13 +223,13 @@ static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res
     if (strcmp(v, "same") == 0)
         return 0;
     if (strcmp(v, "noisy") == 0 || strcmp(v, "few_reps") == 0) {
-        if (*v == 'n')
+        if (strcmp(v, "noisy") == 0)
             r->t_noisy++;
         else
             r->t_few_reps++;
         return add_change_ci(r, OB_CH_NOT_JUDGED, "time", b, n, ratio, p, lo, hi, v);
     }
-    const ob_ch_kind k = *v == 's' ? OB_CH_REGRESSION : OB_CH_IMPROVEMENT;
+    const ob_ch_kind k = strcmp(v, "slower") == 0 ? OB_CH_REGRESSION : OB_CH_IMPROVEMENT;
     if (k == OB_CH_REGRESSION)
         r->t_reg++, m->regressions += r->t_rows_count;
     else
