@@ -143,9 +143,12 @@ int ob_cmp_context(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_
 int ob_cmp_rows(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
                 ob_err *err);
 
-/* Exit status of a finished comparison: 3 not comparable (or, with
- * --strict-timing, timings that could not be judged: r->strict), 1 a
- * regression (quality, timing of a row or a method, a missing row), else 0. */
+/* Exit status of a finished comparison: 3 not comparable (or timings that
+ * could not be judged: too few repetitions for any change to be
+ * significant, or, with --strict-timing, anything not judged: r->strict),
+ * 1 a regression (quality, timing of a row or a method, a missing row),
+ * else 0.  Timings not judged for another machine or a busy one add
+ * nothing (r->tstate says why). */
 int ob_cmp_status(const ob_cmp_result *r);
 
 void ob_cmp_result_free(ob_cmp_result *r);
