@@ -9,7 +9,8 @@
  * Exit status: 0 no regression; 1 a regression (quality, timing, or a row of
  * BASE missing from NEW); 2 an error (unreadable or missing file, malformed
  * CSV or JSON, missing column, duplicate job, bad option: the message names
- * FILE:LINE or the option); 3 not comparable.
+ * FILE:LINE or the option); 3 not comparable (or timings that cannot be
+ * judged for too few repetitions, or with --strict-timing not judged).
  *
  * Comparability (exit 3; every reason is printed, on stderr and in the
  * report).  When both meta.json exist: samples_per_segment, max_depth,
@@ -27,9 +28,16 @@
  * meta.json on a side, quality and timings are compared and a note says that
  * comparability could not be checked.
  *
- * Timing context: when compiler, cflags, backend, opencl.device,
- * opencl.driver, omp_threads or cpu_model differ, timings are not compared (the report
- * lists the differing values); quality still is.
+ * Timing context (compare_context.c): timings are judged only when both
+ * runs have a meta.json, both record a machine (meta.json "machine",
+ * hostinfo.h) with the same id, logical cores and memory (within 5 %),
+ * compiler, cflags, backend, opencl.device, opencl.driver, omp_threads and
+ * cpu_model agree, and neither run's load average (host.loadavg_max)
+ * exceeded its cores (host.cores_used).  Otherwise the report's "Timing:"
+ * line says "not judged: baseline from machine 'X' (id ...), this is 'Y'
+ * (id ...)" (or which key differs, or "not judged: noisy: NEW's load average
+ * reached L on its C cores"), stderr says it too, and timing adds nothing to
+ * the exit status; quality is judged all the same.
  *
  * Join: rows are matched on (curve, d, method, metric, split, tol), d and tol
  * as doubles.  A row of BASE missing from NEW is a regression (a lost job); a
@@ -51,37 +59,47 @@
  *
  * Timing of a joined row: t = fit_ns + eval_ns (the medians of the
  * repetitions when the run had --reps).  Judged only when timings are
- * compared, the statuses are equal and both t >= --time-floor-ns (shorter
- * jobs are timer noise).  A regression when new/base > 1 + --time-threshold
- * and, when both sides have at least 2 repetitions of the row in
- * samples.csv, the two-sided Mann–Whitney U test (ranktest.h) of the
- * per-repetition t values gives p < --alpha; without those samples the
- * threshold alone decides (the report counts such rows).  An improvement
- * symmetrically (base/new > 1 + threshold, same test).  Note: with 3
- * repetitions per side the smallest exact two-sided p is 0.1, so at least 4
- * per side are needed to reject at 0.05; the report says so when fewer.
+ * judged (above), the statuses are equal and both t >= --time-floor-ns
+ * (shorter jobs are timer noise).  With at least 2 repetitions of the row on
+ * both sides (samples.csv) the ratio new/base is the Hodges-Lehmann estimate
+ * of the log times' shift and its interval is that estimate's own Moses
+ * interval at level 1 - alpha (hlshift.h: the interval that inverts the
+ * Mann-Whitney test of ranktest.h, whose p is reported too), and the
+ * verdict (band = 1 + --time-threshold):
+ *   - no bounded interval: not judged, few_reps;
+ *   - estimate beyond the band (above it, or below 1 / band): slower /
+ *     faster when the interval excludes 1 on that side and is no wider
+ *     than the change it reports (log(hi / lo) <= |log estimate|), else not
+ *     judged, noisy: repetitions that spread wider than the change cannot
+ *     tell it;
+ *   - estimate within the band: no change when hi / lo <= band^2, else not
+ *     judged, noisy.
+ * Without those samples the ratio of the two times and the threshold alone
+ * decide (the report counts such rows).  Slower is a regression, faster an
+ * improvement.
+ *
+ * Too few repetitions: when both runs have repetitions and the smallest
+ * two-sided p of the rank test, 2 / C(n + m, n), is not below --alpha (3 + 3
+ * at 0.05: 0.1), no change could be significant: timings are not judged and
+ * the comparison exits 3 with "too few repetitions to judge timing: need N
+ * per side" (N the smallest count per side that can reach alpha) instead
+ * of passing what it cannot see.
  *
  * Per method: geometric means over its joined rows of new/base of
  * ctrl_points (rows where both > 0), of max_err (both finite and > 0) and of
- * t (rows judged for timing).  A method is slower (a regression, exit 1) when
- * its time mean > 1 + threshold and, with repetitions on both sides, the
- * Mann–Whitney test on its per-repetition totals gives p < alpha; a total is
- * the sum of t over the method's rows judged for timing (the rows its time
- * mean covers), for each repetition that all those rows have.  Faster
- * symmetrically (reported, not a regression).
+ * t (rows judged for timing; informational).  Its timing is one claim from
+ * one statistic: its total, the sum of t over its rows judged for timing,
+ * for each repetition that all those rows have; with at least 2 such
+ * totals per side, the HL estimate of new/base with its own interval and
+ * the verdict as for a row (p: the rank test on the totals); without, the
+ * ratio of the summed times and the threshold.  Slower is a regression
+ * (exit 1), faster an improvement.
  *
- * Intervals: each timing ratio with repetitions on both sides (>= 2) gets a
- * confidence interval at level 1 - alpha: the Hodges–Lehmann shift of the
- * log times of NEW's repetitions against BASE's with its Moses interval
- * (hlshift.h; not a bootstrap); per method the same on the per-repetition
- * totals.  A row that is no change by the rules above is "not judged" when
- * its interval is unbounded (few_reps: too few repetitions for alpha) or
- * wider than hi / lo > (1 + --time-threshold)^2 (noisy); a method likewise
- * (and no_samples when it has no 2 complete repetitions per side).
  * --strict-timing: timings that could not be judged make the exit status 3
- * (timings not compared for the timing context, rows judged by the threshold
- * alone for want of repetitions, rows not judged, methods not judged; with
- * --method-timing-only only the methods), the report lists each reason.
+ * (timings not judged for the machine, context or load, rows judged by the
+ * threshold alone for want of repetitions, rows not judged, methods not
+ * judged; with --method-timing-only only the methods), the report lists
+ * each reason.
  *
  * Options: --format md|csv|json (md), --out FILE (stdout; written through
  * FILE.tmp and a rename), --err-rtol R (1e-9), --err-atol A (1e-15),
@@ -90,17 +108,26 @@
  * (row-level timing changes are listed but only the per-method verdicts
  * count for the exit status: with thousands of rows, a few pass the rank
  * test by chance and a nightly would fail on noise; the per-method totals
- * do not have that multiplicity), --strict-timing (not with --no-timing).  "--opt=value" works too.
+ * do not have that multiplicity), --strict-timing (not with --no-timing),
+ * --timing-only (timings alone: quality changes, missing and new rows are
+ * not judged; not with --no-timing), --methods LIST (only these methods'
+ * rows on both sides; a name neither run has is an error).  "--opt=value"
+ * works too.
  *
- * Markdown report: the two inputs, a verdict line with the counts (joined
- * rows, regressions: quality / timing / missing rows, improvements, new and
- * missing rows, methods slower / faster), the context (comparability, timing
- * context, how timings were judged, notes), then the tables Regressions,
- * Missing rows, Improvements, New rows (each capped at --max-rows, saying how
- * many were left out) and the per-method table (method, joined rows,
- * geometric means of new/base of ctrl_points, max_err and time, p of the
- * method test, row regressions, row improvements, verdict).  When not
- * comparable: the inputs and the reasons only.
+ * Markdown report, the verdict first: the verdict line with the counts
+ * (joined rows, regressions: quality / timing / missing rows, improvements,
+ * new and missing rows, methods slower / faster), the "Timing:" line
+ * (judged on the same machine, with the per-method counts, or why not),
+ * then the table that decides it, "Verdict by method" (method, joined rows,
+ * geometric means of ctrl_points and max_err, row regressions and
+ * improvements that count, time base and new, new/base and its interval, p,
+ * timing verdict, verdict), the Regressions and Missing rows tables (what
+ * counts), the context (the inputs, comparability, how timings were judged,
+ * notes), and last, in a collapsed <details> section, what does not count:
+ * improvements, new rows, row-level timing changes under
+ * --method-timing-only, rows not judged.  Each table is capped at
+ * --max-rows, saying how many were left out.  When not comparable: the
+ * verdict, the inputs and the reasons only.
  *
  * CSV report (long format, one line per change, header
  * kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value,ci_lo,
@@ -108,34 +135,41 @@
  * unbounded, empty without; note as below):
  *   regression|improvement  a row's change: field status, ctrl_points,
  *                           max_err or time (t in ns); base and new values;
- *                           ratio new/base (not for status); p_value when
- *                           the rank test was run.  A method's timing
- *                           verdict: curve, d, metric, split, tol empty,
- *                           field time_gm, ratio the geometric mean.
+ *                           ratio new/base (not for status; for a time with
+ *                           repetitions the HL estimate); p_value when the
+ *                           rank test was run.  A method's timing verdict:
+ *                           curve, d, metric, split, tol empty, field
+ *                           time_total, as its method line below.
  *   missing                 a row of BASE not in NEW: field status, base its status
  *   new                     a row only in NEW: field status, new its status
  *   method                  per method: fields ctrl_points_gm, max_err_gm and
  *                           time_gm with the geometric mean in ratio (empty
- *                           when there is none) and, for time_gm, the p-value
+ *                           when there is none); where its timing was
+ *                           judged, time_total: base and new its time (ns),
+ *                           ratio the estimate, p_value, ci_lo and ci_hi
+ *                           that estimate's interval, note the verdict
+ *                           (slower, faster, same, noisy, few_reps)
  *   not_judged              a row's time not judged: field time, base and
  *                           new, ratio, p_value, interval, note noisy or
  *                           few_reps
- *   context                 field not_comparable, timing_not_compared,
- *                           timing_not_judged (--strict-timing) or note;
- *                           the text in base
- * A method's time_gm line has the note of its timing not judged (noisy,
- * few_reps, no_samples) where it was not.
+ *   context                 field not_comparable, timing_not_compared (why
+ *                           timings were not judged; note noisy for a load),
+ *                           timing_not_judged (exit 3: too few repetitions,
+ *                           or --strict-timing), note, or timing (the
+ *                           report's "Timing:" line); the text in base
  * d and tol are written as in the input file; numbers in full precision.
  * When not comparable only the context lines follow the header.
  *
  * JSON report (compare_json.c): one object, keys program, status, verdict
  * (ok, regression, not_comparable, timing_not_judged), base and new (results
- * path, rows, meta, git_commit, git_dirty, timestamp, cpu_model,
- * repetitions), options, context (checked, timing_compared, interval,
- * noise_width, and the lists not_comparable, timing_not_compared,
- * timing_not_judged, notes), counts, changes (the CSV's change lines as
- * objects: d and tol as numbers, base and new typed, null for none) and
- * methods; numbers that are not finite are null.
+ * path, rows, meta, git_commit, git_dirty, timestamp, cpu_model, machine,
+ * machine_id, repetitions), options, context (checked, timing_compared,
+ * timing (the "Timing:" line), interval, noise_width, and the lists
+ * not_comparable, timing_not_compared, timing_not_judged, notes), counts,
+ * changes (the CSV's change lines as objects: d and tol as numbers, base and
+ * new typed, null for none) and methods (with time_base_ns, time_new_ns,
+ * time_estimate, ci_lo, ci_hi, p_value and timing, the verdict); numbers
+ * that are not finite are null.
  */
 #include <math.h>
 #include <stdio.h>
@@ -171,7 +205,7 @@ static int num_opt(const char *opt, const char *v, double lo, double hi, int ope
 }
 
 enum { CO_FORMAT, CO_OUT, CO_ERR_RTOL, CO_ERR_ATOL, CO_TIME_THRESHOLD, CO_TIME_FLOOR, CO_ALPHA, CO_MAX_ROWS,
-       CO_NO_TIMING, CO_METHOD_TIMING, CO_STRICT_TIMING };
+       CO_NO_TIMING, CO_METHOD_TIMING, CO_STRICT_TIMING, CO_TIMING_ONLY, CO_METHODS };
 
 static const ob_flag compare_flags[] = {
     {"format", "md|csv|json", "the report's format (default md)", CO_FORMAT, OB_FLAG_ONCE},
@@ -186,6 +220,9 @@ static const ob_flag compare_flags[] = {
     {"method-timing-only", NULL, "judge timing per method only, not per job", CO_METHOD_TIMING, OB_FLAG_ONCE},
     {"strict-timing", NULL, "exit 3 when timings could not be judged (no repetitions, too noisy)", CO_STRICT_TIMING,
      OB_FLAG_ONCE},
+    {"timing-only", NULL, "judge the timings only (quality, missing and new rows not judged)", CO_TIMING_ONLY,
+     OB_FLAG_ONCE},
+    {"methods", "LIST", "compare only these methods' rows (comma separated)", CO_METHODS, OB_FLAG_ONCE},
 };
 
 static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
@@ -221,6 +258,14 @@ static int apply_compare_flag(void *ctx, int id, const char *opt, const char *v)
         return 0;
     case CO_NO_TIMING: o->c.no_timing = 1; return 0;
     case CO_STRICT_TIMING: o->c.strict_timing = 1; return 0;
+    case CO_TIMING_ONLY: o->c.timing_only = 1; return 0;
+    case CO_METHODS:
+        if (!*v || strspn(v, ",") || strstr(v, ",,") || v[strlen(v) - 1] == ',') {
+            ob_error("--methods: expected method names separated by commas, got '%s'", v);
+            return -1;
+        }
+        o->c.methods = v;
+        return 0;
     default: o->c.method_timing_only = 1; return 0;
     }
 }
@@ -246,6 +291,10 @@ static int parse_opts(int argc, char **argv, cmd_opts *o)
     }
     if (o->c.strict_timing && o->c.no_timing) {
         ob_error("compare: --strict-timing asks for timings to be judged, --no-timing for them not to be: pick one");
+        return -1;
+    }
+    if (o->c.timing_only && o->c.no_timing) {
+        ob_error("compare: --timing-only judges the timings alone, --no-timing no timings: pick one");
         return -1;
     }
     o->in[0] = pos[0];
@@ -304,8 +353,8 @@ int ob_cmd_compare(int argc, char **argv)
     memset(&r, 0, sizeof r);
     ob_err err;
     int status = 2;
-    if (ob_cmp_load_side(o.in[0], "BASE", &b, &err) ||
-        ob_cmp_load_side(o.in[1], "NEW", &n, &err) || ob_cmp_context(&b, &n, &o.c, &r, &err) ||
+    if (ob_cmp_load_side(o.in[0], "BASE", &b, &err) || ob_cmp_load_side(o.in[1], "NEW", &n, &err) ||
+        ob_cmp_check_methods(&b, &n, &o.c, &err) || ob_cmp_context(&b, &n, &o.c, &r, &err) ||
         (r.incomparable.n == 0 && ob_cmp_rows(&b, &n, &o.c, &r, &err))) {
         ob_error("compare: %s", err.msg);
         goto done;
@@ -313,7 +362,12 @@ int ob_cmd_compare(int argc, char **argv)
     for (int i = 0; i < r.incomparable.n; i++)
         ob_error("not comparable: %s", r.incomparable.v[i]);
     for (int i = 0; i < r.strict.n; i++)
-        ob_error("timing not judged (--strict-timing): %s", r.strict.v[i]);
+        ob_error("timing not judged%s: %s", o.c.strict_timing ? " (--strict-timing)" : "", r.strict.v[i]);
+    if (!r.incomparable.n && (r.tstate == OB_TIMING_MACHINE || r.tstate == OB_TIMING_NOISY)) {
+        char timing[2048];  /* what the report's "Timing:" line says, for the log */
+        ob_cmp_timing_text(&b, &n, &o.c, &r, 0, timing, sizeof timing);
+        ob_warn("timings %s", timing);
+    }
     const char *const inputs[] = {o.in[0], o.in[1], b.results_path, b.meta_path, b.samples_path,
                                   n.results_path, n.meta_path, n.samples_path};
     if (o.out && ob_check_out_not_input("compare", o.out, 0, inputs, sizeof inputs / sizeof inputs[0]) != 0)

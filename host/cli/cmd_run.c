@@ -68,6 +68,30 @@ static int setup_ranks(run_cmd *r)
 
 /* The curves, their offset degrees, the jobs and the hashes that identify
  * them; then this process's shard. */
+/* The test hook OFFBENCH_TEST_SLOW=METHOD:FACTOR (driver.h): read once,
+ * before any work.  0, or -1 after ob_error() when it is malformed. */
+static int test_slow_hook(ob_driver_opts *d)
+{
+    const char *v = getenv("OFFBENCH_TEST_SLOW");
+    if (!v || !*v)
+        return 0;
+    const char *colon = strrchr(v, ':');
+    char name[64], *end;
+    const long k = colon ? strtol(colon + 1, &end, 10) : 0;
+    if (colon && colon - v < (long)sizeof name)
+        snprintf(name, sizeof name, "%.*s", (int)(colon - v), v);
+    else
+        name[0] = '\0';
+    d->test_slow_method = name[0] ? ob_method_find(name) : NULL;
+    if (!d->test_slow_method || k < 1 || k > 1000 || *end) {
+        ob_error("OFFBENCH_TEST_SLOW: expected METHOD:FACTOR (a method and a whole number 1..1000), got '%s'", v);
+        return -1;
+    }
+    d->test_slow_factor = (int)k;
+    ob_warn("test hook OFFBENCH_TEST_SLOW: every fit of %s is done %d times", name, d->test_slow_factor);
+    return 0;
+}
+
 static int plan_run(run_cmd *r)
 {
     const ob_run_opts *o = &r->o;
@@ -85,6 +109,9 @@ static int plan_run(run_cmd *r)
         ob_error("no jobs: the selected curves have no offsets");
         return 2;
     }
+    for (size_t i = 0; o->driver.test_slow_method && i < r->njobs; i++)
+        if (r->jobs[i].method == o->driver.test_slow_method)
+            r->jobs[i].test_fit_repeat = o->driver.test_slow_factor;
     r->rec.data_hash = ob_curves_hash(o, &r->set);
     char *fp = ob_run_fingerprint(o, r->where, r->rec.data_hash);
     if (!fp) {
@@ -261,7 +288,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         const char *oom = getenv("OFFBENCH_TEST_OOM_AFTER");  /* test hook (driver.h) */
         if (oom && *oom)
             r.o.driver.test_oom_after = strtol(oom, NULL, 10);
-        st = setup_ranks(&r);
+        st = test_slow_hook(&r.o.driver) ? 2 : setup_ranks(&r);
     }
     if (st == GO_ON)
         st = plan_run(&r);

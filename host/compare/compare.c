@@ -46,24 +46,68 @@ double ob_cmp_noise_width(const ob_cmp_opts *o)
     return (1 + o->time_threshold) * (1 + o->time_threshold);
 }
 
-/* The interval of new/base from the repetitions xn[0..kn), xb[0..kb): HL on
- * log times (hlshift.h; a time under 1 ns counts as 1 ns, so that its log is
- * finite).  Overwrites xn and xb with their logs.  Returns NULL when the
- * interval is bounded and narrow enough to judge, else "few_reps" or
- * "noisy". */
-static const char *time_interval(double *xn, int kn, double *xb, int kb, const ob_cmp_opts *o, double *lo,
-                                 double *hi)
+/* The Hodges-Lehmann estimate of new/base and its interval from the
+ * repetitions xn[0..kn), xb[0..kb) (hlshift.h, on log times; a time under
+ * 1 ns counts as 1 ns, so that its log is finite): the estimate and the
+ * interval are of the same statistic, so the estimate always lies inside.
+ * Overwrites xn and xb with their logs.  Returns 1 when the interval is
+ * bounded, 0 when there are too few repetitions for one at alpha. */
+static int hl_time(double *xn, int kn, double *xb, int kb, const ob_cmp_opts *o, double *est, double *lo, double *hi)
 {
     for (int i = 0; i < kn; i++)
         xn[i] = log(xn[i] > 1 ? xn[i] : 1);
     for (int j = 0; j < kb; j++)
         xb[j] = log(xb[j] > 1 ? xb[j] : 1);
     const ob_hl_result h = ob_hl_shift(xn, kn, xb, kb, o->alpha);
+    *est = exp(h.est);
     *lo = exp(h.lo);
     *hi = exp(h.hi);
-    if (!h.k || !isfinite(h.lo) || !isfinite(h.hi))
+    return h.k > 0 && isfinite(h.lo) && isfinite(h.hi) && isfinite(h.est);
+}
+
+/* The timing verdict of an estimate est of new/base with its interval
+ * [lo, hi] (bounded: hl_time), band = 1 + time_threshold:
+ *   - no bounded interval: "few_reps";
+ *   - est beyond the band (est > band or est < 1 / band): "slower" /
+ *     "faster" when the interval excludes 1 on the same side (significant,
+ *     as the rank test the interval inverts) and is no wider than the change
+ *     it reports (log(hi / lo) <= |log est|), else "noisy";
+ *   - est within the band: "same" when hi / lo <= band^2 (the interval no
+ *     wider than the band of ratios that count as unchanged), else "noisy".
+ * So the repetitions of a run decide only when their spread is smaller than
+ * what they would report. */
+static const char *time_verdict(double est, double lo, double hi, int bounded, const ob_cmp_opts *o)
+{
+    const double band = 1 + o->time_threshold;
+    if (!bounded)
         return "few_reps";
-    return *hi / *lo > ob_cmp_noise_width(o) ? "noisy" : NULL;
+    if (est > band || est < 1 / band) {
+        const int excludes_one = est > 1 ? lo > 1 : hi < 1;
+        if (excludes_one && log(hi / lo) <= fabs(log(est)))
+            return est > 1 ? "slower" : "faster";
+        return "noisy";
+    }
+    return hi / lo <= band * band ? "same" : "noisy";
+}
+
+/* The verdict of a ratio measured once per side: the threshold alone. */
+static const char *threshold_verdict(double ratio, const ob_cmp_opts *o)
+{
+    const double band = 1 + o->time_threshold;
+    return ratio > band ? "slower" : ratio < 1 / band ? "faster" : "same";
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of x[0..n) (n >= 1); sorts x. */
+static double median_sorting(double *x, int n)
+{
+    qsort(x, (size_t)n, sizeof *x, cmp_double);
+    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
 }
 
 /* The methods of the join: r->ms grown by doubling (cap), found by name in
@@ -91,6 +135,7 @@ static int method_index(ob_cmp_result *r, method_table *t, const char *m)
     r->ms[r->nms].method = m;
     r->ms[r->nms].p = NAN;
     r->ms[r->nms].ci_lo = r->ms[r->nms].ci_hi = NAN;
+    r->ms[r->nms].t_base = r->ms[r->nms].t_new = r->ms[r->nms].t_est = NAN;
     return r->nms++;
 }
 
@@ -146,8 +191,10 @@ static int rep_values(const ob_res_row *row, int maxrep, double *x)
 
 /* Timing of a joined row; *judged = 1 when it was due to be judged (timings
  * compared, same status, both above the floor).  With repetitions on both
- * sides its interval is computed; a row that is no significant change and
- * whose interval is unbounded or too wide is listed as not judged. */
+ * sides the row's estimate is the HL ratio with its interval and
+ * time_verdict decides; without, the ratio of the two times and the
+ * threshold.  A row too noisy to judge, or with too few repetitions, is
+ * listed as not judged. */
 static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res_row *b, const ob_res_row *n,
                       const ob_cmp_opts *o, ob_cmp_result *r, ob_method_sum *m, double *xb, double *xn,
                       int *judged)
@@ -164,30 +211,29 @@ static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res
         r->t_tested++;
     else
         r->t_threshold_only++;
-    const double ratio = tn / tb;
-    double p = NAN, lo = NAN, hi = NAN;
-    const char *why = NULL;
+    double ratio = tn / tb, p = NAN, lo = NAN, hi = NAN;
+    const char *v;
     if (tested) {
         p = ob_mann_whitney(xn, kn, xb, kb).p;
-        why = time_interval(xn, kn, xb, kb, o, &lo, &hi);
+        const int bounded = hl_time(xn, kn, xb, kb, o, &ratio, &lo, &hi);
+        v = time_verdict(ratio, lo, hi, bounded, o);
+    } else {
+        v = threshold_verdict(ratio, o);
     }
-    ob_ch_kind k;
-    if (ratio > 1 + o->time_threshold && !(tested && !(p < o->alpha)))
-        k = OB_CH_REGRESSION;
-    else if (1 / ratio > 1 + o->time_threshold && !(tested && !(p < o->alpha)))
-        k = OB_CH_IMPROVEMENT;
-    else if (why) {
-        if (strcmp(why, "noisy") == 0)
+    if (strcmp(v, "same") == 0)
+        return 0;
+    if (strcmp(v, "noisy") == 0 || strcmp(v, "few_reps") == 0) {
+        if (strcmp(v, "noisy") == 0)
             r->t_noisy++;
         else
             r->t_few_reps++;
-        return add_change_ci(r, OB_CH_NOT_JUDGED, "time", b, n, ratio, p, lo, hi, why);
-    } else
-        return 0;
+        return add_change_ci(r, OB_CH_NOT_JUDGED, "time", b, n, ratio, p, lo, hi, v);
+    }
+    const ob_ch_kind k = strcmp(v, "slower") == 0 ? OB_CH_REGRESSION : OB_CH_IMPROVEMENT;
     if (k == OB_CH_REGRESSION)
-        r->t_reg++, m->regressions++;
+        r->t_reg++, m->regressions += r->t_rows_count;
     else
-        r->t_imp++, m->improvements++;
+        r->t_imp++, m->improvements += r->t_rows_count;
     return add_change_ci(r, k, "time", b, n, ratio, p, lo, hi, "");
 }
 
@@ -235,6 +281,10 @@ static int method_totals(const pair *pr, const int *grp, int ng, int new_side, i
     return k;
 }
 
+/* The timing verdict of each method: on its per-repetition totals when
+ * both sides have at least 2 complete repetitions (the HL estimate and its
+ * interval, time_verdict), else on the ratio of its summed times
+ * (method_means) by the threshold alone. */
 static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, const int *order,
                           const int *start, const ob_cmp_opts *o, ob_cmp_result *r, double *xb, double *xn)
 {
@@ -245,21 +295,24 @@ static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pa
         const int *grp = order + start[mi], ng = start[mi + 1] - start[mi];
         m->reps_base = method_totals(pr, grp, ng, 0, bs->res.maxrep, xb);
         m->reps_new = method_totals(pr, grp, ng, 1, ns->res.maxrep, xn);
-        const int tested = m->reps_base >= 2 && m->reps_new >= 2;
-        if (tested) {
+        if (m->reps_base >= 2 && m->reps_new >= 2) {
             m->p = ob_mann_whitney(xn, m->reps_new, xb, m->reps_base).p;
-            m->not_judged = time_interval(xn, m->reps_new, xb, m->reps_base, o, &m->ci_lo, &m->ci_hi);
+            m->t_base = median_sorting(xb, m->reps_base);
+            m->t_new = median_sorting(xn, m->reps_new);
+            const int bounded = hl_time(xn, m->reps_new, xb, m->reps_base, o, &m->t_est, &m->ci_lo, &m->ci_hi);
+            m->timing = time_verdict(m->t_est, m->ci_lo, m->ci_hi, bounded, o);
+            m->not_judged = strcmp(m->timing, "noisy") == 0 || strcmp(m->timing, "few_reps") == 0 ? m->timing : NULL;
         } else {
+            m->t_est = m->t_new / m->t_base;
+            m->timing = threshold_verdict(m->t_est, o);
             m->not_judged = "no_samples";
         }
-        if (tested && !(m->p < o->alpha))
-            continue;
-        if (m->gm_t > 1 + o->time_threshold)
+        if (strcmp(m->timing, "slower") == 0)
             m->verdict = 1, r->m_reg++;
-        else if (1 / m->gm_t > 1 + o->time_threshold)
+        else if (strcmp(m->timing, "faster") == 0)
             m->verdict = -1, r->m_imp++;
         if (m->verdict)
-            m->not_judged = NULL;  /* a significant change (or the threshold alone) was judged */
+            m->not_judged = NULL;  /* a change was judged (by the threshold alone without samples) */
     }
 }
 
@@ -295,10 +348,13 @@ static int joints_note(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair 
 static int strict_reasons(const ob_cmp_opts *o, ob_cmp_result *r)
 {
     int rc = 0;
-    if (!o->strict_timing || o->no_timing)
-        return 0;
-    if (!r->timing)
-        return ob_strlist_addf(&r->strict, "timings were not compared: the timing context differs");
+    if (!o->strict_timing || o->no_timing || r->tstate == OB_TIMING_FEW_REPS)
+        return 0;  /* (too few repetitions is in r->strict already) */
+    if (!r->timing) {
+        for (int i = 0; i < r->timing_diffs.n; i++)
+            rc |= ob_strlist_addf(&r->strict, "timings not judged: %s", r->timing_diffs.v[i]);
+        return rc;
+    }
     if (!o->method_timing_only) {
         if (r->t_threshold_only)
             rc |= ob_strlist_addf(&r->strict, "%d row(s) without at least 2 repetitions on both sides "
@@ -320,12 +376,13 @@ static int strict_reasons(const ob_cmp_opts *o, ob_cmp_result *r)
     return rc;
 }
 
-/* The geometric means of new/base of each method over its joined pairs. */
+/* The geometric means of new/base of each method over its joined pairs,
+ * and its summed times over the rows judged for timing (t_base, t_new). */
 static void method_means(const pair *pr, const int *order, const int *start, ob_cmp_result *r)
 {
     for (int mi = 0; mi < r->nms; mi++) {
         ob_method_sum *m = &r->ms[mi];
-        double s[3] = {0, 0, 0};
+        double s[3] = {0, 0, 0}, sum_b = 0, sum_n = 0;
         int c[3] = {0, 0, 0};
         for (int g = start[mi]; g < start[mi + 1]; g++) {
             const ob_res_row *b = pr[order[g]].b, *n = pr[order[g]].n;
@@ -333,14 +390,79 @@ static void method_means(const pair *pr, const int *order, const int *start, ob_
                 s[0] += log((double)n->ctrl_points / (double)b->ctrl_points), c[0]++;
             if (isfinite(b->max_err) && isfinite(n->max_err) && b->max_err > 0 && n->max_err > 0)
                 s[1] += log(n->max_err / b->max_err), c[1]++;
-            if (pr[order[g]].judged)
+            if (pr[order[g]].judged) {
                 s[2] += log((n->fit_ns + n->eval_ns) / (b->fit_ns + b->eval_ns)), c[2]++;
+                sum_b += b->fit_ns + b->eval_ns;
+                sum_n += n->fit_ns + n->eval_ns;
+            }
         }
+        m->t_base = c[2] ? sum_b : NAN;
+        m->t_new = c[2] ? sum_n : NAN;
         m->n_cp = c[0], m->n_err = c[1], m->n_t = c[2];
         m->gm_cp = c[0] ? exp(s[0] / c[0]) : NAN;
         m->gm_err = c[1] ? exp(s[1] / c[1]) : NAN;
         m->gm_t = c[2] ? exp(s[2] / c[2]) : NAN;
     }
+}
+
+/* Too few repetitions to detect anything: with n and m repetitions the
+ * smallest two-sided p of the rank test is 2 / C(n + m, n); when that is
+ * not below alpha no timing change can be significant (3 + 3 at 0.05: 0.1),
+ * and a comparison that passed would claim what it cannot see.  Then
+ * timings are not judged, and the comparison says how many repetitions are
+ * needed (r->strict: exit 3).  Runs without repetitions on both sides are
+ * judged by the threshold alone (and said to be).  0, or -1 no memory. */
+static int few_reps(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r)
+{
+    const int kb = bs->res.maxrep, kn = ns->res.maxrep;
+    if (!r->timing || !bs->has_samples || !ns->has_samples || ob_mw_min_p(kn, kb) < o->alpha)
+        return 0;
+    int need = 2;
+    while (need < 1000 && !(ob_mw_min_p(need, need) < o->alpha))
+        need++;
+    r->timing = 0;
+    r->tstate = OB_TIMING_FEW_REPS;
+    r->need_reps = need;
+    return ob_strlist_addf(&r->strict,
+                           "too few repetitions to judge timing: need %d per side (BASE has %d, NEW %d; the smallest "
+                           "two-sided p of the rank test is then %.3g, not below alpha %g: run --reps %d)",
+                           need, kb, kn, ob_mw_min_p(kn, kb), o->alpha, need);
+}
+
+int ob_cmp_method_selected(const ob_cmp_opts *o, const char *method)
+{
+    if (!o->methods)
+        return 1;
+    const size_t len = strlen(method);
+    for (const char *p = o->methods; *p;) {
+        const size_t n = strcspn(p, ",");
+        if (n == len && strncmp(p, method, n) == 0)
+            return 1;
+        p += n + (p[n] == ',');
+    }
+    return 0;
+}
+
+/* 1 when a row of t has method name[0..len). */
+static int has_method(const ob_res_table *t, const char *name, size_t len)
+{
+    for (int i = 0; i < t->n; i++)
+        if (strlen(t->v[i].method) == len && strncmp(t->v[i].method, name, len) == 0)
+            return 1;
+    return 0;
+}
+
+int ob_cmp_check_methods(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_err *err)
+{
+    for (const char *p = o->methods; p && *p;) {
+        const size_t len = strcspn(p, ",");
+        if (!has_method(&b->res, p, len) && !has_method(&n->res, p, len)) {
+            ob_fail(err, "--methods: no rows of method '%.*s' in either run", (int)(len < 100 ? len : 100), p);
+            return -1;
+        }
+        p += len + (p[len] == ',');
+    }
+    return 0;
 }
 
 int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
@@ -354,10 +476,12 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
     int np = 0, rc = -1, *order = NULL, *start = NULL;
     method_table mt = {{0}, r->nms};
     r->t_rows_count = !o->method_timing_only;
-    if (!pr || !matched || !xb || !xn)
+    if (!pr || !matched || !xb || !xn || few_reps(bs, ns, o, r) != 0)
         goto done;
     for (int i = 0; i < bt->n; i++) {
         const ob_res_row *b = &bt->v[i], *n = ob_res_find(nt, b);
+        if (!ob_cmp_method_selected(o, b->method) || (!n && o->timing_only))
+            continue;
         int mi = method_index(r, &mt, b->method);
         if (mi < 0)
             goto done;
@@ -373,12 +497,12 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
         ob_method_sum *m = &r->ms[mi];
         m->rows++;
         int judged;
-        if (judge_quality(b, n, o, r, m) || judge_time(bs, ns, b, n, o, r, m, xb, xn, &judged))
+        if ((!o->timing_only && judge_quality(b, n, o, r, m)) || judge_time(bs, ns, b, n, o, r, m, xb, xn, &judged))
             goto done;
         pr[np++] = (pair){b, n, judged, mi};
     }
-    for (int j = 0; j < nt->n; j++)
-        if (!matched[j]) {
+    for (int j = 0; j < nt->n && !o->timing_only; j++)
+        if (!matched[j] && ob_cmp_method_selected(o, nt->v[j].method)) {
             r->n_new++;
             if (add_change(r, OB_CH_NEW, "status", NULL, &nt->v[j], NAN, NAN))
                 goto done;
@@ -388,16 +512,6 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
     method_means(pr, order, start, r);
     judge_methods(bs, ns, pr, order, start, o, r, xb, xn);
     rc = joints_note(bs, ns, pr, np, r) || strict_reasons(o, r) ? -1 : 0;
-    if (rc == 0 && r->timing && bs->has_samples && ns->has_samples) {
-        int reps = bt->maxrep < nt->maxrep ? bt->maxrep : nt->maxrep, need = 2;
-        while (need < OB_MW_EXACT_MAX && !(ob_mw_min_p(need, need) < o->alpha))
-            need++;
-        if (reps < need)
-            rc = ob_strlist_addf(&r->notes,
-                                 "with %d repetition(s) per side the smallest exact two-sided p is %.3g, so no "
-                                 "timing change can reach alpha %g: at least %d per side are needed (run --reps %d)",
-                                 reps, ob_mw_min_p(reps, reps), o->alpha, need, need);
-    }
 done:
     ob_strmap_free(&mt.ix);
     free(order);

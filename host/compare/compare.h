@@ -28,6 +28,10 @@ typedef struct {
                                     verdicts count for the exit status */
     int strict_timing;           /* --strict-timing: timings that could not be
                                     judged make the comparison exit 3 */
+    int timing_only;             /* --timing-only: timings only; quality,
+                                    missing and new rows are not judged */
+    const char *methods;         /* --methods LIST: only these methods' rows
+                                    (comma separated); NULL: every method */
 } ob_cmp_opts;
 
 /* The defaults: 1e-9, 1e-15, 0.10, 1e6 ns, 0.05, 50, timings on, not strict. */
@@ -70,22 +74,44 @@ typedef struct {
     const char *note;               /* NOT_JUDGED: "noisy" or "few_reps"; else "" */
 } ob_change;
 
+/* A method's timing is one claim from one statistic: the estimate t_est of
+ * new/base of its time and the interval [ci_lo, ci_hi] of that same
+ * estimate.  With repetitions on both sides: the Hodges-Lehmann shift of
+ * the log per-repetition totals and its Moses interval (hlshift.h), t_base
+ * and t_new the medians of the totals; without: the ratio of the summed
+ * times, no interval.  timing, the verdict (compare.c, time_verdict):
+ * "slower", "faster", "same", "noisy" (the interval is too wide for the
+ * change it would report), "few_reps" (no bounded interval); NULL when
+ * timings were not judged or the method has no row to judge. */
 typedef struct {
     const char *method;
     int rows;                       /* joined rows */
     int n_cp, n_err, n_t;           /* rows in each geometric mean */
-    double gm_cp, gm_err, gm_t;     /* NAN when no row */
+    double gm_cp, gm_err, gm_t;     /* NAN when no row (gm_t: informational) */
     double p;                       /* of the per-repetition totals; NAN: not tested */
     int reps_base, reps_new;        /* totals tested */
-    int regressions, improvements;  /* row-level changes of this method */
+    int regressions, improvements;  /* row-level changes of this method that count */
     int verdict;                    /* timing: 1 regression, -1 improvement, 0 neither */
-    double ci_lo, ci_hi;            /* interval of the ratio of the totals; NAN: not tested */
+    double ci_lo, ci_hi;            /* interval of t_est; NAN: not tested */
+    double t_base, t_new, t_est;    /* the method's time (ns) and new/base; NAN: none */
+    const char *timing;             /* the timing verdict (above), or NULL */
     const char *not_judged;         /* why the method's timing was not judged, or NULL */
 } ob_method_sum;
 
+/* Whether timings were judged, and if not, why (the report's "Timing:"
+ * line): OFF --no-timing; MACHINE another or an unknown machine, or another
+ * timing context (compiler, flags, device, threads: r->timing_diffs says
+ * which); NOISY a side's load average above its cores; FEW_REPS too few
+ * repetitions for any change to be significant (exit 3). */
+typedef enum { OB_TIMING_JUDGED, OB_TIMING_OFF, OB_TIMING_MACHINE, OB_TIMING_NOISY, OB_TIMING_FEW_REPS } ob_timing_state;
+
 typedef struct {
     ob_strlist incomparable;        /* reasons: exit 3 */
-    ob_strlist timing_diffs;        /* "compiler: A vs B": timings not compared */
+    ob_strlist timing_diffs;        /* why timings were not judged: another
+                                       machine, "compiler: A vs B", a load above
+                                       the cores (tstate says which kind) */
+    ob_timing_state tstate;
+    int need_reps;                  /* FEW_REPS: repetitions needed per side */
     ob_strlist notes;               /* everything else the reader should know */
     int checked;                    /* both meta.json present */
     int timing;                     /* timings compared */
@@ -117,9 +143,12 @@ int ob_cmp_context(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_
 int ob_cmp_rows(const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o, ob_cmp_result *r,
                 ob_err *err);
 
-/* Exit status of a finished comparison: 3 not comparable (or, with
- * --strict-timing, timings that could not be judged: r->strict), 1 a
- * regression (quality, timing of a row or a method, a missing row), else 0. */
+/* Exit status of a finished comparison: 3 not comparable (or timings that
+ * could not be judged: too few repetitions for any change to be
+ * significant, or, with --strict-timing, anything not judged: r->strict),
+ * 1 a regression (quality, timing of a row or a method, a missing row),
+ * else 0.  Timings not judged for another machine or a busy one add
+ * nothing (r->tstate says why). */
 int ob_cmp_status(const ob_cmp_result *r);
 
 void ob_cmp_result_free(ob_cmp_result *r);
@@ -134,10 +163,28 @@ int ob_cmp_write_csv(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, co
 int ob_cmp_write_json(FILE *f, const ob_cmp_side *base, const ob_cmp_side *nw, const ob_cmp_opts *o,
                       const ob_cmp_result *r);
 
-/* The timing interval's width limit: a row (or method) whose interval
- * hi / lo exceeds (1 + time_threshold)^2 - wider than the band of ratios
- * that count as unchanged - is too noisy to judge. */
+/* The timing interval's width limit: an estimate within the threshold is
+ * "same" only when its interval's hi / lo is at most (1 + time_threshold)^2
+ * (no wider than the band of ratios that count as unchanged); wider, it is
+ * too noisy to judge. */
 double ob_cmp_noise_width(const ob_cmp_opts *o);
+
+/* Purpose: the report's timing line (without "Timing: "), e.g. "judged:
+ *          the same machine 'vm' (id ...); per method 1 slower, ..." or
+ *          "not judged: baseline from machine 'a' (id ...), this is 'b' (id
+ *          ...)"; md: with Markdown emphasis on what was not judged.
+ * Outputs: the text in buf (cut to len). */
+void ob_cmp_timing_text(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, const ob_cmp_result *r,
+                        int md, char *buf, size_t len);
+
+/* 1 when --methods selects method (or there is no --methods). */
+int ob_cmp_method_selected(const ob_cmp_opts *o, const char *method);
+
+/* Purpose: check --methods against the runs: every method named must have
+ *          rows on a side.
+ * Errors:  returns 0; -1 with "--methods: no rows of method 'M' in either
+ *          run" in err->msg. */
+int ob_cmp_check_methods(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_err *err);
 
 /* Adds a formatted string to l; 0 or -1 (no memory). */
 int ob_strlist_addf(ob_strlist *l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

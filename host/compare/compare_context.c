@@ -8,6 +8,7 @@
 #include "methods/method.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,7 +19,7 @@ ob_cmp_opts ob_cmp_defaults(void)
 {
     ob_cmp_opts o = {.err_rtol = 1e-9, .err_atol = 1e-15, .time_threshold = 0.10, .time_floor_ns = 1e6,
                      .alpha = 0.05, .max_rows = 50, .no_timing = 0, .method_timing_only = 0,
-                     .strict_timing = 0};
+                     .strict_timing = 0, .timing_only = 0, .methods = NULL};
     return o;
 }
 
@@ -311,29 +312,78 @@ static int is_mixed(const ob_json_flat *meta, const char *key)
     return e && e->type == OB_JSON_STRING && strcmp(e->value, "mixed") == 0;
 }
 
-int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
+/* A string of a side's meta.json, or "?". */
+static const char *meta_str(const ob_cmp_side *s, const char *key)
 {
-    static const char *const same[] = {"samples_per_segment", "max_depth", "max_segments", "inflection_split",
-                                       "seed"};
+    const ob_json_entry *e = ob_json_get(&s->meta, key);
+    return e ? e->value : "?";
+}
+
+/* The machines (meta.json "machine", hostinfo.h): timings are judged only
+ * between runs of one machine id with the same logical cores and memory
+ * (within 5 %: MemTotal moves a little with the kernel); the CPU model and
+ * the device are among the timing context keys.  Why not, into
+ * r->timing_diffs.  0, or -1 no memory. */
+static int machine_check(const ob_cmp_side *b, const ob_cmp_side *n, ob_cmp_result *r)
+{
+    const ob_json_entry *ib = ob_json_get(&b->meta, "machine.id"), *in = ob_json_get(&n->meta, "machine.id");
+    if (!ib || !in)
+        return ob_strlist_addf(&r->timing_diffs, "%s record%s no machine (a meta.json from before offbench recorded "
+                               "one)", !ib && !in ? "BASE and NEW" : !ib ? b->label : n->label, !ib && !in ? "" : "s");
+    if (is_mixed(&b->meta, "machine.id") || is_mixed(&n->meta, "machine.id"))
+        return ob_strlist_addf(&r->timing_diffs, "%s ran on several machines (merged shards: meta.json \"shards\")",
+                               is_mixed(&b->meta, "machine.id") ? b->label : n->label);
+    if (!ob_json_same(ib, in))
+        return ob_strlist_addf(&r->timing_diffs, "baseline from machine '%s' (id %s), this is '%s' (id %s)",
+                               meta_str(b, "machine.name"), ib->value, meta_str(n, "machine.name"), in->value);
+    int rc = 0;
+    const ob_json_entry *cb = ob_json_get(&b->meta, "machine.logical_cores"),
+                        *cn = ob_json_get(&n->meta, "machine.logical_cores");
+    if (!ob_json_same(cb, cn))
+        rc |= ob_strlist_addf(&r->timing_diffs, "machine '%s' changed: logical_cores %s vs %s",
+                              meta_str(n, "machine.name"), shown(cb), shown(cn));
+    const ob_json_entry *mb = ob_json_get(&b->meta, "machine.memory_mib"),
+                        *mn = ob_json_get(&n->meta, "machine.memory_mib");
+    const double xb = mb ? strtod(mb->value, NULL) : 0, xn = mn ? strtod(mn->value, NULL) : 0;
+    if (!(xb > 0 && xn > 0 && fabs(xb - xn) <= 0.05 * fmax(xb, xn)) && !ob_json_same(mb, mn))
+        rc |= ob_strlist_addf(&r->timing_diffs, "machine '%s' changed: memory_mib %s vs %s",
+                              meta_str(n, "machine.name"), shown(mb), shown(mn));
+    return rc;
+}
+
+/* A run whose 1-minute load average exceeded the cores it used shared the
+ * CPUs with other work (its own threads count in the load): its timings are
+ * noise.  Why, into r->timing_diffs.  0, or -1 no memory. */
+static int load_check(const ob_cmp_side *s, ob_cmp_result *r)
+{
+    const ob_json_entry *l = ob_json_get(&s->meta, "host.loadavg_max"), *c = ob_json_get(&s->meta, "host.cores_used");
+    if (!l || !c || l->type != OB_JSON_NUMBER || c->type != OB_JSON_NUMBER)
+        return 0;
+    const double load = strtod(l->value, NULL), cores = strtod(c->value, NULL);
+    if (!(load > cores))
+        return 0;
+    return ob_strlist_addf(&r->timing_diffs, "%s's load average reached %.2f on its %.0f core%s", s->label, load,
+                           cores, cores == 1 ? "" : "s");
+}
+
+/* Whether timings can be judged (after the comparability checks): both
+ * meta.json present, one machine, one timing context (timing keys), then
+ * both runs quiet.  Sets r->timing and r->tstate; 0, or -1 no memory. */
+static int timing_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r)
+{
     static const char *const timing[] = {"compiler", "cflags", "backend", "opencl.device", "opencl.driver",
                                          "omp_threads", "cpu_model"};
-    ob_strmap cols[2][NCOLS];
-    memset(cols, 0, sizeof cols);
     int rc = 0;
-    for (int side = 0; side < 2; side++)
-        for (int col = 0; col < NCOLS && !rc; col++)
-            rc = distinct(side ? &n->res : &b->res, col, &cols[side][col]);
-    r->checked = !rc && b->has_meta && n->has_meta;
     r->timing = !o->no_timing;
-    if (r->checked) {
-        for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
-            const ob_json_entry *eb = ob_json_get(&b->meta, same[k]), *en = ob_json_get(&n->meta, same[k]);
-            if (!ob_json_same(eb, en))
-                rc |= ob_strlist_addf(&r->incomparable, "%s %s vs %s", same[k], shown(eb), shown(en));
-        }
-        rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_params", r);
-        rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_versions", r);
-        rc |= check_identity(b, n, r);
+    r->tstate = o->no_timing ? OB_TIMING_OFF : OB_TIMING_JUDGED;
+    if (o->no_timing)
+        return 0;
+    if (!b->has_meta || !n->has_meta)
+        rc |= ob_strlist_addf(&r->timing_diffs, "%s ha%s no meta.json: the machine is unknown",
+                              !b->has_meta && !n->has_meta ? "BASE and NEW" : !b->has_meta ? b->label : n->label,
+                              !b->has_meta && !n->has_meta ? "ve" : "s");
+    else {
+        rc |= machine_check(b, n, r);
         for (size_t k = 0; k < sizeof timing / sizeof timing[0]; k++) {
             const ob_json_entry *eb = ob_json_get(&b->meta, timing[k]), *en = ob_json_get(&n->meta, timing[k]);
             const int mixed = is_mixed(&b->meta, timing[k]) || is_mixed(&n->meta, timing[k]);
@@ -343,8 +393,89 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
                                       is_mixed(&n->meta, timing[k]) ? "mixed" : shown(en),
                                       mixed ? " (merged shards that differ: meta.json \"shards\")" : "");
         }
-        if (r->timing_diffs.n)
-            r->timing = 0;
+    }
+    if (r->timing_diffs.n) {
+        r->timing = 0;
+        r->tstate = OB_TIMING_MACHINE;
+        return rc;
+    }
+    rc |= load_check(b, r) | load_check(n, r);
+    if (r->timing_diffs.n) {
+        r->timing = 0;
+        r->tstate = OB_TIMING_NOISY;
+    }
+    return rc;
+}
+
+/* "a; b; c": the list l joined, into buf at used (cut to len). */
+static size_t join_list(char *buf, size_t len, size_t used, const ob_strlist *l)
+{
+    for (int i = 0; i < l->n && used < len; i++)
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? "; " : "", l->v[i]);
+    return used;
+}
+
+void ob_cmp_timing_text(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, const ob_cmp_result *r,
+                        int md, char *buf, size_t len)
+{
+    const char *em = md ? "**" : "";
+    size_t used = 0;
+    (void)o;
+    switch (r->tstate) {
+    case OB_TIMING_OFF:
+        snprintf(buf, len, "not compared (--no-timing)");
+        return;
+    case OB_TIMING_MACHINE:
+    case OB_TIMING_NOISY:
+        used = (size_t)snprintf(buf, len, "%snot judged%s%s: ", em, r->tstate == OB_TIMING_NOISY ? ": noisy" : "", em);
+        join_list(buf, len, used < len ? used : len, &r->timing_diffs);
+        return;
+    case OB_TIMING_FEW_REPS:
+        snprintf(buf, len, "%stoo few repetitions to judge timing: need %d per side%s (BASE has %d, NEW %d: no "
+                 "change could be significant at alpha %g)", em, r->need_reps, em, b->res.maxrep, n->res.maxrep,
+                 o->alpha);
+        return;
+    case OB_TIMING_JUDGED:
+        break;
+    }
+    int c[6] = {0, 0, 0, 0, 0, 0}; /* slower, faster, same, noisy, few_reps, by the threshold alone */
+    for (int i = 0; i < r->nms; i++) {
+        const char *t = r->ms[i].timing;
+        if (!t)
+            continue;
+        c[5] += r->ms[i].reps_base < 2 || r->ms[i].reps_new < 2;
+        c[strcmp(t, "slower") == 0 ? 0 : strcmp(t, "faster") == 0 ? 1 : strcmp(t, "same") == 0 ? 2
+          : strcmp(t, "noisy") == 0 ? 3 : 4]++;
+    }
+    used = (size_t)snprintf(buf, len, "judged: the same machine '%s' (id %s); per method %d slower, %d faster, %d no "
+                            "change, %d not judged (too noisy %d, too few complete repetitions %d)",
+                            meta_str(n, "machine.name"), meta_str(n, "machine.id"), c[0], c[1], c[2], c[3] + c[4],
+                            c[3], c[4]);
+    if (c[5] && used < len)
+        snprintf(buf + used, len - used, "; %d method(s) by the threshold alone (no repetitions on both sides: one "
+                 "measurement a side, noise not accounted for)", c[5]);
+}
+
+int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
+{
+    static const char *const same[] = {"samples_per_segment", "max_depth", "max_segments", "inflection_split",
+                                       "seed"};
+    ob_strmap cols[2][NCOLS];
+    memset(cols, 0, sizeof cols);
+    int rc = 0;
+    for (int side = 0; side < 2; side++)
+        for (int col = 0; col < NCOLS && !rc; col++)
+            rc = distinct(side ? &n->res : &b->res, col, &cols[side][col]);
+    r->checked = !rc && b->has_meta && n->has_meta;
+    if (r->checked) {
+        for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
+            const ob_json_entry *eb = ob_json_get(&b->meta, same[k]), *en = ob_json_get(&n->meta, same[k]);
+            if (!ob_json_same(eb, en))
+                rc |= ob_strlist_addf(&r->incomparable, "%s %s vs %s", same[k], shown(eb), shown(en));
+        }
+        rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_params", r);
+        rc |= check_group(b, n, &cols[0][COL_METHOD], &cols[1][COL_METHOD], "method_versions", r);
+        rc |= check_identity(b, n, r);
     } else {
         rc |= ob_strlist_addf(&r->notes, "no meta.json beside %s%s%s: comparability could not be checked",
                               b->has_meta ? "" : b->label, !b->has_meta && !n->has_meta ? " and " : "",
@@ -360,7 +491,7 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
             rc |= ob_strlist_addf(&r->notes, "%s's run warned (meta.json warnings): %.700s", sd->label, w->value);
     }
     if (!rc)
-        rc = check_values(b, n, cols, r);
+        rc = check_values(b, n, cols, r) || timing_context(b, n, o, r);
     for (int side = 0; side < 2; side++)
         for (int col = 0; col < NCOLS; col++)
             ob_strmap_free(&cols[side][col]);

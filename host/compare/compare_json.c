@@ -53,6 +53,11 @@ static void jside(FILE *f, const char *key, const ob_cmp_side *s)
     jstr(f, ts ? ts->value : NULL);
     fprintf(f, ", \"cpu_model\": ");
     jstr(f, cpu ? cpu->value : NULL);
+    const ob_json_entry *mn = ob_json_get(&s->meta, "machine.name"), *mi = ob_json_get(&s->meta, "machine.id");
+    fprintf(f, ", \"machine\": ");
+    jstr(f, mn ? mn->value : NULL);
+    fprintf(f, ", \"machine_id\": ");
+    jstr(f, mi ? mi->value : NULL);
     fprintf(f, ", \"repetitions\": %d},\n", s->has_samples ? s->res.maxrep : 0);
 }
 
@@ -113,6 +118,14 @@ static void jmethod(FILE *f, const ob_method_sum *m)
     jnum(f, m->gm_err);
     fprintf(f, ", \"time_gm\": ");
     jnum(f, m->gm_t);
+    fprintf(f, ", \"time_base_ns\": ");
+    jnum(f, m->t_base);
+    fprintf(f, ", \"time_new_ns\": ");
+    jnum(f, m->t_new);
+    fprintf(f, ", \"time_estimate\": ");
+    jnum(f, m->t_est);
+    fprintf(f, ", \"timing\": ");
+    jstr(f, m->timing);
     fprintf(f, ", \"p_value\": ");
     jnum(f, m->p);
     fprintf(f, ", \"ci_lo\": ");
@@ -146,11 +159,18 @@ int ob_cmp_write_json(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const
     jnum(f, o->time_floor_ns);
     fprintf(f, ", \"alpha\": ");
     jnum(f, o->alpha);
-    fprintf(f, ", \"no_timing\": %s, \"method_timing_only\": %s, \"strict_timing\": %s},\n",
+    fprintf(f, ", \"no_timing\": %s, \"method_timing_only\": %s, \"strict_timing\": %s, \"timing_only\": %s, "
+               "\"methods\": ",
             o->no_timing ? "true" : "false", o->method_timing_only ? "true" : "false",
-            o->strict_timing ? "true" : "false");
-    fprintf(f, "  \"context\": {\n    \"checked\": %s,\n    \"timing_compared\": %s,\n",
+            o->strict_timing ? "true" : "false", o->timing_only ? "true" : "false");
+    jstr(f, o->methods);
+    fprintf(f, "},\n");
+    char timing[2048];
+    ob_cmp_timing_text(b, n, o, r, 0, timing, sizeof timing);
+    fprintf(f, "  \"context\": {\n    \"checked\": %s,\n    \"timing_compared\": %s,\n    \"timing\": ",
             r->checked ? "true" : "false", r->timing ? "true" : "false");
+    ob_json_string(f, timing);
+    fprintf(f, ",\n");
     fprintf(f, "    \"interval\": \"%g%% Hodges-Lehmann (Moses) interval of new/base on the log times of the "
                "repetitions\",\n    \"noise_width\": ", 100 * (1 - o->alpha));
     jnum(f, ob_cmp_noise_width(o));

@@ -71,13 +71,26 @@ static void interval_text(char *buf, size_t len, double lo, double hi)
         snprintf(buf, len, "[%.4g, %.4g]", lo, hi);
 }
 
+/* Which changes a table lists: those of one kind, and among timing
+ * changes of rows, those that count for the exit status or those that do
+ * not (--method-timing-only). */
+typedef enum { ROWS_ALL, ROWS_COUNTED, ROWS_NOT_COUNTED } row_filter;
+
+static int listed(const ob_cmp_result *r, const ob_change *c, ob_ch_kind kind, row_filter flt)
+{
+    if (c->kind != kind)
+        return 0;
+    const int uncounted_time = strcmp(c->field, "time") == 0 && kind == OB_CH_REGRESSION && !r->t_rows_count;
+    return flt == ROWS_ALL || (flt == ROWS_COUNTED) != uncounted_time;
+}
+
 /* Rows of one kind: changes (field, base, new, ratio, p) or rows (new / missing). */
-static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, const char *title, int max_rows,
-                     int always)
+static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, row_filter flt, const char *title,
+                     int max_rows, int always)
 {
     int total = 0;
     for (int i = 0; i < r->nch; i++)
-        total += r->ch[i].kind == kind;
+        total += listed(r, &r->ch[i], kind, flt);
     if (!total && !always)
         return;
     fprintf(f, "\n## %s (%d)\n\n", title, total);
@@ -92,7 +105,7 @@ static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, const cha
     int shown = 0;
     for (int i = 0; i < r->nch && shown < max_rows; i++) {
         const ob_change *c = &r->ch[i];
-        if (c->kind != kind)
+        if (!listed(r, c, kind, flt))
             continue;
         const ob_res_row *k = c->base ? c->base : c->nw;
         char b[64], n[64], ratio[32], p[32], ci[64];
@@ -117,79 +130,88 @@ static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, const cha
         fprintf(f, "\n%d more not shown (--max-rows %d).\n", total - shown, max_rows);
 }
 
-static void md_methods(FILE *f, const ob_cmp_result *r)
+/* A method's timing verdict as the table says it. */
+static const char *timing_words(const ob_method_sum *m)
 {
-    fprintf(f, "\n## Per method (geometric mean of new/base over the joined rows)\n\n");
+    if (!m->timing)
+        return "-";
+    const int tested = m->reps_base >= 2 && m->reps_new >= 2;
+    if (strcmp(m->timing, "slower") == 0)
+        return tested ? "slower" : "slower (threshold only)";
+    if (strcmp(m->timing, "faster") == 0)
+        return tested ? "faster" : "faster (threshold only)";
+    if (strcmp(m->timing, "same") == 0)
+        return tested ? "no change" : "no change (threshold only)";
+    return strcmp(m->timing, "noisy") == 0 ? "not judged: noisy" : "not judged: too few repetitions";
+}
+
+/* The table that decides the verdict: per method, the quality summary
+ * (geometric means, the row changes that count) and the timing claim, one
+ * statistic: the estimate of new/base with its own interval. */
+static void md_methods(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
+{
+    fprintf(f, "\n## Verdict by method\n\n");
     if (!r->nms) {
         fprintf(f, "None.\n");
         return;
     }
-    fprintf(f, "| method | rows | ctrl_points | max_err | time | p | time interval | regressions | improvements | "
-               "verdict |\n"
-               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    fprintf(f, "ctrl_points, max_err: geometric means of new/base over the joined rows; regressions, "
+               "improvements: the row changes that count; time: the method's total (fit_ns + eval_ns over its rows "
+               "judged for timing), base and new the medians of the per-repetition totals, new/base the "
+               "Hodges-Lehmann estimate of their ratio and interval that estimate's own %g%% interval (without "
+               "repetitions: the summed times, no interval); slower or faster when the estimate is beyond %g%%, the interval excludes 1 "
+               "and is no wider than the change.\n\n", 100 * (1 - o->alpha), 100 * o->time_threshold);
+    fprintf(f, "| method | rows | ctrl_points | max_err | regressions | improvements | time base | time new | "
+               "time new/base | interval | p | timing | verdict |\n"
+               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
     for (int i = 0; i < r->nms; i++) {
         const ob_method_sum *m = &r->ms[i];
-        char cp[32], er[32], t[32], p[32], ci[64];
+        char cp[32], er[32], tb[32], tn[32], t[32], p[32], ci[64];
         num_text(cp, sizeof cp, m->gm_cp, 1, "%.4g");
         num_text(er, sizeof er, m->gm_err, 1, "%.4g");
-        num_text(t, sizeof t, m->gm_t, 1, "%.4g");
+        num_text(tb, sizeof tb, m->timing ? m->t_base * 1e-6 : NAN, 1, "%.4g ms");
+        num_text(tn, sizeof tn, m->timing ? m->t_new * 1e-6 : NAN, 1, "%.4g ms");
+        num_text(t, sizeof t, m->timing ? m->t_est : NAN, 1, "%.4g");
         num_text(p, sizeof p, m->p, 1, "%.3g");
         interval_text(ci, sizeof ci, m->ci_lo, m->ci_hi);
         const int reg = m->regressions > 0 || m->verdict > 0, imp = m->improvements > 0 || m->verdict < 0;
-        fprintf(f, "| %s | %d | %s | %s | %s | %s | %s | %d | %d | %s%s%s%s |\n", m->method, m->rows, cp, er, t, p,
-                ci, m->regressions, m->improvements, reg ? "regression" : imp ? "improvement" : "same",
-                m->verdict > 0 ? " (slower)" : m->verdict < 0 ? " (faster)" : "",
-                m->not_judged ? "; timing not judged: " : "", m->not_judged ? m->not_judged : "");
+        fprintf(f, "| %s | %d | %s | %s | %d | %d | %s | %s | %s | %s | %s | %s | %s |\n", m->method, m->rows, cp, er,
+                m->regressions, m->improvements, tb, tn, t, ci, p, timing_words(m),
+                reg ? "regression" : imp ? "improvement" : "same");
     }
 }
 
-int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
-                    const ob_cmp_result *r)
+/* The inputs, the comparability and how timings were judged. */
+static void md_context(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
+                       const ob_cmp_result *r)
 {
-    static const char *const verdict[] = {"OK: no regression", "REGRESSION", "error", "NOT COMPARABLE"};
-    const int st = ob_cmp_status(r);
-    fprintf(f, "# offbench compare\n\n");
+    fprintf(f, "\n## Context\n\n");
     side_line(f, b);
     side_line(f, n);
-    fprintf(f, "\n**%s** (exit %d)", st == 3 && !r->incomparable.n ? "TIMINGS NOT JUDGED (--strict-timing)" : verdict[st],
-            st);
-    if (r->incomparable.n) {
-        fprintf(f, "\n\n## Context\n\n");
-        for (int i = 0; i < r->incomparable.n; i++)
-            fprintf(f, "- not comparable: %s\n", r->incomparable.v[i]);
-        for (int i = 0; i < r->notes.n; i++)
-            fprintf(f, "- note: %s\n", r->notes.v[i]);
-        return ferror(f) ? -1 : 0;
-    }
-    fprintf(f, ": %d joined rows; %d regressions (quality %d, timing %d%s, missing rows %d); "
-               "%d improvements (quality %d, timing %d); %d new rows; %d missing rows; "
-               "per method: %d slower, %d faster.\n",
-            r->joined, r->q_reg + r->t_reg + r->n_missing, r->q_reg, r->t_reg,
-            r->t_rows_count || !r->t_reg ? "" : " not counted: --method-timing-only", r->n_missing, r->q_imp + r->t_imp,
-            r->q_imp, r->t_imp, r->n_new, r->n_missing, r->m_reg, r->m_imp);
-    fprintf(f, "\n## Context\n\n");
     if (r->checked)
         fprintf(f, "- comparable: samples_per_segment, max_depth, max_segments, inflection_split, seed, and the "
                    "method_params and method_versions of the methods both runs ran are equal\n");
+    if (o->timing_only)
+        fprintf(f, "- quality: not judged (--timing-only); rows missing from NEW and new rows are not listed\n");
+    if (o->methods)
+        fprintf(f, "- methods: only %s (--methods)\n", o->methods);
     if (o->no_timing)
         fprintf(f, "- timings: not compared (--no-timing)\n");
-    else if (r->timing_diffs.n) {
-        fprintf(f, "- timings: **not compared**, the timing context differs:\n");
+    else if (!r->timing) {
+        fprintf(f, "- timings: **not judged**:\n");
         for (int i = 0; i < r->timing_diffs.n; i++)
             fprintf(f, "  - %s\n", r->timing_diffs.v[i]);
     } else {
-        fprintf(f, "- timings: compared (%s); a row is judged when both statuses are equal and both times "
-                   "(fit_ns + eval_ns) are at least %g ms; a change is beyond %g%%",
-                r->checked ? "same compiler, cflags, backend, OpenCL device and driver, OMP threads, CPU model"
-                           : "timing context not checked",
-                o->time_floor_ns * 1e-6, o->time_threshold * 100);
-        fprintf(f, " and, with at least 2 repetitions per side, significant by a two-sided Mann–Whitney U test "
-                   "(alpha %g)\n", o->alpha);
+        fprintf(f, "- timings: judged (same machine id, logical cores and memory; same compiler, cflags, backend, "
+                   "OpenCL device and driver, OMP threads, CPU model; both runs' load average within their cores); "
+                   "a row is judged when both statuses are equal and both times (fit_ns + eval_ns) are at least %g "
+                   "ms\n", o->time_floor_ns * 1e-6);
         fprintf(f, "- intervals: %g%% confidence intervals of new/base, Hodges–Lehmann with its rank-based (Moses) "
-                   "interval on the log times of the repetitions; a row that is no significant change is not judged "
-                   "when its interval is unbounded (too few repetitions) or wider than a factor %.4g "
-                   "((1 + time threshold)^2): %d too noisy, %d too few repetitions\n",
-                100 * (1 - o->alpha), ob_cmp_noise_width(o), r->t_noisy, r->t_few_reps);
+                   "interval on the log times of the repetitions (the interval of the rank-sum test); a change beyond "
+                   "%g%% is judged when its interval excludes 1 and is no wider than the change, no change when the "
+                   "interval is no wider than a factor %.4g ((1 + time threshold)^2), otherwise not judged: %d too "
+                   "noisy, %d too few repetitions\n",
+                100 * (1 - o->alpha), 100 * o->time_threshold, ob_cmp_noise_width(o), r->t_noisy, r->t_few_reps);
         fprintf(f, "- %d rows judged for timing: %d tested on their repetitions, %d by the threshold alone%s\n",
                 r->t_judged, r->t_tested, r->t_threshold_only,
                 r->t_threshold_only && !(b->has_samples && n->has_samples)
@@ -199,13 +221,60 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const o
     for (int i = 0; i < r->notes.n; i++)
         fprintf(f, "- note: %s\n", r->notes.v[i]);
     for (int i = 0; i < r->strict.n; i++)
-        fprintf(f, "- not judged (--strict-timing: exit 3): %s\n", r->strict.v[i]);
-    md_table(f, r, OB_CH_REGRESSION, "Regressions: quality and timing", o->max_rows, 1);
-    md_table(f, r, OB_CH_MISSING, "Missing rows: regressions", o->max_rows, 0);
-    md_table(f, r, OB_CH_IMPROVEMENT, "Improvements", o->max_rows, 1);
-    md_table(f, r, OB_CH_NEW, "New rows", o->max_rows, 0);
-    md_table(f, r, OB_CH_NOT_JUDGED, "Timings not judged: interval unbounded or too wide", o->max_rows, 0);
-    md_methods(f, r);
+        fprintf(f, "- not judged (exit 3): %s\n", r->strict.v[i]);
+}
+
+/* What does not decide the verdict, after it, in a collapsed section. */
+static void md_not_counted(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
+{
+    int imp = 0, nw = 0, unc = 0, nj = 0;
+    for (int i = 0; i < r->nch; i++) {
+        imp += r->ch[i].kind == OB_CH_IMPROVEMENT;
+        nw += r->ch[i].kind == OB_CH_NEW;
+        unc += listed(r, &r->ch[i], OB_CH_REGRESSION, ROWS_NOT_COUNTED);
+        nj += r->ch[i].kind == OB_CH_NOT_JUDGED;
+    }
+    fprintf(f, "\n<details>\n<summary>Not counted in the verdict: %d improvements, %d new rows, %d timing changes of "
+               "rows (--method-timing-only), %d row timings not judged</summary>\n", imp, nw, unc, nj);
+    md_table(f, r, OB_CH_IMPROVEMENT, ROWS_ALL, "Improvements", o->max_rows, 1);
+    md_table(f, r, OB_CH_NEW, ROWS_ALL, "New rows", o->max_rows, 0);
+    md_table(f, r, OB_CH_REGRESSION, ROWS_NOT_COUNTED, "Timing changes of rows, not counted (--method-timing-only: "
+             "only the per-method verdicts count)", o->max_rows, 0);
+    md_table(f, r, OB_CH_NOT_JUDGED, ROWS_ALL, "Timings not judged: interval unbounded or too wide", o->max_rows, 0);
+    fprintf(f, "\n</details>\n");
+}
+
+int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
+                    const ob_cmp_result *r)
+{
+    static const char *const verdict[] = {"OK: no regression", "REGRESSION", "error", "NOT COMPARABLE"};
+    const int st = ob_cmp_status(r);
+    fprintf(f, "# offbench compare\n\n");
+    fprintf(f, "**%s** (exit %d)", st == 3 && !r->incomparable.n ? "TIMINGS NOT JUDGED" : verdict[st], st);
+    if (r->incomparable.n) {
+        fprintf(f, "\n\n## Context\n\n");
+        side_line(f, b);
+        side_line(f, n);
+        for (int i = 0; i < r->incomparable.n; i++)
+            fprintf(f, "- not comparable: %s\n", r->incomparable.v[i]);
+        for (int i = 0; i < r->notes.n; i++)
+            fprintf(f, "- note: %s\n", r->notes.v[i]);
+        return ferror(f) ? -1 : 0;
+    }
+    fprintf(f, ": %d joined rows; %d regressions (quality %d, timing %d%s, missing rows %d); "
+               "%d improvements (quality %d, timing %d); %d new rows; %d missing rows; "
+               "per method: %d slower, %d faster.\n",
+            r->joined, r->q_reg + (r->t_rows_count ? r->t_reg : 0) + r->n_missing, r->q_reg, r->t_reg,
+            r->t_rows_count || !r->t_reg ? "" : " not counted: --method-timing-only", r->n_missing, r->q_imp + r->t_imp,
+            r->q_imp, r->t_imp, r->n_new, r->n_missing, r->m_reg, r->m_imp);
+    char timing[2048];
+    ob_cmp_timing_text(b, n, o, r, 1, timing, sizeof timing);
+    fprintf(f, "Timing: %s.\n", timing);
+    md_methods(f, o, r);
+    md_table(f, r, OB_CH_REGRESSION, ROWS_COUNTED, "Regressions: quality and timing", o->max_rows, 1);
+    md_table(f, r, OB_CH_MISSING, ROWS_ALL, "Missing rows: regressions", o->max_rows, 0);
+    md_context(f, b, n, o, r);
+    md_not_counted(f, o, r);
     return ferror(f) ? -1 : 0;
 }
 
@@ -248,18 +317,21 @@ static void csv_line(FILE *f, const char *kind, const ob_res_row *k, const char 
 int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
                      const ob_cmp_result *r)
 {
-    (void)b;
-    (void)n;
-    (void)o;
     fprintf(f, "kind,curve,d,method,metric,split,tol,field,base,new,ratio,p_value,ci_lo,ci_hi,note\n");
     for (int i = 0; i < r->incomparable.n; i++)
         csv_line(f, "context", NULL, NULL, "not_comparable", r->incomparable.v[i], "", NAN, NAN, NAN, NAN, "");
     for (int i = 0; i < r->timing_diffs.n; i++)
-        csv_line(f, "context", NULL, NULL, "timing_not_compared", r->timing_diffs.v[i], "", NAN, NAN, NAN, NAN, "");
+        csv_line(f, "context", NULL, NULL, "timing_not_compared", r->timing_diffs.v[i], "", NAN, NAN, NAN, NAN,
+                 r->tstate == OB_TIMING_NOISY ? "noisy" : "");
     for (int i = 0; i < r->notes.n; i++)
         csv_line(f, "context", NULL, NULL, "note", r->notes.v[i], "", NAN, NAN, NAN, NAN, "");
     for (int i = 0; i < r->strict.n; i++)
         csv_line(f, "context", NULL, NULL, "timing_not_judged", r->strict.v[i], "", NAN, NAN, NAN, NAN, "");
+    if (!r->incomparable.n) {
+        char timing[2048];
+        ob_cmp_timing_text(b, n, o, r, 0, timing, sizeof timing);
+        csv_line(f, "context", NULL, NULL, "timing", timing, "", NAN, NAN, NAN, NAN, "");
+    }
     if (r->incomparable.n)
         return ferror(f) ? -1 : 0;
     for (int i = 0; i < r->nch; i++) {
@@ -272,13 +344,18 @@ int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const 
     }
     for (int i = 0; i < r->nms; i++) {
         const ob_method_sum *m = &r->ms[i];
-        const char *nj = m->not_judged ? m->not_judged : "";
+        char tb[40], tn[40];
+        num_text(tb, sizeof tb, m->t_base, 0, NULL);
+        num_text(tn, sizeof tn, m->t_new, 0, NULL);
         if (m->verdict)
-            csv_line(f, m->verdict > 0 ? "regression" : "improvement", NULL, m->method, "time_gm", "", "", m->gm_t,
-                     m->p, m->ci_lo, m->ci_hi, "");
+            csv_line(f, m->verdict > 0 ? "regression" : "improvement", NULL, m->method, "time_total", tb, tn,
+                     m->t_est, m->p, m->ci_lo, m->ci_hi, m->timing);
         csv_line(f, "method", NULL, m->method, "ctrl_points_gm", "", "", m->gm_cp, NAN, NAN, NAN, "");
         csv_line(f, "method", NULL, m->method, "max_err_gm", "", "", m->gm_err, NAN, NAN, NAN, "");
-        csv_line(f, "method", NULL, m->method, "time_gm", "", "", m->gm_t, m->p, m->ci_lo, m->ci_hi, nj);
+        csv_line(f, "method", NULL, m->method, "time_gm", "", "", m->gm_t, NAN, NAN, NAN, "");
+        if (m->timing)
+            csv_line(f, "method", NULL, m->method, "time_total", tb, tn, m->t_est, m->p, m->ci_lo, m->ci_hi,
+                     m->timing);
     }
     return ferror(f) ? -1 : 0;
 }

@@ -144,6 +144,27 @@ void ob_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+/* meta.json: the machine (hostinfo.h), on one line: compare judges timings
+ * only between runs of one machine id with the same CPU, cores, memory and
+ * device; scripts/nightly.sh reads the name and id from this line. */
+static void meta_machine(FILE *f, const ob_backend_info *b)
+{
+    ob_machine m;
+    ob_machine_identify(&m);
+    fprintf(f, "  \"machine\": {\"name\": ");
+    ob_json_string(f, m.name);
+    fprintf(f, ", \"id\": \"%s\", \"id_source\": ", m.id);
+    ob_json_string(f, m.id_source);
+    fprintf(f, ", \"cpu_model\": ");
+    ob_json_string(f, m.cpu_model);
+    fprintf(f, ", \"logical_cores\": %d, \"memory_mib\": %ld, \"device\": ", m.logical_cores, m.memory_mib);
+    ob_json_string(f, b->opencl ? b->device : "cpu");
+    fprintf(f, ", \"doc\": \"name: $OFFBENCH_MACHINE, else the host name; id: a hash of that name when "
+               "OFFBENCH_MACHINE is set, else of /etc/machine-id and the host name (the machine-id itself is not "
+               "written); logical_cores: online CPUs; memory_mib: MemTotal; device: the backend's device. compare "
+               "judges timings only between runs with the same id, CPU model, cores, memory and device\"},\n");
+}
+
 /* meta.json: the build and what measured. */
 static void meta_build(FILE *f, const ob_backend_info *b)
 {
@@ -177,6 +198,7 @@ static void meta_build(FILE *f, const ob_backend_info *b)
     fprintf(f, "  \"cpu_model\": ");
     ob_json_string(f, cpu);
     fprintf(f, ",\n  \"omp_threads\": %d,\n", omp_get_max_threads());
+    meta_machine(f, b);
 }
 
 /* meta.json: the settings that decide results (seed, samples, limits,
@@ -213,6 +235,11 @@ static void meta_settings(FILE *f, const ob_run_opts *o)
         fprintf(f, ": %d", ob_methods[m]->version);
     }
     fprintf(f, "},\n");
+    /* the test hook OFFBENCH_TEST_SLOW (driver.h): a run with it is slower on purpose */
+    if (o->driver.test_slow_method)
+        fprintf(f, "  \"test_slow\": \"%s:%d\",\n", o->driver.test_slow_method->name, o->driver.test_slow_factor);
+    else
+        fprintf(f, "  \"test_slow\": null,\n");
 }
 
 /* meta.json: what the timing columns, offset degrees and joints mean. */

@@ -3,6 +3,8 @@
  */
 #include "host/run/hostinfo.h"
 
+#include "host/run/shard.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -104,4 +106,59 @@ void ob_host_names(char *host, size_t hlen, char *os, size_t olen, char *kernel,
         snprintf(kernel, klen, "%s", u.release);
     else
         snprintf(kernel, klen, "unknown");
+}
+
+/* The machine-id (machine-id(5)) into buf without its line end, or "" when
+ * neither file can be read. */
+static void read_machine_id(char *buf, size_t len)
+{
+    static const char *const paths[] = {"/etc/machine-id", "/var/lib/dbus/machine-id"};
+    buf[0] = '\0';
+    for (size_t i = 0; i < sizeof paths / sizeof paths[0] && !buf[0]; i++) {
+        FILE *f = fopen(paths[i], "r");
+        if (!f)
+            continue;
+        if (!fgets(buf, (int)len, f))
+            buf[0] = '\0';
+        buf[strcspn(buf, "\r\n")] = '\0';
+        fclose(f);
+    }
+}
+
+/* The id: FNV-1a over a fixed prefix and the parts, each followed by a NUL
+ * (so that "ab"+"c" and "a"+"bc" differ), as 16 hex digits. */
+static void hash_id(char out[17], const char *a, const char *b)
+{
+    static const char prefix[] = "offbench machine";
+    uint64_t h = ob_fnv1a(OB_FNV_BASIS, prefix, sizeof prefix);
+    h = ob_fnv1a(h, a, strlen(a) + 1);
+    h = ob_fnv1a(h, b, strlen(b) + 1);
+    snprintf(out, 17, "%016llx", (unsigned long long)h);
+}
+
+void ob_machine_identify(ob_machine *m)
+{
+    memset(m, 0, sizeof *m);
+    char host[256], mid[128];
+    if (gethostname(host, sizeof host) != 0 || !*host)
+        snprintf(host, sizeof host, "unknown");
+    host[sizeof host - 1] = '\0';
+    const char *env = getenv("OFFBENCH_MACHINE");
+    if (env && *env) {
+        snprintf(m->name, sizeof m->name, "%s", env);
+        hash_id(m->id, "name", m->name);
+        m->id_source = "OFFBENCH_MACHINE";
+    } else {
+        snprintf(m->name, sizeof m->name, "%.*s", (int)sizeof m->name - 1, host);
+        read_machine_id(mid, sizeof mid);
+        hash_id(m->id, mid, host);
+        m->id_source = mid[0] ? "/etc/machine-id and hostname" : "hostname";
+    }
+    ob_cpu_model(m->cpu_model, sizeof m->cpu_model);
+    const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    m->logical_cores = cpus > 0 ? (int)cpus : 0;
+    char mem[64];
+    keyed_value("/proc/meminfo", "MemTotal", mem, sizeof mem);  /* "24683792 kB" */
+    const long kb = strtol(mem, NULL, 10);
+    m->memory_mib = kb > 0 ? kb / 1024 : 0;
 }

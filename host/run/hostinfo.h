@@ -43,4 +43,37 @@ void ob_host_names(char *host, size_t hlen, char *os, size_t olen, char *kernel,
  * timings of runs on different CPUs are not compared. */
 void ob_cpu_model(char *buf, size_t len);
 
+/* The machine a run ran on, for meta.json's "machine" object: compare
+ * judges timings only between runs of one machine (README "Nightly
+ * regression runs").  Two virtual machines can share a CPU model string
+ * (a masked "AMD EPYC"), so the identity is a name and an id:
+ *   name       $OFFBENCH_MACHINE when set (the user names the machine, as
+ *              `asv machine` does), else the host name;
+ *   id         16 hex digits, FNV-1a of the name when $OFFBENCH_MACHINE
+ *              names it, else of /etc/machine-id (or
+ *              /var/lib/dbus/machine-id) and the host name: stable across
+ *              reboots, different on another installation; the machine-id
+ *              itself is never written (it is meant to stay private:
+ *              machine-id(5)), and 64 bits of hash leave 2^64 candidates for
+ *              its 128 bits;
+ *   id_source  "OFFBENCH_MACHINE", "/etc/machine-id and hostname" or
+ *              "hostname" (no machine-id file);
+ * and what makes timings of one id comparable or not: the CPU model, the
+ * online logical CPUs and the physical memory (MiB).  Clones of one disk
+ * image share /etc/machine-id, and often the host name: such machines need
+ * OFFBENCH_MACHINE set to tell them apart (README). */
+typedef struct {
+    char name[128];
+    char id[17];
+    const char *id_source;
+    char cpu_model[256];
+    int logical_cores;  /* sysconf(_SC_NPROCESSORS_ONLN), 0 unknown */
+    long memory_mib;    /* MemTotal of /proc/meminfo in MiB, 0 unknown */
+} ob_machine;
+
+/* Purpose: fill m with this machine's identity (above).  $OFFBENCH_MACHINE
+ *          longer than m->name is cut; unreadable files fall back as said.
+ * Errors:  none (what cannot be read is "unknown" or 0). */
+void ob_machine_identify(ob_machine *m);
+
 #endif

@@ -80,6 +80,10 @@ typedef struct {
     double d;
     const ob_method *method;
     const double *params;  /* method parameter values, NULL for the defaults */
+    int test_fit_repeat;   /* test hook (0, 1: off): each fit is done this many
+                              times (same input, the last result kept), a real
+                              slowdown of the method for the timing tests:
+                              ob_driver_opts.test_slow_method */
     ob_metric metric;
     ob_split split;
     double tol;
@@ -258,6 +262,13 @@ typedef struct {
      * variable OFFBENCH_TEST_OOM_AFTER (README "Testing"), read once before
      * any work, checked between jobs, never inside a timed section */
     long test_oom_after;
+    /* test hook (NULL: off): the jobs of this method do each fit
+     * test_slow_factor times (ob_job.test_fit_repeat), so that the method
+     * is that much slower in its fits and in nothing else; set by `run` from
+     * OFFBENCH_TEST_SLOW=METHOD:FACTOR (README "Testing"), recorded in
+     * meta.json ("test_slow") */
+    const ob_method *test_slow_method;
+    int test_slow_factor;
 } ob_driver_opts;
 
 /* One share group's work as a progress display sees it (ob_progress_info):

@@ -49,6 +49,8 @@ double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit,
     double t0 = drv_thread_ns();
     const ob_fit_args args = {j->d, j->tol, par};
     r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
+    for (int k = 1; k < j->test_fit_repeat; k++)  /* test hook (driver.h): the same fit again */
+        r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
     double t1 = drv_thread_ns();
     r->n = r->st == OB_FIT_OK ? fit->n : 0;
     if (r->st == OB_FIT_RETRY_SMALLER)

@@ -376,11 +376,18 @@ static const char META[] =
     "{\"compiler\": \"gcc 12\", \"cflags\": \"-O2\", \"backend\": \"cpu\", \"opencl\": null, \"omp_threads\": 2,"
     " \"seed\": null, \"samples_per_segment\": %d, \"max_depth\": 40, \"max_segments\": 20000,"
     " \"inflection_split\": true, \"method_params\": {\"tiller.k\": %s, \"zhao.n\": %s},"
-    " \"method_versions\": {\"tiller\": %d, \"ahn\": 1}, \"reps\": 1}";
+    " \"method_versions\": {\"tiller\": %d, \"ahn\": 1}, \"reps\": 1,"
+    " \"machine\": {\"name\": \"m\", \"id\": \"%s\", \"logical_cores\": 2, \"memory_mib\": %ld},"
+    " \"host\": {\"cores_used\": 2, \"loadavg_max\": %.2f}}";
 
+/* A meta.json (META): machine_id NULL is 00000000000000aa, memory_mib 0
+ * is 1000 (MiB), load the largest load average (on 2 cores). */
 typedef struct {
     int samples, tiller_version;
     const char *tiller_k, *zhao_n, *compiler;
+    const char *machine_id;
+    long memory_mib;
+    double load;
 } meta_spec;
 
 static void load(ob_cmp_side *s, const char *label, const char *rows, const meta_spec *m, const char *samples)
@@ -393,7 +400,8 @@ static void load(ob_cmp_side *s, const char *label, const char *rows, const meta
     snprintf(text, sizeof text, "%s%s", HDR, rows);
     CHECK(ob_res_parse(text, strlen(text), s->results_path, &s->res, &err) == 0, "rows: %s", err.msg);
     if (m) {
-        snprintf(text, sizeof text, META, m->samples, m->tiller_k, m->zhao_n, m->tiller_version);
+        snprintf(text, sizeof text, META, m->samples, m->tiller_k, m->zhao_n, m->tiller_version,
+                 m->machine_id ? m->machine_id : "00000000000000aa", m->memory_mib ? m->memory_mib : 1000L, m->load);
         if (m->compiler) {
             char *c = strstr(text, "gcc 12");
             memcpy(c, m->compiler, 6);
@@ -654,8 +662,9 @@ static void verdicts_incomparable(const ob_cmp_side *b, const char *rb, const me
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
     load(&n, "NEW", "c1,1,tiller,hausdorff,mid,0.1,10,3,3,0.05,ok,0,2000000,,f\n", NULL, NULL);
-    CHECK(run(b, &n, &o, &r) == 1 && !r.checked && has_text(&r.notes, "no meta.json beside NEW") && r.timing,
-          "no meta.json on one side: compared, with a note");
+    CHECK(run(b, &n, &o, &r) == 1 && !r.checked && has_text(&r.notes, "no meta.json beside NEW") && !r.timing &&
+              r.tstate == OB_TIMING_MACHINE && has_text(&r.timing_diffs, "NEW has no meta.json: the machine is unknown"),
+          "no meta.json on one side: quality compared, with a note; timings not judged (the machine is unknown)");
     ob_cmp_result_free(&r);
     ob_cmp_side_free(&n);
     load(&n, "NEW", "c1,1,tiller,radial,mid,0.1,10,3,3,0.05,ok,0,2000000,,f\n"
@@ -702,15 +711,80 @@ static void verdicts_rank_test(const meta_spec *m)
             CHECK(r.ms[0].reps_base == 5 && fabs(r.ms[0].p - 2.0 / 252) < 1e-12 && r.ms[0].verdict == 1 &&
                       r.ms[1].verdict == 0 && r.ms[1].p > 0.05,
                   "per-method rank test on the totals per repetition");
-            CHECK(!has_text(&r.notes, "repetition"), "no note with 5 reps");
+            CHECK(!has_text(&r.notes, "repetition") && r.tstate == OB_TIMING_JUDGED, "no note with 5 reps");
+            const ob_method_sum *t = &r.ms[0], *a = &r.ms[1];
+            CHECK(strcmp(t->timing, "slower") == 0 && t->ci_lo <= t->t_est && t->t_est <= t->ci_hi &&
+                      fabs(t->t_est - 2502000.0 / 2002000.0) < 0.01 && t->t_base == 2003000 && t->t_new == 2503000,
+                  "tiller: the HL estimate (about 1.25) inside its own interval, the medians of the totals");
+            CHECK(strcmp(a->timing, "noisy") == 0 && a->ci_lo < 1 && a->t_est > 1.1 && a->not_judged,
+                  "ahn: 20%% up but its interval reaches below 1: noisy, not judged");
         } else {
-            CHECK(st == 0 && r.t_tested == 2 && r.t_reg == 0 && has_text(&r.notes, "at least 4 per side"),
-                  "3 reps: nothing significant, and a note says why");
+            CHECK(st == 3 && r.t_tested == 0 && r.t_reg == 0 && r.tstate == OB_TIMING_FEW_REPS && r.need_reps == 4 &&
+                      has_text(&r.strict, "too few repetitions to judge timing: need 4 per side"),
+                  "3 reps: nothing could be significant: exit 3, saying how many are needed");
         }
         ob_cmp_result_free(&r);
         ob_cmp_side_free(&b);
         ob_cmp_side_free(&n);
     }
+}
+
+/* compare: timings are judged only between runs of one machine (id, cores,
+ * memory within 5 %) whose load stayed within their cores; quality is
+ * judged whatever the machine. */
+static void verdicts_machine(const ob_cmp_side *b, const meta_spec *m)
+{
+    static const struct {
+        const char *id;
+        long mem;
+        double load;
+        ob_timing_state st;
+        const char *why;
+    } c[] = {
+        {NULL, 0, 0, OB_TIMING_JUDGED, NULL},
+        {"00000000000000bb", 0, 0, OB_TIMING_MACHINE, "baseline from machine 'm' (id 00000000000000aa), this is 'm' "
+                                                      "(id 00000000000000bb)"},
+        {NULL, 1040, 0, OB_TIMING_JUDGED, NULL},
+        {NULL, 1100, 0, OB_TIMING_MACHINE, "machine 'm' changed: memory_mib 1000 vs 1100"},
+        {NULL, 0, 2.0, OB_TIMING_JUDGED, NULL},
+        {NULL, 0, 2.5, OB_TIMING_NOISY, "NEW's load average reached 2.50 on its 2 cores"},
+    };
+    char rn[1024];
+    rows2(rn, sizeof rn, "ok", 11, "0.05", 9000000, "ok", 13, "0.04", 3000000);
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+        ob_cmp_opts o = ob_cmp_defaults();
+        ob_cmp_side n;
+        ob_cmp_result r;
+        meta_spec mn = *m;
+        mn.machine_id = c[i].id;
+        mn.memory_mib = c[i].mem;
+        mn.load = c[i].load;
+        load(&n, "NEW", rn, &mn, NULL);
+        const int st = run(b, &n, &o, &r);
+        CHECK(st == 1 && r.q_reg == 1 && r.tstate == c[i].st && r.timing == (c[i].st == OB_TIMING_JUDGED) &&
+                  (!c[i].why || has_text(&r.timing_diffs, c[i].why)) && (c[i].why || r.t_reg == 1),
+              "machine case %zu: quality judged, timing state %d (want %d) %s", i, (int)r.tstate, (int)c[i].st,
+              c[i].why ? c[i].why : "");
+        char text[2048];
+        ob_cmp_timing_text(b, &n, &o, &r, 0, text, sizeof text);
+        CHECK(c[i].why ? strstr(text, c[i].why) && strncmp(text, "not judged", 10) == 0
+                       : strncmp(text, "judged: the same machine 'm' (id 00000000000000aa)", 50) == 0,
+              "machine case %zu: the timing line: %s", i, text);
+        ob_cmp_result_free(&r);
+        ob_cmp_side_free(&n);
+    }
+}
+
+/* compare --methods: the selection is by whole names. */
+static void test_method_selection(void)
+{
+    ob_cmp_opts o = ob_cmp_defaults();
+    CHECK(ob_cmp_method_selected(&o, "tiller"), "no --methods: every method");
+    o.methods = "tiller,ahn";
+    CHECK(ob_cmp_method_selected(&o, "tiller") && ob_cmp_method_selected(&o, "ahn") &&
+              !ob_cmp_method_selected(&o, "till") && !ob_cmp_method_selected(&o, "tiller,ahn") &&
+              !ob_cmp_method_selected(&o, "zhao"),
+          "--methods tiller,ahn: those two, whole names only");
 }
 
 /* A side with the cubic-opt row rows and the meta.json whose method_params
@@ -768,7 +842,7 @@ static void test_param_added(void)
 /* compare: the verdicts, case by case; the base side is shared as it was loaded. */
 static void test_verdicts(void)
 {
-    const meta_spec m0 = {256, 1, "10", "8", NULL};
+    const meta_spec m0 = {256, 1, "10", "8", NULL, NULL, 0, 0};
     ob_cmp_side b;
     char rb[1024];
 
@@ -783,6 +857,7 @@ static void test_verdicts(void)
     verdicts_missing_new(&b, &m0);
     verdicts_timing_threshold(&b, &m0);
     verdicts_timing_context(&b, &m0);
+    verdicts_machine(&b, &m0);
     verdicts_incomparable(&b, rb, &m0);
     ob_cmp_side_free(&b);
     verdicts_rank_test(&m0);
@@ -795,5 +870,6 @@ int main(void)
     test_csv();
     test_verdicts();
     test_param_added();
+    test_method_selection();
     return check_done();
 }

@@ -1,0 +1,119 @@
+#!/bin/sh
+# End-to-end tests of scripts/nightly.sh (issue 37) on a small nightly
+# configuration (NIGHTLY_METHODS ahn,zhao-rational on NIGHTLY_CURVES
+# liu2002_ex1,zhao2017_septic, NIGHTLY_RANDOM 2:2026, the CPU backend), with the program under test (NIGHTLY_BIN: no build), its
+# committed baseline and the machines' baselines in scratch directories:
+# - exit status: 3 without a baseline, written to OUT/status as well;
+# - --accept-committed and --accept take the run just made (no new run);
+#   --accept refuses a run whose load exceeded its cores and a failed run;
+# - two nightly runs of one build on this machine: exit 0, timings "no
+#   change" or "not judged", never a regression;
+# - a planted slowdown (OFFBENCH_TEST_SLOW=zhao-rational:3: its fits done
+#   three times, the test hook of `run`) against a baseline recorded on
+#   this machine: a timing regression, exit 1;
+# - a planted quality change (the baseline's control points lowered): a
+#   quality regression, exit 1, timing unaffected;
+# - methods too noisy to judge are run again, at most NIGHTLY_RERUNS times.
+# The slowdown is triple the fit work of a method whose time is mostly its
+# fits (thread CPU time); the load average is the test hook's (an idle
+# machine) only where a timing verdict is asserted.
+. "$(dirname "$0")/lib_e2e.sh"
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+NS="sh $ROOT/scripts/nightly.sh"
+printf '0.00 0.00 0.00 1/100 1\n' > "$T/idle"
+printf '99.00 50.00 20.00 9/100 1\n' > "$T/busy"
+export NIGHTLY_BIN="$OB" NIGHTLY_BASELINE="$T/committed" NIGHTLY_HISTORY=none NIGHTLY_RANDOM=2:2026 \
+    NIGHTLY_METHODS=ahn,zhao-rational NIGHTLY_CURVES=liu2002_ex1,zhao2017_septic NIGHTLY_BACKEND=cpu \
+    OFFBENCH_MACHINE=e2e-box
+unset OFFBENCH_TEST_SLOW OFFBENCH_LOADAVG
+
+# nightly OUT [nightly.sh options]: one night, exit status in $rc, stderr in OUT.err
+nightly() {
+    o=$1; shift
+    $NS --out "$o" "$@" >/dev/null 2>"$o.err"
+    rc=$?
+}
+verdict() { sed -n 3p "$1/report.md"; }
+
+# --- no committed baseline yet: not comparable, 3, in OUT/status too ---
+export NIGHTLY_BASELINES="$T/machines"
+OFFBENCH_LOADAVG=$T/idle nightly "$T/n0"   # (accepted below: its load must be within the cores)
+check '[ $rc -eq 3 ] && [ "$(cat "$T/n0/status")" = 3 ] && grep -q "no baseline in $T/committed/published" "$T/n0/report.md"' \
+    "no baseline: exit 3, said, and in OUT/status: rc $rc, $(cat "$T/n0/status" 2>/dev/null) $(tail -n 3 "$T/n0.err")"
+check 'grep -q "timings not judged: no baseline of this machine (.e2e-box." "$T/n0/report.md"' "... and no machine baseline: said"
+# --accept-committed / --accept: the run just made, no new run
+ls -l --time-style=+%s "$T/n0/published/results.csv" > "$T/before"
+$NS --accept-committed --out "$T/n0" >/dev/null 2>"$T/err"
+check '[ $? -eq 0 ] && [ -f "$T/committed/published/results.csv" ] && [ -f "$T/committed/random/meta.json" ] && ! grep -q "published: exit" "$T/err"' \
+    "--accept-committed copies the run, without running: $(cat "$T/err")"
+$NS --accept --out "$T/n0" >/dev/null 2>"$T/err"
+mdir=$(ls -d "$T"/machines/e2e-box-* 2>/dev/null | head -n 1)
+check '[ $? -eq 0 ] && [ -n "$mdir" ] && [ -f "$mdir/published/samples.csv" ] && ! grep -q "published: exit" "$T/err"' \
+    "--accept makes it this machine's baseline (NAME-ID/published), without running: $mdir $(cat "$T/err")"
+ls -l --time-style=+%s "$T/n0/published/results.csv" > "$T/after"
+check 'cmp -s "$T/before" "$T/after"' "the accepted run is left as it was"
+$NS --accept --out "$T/nothere" >/dev/null 2>"$T/err"
+check '[ $? -eq 2 ] && grep -q "nothing to accept" "$T/err"' "--accept without a run: 2: $(cat "$T/err")"
+
+# --- two nightly runs of the same build on this machine: 0, never a regression ---
+nightly "$T/n1"
+check '[ $rc -eq 0 ] && [ "$(cat "$T/n1/status")" = 0 ]' "same build again: exit 0: $rc $(tail -n 5 "$T/n1.err")"
+check 'verdict "$T/n1" | grep -q "^\*\*OK: no regression\*\* (exit 0)" && ! grep -q "REGRESSION\|| slower |" "$T/n1/report.md"' \
+    "the report leads with OK, nothing slower: $(verdict "$T/n1")"
+check 'grep -q "^Timing: \(judged\|\*\*not judged\)" "$T/n1/report.md"' "a timing line: $(grep "^Timing:" "$T/n1/report.md" | head -n 1)"
+check 'grep -q "^## Verdict by method" "$T/n1/report.md" && [ "$(grep -n "^## " "$T/n1/report.md" | head -n 1 | cut -d: -f2-)" = "## Verdict by method" ]' \
+    "the first section is the deciding per-method table"
+
+# --- a baseline recorded under load: refused by --accept ---
+OFFBENCH_LOADAVG=$T/busy nightly "$T/nbusy"
+check '[ $rc -eq 0 ] && grep -q "^Timing: \*\*not judged: noisy\*\*" "$T/nbusy/report.md"' \
+    "a busy night: timings not judged, noisy, exit 0: $rc $(grep "^Timing:" "$T/nbusy/report.md" | head -n 1)"
+$NS --accept --out "$T/nbusy" >/dev/null 2>"$T/err"
+check '[ $? -eq 2 ] && grep -q "not accepted: .*load average" "$T/err"' "--accept refuses a run under load: $(cat "$T/err")"
+
+# --- a planted slowdown, against a baseline recorded on this (idle) machine: 1 ---
+export NIGHTLY_BASELINES="$T/machines2" OFFBENCH_LOADAVG="$T/idle"
+nightly "$T/i0"
+$NS --accept --out "$T/i0" >/dev/null 2>"$T/err"
+check '[ $? -eq 0 ]' "the idle night accepted: $(cat "$T/err")"
+OFFBENCH_TEST_SLOW=zhao-rational:3 nightly "$T/i1"
+check '[ $rc -eq 1 ] && [ "$(cat "$T/i1/status")" = 1 ] && verdict "$T/i1" | grep -q "^\*\*REGRESSION\*\* (exit 1)"' \
+    "zhao-rational's fits 3x: exit 1: $rc $(verdict "$T/i1")"
+check 'grep -q "^| zhao-rational | .* | slower |" "$T/i1/report.md"' "zhao-rational is slower: $(grep "^| zhao-rational |" "$T/i1/report.md" | head -n 1)"
+check 'grep -q "\"test_slow\": \"zhao-rational:3\"" "$T/i1/published/meta.json"' "meta.json records the test hook"
+
+# --- a planted quality change: the committed baseline's control points lowered: 1 ---
+unset OFFBENCH_LOADAVG
+cp -R "$T/committed" "$T/committed.orig"
+awkc 'BEGIN{OFS=","} NR==2{$c["ctrl_points"]=$c["ctrl_points"]-1} {print}' "$T/committed/published/results.csv" > "$T/cp.csv"
+mv "$T/cp.csv" "$T/committed/published/results.csv"
+export NIGHTLY_BASELINES="$T/machines"
+nightly "$T/q1"
+check '[ $rc -eq 1 ] && grep -q "| ctrl_points |" "$T/q1/report.md" && grep -q "^\*\*REGRESSION\*\* (exit 1)" "$T/q1/report.md"' \
+    "a quality change is a regression: $rc $(verdict "$T/q1")"
+
+# --- noisy methods run again, at most NIGHTLY_RERUNS times ---
+# (this machine's baseline changed by hand: ahn's repetitions 2 and 4
+# three times as long, so that every comparison with it is too wide to
+# judge; zhao-rational's ten times as long, so that it is judged faster at once)
+rm -rf "$T/committed" && mv "$T/committed.orig" "$T/committed"
+awkc 'BEGIN{OFS=","} NR>1 && $c["method"]=="ahn" && $c["rep"]%2==0 {$c["fit_ns"]*=3; $c["eval_ns"]*=3}
+      NR>1 && $c["method"]=="zhao-rational" {$c["fit_ns"]*=10; $c["eval_ns"]*=10} {print}' \
+    "$mdir/published/samples.csv" > "$T/s.csv" && mv "$T/s.csv" "$mdir/published/samples.csv"
+OFFBENCH_LOADAVG=$T/idle NIGHTLY_RERUNS=2 nightly "$T/r1"
+check '[ $rc -eq 0 ] && [ -f "$T/r1/reruns/1/results.csv" ] && [ -f "$T/r1/reruns/2/results.csv" ] && [ ! -e "$T/r1/reruns/3" ]' \
+    "a noisy method is run again twice: $rc $(ls "$T/r1")"
+check 'grep -q "nightly: re-running the methods too noisy to judge: ahn (1 of 2)" "$T/r1.err" && ! awkc "\$c[\"method\"]==\"zhao-rational\"" "$T/r1/reruns/1/results.csv" | grep -q .' \
+    "only the noisy method is run again: $(grep re-running "$T/r1.err")"
+check 'grep -q "^| ahn | .* | not judged: noisy | .* | re-run 2 |" "$T/r1/report.md"' \
+    "the verdict table says which run decided: $(grep "^| ahn |" "$T/r1/report.md" | head -n 1)"
+check 'grep -q "^| zhao-rational | .* | faster | .* | first run |" "$T/r1/report.md"' \
+    "zhao-rational judged on the first run: $(grep "^| zhao-rational |" "$T/r1/report.md" | head -n 1)"
+
+# --- the usage ---
+$NS --reruns x >/dev/null 2>"$T/err"
+check '[ $? -eq 2 ] && grep -q "reruns" "$T/err"' "--reruns x: 2"
+$NS --help > "$T/help" 2>&1
+check 'grep -q -- "--accept-committed" "$T/help" && grep -q NIGHTLY_BASELINES "$T/help" && grep -q "OUT/status" "$T/help"' "--help"
+
+e2e_done
