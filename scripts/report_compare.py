@@ -10,7 +10,7 @@ for each set, from compare-SET.json when the run has one (`compare --format
 json`), else from report.md: its section for the set (a heading, of any
 level, named as the set), in it compare's verdict line (**WORD** (exit N)),
 its "not comparable:" reasons and the table under the heading that starts
-"Per method" (or "Per-method"), all read as markdown in general (the
+"Per method" (or "Per-method", or compare's "Verdict by method"), all read as markdown in general (the
 columns by the header's names, any heading level, tables with or without
 outer pipes), so that a change of report.md's layout costs at most that
 table, never the page: a table that cannot be read is left out and
@@ -157,7 +157,7 @@ def parse_compare_md(text):
     # the per-method heading, then the first table before the next heading
     for k, line in enumerate(lines):
         m = HEADING.match(line)
-        if not m or not norm(m.group(2)).startswith("per method"):
+        if not m or not (norm(m.group(2)).startswith("per method") or norm(m.group(2)).startswith("verdict by method")):
             continue
         end = next((j for j in range(k + 1, len(lines)) if HEADING.match(lines[j])), len(lines))
         tables = md_tables("\n".join(lines[k + 1:end]))
@@ -205,8 +205,12 @@ def parse_compare_json(doc):
         reg, imp = m.get("regressions") or 0, m.get("improvements") or 0
         if not isinstance(reg, int) or not isinstance(imp, int):
             raise ValueError("%s: regressions or improvements not counts" % m["method"])
-        tv = m.get("verdict")
-        word = ("regression" if reg > 0 or tv == "slower" else "improvement" if imp > 0 or tv == "faster"
+        # compare's JSON: "timing" (and, as before, "verdict") the timing's
+        # verdict; "method_verdict" the method's, as report.md's table says
+        tv = m.get("timing", m.get("verdict"))
+        overall = m.get("method_verdict")
+        word = (overall if overall in ("regression", "improvement", "same") else
+                "regression" if reg > 0 or tv == "slower" else "improvement" if imp > 0 or tv == "faster"
                 else "same")
         word += " (slower)" if tv == "slower" else " (faster)" if tv == "faster" else ""
         if m.get("timing_not_judged"):
@@ -214,7 +218,7 @@ def parse_compare_json(doc):
         lo, hi = m.get("ci_lo"), m.get("ci_hi")
         ci = "-" if lo is None or hi is None else "%s..%s" % (num(lo, "%.3g"), num(hi, "%.3g"))
         rows.append([m["method"], num(m.get("rows"), "%d"), num(m.get("ctrl_points_gm"), "%.4g"),
-                     num(m.get("max_err_gm"), "%.4g"), num(m.get("time_gm"), "%.4g"), num(m.get("p_value"), "%.3g"),
+                     num(m.get("max_err_gm"), "%.4g"), num(m.get("time_estimate", m.get("time_gm")), "%.4g"), num(m.get("p_value"), "%.3g"),
                      ci, "%d" % reg, "%d" % imp, word])
     if rows:
         got["table"] = Table(list(JSON_HEADER), ["", "right", "right", "right", "right", "right", "right", "right",

@@ -98,6 +98,11 @@ typedef struct {
     const char *not_judged;         /* why the method's timing was not judged, or NULL */
 } ob_method_sum;
 
+/* A method's verdict as report.md's per-method table and the JSON's
+ * "method_verdict" give it: "regression" (a row regression or slower),
+ * "improvement" (a row improvement or faster), else "same". */
+const char *ob_method_verdict(const ob_method_sum *m);
+
 /* Whether timings were judged, and if not, why (the report's "Timing:"
  * line): OFF --no-timing; MACHINE another or an unknown machine, or another
  * timing context (compiler, flags, device, threads: r->timing_diffs says

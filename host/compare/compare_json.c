@@ -137,7 +137,9 @@ static void jmethod(FILE *f, const ob_method_sum *m)
             m->reps_base, m->reps_new, m->regressions, m->improvements,
             m->verdict > 0 ? "slower" : m->verdict < 0 ? "faster" : "same");
     jstr(f, m->not_judged);
-    fputc('}', f);
+    /* "verdict" is the timing's (as it always was); this is the method's, as
+     * report.md's per-method table gives it */
+    fprintf(f, ", \"method_verdict\": \"%s\"}", ob_method_verdict(m));
 }
 
 int ob_cmp_write_json(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,

@@ -11,6 +11,13 @@
 #include "host/io/output.h"
 
 /* A field of a change as text: value of `row` for `field`; md: time in ms. */
+
+const char *ob_method_verdict(const ob_method_sum *m)
+{
+    const int reg = m->regressions > 0 || m->verdict > 0, imp = m->improvements > 0 || m->verdict < 0;
+    return reg ? "regression" : imp ? "improvement" : "same";
+}
+
 static void value_text(char *buf, size_t len, const ob_res_row *row, const char *field, int md)
 {
     if (!row)
@@ -174,10 +181,8 @@ static void md_methods(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
         num_text(t, sizeof t, m->timing ? m->t_est : NAN, 1, "%.4g");
         num_text(p, sizeof p, m->p, 1, "%.3g");
         interval_text(ci, sizeof ci, m->ci_lo, m->ci_hi);
-        const int reg = m->regressions > 0 || m->verdict > 0, imp = m->improvements > 0 || m->verdict < 0;
         fprintf(f, "| %s | %d | %s | %s | %d | %d | %s | %s | %s | %s | %s | %s | %s |\n", m->method, m->rows, cp, er,
-                m->regressions, m->improvements, tb, tn, t, ci, p, timing_words(m),
-                reg ? "regression" : imp ? "improvement" : "same");
+                m->regressions, m->improvements, tb, tn, t, ci, p, timing_words(m), ob_method_verdict(m));
     }
 }
 

@@ -212,4 +212,21 @@ for spec in "published:--curve liu2002_ex1" "random:--random 2:2026"; do
     check '[ $rc -eq 0 ] || [ $rc -eq 1 ]' "results/baseline/$name comparable with this build: exit $rc $(grep -m1 'not comparable' "$T/err")"
 done
 
+# compare --format json: each method's "method_verdict" is report.md's
+# per-method verdict (a quality regression is "regression" there too, where
+# the timing's "verdict" is "same"), for every method
+mkdir -p "$T/jq/a" "$T/jq/b"
+$OB run --curve liu2002_ex1 --methods tiller,cobb --tols 1e-2,1e-3 --backend cpu --out "$T/jq/a" >/dev/null 2>&1
+cp "$T/jq/a/meta.json" "$T/jq/b/"
+awkc 'BEGIN{OFS=","} NR>1 && $c["method"]=="cobb" && !done {$c["ctrl_points"]+=2; done=1} {print}' \
+    "$T/jq/a/results.csv" > "$T/jq/b/results.csv"
+$OB compare "$T/jq/a" "$T/jq/b" --no-timing --format json --out "$T/jq/c.json" 2>/dev/null
+$OB compare "$T/jq/a" "$T/jq/b" --no-timing --out "$T/jq/c.md" 2>/dev/null
+for m in tiller cobb; do
+    js=$(python3 -c "import json,sys; print([x['method_verdict'] for x in json.load(open(sys.argv[1]))['methods'] if x['method']==sys.argv[2]][0])" "$T/jq/c.json" $m 2>&1)
+    md=$(grep "^| $m |" "$T/jq/c.md" | head -n 1 | awk -F'|' '{gsub(/ /, "", $(NF-1)); print $(NF-1)}')
+    check "[ '$js' = '$md' ] && [ -n '$md' ]" "$m: JSON method_verdict '$js', report.md '$md'"
+done
+check "grep -q '^| cobb |.*| regression |\$' '$T/jq/c.md'" "cobb's quality regression: $(grep '^| cobb |' "$T/jq/c.md")"
+
 e2e_done
