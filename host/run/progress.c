@@ -106,25 +106,6 @@ static double group_left(const ob_work_group *g, const double *k)
     return fmax(ns - m, over);
 }
 
-/* Min-heap of the threads' free times (a list schedule's earliest free
- * thread), h[0] the least. */
-static void heap_down(double *h, size_t n, size_t i)
-{
-    for (;;) {
-        size_t l = 2 * i + 1, m = i;
-        if (l < n && h[l] < h[m])
-            m = l;
-        if (l + 1 < n && h[l + 1] < h[m])
-            m = l + 1;
-        if (m == i)
-            return;
-        const double x = h[i];
-        h[i] = h[m];
-        h[m] = x;
-        i = m;
-    }
-}
-
 /* The makespan of the unfinished groups' left work (thread ns) on `threads`
  * threads: each group, in schedule order (the running ones come first: the
  * engine took them in that order), on the earliest free thread, as the
@@ -140,7 +121,7 @@ static double list_schedule(const ob_work_group *g, size_t n, int threads, const
             continue;
         h[0] += group_left(&g[i], k);
         end = fmax(end, h[0]);
-        heap_down(h, (size_t)threads, 0);
+        ob_sched_heap_down(h, (size_t)threads, 0);
     }
     free(h);
     return end;

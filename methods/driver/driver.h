@@ -224,6 +224,12 @@ typedef struct {
  *          takes the next grain), phases one after the other.
  * Returns: ns; 0 for an empty trace. */
 double ob_trace_makespan(const ob_trace *t, int threads);
+
+/* Purpose: list scheduling's step (the makespan model above, and the
+ *          progress line's ETA, host/run/progress.c): h[0..n-1] a binary
+ *          min-heap of the threads' free times, earliest at h[0]; restores
+ *          the heap below position i after h[i] grew. */
+void ob_sched_heap_down(double *h, size_t n, size_t i);
 void ob_trace_free(ob_trace *t);
 
 /* The group engine calls hooks.progress at most this often while groups

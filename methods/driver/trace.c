@@ -56,11 +56,10 @@ int drv_trace_append(ob_trace *t, const ob_trace *part)
     return t->oom ? -1 : 0;
 }
 
-/* A binary heap of the threads' free times: the earliest at the top. */
-static void heap_down(double *h, int n, int i)
+void ob_sched_heap_down(double *h, size_t n, size_t i)
 {
     for (;;) {
-        int l = 2 * i + 1, m = i;
+        size_t l = 2 * i + 1, m = i;
         if (l < n && h[l] < h[m])
             m = l;
         if (l + 1 < n && h[l + 1] < h[m])
@@ -86,7 +85,7 @@ static double phase_span(const ob_trace *t, const ob_trace_phase *ph, int thread
         heap[0] += block;  /* the earliest free thread takes the block */
         if (heap[0] > span)
             span = heap[0];
-        heap_down(heap, threads, 0);
+        ob_sched_heap_down(heap, (size_t)threads, 0);
     }
     return span;
 }
