@@ -226,7 +226,7 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
      * where it was cut into C1 and C2: t = 1/2 (tables.md) and others */
     if (!selected(only, "zhao2017", "1"))
         return 0;
-    static char pieces[1 + 2 * NCUTS][40];
+    static char pieces[1 + 2 * NCUTS][64]; /* room for any int and %g: no truncation warning */
     int npieces = 0;
     snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C");
     for (int k = 0; k < NCUTS; k++)
