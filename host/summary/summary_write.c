@@ -324,6 +324,28 @@ static const section sections[] = {
      grid_methods},
 };
 
+/* The sections bits selects, each built into a grid and written by emit
+ * (Markdown or LaTeX: one loop, two formats); 0, or -1 when a grid could
+ * not be built or the stream failed. */
+static int each_section(FILE *f, const ob_summary *s, int bits,
+                        void (*emit)(FILE *, const ob_summary *, const section *, const grid *))
+{
+    int rc = 0;
+    for (size_t i = 0; i < sizeof sections / sizeof sections[0] && rc == 0; i++) {
+        if (!(bits & sections[i].bit))
+            continue;
+        grid g;
+        memset(&g, 0, sizeof g);
+        sections[i].build(&g, s);
+        if (g.failed)
+            rc = -1;
+        else
+            emit(f, s, &sections[i], &g);
+        grid_free(&g);
+    }
+    return rc || ferror(f) ? -1 : 0;
+}
+
 /* "a, b, c" of v[0..n) to f. */
 static void put_names(FILE *f, const char *const *v, int n)
 {
@@ -377,27 +399,18 @@ static void md_grid(FILE *f, const grid *g)
     }
 }
 
+static void md_section(FILE *f, const ob_summary *s, const section *sec, const grid *g)
+{
+    fprintf(f, "\n## %s\n\n%s%s%s\n\n", sec->title, sec->what, s->has_base ? "  " : "",
+            s->has_base ? sec->what_base : "");
+    md_grid(f, g);
+}
+
 int ob_summary_write_md(FILE *f, const ob_summary *s, int bits)
 {
     fprintf(f, "# Summary of %s\n\n", s->run.name ? s->run.name : "results.csv");
     put_scope(f, s, "");
-    int rc = 0;
-    for (size_t i = 0; i < sizeof sections / sizeof sections[0] && rc == 0; i++) {
-        if (!(bits & sections[i].bit))
-            continue;
-        grid g;
-        memset(&g, 0, sizeof g);
-        sections[i].build(&g, s);
-        if (g.failed)
-            rc = -1;
-        else {
-            fprintf(f, "\n## %s\n\n%s%s%s\n\n", sections[i].title, sections[i].what, s->has_base ? "  " : "",
-                    s->has_base ? sections[i].what_base : "");
-            md_grid(f, &g);
-        }
-        grid_free(&g);
-    }
-    return rc || ferror(f) ? -1 : 0;
+    return each_section(f, s, bits, md_section);
 }
 
 /* ---------------------------------------------------------------- LaTeX */
@@ -483,6 +496,16 @@ static void tex_comment(FILE *f, const char *t)
     fputc('\n', f);
 }
 
+static void tex_section(FILE *f, const ob_summary *s, const section *sec, const grid *g)
+{
+    fputc('\n', f);
+    tex_comment(f, sec->title);
+    tex_comment(f, sec->what);
+    if (s->has_base)
+        tex_comment(f, sec->what_base);
+    tex_grid(f, g);
+}
+
 int ob_summary_write_latex(FILE *f, const ob_summary *s, int bits)
 {
     char line[4400];
@@ -490,26 +513,7 @@ int ob_summary_write_latex(FILE *f, const ob_summary *s, int bits)
              s->run.name ? s->run.name : "results.csv");
     tex_comment(f, line);
     put_scope(f, s, "% ");
-    int rc = 0;
-    for (size_t i = 0; i < sizeof sections / sizeof sections[0] && rc == 0; i++) {
-        if (!(bits & sections[i].bit))
-            continue;
-        grid g;
-        memset(&g, 0, sizeof g);
-        sections[i].build(&g, s);
-        if (g.failed)
-            rc = -1;
-        else {
-            fputc('\n', f);
-            tex_comment(f, sections[i].title);
-            tex_comment(f, sections[i].what);
-            if (s->has_base)
-                tex_comment(f, sections[i].what_base);
-            tex_grid(f, &g);
-        }
-        grid_free(&g);
-    }
-    return rc || ferror(f) ? -1 : 0;
+    return each_section(f, s, bits, tex_section);
 }
 
 /* ---------------------------------------------------------------- CSV */
