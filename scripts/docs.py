@@ -466,10 +466,11 @@ GENERATORS = {
 FENCE = re.compile(r" {0,3}(```|~~~)")
 
 
-def headings(text):
-    """(level, text) of every ATX heading outside fenced code"""
-    out, fence = [], None
-    for line in text.split("\n"):
+def prose_lines(text):
+    """(line number, line) of every line outside fenced code (the fence
+    lines themselves left out): what headings and links are read from"""
+    fence = None
+    for n, line in enumerate(text.split("\n"), 1):
         m = FENCE.match(line)
         if m:
             if fence is None:
@@ -478,9 +479,16 @@ def headings(text):
                 fence = None
             continue
         if fence is None:
-            h = re.match(r"(#{1,6}) +(.*?)\s*#*\s*$", line)
-            if h:
-                out.append((len(h.group(1)), h.group(2)))
+            yield n, line
+
+
+def headings(text):
+    """(level, text) of every ATX heading outside fenced code"""
+    out = []
+    for _, line in prose_lines(text):
+        h = re.match(r"(#{1,6}) +(.*?)\s*#*\s*$", line)
+        if h:
+            out.append((len(h.group(1)), h.group(2)))
     return out
 
 
@@ -605,17 +613,8 @@ LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)
 
 def links(text):
     """(line, target) of every inline link outside code"""
-    out, fence = [], None
-    for n, line in enumerate(text.split("\n"), 1):
-        m = FENCE.match(line)
-        if m:
-            if fence is None:
-                fence = m.group(1)
-            elif m.group(1) == fence:
-                fence = None
-            continue
-        if fence is not None:
-            continue
+    out = []
+    for n, line in prose_lines(text):
         line = re.sub(r"`[^`]*`", "``", line)
         out += [(n, t) for t in LINK.findall(line)]
     return out
