@@ -12,6 +12,7 @@
  *   fit       one job: one method on one curve at (d, tol, metric, split),
  *             run by the same driver as `offbench run`: the job's numbers
  *             (its results.csv row) and its pieces;
+ *   batch     many jobs at once, with a progress callback;
  *   measure   any approximation (pieces given as arrays) against a curve's
  *             exact offset under any metric, as `offbench measure` does.
  *
@@ -207,6 +208,35 @@ int obx_result_piece_count(const obx_result *r);
  * Returns: the degree (>= 0); -1 with OBX_E_INVALID when k is out of range
  *          or the buffers are too small (the degree is then in the message). */
 int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap, obx_error *err);
+
+/* ---- batch: many jobs at once --------------------------------------------- */
+
+/* One job of a batch: the arguments of obx_fit. */
+typedef struct {
+    int curve;
+    const char *method;
+    double d, tol;
+    const char *metric;     /* NULL: hausdorff */
+    const char *split;      /* NULL: mid */
+    const char *params;     /* NULL: the defaults; else "NAME=VALUE,..." */
+} obx_job_spec;
+
+/* Told the jobs finished so far (done of total) as the batch runs. */
+typedef void (*obx_progress_fn)(void *ctx, size_t done, size_t total);
+
+/* Purpose: run n jobs together, as one `offbench run` runs its jobs (OpenMP
+ *          threads over all of them; jobs that differ only in tol share
+ *          pieces): every result is what obx_fit gives for its spec.
+ * Inputs:  jobs[n]; progress (NULL: none), called with ctx from one thread
+ *          at a time (not necessarily the caller's) after each batch of
+ *          work, done rising to total.
+ * Outputs: out[n], one result per job, in the specs' order (free each
+ *          with obx_result_free); all NULL after an error.
+ * Errors:  as obx_fit, the message prefixed "job I: " for the first bad
+ *          spec (no job runs then); OBX_E_INVALID for n 0 or NULL arrays.
+ * Threads: safe, also on one shared set. */
+int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
+                  obx_result **out, obx_error *err);
 
 /* ---- measure -------------------------------------------------------------- */
 

@@ -374,6 +374,18 @@ static int make_row(obx_result *r)
     return 0;
 }
 
+/* After the driver ran r's job: its pieces (from its span log) and row. */
+static int finish_result(obx_result *r, const ob_span_log *log, obx_error *err)
+{
+    ob_err e;
+    if ((r->job.status == OB_OK || r->job.status == OB_LIMIT) &&
+        ob_approx_from_job(&r->job, log, &r->pieces, &e) != 0)
+        return fail(err, OBX_E_NOMEM, "the job's pieces: %s", e.msg);
+    if (make_row(r) != 0)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    return 0;
+}
+
 /* Runs r's job and keeps its pieces. */
 static int run_job(obx_result *r, obx_error *err)
 {
@@ -382,16 +394,9 @@ static int run_job(obx_result *r, obx_error *err)
     hooks.spans = &log;
     ob_driver_opts o;
     ob_driver_defaults(&o);
-    int rc = ob_driver_run(&r->job, 1, &o, &hooks);
-    ob_err e;
-    if (rc == 0 && (r->job.status == OB_OK || r->job.status == OB_LIMIT) &&
-        ob_approx_from_job(&r->job, &log, &r->pieces, &e) != 0)
-        rc = fail(err, OBX_E_NOMEM, "the job's pieces: %s", e.msg);
-    else if (rc != 0)
-        rc = fail(err, OBX_E_NOMEM, "out of memory");
+    int rc = ob_driver_run(&r->job, 1, &o, &hooks) == 0 ? finish_result(r, &log, err)
+                                                         : fail(err, OBX_E_NOMEM, "out of memory");
     free(log.v);
-    if (rc == 0 && make_row(r) != 0)
-        rc = fail(err, OBX_E_NOMEM, "out of memory");
     return rc;
 }
 
@@ -489,6 +494,81 @@ int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap,
             w[i] = ob_bez_weight(b, i);
     }
     return b->deg;
+}
+
+/* ---- batch ------------------------------------------------------------------ */
+
+typedef struct {
+    obx_progress_fn fn;
+    void *ctx;
+} progress_ctx;
+
+static void progress_hook(void *ctx, const ob_progress_info *pi)
+{
+    const progress_ctx *p = ctx;
+    p->fn(p->ctx, pi->done, pi->total);
+}
+
+/* Results for the n specs, their jobs checked; NULL entries on failure
+ * (the caller frees what was made). */
+static int make_results(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_result **out,
+                        obx_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        const obx_job_spec *j = &jobs[i];
+        if (!(out[i] = calloc(1, sizeof *out[i])))
+            return fail(err, OBX_E_NOMEM, "out of memory");
+        obx_error e = {0, ""};
+        if (set_job(out[i], set, j->curve, j->method, j->d, j->tol, j->metric, j->split, j->params, &e) ||
+            sisl_ready(out[i]->job.method, &e))
+            return fail(err, (obx_code)e.code, "job %zu: %.480s", i, e.message);
+    }
+    return 0;
+}
+
+/* The driver over the results' jobs (copied into one array), then each
+ * result's pieces and row. */
+static int run_batch(obx_result **res, size_t n, obx_progress_fn progress, void *ctx, obx_error *err)
+{
+    ob_job *jobs = malloc(n * sizeof *jobs);
+    ob_span_log *logs = calloc(n, sizeof *logs);
+    int rc = jobs && logs ? 0 : fail(err, OBX_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < n && rc == 0; i++)
+        jobs[i] = res[i]->job;
+    progress_ctx pc = {progress, ctx};
+    ob_driver_hooks hooks = {0};
+    hooks.spans = logs;
+    hooks.progress = progress ? progress_hook : NULL;
+    hooks.progress_ctx = &pc;
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    if (rc == 0 && ob_driver_run(jobs, n, &o, &hooks) != 0)
+        rc = fail(err, OBX_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < n && rc == 0; i++) {
+        res[i]->job = jobs[i];
+        res[i]->job.params = res[i]->params;
+        rc = finish_result(res[i], &logs[i], err);
+    }
+    for (size_t i = 0; logs && i < n; i++)
+        free(logs[i].v);
+    free(logs);
+    free(jobs);
+    return rc;
+}
+
+int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
+                  obx_result **out, obx_error *err)
+{
+    if (!jobs || !out || n == 0)
+        return fail(err, OBX_E_INVALID, "obx_run_batch: %s", n == 0 ? "no jobs" : "NULL jobs or out");
+    memset(out, 0, n * sizeof *out);
+    if (make_results(set, jobs, n, out, err) == 0 && run_batch(out, n, progress, ctx, err) == 0)
+        return 0;
+    for (size_t i = 0; i < n; i++) {
+        obx_result_free(out[i]);
+        out[i] = NULL;
+    }
+    return -1;
 }
 
 /* ---- measure ------------------------------------------------------------------ */

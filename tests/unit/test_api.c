@@ -250,6 +250,52 @@ static void test_sisl(const obx_curveset *s, int c)
     obx_result_free(r);
 }
 
+typedef struct {
+    size_t calls, last_done, total;
+    int rising;
+} progress_seen;
+
+static void on_progress(void *ctx, size_t done, size_t total)
+{
+    progress_seen *p = ctx;
+    p->rising &= done >= p->last_done && done <= total;
+    p->calls++;
+    p->last_done = done;
+    p->total = total;
+}
+
+/* A batch's results are obx_fit's, timings aside; progress rises to the end. */
+static void test_batch(const obx_curveset *s, int c)
+{
+    enum { N = 6 };
+    const char *methods[N] = {"tiller", "tiller", "tiller", "cobb", "lee", "sisl"};
+    const double tols[N] = {1e-2, 1e-3, 1e-4, 1e-3, 1e-3, 1e-2};
+    obx_job_spec jobs[N];
+    for (int i = 0; i < N; i++)
+        jobs[i] = (obx_job_spec){c, methods[i], i % 2 ? 1.0 : -1.0, tols[i], NULL, i == 2 ? "greedy" : NULL, NULL};
+    obx_result *out[N];
+    obx_error e = {0, ""};
+    progress_seen p = {0, 0, 0, 1};
+    CHECK(obx_run_batch(s, jobs, N, on_progress, &p, out, &e) == 0, "batch: %s", e.message);
+    CHECK(p.calls > 0 && p.rising && p.last_done == N && p.total == N, "progress: %zu calls, last %zu of %zu",
+          p.calls, p.last_done, p.total);
+    for (int i = 0; i < N; i++) {
+        obx_result *r = NULL;
+        CHECK(obx_fit(s, c, methods[i], jobs[i].d, tols[i], NULL, jobs[i].split, NULL, &r, &e) == 0, "fit");
+        char a[2048], b[2048];
+        drop_timings(obx_result_row(out[i]), a, sizeof a);
+        drop_timings(r ? obx_result_row(r) : "", b, sizeof b);
+        CHECK(strcmp(a, b) == 0 && obx_result_piece_count(out[i]) == obx_result_piece_count(r),
+              "job %d: batch %s, fit %s", i, a, b);
+        obx_result_free(r);
+        obx_result_free(out[i]);
+    }
+    jobs[3].method = "nosuch";
+    CHECK(obx_run_batch(s, jobs, N, NULL, NULL, out, &e) == -1 && strncmp(e.message, "job 3: ", 7) == 0 &&
+              out[0] == NULL, "bad spec: %s", e.message);
+    CHECK(obx_run_batch(s, jobs, 0, NULL, NULL, out, NULL) == -1, "no jobs");
+}
+
 int main(void)
 {
     test_version();
@@ -263,6 +309,7 @@ int main(void)
         test_fit_errors(s, c);
         test_fit_cross(s, c);
         test_sisl(s, c);
+        test_batch(s, c);
     }
     obx_curves_free(s);
     test_arrays();
