@@ -17,6 +17,8 @@
 #   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 #   make check-method M=NAME  the method contract (methods/CONTRACT.md) on one method
+#   make lib        build/liboffbench.so (the C API, include/offbench.h) and
+#                   build/offbench-sisl-server (the sisl method's server for it)
 #   make man        the manual page, build/offbench.1, from the commands' --help
 #   make install PREFIX=/usr/local [DESTDIR=]  the program, its manual page and the
 #                   bash and zsh completions (make uninstall removes them)
@@ -24,7 +26,9 @@
 CC      ?= gcc
 SAN     ?= 0
 OPT     ?= -O2
-CFLAGS_COMMON = -std=c11 -g -Wall -Wextra -Wshadow -fopenmp -D_POSIX_C_SOURCE=200809L
+# -fPIC: the same objects make ./offbench and build/liboffbench.so (make lib);
+# the default job's rows are identical with and without it (scripts/same_rows.py)
+CFLAGS_COMMON = -std=c11 -g -Wall -Wextra -Wshadow -fopenmp -fPIC -D_POSIX_C_SOURCE=200809L
 ifeq ($(MPI),1)
   # mpirun -n P ./offbench run ...: Open MPI (mpicc), objects in build-mpi/
   CC      := mpicc
@@ -51,7 +55,7 @@ CFLAGS  += $(CFLAGS_COMMON) $(OPT) $(SANFLAGS)
 LDFLAGS += -fopenmp $(SANFLAGS)
 LDLIBS  += -lsisl -lflint -lgmp -lm -ldl
 
-LIB_SRC  := $(sort $(wildcard methods/*.c methods/*/*.c) $(filter-out host/main.c,$(wildcard host/*.c host/*/*.c)))
+LIB_SRC  := $(sort $(wildcard methods/*.c methods/*/*.c) $(filter-out host/main.c host/lib/sisl_server_main.c,$(wildcard host/*.c host/*/*.c)))
 LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o \
             $(BUILD)/embedded_published.o
 TEST_SRC := $(sort $(wildcard tests/*/test_*.c))
@@ -62,7 +66,7 @@ KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
 .PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline report \
-        report-screenshot fuzz fuzz-run check-method man install uninstall FORCE
+        report-screenshot fuzz fuzz-run check-method man lib install uninstall FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -97,7 +101,13 @@ $(BUILD)/embedded_kernels.c: $(KERNELS) scripts/embed_data.sh
 	@mkdir -p $(BUILD)
 	sh scripts/embed_data.sh ob_embedded_kernels $(KERNELS) > $@
 
-$(BUILD)/%.o: %.c $(BUILD)/.deps-ok
+# The compiler flags the objects were built with: a change (such as -fPIC,
+# which the shared library needs) rebuilds them all
+$(BUILD)/.cflags: FORCE
+	@mkdir -p $(BUILD)
+	@echo '$(CC) $(CFLAGS)' > $@.tmp; cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+
+$(BUILD)/%.o: %.c $(BUILD)/.deps-ok $(BUILD)/.cflags
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -MMD -MP -I. -I$(BUILD) -c $< -o $@
 
@@ -116,6 +126,34 @@ $(BUILD)/host/io/output.o $(BUILD)/host/run/journal.o $(BUILD)/host/main.o $(BUI
 $(BUILD)/libob.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
+
+# liboffbench (include/offbench.h): the library's objects as one shared
+# library exporting only obx_* (host/lib/offbench.map), SONAME
+# liboffbench.so.MAJOR; and the program sisl's fits run in when the library
+# is loaded by a program that does not link the method (python):
+# host/lib/sisl_exe.h.  The method's object is named so that its
+# constructor, which serves, is linked.
+OBX_VER  := $(shell sed -n 's/^\#define OBX_VERSION "\(.*\)"/\1/p' include/offbench.h)
+OBX_SO   := $(BUILD)/liboffbench.so.$(OBX_VER)
+OBX_SONAME := liboffbench.so.$(firstword $(subst ., ,$(OBX_VER)))
+lib: $(BUILD)/liboffbench.so $(BUILD)/offbench-sisl-server
+
+$(OBX_SO): $(LIB_OBJ) host/lib/offbench.map
+	$(CC) -shared -Wl,-soname,$(OBX_SONAME) -Wl,--version-script=host/lib/offbench.map $(LDFLAGS) \
+	    -o $@ $(LIB_OBJ) $(LDLIBS)
+
+$(BUILD)/liboffbench.so: $(OBX_SO)
+	ln -sf $(notdir $(OBX_SO)) $(BUILD)/$(OBX_SONAME)
+	ln -sf $(OBX_SONAME) $@
+
+$(BUILD)/offbench-sisl-server: $(BUILD)/host/lib/sisl_server_main.o $(BUILD)/methods/sisl.o $(BUILD)/libob.a
+	$(CC) $(LDFLAGS) -o $@ $(filter %.o %.a,$^) $(LDLIBS)
+
+# test_api links the shared library, as a user would
+$(BUILD)/tests/unit/test_api: tests/unit/test_api.c include/offbench.h $(BUILD)/liboffbench.so \
+                              $(BUILD)/offbench-sisl-server tests/check.h $(BIN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -I. -o $@ $< -L$(BUILD) -loffbench -Wl,-rpath,$(abspath $(BUILD)) $(LDFLAGS)
 
 # ./offbench is built with or without MPI: relink when that changes
 .offbench-flavor: FORCE

@@ -109,6 +109,7 @@
  */
 #define _GNU_SOURCE /* pipe2 */
 #include "methods/method.h"
+#include "methods/sisl_server.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -318,6 +319,16 @@ static void server_stop(int sig)
 #define SERVER_ENV "OFFBENCH_SISL_SERVER"
 #define SERVER_ARGV0 "offbench-sisl-server"
 
+/* The program the server is executed from: this one unless a library user
+ * (liboffbench, whose process may be python) names another that links this
+ * method (methods/sisl_server.h).  Set once, before any fit. */
+static const char *server_exe = "/proc/self/exe";
+
+void ob_sisl_set_server_exe(const char *path)
+{
+    server_exe = path ? path : "/proc/self/exe";
+}
+
 /* Runs before main in every program that links this method (offbench and
  * the tests): the image started by server_start() serves and never
  * returns; any other process goes on.  Both ends must be pipes. */
@@ -365,7 +376,7 @@ static void exec_server(int keep_in, int keep_out, int status, int maxfd, char *
         if (fd != keep_in && fd != keep_out && fd != status)
             close(fd);
     char *const argv[] = {(char *)SERVER_ARGV0, NULL};
-    execve("/proc/self/exe", argv, envp);
+    execve(server_exe, argv, envp);
     const int e = errno;
     ssize_t w = write(status, &e, sizeof e);
     (void)w;
@@ -433,8 +444,8 @@ static int server_start(char *msg, size_t msglen)
     if (pid > 0)
         while (waitpid(pid, NULL, 0) < 0 && errno == EINTR)
             ;
-    ob_method_msg(msg, msglen, "cannot start the SISL process: %s: %s", pid > 0 ? "exec /proc/self/exe" : "fork",
-                  strerror(got > 0 ? why : pid > 0 ? EIO : why));
+    ob_method_msg(msg, msglen, "cannot start the SISL process: %s%s: %s", pid > 0 ? "exec " : "",
+                  pid > 0 ? server_exe : "fork", strerror(got > 0 ? why : pid > 0 ? EIO : why));
     return -1;
 }
 

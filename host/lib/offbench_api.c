@@ -1,0 +1,625 @@
+/*
+ * offbench_api.c - liboffbench's C API (include/offbench.h): a thin layer
+ * over the code `offbench` itself runs.  Curves come from the curve-file
+ * reader (arrays are written as curve-file text and read by it, so both
+ * take the same checks), a fit is a one-job ob_driver_run with the run
+ * command's defaults, its pieces are the accepted spans refitted
+ * (ob_approx_from_job, as --export), and a measurement is `measure`'s
+ * ob_approx_match + ob_approx_measure.  No state besides the handles
+ * (and the SISL server's path, set once: host/lib/sisl_exe.c).
+ */
+#define _GNU_SOURCE 1 /* open_memstream's prototype with older glibc */
+#include "include/offbench.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "host/io/approx.h"
+#include "host/io/columns.h"
+#include "host/io/curvefile.h"
+#include "host/io/datadir.h"
+#include "host/io/output.h"
+#include "host/lib/sisl_exe.h"
+#include "host/measure/measure.h"
+#include "methods/core/offdeg.h"
+#include "methods/driver/driver.h"
+
+struct obx_curveset {
+    ob_curveset set;
+};
+
+struct obx_result {
+    ob_job job;
+    double params[OB_MAX_PARAMS];
+    ob_approx pieces;
+    char *row;
+};
+
+/* Sets err (may be NULL) and returns -1. */
+static int fail(obx_error *err, obx_code code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static int fail(obx_error *err, obx_code code, const char *fmt, ...)
+{
+    if (!err)
+        return -1;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    va_end(ap);
+    err->code = code;
+    return -1;
+}
+
+const char *obx_version(void)
+{
+    return OBX_VERSION;
+}
+
+/* ---- curves ---------------------------------------------------------------- */
+
+/* Fills in each curve's exact offset degree (results.csv's offset_degree,
+ * offset_rational), as the run command does before it plans its jobs. */
+static void offset_degrees(ob_curveset *s)
+{
+    for (int c = 0; c < s->n; c++) {
+        ob_curve *cv = &s->v[c];
+        char msg[160];
+        if (ob_curve_offset_degree(cv, &cv->offset_degree, &cv->offset_rational, msg, sizeof msg) == 0)
+            cv->offset_known = 1;
+    }
+}
+
+/* A new handle owning *s (emptied), or -1 with OBX_E_NOMEM. */
+static int wrap_set(ob_curveset *s, obx_curveset **out, obx_error *err)
+{
+    obx_curveset *h = malloc(sizeof *h);
+    if (!h) {
+        ob_curveset_free(s);
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    }
+    offset_degrees(s);
+    h->set = *s;
+    memset(s, 0, sizeof *s);
+    *out = h;
+    return 0;
+}
+
+/* The reader's message's code: unreadable files are IO, the rest PARSE. */
+static obx_code load_code(const char *path, const char *msg)
+{
+    size_t k = strlen(path);
+    return strncmp(msg, path, k) == 0 && msg[k] == ':' && msg[k + 1] == ' ' ? OBX_E_IO : OBX_E_PARSE;
+}
+
+int obx_curves_load_file(const char *path, obx_curveset **out, obx_error *err)
+{
+    if (!path || !out)
+        return fail(err, OBX_E_INVALID, "obx_curves_load_file: NULL %s", path ? "out" : "path");
+    ob_curveset s = {0};
+    ob_err e;
+    if (ob_curves_load_file(path, &s, &e) != 0) {
+        ob_curveset_free(&s);
+        return fail(err, load_code(path, e.msg), "%s", e.msg);
+    }
+    return wrap_set(&s, out, err);
+}
+
+int obx_curves_load_default(obx_curveset **out, obx_error *err)
+{
+    if (!out)
+        return fail(err, OBX_E_INVALID, "obx_curves_load_default: NULL out");
+    ob_curveset s = {0};
+    ob_err e;
+    char where[512];
+    if (ob_load_default_curves(&s, where, sizeof where, &e) != 0) {
+        ob_curveset_free(&s);
+        return fail(err, OBX_E_PARSE, "%s", e.msg);
+    }
+    return wrap_set(&s, out, err);
+}
+
+/* Checks what the reader's message could not name by segment and point:
+ * counts, degrees, finite numbers, weights.  Counts the points in *npts. */
+static int check_arrays(const char *id, int nseg, const int *degrees, const double *xy, const double *w, size_t *npts,
+                        obx_error *err)
+{
+    if (!id || !degrees || !xy || nseg < 1)
+        return fail(err, OBX_E_INVALID, "obx_curves_from_arrays: %s",
+                    !id ? "NULL id" : nseg < 1 ? "nseg must be >= 1" : "NULL degrees or xy");
+    size_t k = 0;
+    for (int s = 0; s < nseg; s++) {
+        if (degrees[s] < 1 || degrees[s] > OB_MAX_IN_DEG)
+            return fail(err, OBX_E_INVALID, "curve '%s': segment %d: degree %d (must be 1 to %d)", id, s, degrees[s],
+                        OB_MAX_IN_DEG);
+        for (int i = 0; i <= degrees[s]; i++, k++) {
+            if (!isfinite(xy[2 * k]) || !isfinite(xy[2 * k + 1]))
+                return fail(err, OBX_E_INVALID, "curve '%s': segment %d: point %d is not finite", id, s, i);
+            if (w && !(isfinite(w[k]) && w[k] > 0))
+                return fail(err, OBX_E_INVALID, "curve '%s': segment %d: weight %d is %g (must be > 0, finite)", id,
+                            s, i, w[k]);
+        }
+    }
+    *npts = k;
+    return 0;
+}
+
+/* The curve as curve-file text, with one offset line (a placeholder the
+ * caller drops: the format asks for one).  NULL when out of memory. */
+static char *arrays_text(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
+                         size_t *len)
+{
+    char *text = NULL;
+    FILE *f = open_memstream(&text, len);
+    if (!f)
+        return NULL;
+    fprintf(f, "curve %s\n  source obx_curves_from_arrays\n", id);
+    double big = 1.0;
+    size_t k = 0;
+    for (int s = 0; s < nseg; s++) {
+        fprintf(f, "  bezier %d\n", degrees[s]);
+        for (int i = 0; i <= degrees[s]; i++, k++) {
+            fprintf(f, "  point %.17g %.17g %.17g\n", xy[2 * k], xy[2 * k + 1], w ? w[k] : 1.0);
+            big = fmax(big, fmax(fabs(xy[2 * k]), fabs(xy[2 * k + 1])));
+        }
+    }
+    fprintf(f, "  offset %.17g\nend\n", fmin(big, 1e12));
+    if (fclose(f) != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
+int obx_curves_from_arrays(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
+                           obx_curveset **out, obx_error *err)
+{
+    size_t npts = 0;
+    if (!out)
+        return fail(err, OBX_E_INVALID, "obx_curves_from_arrays: NULL out");
+    if (check_arrays(id, nseg, degrees, xy, w, &npts, err))
+        return -1;
+    if (strlen(id) > 63 || strspn(id, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./") !=
+                               strlen(id) || !*id)
+        return fail(err, OBX_E_INVALID, "curve id '%.80s': 1 to 63 letters, digits, '_', '-', '.', '/'", id);
+    size_t len = 0;
+    char *text = arrays_text(id, nseg, degrees, xy, w, &len);
+    if (!text)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    ob_curveset s = {0};
+    ob_err e;
+    int rc = ob_curves_parse(text, len, "obx_curves_from_arrays", &s, &e);
+    free(text);
+    if (rc != 0) {
+        ob_curveset_free(&s);
+        return fail(err, OBX_E_INVALID, "%s", e.msg);
+    }
+    s.v[0].nd = 0; /* the placeholder offset */
+    return wrap_set(&s, out, err);
+}
+
+void obx_curves_free(obx_curveset *set)
+{
+    if (!set)
+        return;
+    ob_curveset_free(&set->set);
+    free(set);
+}
+
+int obx_curves_count(const obx_curveset *set)
+{
+    return set ? set->set.n : 0;
+}
+
+const char *obx_curves_id(const obx_curveset *set, int i)
+{
+    return set && i >= 0 && i < set->set.n ? set->set.v[i].id : NULL;
+}
+
+int obx_curves_find(const obx_curveset *set, const char *id)
+{
+    return set ? ob_curveset_find(&set->set, id) : -1;
+}
+
+int obx_curves_offsets(const obx_curveset *set, int i, const double **d)
+{
+    if (!set || i < 0 || i >= set->set.n)
+        return 0;
+    if (d)
+        *d = set->set.v[i].d;
+    return set->set.v[i].nd;
+}
+
+/* ---- methods ---------------------------------------------------------------- */
+
+int obx_method_count(void)
+{
+    return ob_method_count();
+}
+
+static const ob_method *method_at(int i)
+{
+    return i >= 0 && i < ob_method_count() ? ob_methods[i] : NULL;
+}
+
+const char *obx_method_name(int i)
+{
+    const ob_method *m = method_at(i);
+    return m ? m->name : NULL;
+}
+
+const char *obx_method_citation(int i)
+{
+    const ob_method *m = method_at(i);
+    return m ? m->citation : NULL;
+}
+
+int obx_method_param_count(int i)
+{
+    const ob_method *m = method_at(i);
+    return m ? m->nparams : 0;
+}
+
+int obx_method_param(int i, int k, obx_param_info *out, obx_error *err)
+{
+    const ob_method *m = method_at(i);
+    if (!m || !out || k < 0 || k >= m->nparams)
+        return fail(err, OBX_E_INVALID, "obx_method_param: %s", !m ? "no such method index"
+                                                               : !out ? "NULL out" : "no such parameter index");
+    const ob_param *p = &m->params[k];
+    *out = (obx_param_info){p->name, p->def, p->min, p->max, p->integer, p->doc};
+    return 0;
+}
+
+/* ---- fit ------------------------------------------------------------------------ */
+
+/* The names a message lists: every method's. */
+static void method_names(char *buf, size_t len)
+{
+    size_t k = 0;
+    buf[0] = '\0';
+    for (int i = 0; ob_methods[i] && k < len; i++)
+        k += (size_t)snprintf(buf + k, len - k, "%s%s", i ? ", " : "", ob_methods[i]->name);
+}
+
+/* "NAME=VALUE[,...]" onto par (the defaults already there). */
+static int parse_params(const ob_method *m, const char *spec, double *par, obx_error *err)
+{
+    char buf[512];
+    if (strlen(spec) >= sizeof buf)
+        return fail(err, OBX_E_INVALID, "parameters '%.40s...': too long", spec);
+    strcpy(buf, spec);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        char *eq = strchr(tok, '=');
+        if (!eq)
+            return fail(err, OBX_E_INVALID, "parameter '%s': not NAME=VALUE", tok);
+        *eq = '\0';
+        int k = ob_param_find(m, tok);
+        if (k < 0)
+            return fail(err, OBX_E_INVALID, "method %s has no parameter '%s'", m->name, tok);
+        char *end;
+        double v = strtod(eq + 1, &end);
+        char msg[256];
+        if (end == eq + 1 || *end)
+            return fail(err, OBX_E_INVALID, "parameter %s.%s: '%s' is not a number", m->name, tok, eq + 1);
+        if (ob_param_check(m, &m->params[k], v, msg, sizeof msg))
+            return fail(err, OBX_E_INVALID, "%s", msg);
+        par[k] = v;
+    }
+    return 0;
+}
+
+/* Checks and names of a fit's or a measurement's arguments. */
+static int check_curve_d(const obx_curveset *set, int curve, double d, obx_error *err)
+{
+    if (!set || curve < 0 || curve >= set->set.n)
+        return fail(err, OBX_E_INVALID, "%s", !set ? "NULL curve set" : "curve index out of range");
+    char why[200];
+    if (ob_offset_check(d, set->set.v[curve].coord_max, why, sizeof why))
+        return fail(err, OBX_E_INVALID, "curve '%s': %s", set->set.v[curve].id, why);
+    return 0;
+}
+
+static int parse_metric(const char *name, ob_metric *m, obx_error *err)
+{
+    if (ob_metric_parse(name ? name : "hausdorff", m) != 0)
+        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param)", name);
+    return 0;
+}
+
+/* The job's inputs from the arguments, into r->job. */
+static int set_job(obx_result *r, const obx_curveset *set, int curve, const char *method, double d, double tol,
+                   const char *metric, const char *split, const char *params, obx_error *err)
+{
+    if (check_curve_d(set, curve, d, err))
+        return -1;
+    const ob_method *m = method ? ob_method_find(method) : NULL;
+    if (!m) {
+        char names[1024];
+        method_names(names, sizeof names);
+        return fail(err, OBX_E_INVALID, "unknown method '%s' (%s)", method ? method : "(null)", names);
+    }
+    if (!(isfinite(tol) && tol > 0))
+        return fail(err, OBX_E_INVALID, "tolerance %g: must be finite and > 0", tol);
+    ob_job *j = &r->job;
+    if (parse_metric(metric, &j->metric, err))
+        return -1;
+    if (ob_split_parse(split ? split : "mid", &j->split) != 0)
+        return fail(err, OBX_E_INVALID, "unknown split '%s' (mid, maxerr, greedy, optimal)", split);
+    ob_param_defaults(m, r->params);
+    if (params && parse_params(m, params, r->params, err))
+        return -1;
+    j->curve = &set->set.v[curve];
+    j->d = d;
+    j->method = m;
+    j->params = r->params;
+    j->tol = tol;
+    return 0;
+}
+
+/* The job's results.csv row, without its newline, into r->row. */
+static int make_row(obx_result *r)
+{
+    size_t len = 0;
+    FILE *f = open_memstream(&r->row, &len);
+    if (!f)
+        return -1;
+    int rc = ob_write_result_row(f, &r->job);
+    if (fclose(f) != 0 || rc != 0)
+        return -1;
+    if (len && r->row[len - 1] == '\n')
+        r->row[len - 1] = '\0';
+    return 0;
+}
+
+/* After the driver ran r's job: its pieces (from its span log) and row. */
+static int finish_result(obx_result *r, const ob_span_log *log, obx_error *err)
+{
+    ob_err e;
+    if ((r->job.status == OB_OK || r->job.status == OB_LIMIT) &&
+        ob_approx_from_job(&r->job, log, &r->pieces, &e) != 0)
+        return fail(err, OBX_E_NOMEM, "the job's pieces: %s", e.msg);
+    if (make_row(r) != 0)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    return 0;
+}
+
+/* Runs r's job and keeps its pieces. */
+static int run_job(obx_result *r, obx_error *err)
+{
+    ob_span_log log = {0};
+    ob_driver_hooks hooks = {0};
+    hooks.spans = &log;
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    int rc = ob_driver_run(&r->job, 1, &o, &hooks) == 0 ? finish_result(r, &log, err)
+                                                         : fail(err, OBX_E_NOMEM, "out of memory");
+    free(log.v);
+    return rc;
+}
+
+/* The method sisl needs its server program (host/lib/sisl_exe.h). */
+static int sisl_ready(const ob_method *m, obx_error *err)
+{
+    char why[480];
+    if (strcmp(m->name, "sisl") != 0 || ob_lib_sisl_ready(why, sizeof why) == 0)
+        return 0;
+    return fail(err, OBX_E_UNSUPPORTED, "method sisl: %s", why);
+}
+
+int obx_fit(const obx_curveset *set, int curve, const char *method, double d, double tol, const char *metric,
+            const char *split, const char *params, obx_result **out, obx_error *err)
+{
+    if (!out)
+        return fail(err, OBX_E_INVALID, "obx_fit: NULL out");
+    obx_result *r = calloc(1, sizeof *r);
+    if (!r)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    if (set_job(r, set, curve, method, d, tol, metric, split, params, err) || sisl_ready(r->job.method, err) ||
+        run_job(r, err)) {
+        obx_result_free(r);
+        return -1;
+    }
+    *out = r;
+    return 0;
+}
+
+void obx_result_free(obx_result *r)
+{
+    if (!r)
+        return;
+    ob_approx_free(&r->pieces);
+    free(r->row);
+    free(r);
+}
+
+const char *obx_result_status(const obx_result *r)
+{
+    return ob_status_name(r->job.status);
+}
+
+double obx_result_max_err(const obx_result *r)
+{
+    return r->job.max_err;
+}
+
+long obx_result_ctrl_points(const obx_result *r)
+{
+    return r->job.ctrl_points;
+}
+
+int obx_result_segments(const obx_result *r)
+{
+    return r->job.segments;
+}
+
+const char *obx_result_message(const obx_result *r)
+{
+    return r->job.message;
+}
+
+const char *obx_result_row(const obx_result *r)
+{
+    return r->row;
+}
+
+const char *obx_results_header(void)
+{
+    return ob_results_header();
+}
+
+int obx_result_piece_count(const obx_result *r)
+{
+    return r->pieces.n;
+}
+
+int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap, obx_error *err)
+{
+    if (!r || k < 0 || k >= r->pieces.n)
+        return fail(err, OBX_E_INVALID, "obx_result_piece: no piece %d", k);
+    const ob_bez *b = &r->pieces.v[k].approx;
+    if ((xy || w) && cap < b->deg + 1)
+        return fail(err, OBX_E_INVALID, "piece %d has degree %d: the buffers need %d points, not %d", k, b->deg,
+                    b->deg + 1, cap);
+    for (int i = 0; i <= b->deg && (xy || w); i++) {
+        double p[2];
+        ob_bez_ctrl(b, i, p);
+        if (xy) {
+            xy[2 * i] = p[0];
+            xy[2 * i + 1] = p[1];
+        }
+        if (w)
+            w[i] = ob_bez_weight(b, i);
+    }
+    return b->deg;
+}
+
+/* ---- batch ------------------------------------------------------------------ */
+
+typedef struct {
+    obx_progress_fn fn;
+    void *ctx;
+} progress_ctx;
+
+static void progress_hook(void *ctx, const ob_progress_info *pi)
+{
+    const progress_ctx *p = ctx;
+    p->fn(p->ctx, pi->done, pi->total);
+}
+
+/* Results for the n specs, their jobs checked; NULL entries on failure
+ * (the caller frees what was made). */
+static int make_results(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_result **out,
+                        obx_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        const obx_job_spec *j = &jobs[i];
+        if (!(out[i] = calloc(1, sizeof *out[i])))
+            return fail(err, OBX_E_NOMEM, "out of memory");
+        obx_error e = {0, ""};
+        if (set_job(out[i], set, j->curve, j->method, j->d, j->tol, j->metric, j->split, j->params, &e) ||
+            sisl_ready(out[i]->job.method, &e))
+            return fail(err, (obx_code)e.code, "job %zu: %.480s", i, e.message);
+    }
+    return 0;
+}
+
+/* The driver over the results' jobs (copied into one array), then each
+ * result's pieces and row. */
+static int run_batch(obx_result **res, size_t n, obx_progress_fn progress, void *ctx, obx_error *err)
+{
+    ob_job *jobs = malloc(n * sizeof *jobs);
+    ob_span_log *logs = calloc(n, sizeof *logs);
+    int rc = jobs && logs ? 0 : fail(err, OBX_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < n && rc == 0; i++)
+        jobs[i] = res[i]->job;
+    progress_ctx pc = {progress, ctx};
+    ob_driver_hooks hooks = {0};
+    hooks.spans = logs;
+    hooks.progress = progress ? progress_hook : NULL;
+    hooks.progress_ctx = &pc;
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    if (rc == 0 && ob_driver_run(jobs, n, &o, &hooks) != 0)
+        rc = fail(err, OBX_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < n && rc == 0; i++) {
+        res[i]->job = jobs[i];
+        res[i]->job.params = res[i]->params;
+        rc = finish_result(res[i], &logs[i], err);
+    }
+    for (size_t i = 0; logs && i < n; i++)
+        free(logs[i].v);
+    free(logs);
+    free(jobs);
+    return rc;
+}
+
+int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
+                  obx_result **out, obx_error *err)
+{
+    if (!jobs || !out || n == 0)
+        return fail(err, OBX_E_INVALID, "obx_run_batch: %s", n == 0 ? "no jobs" : "NULL jobs or out");
+    memset(out, 0, n * sizeof *out);
+    if (make_results(set, jobs, n, out, err) == 0 && run_batch(out, n, progress, ctx, err) == 0)
+        return 0;
+    for (size_t i = 0; i < n; i++) {
+        obx_result_free(out[i]);
+        out[i] = NULL;
+    }
+    return -1;
+}
+
+/* ---- measure ------------------------------------------------------------------ */
+
+/* The pieces as an approximation without links. */
+static int pieces_approx(int npieces, const int *degrees, const double *xy, const double *w, ob_approx *a,
+                         obx_error *err)
+{
+    if (npieces < 1 || !degrees || !xy)
+        return fail(err, OBX_E_INVALID, "obx_measure: %s", npieces < 1 ? "no pieces" : "NULL degrees or xy");
+    size_t k = 0;
+    for (int p = 0; p < npieces; p++) {
+        if (degrees[p] < 1 || degrees[p] > OB_MAX_DEG)
+            return fail(err, OBX_E_INVALID, "piece %d: degree %d (must be 1 to %d)", p, degrees[p], OB_MAX_DEG);
+        ob_apiece *ap = ob_approx_add(a);
+        if (!ap)
+            return fail(err, OBX_E_NOMEM, "out of memory");
+        ap->approx.deg = degrees[p];
+        for (int i = 0; i <= degrees[p]; i++, k++) {
+            const double wk = w ? w[k] : 1.0;
+            if (!isfinite(xy[2 * k]) || !isfinite(xy[2 * k + 1]) || !(isfinite(wk) && wk > 0))
+                return fail(err, OBX_E_INVALID, "piece %d: point %d is not finite or its weight not > 0", p, i);
+            ob_bez_set(&ap->approx, i, xy[2 * k], xy[2 * k + 1], wk);
+        }
+    }
+    return 0;
+}
+
+int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
+                const double *w, const char *metric, obx_measurement *m, obx_error *err)
+{
+    ob_metric met;
+    if (!m)
+        return fail(err, OBX_E_INVALID, "obx_measure: NULL out");
+    if (check_curve_d(set, curve, d, err) || parse_metric(metric, &met, err))
+        return -1;
+    ob_approx a = {0};
+    const ob_curve *c = &set->set.v[curve];
+    ob_err e;
+    ob_mres r;
+    int rc = pieces_approx(npieces, degrees, xy, w, &a, err);
+    if (rc == 0 && (ob_approx_match(c, d, &a, "pieces", &e) != 0 ||
+                    ob_approx_measure(c, d, &a, met, OB_DEFAULT_SAMPLES, "pieces", &r, &e) != 0))
+        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
+    ob_approx_free(&a);
+    if (rc)
+        return -1;
+    memset(m, 0, sizeof *m);
+    m->max_err = r.applies ? r.err : NAN;
+    m->piece = r.piece;
+    snprintf(m->status, sizeof m->status, "%s", ob_mres_status(&r));
+    snprintf(m->why, sizeof m->why, "%s", r.ok ? "" : r.why ? r.why : "");
+    return 0;
+}

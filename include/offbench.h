@@ -1,0 +1,270 @@
+/*
+ * offbench.h - the C API of liboffbench (issue 39): offbench's curves,
+ * methods, driver and metrics as a library.
+ *
+ *   cc prog.c -Iinclude -Lbuild -loffbench      (build/liboffbench.so, make lib)
+ *
+ * What it gives:
+ *   curves    a read-only set of test curves: from a `.curves` file, the
+ *             built-in datasets, or arrays of Bézier segments;
+ *   methods   the registered offset approximation methods and their
+ *             parameters (name, default, range, meaning);
+ *   fit       one job: one method on one curve at (d, tol, metric, split),
+ *             run by the same driver as `offbench run`: the job's numbers
+ *             (its results.csv row) and its pieces;
+ *   batch     many jobs at once, with a progress callback;
+ *   measure   any approximation (pieces given as arrays) against a curve's
+ *             exact offset under any metric, as `offbench measure` does.
+ *
+ * Conventions:
+ *   - Every type is opaque or declared here; no internal offbench type
+ *     appears in this header, so the library's internals may change without
+ *     breaking a caller (the ABI changes only with OBX_VERSION_MAJOR, which
+ *     is the SONAME's number: liboffbench.so.0).
+ *   - Errors: every function that can fail takes an obx_error *err (may be
+ *     NULL) and returns 0 on success, -1 on failure with err->code (an
+ *     obx_code) and err->message (one line, no newline, e.g.
+ *     "data/x.curves:12: bad degree") set.  On success err is left as it
+ *     was.  Accessors of a valid handle cannot fail and take no err.
+ *   - Points are Euclidean: a segment of degree n has n + 1 control points,
+ *     given as xy[2 k], xy[2 k + 1]; weights (rational segments) w[k] > 0,
+ *     NULL for polynomial segments (all weights 1).
+ *   - Thread safety: a curve set is read-only once made: any number of
+ *     threads may read it, fit on it and measure against it at once.
+ *     Results are owned by their caller (one thread at a time, or read-only
+ *     sharing).  The method list is constant.  obx_fit and obx_measure may
+ *     run on several threads at once; each obx_fit uses OpenMP threads of
+ *     its own (OMP_NUM_THREADS).
+ *   - The method `sisl` runs its fits in a server process (SINTEF's SISL
+ *     can abort or loop on hostile input): the library starts the program
+ *     named by $OFFBENCH_SISL_EXE, else build/offbench-sisl-server beside
+ *     the library (found through the library's own path), one per calling
+ *     thread; without either, obx_fit with `sisl` fails with OBX_E_UNSUPPORTED.
+ */
+#ifndef OFFBENCH_H
+#define OFFBENCH_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- version ------------------------------------------------------------ */
+
+#define OBX_VERSION_MAJOR 0
+#define OBX_VERSION_MINOR 1
+#define OBX_VERSION_PATCH 0
+#define OBX_VERSION "0.1.0"
+
+/* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
+ *          is loaded, which may be newer than the header compiled against:
+ *          same MAJOR means compatible).  Thread-safe. */
+const char *obx_version(void);
+
+/* ---- errors ------------------------------------------------------------- */
+
+typedef enum {
+    OBX_OK = 0,
+    OBX_E_INVALID,      /* a bad argument: NULL, NaN, out of range, unknown name */
+    OBX_E_PARSE,        /* a curve file or array that is not a valid curve */
+    OBX_E_IO,           /* a file that cannot be read */
+    OBX_E_NOMEM,        /* out of memory */
+    OBX_E_UNSUPPORTED,  /* valid, but not available here (sisl without its server) */
+    OBX_E_MEASURE       /* an approximation that cannot be measured or matched */
+} obx_code;
+
+/* The one error carrier: filled by the call that fails. */
+typedef struct {
+    int code;           /* an obx_code */
+    char message[512];  /* one line, without newline */
+} obx_error;
+
+/* ---- curves ------------------------------------------------------------- */
+
+typedef struct obx_curveset obx_curveset;
+
+/* Purpose: load the curves of one `.curves` file (README "Curve files").
+ * Outputs: *out, a new set (free with obx_curves_free).
+ * Errors:  OBX_E_IO (unreadable: "PATH: reason"), OBX_E_PARSE
+ *          ("PATH:LINE: reason", the first error); OBX_E_INVALID for NULL.
+ * Threads: safe (each call makes its own set). */
+int obx_curves_load_file(const char *path, obx_curveset **out, obx_error *err);
+
+/* Purpose: the built-in curve set, as `offbench run` uses by default ($OFFBENCH_DATA
+ *          when set, else the datasets/ compiled into the library).
+ * Outputs, errors, threads: as obx_curves_load_file. */
+int obx_curves_load_default(obx_curveset **out, obx_error *err);
+
+/* Purpose: a set of one curve made of nseg Bézier segments joined end to
+ *          end (a gap between segments is allowed, as in a curve file).
+ * Inputs:  id (letters, digits, '_', '-', '.', '/', at most 63 bytes);
+ *          degrees[nseg], each 1..20; xy: the segments' control points one
+ *          after the other (sum of (degrees[i] + 1) points, 2 doubles
+ *          each); w: as many weights (> 0, finite), or NULL.
+ * Outputs: *out (free with obx_curves_free); the curve has no offsets of its
+ *          own: fits and measurements name d.
+ * Errors:  OBX_E_INVALID (bad id, count, degree, point or weight: the
+ *          message names the segment and point); OBX_E_NOMEM.
+ * Threads: safe. */
+int obx_curves_from_arrays(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
+                           obx_curveset **out, obx_error *err);
+
+/* Always safe to call, also with NULL.  Not while another thread uses the set. */
+void obx_curves_free(obx_curveset *set);
+
+/* The number of curves; 0 for NULL. */
+int obx_curves_count(const obx_curveset *set);
+
+/* The id of curve i, or NULL when i is out of range.  Valid while the set is. */
+const char *obx_curves_id(const obx_curveset *set, int i);
+
+/* The index of the curve with this id, or -1. */
+int obx_curves_find(const obx_curveset *set, const char *id);
+
+/* The offset distances curve i's file lists (the default jobs' d): their
+ *          number, and in *d (when not NULL) a pointer to them, valid while
+ *          the set is; 0 when i is out of range. */
+int obx_curves_offsets(const obx_curveset *set, int i, const double **d);
+
+/* ---- methods ------------------------------------------------------------ */
+
+/* The number of registered methods (constant). */
+int obx_method_count(void);
+
+/* Method i's name (as `offbench list methods`), or NULL when out of range. */
+const char *obx_method_name(int i);
+
+/* Method i's short reference, or NULL when out of range. */
+const char *obx_method_citation(int i);
+
+/* One parameter of a method: a choice its paper leaves open. */
+typedef struct {
+    const char *name;
+    double def;         /* the paper's reading */
+    double min, max;    /* the accepted values, both included */
+    int integer;        /* 1: whole numbers only */
+    const char *doc;    /* what the values mean */
+} obx_param_info;
+
+/* The number of parameters of method i (0 when out of range). */
+int obx_method_param_count(int i);
+
+/* Purpose: parameter k of method i into *out (strings constant).
+ * Errors:  OBX_E_INVALID when i or k is out of range. */
+int obx_method_param(int i, int k, obx_param_info *out, obx_error *err);
+
+/* ---- fit: one job --------------------------------------------------------- */
+
+typedef struct obx_result obx_result;
+
+/* Purpose: run one job, exactly as one row of `offbench run` (the driver's
+ *          default settings: 256 samples, depth 40, 20000 segments,
+ *          inflections first): method `method` on curve `curve` of set at
+ *          offset d and tolerance tol, measured under metric `metric`
+ *          ("bound", "radial", "normal", "hausdorff", "param"; NULL:
+ *          hausdorff), pieces split by rule `split` ("mid", "maxerr",
+ *          "greedy", "optimal"; NULL: mid).
+ * Inputs:  params: NULL (the defaults) or "NAME=VALUE[,NAME=VALUE...]" for
+ *          the method's parameters (as run's --param METHOD.NAME=VALUE).
+ * Outputs: *out (free with obx_result_free), also when the job itself ends
+ *          fail, skip or limit: that is its status, not an error.
+ * Errors:  OBX_E_INVALID: set NULL, curve out of range, unknown method,
+ *          metric, split or parameter (the message lists the names), d not
+ *          finite or 0 or out of the curve's range, tol not finite and > 0;
+ *          OBX_E_UNSUPPORTED: sisl without its server program;
+ *          OBX_E_NOMEM.
+ * Threads: safe, also on one shared set. */
+int obx_fit(const obx_curveset *set, int curve, const char *method, double d, double tol, const char *metric,
+            const char *split, const char *params, obx_result **out, obx_error *err);
+
+/* Always safe to call, also with NULL. */
+void obx_result_free(obx_result *r);
+
+/* The job's status: "ok", "limit", "fail", "skip" or "timeout". */
+const char *obx_result_status(const obx_result *r);
+/* Its largest measured error over the accepted pieces. */
+double obx_result_max_err(const obx_result *r);
+/* Control points as the papers count them (README "Output"). */
+long obx_result_ctrl_points(const obx_result *r);
+/* Accepted segments. */
+int obx_result_segments(const obx_result *r);
+/* The job's message ("" when none). */
+const char *obx_result_message(const obx_result *r);
+
+/* The job's results.csv row (no newline), as `offbench run` writes it
+ * (its timing columns are this call's), and the header it goes under. */
+const char *obx_result_row(const obx_result *r);
+const char *obx_results_header(void);
+
+/* The number of pieces of the approximation (0 when the job ended fail or
+ * skip), in curve order. */
+int obx_result_piece_count(const obx_result *r);
+
+/* Purpose: piece k: its degree, and (when the buffers are not NULL) its
+ *          control points into xy[2 (degree + 1)] and weights into
+ *          w[degree + 1] (all 1 for a polynomial piece), when cap (the
+ *          number of points the buffers hold) is at least degree + 1.
+ * Returns: the degree (>= 0); -1 with OBX_E_INVALID when k is out of range
+ *          or the buffers are too small (the degree is then in the message). */
+int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap, obx_error *err);
+
+/* ---- batch: many jobs at once --------------------------------------------- */
+
+/* One job of a batch: the arguments of obx_fit. */
+typedef struct {
+    int curve;
+    const char *method;
+    double d, tol;
+    const char *metric;     /* NULL: hausdorff */
+    const char *split;      /* NULL: mid */
+    const char *params;     /* NULL: the defaults; else "NAME=VALUE,..." */
+} obx_job_spec;
+
+/* Told the jobs finished so far (done of total) as the batch runs. */
+typedef void (*obx_progress_fn)(void *ctx, size_t done, size_t total);
+
+/* Purpose: run n jobs together, as one `offbench run` runs its jobs (OpenMP
+ *          threads over all of them; jobs that differ only in tol share
+ *          pieces): every result is what obx_fit gives for its spec.
+ * Inputs:  jobs[n]; progress (NULL: none), called with ctx from one thread
+ *          at a time (not necessarily the caller's) after each batch of
+ *          work, done rising to total.
+ * Outputs: out[n], one result per job, in the specs' order (free each
+ *          with obx_result_free); all NULL after an error.
+ * Errors:  as obx_fit, the message prefixed "job I: " for the first bad
+ *          spec (no job runs then); OBX_E_INVALID for n 0 or NULL arrays.
+ * Threads: safe, also on one shared set. */
+int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
+                  obx_result **out, obx_error *err);
+
+/* ---- measure -------------------------------------------------------------- */
+
+typedef struct {
+    double max_err;     /* the largest error over the pieces (+inf: not finite) */
+    int piece;          /* where it is largest */
+    char status[8];     /* "ok", "n/a" (the metric does not apply), "fail" */
+    char why[160];      /* for n/a and fail: why; else "" */
+} obx_measurement;
+
+/* Purpose: measure an approximation, npieces Bézier pieces given as arrays
+ *          (degrees[], xy[], w[] or NULL as in obx_curves_from_arrays),
+ *          against the exact d-offset of curve `curve` under `metric`
+ *          (NULL: hausdorff), as `offbench measure` does for a file without
+ *          base links: each piece's base range is found by projecting its
+ *          ends on the offset, then each piece is measured against its base
+ *          piece, 256 samples.  bound and radial read the pieces at the
+ *          base's parameter and so do not apply (status "n/a"); param needs
+ *          read links and does not apply either.
+ * Outputs: *m.
+ * Errors:  OBX_E_INVALID (arguments as obx_fit, a bad piece), OBX_E_MEASURE
+ *          (a piece that cannot be matched: "piece K: reason"), OBX_E_NOMEM.
+ * Threads: safe. */
+int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
+                const double *w, const char *metric, obx_measurement *m, obx_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
