@@ -37,7 +37,7 @@ static const char usage[] =
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
     "  ./offbench measure --curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all]\n"
-    "                    [--samples S]   (the error of approximations in .curves, JSON or DXF files)\n"
+    "                    [--samples S]   (the error of approximations in .curves, JSON, DXF or SVG files)\n"
     "  ./offbench atlas  [--out DIR]        (the Offset Atlas: exact offset degrees)\n"
     "  ./offbench tables [--out DIR] [--table SOURCE:TABLE,...] [--protocols LIST] [run options]\n"
     "  ./offbench list   methods|curves|columns|devices\n"

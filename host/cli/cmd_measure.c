@@ -2,8 +2,8 @@
  * cmd_measure.c - `offbench measure --curve ID --d D --approx FILE [--approx FILE]...
  * [--curves FILE] [--metric M|all] [--samples S]`: the error of each
  * approximation someone else made (a .curves file, the JSON of --export, or
- * DXF entities: SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE)
- * against the exact d-offset of a base curve, under every metric that applies or the one asked, with the run's engine
+ * DXF entities: SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE;
+ * an SVG file's paths) against the exact d-offset of a base curve, under every metric that applies or the one asked, with the run's engine
  * (host/measure/measure.h).  Each file is measured on its own.  Writes a
  * small CSV to standard output, the rows of each file in the order given:
  *   metric,status,max_err,piece,seg,t,message,file,curve,d,pieces,ctrl_points
@@ -61,7 +61,7 @@ enum { MO_APPROX, MO_D, MO_METRIC };
 
 static const ob_flag measure_flags[] = {
     {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
-     "(SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE); repeat it to measure several, each on its own",
+     "(SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE) or SVG paths; repeat it to measure several, each on its own",
      MO_APPROX, OB_FLAG_REPEAT},
     {"d", "D", "the signed offset distance it approximates", MO_D, OB_FLAG_ONCE},
     {"metric", "M|all", "bound, radial, normal, hausdorff (with hausdorff-whole), param, hausdorff-whole or all "
