@@ -88,9 +88,25 @@ Y
         m "$T/$s.svg" "$c" "$d" --metric hausdorff-whole
         check 'near "$(val hausdorff-whole)" "$wc" && [ -n "$wc" ]' "$s.svg: hausdorff-whole $(val hausdorff-whole), through svg2curves.py $wc"
     done
+    # tests/data/svg/hand.svg, drawn by hand (relative c s q t, Z, an arc
+    # rotated -20 degrees with the large-arc flag, under a group's
+    # translate): each path alone, against the curve svg2curves.py makes of
+    # it, at d = 1e-6: hausdorff-whole is 1e-6 to round-off when both read
+    # the same curve (a lone path: the file's other elements left out)
+    HAND=$ROOT/tests/data/svg/hand.svg
+    /usr/bin/python3 "$ROOT/scripts/svg2curves.py" "$HAND" --d 1e-6 --out "$T/hand.curves" 2>"$T/conv.err"
+    for id in wave heart big-arc; do
+        awk -v id="$id" '/<path|<circle|<ellipse|<rect|<polyline|<text/{inel=1; buf=""}
+            inel{buf=buf $0 "\n"; if ($0 ~ /\/>|<\/text>/) {if (buf ~ "id=\"" id "\"") printf "%s", buf; inel=0}; next} {print}' \
+            "$HAND" > "$T/$id.svg"
+        "$OB" measure --curves "$T/hand.curves" --curve "$id" --d 1e-6 --approx "$T/$id.svg" --metric hausdorff-whole >"$T/m.csv" 2>"$T/m.err"
+        w=$(val hausdorff-whole)
+        check 'awk -v w="$w" "BEGIN{exit !(w != \"\" && w - 1e-6 < 1e-12 && 1e-6 - w < 1e-12)}"' \
+            "hand.svg's $id: hausdorff-whole $w against svg2curves.py's curve at d = 1e-6: $(head -c 300 "$T/m.err")"
+    done
 else
     echo "e2e_measure_svg: /usr/bin/python3 has no svgelements: the comparison with svg2curves.py skipped"
-    skipped=$((skipped + 3))
+    skipped=$((skipped + 6))
 fi
 
 # --- bad input ----------------------------------------------------------------------
