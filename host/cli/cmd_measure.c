@@ -1,20 +1,25 @@
 /*
- * cmd_measure.c - `offbench measure --curve ID --d D --approx FILE
- * [--curves FILE] [--metric M|all] [--samples S]`: the error of an
+ * cmd_measure.c - `offbench measure --curve ID --d D --approx FILE [--approx FILE]...
+ * [--curves FILE] [--metric M|all] [--samples S]`: the error of each
  * approximation someone else made (a .curves file, the JSON of --export, or
- * DXF SPLINE entities) against the exact d-offset of a base curve, under
- * every metric that applies or the one asked, with the run's engine
- * (host/measure/measure.h).  Writes a small CSV to standard output:
- *   metric,status,max_err,piece,seg,t,message
+ * DXF entities: SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE;
+ * an SVG file's paths) against the exact d-offset of a base curve, under every metric that applies or the one asked, with the run's engine
+ * (host/measure/measure.h).  Each file is measured on its own.  Writes a
+ * small CSV to standard output, the rows of each file in the order given:
+ *   metric,status,max_err,piece,seg,t,message,file,curve,d,pieces,ctrl_points
+ * (the last five join with results.csv: curve and d as it writes them,
+ * pieces its segments, ctrl_points counted as the driver counts them).
  * status `ok`, or `n/a` with the reason (bound and radial need pieces in
  * the base's parameter: files exported from methods that keep it).
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
- * Exit status: 0; 2 bad input (an option, the file, an unknown curve, pieces
+ * Exit status: 0; 2 bad input (an option, a file, an unknown curve, pieces
  * that do not cover the offset once), with a message naming the option or
- * FILE:LINE; 1 standard output not writable.
+ * FILE:LINE; then nothing is written (no partial CSV: the other files'
+ * rows are not either); 1 standard output not writable.
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,10 +30,13 @@
 #include "host/diag.h"
 #include "host/io/approx_read.h"
 #include "host/io/numfmt.h"
+#include "host/io/output.h"
 #include "host/measure/measure.h"
+#include "methods/driver/joints.h"
 
 typedef struct {
-    const char *approx;
+    const char **approx;       /* the files, in the order given (owned array) */
+    int napprox, capprox;
     int have_d;
     double d;
     int want[OB_METRIC_COUNT]; /* the per-piece metrics asked */
@@ -53,7 +61,8 @@ enum { MO_APPROX, MO_D, MO_METRIC };
 
 static const ob_flag measure_flags[] = {
     {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
-     "(SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE)", MO_APPROX, OB_FLAG_ONCE},
+     "(SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE) or SVG paths; repeat it to measure several, each on its own",
+     MO_APPROX, OB_FLAG_REPEAT},
     {"d", "D", "the signed offset distance it approximates", MO_D, OB_FLAG_ONCE},
     {"metric", "M|all", "bound, radial, normal, hausdorff (with hausdorff-whole), param, hausdorff-whole or all "
      "(default)", MO_METRIC, OB_FLAG_ONCE},
@@ -68,7 +77,17 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
             ob_error("%s: empty file name", opt);
             return -1;
         }
-        a->approx = v;
+        if (a->napprox == a->capprox) {
+            const int cap = a->capprox ? 2 * a->capprox : 4;
+            const char **nv = realloc(a->approx, (size_t)cap * sizeof *nv);
+            if (!nv) {
+                ob_error("%s: out of memory", opt);
+                return -1;
+            }
+            a->approx = nv;
+            a->capprox = cap;
+        }
+        a->approx[a->napprox++] = v;
         return 0;
     case MO_D:
         if (ob_parse_double(v, &a->d) || a->d == 0.0) {
@@ -102,13 +121,14 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         {ob_run_flags, ob_run_nflags, "curves curve random samples ", NULL, "run options (as for run)",
          ob_run_flag_apply, o},
     };
-    const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--curves FILE] [--metric M|all] [--samples S]",
+    const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
+                                "[--samples S]",
                                 sets, 2, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
     if (rc != OB_CLI_OK)
         return 2;
-    const char *miss = o->ncurve_ids == 0 ? "--curve ID" : !a->have_d ? "--d D" : !a->approx ? "--approx FILE" : NULL;
+    const char *miss = o->ncurve_ids == 0 ? "--curve ID" : !a->have_d ? "--d D" : !a->napprox ? "--approx FILE" : NULL;
     if (miss) {
         ob_error("measure: %s missing (measure --curve ID --d D --approx FILE)", miss);
         return 2;
@@ -127,7 +147,25 @@ static void put_num(FILE *f, double x)
     fputs(b, f);
 }
 
-/* One CSV row. */
+/* One file's measurement, kept until every file is measured. */
+typedef struct {
+    ob_mres res[OB_METRIC_COUNT], whole;
+    int pieces, ctrl_points;
+} file_rows;
+
+/* The columns after the message: file,curve,d,pieces,ctrl_points. */
+static void join_cols(FILE *f, const char *file, const ob_curve *c, double d, const file_rows *fr)
+{
+    fputc(',', f);
+    ob_csv_field(f, file);
+    fputc(',', f);
+    ob_csv_field(f, c->id);
+    fputc(',', f);
+    put_num(f, d);
+    fprintf(f, ",%d,%d\n", fr->pieces, fr->ctrl_points);
+}
+
+/* One CSV row, without its line end. */
 static void row(FILE *f, const char *metric, const ob_mres *r)
 {
     fprintf(f, "%s,%s,", metric, ob_mres_status(r));
@@ -136,11 +174,11 @@ static void row(FILE *f, const char *metric, const ob_mres *r)
         fprintf(f, ",%d,%d,", r->piece, r->seg);
         put_num(f, r->t);
         if (!r->ok)
-            fprintf(f, ",\"%s\"\n", r->why);
+            fprintf(f, ",\"%s\"", r->why);
         else
-            fprintf(f, r->note[0] ? ",\"%s\"\n" : ",\n", r->note);
+            fprintf(f, r->note[0] ? ",\"%s\"" : ",", r->note);
     } else {
-        fprintf(f, ",,,,\"%s\"\n", r->why);
+        fprintf(f, ",,,,\"%s\"", r->why);
     }
 }
 
@@ -201,27 +239,64 @@ static int check_cover(const ob_curve *c, double d, const ob_approx *ap, const o
     return 2;
 }
 
-/* Measures every row asked and writes the CSV; the exit status. */
-static int write_rows(const measure_args *a, const ob_curve *c, const ob_approx *ap, const ob_cover *cv,
-                      int samples)
+/* The control points of ap as results.csv counts them (docs/output.md,
+ * methods/driver/jobs.c): 1 + the sum of the pieces' degrees, and one more
+ * for each open joint (joints.h: the ends of two pieces consecutive on the
+ * base farther apart than the gap threshold of c at d).  Pieces in the
+ * base's order (cv->order) and direction (ob_approx_match). */
+static int count_ctrl_points(const ob_curve *c, double d, const ob_approx *ap, const ob_cover *cv)
 {
-    ob_mres res[OB_METRIC_COUNT], whole;
+    const double gap_tol = ob_joint_gap_tol(c, d);
+    int n = 1;
+    for (int i = 0; i < ap->n; i++) {
+        const ob_bez *b = &ap->v[cv->order[i]].approx;
+        n += b->deg;
+        if (i > 0) {
+            ob_end left, right;
+            ob_bez_end(&ap->v[cv->order[i - 1]].approx, 1, &left);
+            ob_bez_end(b, 0, &right);
+            const double gap = hypot(right.p[0] - left.p[0], right.p[1] - left.p[1]);
+            n += !(gap <= gap_tol);  /* as ob_joint_measure: NaN is open */
+        }
+    }
+    return n;
+}
+
+/* Measures every row asked of one file into *fr; 0, or 2 after ob_error(). */
+static int measure_rows(const measure_args *a, const char *name, const ob_curve *c, const ob_approx *ap,
+                        const ob_cover *cv, int samples, file_rows *fr)
+{
     ob_err err;
     for (int m = 0; m < OB_METRIC_COUNT; m++)
-        if (a->want[m] && ob_approx_measure(c, a->d, ap, (ob_metric)m, samples, a->approx, &res[m], &err) != 0) {
+        if (a->want[m] && ob_approx_measure(c, a->d, ap, (ob_metric)m, samples, name, &fr->res[m], &err) != 0) {
             ob_error("%s", err.msg);
             return 2;
         }
-    if (a->whole && ob_approx_hausdorff_whole(c, a->d, ap, cv, samples, &whole, &err) != 0) {
+    if (a->whole && ob_approx_hausdorff_whole(c, a->d, ap, cv, samples, &fr->whole, &err) != 0) {
         ob_error("%s", err.msg);
         return 2;
     }
-    fputs("metric,status,max_err,piece,seg,t,message\n", stdout);
-    for (int m = 0; m < OB_METRIC_COUNT; m++)
-        if (a->want[m])
-            row(stdout, ob_metric_name((ob_metric)m), &res[m]);
-    if (a->whole)
-        row(stdout, "hausdorff-whole", &whole);
+    fr->pieces = ap->n;
+    fr->ctrl_points = count_ctrl_points(c, a->d, ap, cv);
+    return 0;
+}
+
+/* Writes the CSV of every file (rows[k] that of a->approx[k]); the exit
+ * status. */
+static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *rows)
+{
+    fputs("metric,status,max_err,piece,seg,t,message,file,curve,d,pieces,ctrl_points\n", stdout);
+    for (int k = 0; k < a->napprox; k++) {
+        for (int m = 0; m < OB_METRIC_COUNT; m++)
+            if (a->want[m]) {
+                row(stdout, ob_metric_name((ob_metric)m), &rows[k].res[m]);
+                join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
+            }
+        if (a->whole) {
+            row(stdout, "hausdorff-whole", &rows[k].whole);
+            join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
+        }
+    }
     if (fflush(stdout) != 0 || ferror(stdout)) {
         ob_error("measure: writing standard output failed");
         return 1;
@@ -229,44 +304,67 @@ static int write_rows(const measure_args *a, const ob_curve *c, const ob_approx 
     return 0;
 }
 
-/* Loads, matches, checks the cover and measures; returns the exit status. */
+/* Reads file name, matches and checks its cover, and measures it into *fr;
+ * 0, or 2 after ob_error(). */
+static int measure_file(const measure_args *a, const char *name, const ob_curve *c, int samples, file_rows *fr)
+{
+    ob_approx ap = {0};
+    ob_cover cv = {0};
+    ob_err err;
+    int status = 2;
+    if (ob_approx_read(name, &ap, &err) != 0) {
+        ob_error("%s", err.msg);
+        goto out;
+    }
+    if (ap.nskipped)
+        warn_skipped(name, &ap);
+    if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
+        ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
+                "d = %.17g: its error is not that job's max_err", name, ap.job_curve, ap.job_d, c->id, a->d);
+    if (ob_approx_match(c, a->d, &ap, name, &err) != 0 || ob_approx_cover(c, a->d, &ap, samples, name, &cv, &err) != 0) {
+        ob_error("%s", err.msg);
+        goto out;
+    }
+    if (check_cover(c, a->d, &ap, &cv, name) != 0)
+        goto out;
+    status = measure_rows(a, name, c, &ap, &cv, samples, fr);
+out:
+    ob_cover_free(&cv);
+    ob_approx_free(&ap);
+    return status;
+}
+
+/* Loads the curve, measures every file (stopping at the first that fails)
+ * and writes the CSV when all were measured; returns the exit status. */
 static int measure(const measure_args *a, ob_run_opts *o)
 {
     ob_curveset set = {0};
-    ob_approx ap = {0};
-    ob_cover cv = {0};
     char where[4096];
-    ob_err err;
     int status = 2;
+    file_rows *rows = calloc((size_t)a->napprox, sizeof *rows);
+    if (!rows) {
+        ob_error("measure: out of memory");
+        return 2;
+    }
     if (ob_load_run_curves(o, &set, where, sizeof where) != 0)
         goto out;
     const ob_curve *c = &set.v[ob_curveset_find(&set, o->curve_ids[0])];
     if (ob_check_option_d("measure", c, a->d) != 0)
         goto out;  /* status 2: a d the curve's file would refuse (curvefile.h) */
     const int samples = ob_clamp_samples(o->driver.samples);
-    if (ob_approx_read(a->approx, &ap, &err) != 0) {
-        ob_error("%s", err.msg);
-        goto out;
+    for (int k = 0; k < a->napprox; k++) {
+        if (measure_file(a, a->approx[k], c, samples, &rows[k]) != 0) {
+            if (a->napprox > 1)
+                ob_error("measure: %s failed: none of the %d files is measured (no CSV written)", a->approx[k],
+                         a->napprox);
+            goto out;
+        }
+        ob_info("measure: %d pieces of %s against %s (%s), d = %.17g, %d samples", rows[k].pieces, a->approx[k],
+                c->id, where, a->d, samples);
     }
-    if (ap.nskipped)
-        warn_skipped(a->approx, &ap);
-    if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
-        ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
-                "d = %.17g: its error is not that job's max_err", a->approx, ap.job_curve, ap.job_d, c->id, a->d);
-    if (ob_approx_match(c, a->d, &ap, a->approx, &err) != 0 ||
-        ob_approx_cover(c, a->d, &ap, samples, a->approx, &cv, &err) != 0) {
-        ob_error("%s", err.msg);
-        goto out;
-    }
-    if (check_cover(c, a->d, &ap, &cv, a->approx) != 0)
-        goto out;
-    status = write_rows(a, c, &ap, &cv, samples);
-    if (status == 0)
-        ob_info("measure: %d pieces of %s against %s (%s), d = %.17g, %d samples", ap.n, a->approx, c->id, where,
-                a->d, samples);
+    status = write_csv(a, c, rows);
 out:
-    ob_cover_free(&cv);
-    ob_approx_free(&ap);
+    free(rows);
     ob_curveset_free(&set);
     return status;
 }
@@ -278,6 +376,7 @@ int ob_cmd_measure(int argc, char **argv)
     int status = parse(argc, argv, &a, &o);
     if (status == 0)
         status = measure(&a, &o);
+    free(a.approx);
     ob_run_opts_free(&o);
     return status < 0 ? 0 : status;
 }

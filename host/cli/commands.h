@@ -23,7 +23,7 @@ int ob_cmd_compare(int argc, char **argv);
 int ob_cmd_draw(int argc, char **argv);
 int ob_cmd_trace(int argc, char **argv);
 
-/* measure --curve ID --d D --approx FILE: an approximation's error (0; 2
+/* measure --curve ID --d D --approx FILE...: an approximation's error (0; 2
  * bad input; 1 output not writable). */
 int ob_cmd_measure(int argc, char **argv);
 

@@ -14,7 +14,14 @@
  *   LWPOLYLINE  a piece of degree 1 per segment, an arc (as ARC) where the
  *               segment's bulge (group 42 of its first vertex: the tangent
  *               of a quarter of its angle, counterclockwise positive) is
- *               not 0; the closing segment when flag 1 of group 70 is set.
+ *               not 0; the closing segment when flag 1 of group 70 is set;
+ *   POLYLINE    (the old form: a POLYLINE header, one VERTEX entity per
+ *               vertex, SEQEND) the same, from each VERTEX's 10, 20 and 42
+ *               (the header's 10/20 is its elevation point, no vertex);
+ *               a VERTEX of flag 16 (a spline frame's control point, not
+ *               drawn) is left out, so a curve- or spline-fit polyline is
+ *               read as drawn; a 3D polyline or a mesh (POLYLINE flag 8, 16
+ *               or 64) is skipped (named).
  * ARC, CIRCLE and LWPOLYLINE are in their object coordinate system: one
  * whose extrusion (210, 220, 230) is (0, 0, -1) is mirrored (x to -x), as
  * the arbitrary axis algorithm gives; any other extrusion than (0, 0, +-1)
@@ -29,12 +36,15 @@
 #include "host/io/approx.h"
 #include "methods/core/err.h"
 
-typedef enum { OB_DXF_LINE = 0, OB_DXF_ARC, OB_DXF_CIRCLE, OB_DXF_ELLIPSE, OB_DXF_LWPOLYLINE } ob_dxf_kind;
+typedef enum {
+    OB_DXF_LINE = 0, OB_DXF_ARC, OB_DXF_CIRCLE, OB_DXF_ELLIPSE, OB_DXF_LWPOLYLINE, OB_DXF_POLYLINE
+} ob_dxf_kind;
 
-/* One polyline vertex: point, bulge of the segment it starts, its line. */
+/* One polyline vertex: point, bulge of the segment it starts, its line,
+ * its flags (a POLYLINE's VERTEX group 70). */
 typedef struct {
     double x, y, bulge;
-    int line;
+    int line, flags;
 } ob_dxf_vertex;
 
 /* One entity being read. */
@@ -43,8 +53,9 @@ typedef struct {
     int line;                 /* of its name */
     int have;                 /* bit per group seen: see approx_dxf_curves.c */
     double g[16];             /* the single-valued groups */
-    ob_dxf_vertex *v;         /* LWPOLYLINE vertices */
+    ob_dxf_vertex *v;         /* LWPOLYLINE and POLYLINE vertices */
     int nv, cap, announced;   /* vertices read, room, group 90 (-1 none) */
+    int in_vertex;            /* POLYLINE: 1 once its first VERTEX began */
 } ob_dxf_ent;
 
 /* The kind of the entity named `name`, or -1 when it is not one of these. */
@@ -52,6 +63,11 @@ int ob_dxf_kind_of(const char *name);
 
 /* Starts an entity of `kind` whose name is at `line`. */
 void ob_dxf_ent_start(ob_dxf_ent *e, ob_dxf_kind kind, int line);
+
+/* Purpose: a VERTEX entity (its name at `line`) that continues POLYLINE e:
+ *          its groups, until the next entity, are that vertex's.
+ * Errors:  returns 0; -1 with "NAME: out of memory" in err. */
+int ob_dxf_ent_vertex(ob_dxf_ent *e, int line, const char *name, ob_err *err);
 
 /* Purpose: one group (code, value text) of the entity, at `line`.
  * Errors:  returns 0; -1 with "NAME:LINE: reason" in err (a number that is

@@ -16,7 +16,7 @@ static const int codes[] = {10, 20, 11, 21, 40, 41, 42, 50, 51, 70, 90, 210, 220
 enum { X0, Y0, X1, Y1, G40, G41, G42, G50, G51, G70, G90, NX, NY, NZ, NCODES };
 _Static_assert(sizeof codes / sizeof *codes == NCODES, "one slot per group code");
 
-static const char *const kind_names[] = {"LINE", "ARC", "CIRCLE", "ELLIPSE", "LWPOLYLINE"};
+static const char *const kind_names[] = {"LINE", "ARC", "CIRCLE", "ELLIPSE", "LWPOLYLINE", "POLYLINE"};
 
 int ob_dxf_kind_of(const char *name)
 {
@@ -48,21 +48,26 @@ static int slot_of(int code)
     return -1;
 }
 
-/* A polyline vertex group: 10 starts a vertex, 20 and 42 set its y and bulge. */
+/* Appends vertex (x, 0) with bulge 0 at line to e; 0, or -1 with err. */
+static int add_vertex(ob_dxf_ent *e, double x, int line, const char *name, ob_err *err)
+{
+    if (e->nv == e->cap) {
+        const int cap = e->cap ? 2 * e->cap : 16;
+        ob_dxf_vertex *v = cap < (1 << 24) ? realloc(e->v, (size_t)cap * sizeof *v) : NULL;
+        if (!v)
+            return ob_fail(err, "%s: out of memory", name);
+        e->v = v;
+        e->cap = cap;
+    }
+    e->v[e->nv++] = (ob_dxf_vertex){x, 0.0, 0.0, line, 0};
+    return 0;
+}
+
+/* An LWPOLYLINE vertex group: 10 starts a vertex, 20 and 42 set its y and bulge. */
 static int vertex_group(ob_dxf_ent *e, int code, double x, int line, const char *name, ob_err *err)
 {
-    if (code == 10) {
-        if (e->nv == e->cap) {
-            const int cap = e->cap ? 2 * e->cap : 16;
-            ob_dxf_vertex *v = cap < (1 << 24) ? realloc(e->v, (size_t)cap * sizeof *v) : NULL;
-            if (!v)
-                return ob_fail(err, "%s: out of memory", name);
-            e->v = v;
-            e->cap = cap;
-        }
-        e->v[e->nv++] = (ob_dxf_vertex){x, 0.0, 0.0, line};
-        return 0;
-    }
+    if (code == 10)
+        return add_vertex(e, x, line, name, err);
     if (e->nv == 0)
         return ob_fail(err, "%s:%d: LWPOLYLINE: group %d before the first vertex (group 10)", name, line, code);
     if (code == 20)
@@ -70,6 +75,26 @@ static int vertex_group(ob_dxf_ent *e, int code, double x, int line, const char 
     else
         e->v[e->nv - 1].bulge = x;
     return 0;
+}
+
+int ob_dxf_ent_vertex(ob_dxf_ent *e, int line, const char *name, ob_err *err)
+{
+    e->in_vertex = 1;
+    return add_vertex(e, 0.0, line, name, err);
+}
+
+/* A group of a POLYLINE's VERTEX: 10, 20, 42 its point and bulge, 70 its
+ * flags; the others (widths, z) are not the curve. */
+static void polyvertex_group(ob_dxf_ent *e, int code, double x)
+{
+    ob_dxf_vertex *v = &e->v[e->nv - 1];
+    switch (code) {
+    case 10: v->x = x; break;
+    case 20: v->y = x; break;
+    case 42: v->bulge = x; break;
+    case 70: v->flags = (int)x; break;
+    default: break;
+    }
 }
 
 int ob_dxf_ent_group(ob_dxf_ent *e, int code, const char *val, int line, const char *name, ob_err *err)
@@ -83,6 +108,12 @@ int ob_dxf_ent_group(ob_dxf_ent *e, int code, const char *val, int line, const c
         return ob_fail(err, "%s:%d: group %d: '%.40s' is not a number", name, line, code, val);
     if (e->kind == OB_DXF_LWPOLYLINE && (code == 10 || code == 20 || code == 42))
         return vertex_group(e, code, x, line, name, err);
+    if (e->kind == OB_DXF_POLYLINE && e->in_vertex) {
+        polyvertex_group(e, code, x);
+        return 0;
+    }
+    if (e->kind == OB_DXF_POLYLINE && (code == 10 || code == 20 || code == 42))
+        return 0; /* the header's point is the elevation, no vertex */
     e->g[k] = x;
     e->have |= 1 << k;
     return 0;
@@ -236,7 +267,7 @@ static int bulge_piece(const ob_dxf_vertex *p, const ob_dxf_vertex *q, double sx
 {
     const double dx = q->x - p->x, dy = q->y - p->y, L = hypot(dx, dy), b = p->bulge;
     if (L == 0.0) {
-        ob_approx_note_skip(out, "LWPOLYLINE segment of length 0", p->line);
+        ob_approx_note_skip(out, "polyline segment of length 0", p->line);
         return 0;
     }
     const double P[2] = {p->x, p->y}, Q[2] = {q->x, q->y};
@@ -254,9 +285,31 @@ static int bulge_piece(const ob_dxf_vertex *p, const ob_dxf_vertex *q, double sx
     return arc_pieces(&f, atan2(P[1] - c[1], P[0] - c[0]), 4.0 * atan(b), P, Q, p->line, name, out, err);
 }
 
-static int polyline_pieces(const ob_dxf_ent *e, double sx, const char *name, ob_approx *out, ob_err *err)
+/* Leaves out a POLYLINE's vertices of flag 16 (a spline frame's control
+ * points: not drawn). */
+static void drop_frame_vertices(ob_dxf_ent *e)
 {
-    const int closed = e->have & 1 << G70 && ((long)e->g[G70] & 1);
+    int n = 0;
+    for (int i = 0; i < e->nv; i++)
+        if (!(e->v[i].flags & 16))
+            e->v[n++] = e->v[i];
+    e->nv = n;
+}
+
+static int polyline_pieces(ob_dxf_ent *e, double sx, const char *name, ob_approx *out, ob_err *err)
+{
+    const long flags = e->have & 1 << G70 ? (long)e->g[G70] : 0;
+    if (e->kind == OB_DXF_POLYLINE) {
+        if (flags & (8 | 16 | 64)) {
+            ob_approx_note_skip(out, "POLYLINE 3D or mesh", e->line);
+            return 0;
+        }
+        drop_frame_vertices(e);
+        if (e->nv < 2)
+            return ob_fail(err, "%s:%d: POLYLINE with %d VERTEX entities (at least 2, SEQEND after them)", name,
+                           e->line, e->nv);
+    }
+    const int closed = (int)(flags & 1);
     if (e->nv < 2 || (e->announced >= 0 && e->announced != e->nv))
         return ob_fail(err, "%s:%d: LWPOLYLINE with %d vertices (group 90 announces %d; at least 2)", name, e->line,
                        e->nv, e->announced);

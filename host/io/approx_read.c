@@ -30,11 +30,15 @@ ob_afmt ob_approx_format(const char *path, const char *text, size_t len)
         return OB_AFMT_DXF;
     if (ends_with(path, ".curves"))
         return OB_AFMT_CURVES;
+    if (ends_with(path, ".svg"))
+        return OB_AFMT_SVG;
     size_t i = 0;
     while (i < len && isspace((unsigned char)text[i]))
         i++;
     if (i < len && text[i] == '{')
         return OB_AFMT_JSON;
+    if ((i + 4 <= len && !strncmp(text + i, "<svg", 4)) || (i + 5 <= len && !strncmp(text + i, "<?xml", 5)))
+        return OB_AFMT_SVG;
     if (i + 1 < len && text[i] == '0' && (text[i + 1] == '\n' || text[i + 1] == '\r'))
         return OB_AFMT_DXF;
     if (i + 3 < len && !strncmp(text + i, "999", 3) && (text[i + 3] == '\n' || text[i + 3] == '\r'))
@@ -172,11 +176,12 @@ int ob_approx_read(const char *path, ob_approx *out, ob_err *err)
     switch (ob_approx_format(path, text, len)) {
     case OB_AFMT_JSON: rc = ob_approx_read_json(text, len, path, out, err); break;
     case OB_AFMT_DXF: rc = ob_approx_read_dxf(text, len, path, out, err); break;
+    case OB_AFMT_SVG: rc = ob_approx_read_svg(text, len, path, out, err); break;
     default: rc = ob_approx_read_curves(text, len, path, out, err); break;
     }
     free(text);
     if (rc == 0 && out->n == 0) {
-        ob_fail(err, "%s: no pieces (no Bézier segments or SPLINE entities) in the file", path);
+        ob_fail(err, "%s: no pieces (no Bézier segments, DXF curves or SVG paths) in the file", path);
         rc = -1;
     }
     return rc;

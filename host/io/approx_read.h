@@ -1,7 +1,8 @@
 /*
  * approx_read.h - read an approximation for `measure` (README "Export and
  * measure"): a `.curves` file (every curve's Bézier segments, in file order),
- * the JSON of `--export`, or the SPLINE entities of a DXF file.
+ * the JSON of `--export`, the entities of a DXF file, or the paths of an SVG
+ * file.
  *
  * Files offbench exported say which base piece each piece approximates (the
  * .curves `source` line, the JSON's seg/span/t, the DXF's 999 comment before
@@ -16,11 +17,11 @@
 #include "host/io/approx.h"
 #include "methods/core/err.h"
 
-typedef enum { OB_AFMT_CURVES = 0, OB_AFMT_JSON, OB_AFMT_DXF } ob_afmt;
+typedef enum { OB_AFMT_CURVES = 0, OB_AFMT_JSON, OB_AFMT_DXF, OB_AFMT_SVG } ob_afmt;
 
-/* The format of path: by its extension (.curves, .json, .dxf, any case),
- * else by its first bytes ('{' JSON; a DXF group code line "0" or "999";
- * anything else .curves). */
+/* The format of path: by its extension (.curves, .json, .dxf, .svg, any
+ * case), else by its first bytes ('{' JSON; a DXF group code line "0" or
+ * "999"; "<svg" or "<?xml" SVG; anything else .curves). */
 ob_afmt ob_approx_format(const char *path, const char *text, size_t len);
 
 /* Purpose: read the approximation in the file at path into *out.
@@ -35,6 +36,9 @@ int ob_approx_read(const char *path, ob_approx *out, ob_err *err);
 int ob_approx_read_json(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
 int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
 int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
+/* The paths of an SVG file, as scripts/svg2curves.py reads them with its
+ * defaults (approx_read_svg.c). */
+int ob_approx_read_svg(const char *text, size_t len, const char *name, ob_approx *out, ob_err *err);
 
 /* Parses the link "base segment S span A B fit T0 T1" (the text of the
  * exports' .curves source line and DXF comment, found anywhere in s) into

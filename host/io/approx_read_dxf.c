@@ -4,9 +4,10 @@
  * `measure`.  Each SPLINE (degree, knots 40, weights 41, control points
  * 10/20) is cut into its Bézier segments by knot insertion (bspline.h); a
  * SPLINE given only by fit points (11/21) is refused, since its curve
- * depends on the writer's interpolation.  LINE, ARC, CIRCLE, ELLIPSE and
- * LWPOLYLINE are read as exact pieces too (approx_dxf.h).  Other entities
- * (TEXT, HATCH, POLYLINE, INSERT, ...) are skipped and noted in the
+ * depends on the writer's interpolation.  LINE, ARC, CIRCLE, ELLIPSE,
+ * LWPOLYLINE and POLYLINE (with its VERTEX entities, to SEQEND) are read as
+ * exact pieces too (approx_dxf.h).  Other entities (TEXT, HATCH, INSERT,
+ * ...) are skipped and noted in the
  * approximation (ob_approx_note_skip: type, count, first line), which
  * measure names on stderr.  A 999 comment "offbench piece K base
  * segment S ..." right before a SPLINE of one Bézier segment is its base
@@ -267,6 +268,10 @@ int ob_approx_read_dxf(const char *text, size_t len, const char *name, ob_approx
             break;
         }
         eof = st == 1 || (r.code == 0 && strcmp(r.val, "EOF") == 0);
+        if (in == IN_CURVE && ent.kind == OB_DXF_POLYLINE && r.code == 0 && strcmp(r.val, "VERTEX") == 0) {
+            rc = ob_dxf_ent_vertex(&ent, r.line, name, err);  /* the POLYLINE goes on, to SEQEND */
+            continue;
+        }
         if (in && (eof || r.code == 0 || r.code == 999)) {  /* an entity ends at the next one or a comment */
             if (in == IN_SPLINE) {
                 rc = spline_pieces(&r, &sp, &link, out, err);

@@ -164,6 +164,36 @@ printf '0\nLWPOLYLINE\n90\n3\n70\n0\n10\n1.5\n20\n0\n42\n%s\n10\n%s\n20\n%s\n42\
 m "$T/poly.dxf" arc_quarter -0.5 --curves "$REF"
 check '[ $? -eq 0 ] && awk -v a="$(val hausdorff)" -v b="$(val hausdorff-whole)" "BEGIN{exit !(a < 1e-14 && b < 1e-14)}" && ! grep -q warning "$T/m.err"' \
     "LWPOLYLINE of two bulge arcs on the offset: hausdorff $(val hausdorff), whole $(val hausdorff-whole): $(cat "$T/m.err")"
+cp "$T/m.csv" "$T/lw.csv"
+# the same arcs as an old-style POLYLINE: its header's point (10/20, the
+# elevation) is no vertex, each VERTEX has its bulge, SEQEND ends it; then
+# the rows of the LWPOLYLINE
+printf '0\nPOLYLINE\n8\n0\n66\n1\n10\n0\n20\n0\n30\n0\n70\n0\n0\nVERTEX\n8\n0\n10\n1.5\n20\n0\n42\n%s\n0\nVERTEX\n10\n%s\n20\n%s\n42\n%s\n70\n0\n0\nVERTEX\n10\n0\n20\n1.5\n0\nSEQEND\n8\n0\n' \
+    "$b" "$r" "$r" "$b" | dxf > "$T/oldpoly.dxf"
+m "$T/oldpoly.dxf" arc_quarter -0.5 --curves "$REF"
+check '[ $? -eq 0 ] && [ "$(dropcols "$T/m.csv" file)" = "$(dropcols "$T/lw.csv" file)" ] && ! grep -q "warning" "$T/m.err"' \
+    "POLYLINE/VERTEX/SEQEND read as the LWPOLYLINE: $(cat "$T/m.csv" "$T/m.err")"
+check '[ "$(csvcols "$T/m.csv" pieces ctrl_points | sed -n 2p)" = "2,5" ]' \
+    "POLYLINE: 2 pieces, 5 control points ($(csvcols "$T/m.csv" pieces ctrl_points | sed -n 2p))"
+# closed (flag 1): a square of 4 LINE segments around the origin is no
+# offset of arc_quarter: exit 2 for the cover, but 4 pieces were read (the
+# closing one from the last vertex, at its line)
+printf '0\nPOLYLINE\n66\n1\n70\n1\n0\nVERTEX\n10\n0\n20\n0\n0\nVERTEX\n10\n1\n20\n0\n0\nVERTEX\n10\n1\n20\n1\n0\nVERTEX\n10\n0\n20\n1\n0\nSEQEND\n' | dxf > "$T/square.dxf"
+m "$T/square.dxf" arc_quarter -0.5 --curves "$REF"
+check '[ $? -eq 2 ] && grep -q "square.dxf:30: piece 3" "$T/m.err"' "closed POLYLINE: its closing segment is piece 3, at its last VERTEX: $(head -c 400 "$T/m.err")"
+# a 3D polyline or a mesh is no planar curve: skipped, named
+printf '0\nPOLYLINE\n66\n1\n70\n8\n0\nVERTEX\n10\n0\n20\n0\n30\n1\n0\nVERTEX\n10\n1\n20\n0\n30\n2\n0\nSEQEND\n' | dxf > "$T/poly3d.dxf"
+cat "$T/oldpoly.dxf" | sed '$d' | sed '$d' | sed '$d' | sed '$d' > "$T/both.dxf"
+printf '0\nPOLYLINE\n66\n1\n70\n8\n0\nVERTEX\n10\n0\n20\n0\n30\n1\n0\nVERTEX\n10\n1\n20\n0\n30\n2\n0\nSEQEND\n0\nENDSEC\n0\nEOF\n' >> "$T/both.dxf"
+m "$T/both.dxf" arc_quarter -0.5 --curves "$REF"
+check '[ $? -eq 0 ] && grep -q "skipped 1 entity .*1 POLYLINE 3D or mesh" "$T/m.err"' \
+    "a 3D POLYLINE beside a 2D one: skipped and named: $(cat "$T/m.err")"
+# a VERTEX with flag 16 (a spline frame's control point) is not drawn: not a vertex
+printf '0\nPOLYLINE\n66\n1\n70\n4\n0\nVERTEX\n10\n1.5\n20\n0\n42\n%s\n70\n8\n0\nVERTEX\n10\n9\n20\n9\n70\n16\n0\nVERTEX\n10\n%s\n20\n%s\n42\n%s\n70\n8\n0\nVERTEX\n10\n0\n20\n1.5\n70\n8\n0\nSEQEND\n' \
+    "$b" "$r" "$r" "$b" | dxf > "$T/fitpoly.dxf"
+m "$T/fitpoly.dxf" arc_quarter -0.5 --curves "$REF"
+check '[ $? -eq 0 ] && [ "$(dropcols "$T/m.csv" file)" = "$(dropcols "$T/lw.csv" file)" ]' \
+    "spline-fit POLYLINE: its frame's control points (VERTEX flag 16) left out: $(cat "$T/m.csv" "$T/m.err")"
 # the line of reference.curves, d = 0.3: its offset as two LINEs, the second first
 awk 'BEGIN{n = sqrt(1.25); ox = -0.5 * 0.3 / n; oy = 0.3 / n
       printf "0\nLINE\n10\n%.17g\n20\n%.17g\n11\n%.17g\n21\n%.17g\n", 0.4 + ox, 0.2 + oy, 1 + ox, 0.5 + oy

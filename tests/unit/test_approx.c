@@ -434,6 +434,27 @@ static void test_dxf_polyline(void)
     ob_approx_free(&a);
 }
 
+/* An old-style POLYLINE reads as the LWPOLYLINE of its VERTEX entities:
+ * the header's point is no vertex; the pieces at their VERTEX's line. */
+static void test_dxf_old_polyline(void)
+{
+    ob_approx a;
+    ob_err err = {""};
+    const char *t = "0\nPOLYLINE\n10\n7\n20\n7\n70\n1\n0\nVERTEX\n10\n1\n20\n0\n42\n-1\n"
+                    "0\nVERTEX\n10\n1\n20\n2\n0\nSEQEND\n";
+    int rc = dxf(t, &a, &err);
+    double p[2] = {0, 0};
+    if (rc == 0 && a.n >= 2)
+        point_at(&a, 0, 1.0, p);
+    CHECK(rc == 0 && a.n == 3 && fabs(p[0]) < 1e-15 && fabs(p[1] - 1) < 1e-15 && a.v[0].line == 10 &&
+              a.v[1].line == 10 && a.v[2].line == 18 && a.v[2].approx.deg == 1,
+          "closed POLYLINE of bulge -1: 2 arc pieces through (0, 1), the closing line (n %d, %s)", a.n, err.msg);
+    ob_approx_free(&a);
+    rc = dxf("0\nPOLYLINE\n0\nVERTEX\n10\n1\n20\n0\n0\nSEQEND\n", &a, &err);
+    CHECK(rc == -1 && strstr(err.msg, ":2: POLYLINE with 1 VERTEX entities"), "one VERTEX: refused (%s)", err.msg);
+    ob_approx_free(&a);
+}
+
 /* The line (from 1) of the first line of text that starts with at. */
 static int line_of(const char *text, const char *at)
 {
@@ -447,7 +468,7 @@ static int line_of(const char *text, const char *at)
 }
 
 /* Entities that are no pieces are named with their count and first line;
- * a POLYLINE's VERTEX and SEQEND belong to it; block definitions are not
+ * a POLYLINE's VERTEX and SEQEND belong to it (a 3D one is skipped); block definitions are not
  * the drawing's. */
 static void test_dxf_skipped(void)
 {
@@ -455,14 +476,14 @@ static void test_dxf_skipped(void)
     ob_err err = {""};
     const char *t = "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n0\nLINE\n10\n0\n20\n0\n11\n1\n21\n1\n0\nENDBLK\n0\nENDSEC\n"
                     "0\nSECTION\n2\nENTITIES\n0\nTEXT\n1\nhi\n0\nLINE\n10\n0\n20\n0\n11\n1\n21\n0\n0\nTEXT\n1\nho\n"
-                    "0\nPOLYLINE\n0\nVERTEX\n0\nVERTEX\n0\nSEQEND\n0\nHATCH\n"
+                    "0\nPOLYLINE\n70\n8\n0\nVERTEX\n0\nVERTEX\n0\nSEQEND\n0\nHATCH\n"
                     "0\nARC\n10\n0\n20\n0\n40\n1\n50\n0\n51\n90\n210\n1\n220\n0\n230\n0\n"
                     "0\nLINE\n10\n5\n20\n5\n11\n5\n21\n5\n0\nENDSEC\n0\nEOF\n";
     const int rc = dxf(t, &a, &err);
     CHECK(rc == 0 && a.n == 1 && a.nskipped == 6 && a.nskipped_types == 5, "%d pieces, %d skipped of %d types (%s)",
           a.n, a.nskipped, a.nskipped_types, err.msg);
     static const struct { const char *type, *at; int count; } want[] = {
-        {"TEXT", "TEXT\n1\nhi", 2}, {"POLYLINE", "POLYLINE", 1}, {"HATCH", "HATCH", 1},
+        {"TEXT", "TEXT\n1\nhi", 2}, {"POLYLINE 3D or mesh", "POLYLINE", 1}, {"HATCH", "HATCH", 1},
         {"ARC off the XY plane", "ARC", 1}, {"LINE of length 0", "LINE\n10\n5", 1}};
     for (int i = 0; i < 5 && rc == 0 && i < a.nskipped_types; i++)
         CHECK(strcmp(a.skipped[i].type, want[i].type) == 0 && a.skipped[i].count == want[i].count &&
@@ -527,6 +548,7 @@ int main(void)
     test_dxf_line_arc();
     test_dxf_ellipse();
     test_dxf_polyline();
+    test_dxf_old_polyline();
     test_dxf_skipped();
     test_dxf_errors();
     return check_done();
