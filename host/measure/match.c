@@ -80,14 +80,15 @@ static void reverse(ob_bez *b)
         }
 }
 
-/* The joint between base segments j and j + 1: its point B and the unit
+/* The joint between base segments j and j2 (j + 1, or 0 after the last
+ * of a closed curve): its point B and the unit
  * normal n of the line across it that separates the two segments' offsets
  * (the mean of their normals there: the bisector at a corner). */
-static int joint_line(const ob_curve *c, int j, double B[2], double n[2])
+static int joint_line(const ob_curve *c, int j, int j2, double B[2], double n[2])
 {
     double nl[2], nr[2];
     ob_bez_point(&c->seg[j], 1.0, B);
-    const int l = ob_bez_normal(&c->seg[j], 1.0, nl) == 0, r = ob_bez_normal(&c->seg[j + 1], 0.0, nr) == 0;
+    const int l = ob_bez_normal(&c->seg[j], 1.0, nl) == 0, r = ob_bez_normal(&c->seg[j2], 0.0, nr) == 0;
     n[0] = (l ? nl[0] : 0.0) + (r ? nr[0] : 0.0);
     n[1] = (l ? nl[1] : 0.0) + (r ? nr[1] : 0.0);
     const double len = hypot(n[0], n[1]);
@@ -99,7 +100,7 @@ static int joint_line(const ob_curve *c, int j, double B[2], double n[2])
 }
 
 /* Whether the base ends where it starts (a closed curve, whose offset a
- * CAD system may start anywhere: a piece over the start is not matched). */
+ * CAD system may start anywhere: its segments are then taken cyclically). */
 static int closed(const ob_curve *c)
 {
     double p[2], q[2];
@@ -148,40 +149,62 @@ static double crossing(const ob_bez *b, double d, const double B[2], const doubl
     return -1.0;
 }
 
-/* Cuts piece k of a (running with the base from (n0) on segment s0 to (n1)
- * on s1 > s0) where it crosses each joint's line between s0 and s1, into
- * s1 - s0 + 1 pieces linked to their segments in order: the first
- * [n0.t, 1], whole segments between, the last [0, n1.t].  An exact
- * subdivision (de Casteljau), so the pieces are the file's piece. */
-static int cut_at_joints(const ob_curve *c, double d, ob_approx *a, int k, nearpt n0, nearpt n1, const char *name,
-                         ob_err *err)
+/* Cuts piece k of a (running with the base from n0 to n1, over `parts`
+ * segments from n0.seg on, cyclically on a closed curve) where it crosses
+ * each joint's line between them: pieces linked to their segments in
+ * order, the first [n0.t, 1], whole segments between, the last [0, n1.t].
+ * An exact subdivision (de Casteljau), so the pieces are the file's piece. */
+static int cut_at_joints(const ob_curve *c, double d, ob_approx *a, int k, nearpt n0, nearpt n1, int parts,
+                         const char *name, ob_err *err)
 {
-    const int parts = n1.seg - n0.seg + 1, line = a->v[k].line;
+    const int line = a->v[k].line;
     ob_bez rest = a->v[k].approx;
     for (int i = 1; i < parts; i++)
         if (!ob_approx_add(a))
             return ob_fail(err, "out of memory");
     memmove(&a->v[k + parts], &a->v[k + 1], (size_t)(a->n - parts - k) * sizeof a->v[0]);
     for (int i = 0; i < parts; i++) {
-        const int s = n0.seg + i;
+        const int s = (n0.seg + i) % c->nseg, s2 = (s + 1) % c->nseg;
         ob_apiece *p = &a->v[k + i];
         *p = (ob_apiece){1, s, i == 0 ? n0.t : 0.0, i == parts - 1 ? n1.t : 1.0, 0.0, 1.0, 0, line, rest, 1, i};
         if (i == parts - 1)
             break;
         double B[2], n[2];
-        const double x = joint_line(c, s, B, n) == 0 ? crossing(&rest, d, B, n) : -1.0;
+        const double x = joint_line(c, s, s2, B, n) == 0 ? crossing(&rest, d, B, n) : -1.0;
         if (x < 0.0)
             return ob_fail(err, "%s:%d: piece %d runs from base segment %d to %d and does not cross the normal "
-                           "line of the offset where segments %d and %d join: cut it there%s", name, line,
-                           ob_approx_file_piece(a, k), n0.seg, n1.seg, s, s + 1,
-                           closed(c) ? " (or, on this closed curve, it runs over the curve's start point: cut it "
-                                       "there)" : "");
+                           "line of the offset where segments %d and %d join: cut it there", name, line,
+                           ob_approx_file_piece(a, k), n0.seg, n1.seg, s, s2);
         ob_bez_split(&rest, x, &p->approx, &rest);
     }
     if (!(a->v[k].a < a->v[k].b) || !(a->v[k + parts - 1].a < a->v[k + parts - 1].b))
         return ob_fail(err, "%s:%d: piece %d: an end lies on a joint of the base it runs past", name, line,
                        ob_approx_file_piece(a, k));
     return 0;
+}
+
+/* Whether the piece from n0 to n1 runs against the base.  On an open curve:
+ * n1 before n0.  On a closed one either way round is a path: the one that
+ * passes the nearest point to the piece's middle (m). */
+static int runs_back(const ob_curve *c, nearpt n0, nearpt n1, nearpt m)
+{
+    const double p0 = n0.seg + n0.t, p1 = n1.seg + n1.t;
+    if (!closed(c))
+        return p0 > p1;
+    const double N = c->nseg, ahead = fmod(p1 - p0 + N, N), mid = fmod(m.seg + m.t - p0 + N, N);
+    return !(mid < ahead);
+}
+
+/* n0 and n1 (n0 first along the base) moved off a joint they sit on the
+ * far side of: the end of a segment is the start of the next, and the
+ * piece's part on the one it only touches would be empty. */
+static void off_joints(const ob_curve *c, nearpt *n0, nearpt *n1)
+{
+    const int N = c->nseg, cyc = closed(c);
+    if (n0->t >= 1.0 && (n0->seg != n1->seg || n1->t < n0->t) && (cyc || n0->seg + 1 < N))
+        *n0 = (nearpt){(n0->seg + 1) % N, 0.0, n0->dist};
+    if (n1->t <= 0.0 && (n1->seg != n0->seg || n1->t < n0->t) && (cyc || n1->seg > 0))
+        *n1 = (nearpt){(n1->seg + N - 1) % N, 1.0, n1->dist};
 }
 
 /* Links piece k of a (its ends nearest to the offset at n0 and n1), cut at
@@ -191,9 +214,10 @@ static int link_piece(const ob_curve *c, double d, ob_approx *a, int k, const ch
                       ob_err *err)
 {
     ob_apiece *p = &a->v[k];
-    double q0[2], q1[2];
+    double q0[2], q1[2], qm[2];
     ob_bez_point(&p->approx, 0.0, q0);
     ob_bez_point(&p->approx, 1.0, q1);
+    ob_bez_point(&p->approx, 0.5, qm);
     nearpt n0 = nearest(c, d, q0), n1 = nearest(c, d, q1);
     *parts = 1;
     if (n0.seg != n1.seg) {
@@ -206,18 +230,20 @@ static int link_piece(const ob_curve *c, double d, ob_approx *a, int k, const ch
         else if (a0.dist <= n0.dist + slack)
             n0 = a0;
     }
-    if (n0.seg == n1.seg && n0.t == n1.t)
-        return ob_fail(err, "%s:%d: piece %d: both its ends are nearest to one point of the offset (t = %.17g of "
-                       "base segment %d)", name, p->line, ob_approx_file_piece(a, k), n0.t, n0.seg);
-    if (n0.seg > n1.seg || (n0.seg == n1.seg && n0.t > n1.t)) {
+    if (runs_back(c, n0, n1, nearest(c, d, qm))) {
         reverse(&p->approx);
         const nearpt x = n0;
         n0 = n1;
         n1 = x;
     }
-    if (n0.seg != n1.seg) {
-        *parts = n1.seg - n0.seg + 1;
-        return cut_at_joints(c, d, a, k, n0, n1, name, err);
+    off_joints(c, &n0, &n1);
+    const int N = c->nseg;
+    if (n0.seg == n1.seg && n0.t == n1.t)
+        return ob_fail(err, "%s:%d: piece %d: both its ends are nearest to one point of the offset (t = %.17g of "
+                       "base segment %d)", name, p->line, ob_approx_file_piece(a, k), n0.t, n0.seg);
+    if (n0.seg != n1.seg || n1.t < n0.t) {  /* the latter: once round a closed curve */
+        *parts = (n1.seg - n0.seg + N) % N + 1 + (n0.seg == n1.seg ? N : 0);
+        return cut_at_joints(c, d, a, k, n0, n1, *parts, name, err);
     }
     p->has_base = 1;
     p->matched = 1;

@@ -29,11 +29,12 @@
  *          two segments' normals there, on d's side; the parts, inserted in
  *          a->v in its place, are linked to [ta, 1], [0, 1] ..., [0, tb] of
  *          s0 ... s1 and carry part = 0, 1, ... (ob_approx_file_piece gives
- *          the file's number back).
+ *          the file's number back).  On a closed base (its end point its
+ *          start point) segments are taken cyclically: a piece may run over
+ *          the start, the way round its middle lies on.
  * Errors:  returns 0; -1 with "NAME:LINE: piece K: reason" in err->msg when both
  *          ends fall on one point, when the piece does not cross a joint's
- *          line (or runs over a closed curve's start point), or out of
- *          memory.
+ *          line, or out of memory.
  * Note:    on an offset with loops (cusps) the nearest point can lie on the
  *          wrong branch; such files should carry the link. */
 int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, ob_err *err);

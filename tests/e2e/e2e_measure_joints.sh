@@ -12,8 +12,8 @@
 #   removed, measures the same against both (to 1e-12 relative), the same
 #   as the run's max_err, with the same pieces and control points;
 # - a circle of four quarter arcs, its offset as three DXF ARCs of 120
-#   degrees: error at round-off; ARCs over the closed curve's start are
-#   refused, saying where to cut.
+#   degrees: error at round-off, also when they start at 45 degrees and the
+#   last runs over the closed curve's start point.
 # Uses $OFFBENCH (set by make) or ./offbench.
 . "$(dirname "$0")/lib_e2e.sh"
 
@@ -81,9 +81,17 @@ check 'awk -v e="$(col "$T/c.csv" hausdorff max_err)" "BEGIN{exit !(e != \"\" &&
     "their hausdorff error is round-off: $(col "$T/c.csv" hausdorff max_err)"
 check '[ "$(col "$T/c.csv" hausdorff pieces)" = 6 ] && [ "$(col "$T/c.csv" hausdorff ctrl_points)" = 13 ]' \
     "6 pieces as read (each ARC in two of 60 degrees), 13 control points: $(col "$T/c.csv" hausdorff pieces) $(col "$T/c.csv" hausdorff ctrl_points)"
+# the same offset started at 45 degrees: the last ARC runs over the closed
+# curve's start point, its pieces cut there too
 { arc 45 165; arc 165 285; arc 285 405; } | dxf > "$T/seam.dxf"
 "$OB" measure --curves "$C" --curve circle4 --d 0.25 --approx "$T/seam.dxf" >"$T/s.csv" 2>"$T/s.err"
-check '[ $? -eq 2 ] && grep -q "seam.dxf:[0-9]*: piece [0-9]* runs from base segment" "$T/s.err" && grep -q "closed curve, it runs over the curve.s start point: cut it there" "$T/s.err" && [ ! -s "$T/s.csv" ]' \
-    "ARCs over the closed curve's start: exit 2, named, no CSV ($(cat "$T/s.err"))"
+check '[ $? -eq 0 ] && awk -v e="$(col "$T/s.csv" hausdorff max_err)" "BEGIN{exit !(e != \"\" && e + 0 <= 1e-12)}" && [ "$(col "$T/s.csv" hausdorff pieces)" = 6 ]' \
+    "ARCs over the closed curve's start: measured, hausdorff $(col "$T/s.csv" hausdorff max_err) ($(cat "$T/s.err"))"
+# a LINE over the middle three segments' offset that stops short of its
+# ends: cut and measured, then refused for the gaps it leaves (no CSV)
+printf '0\nLINE\n10\n2.5\n20\n0.5\n11\n0.5\n21\n0.5\n' | dxf > "$T/l2.dxf"
+"$OB" measure --curves "$C" --curve line3 --d 0.5 --approx "$T/l2.dxf" --approx "$T/line.dxf" >"$T/l2.csv" 2>"$T/l2.err"
+check '[ $? -eq 2 ] && grep -q "l2.dxf does not cover the d = 0.5 offset of curve line3 once (2 gaps" "$T/l2.err" && [ ! -s "$T/l2.csv" ]' \
+    "a LINE short of the offset's ends: its two gaps, exit 2, no CSV: $(cat "$T/l2.err")"
 
 e2e_done
