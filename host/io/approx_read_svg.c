@@ -2,7 +2,7 @@
  * approx_read_svg.c - the paths of an SVG file as Bézier pieces for
  * `measure` (approx_read.h), read as scripts/svg2curves.py reads them with
  * its defaults (--y up, --units user): every <path>, <line>, <polyline> and
- * <polygon> outside defs, symbol, clipPath, mask, marker and pattern, with
+ * <polygon>, <circle>, <ellipse> and <rect> outside defs, symbol, clipPath, mask, marker and pattern, with
  * the transforms of the element and of its ancestors applied (matrix,
  * translate, scale, rotate, skewX, skewY), then y = -y (so the curve is as a
  * browser draws it, and an export's scale(1,-1) group gives back the base
@@ -15,8 +15,11 @@
  * of at most 90 degrees each (weight cos of half the piece's angle, SVG 1.1
  * F.6.5 for the centre, radii scaled up when too small), Z a line back to the
  * subpath's start when it is elsewhere.  Neighbouring pieces share their end
- * points bit for bit.  Zero-length segments, and <circle>, <ellipse>,
- * <rect>, <text>, <image> and <use> elements, are skipped and noted
+ * points bit for bit.  A circle, ellipse or rectangle is the path SVG 2
+ * (10.2, 10.4) gives it: from its rightmost point (an ellipse) or the top
+ * side's start (a rectangle), quarter arcs of sweep 1 (rounded corners),
+ * lines between.  Zero-length segments, shapes of size 0, and <text>,
+ * <image> and <use> elements, are skipped and noted
  * (ob_approx_note_skip).  Each piece is at the line of its element's tag; a
  * malformed attribute is an error "NAME:LINE: <path>: d: at character K
  * ('...'): reason".
@@ -513,7 +516,8 @@ static int is_tag(const char *name, size_t n, const char *const *list)
 }
 
 static const char *const HIDDEN[] = {"defs", "symbol", "clipPath", "mask", "marker", "pattern", NULL};
-static const char *const UNREAD[] = {"circle", "ellipse", "rect", "text", "image", "use", NULL};
+static const char *const UNREAD[] = {"text", "image", "use", NULL};
+static const char *const SHAPES[] = {"path", "line", "polyline", "polygon", "circle", "ellipse", "rect", NULL};
 
 /* A number attribute of a <line> (0 when absent). */
 static int line_coord(const char *a, const char *b, const char *key, scan *c, double *x)
@@ -527,6 +531,94 @@ static int line_coord(const char *a, const char *b, const char *key, scan *c, do
     s.s = v, s.i = 0, s.n = n;
     skip_wsp(&s);
     return number(&s, x);
+}
+
+/* The number attributes keys[0..n) of an element into v (0 when absent),
+ * have[k] whether each is there; 0 or -1 (a malformed number, named). */
+static int coords(const char *a, const char *b, const char *const *keys, int n, scan *c, double *v, int *have)
+{
+    char key[48], *x;
+    size_t len;
+    const char *what = c->what;
+    int rc = 0;
+    for (int k = 0; k < n && rc == 0; k++) {
+        snprintf(key, sizeof key, "%s: %s", what, keys[k]);
+        c->what = key;
+        have[k] = attr(a, b, keys[k], &x, &len);
+        if (line_coord(a, b, keys[k], c, &v[k]))
+            rc = -1;
+        else if (!isfinite(v[k]))
+            rc = ob_fail(c->err, "%s:%d: %s: not a finite number", c->name, c->line, key);
+    }
+    c->what = what;
+    return rc;
+}
+
+/* An ellipse of radii rx, ry about (cx, cy) as SVG 2 (10.4) makes it a
+ * path: from (cx + rx, cy) four quarter arcs of sweep 1, one exact rational
+ * quadratic each. */
+static int add_ellipse(const emit *e, double cx, double cy, double rx, double ry)
+{
+    const double p[5][2] = {{cx + rx, cy}, {cx, cy + ry}, {cx - rx, cy}, {cx, cy - ry}, {cx + rx, cy}};
+    for (int k = 0; k < 4; k++)
+        if (add_arc(e, p[k], rx, ry, 0.0, 0, 1, p[k + 1]))
+            return -1;
+    return 0;
+}
+
+/* A rectangle as SVG 2 (10.2) makes it a path: from (x + rx, y) along the
+ * top, its corners quarter arcs of radii rx, ry (none when either is 0),
+ * sides of zero length left out. */
+static int add_rect(const emit *e, double x, double y, double w, double h, double rx, double ry)
+{
+    const double X = x + w, Y = y + h;
+    const double p[9][2] = {{x + rx, y}, {X - rx, y}, {X, y + ry}, {X, Y - ry}, {X - rx, Y},
+                            {x + rx, Y}, {x, Y - ry}, {x, y + ry}, {x + rx, y}};
+    for (int k = 0; k < 8; k++) {
+        const int corner = k % 2 == 1;
+        if (p[k][0] == p[k + 1][0] && p[k][1] == p[k + 1][1])
+            continue;
+        if (corner ? add_arc(e, p[k], rx, ry, 0.0, 0, 1, p[k + 1]) : add_line(e, p[k], p[k + 1]))
+            return -1;
+    }
+    return 0;
+}
+
+/* <circle>, <ellipse> or <rect> (kind 0, 1, 2): its attributes, SVG 2's
+ * rules for them (rx or ry alone stands for both, a rect's radii clamped
+ * to half its sides; a size of 0 renders nothing: skipped and noted; a
+ * negative one is an error), then its path. */
+static int basic_shape(const emit *e, int kind, const char *a, const char *b, scan *c)
+{
+    static const char *const keys[3][6] = {{"cx", "cy", "r"}, {"cx", "cy", "rx", "ry"},
+                                           {"x", "y", "width", "height", "rx", "ry"}};
+    static const char *const zero[3] = {"zero-size <circle>", "zero-size <ellipse>", "zero-size <rect>"};
+    static const int nkeys[3] = {3, 4, 6};
+    double v[6];
+    int have[6];
+    if (coords(a, b, keys[kind], nkeys[kind], c, v, have))
+        return -1;
+    for (int k = 2; k < nkeys[kind]; k++)
+        if (v[k] < 0.0)
+            return ob_fail(c->err, "%s:%d: %s: %s: negative (%.17g)", c->name, c->line, c->what, keys[kind][k],
+                           v[k]);
+    double rx = v[2], ry = kind == 0 ? v[2] : v[3];
+    if (kind == 1 && have[2] != have[3])
+        rx = ry = have[2] ? v[2] : v[3];
+    if (kind == 2) {
+        rx = have[4] ? v[4] : have[5] ? v[5] : 0.0;
+        ry = have[5] ? v[5] : rx;
+        rx = fmin(rx, 0.5 * v[2]);
+        ry = fmin(ry, 0.5 * v[3]);
+        if (rx == 0.0 || ry == 0.0)
+            rx = ry = 0.0;
+    }
+    const double w = kind == 2 ? v[2] : rx, h = kind == 2 ? v[3] : ry;
+    if (w == 0.0 || h == 0.0) {
+        ob_approx_note_skip(e->out, zero[kind], e->line);
+        return 0;
+    }
+    return kind == 2 ? add_rect(e, v[0], v[1], v[2], v[3], rx, ry) : add_ellipse(e, v[0], v[1], rx, ry);
 }
 
 /* One shape element (tag name [nm, nm + nn), attributes [a, b)). */
@@ -553,6 +645,10 @@ static int shape(svgrd *r, const char *nm, size_t nn, const char *a, const char 
         c.s = v, c.n = n, c.what = key;
         return parse_points(&c, &e, nn == 7);
     }
+    static const char *const basic[] = {"circle", "ellipse", "rect"};
+    for (int k = 0; k < 3; k++)
+        if (nn == strlen(basic[k]) && !strncmp(nm, basic[k], nn))
+            return basic_shape(&e, k, a, b, &c);
     double p[4];
     static const char *const keys[] = {"x1", "y1", "x2", "y2"};
     for (int k = 0; k < 4; k++) {
@@ -589,7 +685,7 @@ static int start_tag(svgrd *r, const char *t, const char *gt)
         ctm = xf_mul(&ctm, &t2);
     }
     int rc = 0;
-    if (!hidden && (is_tag(base, bn, (const char *const[]){"path", "line", "polyline", "polygon", NULL})))
+    if (!hidden && is_tag(base, bn, SHAPES))
         rc = shape(r, base, bn, nm, gt, &ctm, line);
     else if (!hidden && is_tag(base, bn, UNREAD)) {
         char what[24];

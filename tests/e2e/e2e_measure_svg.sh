@@ -9,7 +9,7 @@
 #   cases) measured to round-off;
 # - the same files through svg2curves.py (when /usr/bin/python3 has
 #   svgelements): the same hausdorff-whole;
-# - the format by first bytes; a circle is skipped and named; malformed path
+# - the format by first bytes; a circle of radius 0 is skipped and named; malformed path
 #   data: exit 2 with FILE:LINE and the character.
 # Uses $OFFBENCH (set by make) or ./offbench.
 . "$(dirname "$0")/lib_e2e.sh"
@@ -49,10 +49,10 @@ X
 m "$T/arc.svg" arc_quarter -0.5
 check '[ $? -eq 0 ] && small "$(val hausdorff-whole)" 1e-14 && small "$(val hausdorff)" 1e-14 && [ "$(col pieces)" = 1 ] && ! grep -q warning "$T/m.err"' \
     "arc (relative A under transforms): 1 piece, hausdorff $(val hausdorff), whole $(val hausdorff-whole): $(cat "$T/m.err")"
-printf '<svg xmlns="http://www.w3.org/2000/svg">\n<g transform="scale(1,-1)">\n<circle r="3"/>\n<path d="M 0.5 0 A 0.5 0.5 0 0 1 0.35355339059327379 0.35355339059327373 A .5 .5 0 0 1 0 0.5"/></g></svg>\n' > "$T/arc2.txt"
+printf '<svg xmlns="http://www.w3.org/2000/svg">\n<g transform="scale(1,-1)">\n<circle r="0"/>\n<path d="M 0.5 0 A 0.5 0.5 0 0 1 0.35355339059327379 0.35355339059327373 A .5 .5 0 0 1 0 0.5"/></g></svg>\n' > "$T/arc2.txt"
 m "$T/arc2.txt" arc_quarter 0.5
 check '[ $? -eq 0 ] && small "$(val hausdorff-whole)" 1e-14 && [ "$(col pieces)" = 2 ] && [ "$(col ctrl_points)" = 5 ] &&
-       grep -q "skipped 1 entity .*1 <circle> (at line 3)" "$T/m.err"' \
+       grep -q "skipped 1 entity .*1 zero-size <circle> (at line 3)" "$T/m.err"' \
     "two absolute arcs under scale(1,-1), read by first bytes; the circle named: $(col pieces) pieces, $(val hausdorff-whole): $(cat "$T/m.err")"
 # radii too small for the chord: SVG scales them up to the circle on the
 # chord, a half circle (2 pieces), far from the offset but measured
