@@ -149,6 +149,25 @@ static double crossing(const ob_bez *b, double d, const double B[2], const doubl
     return -1.0;
 }
 
+/* Whether piece b's point at u, where it crosses the line across the joint
+ * of segments s and s2, approximates the offset there: it is no farther
+ * from the offset's point(s) at the joint (two at a corner) than twice its
+ * distance from the whole offset.  On a line normal to the offset the two
+ * are equal; a piece near a loop or cusp of the offset can cross the line
+ * elsewhere, near another part of the offset (seen: 1e-3 from the joint's
+ * point, 2e-6 from the offset: liu2002_ex2 at d = 0.5), and its parts would
+ * be measured against offsets they do not approximate. */
+static int on_offset_at_joint(const ob_curve *c, double d, int s, int s2, const ob_bez *b, double u)
+{
+    double X[2], O[2], O2[2];
+    ob_bez_point(b, u, X);
+    ob_bez_offset_point(&c->seg[s], 1.0, d, O);
+    ob_bez_offset_point(&c->seg[s2], 0.0, d, O2);
+    const double away = fmin(hypot(X[0] - O[0], X[1] - O[1]), hypot(X[0] - O2[0], X[1] - O2[1]));
+    const double slack = 1e-9 * (1.0 + fabs(d) + hypot(X[0], X[1]));
+    return away <= 2.0 * nearest(c, d, X).dist + slack;
+}
+
 /* Cuts piece k of a (running with the base from n0 to n1, over `parts`
  * segments from n0.seg on, cyclically on a closed curve) where it crosses
  * each joint's line between them: pieces linked to their segments in
@@ -175,6 +194,12 @@ static int cut_at_joints(const ob_curve *c, double d, ob_approx *a, int k, nearp
             return ob_fail(err, "%s:%d: piece %d runs from base segment %d to %d and does not cross the normal "
                            "line of the offset where segments %d and %d join: cut it there", name, line,
                            ob_approx_file_piece(a, k), n0.seg, n1.seg, s, s2);
+        if (!on_offset_at_joint(c, d, s, s2, &rest, x))
+            return ob_fail(err, "%s:%d: piece %d runs from base segment %d to %d and crosses the normal line where "
+                           "segments %d and %d join away from the offset's point there, near another part of the "
+                           "offset (a loop or cusp of the offset: projection cannot tell which part the piece "
+                           "approximates; a file with base links, as --export writes, is matched exactly)", name,
+                           line, ob_approx_file_piece(a, k), n0.seg, n1.seg, s, s2);
         ob_bez_split(&rest, x, &p->approx, &rest);
     }
     if (!(a->v[k].a < a->v[k].b) || !(a->v[k + parts - 1].a < a->v[k + parts - 1].b))

@@ -11,6 +11,9 @@
 #   t = 0.4 (a two-segment B-spline): each method's export, its links
 #   removed, measures the same against both (to 1e-12 relative), the same
 #   as the run's max_err, with the same pieces and control points;
+# - on an offset with loops, a piece that crosses a joint's line away from
+#   the offset's point there is refused; a per-piece hausdorff far above
+#   hausdorff-whole is warned of;
 # - a circle of four quarter arcs, its offset as three DXF ARCs of 120
 #   degrees: error at round-off, also when they start at 45 degrees and the
 #   last runs over the closed curve's start point.
@@ -93,5 +96,25 @@ printf '0\nLINE\n10\n2.5\n20\n0.5\n11\n0.5\n21\n0.5\n' | dxf > "$T/l2.dxf"
 "$OB" measure --curves "$C" --curve line3 --d 0.5 --approx "$T/l2.dxf" --approx "$T/line.dxf" >"$T/l2.csv" 2>"$T/l2.err"
 check '[ $? -eq 2 ] && grep -q "l2.dxf does not cover the d = 0.5 offset of curve line3 once (2 gaps" "$T/l2.err" && [ ! -s "$T/l2.csv" ]' \
     "a LINE short of the offset's ends: its two gaps, exit 2, no CSV: $(cat "$T/l2.err")"
+
+# --- an offset with loops (liu2002_ex2 at d = 0.5), exports without links:
+# a piece that crosses a joint's line away from the offset's point there
+# (near a loop) is refused; pieces matched onto another branch of a loop
+# give a per-piece hausdorff far above hausdorff-whole, and a warning says so
+"$OB" run --curve liu2002_ex2 --d 0.5 --methods zhao-rational,bspline-lsq --tols 1e-2,1e-5 --backend cpu \
+    --out "$T/lr" --export "$T/lx" >/dev/null 2>"$T/lr.err"
+check '[ $? -eq 0 ]' "run --export on liu2002_ex2: $(tail -n 1 "$T/lr.err")"
+for j in zhao-rational__tol1e-05 bspline-lsq__tol0.01; do
+    awk 'NR % 2 == 1 {c = $0; next} c + 0 != 999 {print c; print}' "$T/lx/liu2002_ex2__d0.5__$j.dxf" > "$T/$j.dxf"
+done
+"$OB" measure --curve liu2002_ex2 --d 0.5 --approx "$T/zhao-rational__tol1e-05.dxf" >"$T/z.csv" 2>"$T/z.err"
+check '[ $? -eq 2 ] && grep -q "zhao-rational__tol1e-05.dxf:[0-9]*: piece 19 runs from base segment 1 to 2 and crosses the normal line where segments 1 and 2 join away from the offset.s point there" "$T/z.err"' \
+    "a piece crossing a joint's line near a loop: refused, named: $(cat "$T/z.err")"
+"$OB" measure --curve liu2002_ex2 --d 0.5 --approx "$T/bspline-lsq__tol0.01.dxf" >"$T/b.csv" 2>"$T/b.err"
+check '[ $? -eq 0 ] && grep -q "warning: measure: .*bspline-lsq__tol0.01.dxf: hausdorff .* times hausdorff-whole .*: some pieces matched by projection may lie near another branch" "$T/b.err"' \
+    "pieces on another branch: measured, with a warning: $(grep branch "$T/b.err")"
+# an export of the same job measured by its links: no such warning
+"$OB" measure --curve liu2002_ex2 --d 0.5 --approx "$T/lx/liu2002_ex2__d0.5__bspline-lsq__tol0.01.dxf" >/dev/null 2>"$T/b2.err"
+check '[ $? -eq 0 ] && ! grep -q "another branch" "$T/b2.err"' "with its links: no branch warning"
 
 e2e_done
