@@ -53,13 +53,15 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 1
+#define OBX_VERSION_MINOR 2
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.1.0"
+#define OBX_VERSION "0.2.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
- *          same MAJOR means compatible).  Thread-safe. */
+ *          same MAJOR means compatible; MINOR counts additions: 0.2 added
+ *          obx_curves_segment_count, obx_curves_segment, obx_curves_family).
+ *          Thread-safe. */
 const char *obx_version(void);
 
 /* ---- errors ------------------------------------------------------------- */
@@ -126,6 +128,25 @@ int obx_curves_find(const obx_curveset *set, const char *id);
  *          number, and in *d (when not NULL) a pointer to them, valid while
  *          the set is; 0 when i is out of range. */
 int obx_curves_offsets(const obx_curveset *set, int i, const double **d);
+
+/* The number of Bézier segments of curve i (a B-spline of its file counts
+ *          as the segments it was converted to); 0 when i is out of range. */
+int obx_curves_segment_count(const obx_curveset *set, int i);
+
+/* Purpose: segment k of curve i: its degree, and (when the buffers are not
+ *          NULL) its control points into xy[2 (degree + 1)] and weights into
+ *          w[degree + 1] (all 1 for a polynomial segment), when cap (the
+ *          number of points the buffers hold) is at least degree + 1; as
+ *          obx_result_piece does for a fit's pieces.
+ * Returns: the degree (>= 1); -1 with OBX_E_INVALID when i or k is out of
+ *          range or the buffers are too small (the degree is then in the
+ *          message).
+ * Threads: safe (the set is read-only). */
+int obx_curves_segment(const obx_curveset *set, int i, int k, double *xy, double *w, int cap, obx_error *err);
+
+/* Curve i's family (its file's `family` line, "user" without one, as
+ *          results.csv's family column), or NULL when i is out of range. */
+const char *obx_curves_family(const obx_curveset *set, int i);
 
 /* ---- methods ------------------------------------------------------------ */
 

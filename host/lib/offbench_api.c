@@ -231,6 +231,47 @@ int obx_curves_offsets(const obx_curveset *set, int i, const double **d)
     return set->set.v[i].nd;
 }
 
+int obx_curves_segment_count(const obx_curveset *set, int i)
+{
+    return set && i >= 0 && i < set->set.n ? set->set.v[i].nseg : 0;
+}
+
+/* Bézier b's degree, and its Euclidean points and weights into the buffers
+ * (either may be NULL) when they hold cap >= degree + 1 points; what names
+ * b in a message is what. */
+static int bez_out(const ob_bez *b, const char *what, double *xy, double *w, int cap, obx_error *err)
+{
+    if ((xy || w) && cap < b->deg + 1)
+        return fail(err, OBX_E_INVALID, "%s has degree %d: the buffers need %d points, not %d", what, b->deg,
+                    b->deg + 1, cap);
+    for (int i = 0; i <= b->deg && (xy || w); i++) {
+        double p[2];
+        ob_bez_ctrl(b, i, p);
+        if (xy) {
+            xy[2 * i] = p[0];
+            xy[2 * i + 1] = p[1];
+        }
+        if (w)
+            w[i] = ob_bez_weight(b, i);
+    }
+    return b->deg;
+}
+
+int obx_curves_segment(const obx_curveset *set, int i, int k, double *xy, double *w, int cap, obx_error *err)
+{
+    if (k < 0 || k >= obx_curves_segment_count(set, i))
+        return fail(err, OBX_E_INVALID, "obx_curves_segment: %s", obx_curves_segment_count(set, i)
+                                                                     ? "no such segment index" : "no such curve index");
+    char what[96];
+    snprintf(what, sizeof what, "curve '%s' segment %d", set->set.v[i].id, k);
+    return bez_out(&set->set.v[i].seg[k], what, xy, w, cap, err);
+}
+
+const char *obx_curves_family(const obx_curveset *set, int i)
+{
+    return set && i >= 0 && i < set->set.n ? set->set.v[i].family : NULL;
+}
+
 /* ---- methods ---------------------------------------------------------------- */
 
 int obx_method_count(void)
@@ -479,21 +520,9 @@ int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap,
 {
     if (!r || k < 0 || k >= r->pieces.n)
         return fail(err, OBX_E_INVALID, "obx_result_piece: no piece %d", k);
-    const ob_bez *b = &r->pieces.v[k].approx;
-    if ((xy || w) && cap < b->deg + 1)
-        return fail(err, OBX_E_INVALID, "piece %d has degree %d: the buffers need %d points, not %d", k, b->deg,
-                    b->deg + 1, cap);
-    for (int i = 0; i <= b->deg && (xy || w); i++) {
-        double p[2];
-        ob_bez_ctrl(b, i, p);
-        if (xy) {
-            xy[2 * i] = p[0];
-            xy[2 * i + 1] = p[1];
-        }
-        if (w)
-            w[i] = ob_bez_weight(b, i);
-    }
-    return b->deg;
+    char what[32];
+    snprintf(what, sizeof what, "piece %d", k);
+    return bez_out(&r->pieces.v[k].approx, what, xy, w, cap, err);
 }
 
 /* ---- batch ------------------------------------------------------------------ */
