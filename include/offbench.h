@@ -107,7 +107,9 @@ int obx_curves_load_default(obx_curveset **out, obx_error *err);
  * Outputs: *out (free with obx_curves_free); the curve has no offsets of its
  *          own: fits and measurements name d.
  * Errors:  OBX_E_INVALID (bad id, count, degree, point or weight: the
- *          message names the segment and point); OBX_E_NOMEM.
+ *          message names the segment and point; a segment the curve-file
+ *          reader refuses, e.g. one whose points coincide, is named
+ *          "obx_curves_from_arrays segment S:" when nseg > 1); OBX_E_NOMEM.
  * Threads: safe. */
 int obx_curves_from_arrays(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
                            obx_curveset **out, obx_error *err);

@@ -125,6 +125,23 @@ static void test_arrays(void)
           "weight: %s", e.message);
     CHECK(obx_curves_from_arrays("bad id!", 1, q, qxy, NULL, &s, &e) == -1 && strstr(e.message, "id"), "id: %s",
           e.message);
+    /* two segments of different degrees, joined: a line and a quadratic */
+    const int two[] = {1, 2};
+    const double txy[] = {0, 0, 1, 0, 1, 0, 2, 0, 2, 1};
+    e = (obx_error){0, ""};
+    CHECK(obx_curves_from_arrays("two", 2, two, txy, NULL, &s, &e) == 0 && obx_curves_segment_count(s, 0) == 2,
+          "two segments: %s", e.message);
+    CHECK(s && obx_curves_segment(s, 0, 0, NULL, NULL, 0, NULL) == 1 && obx_curves_segment(s, 0, 1, sxy, NULL, 3,
+                                                                                           NULL) == 2 &&
+              sxy[0] == 1 && sxy[4] == 2 && sxy[5] == 1, "segment 1 back");
+    CHECK(obx_fit(s, 0, "tiller", 0.1, 1e-3, NULL, NULL, NULL, &r, &e) == 0 && strcmp(obx_result_status(r), "ok") == 0,
+          "fit on two segments: %s", e.message);
+    obx_result_free(r);
+    obx_curves_free(s);
+    s = NULL;
+    const double tdot[] = {0, 0, 1, 0, 1, 1, 1, 1, 1, 1};
+    CHECK(obx_curves_from_arrays("two", 2, two, tdot, NULL, &s, &e) == -1 && strstr(e.message, "segment 1"),
+          "a point as segment 1: %s", e.message);
     const double dot[] = {1, 1, 1, 1};
     CHECK(obx_curves_from_arrays("x", 1, one, dot, NULL, &s, &e) == -1 && e.code == OBX_E_INVALID, "a point: %s",
           e.message);
