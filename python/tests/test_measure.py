@@ -81,3 +81,17 @@ def test_bad_arguments(kw, exc, words):
         offbench.measure(args.pop("curve"), args.pop("d"), args.pop("pieces"), **args)
     assert words in str(e.value), str(e.value)
     assert isinstance(e.value, offbench.Error)
+
+
+def test_a_curve_of_several_segments():
+    """liu2002_ex2 (a B-spline: four Bézier segments) at its own offset: its
+    fit measures as the fit; one piece over two segments of a user's curve is cut at their
+    joint and measured (a CAD system's offset is not cut there)."""
+    r = offbench.fit("liu2002_ex2", "tiller", 0.5, 1e-3)
+    m = offbench.measure("liu2002_ex2", 0.5, r)
+    assert m.status == "ok" and m.max_err == pytest.approx(r.max_err, rel=1e-9)
+    two = offbench.curve_from_segments("two", [[[0, 0], [1, 0]], [[1, 0], [2, 0]]])
+    whole = offbench.measure(two, 0.1, [[[0, 0.1], [2, 0.1]]])
+    assert whole.status == "ok" and whole.max_err < 1e-12 and whole.segments == 1
+    off = offbench.measure(two, 0.1, [[[0, 0.1], [1, 0.15], [2, 0.1]]])
+    assert off.max_err == pytest.approx(0.025, rel=1e-6)
