@@ -37,9 +37,11 @@
  *     its own (OMP_NUM_THREADS).
  *   - The method `sisl` runs its fits in a server process (SINTEF's SISL
  *     can abort or loop on hostile input): the library starts the program
- *     named by $OFFBENCH_SISL_EXE, else build/offbench-sisl-server beside
- *     the library (found through the library's own path), one per calling
- *     thread; without either, obx_fit with `sisl` fails with OBX_E_UNSUPPORTED.
+ *     named by $OFFBENCH_SISL_EXE, else offbench-sisl-server beside the
+ *     library (build/; found through the library's own path), else in the
+ *     library's directory's offbench/ (make install: LIBDIR/offbench/), one
+ *     per calling thread; without any, obx_fit with `sisl` fails with
+ *     OBX_E_UNSUPPORTED.
  */
 #ifndef OFFBENCH_H
 #define OFFBENCH_H
