@@ -8,7 +8,7 @@ import numbers
 
 from . import _lib
 from .bezier import as_beziers, dptr, flat_arrays, from_buffers, number
-from .curves import Curve, resolve
+from .curves import resolve
 from .errors import InvalidError
 from .result import Result, parse_row
 
@@ -265,4 +265,4 @@ def _renumber(err, idx):
     return err
 
 
-__all__ = ["fit", "measure", "run", "Curve"]
+__all__ = ["fit", "measure", "run"]
