@@ -20,8 +20,9 @@
 #   make lib        build/liboffbench.so (the C API, include/offbench.h) and
 #                   build/offbench-sisl-server (the sisl method's server for it)
 #   make man        the manual page, build/offbench.1, from the commands' --help
-#   make install PREFIX=/usr/local [DESTDIR=]  the program, its manual page and the
-#                   bash and zsh completions (make uninstall removes them)
+#   make install PREFIX=/usr/local [DESTDIR=]  the program, its manual page, the
+#                   bash and zsh completions, liboffbench (lib/, include/offbench.h,
+#                   lib/offbench/offbench-sisl-server) (make uninstall removes them)
 
 CC      ?= gcc
 SAN     ?= 0
@@ -188,21 +189,37 @@ $(MAN): $(BIN) scripts/manpage.sh
 	sh scripts/manpage.sh ./$(BIN) > $@.tmp && mv $@.tmp $@
 
 # make install PREFIX=... DESTDIR=...: the program (with its data and kernels
-# built in), the manual page and the shell completions; make uninstall
-# removes exactly those files (directories are left).
+# built in), the manual page and the shell completions; and the library
+# (make lib): liboffbench.so.VERSION with its SONAME and .so links, its
+# header, and the sisl method's server in LIBDIR/offbench/, where the
+# library looks for it (host/lib/sisl_exe.h).  make uninstall removes
+# exactly those files (directories are left).  The loader finds the library
+# by name in a PREFIX outside its default directories only after ldconfig
+# (or with LD_LIBRARY_PATH; python: OFFBENCH_LIB), docs/python.md.
 PREFIX      ?= /usr/local
 BINDIR      := $(PREFIX)/bin
 MAN1DIR     := $(PREFIX)/share/man/man1
 BASHCOMPDIR := $(PREFIX)/share/bash-completion/completions
 ZSHCOMPDIR  := $(PREFIX)/share/zsh/site-functions
-INSTALLED   := $(BINDIR)/offbench $(MAN1DIR)/offbench.1 $(BASHCOMPDIR)/offbench $(ZSHCOMPDIR)/_offbench
+LIBDIR      := $(PREFIX)/lib
+INCLUDEDIR  := $(PREFIX)/include
+LIBEXECDIR  := $(LIBDIR)/offbench
+INSTALLED   := $(BINDIR)/offbench $(MAN1DIR)/offbench.1 $(BASHCOMPDIR)/offbench $(ZSHCOMPDIR)/_offbench \
+               $(LIBDIR)/$(notdir $(OBX_SO)) $(LIBDIR)/$(OBX_SONAME) $(LIBDIR)/liboffbench.so \
+               $(INCLUDEDIR)/offbench.h $(LIBEXECDIR)/offbench-sisl-server
 
-install: $(BIN) $(MAN)
-	install -d "$(DESTDIR)$(BINDIR)" "$(DESTDIR)$(MAN1DIR)" "$(DESTDIR)$(BASHCOMPDIR)" "$(DESTDIR)$(ZSHCOMPDIR)"
+install: $(BIN) $(MAN) lib
+	install -d "$(DESTDIR)$(BINDIR)" "$(DESTDIR)$(MAN1DIR)" "$(DESTDIR)$(BASHCOMPDIR)" "$(DESTDIR)$(ZSHCOMPDIR)" \
+	    "$(DESTDIR)$(LIBDIR)" "$(DESTDIR)$(INCLUDEDIR)" "$(DESTDIR)$(LIBEXECDIR)"
 	install -m 755 $(BIN) "$(DESTDIR)$(BINDIR)/offbench"
 	install -m 644 $(MAN) "$(DESTDIR)$(MAN1DIR)/offbench.1"
 	install -m 644 scripts/completion/offbench.bash "$(DESTDIR)$(BASHCOMPDIR)/offbench"
 	install -m 644 scripts/completion/_offbench "$(DESTDIR)$(ZSHCOMPDIR)/_offbench"
+	install -m 755 $(OBX_SO) "$(DESTDIR)$(LIBDIR)/$(notdir $(OBX_SO))"
+	ln -sf $(notdir $(OBX_SO)) "$(DESTDIR)$(LIBDIR)/$(OBX_SONAME)"
+	ln -sf $(OBX_SONAME) "$(DESTDIR)$(LIBDIR)/liboffbench.so"
+	install -m 644 include/offbench.h "$(DESTDIR)$(INCLUDEDIR)/offbench.h"
+	install -m 755 $(BUILD)/offbench-sisl-server "$(DESTDIR)$(LIBEXECDIR)/offbench-sisl-server"
 
 uninstall:
 	rm -f $(foreach f,$(INSTALLED),"$(DESTDIR)$(f)")

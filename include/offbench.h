@@ -37,9 +37,11 @@
  *     its own (OMP_NUM_THREADS).
  *   - The method `sisl` runs its fits in a server process (SINTEF's SISL
  *     can abort or loop on hostile input): the library starts the program
- *     named by $OFFBENCH_SISL_EXE, else build/offbench-sisl-server beside
- *     the library (found through the library's own path), one per calling
- *     thread; without either, obx_fit with `sisl` fails with OBX_E_UNSUPPORTED.
+ *     named by $OFFBENCH_SISL_EXE, else offbench-sisl-server beside the
+ *     library (build/; found through the library's own path), else in the
+ *     library's directory's offbench/ (make install: LIBDIR/offbench/), one
+ *     per calling thread; without any, obx_fit with `sisl` fails with
+ *     OBX_E_UNSUPPORTED.
  */
 #ifndef OFFBENCH_H
 #define OFFBENCH_H
@@ -53,13 +55,15 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 1
+#define OBX_VERSION_MINOR 2
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.1.0"
+#define OBX_VERSION "0.2.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
- *          same MAJOR means compatible).  Thread-safe. */
+ *          same MAJOR means compatible; MINOR counts additions: 0.2 added
+ *          obx_curves_segment_count, obx_curves_segment, obx_curves_family).
+ *          Thread-safe. */
 const char *obx_version(void);
 
 /* ---- errors ------------------------------------------------------------- */
@@ -105,7 +109,9 @@ int obx_curves_load_default(obx_curveset **out, obx_error *err);
  * Outputs: *out (free with obx_curves_free); the curve has no offsets of its
  *          own: fits and measurements name d.
  * Errors:  OBX_E_INVALID (bad id, count, degree, point or weight: the
- *          message names the segment and point); OBX_E_NOMEM.
+ *          message names the segment and point; a segment the curve-file
+ *          reader refuses, e.g. one whose points coincide, is named
+ *          "obx_curves_from_arrays segment S:" when nseg > 1); OBX_E_NOMEM.
  * Threads: safe. */
 int obx_curves_from_arrays(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
                            obx_curveset **out, obx_error *err);
@@ -126,6 +132,25 @@ int obx_curves_find(const obx_curveset *set, const char *id);
  *          number, and in *d (when not NULL) a pointer to them, valid while
  *          the set is; 0 when i is out of range. */
 int obx_curves_offsets(const obx_curveset *set, int i, const double **d);
+
+/* The number of Bézier segments of curve i (a B-spline of its file counts
+ *          as the segments it was converted to); 0 when i is out of range. */
+int obx_curves_segment_count(const obx_curveset *set, int i);
+
+/* Purpose: segment k of curve i: its degree, and (when the buffers are not
+ *          NULL) its control points into xy[2 (degree + 1)] and weights into
+ *          w[degree + 1] (all 1 for a polynomial segment), when cap (the
+ *          number of points the buffers hold) is at least degree + 1; as
+ *          obx_result_piece does for a fit's pieces.
+ * Returns: the degree (>= 1); -1 with OBX_E_INVALID when i or k is out of
+ *          range or the buffers are too small (the degree is then in the
+ *          message).
+ * Threads: safe (the set is read-only). */
+int obx_curves_segment(const obx_curveset *set, int i, int k, double *xy, double *w, int cap, obx_error *err);
+
+/* Curve i's family (its file's `family` line, "user" without one, as
+ *          results.csv's family column), or NULL when i is out of range. */
+const char *obx_curves_family(const obx_curveset *set, int i);
 
 /* ---- methods ------------------------------------------------------------ */
 

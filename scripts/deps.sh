@@ -15,6 +15,10 @@
 #                          python3-ezdxf (optional: the test is skipped without it)
 #   zsh completion test (tests/e2e/e2e_completion.sh): zsh (optional: the
 #                          zsh half of the test is skipped without it)
+#   the Python package (python/, tests/e2e/e2e_python.sh and
+#   e2e_python_install.sh): python3-numpy, python3-pytest, python3-pandas,
+#   python3-setuptools, python3-venv (optional: the tests are skipped
+#   without them; pandas only for the DataFrame tests)
 #   lint of the CI recipes (tests/e2e/e2e_ci_recipes.sh, scripts/ci/*.yml):
 #                          python3-yaml (optional: the lint is skipped without it)
 #   browser test of the nightly report (tests/e2e/e2e_report.sh) and
@@ -81,6 +85,14 @@ optional_py ezdxf python3-ezdxf "the DXF read-back test"
 # Optional: zsh, to test the zsh completion (scripts/completion/_offbench).
 command -v zsh >/dev/null 2>&1 || optional_apt zsh "the zsh completion test"
 optional_py yaml python3-yaml "the CI recipes' lint"
+# Optional: the Python package (python/) and its tests: numpy (its one
+# dependency), pytest, pandas (read_results' DataFrame), setuptools and venv
+# (pip install ./python into a fresh virtual environment, offline).
+optional_py numpy python3-numpy "the Python package"
+optional_py pytest python3-pytest "the Python package's tests"
+optional_py pandas python3-pandas "the Python package's DataFrames"
+optional_py setuptools python3-setuptools "pip install ./python"
+optional_py ensurepip python3-venv "the Python package's install test"
 
 # Optional, asked for with OB_DEPS_BROWSER=1 (about 100 MB): a headless
 # Chromium for the nightly report's browser test and its screenshot.

@@ -145,24 +145,19 @@ static int check_arrays(const char *id, int nseg, const int *degrees, const doub
     return 0;
 }
 
-/* The curve as curve-file text, with one offset line (a placeholder the
+/* One segment as curve-file text, with one offset line (a placeholder the
  * caller drops: the format asks for one).  NULL when out of memory. */
-static char *arrays_text(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
-                         size_t *len)
+static char *segment_text(const char *id, int degree, const double *xy, const double *w, size_t *len)
 {
     char *text = NULL;
     FILE *f = open_memstream(&text, len);
     if (!f)
         return NULL;
-    fprintf(f, "curve %s\n  source obx_curves_from_arrays\n", id);
+    fprintf(f, "curve %s\n  source obx_curves_from_arrays\n  bezier %d\n", id, degree);
     double big = 1.0;
-    size_t k = 0;
-    for (int s = 0; s < nseg; s++) {
-        fprintf(f, "  bezier %d\n", degrees[s]);
-        for (int i = 0; i <= degrees[s]; i++, k++) {
-            fprintf(f, "  point %.17g %.17g %.17g\n", xy[2 * k], xy[2 * k + 1], w ? w[k] : 1.0);
-            big = fmax(big, fmax(fabs(xy[2 * k]), fabs(xy[2 * k + 1])));
-        }
+    for (int i = 0; i <= degree; i++) {
+        fprintf(f, "  point %.17g %.17g %.17g\n", xy[2 * i], xy[2 * i + 1], w ? w[i] : 1.0);
+        big = fmax(big, fmax(fabs(xy[2 * i]), fabs(xy[2 * i + 1])));
     }
     fprintf(f, "  offset %.17g\nend\n", fmin(big, 1e12));
     if (fclose(f) != 0) {
@@ -170,6 +165,37 @@ static char *arrays_text(const char *id, int nseg, const int *degrees, const dou
         return NULL;
     }
     return text;
+}
+
+/* Segment s read by the curve-file reader into *one (a curve file holds one
+ * Bézier segment per curve, so each is read on its own); its messages are
+ * named "obx_curves_from_arrays" for a one-segment curve, else
+ * "obx_curves_from_arrays segment S". */
+static int read_segment(const char *id, int nseg, int s, int degree, const double *xy, const double *w,
+                        ob_curveset *one, obx_error *err)
+{
+    size_t len = 0;
+    char *text = segment_text(id, degree, xy, w, &len);
+    if (!text)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    char name[64];
+    snprintf(name, sizeof name, nseg > 1 ? "obx_curves_from_arrays segment %d" : "obx_curves_from_arrays", s);
+    ob_err e;
+    int rc = ob_curves_parse(text, len, name, one, &e);
+    free(text);
+    return rc ? fail(err, OBX_E_INVALID, "%s", e.msg) : 0;
+}
+
+/* Segment 0 of `one` appended to curve c (which takes over the segment). */
+static int append_segment(ob_curve *c, const ob_curve *one, obx_error *err)
+{
+    ob_bez *v = realloc(c->seg, (size_t)(c->nseg + 1) * sizeof *v);
+    if (!v)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    c->seg = v;
+    c->seg[c->nseg++] = one->seg[0];
+    c->coord_max = fmax(c->coord_max, one->coord_max);
+    return 0;
 }
 
 int obx_curves_from_arrays(const char *id, int nseg, const int *degrees, const double *xy, const double *w,
@@ -183,17 +209,19 @@ int obx_curves_from_arrays(const char *id, int nseg, const int *degrees, const d
     if (strlen(id) > 63 || strspn(id, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./") !=
                                strlen(id) || !*id)
         return fail(err, OBX_E_INVALID, "curve id '%.80s': 1 to 63 letters, digits, '_', '-', '.', '/'", id);
-    size_t len = 0;
-    char *text = arrays_text(id, nseg, degrees, xy, w, &len);
-    if (!text)
-        return fail(err, OBX_E_NOMEM, "out of memory");
     ob_curveset s = {0};
-    ob_err e;
-    int rc = ob_curves_parse(text, len, "obx_curves_from_arrays", &s, &e);
-    free(text);
-    if (rc != 0) {
+    int rc = 0;
+    for (int g = 0, k = 0; g < nseg && rc == 0; k += degrees[g] + 1, g++) {
+        ob_curveset one = {0};
+        const double *wg = w ? w + k : NULL;
+        rc = read_segment(id, nseg, g, degrees[g], xy + 2 * k, wg, g ? &one : &s, err);
+        if (rc == 0 && g)
+            rc = append_segment(&s.v[0], &one.v[0], err);
+        ob_curveset_free(&one);
+    }
+    if (rc) {
         ob_curveset_free(&s);
-        return fail(err, OBX_E_INVALID, "%s", e.msg);
+        return -1;
     }
     s.v[0].nd = 0; /* the placeholder offset */
     return wrap_set(&s, out, err);
@@ -229,6 +257,47 @@ int obx_curves_offsets(const obx_curveset *set, int i, const double **d)
     if (d)
         *d = set->set.v[i].d;
     return set->set.v[i].nd;
+}
+
+int obx_curves_segment_count(const obx_curveset *set, int i)
+{
+    return set && i >= 0 && i < set->set.n ? set->set.v[i].nseg : 0;
+}
+
+/* Bézier b's degree, and its Euclidean points and weights into the buffers
+ * (either may be NULL) when they hold cap >= degree + 1 points; what names
+ * b in a message is what. */
+static int bez_out(const ob_bez *b, const char *what, double *xy, double *w, int cap, obx_error *err)
+{
+    if ((xy || w) && cap < b->deg + 1)
+        return fail(err, OBX_E_INVALID, "%s has degree %d: the buffers need %d points, not %d", what, b->deg,
+                    b->deg + 1, cap);
+    for (int i = 0; i <= b->deg && (xy || w); i++) {
+        double p[2];
+        ob_bez_ctrl(b, i, p);
+        if (xy) {
+            xy[2 * i] = p[0];
+            xy[2 * i + 1] = p[1];
+        }
+        if (w)
+            w[i] = ob_bez_weight(b, i);
+    }
+    return b->deg;
+}
+
+int obx_curves_segment(const obx_curveset *set, int i, int k, double *xy, double *w, int cap, obx_error *err)
+{
+    if (k < 0 || k >= obx_curves_segment_count(set, i))
+        return fail(err, OBX_E_INVALID, "obx_curves_segment: %s", obx_curves_segment_count(set, i)
+                                                                     ? "no such segment index" : "no such curve index");
+    char what[96];
+    snprintf(what, sizeof what, "curve '%s' segment %d", set->set.v[i].id, k);
+    return bez_out(&set->set.v[i].seg[k], what, xy, w, cap, err);
+}
+
+const char *obx_curves_family(const obx_curveset *set, int i)
+{
+    return set && i >= 0 && i < set->set.n ? set->set.v[i].family : NULL;
 }
 
 /* ---- methods ---------------------------------------------------------------- */
@@ -479,21 +548,9 @@ int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap,
 {
     if (!r || k < 0 || k >= r->pieces.n)
         return fail(err, OBX_E_INVALID, "obx_result_piece: no piece %d", k);
-    const ob_bez *b = &r->pieces.v[k].approx;
-    if ((xy || w) && cap < b->deg + 1)
-        return fail(err, OBX_E_INVALID, "piece %d has degree %d: the buffers need %d points, not %d", k, b->deg,
-                    b->deg + 1, cap);
-    for (int i = 0; i <= b->deg && (xy || w); i++) {
-        double p[2];
-        ob_bez_ctrl(b, i, p);
-        if (xy) {
-            xy[2 * i] = p[0];
-            xy[2 * i + 1] = p[1];
-        }
-        if (w)
-            w[i] = ob_bez_weight(b, i);
-    }
-    return b->deg;
+    char what[32];
+    snprintf(what, sizeof what, "piece %d", k);
+    return bez_out(&r->pieces.v[k].approx, what, xy, w, cap, err);
 }
 
 /* ---- batch ------------------------------------------------------------------ */

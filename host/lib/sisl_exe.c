@@ -34,15 +34,20 @@ static void choose(void)
     } else if (!dladdr((void *)choose, &info) || !info.dli_fname || in_main_program(info.dli_fname)) {
         return; /* /proc/self/exe links the method and serves */
     } else {
+        /* beside the library (build/), else in its directory's offbench/
+         * (make install: LIBDIR/offbench/, the package's private programs) */
         const char *slash = strrchr(info.dli_fname, '/');
         int dir = slash ? (int)(slash - info.dli_fname) : 1;
-        snprintf(exe, sizeof exe, "%.*s/offbench-sisl-server", dir, slash ? info.dli_fname : ".");
+        const char *d = slash ? info.dli_fname : ".";
+        snprintf(exe, sizeof exe, "%.*s/offbench-sisl-server", dir, d);
+        if (access(exe, X_OK) != 0)
+            snprintf(exe, sizeof exe, "%.*s/offbench/offbench-sisl-server", dir, d);
     }
     if (access(exe, X_OK) != 0) {
         snprintf(problem, sizeof problem,
                  "its fits run in a server process, and %s is not an executable program (%s; set "
                  "OFFBENCH_SISL_EXE to build/offbench-sisl-server or ./offbench)",
-                 exe, env && *env ? "OFFBENCH_SISL_EXE" : "beside the library");
+                 exe, env && *env ? "OFFBENCH_SISL_EXE" : "nor is offbench-sisl-server beside the library");
         return;
     }
     ob_sisl_set_server_exe(exe);

@@ -2,10 +2,13 @@
 # make install / uninstall (PREFIX, DESTDIR) and make man: the program, its
 # manual page (generated from the commands' own --help) and the bash and zsh
 # completions land where they belong; the installed program runs from
-# anywhere; uninstall leaves no file behind; nothing is written outside
-# DESTDIR.
+# anywhere; so does the library: a C program compiled against the installed
+# header links the installed liboffbench and fits with sisl, whose server
+# it finds in LIBDIR/offbench/, and python loads it through OFFBENCH_LIB;
+# uninstall leaves no file behind; nothing is written outside DESTDIR.
 . "$(dirname "$0")/lib_e2e.sh"
 cd "$(dirname "$0")/../.." || exit 2
+ROOT=$(pwd)
 case $OB in */build-san/offbench) flavour=1 build=build-san ;; *) flavour=0 build=build ;; esac
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory SAN=$flavour "$@"; }
 
@@ -45,6 +48,71 @@ check '[ $? -eq 0 ] && grep -q "^tiller " "$T/lm.out"' "the installed program li
 got=$(bash --norc --noprofile -c '. "$1"; _offbench_candidates "$2" run --methods ti' _ \
     "$D$P/share/bash-completion/completions/offbench" "$D$P/bin/offbench" 2>&1)
 check '[ "$got" = tiller ]' "the installed bash completion with the installed program: '$got'"
+
+# the library, its header and the sisl server
+VER=$(sed -n 's/^#define OBX_VERSION "\(.*\)"/\1/p' include/offbench.h)
+L=$D$P/lib
+check '[ -f "$L/liboffbench.so.$VER" ] && [ -x "$L/liboffbench.so.$VER" ] && [ ! -L "$L/liboffbench.so.$VER" ]' \
+    "installed: $P/lib/liboffbench.so.$VER"
+check '[ "$(readlink "$L/liboffbench.so.0")" = "liboffbench.so.$VER" ] && [ "$(readlink "$L/liboffbench.so")" = liboffbench.so.0 ]' \
+    "the SONAME and .so links: $(readlink "$L/liboffbench.so.0") $(readlink "$L/liboffbench.so")"
+check 'cmp -s include/offbench.h "$D$P/include/offbench.h"' "installed: $P/include/offbench.h"
+check '[ -f "$L/offbench/offbench-sisl-server" ] && [ -x "$L/offbench/offbench-sisl-server" ]' \
+    "installed: $P/lib/offbench/offbench-sisl-server"
+if command -v readelf >/dev/null 2>&1; then
+    check 'readelf -d "$L/liboffbench.so.$VER" | grep -q "SONAME.*\[liboffbench.so.0\]"' "the installed library's SONAME is liboffbench.so.0"
+else
+    skipped=$((skipped + 1)); echo "SKIP: no readelf: the SONAME is not read" >&2
+fi
+# a C program against the installed header and library, run from elsewhere
+# with only the staged library on the loader's path (no build/ in sight);
+# under SAN the library holds ASan, so the program is built with it too
+san=; [ "$flavour" = 1 ] && san="-fsanitize=address,undefined"
+cat >"$T/elsewhere/use.c" <<'EOC'
+#include <offbench.h>
+#include <stdio.h>
+#include <string.h>
+int main(void)
+{
+    obx_curveset *s = NULL;
+    obx_result *r = NULL;
+    obx_error e = {0, ""};
+    if (obx_curves_load_default(&s, &e) != 0 ||
+        obx_fit(s, obx_curves_find(s, "liu2002_ex1"), "sisl", 1, 1e-2, NULL, NULL, NULL, &r, &e) != 0) {
+        printf("error: %s\n", e.message);
+        obx_curves_free(s);
+        return 1;
+    }
+    printf("%s %s %s %d\n", obx_version(), OBX_VERSION, obx_result_status(r), obx_result_piece_count(r));
+    obx_result_free(r);
+    obx_curves_free(s);
+    return 0;
+}
+EOC
+(cd "$T/elsewhere" && ${CC:-cc} -std=c11 $san -I"$D$P/include" -o use use.c -L"$L" -loffbench) >"$T/cc.out" 2>&1
+check '[ $? -eq 0 ]' "a C program compiles against the installed header and links the installed library: $(head -n 3 "$T/cc.out")"
+(cd "$T/elsewhere" && env -u OFFBENCH_SISL_EXE LD_LIBRARY_PATH="$L" ./use) >"$T/use.out" 2>&1
+check '[ $? -eq 0 ] && grep -q "^$VER $VER ok [1-9]" "$T/use.out"' \
+    "it runs: obx_version, and a sisl fit served from $P/lib/offbench/: $(head -n 2 "$T/use.out")"
+check 'env LD_LIBRARY_PATH="$L" ldd "$T/elsewhere/use" | grep -q "liboffbench.so.0 => $L/liboffbench.so.0"' \
+    "it loads the installed library: $(env LD_LIBRARY_PATH="$L" ldd "$T/elsewhere/use" | grep liboffbench)"
+# python: the package (from python/) on the installed library, through OFFBENCH_LIB
+PY=
+for p in /usr/bin/python3 python3; do
+    if command -v "$p" >/dev/null 2>&1 && "$p" -c 'import numpy' >/dev/null 2>&1; then PY=$p; break; fi
+done
+if [ "$flavour" = 1 ]; then
+    skipped=$((skipped + 1)); echo "SKIP: the SAN build's library holds ASan, which python cannot load without preloading it" >&2
+elif [ -z "$PY" ]; then
+    skipped=$((skipped + 1)); echo "SKIP: no python3 with numpy (apt-get install python3-numpy): the package is not tried" >&2
+else
+    (cd "$T/elsewhere" && env -u OFFBENCH_SISL_EXE OFFBENCH_LIB="$L/liboffbench.so.0" PYTHONPATH="$ROOT/python" \
+        PYTHONDONTWRITEBYTECODE=1 "$PY" -c 'import offbench
+print(offbench.library_path())
+print(offbench.fit("liu2002_ex1", "sisl", 1, 1e-2).status)') >"$T/py.out" 2>&1
+    check '[ $? -eq 0 ] && [ "$(cat "$T/py.out")" = "$L/liboffbench.so.0
+ok" ]' "python loads the installed library through OFFBENCH_LIB and fits with sisl: $(tail -n 3 "$T/py.out")"
+fi
 
 mk uninstall DESTDIR="$D" PREFIX="$P" >"$T/un.out" 2>&1
 check '[ $? -eq 0 ] && [ -z "$(find "$D" ! -type d)" ]' "make uninstall leaves no file: $(find "$D" ! -type d | head -n 3)"

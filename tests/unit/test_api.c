@@ -66,6 +66,27 @@ static void test_curves(const obx_curveset *s)
     obx_curves_free(NULL);
 }
 
+/* A curve's segments, as its file gives them (liu2002_ex1: one cubic), and
+ * its family; out-of-range and small buffers refused. */
+static void test_segments(const obx_curveset *s, int c)
+{
+    double xy[8], w[4];
+    obx_error e = {0, ""};
+    CHECK(obx_curves_segment_count(s, c) == 1, "segments %d", obx_curves_segment_count(s, c));
+    CHECK(obx_curves_segment(s, c, 0, xy, w, 4, &e) == 3, "segment 0: %s", e.message);
+    CHECK(xy[0] == -0.785938 && xy[1] == 0.891849 && xy[6] == 0.9 && xy[7] == -0.2 && w[0] == 1 && w[3] == 1,
+          "points %g %g .. %g %g", xy[0], xy[1], xy[6], xy[7]);
+    CHECK(obx_curves_segment(s, c, 0, NULL, NULL, 0, NULL) == 3, "degree only");
+    CHECK(obx_curves_segment(s, c, 0, xy, w, 3, &e) == -1 && e.code == OBX_E_INVALID && strstr(e.message, "degree 3"),
+          "small buffer: %s", e.message);
+    CHECK(obx_curves_segment(s, c, 1, xy, w, 4, &e) == -1 && e.code == OBX_E_INVALID, "segment out of range");
+    CHECK(obx_curves_segment(s, -1, 0, xy, w, 4, &e) == -1 && obx_curves_segment_count(s, -1) == 0 &&
+              obx_curves_segment_count(NULL, 0) == 0, "curve out of range");
+    CHECK(obx_curves_family(s, c) && strcmp(obx_curves_family(s, c), "published") == 0, "family %s",
+          obx_curves_family(s, c) ? obx_curves_family(s, c) : "(null)");
+    CHECK(obx_curves_family(s, -1) == NULL, "family out of range");
+}
+
 static void test_arrays(void)
 {
     /* liu2002_ex1's cubic, and a rational quarter circle */
@@ -76,6 +97,7 @@ static void test_arrays(void)
     CHECK(obx_curves_from_arrays("ex1", 1, deg, xy, NULL, &s, &e) == 0, "arrays: %s", e.message);
     CHECK(obx_curves_count(s) == 1 && strcmp(obx_curves_id(s, 0), "ex1") == 0, "one curve");
     CHECK(obx_curves_offsets(s, 0, NULL) == 0, "no offsets of its own");
+    CHECK(strcmp(obx_curves_family(s, 0), "user") == 0, "arrays' family: %s", obx_curves_family(s, 0));
     obx_result *r = NULL;
     CHECK(obx_fit(s, 0, "tiller", 1, 1e-3, NULL, NULL, NULL, &r, &e) == 0, "fit: %s", e.message);
     CHECK(r && strcmp(obx_result_status(r), "ok") == 0 && obx_result_max_err(r) <= 1e-3, "fit ok");
@@ -85,6 +107,10 @@ static void test_arrays(void)
     const int q[] = {2};
     const double qxy[] = {1, 0, 1, 1, 0, 1}, qw[] = {1, sqrt(0.5), 1};
     CHECK(obx_curves_from_arrays("arc", 1, q, qxy, qw, &s, &e) == 0, "rational: %s", e.message);
+    double sxy[6], sw[3];
+    CHECK(obx_curves_segment(s, 0, 0, sxy, sw, 3, &e) == 2 && sw[0] == 1 && fabs(sw[1] - sqrt(0.5)) < 1e-15 &&
+              fabs(sxy[2] - 1) < 1e-15 && fabs(sxy[3] - 1) < 1e-15, "rational segment back: w %g, point %g %g",
+          sw[1], sxy[2], sxy[3]);
     obx_curves_free(s);
     s = NULL;
     const double bad[] = {0, 0, NAN, 1};
@@ -99,6 +125,23 @@ static void test_arrays(void)
           "weight: %s", e.message);
     CHECK(obx_curves_from_arrays("bad id!", 1, q, qxy, NULL, &s, &e) == -1 && strstr(e.message, "id"), "id: %s",
           e.message);
+    /* two segments of different degrees, joined: a line and a quadratic */
+    const int two[] = {1, 2};
+    const double txy[] = {0, 0, 1, 0, 1, 0, 2, 0, 2, 1};
+    e = (obx_error){0, ""};
+    CHECK(obx_curves_from_arrays("two", 2, two, txy, NULL, &s, &e) == 0 && obx_curves_segment_count(s, 0) == 2,
+          "two segments: %s", e.message);
+    CHECK(s && obx_curves_segment(s, 0, 0, NULL, NULL, 0, NULL) == 1 && obx_curves_segment(s, 0, 1, sxy, NULL, 3,
+                                                                                           NULL) == 2 &&
+              sxy[0] == 1 && sxy[4] == 2 && sxy[5] == 1, "segment 1 back");
+    CHECK(obx_fit(s, 0, "tiller", 0.1, 1e-3, NULL, NULL, NULL, &r, &e) == 0 && strcmp(obx_result_status(r), "ok") == 0,
+          "fit on two segments: %s", e.message);
+    obx_result_free(r);
+    obx_curves_free(s);
+    s = NULL;
+    const double tdot[] = {0, 0, 1, 0, 1, 1, 1, 1, 1, 1};
+    CHECK(obx_curves_from_arrays("two", 2, two, tdot, NULL, &s, &e) == -1 && strstr(e.message, "segment 1"),
+          "a point as segment 1: %s", e.message);
     const double dot[] = {1, 1, 1, 1};
     CHECK(obx_curves_from_arrays("x", 1, one, dot, NULL, &s, &e) == -1 && e.code == OBX_E_INVALID, "a point: %s",
           e.message);
@@ -306,6 +349,7 @@ int main(void)
     if (s) {
         int c = obx_curves_find(s, "liu2002_ex1");
         test_curves(s);
+        test_segments(s, c);
         test_fit_errors(s, c);
         test_fit_cross(s, c);
         test_sisl(s, c);

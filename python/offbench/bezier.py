@@ -1,0 +1,136 @@
+"""Bezier: one Bézier segment or piece (a curve's segments, a fit's pieces,
+what measure is given), and the conversion of a list of them to the flat
+arrays the C API takes (degrees[], xy[], w[] or NULL)."""
+
+import ctypes
+
+import numpy as np
+
+from .errors import InvalidError
+
+MAX_DEGREE = 20  # the curve files' and the C API's largest degree
+
+
+class Bezier:
+    """A Bézier segment of degree n: points, an (n+1, 2) float array of its
+    Euclidean control points; weights, an (n+1,) array of positive weights,
+    or None for a polynomial segment (all weights 1)."""
+
+    __slots__ = ("points", "weights")
+
+    def __init__(self, points, weights=None, *, what="segment"):
+        try:
+            p = np.array(points, dtype=float)
+        except (TypeError, ValueError) as e:
+            raise InvalidError("%s: points: %s" % (what, e)) from None
+        if p.ndim != 2 or p.shape[1] != 2 or not 2 <= p.shape[0] <= MAX_DEGREE + 1:
+            raise InvalidError("%s: points must be an array of shape (n+1, 2) for a degree n of 1 to %d, not %s"
+                               % (what, MAX_DEGREE, "shape %s" % (p.shape,)))
+        if not np.all(np.isfinite(p)):
+            raise InvalidError("%s: point %d is not finite" % (what, int(np.argmin(np.all(np.isfinite(p), axis=1)))))
+        w = None
+        if weights is not None:
+            try:
+                w = np.array(weights, dtype=float)
+            except (TypeError, ValueError) as e:
+                raise InvalidError("%s: weights: %s" % (what, e)) from None
+            if w.shape != (p.shape[0],):
+                raise InvalidError("%s: weights must be an array of shape (%d,) (one per point), not shape %s"
+                                   % (what, p.shape[0], w.shape))
+            bad = ~(np.isfinite(w) & (w > 0))
+            if bad.any():
+                k = int(np.argmax(bad))
+                raise InvalidError("%s: weight %d is %r (must be > 0, finite)" % (what, k, float(w[k])))
+            w.setflags(write=False)
+        p.setflags(write=False)
+        self.points = p
+        self.weights = w
+
+    @property
+    def degree(self):
+        return self.points.shape[0] - 1
+
+    @property
+    def rational(self):
+        return self.weights is not None
+
+    def __eq__(self, other):
+        if not isinstance(other, Bezier):
+            return NotImplemented
+        wa = self.weights if self.weights is not None else np.ones(self.degree + 1)
+        wb = other.weights if other.weights is not None else np.ones(other.degree + 1)
+        return self.points.shape == other.points.shape and np.array_equal(self.points, other.points) and \
+            np.array_equal(wa, wb)
+
+    __hash__ = None
+
+    def __repr__(self):
+        pts = ", ".join("(%.6g, %.6g)" % (x, y) for x, y in self.points)
+        w = "" if self.weights is None else ", weights=[%s]" % ", ".join("%.6g" % v for v in self.weights)
+        return "Bezier(degree %d: %s%s)" % (self.degree, pts, w)
+
+
+def from_buffers(degree, xy, w):
+    """A Bezier from the C API's buffers (weights None when all are 1)."""
+    n = degree + 1
+    points = np.array(xy[:2 * n], dtype=float).reshape(n, 2)
+    weights = np.array(w[:n], dtype=float)
+    b = Bezier.__new__(Bezier)
+    points.setflags(write=False)
+    if np.all(weights == 1.0):
+        weights = None
+    else:
+        weights.setflags(write=False)
+    b.points, b.weights = points, weights
+    return b
+
+
+def as_beziers(items, what):
+    """A list of Bezier from a list of Bezier, (n+1, 2) arrays or
+    (points, weights) pairs; `what` names the argument in messages."""
+    if isinstance(items, (Bezier, np.ndarray)):
+        items = [items]
+    try:
+        items = list(items)
+    except TypeError:
+        raise InvalidError("%s: a list of Bezier pieces or (n+1, 2) arrays, not %s"
+                           % (what, type(items).__name__)) from None
+    if not items:
+        raise InvalidError("%s: none given" % what)
+    out = []
+    for k, it in enumerate(items):
+        name = "%s[%d]" % (what, k)
+        if isinstance(it, Bezier):
+            out.append(it)
+        elif isinstance(it, tuple) and len(it) == 2 and not np.isscalar(it[0]) and \
+                np.ndim(it[0]) == 2:
+            out.append(Bezier(it[0], it[1], what=name))
+        else:
+            out.append(Bezier(it, what=name))
+    return out
+
+
+def flat_arrays(beziers):
+    """ctypes arrays (degrees, xy, w or None) of a list of Bezier."""
+    degrees = (ctypes.c_int * len(beziers))(*[b.degree for b in beziers])
+    xy = np.ascontiguousarray(np.concatenate([b.points.reshape(-1) for b in beziers]), dtype=float)
+    w = None
+    if any(b.weights is not None for b in beziers):
+        w = np.ascontiguousarray(np.concatenate(
+            [b.weights if b.weights is not None else np.ones(b.degree + 1) for b in beziers]), dtype=float)
+    return degrees, xy, w
+
+
+def dptr(a):
+    """A double* into numpy array a (None stays NULL)."""
+    return None if a is None else a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+
+
+def number(value, what):
+    """float(value), or InvalidError naming the argument (NaN and the like
+    pass: the library says what is wrong with them)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InvalidError("%s: %r is not a number" % (what, value)) from None
+    return v

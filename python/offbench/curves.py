@@ -1,0 +1,179 @@
+"""Curve sets: curves(), curve_from_segments(), and the Curve and CurveSet
+classes over the library's read-only obx_curveset (freed when the last
+Python object using it goes)."""
+
+import ctypes
+import difflib
+import os
+import threading
+import weakref
+
+import numpy as np
+
+from . import _lib
+from .bezier import Bezier, as_beziers, dptr, flat_arrays, from_buffers
+from .errors import InvalidError, UnknownCurveError
+
+
+class CurveSet:
+    """A read-only set of curves: len(), iteration (Curve objects in the
+    file's order), set[id] or set[i], `id in set`, .ids.  Any number of
+    threads may use it at once."""
+
+    def __init__(self, handle, source):
+        self._h = handle
+        self.source = source  # the file, "built-in" or "arrays"
+        self._fin = weakref.finalize(self, _lib.lib().obx_curves_free, handle)
+        n = _lib.lib().obx_curves_count(handle)
+        self._curves = [Curve(self, i) for i in range(n)]
+        self._index = {c.id: c for c in self._curves}
+
+    @property
+    def ids(self):
+        return [c.id for c in self._curves]
+
+    def __len__(self):
+        return len(self._curves)
+
+    def __iter__(self):
+        return iter(self._curves)
+
+    def __contains__(self, key):
+        return key in self._index if isinstance(key, str) else key in self._curves
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            c = self._index.get(key)
+            if c is None:
+                raise unknown_curve(key, self)
+            return c
+        if isinstance(key, (int, np.integer)) and not isinstance(key, bool):
+            return self._curves[key]
+        raise InvalidError("a curve set is indexed by curve id (str) or position (int), not %s"
+                           % type(key).__name__)
+
+    def __repr__(self):
+        head = ", ".join(self.ids[:4]) + (", ..." if len(self) > 4 else "")
+        return "CurveSet(%s: %d curves: %s)" % (self.source, len(self), head)
+
+
+class Curve:
+    """One curve of a set: .id, .family, .segments (a list of Bezier),
+    .offsets (the d values its file lists: a float array, empty for a
+    curve made from arrays), .set (the CurveSet it belongs to)."""
+
+    __slots__ = ("set", "index", "id", "family", "_segments", "_offsets")
+
+    def __init__(self, cset, index):
+        L = _lib.lib()
+        self.set = cset
+        self.index = index
+        self.id = _lib.text(L.obx_curves_id(cset._h, index))
+        self.family = _lib.text(L.obx_curves_family(cset._h, index))
+        self._segments = None
+        d = ctypes.POINTER(ctypes.c_double)()
+        n = L.obx_curves_offsets(cset._h, index, ctypes.byref(d))
+        self._offsets = np.array([d[k] for k in range(n)], dtype=float)
+        self._offsets.setflags(write=False)
+
+    @property
+    def offsets(self):
+        return self._offsets
+
+    @property
+    def segments(self):
+        if self._segments is None:
+            L = _lib.lib()
+            err = _lib.ObxError()
+            segs = []
+            for k in range(L.obx_curves_segment_count(self.set._h, self.index)):
+                deg = _lib.check(L.obx_curves_segment(self.set._h, self.index, k, None, None, 0, ctypes.byref(err)),
+                                 err)
+                xy = (ctypes.c_double * (2 * deg + 2))()
+                w = (ctypes.c_double * (deg + 1))()
+                _lib.check(L.obx_curves_segment(self.set._h, self.index, k, xy, w, deg + 1, ctypes.byref(err)), err)
+                segs.append(from_buffers(deg, xy, w))
+            self._segments = segs
+        return list(self._segments)
+
+    def __eq__(self, other):
+        return isinstance(other, Curve) and other.set is self.set and other.index == self.index
+
+    def __hash__(self):
+        return hash((id(self.set), self.index))
+
+    def __repr__(self):
+        n = _lib.lib().obx_curves_segment_count(self.set._h, self.index)
+        offs = "[" + ", ".join("%g" % d for d in self._offsets) + "]"
+        return "Curve(%r, %s, %d segment%s, offsets %s)" % (self.id, self.family, n, "" if n == 1 else "s", offs)
+
+
+def unknown_curve(key, cset):
+    close = difflib.get_close_matches(key, cset.ids, n=1)
+    hint = " (did you mean %r?)" % close[0] if close else ""
+    where = "the built-in curves (offbench.curves())" if cset.source == "built-in" else cset.source
+    return UnknownCurveError("unknown curve %r in %s%s" % (key, where, hint))
+
+
+def _load(fn, *args):
+    L = _lib.lib()
+    h = _lib.CurveSetP()
+    err = _lib.ObxError()
+    _lib.check(getattr(L, fn)(*args, ctypes.byref(h), ctypes.byref(err)), err)
+    return h
+
+
+_default = None
+_default_lock = threading.Lock()
+
+
+def curves(path=None):
+    """The curves of a `.curves` file, or with no path the built-in set
+    `offbench run` uses by default ($OFFBENCH_DATA when set, else the
+    datasets compiled into the library).  ParseError ("FILE:LINE: reason")
+    or FileError for a bad file."""
+    if path is None:
+        return CurveSet(_load("obx_curves_load_default"), "built-in")
+    p = os.fspath(path)
+    if "\0" in p:
+        raise InvalidError("curve file %r: a path may not hold NUL" % p)
+    return CurveSet(_load("obx_curves_load_file", p.encode()), p)
+
+
+def default_set():
+    """The built-in set, loaded once and shared (a curve id given as a str
+    is looked up here)."""
+    global _default
+    if _default is None:
+        with _default_lock:
+            if _default is None:
+                _default = curves()
+    return _default
+
+
+def curve_from_segments(id, segments):
+    """A Curve of its own (in a set of one) from Bézier segments joined end
+    to end: a list of Bezier, of (n+1, 2) point arrays, or of (points,
+    weights) pairs.  The curve has no offsets of its own: fit and measure
+    name d."""
+    if not isinstance(id, str):
+        raise InvalidError("curve id: a str, not %s" % type(id).__name__)
+    if "\0" in id:
+        raise InvalidError("curve id %r: may not hold NUL" % id)
+    segs = as_beziers(segments, "segments")
+    degrees, xy, w = flat_arrays(segs)
+    h = _load("obx_curves_from_arrays", id.encode(), len(segs), degrees, dptr(xy), dptr(w))
+    return CurveSet(h, "arrays")[0]
+
+
+def resolve(curve, what="curve"):
+    """A Curve from a Curve or a curve id of the built-in set."""
+    if isinstance(curve, Curve):
+        return curve
+    if isinstance(curve, str):
+        return default_set()[curve]
+    raise InvalidError("%s: a Curve (offbench.curves()[id]) or a built-in curve id, not %s"
+                       % (what, type(curve).__name__))
+
+
+__all__ = ["Bezier", "Curve", "CurveSet", "curves", "curve_from_segments"]

@@ -1,0 +1,268 @@
+"""fit, measure and run: one job, one measurement, many jobs (obx_fit,
+obx_measure, obx_run_batch).  Each copies what the library returns into
+Python objects and frees the library's at once, so nothing here outlives a
+call but the curve sets."""
+
+import ctypes
+import numbers
+
+from . import _lib
+from .bezier import as_beziers, dptr, flat_arrays, from_buffers, number
+from .curves import resolve
+from .errors import InvalidError
+from .result import Result, parse_row
+
+
+def _cstr(value, what, allow_none=True):
+    """bytes for a char* argument; InvalidError naming the argument."""
+    if value is None and allow_none:
+        return None
+    if hasattr(value, "name") and not isinstance(value, str):  # a Method
+        value = value.name
+    if not isinstance(value, str):
+        raise InvalidError("%s: a str, not %s" % (what, type(value).__name__))
+    if "\0" in value:
+        raise InvalidError("%s %r: may not hold NUL" % (what, value))
+    return value.encode()
+
+
+def _params_text(params, what="params"):
+    """The "NAME=VALUE,..." text of a method's parameters: a dict, or that
+    text itself."""
+    if params is None:
+        return None
+    if isinstance(params, str):
+        return _cstr(params, what)
+    if not isinstance(params, dict):
+        raise InvalidError("%s: a dict {name: value} or 'NAME=VALUE,...', not %s" % (what, type(params).__name__))
+    parts = []
+    for k, v in params.items():
+        if not isinstance(k, str) or any(c in k for c in ",=\0"):
+            raise InvalidError("%s: parameter name %r" % (what, k))
+        if isinstance(v, bool) or not isinstance(v, numbers.Real):
+            raise InvalidError("%s: %s=%r is not a number" % (what, k, v))
+        parts.append("%s=%r" % (k, float(v)))
+    return ",".join(parts).encode() if parts else None
+
+
+def _result(r):
+    """A fit's Result from an obx_result (not freed here)."""
+    L = _lib.lib()
+    header = _lib.text(L.obx_results_header())
+    row = _lib.text(L.obx_result_row(r))
+    try:
+        values = parse_row(header, row)
+    except ValueError as e:  # the library's own row: a mismatch is a bug there
+        raise AssertionError("liboffbench's row does not read: %s\n%s\n%s" % (e, header, row)) from None
+    err = _lib.ObxError()
+    pieces = []
+    for k in range(L.obx_result_piece_count(r)):
+        deg = _lib.check(L.obx_result_piece(r, k, None, None, 0, ctypes.byref(err)), err)
+        xy = (ctypes.c_double * (2 * deg + 2))()
+        w = (ctypes.c_double * (deg + 1))()
+        _lib.check(L.obx_result_piece(r, k, xy, w, deg + 1, ctypes.byref(err)), err)
+        pieces.append(from_buffers(deg, xy, w))
+    return Result("fit", values, pieces, row)
+
+
+def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None):
+    """One job, exactly as one row of `offbench run`: method on curve at
+    offset d and tolerance tol, measured under metric, split by split.
+
+    curve: a Curve, or the id of a built-in curve; method: a name of
+    methods(); params: the method's parameters, {name: value} or
+    "NAME=VALUE,..." (None: the paper's defaults).  Returns a Result (a job
+    that ends fail, skip or limit is a Result with that status, not an
+    exception).  InvalidError for a bad argument (the message names it)."""
+    c = resolve(curve)
+    m = _cstr(method, "method", allow_none=False)
+    dd, tt = number(d, "d"), number(tol, "tol")
+    L = _lib.lib()
+    out = _lib.ResultP()
+    err = _lib.ObxError()
+    _lib.check(L.obx_fit(c.set._h, c.index, m, dd, tt, _cstr(metric, "metric"), _cstr(split, "split"),
+                         _params_text(params), ctypes.byref(out), ctypes.byref(err)), err)
+    try:
+        return _result(out)
+    finally:
+        L.obx_result_free(out)
+
+
+def measure(curve, d, pieces, metric="hausdorff"):
+    """The error of an approximation, Bézier pieces in curve order, against
+    curve's exact d-offset under metric, as `offbench measure` measures a
+    file without base links.  pieces: a list of Bezier (a Result's .pieces),
+    of (n+1, 2) arrays or of (points, weights) pairs, or a Result.
+
+    Returns a Result of kind "measure": max_err (NaN where the metric does
+    not apply: bound and radial need the base's parameter, param read
+    links), status "ok", "n/a" or "fail", message (why), piece (where the
+    error is largest).  MeasureError when a piece cannot be matched on the
+    offset."""
+    c = resolve(curve)
+    if isinstance(pieces, Result):
+        if not pieces.pieces:
+            raise InvalidError("pieces: the result (status %s) has no pieces" % pieces.status)
+        pieces = pieces.pieces
+    bz = as_beziers(pieces, "pieces")
+    dd = number(d, "d")
+    degrees, xy, w = flat_arrays(bz)
+    L = _lib.lib()
+    m = _lib.Measurement()
+    err = _lib.ObxError()
+    _lib.check(L.obx_measure(c.set._h, c.index, dd, len(bz), degrees, dptr(xy), dptr(w), _cstr(metric, "metric"),
+                             ctypes.byref(m), ctypes.byref(err)), err)
+    names = _lib.text(L.obx_results_header()).split(",")
+    values = dict.fromkeys(names)
+    values.update(curve=c.id, d=dd, metric=metric if metric is not None else "hausdorff", max_err=m.max_err,
+                  status=_lib.text(m.status), message=_lib.text(m.why), segments=len(bz),
+                  out_degree=max(b.degree for b in bz), family=c.family)
+    values["piece"] = m.piece
+    return Result("measure", values, bz)
+
+
+def _as_list(v, what):
+    if v is None:
+        return None
+    if isinstance(v, (str, bytes)) or not hasattr(v, "__iter__"):
+        return [v]
+    out = list(v)
+    if not out:
+        raise InvalidError("%s: none given" % what)
+    return out
+
+
+def _curve_list(curves):
+    from .curves import CurveSet
+    if isinstance(curves, CurveSet):
+        return list(curves)
+    return [resolve(c, "curves") for c in _as_list(curves, "curves")]
+
+
+def _method_list(methods):
+    out = []
+    for m in _as_list(methods, "methods"):
+        if isinstance(m, str):
+            out.extend(x for x in m.split(",") if x)  # "tiller,cobb" as run's --methods
+        else:
+            out.append(m)
+    if out == ["all"]:
+        from .methods import methods as all_methods
+        return [x.name for x in all_methods()]
+    return [_cstr(m, "methods", allow_none=False).decode() for m in out]
+
+
+def _method_params(params, names):
+    """{method: "NAME=VALUE,..."} from run's params {"METHOD.NAME": value}."""
+    if params is None:
+        return {}
+    if not isinstance(params, dict):
+        raise InvalidError("params: a dict {'METHOD.NAME': value}, not %s" % type(params).__name__)
+    per = {}
+    for k, v in params.items():
+        if not isinstance(k, str) or "." not in k:
+            raise InvalidError("params: %r: a key is METHOD.NAME (as run's --param)" % (k,))
+        meth, name = k.split(".", 1)
+        if meth not in names:
+            raise InvalidError("params: %r: method %r is not among the run's methods (%s)"
+                               % (k, meth, ", ".join(names)))
+        per.setdefault(meth, {})[name] = v
+    return {m: _params_text(p, "params") for m, p in per.items()}
+
+
+def _specs(curves, methods, tols, d, metric, split, params):
+    """[(Curve, method, d, tol)] in run's order (curve, d, method, tol),
+    and each method's parameter text."""
+    cs = _curve_list(curves)
+    ms = _method_list(methods)
+    ts = [number(t, "tols") for t in _as_list(tols, "tols")]
+    ds = None if d is None else [number(x, "d") for x in _as_list(d, "d")]
+    jobs = []
+    for c in cs:
+        cd = ds if ds is not None else list(c.offsets)
+        if not cd:
+            raise InvalidError("curve %r has no offsets of its own: give d" % c.id)
+        for dv in cd:
+            for m in ms:
+                for t in ts:
+                    jobs.append((c, m, float(dv), t))
+    return jobs, _method_params(params, ms)
+
+
+def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=None, progress=None,
+        as_frame=False):
+    """Many jobs at once, as `offbench run` runs them (OpenMP threads over
+    all of them; jobs that differ only in tol share pieces): every curve x
+    d x method x tol, in that nesting.
+
+    curves: a CurveSet, a Curve, a built-in id, or a list of those; methods:
+    a name, "a,b" or a list ("all": every method); tols: a number or a list;
+    d: a number or a list (None: each curve's own offsets); params:
+    {"METHOD.NAME": value}; progress: None or progress(done, total), called
+    as jobs finish (from one thread at a time, not necessarily this one; an
+    exception it raises is raised here after the run).  Returns a list of
+    Result, one per job in that order, each what fit() gives for it; with
+    as_frame=True a pandas DataFrame of their rows (read_results' dtypes)."""
+    jobs, per_method = _specs(curves, methods, tols, d, metric, split, params)
+    if progress is not None and not callable(progress):
+        raise InvalidError("progress: a function progress(done, total), not %s" % type(progress).__name__)
+    if as_frame:
+        from .results import require_pandas
+        require_pandas("run(as_frame=True)")
+    met, spl = _cstr(metric, "metric"), _cstr(split, "split")
+    # one batch per curve set (obx_run_batch takes one), in job order
+    groups = {}
+    for i, (c, m, dv, t) in enumerate(jobs):
+        groups.setdefault(id(c.set), []).append(i)
+    results = [None] * len(jobs)
+    done_before = [0]
+    failure = []
+    L = _lib.lib()
+
+    def tell(_ctx, done, _total):
+        if failure:
+            return
+        try:
+            progress(done_before[0] + done, len(jobs))
+        except BaseException as e:  # raised after the batch: C cannot unwind
+            failure.append(e)
+
+    cb = _lib.PROGRESS(tell) if progress is not None else _lib.PROGRESS()
+    names = {m: m.encode() for _, m, _, _ in jobs}  # the specs' char * point into these
+    for idx in groups.values():
+        cset = jobs[idx[0]][0].set
+        specs = (_lib.JobSpec * len(idx))()
+        for k, i in enumerate(idx):
+            c, m, dv, t = jobs[i]
+            specs[k] = _lib.JobSpec(c.index, names[m], dv, t, met, spl, per_method.get(m))
+        out = (_lib.ResultP * len(idx))()
+        err = _lib.ObxError()
+        rc = L.obx_run_batch(cset._h, specs, len(idx), cb, None, out, ctypes.byref(err))
+        if rc < 0:
+            _lib.check(rc, _renumber(err, idx))
+        try:
+            for k, i in enumerate(idx):
+                results[i] = _result(out[k])
+        finally:
+            for k in range(len(idx)):
+                L.obx_result_free(out[k])
+        done_before[0] += len(idx)
+    if failure:
+        raise failure[0]
+    if as_frame:
+        from .results import frame
+        return frame([r.as_dict() for r in results])
+    return results
+
+
+def _renumber(err, idx):
+    """A batch's "job K: " message with K the job's number in the whole run."""
+    msg = err.message.decode("utf-8", "replace")
+    if msg.startswith("job "):
+        head, _, rest = msg[4:].partition(": ")
+        if head.isdigit() and int(head) < len(idx):
+            err.message = ("job %d: %s" % (idx[int(head)], rest)).encode()[:511]
+    return err
+
+
+__all__ = ["fit", "measure", "run"]

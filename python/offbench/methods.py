@@ -1,0 +1,42 @@
+"""methods(): the registered methods and their parameters, as
+`offbench list methods` lists them (constant: read once)."""
+
+import ctypes
+from collections import namedtuple
+
+from . import _lib
+
+Param = namedtuple("Param", "name default min max integer meaning")
+Param.__doc__ = """One parameter of a method, a choice its paper leaves open: the
+paper's reading (default), the accepted values min..max (both included),
+integer (whole numbers only) and what the values mean."""
+
+Method = namedtuple("Method", "name citation params")
+Method.__doc__ = """A method: its name (as fit and run take it), a short reference and
+its parameters (a list of Param)."""
+
+_methods = None
+
+
+def _read():
+    L = _lib.lib()
+    out = []
+    for i in range(L.obx_method_count()):
+        params = []
+        for k in range(L.obx_method_param_count(i)):
+            p = _lib.ParamInfo()
+            err = _lib.ObxError()
+            _lib.check(L.obx_method_param(i, k, ctypes.byref(p), ctypes.byref(err)), err)
+            params.append(Param(_lib.text(p.name), p.def_, p.min, p.max, bool(p.integer), _lib.text(p.doc)))
+        out.append(Method(_lib.text(L.obx_method_name(i)), _lib.text(L.obx_method_citation(i)), params))
+    return out
+
+
+def methods():
+    """Every registered method, in `offbench list methods` order: a list of
+    Method(name, citation, params=[Param(name, default, min, max, integer,
+    meaning), ...])."""
+    global _methods
+    if _methods is None:
+        _methods = _read()
+    return list(_methods)

@@ -1,0 +1,117 @@
+"""read_results and read_meta: a run directory's results.csv and meta.json
+(docs/output.md), without the library.  results.csv is read here, field by
+field, with the types of offbench/columns.py, so that a DataFrame and the
+plain records hold the same values, and a field that does not read names
+its file, line and column."""
+
+import csv
+import json
+import os
+
+from . import columns
+from .errors import FileError, InvalidError, ParseError
+
+
+def _pandas():
+    """pandas, or None without it (a function, so tests can take it away)."""
+    try:
+        import pandas
+    except ImportError:
+        return None
+    return pandas
+
+
+def require_pandas(what):
+    pd = _pandas()
+    if pd is None:
+        raise ImportError("%s needs pandas (Debian: apt-get install python3-pandas; pip: pip install pandas)" % what)
+    return pd
+
+
+def _path(path, name):
+    """The file: path itself, or path/name when path is a directory."""
+    p = os.fspath(path)
+    return os.path.join(p, name) if os.path.isdir(p) else p
+
+
+def _open(p):
+    try:
+        return open(p, newline="", encoding="utf-8")
+    except OSError as e:
+        raise FileError("%s: %s" % (p, e.strerror or e)) from None
+
+
+def _records(p):
+    """The header and the typed rows of results.csv file p."""
+    with _open(p) as f:
+        try:
+            rows = csv.reader(f)
+            header = next(rows, None)
+            if not header or "curve" not in header or "method" not in header:
+                raise ParseError("%s:1: not a results.csv (its header has no curve and method columns: %s)"
+                                 % (p, ",".join(header or [])[:200]))
+            out = []
+            for fields in rows:
+                line = rows.line_num
+                if len(fields) != len(header):
+                    raise ParseError("%s:%d: %d fields under a header of %d columns"
+                                     % (p, line, len(fields), len(header)))
+                rec = {}
+                for n, t in zip(header, fields):
+                    try:
+                        rec[n] = columns.parse(n, t)
+                    except ValueError:
+                        raise ParseError("%s:%d: column %s: %r is not %s" % (p, line, n, t, _what(n))) from None
+                out.append(rec)
+        except (csv.Error, UnicodeDecodeError) as e:
+            raise ParseError("%s:%d: %s" % (p, rows.line_num, e)) from None
+    return header, out
+
+
+def _what(name):
+    return {"float": "a number", "int": "a whole number", "int?": "a whole number or empty",
+            "yesno": "yes, no or empty"}.get(columns.kind(name), "text")
+
+
+def frame(records, header=None):
+    """A pandas DataFrame of typed records, with the columns' dtypes."""
+    pd = require_pandas("a DataFrame")
+    names = header if header is not None else (list(records[0]) if records else list(columns.KINDS))
+    data = {}
+    for n in names:
+        vals = [r[n] for r in records]
+        dt = columns.PANDAS_DTYPES[columns.kind(n)]
+        if dt == "Int64" or dt == "boolean":
+            vals = [pd.NA if v is None else v for v in vals]
+        data[n] = pd.Series(vals, dtype=dt)
+    return pd.DataFrame(data, columns=names)
+
+
+def read_results(path, as_frame=None):
+    """A run's results.csv (path: the run directory or the file itself).
+    With pandas (as_frame None or True): a DataFrame with the documented
+    dtypes (docs/python.md); without it, or as_frame=False: a list of dicts,
+    one per row, the values typed the same way.  FileError when it cannot be
+    read, ParseError ("FILE:LINE: column NAME: ...") when it is not a
+    results.csv."""
+    if as_frame not in (None, True, False):
+        raise InvalidError("as_frame: None, True or False, not %r" % (as_frame,))
+    header, recs = _records(_path(path, "results.csv"))
+    if as_frame is False or (as_frame is None and _pandas() is None):
+        return recs
+    return frame(recs, header)
+
+
+def read_meta(path):
+    """A run's meta.json as a dict (path: the run directory or the file)."""
+    p = _path(path, "meta.json")
+    with _open(p) as f:
+        try:
+            meta = json.load(f)
+        except json.JSONDecodeError as e:
+            raise ParseError("%s:%d: %s" % (p, e.lineno, e.msg)) from None
+        except UnicodeDecodeError as e:
+            raise ParseError("%s: %s" % (p, e)) from None
+    if not isinstance(meta, dict):
+        raise ParseError("%s:1: not a meta.json (a JSON object)" % p)
+    return meta
