@@ -252,8 +252,10 @@ typedef struct {
  *          against the exact d-offset of curve `curve` under `metric`
  *          (NULL: hausdorff), as `offbench measure` does for a file without
  *          base links: each piece's base range is found by projecting its
- *          ends on the offset, then each piece is measured against its base
- *          piece, 256 samples.  bound and radial read the pieces at the
+ *          ends on the offset (a piece whose ends lie over different base
+ *          segments is cut where it crosses each joint's normal line; piece
+ *          stays its index in the arrays), then each piece is measured
+ *          against its base piece, 256 samples.  bound and radial read the pieces at the
  *          base's parameter and so do not apply (status "n/a"); param needs
  *          read links and does not apply either.
  * Outputs: *m.

@@ -250,6 +250,8 @@ static int count_ctrl_points(const ob_curve *c, double d, const ob_approx *ap, c
     int n = 1;
     for (int i = 0; i < ap->n; i++) {
         const ob_bez *b = &ap->v[cv->order[i]].approx;
+        if (ap->v[cv->order[i]].part > 0)
+            continue;  /* a further part of a piece cut at a base joint: its points are the piece's */
         n += b->deg;
         if (i > 0) {
             ob_end left, right;
@@ -276,7 +278,7 @@ static int measure_rows(const measure_args *a, const char *name, const ob_curve 
         ob_error("%s", err.msg);
         return 2;
     }
-    fr->pieces = ap->n;
+    fr->pieces = ob_approx_file_pieces(ap);
     fr->ctrl_points = count_ctrl_points(c, a->d, ap, cv);
     return 0;
 }

@@ -38,6 +38,19 @@ ob_apiece *ob_approx_add(ob_approx *a)
     return p;
 }
 
+int ob_approx_file_piece(const ob_approx *a, int k)
+{
+    int n = -1;
+    for (int i = 0; i <= k; i++)
+        n += a->v[i].part == 0;
+    return n;
+}
+
+int ob_approx_file_pieces(const ob_approx *a)
+{
+    return a->n ? ob_approx_file_piece(a, a->n - 1) + 1 : 0;
+}
+
 void ob_approx_note_skip(ob_approx *a, const char *type, int line)
 {
     a->nskipped++;
@@ -99,7 +112,7 @@ static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx 
             ob_fail(err, "out of memory");
             return -1;
         }
-        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k], 0};
+        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k], 0, 0};
     }
     *segs += fit.n;
     return 0;

@@ -31,6 +31,10 @@ typedef struct {
     ob_bez approx;      /* the approximating piece over [0, 1] */
     int matched;        /* 1: the link was found by projection (ob_approx_match),
                            not read: it says nothing of the parameter */
+    int part;           /* 0: a piece as read; k > 0: the k-th further part of
+                           one that ob_approx_match cut where the base's
+                           segments join (an exact subdivision: the file's
+                           piece counts once, ob_approx_file_piece) */
 } ob_apiece;
 
 /* Entities of a file that the reader did not take as pieces (a DXF's TEXT,
@@ -66,6 +70,15 @@ ob_apiece *ob_approx_add(ob_approx *a);
  *          type in a->skipped (the first OB_APPROX_SKIP_TYPES types; those
  *          of further types only in nskipped).  Never fails. */
 void ob_approx_note_skip(ob_approx *a, const char *type, int line);
+
+/* Purpose: the file's number of piece k of a (0-based, in file order): k
+ *          less the further parts of pieces cut at base joints before it.
+ * Inputs:  0 <= k < a->n. */
+int ob_approx_file_piece(const ob_approx *a, int k);
+
+/* Purpose: the number of pieces as the file gives them (a->n less the
+ *          further parts of pieces cut at base joints). */
+int ob_approx_file_pieces(const ob_approx *a);
 
 /* Purpose: the base parameter of piece p at its own parameter s in [0, 1]:
  *          span [a, b] at fit parameter t0 + (t1 - t0) s, exactly a at the

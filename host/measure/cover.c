@@ -294,7 +294,7 @@ static void gap_where(const ob_cover_issue *is, const ob_approx *a, char *buf, s
     else if (is->other == is->piece)
         snprintf(buf, len, "after this piece, the last on the base");
     else
-        snprintf(buf, len, "after piece %d, line %d", is->other, a->v[is->other].line);
+        snprintf(buf, len, "after piece %d, line %d", ob_approx_file_piece(a, is->other), a->v[is->other].line);
 }
 
 void ob_cover_text(const ob_cover_issue *is, const ob_approx *a, const char *name, char *buf, size_t len)
@@ -303,26 +303,27 @@ void ob_cover_text(const ob_cover_issue *is, const ob_approx *a, const char *nam
     char rg[160], oth[64] = "", where[80];
     range_text(is, rg, sizeof rg);
     gap_where(is, a, where, sizeof where);
-    const int line = is->piece >= 0 && is->piece < a->n ? a->v[is->piece].line : 0;
+    const int in = is->piece >= 0 && is->piece < a->n, line = in ? a->v[is->piece].line : 0;
+    const int piece = in ? ob_approx_file_piece(a, is->piece) : is->piece;  /* the file's number */
     if (is->other >= 0 && is->other < a->n)
-        snprintf(oth, sizeof oth, "piece %d (line %d)", is->other, a->v[is->other].line);
+        snprintf(oth, sizeof oth, "piece %d (line %d)", ob_approx_file_piece(a, is->other), a->v[is->other].line);
     switch (is->kind) {
     case OB_COVER_GAP:
     case OB_COVER_NEAR_GAP:
-        snprintf(buf, len, "%s:%d: piece %d: %sgap: nothing covers base %s (%s)%s", name, line, is->piece,
+        snprintf(buf, len, "%s:%d: piece %d: %sgap: nothing covers base %s (%s)%s", name, line, piece,
                  is->kind == OB_COVER_GAP ? "" : "small ", rg, where, is->kind == OB_COVER_GAP ? "" : near);
         break;
     case OB_COVER_OVERLAP:
     case OB_COVER_NEAR_OVERLAP:
-        snprintf(buf, len, "%s:%d: piece %d: %soverlap: base %s is covered by %s too%s", name, line, is->piece,
+        snprintf(buf, len, "%s:%d: piece %d: %soverlap: base %s is covered by %s too%s", name, line, piece,
                  is->kind == OB_COVER_OVERLAP ? "" : "small ", rg, oth, is->kind == OB_COVER_OVERLAP ? "" : near);
         break;
     case OB_COVER_DUPLICATE:
-        snprintf(buf, len, "%s:%d: piece %d: duplicate of %s: base %s", name, line, is->piece, oth, rg);
+        snprintf(buf, len, "%s:%d: piece %d: duplicate of %s: base %s", name, line, piece, oth, rg);
         break;
     default:
         snprintf(buf, len, "%s:%d: piece %d: out of order: it lies before %s on the base (%s)", name, line,
-                 is->piece, oth, rg);
+                 piece, oth, rg);
         break;
     }
 }

@@ -6,8 +6,9 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
-enum { SCAN = 512, GOLDEN_STEPS = 100 };
+enum { SCAN = 512, GOLDEN_STEPS = 100, CROSS_SCAN = 256, CROSS_STEPS = 200 };
 
 typedef struct {
     int seg;
@@ -79,13 +80,122 @@ static void reverse(ob_bez *b)
         }
 }
 
-/* Links piece p (its ends e0, e1 on one segment). */
-static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const char *name, ob_err *err)
+/* The joint between base segments j and j + 1: its point B and the unit
+ * normal n of the line across it that separates the two segments' offsets
+ * (the mean of their normals there: the bisector at a corner). */
+static int joint_line(const ob_curve *c, int j, double B[2], double n[2])
 {
+    double nl[2], nr[2];
+    ob_bez_point(&c->seg[j], 1.0, B);
+    const int l = ob_bez_normal(&c->seg[j], 1.0, nl) == 0, r = ob_bez_normal(&c->seg[j + 1], 0.0, nr) == 0;
+    n[0] = (l ? nl[0] : 0.0) + (r ? nr[0] : 0.0);
+    n[1] = (l ? nl[1] : 0.0) + (r ? nr[1] : 0.0);
+    const double len = hypot(n[0], n[1]);
+    if (!(len > 1e-12))  /* no normal, or a turn back (a cusp of the base) */
+        return -1;
+    n[0] /= len;
+    n[1] /= len;
+    return 0;
+}
+
+/* Whether the base ends where it starts (a closed curve, whose offset a
+ * CAD system may start anywhere: a piece over the start is not matched). */
+static int closed(const ob_curve *c)
+{
+    double p[2], q[2];
+    ob_bez_point(&c->seg[0], 0.0, p);
+    ob_bez_point(&c->seg[c->nseg - 1], 1.0, q);
+    return hypot(p[0] - q[0], p[1] - q[1]) <= 1e-12 * (1.0 + hypot(p[0], p[1]));
+}
+
+/* How far p is past the line through B across n, along the base's forward
+ * tangent (n rotated clockwise). */
+static double past(const double B[2], const double n[2], const double p[2])
+{
+    return (p[0] - B[0]) * n[1] - (p[1] - B[1]) * n[0];
+}
+
+/* The parameter u in (0, 1) where piece b first crosses the joint's line
+ * forwards on the offset's side of the base (d's side), by a scan and
+ * bisection; -1 when it does not. */
+static double crossing(const ob_bez *b, double d, const double B[2], const double n[2])
+{
+    double p[2];
+    ob_bez_point(b, 0.0, p);
+    double u0 = 0.0, f0 = past(B, n, p);
+    for (int k = 1; k <= CROSS_SCAN; k++) {
+        const double u1 = (double)k / CROSS_SCAN;
+        ob_bez_point(b, u1, p);
+        const double f1 = past(B, n, p);
+        if (f0 <= 0.0 && f1 > 0.0) {
+            double a = u0, z = u1;
+            for (int i = 0; i < CROSS_STEPS && z - a > 1e-16; i++) {
+                const double m = 0.5 * (a + z);
+                ob_bez_point(b, m, p);
+                if (past(B, n, p) > 0.0)
+                    z = m;
+                else
+                    a = m;
+            }
+            ob_bez_point(b, z, p);
+            const double side = (p[0] - B[0]) * n[0] + (p[1] - B[1]) * n[1];
+            if (side * d > 0.0 && z > 0.0 && z < 1.0)
+                return z;
+        }
+        u0 = u1;
+        f0 = f1;
+    }
+    return -1.0;
+}
+
+/* Cuts piece k of a (running with the base from (n0) on segment s0 to (n1)
+ * on s1 > s0) where it crosses each joint's line between s0 and s1, into
+ * s1 - s0 + 1 pieces linked to their segments in order: the first
+ * [n0.t, 1], whole segments between, the last [0, n1.t].  An exact
+ * subdivision (de Casteljau), so the pieces are the file's piece. */
+static int cut_at_joints(const ob_curve *c, double d, ob_approx *a, int k, nearpt n0, nearpt n1, const char *name,
+                         ob_err *err)
+{
+    const int parts = n1.seg - n0.seg + 1, line = a->v[k].line;
+    ob_bez rest = a->v[k].approx;
+    for (int i = 1; i < parts; i++)
+        if (!ob_approx_add(a))
+            return ob_fail(err, "out of memory");
+    memmove(&a->v[k + parts], &a->v[k + 1], (size_t)(a->n - parts - k) * sizeof a->v[0]);
+    for (int i = 0; i < parts; i++) {
+        const int s = n0.seg + i;
+        ob_apiece *p = &a->v[k + i];
+        *p = (ob_apiece){1, s, i == 0 ? n0.t : 0.0, i == parts - 1 ? n1.t : 1.0, 0.0, 1.0, 0, line, rest, 1, i};
+        if (i == parts - 1)
+            break;
+        double B[2], n[2];
+        const double x = joint_line(c, s, B, n) == 0 ? crossing(&rest, d, B, n) : -1.0;
+        if (x < 0.0)
+            return ob_fail(err, "%s:%d: piece %d runs from base segment %d to %d and does not cross the normal "
+                           "line of the offset where segments %d and %d join: cut it there%s", name, line,
+                           ob_approx_file_piece(a, k), n0.seg, n1.seg, s, s + 1,
+                           closed(c) ? " (or, on this closed curve, it runs over the curve's start point: cut it "
+                                       "there)" : "");
+        ob_bez_split(&rest, x, &p->approx, &rest);
+    }
+    if (!(a->v[k].a < a->v[k].b) || !(a->v[k + parts - 1].a < a->v[k + parts - 1].b))
+        return ob_fail(err, "%s:%d: piece %d: an end lies on a joint of the base it runs past", name, line,
+                       ob_approx_file_piece(a, k));
+    return 0;
+}
+
+/* Links piece k of a (its ends nearest to the offset at n0 and n1), cut at
+ * the base's joints where it runs over several segments; *parts the number
+ * of pieces it became. */
+static int link_piece(const ob_curve *c, double d, ob_approx *a, int k, const char *name, int *parts,
+                      ob_err *err)
+{
+    ob_apiece *p = &a->v[k];
     double q0[2], q1[2];
     ob_bez_point(&p->approx, 0.0, q0);
     ob_bez_point(&p->approx, 1.0, q1);
     nearpt n0 = nearest(c, d, q0), n1 = nearest(c, d, q1);
+    *parts = 1;
     if (n0.seg != n1.seg) {
         /* ends at a joint of the base may round onto the neighbour: both on
          * the one segment, if that is (nearly) as near */
@@ -95,23 +205,19 @@ static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const ch
             n1 = a1;
         else if (a0.dist <= n0.dist + slack)
             n0 = a0;
-        else {
-            ob_fail(err, "%s:%d: piece %d runs from base segment %d to %d: cut it where the base's "
-                    "segments join (measure matches each piece to one base segment)", name, p->line, k, n0.seg,
-                    n1.seg);
-            return -1;
-        }
     }
-    if (n0.t == n1.t) {
-        ob_fail(err, "%s:%d: piece %d: both its ends are nearest to one point of the offset (t = %.17g of "
-                "base segment %d)", name, p->line, k, n0.t, n0.seg);
-        return -1;
-    }
-    if (n0.t > n1.t) {
+    if (n0.seg == n1.seg && n0.t == n1.t)
+        return ob_fail(err, "%s:%d: piece %d: both its ends are nearest to one point of the offset (t = %.17g of "
+                       "base segment %d)", name, p->line, ob_approx_file_piece(a, k), n0.t, n0.seg);
+    if (n0.seg > n1.seg || (n0.seg == n1.seg && n0.t > n1.t)) {
         reverse(&p->approx);
         const nearpt x = n0;
         n0 = n1;
         n1 = x;
+    }
+    if (n0.seg != n1.seg) {
+        *parts = n1.seg - n0.seg + 1;
+        return cut_at_joints(c, d, a, k, n0, n1, name, err);
     }
     p->has_base = 1;
     p->matched = 1;
@@ -125,12 +231,14 @@ static int link_piece(const ob_curve *c, double d, ob_apiece *p, int k, const ch
 
 int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, ob_err *err)
 {
-    for (int k = 0; k < a->n; k++) {
-        if (a->v[k].has_base)
-            continue;
-        a->same_param = 0;  /* a link by projection says nothing of the parameter */
-        if (link_piece(c, d, &a->v[k], k, name, err) != 0)
-            return -1;
+    for (int k = 0; k < a->n;) {
+        int parts = 1;
+        if (!a->v[k].has_base) {
+            a->same_param = 0;  /* a link by projection says nothing of the parameter */
+            if (link_piece(c, d, a, k, name, &parts, err) != 0)
+                return -1;
+        }
+        k += parts;
     }
     return 0;
 }

@@ -39,7 +39,7 @@ int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric
         }
         if (!(e.err <= r->err) || r->piece < 0) {  /* as the driver keeps a job's max_err */
             r->err = e.err;
-            r->piece = k;
+            r->piece = ob_approx_file_piece(a, k);  /* the file's number, not the part's */
             r->seg = p->seg;
             r->t = p->a + (p->b - p->a) * (p->t0 + (p->t1 - p->t0) * e.t);
         }

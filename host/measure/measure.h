@@ -20,14 +20,20 @@
 /* Purpose: give every piece without a base link one, by projection: each
  *          end point goes to the base parameter whose exact offset point
  *          C(t) + d N(t) is nearest (a scan of 512 parameters per base
- *          segment, then golden-section refinement), both ends on one base
- *          segment; the piece is then linked to span [ta, tb] of that
- *          segment (fit [0, 1]), reversed first (its control points in the
- *          other order, an exact reparameterization) when it runs against
- *          the base.
+ *          segment, then golden-section refinement); the piece is reversed
+ *          first (its control points in the other order, an exact
+ *          reparameterization) when it runs against the base.  Both ends on
+ *          one segment: linked to span [ta, tb] of it (fit [0, 1]).  Ends
+ *          on segments s0 < s1: cut (de Casteljau, exact) where it crosses
+ *          the line through each joint between them along the mean of the
+ *          two segments' normals there, on d's side; the parts, inserted in
+ *          a->v in its place, are linked to [ta, 1], [0, 1] ..., [0, tb] of
+ *          s0 ... s1 and carry part = 0, 1, ... (ob_approx_file_piece gives
+ *          the file's number back).
  * Errors:  returns 0; -1 with "NAME:LINE: piece K: reason" in err->msg when both
- *          ends fall on one point, or on two base segments that do not meet
- *          there (the piece must then be cut where the base's segments join).
+ *          ends fall on one point, when the piece does not cross a joint's
+ *          line (or runs over a closed curve's start point), or out of
+ *          memory.
  * Note:    on an offset with loops (cusps) the nearest point can lie on the
  *          wrong branch; such files should carry the link. */
 int ob_approx_match(const ob_curve *c, double d, ob_approx *a, const char *name, ob_err *err);

@@ -438,7 +438,7 @@ int ob_approx_hausdorff_whole(const ob_curve *c, double d, const ob_approx *a, c
                 best = e, ubest = u, sbest = s, kbest = k;
         }
     r->err = best;
-    r->piece = kbest;
+    r->piece = ob_approx_file_piece(a, kbest);  /* the file's number of the piece */
     if (sbest == SIDE_A) { /* where: the nearest offset point to the farthest point of the pieces */
         int hint = OBC_NO_HINT, jf;
         double tf;
