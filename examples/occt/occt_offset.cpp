@@ -20,20 +20,18 @@
 // Build: make occt-example (Debian: libocct-foundation-dev,
 // libocct-modeling-data-dev, g++).  Usage: occt_offset --help.
 #include <Geom2d_BSplineCurve.hxx>
-#include <Geom2d_BezierCurve.hxx>
 #include <Geom2d_OffsetCurve.hxx>
 #include <Geom2dConvert_ApproxCurve.hxx>
-#include <Geom2dConvert_BSplineCurveToBezierCurve.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array1OfPnt2d.hxx>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -42,13 +40,20 @@
 
 namespace {
 
-// The shortest text that reads back as the same double ("0.01", "1e-05",
-// as offbench writes numbers), so that stems and CSV cells match offbench's.
+// A number as offbench writes it (host/io/numfmt.c): the shortest %g text
+// that reads back as the same double, without an exponent from 1e-4 to
+// 1e16 ("0.0001", "1e-05"), so that the stems, d and tol are results.csv's.
 std::string num(double x)
 {
     char buf[64];
-    auto r = std::to_chars(buf, buf + sizeof buf, x);
-    return std::string(buf, r.ptr);
+    const bool plain = std::fabs(x) >= 1e-4 && std::fabs(x) < 1e16;
+    for (int p = 1; p <= 17; p++) {
+        std::snprintf(buf, sizeof buf, "%.*g", p, x);
+        if (std::strtod(buf, nullptr) == x && !(plain && std::strchr(buf, 'e')))
+            return buf;
+    }
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
 }
 
 // ------------------------------------------------------------ .curves input
@@ -139,10 +144,10 @@ std::vector<Curve> read_curves(const std::string &path)
 
 // ------------------------------------------------------------ the base curve
 
-// The curve's parameter domain cut where offbench cuts it: the distinct
-// knots of [K_deg, K_points] (docs/curves.md: one Bézier segment per
-// non-empty span).  A Bézier curve is one segment over [0, 1].
-std::vector<double> joints(const Curve &c)
+// The distinct knots of the curve's domain [K_deg, K_points] (where
+// offbench cuts it into Bézier segments, docs/curves.md).  A Bézier curve
+// is one segment over [0, 1].
+std::vector<double> domain_knots(const Curve &c)
 {
     if (!c.bspline)
         return {0.0, 1.0};
@@ -205,16 +210,9 @@ std::vector<double> c1_breaks(const Curve &c, const std::vector<double> &u)
 
 // ------------------------------------------------------------ DXF output
 
-// One Bézier piece of the approximation and the base range it covers: base
-// segment seg, local parameters t0..t1 (the approximation's parameter is
-// the base's: Geom2dConvert_ApproxCurve fits the offset as a function of the
-// offset curve's parameter, which is the basis curve's).
-struct Piece {
-    int seg;
-    double t0, t1;
-    Handle(Geom2d_BezierCurve) arc;
-};
-
+// The smallest AC1015 (R2000: R12 has no SPLINE) file CAD readers take, as
+// offbench's own export writes it (host/io/export_dxf.c): a HEADER with the
+// version and an ENTITIES section.
 struct Dxf {
     std::string text;
     unsigned handle = 0x100;
@@ -248,29 +246,10 @@ struct Dxf {
     }
 };
 
-// A Bézier piece as a SPLINE of one segment, with offbench's base link in a
-// 999 comment right before it (the form export_dxf.c writes and measure
-// reads: "base segment S span A B fit T0 T1 same_param 1").
-void write_piece(Dxf &f, int k, const Piece &p)
-{
-    const Handle(Geom2d_BezierCurve) &b = p.arc;
-    const int deg = b->Degree();
-    f.pair(999, "occt_offset piece " + std::to_string(k) + " base segment " + std::to_string(p.seg) +
-                    " span 0 1 fit " + num(p.t0) + " " + num(p.t1) + " same_param 1");
-    std::vector<double> knots(deg + 1, 0.0);
-    knots.resize(2 * (deg + 1), 1.0);
-    TColgp_Array1OfPnt2d poles(1, deg + 1);
-    b->Poles(poles);
-    std::vector<double> w;
-    if (b->IsRational())
-        for (int i = 1; i <= deg + 1; i++)
-            w.push_back(b->Weight(i));
-    f.spline(deg, knots, poles, w);
-}
-
-// OCCT's B-spline of one run as it is: one SPLINE (what a CAD system would
-// exchange), no links; measure matches its Bézier pieces to the base by
-// projection.
+// OCCT's B-spline of one run as it is: one SPLINE, its knots and poles,
+// what a CAD system would exchange.  No link to the base (measure matches
+// each Bézier piece to the base by projecting its ends, and cuts a piece
+// that runs over a joint of the base where it crosses the joint's normal).
 void write_bspline(Dxf &f, const Handle(Geom2d_BSplineCurve) &c)
 {
     TColStd_Array1OfReal flat(1, c->NbPoles() + c->Degree() + 1);
@@ -292,7 +271,6 @@ struct Opts {
     std::vector<double> ds, tols;
     GeomAbs_Shape order = GeomAbs_C2;
     int max_degree = 8, max_segments = 1000;
-    bool links = true;
     std::string method = "occt";
 };
 
@@ -300,57 +278,8 @@ struct Row {
     std::string status = "ok", message, file;
     bool done = true, has_result = true;
     double max_error = 0.0;
-    int runs = 0, degree = 0, poles = 0, spans = 0, pieces = 0;
+    int runs = 0, degree = 0, poles = 0, spans = 0;
 };
-
-// The approximation of one run [r0, r1] of the base, cut into pieces at its
-// own knots and at the base's joints u (measure measures each piece against
-// one base segment, so no piece may run across a joint).
-std::vector<Piece> pieces_of(Handle(Geom2d_BSplineCurve) a, const std::vector<double> &u, double r0, double r1)
-{
-    TColStd_Array1OfReal own(1, a->NbKnots());
-    a->Knots(own);
-    // a joint OCCT's knots already hold to within 1e-12 of the run is taken
-    // as that knot, so that no sliver of a piece is left between the two
-    const double near = 1e-12 * (r1 - r0);
-    for (double j : u) {
-        if (j <= r0 || j >= r1)
-            continue;
-        bool have = false;
-        for (double k : own)
-            have |= std::fabs(k - j) <= near;
-        if (!have)
-            a->InsertKnot(j, 1, 0.0);
-    }
-    Geom2dConvert_BSplineCurveToBezierCurve conv(a);
-    TColStd_Array1OfReal kn(1, conv.NbArcs() + 1);
-    conv.Knots(kn);
-    // each piece's ends as base segments and local parameters; a knot on a
-    // joint is that joint exactly, so that neighbours share their ends
-    // bit for bit (measure checks that the links tile the base)
-    auto local = [&](double k, bool at_end, int &seg) {
-        seg = 0;
-        while (seg + 2 < (int)u.size() && (at_end ? k > u[seg + 1] + near : k >= u[seg + 1] - near))
-            seg++;
-        if (std::fabs(k - u[seg]) <= near)
-            return 0.0;
-        if (std::fabs(k - u[seg + 1]) <= near)
-            return 1.0;
-        return (k - u[seg]) / (u[seg + 1] - u[seg]);
-    };
-    std::vector<Piece> out;
-    for (int i = 1; i <= conv.NbArcs(); i++) {
-        Piece p;
-        int s1;
-        p.t0 = local(kn(i), false, p.seg);
-        p.t1 = local(kn(i + 1), true, s1);
-        if (s1 != p.seg)
-            throw std::runtime_error("a piece runs across a joint of the base at u = " + num(u[s1]));
-        p.arc = conv.Arc(i);
-        out.push_back(p);
-    }
-    return out;
-}
 
 std::string stem_of(const Opts &o, const Curve &c, double d, double tol)
 {
@@ -369,8 +298,7 @@ Row job(const Opts &o, const Curve &c, double d, double tol)
     f.pair(0, "ENDSEC"), f.pair(0, "SECTION"), f.pair(2, "ENTITIES");
     try {
         const Handle(Geom2d_BSplineCurve) base = base_curve(c);
-        const std::vector<double> u = joints(c), brk = c1_breaks(c, u);
-        int k = 0;
+        const std::vector<double> brk = c1_breaks(c, domain_knots(c));
         for (size_t i = 0; i + 1 < brk.size(); i++) {
             Handle(Geom2d_BSplineCurve) run = Handle(Geom2d_BSplineCurve)::DownCast(base->Copy());
             run->Segment(brk[i], brk[i + 1]);
@@ -392,16 +320,7 @@ Row job(const Opts &o, const Curve &c, double d, double tol)
             if (a->FirstParameter() != brk[i] || a->LastParameter() != brk[i + 1])
                 throw std::runtime_error("the approximation's domain [" + num(a->FirstParameter()) + ", " +
                                          num(a->LastParameter()) + "] is not the base's");
-            if (!o.links) {
-                Handle(Geom2d_BSplineCurve) cut = Handle(Geom2d_BSplineCurve)::DownCast(a->Copy());
-                r.pieces += (int)pieces_of(cut, u, brk[i], brk[i + 1]).size();
-                write_bspline(f, cut);   // knots at the base's joints: no piece crosses one
-                continue;
-            }
-            for (const Piece &p : pieces_of(Handle(Geom2d_BSplineCurve)::DownCast(a->Copy()), u, brk[i],
-                                            brk[i + 1]))
-                write_piece(f, k++, p);
-            r.pieces = k;
+            write_bspline(f, a);
         }
     } catch (const Standard_Failure &e) {
         r.status = "fail";
@@ -437,23 +356,21 @@ Row job(const Opts &o, const Curve &c, double d, double tol)
 const char *usage =
     "usage: occt_offset --curves FILE --tols T,... --out DIR [--curve ID,...] [--d D,...]\n"
     "                   [--continuity C0|C1|C2] [--max-degree N] [--max-segments N]\n"
-    "                   [--method NAME] [--links yes|no] [--csv FILE]\n"
+    "                   [--method NAME] [--csv FILE]\n"
     "\n"
     "OpenCASCADE's approximation (Geom2dConvert_ApproxCurve of a Geom2d_OffsetCurve) of\n"
     "each offset of each curve of FILE (offbench's .curves format), at each tolerance:\n"
-    "DIR/CURVE__dD__NAME__tolT.dxf (NAME: --method, default occt), for\n"
+    "DIR/CURVE__dD__NAME__tolT.dxf (NAME: --method, default occt) for\n"
     "`offbench measure --curve CURVE --d D --approx FILE`, and a CSV of what OCCT says\n"
     "(default DIR/NAME.csv: curve,d,tol,method,continuity,max_degree,max_segments,\n"
-    "status,is_done,has_result,max_error,runs,degree,poles,spans,pieces,file,message).\n"
+    "status,is_done,has_result,max_error,runs,degree,poles,spans,file,message).\n"
     "  --curve ID,...      only these curves (default: every curve of FILE)\n"
     "  --d D,...           these offsets (default: each curve's own offset lines)\n"
     "  --continuity        GeomAbs_C0, C1 or C2 of the approximation (default C2)\n"
     "  --max-degree N      its highest degree (default 8)\n"
     "  --max-segments N    its most spans (default 1000)\n"
-    "  --links yes|no      yes (default): one SPLINE per Bezier piece, each with its base\n"
-    "                      link (measure reads the base range from it); no: one SPLINE per\n"
-    "                      C1 run of the base, knots added at the base's joints (measure\n"
-    "                      matches the pieces by projection, as for any CAD file)\n"
+    "The DXF file: one SPLINE per C1 run of the base (OCCT's B-spline as it is; a base\n"
+    "that is only C0 at a knot, a corner, is offset run by run: OCCT refuses it whole).\n"
     "status: ok; limit (a result whose MaxError OCCT gives is above the tolerance, or\n"
     "IsDone false); fail (no result, or an OCCT exception: message).  file: the DXF's\n"
     "name in DIR.  Exit 0, 2 on bad input.\n";
@@ -511,8 +428,6 @@ Opts parse(int argc, char **argv)
             o.max_degree = (int)number(a, v);
         else if (a == "--max-segments")
             o.max_segments = (int)number(a, v);
-        else if (a == "--links" && (v == "yes" || v == "no"))
-            o.links = v == "yes";
         else
             die(a + " " + v + ": unknown option or bad value (see --help)");
     }
@@ -542,7 +457,7 @@ int main(int argc, char **argv)
     if (!csv)
         die(o.csv + ": cannot write (does " + o.out + " exist?)");
     csv << "curve,d,tol,method,continuity,max_degree,max_segments,status,is_done,has_result,max_error,"
-           "runs,degree,poles,spans,pieces,file,message\n";
+           "runs,degree,poles,spans,file,message\n";
     const char *cont = o.order == GeomAbs_C0 ? "C0" : o.order == GeomAbs_C1 ? "C1" : "C2";
     for (const Curve &c : all) {
         if (!o.ids.empty() && std::find(o.ids.begin(), o.ids.end(), c.id) == o.ids.end())
@@ -556,7 +471,7 @@ int main(int argc, char **argv)
                 csv << c.id << ',' << num(d) << ',' << num(tol) << ',' << o.method << ',' << cont << ','
                     << o.max_degree << ',' << o.max_segments << ',' << r.status << ',' << r.done << ','
                     << r.has_result << ',' << (r.has_result ? num(r.max_error) : "") << ',' << r.runs << ','
-                    << r.degree << ',' << r.poles << ',' << r.spans << ',' << r.pieces << ',' << r.file
+                    << r.degree << ',' << r.poles << ',' << r.spans << ',' << r.file
                     << ",\"" << msg << "\"\n";
                 std::fprintf(stderr, "occt_offset: %s d = %s tol = %s: %s, MaxError %s, %d poles\n",
                              c.id.c_str(), num(d).c_str(), num(tol).c_str(), r.status.c_str(),
