@@ -26,7 +26,8 @@ liu2002_ex1 and liu2002_ex2 at their published offsets, 1e-2,1e-3,1e-4,
 tiller,ahn,bspline-lsq,sisl (the run's default metric, hausdorff).
 
 OCCT's claim is its MaxError(); it holds when the measured error (the
-hausdorff metric, as the methods' max_err) is at most that.  Exit 0; 2
+hausdorff metric, as the methods' max_err) is at most that, plus
+ROUNDOFF times the tolerance.  Exit 0; 2
 with a message on a failing step.  Python 3 standard library only;
 scripts/docs.py renders the table from the committed files with
 markdown() below.
@@ -46,6 +47,11 @@ import tempfile
 # cubic is the form of offbench's cubic methods.
 CONFIGS = [("occt-c2", "C2", 8, 1000), ("occt-c1", "C1", 3, 1000)]
 DEFAULT_METHODS = "tiller,ahn,bspline-lsq,sisl"
+# Where OCCT is exact (the offset of a straight run is a line), its MaxError
+# and the measured error are both rounding, 1e-14 against 3e-14 on a
+# drawing's lines: no claim to judge.  Errors below a millionth of the
+# tolerance are taken as that.
+ROUNDOFF = 1e-6
 OFFBENCH_COLS = ["curve", "d", "method", "metric", "split", "tol", "status", "ctrl_points", "segments",
                  "out_degree", "max_err"]
 TABLE_COLS = ["curve", "d", "tol", "method", "source", "status", "ctrl_points", "degree", "max_err",
@@ -163,7 +169,7 @@ def table_rows(occt, measure, offbench):
                 t.update(ctrl_points=r["poles"], max_err=h["max_err"],
                          hausdorff_whole=got["hausdorff-whole"]["max_err"])
                 if h["status"] == "ok":
-                    t.update(claim_holds=yes(float(h["max_err"]) <= float(r["max_error"])),
+                    t.update(claim_holds=yes(float(h["max_err"]) <= float(r["max_error"]) + ROUNDOFF * float(r["tol"])),
                              within_tol=yes(float(h["max_err"]) <= float(r["tol"])))
             rows.append(t)
         for r in offbench:

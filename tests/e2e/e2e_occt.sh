@@ -54,8 +54,8 @@ for m in occt-c2 occt-c1 tiller ahn bspline-lsq sisl; do
 done
 check '[ -z "$(awkc "FNR>1 && \$c[\"source\"]==\"occt\" && \$c[\"claimed\"]==\"\"" "$T1")" ] && [ -z "$(awkc "FNR>1 && \$c[\"source\"]==\"offbench\" && \$c[\"claimed\"]!=\"\"" "$T1")" ]' \
     "OCCT's rows carry its claim, offbench's none"
-check '[ -z "$(awkc "FNR>1 && \$c[\"claim_holds\"]!=\"\" && (\$c[\"max_err\"] + 0 <= \$c[\"claimed\"] + 0 ? \"yes\" : \"no\") != \$c[\"claim_holds\"]" "$T1")" ]' \
-    "claim_holds is yes exactly where the measured max_err is at most the claim"
+check '[ -z "$(awkc "FNR>1 && \$c[\"claim_holds\"]!=\"\" && (\$c[\"max_err\"] + 0 <= \$c[\"claimed\"] + 1e-6 * \$c[\"tol\"] ? \"yes\" : \"no\") != \$c[\"claim_holds\"]" "$T1")" ]' \
+    "claim_holds is yes exactly where the measured max_err is at most the claim (and round-off, 1e-6 tol)"
 check '[ -z "$(awkc "FNR>1 && \$c[\"max_err\"]!=\"\" && (\$c[\"max_err\"] + 0 <= \$c[\"tol\"] + 0 ? \"yes\" : \"no\") != \$c[\"within_tol\"]" "$T1")" ]' \
     "within_tol is yes exactly where the measured max_err is at most the tolerance"
 check 'grep -q "^| curve, d | tol | \`occt-c2\` |" "$R/table.md" && grep -q "| \`sisl\` |" "$R/table.md"' \
@@ -83,6 +83,23 @@ check '[ "$(awkc "FNR>1 && \$c[\"claimed\"]==\"1e-09\" {print \$c[\"method\"], \
     "the planted claim is flagged: claim_holds no"
 check 'grep -q "1.00e-9 \*\*fails\*\*" "$T/w/table.md" && [ "$(grep -c "\*\*fails\*\*" "$R/table.md")" -lt "$(grep -c "\*\*fails\*\*" "$T/w/table.md")" ]' \
     "table.md shows it as failing: $(grep "fails" "$T/w/table.md" | head -n 1)"
+# a claim below the measured error by rounding only (a millionth of the
+# tolerance and less) is no failure: where OCCT is exact both are rounding
+cp "$R/occt.csv" "$T/w/occt.csv"
+"$PY" - "$T/w/occt.csv" "$T/w/measure.csv" <<'EOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1], newline="")))
+r = next(r for r in rows if r["method"] == "occt-c1" and r["status"] == "ok")
+m = next(m for m in csv.DictReader(open(sys.argv[2], newline="")) if m["file"] == r["file"] and m["metric"] == "hausdorff")
+r["max_error"] = repr(float(m["max_err"]) - 0.5e-6 * float(r["tol"]))
+with open(sys.argv[1], "w", newline="") as f:
+    w = csv.DictWriter(f, rows[0].keys(), lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+EOF
+"$PY" "$TAB" --table-only --out "$T/w" >"$T/w.out" 2>&1
+check '[ $? -eq 0 ] && [ "$(awkc "FNR>1 {print \$c[\"claim_holds\"]}" "$T/w/table.csv" | sort | uniq -c | awk "{print \$1 \$2}" | tr "\n" " ")" = "$(awkc "FNR>1 {print \$c[\"claim_holds\"]}" "$T1" | sort | uniq -c | awk "{print \$1 \$2}" | tr "\n" " ")" ]' \
+    "a claim short of the measured error by half a millionth of the tolerance still holds"
 
 # --- the make target without OpenCASCADE's headers ---
 mk OCCT_INC="$T/no-occt" OCCT_BIN="$T/nobin" occt-bin >"$T/nohdr.out" 2>&1
