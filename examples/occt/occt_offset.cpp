@@ -328,7 +328,7 @@ Row job(const Opts &o, const Curve &c, double d, double tol)
     }
     // IsDone() is no promise of the tolerance: when MaxSegments stops the
     // cutting, AdvApprox_ApproxAFunction keeps its error code 0 (the line
-    // that would set -1 is commented out in OCCT 7.6) and reports done with
+    // that would set -1 is commented out; 7.6 does so) and reports done with
     // a MaxError above it.  So the status reads OCCT's own MaxError too.
     if (r.status == "ok" && (!r.done || r.max_error > tol)) {
         r.status = "limit";
