@@ -313,8 +313,12 @@ def main(argv):
     try:
         if not (a.no_occt or a.table_only):
             os.makedirs(a.out, exist_ok=True)
-            for f in os.listdir(a.out):   # an earlier run's files would be measured as this one's
-                if f.endswith(".dxf"):
+            # an earlier run's approximations (other curves, tolerances) would
+            # stay beside this one's: remove the files occt_offset names so,
+            # and no other
+            ours = tuple(f"__{name}__tol" for name, *_ in CONFIGS)
+            for f in os.listdir(a.out):
+                if f.endswith(".dxf") and any(t in f for t in ours) and os.path.isfile(os.path.join(a.out, f)):
                     os.unlink(os.path.join(a.out, f))
             step_occt(a)
         if not a.table_only:

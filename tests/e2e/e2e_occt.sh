@@ -107,7 +107,7 @@ check '[ $? -ne 0 ] && grep -q "libocct-foundation-dev" "$T/nohdr.out" && grep -
     "make occt-bin without the headers: fails naming the Debian packages: $(cat "$T/nohdr.out" | tr '\n' ' ')"
 
 # --- with OpenCASCADE ---
-NOCCT=20
+NOCCT=21
 if [ -n "${E2E_OCCT_ABSENT:-}" ] || [ ! -f /usr/include/opencascade/Geom2d_OffsetCurve.hxx ] || ! command -v g++ >/dev/null 2>&1; then
     echo "e2e_occt: no OpenCASCADE headers (/usr/include/opencascade) or no g++" \
          "(apt-get install libocct-foundation-dev libocct-modeling-data-dev g++, or OB_DEPS_OCCT=1 make deps): $NOCCT checks skipped"
@@ -193,11 +193,14 @@ check '[ "$(awkc "FNR>1 && \$c[\"curve\"]==\"corner\" {print \$c[\"status\"], \$
 e=$(msr "$T/s/odd.curves" corner 0.25 "$T/s/corner__d0.25__odd__tol0.001.dxf")
 check 'awk -v e="$e" "BEGIN{exit !(e != \"\" && e < 1e-12)}"' "the corner's two straight runs: exact to rounding: $e"
 
-# the driver end to end, small
+# the driver end to end, small; in DIR a file of the user's stays, an
+# earlier run's approximation goes
+mkdir "$T/d" && : >"$T/d/mine.dxf" && : >"$T/d/old__d1__occt-c2__tol0.5.dxf"
 "$PY" "$TAB" --out "$T/d" --offbench "$OB" --occt "$X" --curve liu2002_ex1 --tols 1e-2 --methods tiller,ahn >"$T/d.out" 2>&1
 check '[ $? -eq 0 ]' "occt_table.py end to end: exit 0 ($(tail -n 3 "$T/d.out" | tr '\n' ' '))"
 check '[ "$(awkc "FNR>1 {print \$c[\"method\"]}" "$T/d/table.csv" | sort | uniq -c | awk "{print \$1 \$2}" | tr "\n" " ")" = "2ahn 2occt-c1 2occt-c2 2tiller " ]' \
     "its table: two jobs, OCCT's two rows and the two methods' each: $(awkc 'FNR>1 {print $c["method"]}' "$T/d/table.csv" | tr '\n' ' ')"
 check '[ -z "$(awkc "FNR>1 && \$c[\"source\"]==\"occt\" && \$c[\"max_err\"]==\"\"" "$T/d/table.csv")" ] && grep -q "^| liu2002_ex1, −1 | 1e-2 |" "$T/d/table.md"' \
     "OCCT's rows measured, table.md written"
+check '[ -e "$T/d/mine.dxf" ] && [ ! -e "$T/d/old__d1__occt-c2__tol0.5.dxf" ]' "the user's file stays, the earlier run's goes: $(ls "$T/d" | tr '\n' ' ')"
 e2e_done
