@@ -23,6 +23,9 @@
 #   make install PREFIX=/usr/local [DESTDIR=]  the program, its manual page, the
 #                   bash and zsh completions, liboffbench (lib/, include/offbench.h,
 #                   lib/offbench/offbench-sisl-server) (make uninstall removes them)
+#   make occt-example  OpenCASCADE's offsets beside offbench's methods, one table
+#                   (docs/cad-example.md; Debian's libocct-foundation-dev,
+#                   libocct-modeling-data-dev and g++), into out/occt
 
 CC      ?= gcc
 SAN     ?= 0
@@ -67,7 +70,7 @@ KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
 .PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline report \
-        report-screenshot fuzz fuzz-run check-method man lib install uninstall FORCE
+        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-example FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -256,6 +259,27 @@ docs: $(BIN)
 
 bench: $(BIN)
 	./$(BIN) bench --out out/bench
+
+# The CAD-kernel example (docs/cad-example.md): examples/occt/occt_offset.cpp
+# against OpenCASCADE (C++, so not part of the C build; nothing else needs
+# it), then scripts/occt_table.py: OCCT's offsets measured and put beside
+# offbench's methods in out/occt/table.md.  OCCT_INC and OCCT_BIN move the
+# headers and the program (tests/e2e/e2e_occt.sh builds into its scratch).
+OCCT_INC  ?= /usr/include/opencascade
+OCCT_BIN  ?= $(BUILD)/occt_offset
+OCCT_LIBS := -lTKernel -lTKMath -lTKG2d -lTKGeomBase
+occt-bin: $(OCCT_BIN)
+
+$(OCCT_BIN): examples/occt/occt_offset.cpp
+	@test -f '$(OCCT_INC)/Geom2d_OffsetCurve.hxx' || { \
+	    echo "occt_offset: OpenCASCADE's headers are not in $(OCCT_INC):" \
+	         "install Debian's libocct-foundation-dev and libocct-modeling-data-dev" \
+	         "(sudo apt-get install libocct-foundation-dev libocct-modeling-data-dev g++)" >&2; exit 1; }
+	@mkdir -p $(dir $@)
+	$(CXX) -std=c++17 -O2 -Wall -Wextra -isystem '$(OCCT_INC)' -o $@ $< $(OCCT_LIBS)
+
+occt-example: $(OCCT_BIN) $(BIN)
+	/usr/bin/python3 scripts/occt_table.py --offbench ./$(BIN) --occt $(OCCT_BIN) --out out/occt
 
 # The nightly regression run (README "Nightly regression runs").  Its
 # status, 0 no regression, 1 regression, 2 error, 3 not comparable, is

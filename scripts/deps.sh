@@ -25,6 +25,11 @@
 #   results/report.png:    chromium-headless-shell, only with OB_DEPS_BROWSER=1
 #                          (optional: never fails the build; the browser
 #                          checks are skipped without it)
+#   the CAD-kernel example (make occt-example, tests/e2e/e2e_occt.sh,
+#   docs/cad-example.md):  libocct-foundation-dev, libocct-modeling-data-dev
+#                          and g++, only with OB_DEPS_OCCT=1 (optional: never
+#                          fails the build; the OCCT checks are skipped
+#                          without them)
 set -u
 
 missing=""
@@ -102,6 +107,18 @@ optional_browser() {
     optional_apt chromium-headless-shell "the report's browser test (tests/e2e/e2e_report.sh)"
 }
 optional_browser
+
+# Optional, asked for with OB_DEPS_OCCT=1 (CI asks: .ci/run): OpenCASCADE's
+# headers and libraries (TKernel, TKMath, TKG2d, TKGeomBase) and a C++
+# compiler, for examples/occt/occt_offset.cpp.  Not by default: some
+# 100 MB that nothing but the example needs.
+optional_occt() {
+    [ "${OB_DEPS_OCCT:-0}" = 1 ] || return 0
+    for p in libocct-foundation-dev libocct-modeling-data-dev g++; do
+        have_pkg "$p" || optional_apt "$p" "the CAD-kernel example (make occt-example)"
+    done
+}
+optional_occt
 
 [ -z "$missing" ] && exit 0
 

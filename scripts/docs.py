@@ -16,7 +16,8 @@ and the command reference between its own markers
 (scripts/command_reference.sh). NAME is one of the generators below: a
 docs file's table of contents (`toc`), the figures a reader may quote, read
 from the committed results under results/ (the nightly baseline, the
-published tables, the runs under results/docs/), and a few command
+published tables, the runs under results/docs/, the CAD example's table by
+scripts/occt_table.py), and a few command
 transcripts, produced by running the program (PATH, default DIR/offbench)
 in a scratch directory. A file is written (temporary file and rename) only
 when it changes; running it twice changes nothing the second time.
@@ -368,6 +369,35 @@ def gen_cubic_opt_greedy(ctx):
     return "\n".join(out)
 
 
+# ------------------------------------------------------- the CAD example
+
+OCCT_DIR = "results/docs/occt"
+
+
+def occt_results(ctx):
+    """scripts/occt_table.py (beside this file), and the table's rows and
+    occt.csv's from the committed files it wrote: the table is rendered
+    here as that script renders it, without OpenCASCADE"""
+    import occt_table
+    try:
+        rows, occt = occt_table.table_from(ctx.path(OCCT_DIR))
+        return occt_table, rows, occt
+    except occt_table.Fail as e:
+        raise DocsError(str(e))
+    except (KeyError, ValueError) as e:
+        raise DocsError(f"{OCCT_DIR}: a file without the column or number the table needs: {e}")
+
+
+def gen_occt_table(ctx):
+    m, rows, _ = occt_results(ctx)
+    return m.markdown(rows)
+
+
+def gen_occt_summary(ctx):
+    m, rows, occt = occt_results(ctx)
+    return m.summary(rows, occt)
+
+
 # ------------------------------------------------------- transcripts
 
 def run_ok(ctx, script, what):
@@ -458,6 +488,8 @@ GENERATORS = {
     "summary-example": gen_summary_example,
     "compare-example": gen_compare_example,
     "measure-example": gen_measure_example,
+    "occt-table": gen_occt_table,
+    "occt-summary": gen_occt_summary,
 }
 
 

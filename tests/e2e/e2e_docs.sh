@@ -58,6 +58,12 @@ plant "$C/results/tables/tables.csv" "ahn2023,2,liu2002_ex2,0.5,1e-2,lee,M2,pape
 gen --check
 check '[ $? -eq 1 ] && grep -q "^+| Ahn 2023, Table 2 .* | 78, 92, 120, 176, 302 | 78, 92, 120, 176, 302 |$" "$T/gen.out"' \
     "a changed results/tables/tables.csv changes the published figures (no longer 4 of 5): $(grep '^+| Ahn 2023, Table 2' "$T/gen.out")"
+cp results/tables/tables.csv "$C/results/tables/tables.csv"
+plant "$C/results/docs/occt/occt.csv" ",0.009792204537153506," ",1e-09,"
+gen --check
+check '[ $? -eq 1 ] && grep -q "^+| liu2002_ex1, +1 | 1e-2 | 15 · 8.61e-3 | 1.00e-9 \*\*fails\*\* |" "$T/gen.out" && grep -q "^+- OCCT.s own MaxError held for 17 of the 18" "$T/gen.out"' \
+    "the CAD example's table follows results/docs/occt: a wrong OCCT claim planted there is flagged: $(grep '^+| liu2002_ex1, +1 | 1e-2' "$T/gen.out")"
+cp results/docs/occt/occt.csv "$C/results/docs/occt/occt.csv"
 
 # --- markers ---
 cp "$T/tables.md" "$C/docs/tables.md"
