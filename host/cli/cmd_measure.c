@@ -230,9 +230,11 @@ static int check_cover(const ob_curve *c, double d, const ob_approx *ap, const o
     for (int i = 0; i < ap->n; i++)
         matched |= ap->v[i].matched;
     say_issues(ob_error, cv->fail, cv->nfail, ob_cover_fails(cv), ap, name);
-    ob_error("measure: %s does not cover the d = %.17g offset of curve %s once (%d gaps, %d overlaps, %d "
+    char ds[40];
+    ob_fmt_double(ds, sizeof ds, d);  /* the shortest form that reads back as d, as results.csv writes it */
+    ob_error("measure: %s does not cover the d = %s offset of curve %s once (%d gaps, %d overlaps, %d "
              "duplicates): measure takes a whole approximation, each part of the offset covered by one piece%s",
-             name, d, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE],
+             name, ds, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE],
              matched ? " (its pieces were matched to the base by projection, which near an offset's cusps can "
                        "land on another branch: a file with base links, as --export writes, is matched exactly)"
                      : "");
@@ -381,8 +383,10 @@ static int measure(const measure_args *a, ob_run_opts *o)
                          a->napprox);
             goto out;
         }
-        ob_info("measure: %d pieces of %s against %s (%s), d = %.17g, %d samples", rows[k].pieces, a->approx[k],
-                c->id, where, a->d, samples);
+        char ds[40];
+        ob_fmt_double(ds, sizeof ds, a->d);
+        ob_info("measure: %d piece%s of %s against %s (%s), d = %s, %d samples", rows[k].pieces,
+                rows[k].pieces == 1 ? "" : "s", a->approx[k], c->id, where, ds, samples);
     }
     status = write_csv(a, c, rows);
 out:

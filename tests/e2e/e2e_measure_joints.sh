@@ -97,6 +97,14 @@ printf '0\nLINE\n10\n2.5\n20\n0.5\n11\n0.5\n21\n0.5\n' | dxf > "$T/l2.dxf"
 check '[ $? -eq 2 ] && grep -q "l2.dxf does not cover the d = 0.5 offset of curve line3 once (2 gaps" "$T/l2.err" && [ ! -s "$T/l2.csv" ]' \
     "a LINE short of the offset's ends: its two gaps, exit 2, no CSV: $(cat "$T/l2.err")"
 
+# four quarter ARCs on the quarters themselves: each end ties between the
+# closing point and a joint (found by the OCCT example: refused before
+# segments were taken cyclically)
+{ arc 0 90; arc 90 180; arc 180 270; arc 270 360; } | dxf > "$T/ring4.dxf"
+"$OB" measure --curves "$C" --curve circle4 --d 0.25 --approx "$T/ring4.dxf" >"$T/q.csv" 2>"$T/q.err"
+check '[ $? -eq 0 ] && awk -v e="$(col "$T/q.csv" hausdorff max_err)" "BEGIN{exit !(e != \"\" && e + 0 <= 1e-12)}" && [ "$(col "$T/q.csv" hausdorff pieces)" = 4 ]' \
+    "four quarter ARCs on the quarters: measured, hausdorff $(col "$T/q.csv" hausdorff max_err) ($(cat "$T/q.err"))"
+
 # --- an offset with loops (liu2002_ex2 at d = 0.5), exports without links:
 # a piece that crosses a joint's line away from the offset's point there
 # (near a loop) is refused; pieces matched onto another branch of a loop
