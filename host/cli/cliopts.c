@@ -149,6 +149,28 @@ static void report_unknown(const char *cmd, const char *opt, const flagindex *x)
     ob_error("%s: unknown option '%s'%s", cmd, opt, option_note(opt, x, note, sizeof note));
 }
 
+/* Abbreviations of one or two letters are refused: getopt takes any
+ * unique prefix, and so `run --d -1` (measure's and draw's offset option)
+ * silently meant --device there, the only run option beginning with d.  A
+ * prefix of three letters or more (`--thr 2`) is taken as documented.
+ * Option li of x was matched by the word before optind (or the one before
+ * that, when its value was the next word). */
+static int short_abbreviation(const char *cmd, char **argv, int li, const flagindex *x)
+{
+    if (li < 0 || li >= x->n)
+        return OB_CLI_OK;
+    const char *word = optarg && optind >= 2 && optarg == argv[optind - 1] ? argv[optind - 2] : argv[optind - 1];
+    if (!word || strncmp(word, "--", 2) != 0)
+        return OB_CLI_OK;
+    const char *name = word + 2, *eq = strchr(name, '=');
+    const size_t n = eq ? (size_t)(eq - name) : strlen(name), full = strlen(x->flag[li]->name);
+    if (n >= full || n >= 3)
+        return OB_CLI_OK;
+    ob_error("%s: '--%.*s' is too short to abbreviate --%s (an abbreviation needs three letters): write --%s",
+             cmd, (int)n, name, x->flag[li]->name, x->flag[li]->name);
+    return OB_CLI_ERROR;
+}
+
 /* An option's value given as the next word must not be '--' (it ends the
  * options) nor look like an option ("--out --force" forgot the value);
  * --name=VALUE takes any value. */
@@ -214,7 +236,8 @@ int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int ar
     char buf[256];
     opterr = 0;
     optind = 0; /* glibc: a full restart (the parser may run more than once) */
-    while (rc == OB_CLI_OK && (c = getopt_long(argc, argv, "-:h", x.lo, NULL)) != -1) {
+    int li = -1;
+    while (rc == OB_CLI_OK && (c = getopt_long(argc, argv, "-:h", x.lo, &li)) != -1) {
         if (c == 'h') {
             ob_cli_help(stdout, cmd, synopsis, sets, nsets);
             rc = OB_CLI_HELP;
@@ -231,7 +254,7 @@ int ob_cli_parse(const char *synopsis, const ob_flagset *sets, int nsets, int ar
             else
                 report_unknown(cmd, buf, &x);
             rc = OB_CLI_ERROR;
-        } else {
+        } else if ((rc = short_abbreviation(cmd, argv, li, &x)) == OB_CLI_OK) {
             rc = apply_one(sets, &x, c, argv);
         }
     }

@@ -109,7 +109,7 @@ check '[ $? -eq 0 ] && awk -v e="$(col "$T/q.csv" hausdorff max_err)" "BEGIN{exi
 # a piece that crosses a joint's line away from the offset's point there
 # (near a loop) is refused; pieces matched onto another branch of a loop
 # give a per-piece hausdorff far above hausdorff-whole, and a warning says so
-"$OB" run --curve liu2002_ex2 --d 0.5 --methods zhao-rational,bspline-lsq --tols 1e-2,1e-5 --backend cpu \
+"$OB" run --curve liu2002_ex2 --methods zhao-rational,bspline-lsq --tols 1e-2,1e-5 --backend cpu \
     --out "$T/lr" --export "$T/lx" >/dev/null 2>"$T/lr.err"
 check '[ $? -eq 0 ]' "run --export on liu2002_ex2: $(tail -n 1 "$T/lr.err")"
 for j in zhao-rational__tol1e-05 bspline-lsq__tol0.01; do

@@ -14,7 +14,7 @@
 # Uses $OFFBENCH (set by make) or ./offbench.
 . "$(dirname "$0")/lib_e2e.sh"
 
-"$OB" run --curve liu2002_ex1 --d -1 --methods tiller,lee --tols 1e-3 --backend cpu \
+"$OB" run --curve liu2002_ex1 --methods tiller,lee --tols 1e-3 --backend cpu \
     --out "$T/r" --export "$T/x" 2>"$T/err"
 check '[ $? -eq 0 ]' "run --export: exit 0 ($(tail -n 2 "$T/err"))"
 A=$T/x/liu2002_ex1__d-1__tiller__tol0.001.json

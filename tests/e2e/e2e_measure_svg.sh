@@ -25,7 +25,7 @@ small() { awk -v a="$1" -v t="$2" 'BEGIN{exit !(a != "" && a + 0 < t + 0)}'; }
 near() { awk -v a="$1" -v b="$2" 'BEGIN{d = a - b; if (d < 0) d = -d; exit !(a != "" && b != "" && d <= 1e-12 * (a < 0 ? -a : a) + 1e-16)}'; }
 
 # --- an export's SVG against its JSON ---------------------------------------
-"$OB" run --curve liu2002_ex1 --d -1 --methods tiller --tols 1e-3 --backend cpu --out "$T/r" --export "$T/x" 2>"$T/err"
+"$OB" run --curve liu2002_ex1 --methods tiller --tols 1e-3 --backend cpu --out "$T/r" --export "$T/x" 2>"$T/err"
 check '[ $? -eq 0 ]' "run --export: exit 0"
 S=$T/x/liu2002_ex1__d-1__tiller__tol0.001
 "$OB" measure --curve liu2002_ex1 --d -1 --approx "$S.json" --metric hausdorff-whole >"$T/m.csv" 2>"$T/m.err"

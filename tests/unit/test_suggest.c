@@ -111,6 +111,17 @@ static void test_callers(void)
           "unknown option: '%s'", last_error);
     char *a2[] = {"run", "--thread", "2", NULL}; /* an abbreviation: getopt takes it */
     CHECK(parse_run(a2) == 0, "an unambiguous abbreviation is still taken: '%s'", last_error);
+    /* one or two letters are no abbreviation: `--d` is measure's offset, and
+     * run's only option beginning with d is --device */
+    char *a2b[] = {"run", "--d", "-1", NULL};
+    CHECK(parse_run(a2b) != 0 && strcmp(last_error, "run: '--d' is too short to abbreviate --device (an abbreviation "
+                                                    "needs three letters): write --device") == 0,
+          "a one-letter abbreviation is refused: '%s'", last_error);
+    char *a2c[] = {"run", "--th=2", NULL};
+    CHECK(parse_run(a2c) != 0 && strstr(last_error, "'--th' is too short to abbreviate --threads"),
+          "a two-letter one too, also as --name=value: '%s'", last_error);
+    char *a2d[] = {"run", "--thr", "2", NULL};
+    CHECK(parse_run(a2d) == 0, "three letters are an abbreviation: '%s'", last_error);
     char *a3[] = {"run", "--threds", "2", NULL};
     CHECK(parse_run(a3) != 0 && strcmp(last_error, "run: unknown option '--threds' (did you mean '--threads'?)") == 0,
           "unknown option: '%s'", last_error);
