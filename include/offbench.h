@@ -55,9 +55,9 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 2
+#define OBX_VERSION_MINOR 3
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.2.0"
+#define OBX_VERSION "0.3.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
@@ -275,7 +275,9 @@ typedef struct {
 /* Purpose: measure an approximation, npieces Bézier pieces given as arrays
  *          (degrees[], xy[], w[] or NULL as in obx_curves_from_arrays),
  *          against the exact d-offset of curve `curve` under `metric`
- *          (NULL: hausdorff), as `offbench measure` does for a file without
+ *          (NULL: hausdorff; also "hausdorff-whole", the two-sided
+ *          distance of the whole approximation, which needs the pieces to
+ *          cover the offset once, OBX_E_MEASURE otherwise; since 0.3), as `offbench measure` does for a file without
  *          base links: each piece's base range is found by projecting its
  *          ends on the offset (a piece whose ends lie over different base
  *          segments is cut where it crosses each joint's normal line; piece

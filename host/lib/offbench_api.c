@@ -394,7 +394,7 @@ static int check_curve_d(const obx_curveset *set, int curve, double d, obx_error
 static int parse_metric(const char *name, ob_metric *m, obx_error *err)
 {
     if (ob_metric_parse(name ? name : "hausdorff", m) != 0)
-        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param)", name);
+        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param; obx_measure: hausdorff-whole too)", name);
     return 0;
 }
 
@@ -654,21 +654,44 @@ static int pieces_approx(int npieces, const int *degrees, const double *xy, cons
     return 0;
 }
 
+/* hausdorff-whole (ob_approx_hausdorff_whole): the pieces, matched, must
+ * cover the offset once, as measure's CLI checks; *r its result. */
+static int measure_whole(const ob_curve *c, double d, const ob_approx *a, ob_mres *r, obx_error *err)
+{
+    ob_cover cv;
+    ob_err e;
+    int rc = ob_approx_cover(c, d, a, OB_DEFAULT_SAMPLES, "pieces", &cv, &e);
+    if (rc != 0)
+        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
+    else if (ob_cover_fails(&cv))
+        rc = fail(err, OBX_E_MEASURE, "the pieces do not cover the offset once (%d gaps, %d overlaps, %d "
+                  "duplicates): hausdorff-whole measures a whole approximation", cv.count[OB_COVER_GAP],
+                  cv.count[OB_COVER_OVERLAP], cv.count[OB_COVER_DUPLICATE]);
+    else if (ob_approx_hausdorff_whole(c, d, a, &cv, OB_DEFAULT_SAMPLES, r, &e) != 0)
+        rc = fail(err, OBX_E_NOMEM, "%s", e.msg);
+    ob_cover_free(&cv);
+    return rc;
+}
+
 int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
                 const double *w, const char *metric, obx_measurement *m, obx_error *err)
 {
-    ob_metric met;
+    ob_metric met = OB_METRIC_HAUSDORFF;
     if (!m)
         return fail(err, OBX_E_INVALID, "obx_measure: NULL out");
-    if (check_curve_d(set, curve, d, err) || parse_metric(metric, &met, err))
+    const int whole = metric && strcmp(metric, "hausdorff-whole") == 0;
+    if (check_curve_d(set, curve, d, err) || (!whole && parse_metric(metric, &met, err)))
         return -1;
     ob_approx a = {0};
     const ob_curve *c = &set->set.v[curve];
     ob_err e;
     ob_mres r;
     int rc = pieces_approx(npieces, degrees, xy, w, &a, err);
-    if (rc == 0 && (ob_approx_match(c, d, &a, "pieces", &e) != 0 ||
-                    ob_approx_measure(c, d, &a, met, OB_DEFAULT_SAMPLES, "pieces", &r, &e) != 0))
+    if (rc == 0 && ob_approx_match(c, d, &a, "pieces", &e) != 0)
+        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
+    else if (rc == 0 && whole)
+        rc = measure_whole(c, d, &a, &r, err);
+    else if (rc == 0 && ob_approx_measure(c, d, &a, met, OB_DEFAULT_SAMPLES, "pieces", &r, &e) != 0)
         rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
     ob_approx_free(&a);
     if (rc)

@@ -22,7 +22,7 @@ from .methods import Method, Param, methods
 from .result import Result
 from .results import read_meta, read_results
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 
 def library_version():

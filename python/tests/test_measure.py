@@ -39,6 +39,18 @@ def test_metrics():
         assert na.status == "n/a" and math.isnan(na.max_err) and na.message, met
 
 
+def test_hausdorff_whole():
+    """hausdorff-whole: at most the per-piece value, the fit's here; pieces
+    that leave a gap are refused."""
+    r = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3)
+    whole = offbench.measure("liu2002_ex1", 1, r.pieces, metric="hausdorff-whole")
+    assert whole.status == "ok" and whole.metric == "hausdorff-whole"
+    assert whole.max_err <= offbench.measure("liu2002_ex1", 1, r.pieces).max_err * (1 + 1e-12)
+    assert whole.max_err == pytest.approx(r.max_err, rel=1e-6)
+    with pytest.raises(offbench.MeasureError, match="do not cover the offset once"):
+        offbench.measure("liu2002_ex1", 1, r.pieces[1:], metric="hausdorff-whole")
+
+
 def test_arrays_and_pairs():
     r = offbench.fit("liu2002_ex1", "lee", 1, 1e-2)
     as_pairs = [(p.points, p.weights if p.weights is not None else np.ones(p.degree + 1)) for p in r.pieces]

@@ -272,6 +272,14 @@ static void test_fit_cross(const obx_curveset *s, int c)
     CHECK(obx_measure(s, c, 1, n, deg, xy, NULL, "hausdorff", &m, &e) == 0, "measure: %s", e.message);
     CHECK(strcmp(m.status, "ok") == 0 && m.max_err <= 1e-3 && m.max_err > 0.5 * obx_result_max_err(r),
           "measured %g (%s), the fit %g", m.max_err, m.status, obx_result_max_err(r));
+    /* hausdorff-whole: no match needed; at most the per-piece value */
+    const double per_piece = m.max_err;
+    CHECK(obx_measure(s, c, 1, n, deg, xy, NULL, "hausdorff-whole", &m, &e) == 0 && strcmp(m.status, "ok") == 0 &&
+              m.max_err <= per_piece * (1 + 1e-12) && m.max_err > 0.5 * obx_result_max_err(r),
+          "hausdorff-whole %g (%s: %s), per piece %g", m.max_err, m.status, e.message, per_piece);
+    CHECK(obx_measure(s, c, 1, n - 1, deg + 1, xy + 8, NULL, "hausdorff-whole", &m, &e) == -1 &&
+              e.code == OBX_E_MEASURE && strstr(e.message, "do not cover the offset once"),
+          "hausdorff-whole of pieces with a gap: %s", e.message);
     CHECK(obx_measure(s, c, 1, n, deg, xy, NULL, "bound", &m, &e) == 0 && strcmp(m.status, "n/a") == 0,
           "bound without links: %s", m.status);
     CHECK(obx_measure(s, c, 1, n, deg, xy, NULL, "worst", &m, &e) == -1 && strstr(e.message, "metric"), "metric");
