@@ -130,10 +130,11 @@ int ob_cl_builds(const ob_cl *cl, ob_cl_build *out, int max);
  *          work) into *back; scratch stays on the device. */
 void ob_cl_record_bytes(int nb, int na, size_t *to, size_t *back);
 
-/* Purpose: the device's double-precision peak: a kernel of its own (its
- *          own program, cached), many work-items each running independent
- *          chains of multiply-adds (mad), counted as 2 flops each; one
- *          launch untimed first (the build, the first launch), then one
+/* Purpose: the device's double-precision peak: kernels of their own (their
+ *          own program, cached), many work-items each running 8 independent
+ *          chains of multiply-adds (mad), counted as 2 flops each, on
+ *          doubles and on double8 (a CPU device's vectors), the faster
+ *          counting; each launched once untimed (the first launch), then
  *          sized to run about target_s seconds, timed by its profiling event.
  * Outputs: *flops counted, *seconds the kernel's own time.
  * Returns: 0; -1 with the reason in err->msg. */

@@ -1,5 +1,5 @@
 /*
- * cmd_bench.c - `./offbench bench [--out DIR] [--quick] [--kernels]`: the sampling engine
+ * cmd_bench.c - `./offbench bench [--out DIR] [--quick] [--kernels] [--device NAME]`: the sampling engine
  * and whole runs, every figure measured in this one run and reported as
  * ratios (OpenCL vs CPU, 1 vs N threads), never compared with numbers from
  * elsewhere.  Writes DIR/bench.csv: what,backend,threads,items,seconds,rate,unit.
@@ -409,7 +409,7 @@ static double whole_run(int threads, const ob_curveset *set, const ob_driver_opt
 }
 
 typedef struct {
-    const char *out;
+    const char *out, *device;
     int quick, kernels;
 } bench_args;
 
@@ -418,6 +418,8 @@ static const ob_flag bench_flags[] = {
     {"quick", NULL, "a tenth of the records (a smoke test of the figures)", 1, OB_FLAG_ONCE},
     {"kernels", NULL, "only the peaks, the OpenCL builds and each metric's samples (no whole runs)", 2,
      OB_FLAG_ONCE},
+    {"device", "NAME", "the OpenCL device whose name contains NAME (default: the first with fp64)", 3,
+     OB_FLAG_ONCE},
 };
 
 static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
@@ -425,6 +427,10 @@ static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
     bench_args *a = ctx;
     if (id == 1 || id == 2) {
         *(id == 1 ? &a->quick : &a->kernels) = 1;
+        return 0;
+    }
+    if (id == 3) {
+        a->device = v;
         return 0;
     }
     return ob_cli_apply_dir(&a->out, id, opt, v);
@@ -459,11 +465,11 @@ static const ob_metric bench_mets[4] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_M
 
 /* The OpenCL backend with every metric's program built in both layouts
  * (cl_build rows), or NULL (said on stdout). */
-static ob_cl *bench_open_cl(bench_out *b)
+static ob_cl *bench_open_cl(bench_out *b, const char *device)
 {
     ob_cl *cl = NULL;
     ob_err err;
-    if (ob_cl_open(NULL, 0, &cl, &err) != 0) {
+    if (ob_cl_open(device, 0, &cl, &err) != 0) {
         printf("OpenCL: not available (%s); its rows are missing\n", err.msg);
         return NULL;
     }
@@ -811,9 +817,10 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
 
 int ob_cmd_bench(int argc, char **argv)
 {
-    bench_args a = {"out/bench", 0, 0};
-    const ob_flagset flags = {bench_flags, 3, NULL, NULL, "options", apply_bench_flag, &a};
-    const int prc = ob_cli_parse("[--out DIR] [--quick] [--kernels]", &flags, 1, argc, argv, 0, NULL, NULL);
+    bench_args a = {"out/bench", NULL, 0, 0};
+    const ob_flagset flags = {bench_flags, 4, NULL, NULL, "options", apply_bench_flag, &a};
+    const int prc = ob_cli_parse("[--out DIR] [--quick] [--kernels] [--device NAME]", &flags, 1, argc, argv, 0, NULL,
+                                 NULL);
     if (prc != OB_CLI_OK)
         return prc == OB_CLI_HELP ? 0 : 2;
     if (ob_mkdir_p(a.out) != 0) {
@@ -833,7 +840,12 @@ int ob_cmd_bench(int argc, char **argv)
     const int N = omp_get_num_procs();
     double peak[2], vpeak;
     bench_peaks(&b, N, peak, &vpeak);
-    ob_cl *cl = ob_stop_signal() ? NULL : bench_open_cl(&b);
+    ob_cl *cl = ob_stop_signal() ? NULL : bench_open_cl(&b, a.device);
+    if (a.device && !cl && !ob_stop_signal()) {  /* asked for by name, as run --device is */
+        ob_outfile_discard(&of);
+        ob_error("bench --device %s: that OpenCL device cannot measure (see above); nothing written", a.device);
+        return 2;
+    }
     const double clpeak = cl && !ob_stop_signal() ? bench_cl_peak(&b, cl, a.quick) : 0.0;
     /* records: on a GPU at least 1e7 samples a launch; on the CPU (and a CPU
      * device) few enough for a 2-core machine */

@@ -6,7 +6,8 @@
 # the first time, a hit after); `bench --quick --kernels` gives a cl_build
 # row per program, the device's fp64 peak (cl_fma_peak, by device name),
 # each metric's fraction of it, and the work counts (samples per record,
-# operations per sample, bytes per record to and from the device).
+# operations per sample, bytes per record to and from the device);
+# bench --device naming no device is an error, as run's is.
 # No timed assertion: only that the figures are there and are numbers.
 # Skipped without an OpenCL device.
 . "$(dirname "$0")/lib_e2e.sh"
@@ -25,7 +26,7 @@ nbin() { ls "$T/cache"/*.bin 2>/dev/null | wc -l | tr -d ' '; }
 
 if ! $OB run $C --metric radial --out "$T/r1" >/dev/null 2>"$T/r1.err"; then
     echo "no OpenCL device: $(tail -n 1 "$T/r1.err")"
-    skipped=$((skipped + 26))
+    skipped=$((skipped + 27))
     e2e_done
     exit $?
 fi
@@ -68,6 +69,9 @@ for m in radial normal hausdorff param; do
         "bench: $m: the work counts: $(grep "_per_\(record\|sample\)/$m," "$B" | tr '\n' ' ')"
 done
 check '! grep -q "^\(run\|random_run\|engines\)" "$B"' "bench --kernels: no whole runs"
+$OB bench --quick --kernels --device no-such-device --out "$T/bx" >/dev/null 2>"$T/bx.err"
+check '[ $? -eq 2 ] && grep -q "bench --device no-such-device" "$T/bx.err" && [ ! -e "$T/bx/bench.csv" ]' \
+    "bench --device naming no device: exit 2, nothing written: $(cat "$T/bx.err")"
 check 'grep -q "fp64 peak" "$T/b.out" && grep -q "of the device.s fp64 peak" "$T/b.out"' \
     "bench prints the device's peak and each metric's share of it: $(grep -i peak "$T/b.out" | head -n 3)"
 
