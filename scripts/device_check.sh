@@ -111,7 +111,9 @@ else
         tag=$(printf '%s' "$dev" | tr -c 'A-Za-z0-9' '_' | cut -c1-24)
         # a run builds only its metric's program in its layout: the first
         # build (an empty cache, and the drivers' own caches off: PoCL's and
-        # NVIDIA's JIT cache) and the cached one
+        # NVIDIA's JIT cache) and the cached one (from the binary cache; the
+        # drivers' caches were not filled, so what a driver still compiles
+        # from the cached binary at its first launch is in it)
         for pass in first cached; do
             d="$out/build_${tag}_$pass"
             cold=; [ $pass = first ] && cold="env POCL_KERNEL_CACHE=0 CUDA_CACHE_DISABLE=1"
@@ -129,7 +131,7 @@ else
                 echo "bench --kernels failed on $dev: $(tail -n 2 "$d.err")" | tee -a "$ksummary"
                 continue
             fi
-            echo "programs built by bench --kernels on $dev ($pass: $( [ $pass = first ] && echo "an empty cache" || echo "from the cache"))" |
+            echo "programs built by bench --kernels on $dev ($pass: $( [ $pass = first ] && echo "an empty cache" || echo "from the binary cache"))" |
                 tee -a "$ksummary"
             awk -F, '$1 ~ /^cl_build\// {printf "   %-28s %8.2f s  %s\n", $1, $5, $2; n++; s += $5}
                 END {printf "   %d programs, %.2f s in all\n", n, s}' "$d/bench.csv" | tee -a "$ksummary"
