@@ -12,6 +12,10 @@
  * results do not depend on order.  The host builds this file with
  * kernels/metric_core.h prepended.
  *
+ * A launch measures records i0 .. nrec - 1 of the buffers (the host stages
+ * a batch metric by metric and launches each metric's program over its
+ * records).
+ *
  * Buffers (structure of arrays, sized once per run and grown when needed):
  *   metric[i], d[i]          the record's sampled metric code and offset
  *   stop[i]                  > 0: the measurement may end above it (obc_measure);
@@ -27,15 +31,19 @@
  */
 /* The arguments of both kernels, in the order the host sets them. */
 #define OBK_ARGS                                                                                         \
-    const int nrec, const int S, __global const int *metric, __global const double *d,                   \
+    const int i0, const int nrec, const int S, __global const int *metric, __global const double *d,     \
         __global const double *stop,                                                                     \
         __global const int *bdeg, __global const int *boff, __global const int *adeg,                      \
         __global const int *aoff, __global const double *ctrl, __global const int *soff,                   \
         __global double *scratch, __global double *err, __global double *tpar, __global double *work
 
+/* The layouts a build holds: both, or the one -D OBC_ONLY_GROUPS or
+ * -D OBC_ONLY_ITEMS names (the host builds one program per metric and
+ * layout it uses, each with one kernel). */
+#ifndef OBC_ONLY_GROUPS
 __kernel void ob_measure_batch(OBK_ARGS)
 {
-    const int i = get_global_id(0);
+    const int i = i0 + (int)get_global_id(0);
     if (i >= nrec)
         return;
     double e, t;
@@ -46,7 +54,9 @@ __kernel void ob_measure_batch(OBK_ARGS)
     tpar[i] = t;
     work[i] = (double)ops;
 }
+#endif
 
+#ifndef OBC_ONLY_ITEMS
 /* ---- a work-group per record ------------------------------------------ */
 
 #define OBG_MAX 256 /* largest work-group the host launches (ob_cl_open caps it) */
@@ -67,6 +77,7 @@ long obg_sum_ops(__local long *lops, long mine)
     return s;
 }
 
+#if OBC_WANT_HAUSDORFF
 /* Hausdorff: the four tables' parts (rows of O and A, OBC_LANES samples per
  * task; then the margins; then the block circles) over the work-items, with
  * a barrier between the parts that read the earlier ones; then the two
@@ -112,6 +123,9 @@ void obg_hausdorff(const __global double *hb, int nb, const __global double *ha,
     }
 }
 
+#endif
+
+#if OBC_WANT_SCAN
 /* Radial, normal, param: the samples' errors over the work-items (E, their
  * work W in global scratch), then the scan's result as obc_sample_refine
  * finds it in order: the first NaN or inf sample, or the first above stop,
@@ -172,13 +186,15 @@ void obg_scan(int kind, const __global double *hb, int nb, const __global double
     obc_scan_refine(kind, hb, nb, ha, na, d, S, E, E, total, best, kb, &hint, err, t);
 }
 
+#endif
+
 __kernel void ob_measure_groups(OBK_ARGS)
 {
     __local long lops[OBG_MAX];
     __local int lk[OBG_MAX];
     __local double lbest[OBG_MAX];
     __local double side[5];
-    const int i = get_group_id(0); /* the same for the whole group: it returns as one */
+    const int i = i0 + (int)get_group_id(0); /* the same for the whole group: it returns as one */
     if (i >= nrec)
         return;
     const int m = metric[i], kind = obc_scan_kind(m);
@@ -187,14 +203,19 @@ __kernel void ob_measure_groups(OBK_ARGS)
     double e = OBC_INF, t = 0.0;
     long ops = 0;
     const double st = obc_stop_of(stop[i]);
+#if OBC_WANT_HAUSDORFF
     if (m == OBC_HAUSDORFF)
         obg_hausdorff(hb, bdeg[i], ha, adeg[i], d[i], S, st, scr, scr + OBC_TABLE_SIZE(S), lops, side, &e, &t,
                       &ops);
-    else if (kind >= 0)
+#endif
+#if OBC_WANT_SCAN
+    if (kind >= 0)
         obg_scan(kind, hb, bdeg[i], ha, adeg[i], d[i], S, st, scr, scr + S, lops, lk, lbest, &e, &t, &ops);
+#endif
     if (get_local_id(0) == 0) {
         err[i] = e;
         tpar[i] = t;
         work[i] = (double)ops;
     }
 }
+#endif

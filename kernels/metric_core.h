@@ -40,6 +40,17 @@
 #define OBC_G __global
 #define OBC_FN
 #define OBC_FLAT_FN OBC_FN
+/* A function called from many places that the kernel keeps out of line:
+ * a GPU compiler that inlines every call (NVIDIA's does) made thousands of
+ * copies of the curve evaluation in one kernel and took three minutes to
+ * build it (issue 40; kernels/README.md "Build time").  -D OBC_INLINE_ALL
+ * leaves the choice to the compiler.  A call does not change a result:
+ * contraction is off, so every operation rounds as written. */
+#ifdef OBC_INLINE_ALL
+#define OBC_CALL_FN
+#else
+#define OBC_CALL_FN __attribute__((noinline))
+#endif
 #define OBC_INF ((double)INFINITY)
 #else
 #include <math.h>
@@ -48,8 +59,44 @@
 /* a function whose constant arguments should reach its body (so that it
  * is compiled once per call site's constants) */
 #define OBC_FLAT_FN static inline __attribute__((always_inline))
+#define OBC_CALL_FN OBC_FN
 #define OBC_INF ((double)INFINITY)
 #endif
+
+/* The metrics a build holds: all of them (the CPU build, and a kernel
+ * built without these), or the one named by -D OBC_ONLY_RADIAL,
+ * OBC_ONLY_NORMAL, OBC_ONLY_HAUSDORFF or OBC_ONLY_PARAM (the host builds
+ * one program per metric a run uses, host/backend/clrt.c).  A record of
+ * another metric is not measured by such a build (+inf). */
+#if defined(OBC_ONLY_RADIAL) || defined(OBC_ONLY_NORMAL) || defined(OBC_ONLY_HAUSDORFF) || defined(OBC_ONLY_PARAM)
+#ifdef OBC_ONLY_RADIAL
+#define OBC_WANT_RADIAL 1
+#else
+#define OBC_WANT_RADIAL 0
+#endif
+#ifdef OBC_ONLY_NORMAL
+#define OBC_WANT_NORMAL 1
+#else
+#define OBC_WANT_NORMAL 0
+#endif
+#ifdef OBC_ONLY_HAUSDORFF
+#define OBC_WANT_HAUSDORFF 1
+#else
+#define OBC_WANT_HAUSDORFF 0
+#endif
+#ifdef OBC_ONLY_PARAM
+#define OBC_WANT_PARAM 1
+#else
+#define OBC_WANT_PARAM 0
+#endif
+#else
+#define OBC_WANT_RADIAL 1
+#define OBC_WANT_NORMAL 1
+#define OBC_WANT_HAUSDORFF 1
+#define OBC_WANT_PARAM 1
+#endif
+/* a one-sided metric (the scan of obc_sample_refine over its own kind) */
+#define OBC_WANT_SCAN (OBC_WANT_RADIAL || OBC_WANT_NORMAL || OBC_WANT_PARAM)
 
 /* OBC_SIMD before a loop whose iterations are independent (one per sample
  * lane): the CPU compiler vectorizes it; every lane does the IEEE operations
@@ -169,7 +216,7 @@ OBC_FN double obc_divw(double x, double w) { return w == 1.0 ? x : x / w; }
  * on x and y alone: there every level's weight is exactly 1 (fl(fl(1 - t) +
  * t) = 1 for t in [0,1]) and every derivative of the weight exactly 0, so
  * the result has the same bits as the homogeneous pass. */
-OBC_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2], long *ops)
+OBC_CALL_FN void obc_eval(const OBC_G double *h, int n, double t, int nder, double out[][2], long *ops)
 {
     double q0[3], lv2[3][3] = {{0.0}}, lv1[2][3] = {{0.0}};
     *ops += OBC_OPS_EVAL(n);
@@ -295,8 +342,8 @@ OBC_FN int obc_normal(const OBC_G double *h, int n, double t, double N[2], long 
 /* Point P, derivative dP and curvature vector K = kappa N of the curve (d = 0)
  * or of its exact d-offset at t.  For the offset: O' = C' (1 - d kappa), since
  * N' = -kappa C', and kappa_O N_O = kappa / (1 - d kappa) N. */
-OBC_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double P[2], double dP[2],
-                        double K[2], long *ops)
+OBC_CALL_FN void obc_pc_eval(const OBC_G double *h, int n, double d, double t, double P[2], double dP[2],
+                             double K[2], long *ops)
 {
     double o[3][2];
     obc_eval(h, n, t, 2, o, ops);
@@ -771,9 +818,9 @@ OBC_FN double obc_param_err(OBC_ARGS, double t)
  * the centre of curvature (1 - K.(Q - P) small or negative) Newton is not
  * safe; there, and wherever it has not settled in 20 steps, golden-section
  * search on the bracket takes over. */
-OBC_FN double obc_project(const OBC_G double *hc, int nc, double dc, const double Q[2], double t0, double lo,
-                          double hi, const OBC_G double *start, const double *first, double cut, double *tp,
-                          long *ops)
+OBC_CALL_FN double obc_project(const OBC_G double *hc, int nc, double dc, const double Q[2], double t0, double lo,
+                               double hi, const OBC_G double *start, const double *first, double cut, double *tp,
+                               long *ops)
 {
     double t = t0, P[2], dP[2], K[2];
     if (start) {
@@ -959,7 +1006,7 @@ OBC_FN double obc_near_hint(const OBC_G double *hc, int nc, double dc, const dou
  * spans (an arc about Q: the offset of a piece that has shrunk to a point),
  * where every span gives the distance to within its margin, and refining
  * them all would cost S projections for each query. */
-OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int *hint, double *tfoot)
+OBC_CALL_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int *hint, double *tfoot)
 {
     const int to_offset = kind == OBC_K_H_APPROX;
     const OBC_G double *hc = to_offset ? hb : ha;
@@ -1065,11 +1112,22 @@ OBC_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut, int
 OBC_FN double obc_err_at(int kind, OBC_ARGS, double t, int k, double cut, int *hint)
 {
     double tf;
+    (void)tf;
     switch (kind) {
+#if OBC_WANT_RADIAL
     case OBC_K_RADIAL: return obc_radial_err(OBC_PASS, t);
+#endif
+#if OBC_WANT_NORMAL
     case OBC_K_NORMAL: return obc_normal_err(OBC_PASS, t);
+#endif
+#if OBC_WANT_PARAM
     case OBC_K_PARAM: return obc_param_err(OBC_PASS, t);
-    default: return obc_side_dist(kind, OBC_PASS, t, k, cut, hint, &tf);
+#endif
+#if OBC_WANT_HAUSDORFF
+    case OBC_K_H_APPROX:
+    case OBC_K_H_OFFSET: return obc_side_dist(kind, OBC_PASS, t, k, cut, hint, &tf);
+#endif
+    default: return OBC_INF; /* a kind this build does not hold */
     }
 }
 
@@ -1234,15 +1292,23 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
 {
     const int kind = obc_scan_kind(metric);
     const double stop = obc_stop_of(stop_in);
+    (void)kind;
+#if OBC_WANT_SCAN
     if (kind >= 0) {
         obc_sample_refine(kind, hb, nb, ha, na, d, S, scratch, scratch, ops, stop, err, t);
         return;
     }
+#endif
+#if OBC_WANT_HAUSDORFF
     if (metric != OBC_HAUSDORFF) {
+#else
+    {  /* not a metric of this build */
+#endif
         *err = OBC_INF;
         *t = 0.0;
         return;
     }
+#if OBC_WANT_HAUSDORFF
     OBC_G double *O = scratch, *A = scratch + OBC_TABLE_SIZE(S);
     obc_fill_table(hb, nb, d, S, O, ops);
     obc_fill_table(ha, na, 0.0, S, A, ops);
@@ -1251,6 +1317,7 @@ OBC_FN void obc_measure(int metric, const OBC_G double *hb, int nb, const OBC_G 
     if (!(e1 > stop))
         obc_h_side_offset(hb, nb, ha, na, d, S, A, O, ops, stop, &e2, &t2);
     obc_h_pick(e1, t1, e2, t2, stop, err, t);
+#endif
 }
 
 #endif

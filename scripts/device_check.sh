@@ -7,10 +7,16 @@
 #      fit and measure thread time / (threads x wall)); every run's rows
 #      checked against the first's (timings aside)
 #   3. each OpenCL device: the first build (an empty binary cache) and the
-#      cached one, then the same jobs on all threads through each engine and
+#      cached one of each metric's program in each layout, the device's fp64
+#      peak, each metric's samples/s, GFLOP/s and fraction of that peak in
+#      both layouts (batches of at least 1e7 samples on a GPU), and the
+#      work counts (samples per record, operations per sample, bytes per
+#      record to and from the device) -- all from `bench --kernels` (issue
+#      40); then the same jobs on all threads through each engine and
 #      both kernel layouts, wall against the CPU backend's, records per
 #      launch, and a row-by-row agreement check
 # Prints a summary table at the end; exits 1 when any rows differ.
+# Without a GPU (PoCL only) every step runs on the devices there are.
 #
 # Usage: scripts/device_check.sh [--quick]
 # Environment:
@@ -20,6 +26,11 @@
 #   DEVICE_CHECK_TOLS   tolerances (default 1e-1,1e-2,1e-3,1e-4,1e-5)
 #   DEVICE_CHECK_OUT    where the runs go (default a temporary directory,
 #                       removed at the end)
+#   DEVICE_CHECK_INLINE 1: also the first build of hausdorff's program with
+#                       every call inlined (-D OBC_INLINE_ALL, the kernels
+#                       as they were built before issue 40 but for one
+#                       metric and layout): what the out-of-line calls save;
+#                       minutes on NVIDIA's compiler, so off by default
 # On a machine with NVIDIA's OpenCL driver under /usr/local/nvidia/lib64 and
 # no ICD file for it, one is written into the output directory and
 # OCL_ICD_VENDORS points at it.
@@ -65,7 +76,9 @@ same() {  # reference, candidate: "identical" or "N rows differ"
 }
 bad=0
 summary="$out/summary.txt"
+ksummary="$out/kernels.txt"
 : > "$summary"
+: > "$ksummary"
 row() { printf '%-34s %9s %8s %9s %10s  %s\n' "$@" | tee -a "$summary"; }
 
 echo "== 2. the CPU backend, 1 .. $ncpu threads"
@@ -96,11 +109,67 @@ else
     awk '{n=""; for (i=1;i<=NF;i++){ if ($i=="cpu"||$i=="gpu"||$i=="accelerator"||$i=="other") break; n=n (n?" ":"") $i}; print n}' "$out/devices.txt" |
     while read -r dev; do
         tag=$(printf '%s' "$dev" | tr -c 'A-Za-z0-9' '_' | cut -c1-24)
+        # a run builds only its metric's program in its layout: the first
+        # build (an empty cache, and the drivers' own caches off: PoCL's and
+        # NVIDIA's JIT cache) and the cached one (from the binary cache; the
+        # drivers' caches were not filled, so what a driver still compiles
+        # from the cached binary at its first launch is in it)
         for pass in first cached; do
             d="$out/build_${tag}_$pass"
-            $OB run --curve liu2002_ex1 --methods tiller --tols 1e-2 --backend opencl --device "$dev" --out "$d" >/dev/null 2>"$d.err"
-            echo "build ($pass) on $dev: $(meta "$d/meta.json" build_seconds) s; cache: $(meta "$d/meta.json" binary_cache)"
+            cold=; [ $pass = first ] && cold="env POCL_KERNEL_CACHE=0 CUDA_CACHE_DISABLE=1"
+            $cold $OB run --curve liu2002_ex1 --methods tiller --tols 1e-2 --backend opencl --device "$dev" --out "$d" >/dev/null 2>"$d.err"
+            echo "run's build ($pass) on $dev: $(meta "$d/meta.json" build_seconds) s; cache: $(meta "$d/meta.json" binary_cache)" |
+                tee -a "$ksummary"
         done
+        # every program (the first pass from an empty cache), the peak, the
+        # metrics against it and the work counts
+        bq=; [ $quick -eq 1 ] && bq=--quick
+        for pass in first cached; do
+            d="$out/bench_${tag}_$pass"
+            cold=; [ $pass = first ] && { rm -rf "$OFFBENCH_CL_CACHE"; cold="env POCL_KERNEL_CACHE=0 CUDA_CACHE_DISABLE=1"; }
+            if ! $cold $OB bench --kernels $bq --device "$dev" --out "$d" > "$d.out" 2>"$d.err"; then
+                echo "bench --kernels failed on $dev: $(tail -n 2 "$d.err")" | tee -a "$ksummary"
+                continue
+            fi
+            echo "programs built by bench --kernels on $dev ($pass: $( [ $pass = first ] && echo "an empty cache" || echo "from the binary cache"))" |
+                tee -a "$ksummary"
+            awk -F, '$1 ~ /^cl_build\// {printf "   %-28s %8.2f s  %s\n", $1, $5, $2; n++; s += $5}
+                END {printf "   %d programs, %.2f s in all\n", n, s}' "$d/bench.csv" | tee -a "$ksummary"
+        done
+        d="$out/bench_${tag}_cached"
+        if [ -s "$d/bench.csv" ]; then
+            { echo "the fp64 peak, the metrics against it, the work counts on $dev:"
+              grep -E "^(OpenCL fp64 peak|OpenCL batches)" "$d.out" | sed 's/^/   /'
+              awk -F, '
+                $1 ~ /^samples\// && $2 ~ /^opencl-/ {split($1, a, "/"); sps[a[2] " " substr($2, 8)] = $6}
+                $1 ~ /^gflops\// && $2 ~ /^opencl-/ {split($1, a, "/"); gf[a[2] " " substr($2, 8)] = $6}
+                $1 ~ /^cl_peak_fraction\// && $2 ~ /^opencl-/ {split($1, a, "/"); fr[a[2] " " substr($2, 8)] = $6}
+                $1 ~ /^samples_per_record\// {split($1, a, "/"); spr[a[2]] = $6}
+                $1 ~ /^ops_per_sample\// {split($1, a, "/"); ops[a[2]] = $6}
+                $1 ~ /^bytes_per_record\// {split($1, a, "/"); by[a[2]] = $6}
+                $1 ~ /^bytes_back_per_record\// {split($1, a, "/"); bb[a[2]] = $6}
+                END {
+                    printf "   %-10s %-7s %12s %9s %9s   %s\n", "metric", "layout", "samples/s", "GFLOP/s", "of peak",
+                           "samples/record, flop/sample, bytes/record to/from the device"
+                    n = split("radial normal hausdorff param", ms, " ")
+                    for (i = 1; i <= n; i++)
+                        for (l = 1; l <= 2; l++) {
+                            lay = l == 1 ? "groups" : "items"
+                            k = ms[i] " " lay
+                            if (!(k in sps)) continue
+                            w = l == 1 ? sprintf("%d, %.0f, %.0f/%.0f", spr[ms[i]], ops[ms[i]], by[ms[i]], bb[ms[i]]) : ""
+                            printf "   %-10s %-7s %12.4g %9.3g %8.2f%%   %s\n", ms[i], lay, sps[k], gf[k] / 1e9, 100 * fr[k], w
+                        }
+                }' "$d/bench.csv"; } | tee -a "$ksummary"
+        fi
+        if [ "${DEVICE_CHECK_INLINE:-0}" = 1 ] && [ -f kernels/metric_core.h ]; then
+            k="$out/kernels_inline_all"
+            mkdir -p "$k" && { echo "#define OBC_INLINE_ALL"; cat kernels/metric_core.h; } > "$k/metric_core.h" && cp kernels/measure.cl "$k/"
+            d="$out/build_${tag}_inline_all"
+            OFFBENCH_KERNELS="$k" POCL_KERNEL_CACHE=0 CUDA_CACHE_DISABLE=1 $OB run --curve liu2002_ex1 --methods tiller --tols 1e-2 --backend opencl --device "$dev" --out "$d" >/dev/null 2>"$d.err"
+            echo "hausdorff's program with every call inlined (-D OBC_INLINE_ALL), first build on $dev: $(meta "$d/meta.json" build_seconds) s" |
+                tee -a "$ksummary"
+        fi
         for lay in groups items; do
             for e in level group; do
                 d="$out/cl_${tag}_${lay}_$e"
@@ -114,6 +183,10 @@ else
             done
         done
     done
+fi
+if [ -s "$ksummary" ]; then
+    echo "== summary of the OpenCL programs and kernels"
+    cat "$ksummary"
 fi
 echo "== summary (speed-up: CPU rows against 1 thread of the level engine, OpenCL rows against the"
 echo "   group engine on all $ncpu threads of the CPU backend, ${cpu_all_wall:-?} s)"

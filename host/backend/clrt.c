@@ -43,6 +43,46 @@ int ob_cl_layout_env(ob_cl_layout *layout, ob_err *err)
     return -1;
 }
 
+/* The language version every program is built for: part of the options. */
+static const char CL_STD[] = "-cl-std=CL1.2";
+
+int ob_cl_program_options(ob_metric m, ob_cl_layout l, char *buf, size_t len)
+{
+    const char *name = m == OB_METRIC_RADIAL      ? "RADIAL"
+                       : m == OB_METRIC_NORMAL    ? "NORMAL"
+                       : m == OB_METRIC_HAUSDORFF ? "HAUSDORFF"
+                       : m == OB_METRIC_PARAM     ? "PARAM"
+                                                  : NULL;
+    if (!name)
+        return -1;
+    snprintf(buf, len, "%s -D OBC_ONLY_%s -D OBC_ONLY_%s", CL_STD, name, l == OB_CL_ITEMS ? "ITEMS" : "GROUPS");
+    return 0;
+}
+
+char *ob_cl_program_key(const char *platform, const char *device, const char *driver, const char *device_version,
+                        const char *options, const char *src)
+{
+    const size_t n = strlen(src);
+    const size_t len = strlen(platform) + strlen(device) + strlen(driver) + strlen(device_version) +
+                       strlen(options) + 256;
+    char *key = malloc(len);
+    if (key)
+        snprintf(key, len, "offbench OpenCL program\nplatform=%s\ndevice=%s\ndriver=%s\ndevice_version=%s\n"
+                 "options=%s\nsource_bytes=%zu\nsource_fnv1a=%016llx\n", platform, device, driver, device_version,
+                 options, n, (unsigned long long)ob_fnv1a(OB_FNV_BASIS, src, n));
+    return key;
+}
+
+/* The buffers a record moves (stage() and ob_cl_wait below): to the device
+ * six ints (metric, the two degrees and control-point offsets, the scratch
+ * offset), two doubles (d, stop) and both pieces' homogeneous control
+ * points; back three doubles (error, parameter, work). */
+void ob_cl_record_bytes(int nb, int na, size_t *to, size_t *back)
+{
+    *to = 6 * sizeof(int) + 2 * sizeof(double) + 3 * (size_t)(nb + 1 + na + 1) * sizeof(double);
+    *back = 3 * sizeof(double);
+}
+
 #ifndef OB_HAVE_CL
 
 int ob_cl_compiled(void) { return 0; }
@@ -99,6 +139,24 @@ int ob_cl_batch_submit(void *ctx, int slot, const ob_measure_rec *recs, int n, i
 int ob_cl_batch_wait(void *ctx, int slot, ob_errval *out, double *device_ns)
 {
     return ob_cl_wait(ctx, slot, out, device_ns);
+}
+int ob_cl_prepare(ob_cl *c, ob_metric m, ob_cl_layout l, ob_err *err)
+{
+    (void)c, (void)m, (void)l;
+    ob_fail(err, "this build has no OpenCL backend");
+    return -1;
+}
+int ob_cl_builds(const ob_cl *c, ob_cl_build *out, int max)
+{
+    (void)c, (void)out, (void)max;
+    return 0;
+}
+int ob_cl_fma_peak(ob_cl *c, double target_s, double *flops, double *seconds, ob_err *err)
+{
+    (void)c, (void)target_s;
+    *flops = *seconds = 0.0;
+    ob_fail(err, "this build has no OpenCL backend");
+    return -1;
 }
 
 #else
@@ -176,30 +234,50 @@ static const char *cl_errname(cl_int e)
 
 /* ---- the runtime ------------------------------------------------------ */
 
+/* Metrics with a program (OB_METRIC_RADIAL .. OB_METRIC_PARAM), and the
+ * kernels a batch launches at most (one per metric). */
+enum { NPROG_METRIC = 4, MAX_LAUNCH = NPROG_METRIC };
+
 /* The buffers of one batch in flight: device buffers grown on demand, the
  * host staging they are written from and read into, and the events of its
- * kernel and of its last read (ob_cl_submit, ob_cl_wait). */
+ * kernels and of its last read (ob_cl_submit, ob_cl_wait).  The records are
+ * staged by metric (one launch each): staged record j is recs[perm[j]]. */
 typedef struct {
     size_t cap_rec, cap_ctrl, cap_scr;
     cl_mem metric, d, stop, bdeg, boff, adeg, aoff, ctrl, soff, scratch, err, tpar, work;
-    int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff;
+    int *h_metric, *h_bdeg, *h_boff, *h_adeg, *h_aoff, *h_soff, *perm;
     double *h_d, *h_stop, *h_ctrl, *h_err, *h_tpar, *h_work;
-    cl_event kernel, done;  /* NULL: nothing in flight */
+    cl_event kernel[MAX_LAUNCH], done;  /* done NULL: nothing in flight */
+    int nk;                 /* kernels launched */
     int n;                  /* records in flight */
+    int nother;             /* of them, the last nother no sampled metric: no launch, +inf */
 } clslot;
+
+/* One program: a metric's kernel in one layout (ob_cl_prepare). */
+typedef struct {
+    cl_program prog;
+    cl_kernel k;
+    int state;           /* 0 not built; 1 built; -1 its build failed (fail says why) */
+    int order;           /* its place in the order built (ob_cl_builds) */
+    size_t group;        /* the group layout: work-items per record */
+    double seconds;
+    char cache[600];     /* what the binary cache did (clcache.h) */
+    char *fail;
+} clprog;
 
 struct ob_cl {
     cl_context ctx;
     cl_command_queue q;
-    cl_program prog;
-    cl_kernel k, kg;     /* ob_measure_batch (items), ob_measure_groups (groups) */
+    cl_device_id dev;
+    char *src;           /* the kernel text, built on first use (kernsrc.h) */
     ob_cl_layout layout;
-    size_t group;        /* work-items per group of kg */
-    char platform[256], device[256], driver[128], source[512];
+    clprog prog[NPROG_METRIC][2];  /* [metric - OB_METRIC_RADIAL][layout] */
+    int nbuilt;
+    char platform[256], device[256], driver[128], source[512], version[256];
     uint64_t kernel_hash; /* of the text built (kernsrc.h) */
-    double build_s;
-    char cache[600];     /* what the binary cache did (clcache.h) */
+    char cache[2048];    /* what the binary cache did, every program (ob_cl_cache_status) */
     int gpu;             /* CL_DEVICE_TYPE_GPU or _ACCELERATOR */
+    cl_program peak;     /* ob_cl_fma_peak's program, when asked for */
     clslot slot[OB_CL_SLOTS];
 };
 
@@ -221,14 +299,48 @@ const char *ob_cl_source(const ob_cl *c) { return c ? c->source : ""; }
 uint64_t ob_cl_kernel_hash(const ob_cl *c) { return c ? c->kernel_hash : 0; }
 const char *ob_cl_cache_status(const ob_cl *c) { return c ? c->cache : ""; }
 int ob_cl_is_gpu(const ob_cl *c) { return c ? c->gpu : 0; }
-double ob_cl_build_seconds(const ob_cl *c) { return c ? c->build_s : 0.0; }
+double ob_cl_build_seconds(const ob_cl *c)
+{
+    double s = 0.0;
+    for (int m = 0; c && m < NPROG_METRIC; m++)
+        for (int l = 0; l < 2; l++)
+            if (c->prog[m][l].state == 1)
+                s += c->prog[m][l].seconds;
+    return s;
+}
 void ob_cl_set_layout(ob_cl *c, ob_cl_layout layout)
 {
     if (c)
         c->layout = layout;
 }
 ob_cl_layout ob_cl_get_layout(const ob_cl *c) { return c ? c->layout : OB_CL_GROUPS; }
-int ob_cl_group_size(const ob_cl *c) { return c ? (int)c->group : 0; }
+int ob_cl_group_size(const ob_cl *c)
+{
+    size_t g = 0;
+    for (int m = 0; c && m < NPROG_METRIC; m++) {
+        const clprog *p = &c->prog[m][OB_CL_GROUPS];
+        if (p->state == 1 && (g == 0 || p->group < g))
+            g = p->group;
+    }
+    return (int)g;
+}
+
+int ob_cl_builds(const ob_cl *c, ob_cl_build *out, int max)
+{
+    const int n = c ? c->nbuilt : 0;
+    for (int m = 0; c && m < NPROG_METRIC; m++)
+        for (int l = 0; l < 2; l++) {
+            const clprog *p = &c->prog[m][l];
+            if (p->state != 1 || p->order >= max)
+                continue;
+            ob_cl_build *b = &out[p->order];
+            b->metric = (ob_metric)(OB_METRIC_RADIAL + m);
+            b->layout = (ob_cl_layout)l;
+            b->seconds = p->seconds;
+            snprintf(b->cache, sizeof b->cache, "%s", p->cache);
+        }
+    return n;
+}
 
 static int has_fp64(cl_device_id dev)
 {
@@ -238,131 +350,187 @@ static int has_fp64(cl_device_id dev)
     return fp != 0;
 }
 
-/* One launch of each shape a run makes (group layout: one; item layout:
- * radial records in groups of 32, the others one per group), so that a
- * driver that compiles a kernel at its first launch (PoCL does, per group
- * size) does it here, outside the time charged to the first jobs.  Its
- * results are not used. */
-static void warm_up(ob_cl *c)
-{
-    ob_bez base, approx;
-    const double line[2][2] = {{0.0, 0.0}, {1.0, 0.0}}, shifted[2][2] = {{0.0, 0.1}, {1.0, 0.1}};
-    ob_bez_from_points(&base, 1, line);
-    ob_bez_from_points(&approx, 1, shifted);
-    const ob_metric mets[2] = {OB_METRIC_RADIAL, OB_METRIC_HAUSDORFF};
-    for (int i = 0; i < 2; i++) {
-        ob_measure_rec r = {&base, &approx, 0.1, mets[i], 0.0};
-        ob_errval out;
-        ob_cl_measure_batch(c, &r, 1, OB_MIN_SAMPLES, &out);
-    }
-}
-
-/* The build options: part of the cache key. */
-static const char BUILD_OPTIONS[] = "-cl-std=CL1.2";
-
-/* The cache key of src built for dev (clcache.h): what can change the
- * binary.  NULL without memory. */
-static char *cache_key(const ob_cl *c, cl_device_id dev, const char *src)
-{
-    char version[256] = "";
-    cl.clGetDeviceInfo(dev, CL_DEVICE_VERSION, sizeof version - 1, version, NULL);
-    const size_t n = strlen(src);
-    char *key = malloc(2048);
-    if (key)
-        snprintf(key, 2048, "offbench OpenCL program\nplatform=%s\ndevice=%s\ndriver=%s\ndevice_version=%s\n"
-                 "options=%s\nsource_bytes=%zu\nsource_fnv1a=%016llx\n", c->platform, c->device, c->driver,
-                 version, BUILD_OPTIONS, n, (unsigned long long)ob_fnv1a(OB_FNV_BASIS, src, n));
-    return key;
-}
-
 /* The program from a cached binary, when the cache holds one for key that
- * the driver takes and builds.  1 then, else 0 (c->cache says why). */
-static int program_from_cache(ob_cl *c, cl_device_id dev, const char *key, const char *path)
+ * the driver takes and builds.  1 then, else 0 (cache says why). */
+static int program_from_cache(ob_cl *c, const char *key, const char *path, const char *options, cl_program *prog,
+                              char *cache, size_t clen)
 {
     size_t n = 0;
     char why[300];
     unsigned char *bin = ob_clcache_read(path, key, &n, why, sizeof why);
     if (!bin) {
-        snprintf(c->cache, sizeof c->cache, "miss: %s", why);
+        snprintf(cache, clen, "miss: %s", why);
         return 0;
     }
     cl_int e, st = CL_SUCCESS;
     const unsigned char *bins[1] = {bin};
-    c->prog = cl.clCreateProgramWithBinary(c->ctx, 1, &dev, &n, bins, &st, &e);
+    *prog = cl.clCreateProgramWithBinary(c->ctx, 1, &c->dev, &n, bins, &st, &e);
     free(bin);
     if (e == CL_SUCCESS && st == CL_SUCCESS &&
-        cl.clBuildProgram(c->prog, 1, &dev, BUILD_OPTIONS, NULL, NULL) == CL_SUCCESS) {
-        snprintf(c->cache, sizeof c->cache, "hit: %.580s", path);
+        cl.clBuildProgram(*prog, 1, &c->dev, options, NULL, NULL) == CL_SUCCESS) {
+        snprintf(cache, clen, "hit: %.580s", path);
         return 1;
     }
-    if (c->prog)
-        cl.clReleaseProgram(c->prog);
-    c->prog = NULL;
-    snprintf(c->cache, sizeof c->cache, "miss: the driver refused the cached binary (%s)",
-             cl_errname(e != CL_SUCCESS ? e : st));
+    if (*prog)
+        cl.clReleaseProgram(*prog);
+    *prog = NULL;
+    snprintf(cache, clen, "miss: the driver refused the cached binary (%s)", cl_errname(e != CL_SUCCESS ? e : st));
     return 0;
 }
 
-/* A built program's binary into the cache (c->cache says what became of
- * it). */
-static void program_to_cache(ob_cl *c, const char *key, const char *path)
+/* A built program's binary into the cache (cache: what became of it,
+ * appended). */
+static void program_to_cache(cl_program prog, const char *key, const char *path, char *cache, size_t clen)
 {
     size_t n = 0;
     unsigned char *bin = NULL;
     char why[300] = "";
-    if (cl.clGetProgramInfo(c->prog, CL_PROGRAM_BINARY_SIZES, sizeof n, &n, NULL) != CL_SUCCESS || n == 0 ||
+    if (cl.clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof n, &n, NULL) != CL_SUCCESS || n == 0 ||
         !(bin = malloc(n))) {
         snprintf(why, sizeof why, "the driver gave no binary");
     } else {
         unsigned char *bins[1] = {bin};
-        if (cl.clGetProgramInfo(c->prog, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) != CL_SUCCESS)
+        if (cl.clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) != CL_SUCCESS)
             snprintf(why, sizeof why, "the driver gave no binary");
         else
             ob_clcache_write(path, key, bin, n, why, sizeof why);
     }
     free(bin);
-    const size_t had = strlen(c->cache);
-    snprintf(c->cache + had, sizeof c->cache - had, "; %s", why[0] ? why : "built and stored");
+    const size_t had = strlen(cache);
+    snprintf(cache + had, clen - had, "; %s", why[0] ? why : "built and stored");
 }
 
-/* Purpose: c->prog built for dev from src: from the binary cache when it
- *          holds this source for this device, driver and options, else
- *          from the source (and then stored in the cache).
+/* Purpose: *prog built from src with options for the device: from the
+ *          binary cache when it holds this source for this device, driver
+ *          and options, else from the source (and then stored in the
+ *          cache); cache says which.
  * Returns: 0; -1 with the build log in err (a failed source build). */
-static int build_program(ob_cl *c, cl_device_id dev, const char *src, ob_err *err)
+static int build_program(ob_cl *c, const char *src, const char *options, cl_program *prog, char *cache,
+                         size_t clen, ob_err *err)
 {
     char path[4200], why[300];
-    char *key = cache_key(c, dev, src);
+    char *key = ob_cl_program_key(c->platform, c->device, c->driver, c->version, options, src);
     const int cached = key && ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0;
+    *prog = NULL;
     if (!key)
-        snprintf(c->cache, sizeof c->cache, "off (out of memory)");
+        snprintf(cache, clen, "off (out of memory)");
     else if (!cached)
-        snprintf(c->cache, sizeof c->cache, "%s", why);
-    if (cached && program_from_cache(c, dev, key, path)) {
+        snprintf(cache, clen, "%s", why);
+    if (cached && program_from_cache(c, key, path, options, prog, cache, clen)) {
         free(key);
         return 0;
     }
     cl_int e;
     const char *srcs[1] = {src};
-    c->prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
+    *prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
     if (e != CL_SUCCESS) {
         ob_fail(err, "clCreateProgramWithSource failed: %s (%d)", cl_errname(e), (int)e);
         free(key);
         return -1;
     }
-    e = cl.clBuildProgram(c->prog, 1, &dev, BUILD_OPTIONS, NULL, NULL);
+    e = cl.clBuildProgram(*prog, 1, &c->dev, options, NULL, NULL);
     if (e != CL_SUCCESS) {
         char log[8192] = "";
-        cl.clGetProgramBuildInfo(c->prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
-        ob_fail(err, "clBuildProgram failed: %s (%d); build log of %s:\n%s", cl_errname(e), (int)e,
-                c->source, log);
+        cl.clGetProgramBuildInfo(*prog, c->dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
+        ob_fail(err, "clBuildProgram failed: %s (%d); build log of %s (%s):\n%s", cl_errname(e), (int)e, c->source,
+                options, log);
         free(key);
         return -1;
     }
     if (cached)
-        program_to_cache(c, key, path);
+        program_to_cache(*prog, key, path, cache, clen);
     free(key);
     return 0;
+}
+
+/* c->cache from the programs' statuses, in the order built: one program's
+ * status alone, as before the programs were split; several named. */
+static void cache_summary(ob_cl *c)
+{
+    c->cache[0] = '\0';
+    for (int k = 0; k < c->nbuilt; k++)
+        for (int m = 0; m < NPROG_METRIC; m++)
+            for (int l = 0; l < 2; l++) {
+                const clprog *p = &c->prog[m][l];
+                if (p->state != 1 || p->order != k)
+                    continue;
+                const size_t had = strlen(c->cache);
+                if (c->nbuilt == 1)
+                    snprintf(c->cache, sizeof c->cache, "%s", p->cache);
+                else
+                    snprintf(c->cache + had, sizeof c->cache - had, "%s%s/%s: %s", k ? "; " : "",
+                             ob_metric_name((ob_metric)(OB_METRIC_RADIAL + m)), ob_cl_layout_name((ob_cl_layout)l),
+                             p->cache);
+            }
+}
+
+/* One launch of the new program in the shape runs make of it (item
+ * layout: radial and param records in groups of 32, the others one per
+ * group; group layout: one), so that a driver that compiles a kernel at
+ * its first launch (PoCL does, per group size) does it here, outside the
+ * time charged to the first jobs.  Its results are not used. */
+static void warm_up(ob_cl *c, ob_metric m, ob_cl_layout l)
+{
+    ob_bez base, approx;
+    const double line[2][2] = {{0.0, 0.0}, {1.0, 0.0}}, shifted[2][2] = {{0.0, 0.1}, {1.0, 0.1}};
+    ob_bez_from_points(&base, 1, line);
+    ob_bez_from_points(&approx, 1, shifted);
+    ob_measure_rec r = {&base, &approx, 0.1, m, 0.0};
+    ob_errval out;
+    const ob_cl_layout keep = c->layout;
+    c->layout = l;
+    ob_cl_measure_batch(c, &r, 1, OB_MIN_SAMPLES, &out);
+    c->layout = keep;
+}
+
+int ob_cl_prepare(ob_cl *c, ob_metric m, ob_cl_layout l, ob_err *err)
+{
+    char options[256];
+    if (!c || ob_cl_program_options(m, l, options, sizeof options) != 0) {
+        ob_fail(err, "no OpenCL program for the %s metric", ob_metric_name(m));
+        return -1;
+    }
+    clprog *p = &c->prog[m - OB_METRIC_RADIAL][l];
+    if (p->state == 1)
+        return 0;
+    if (p->state < 0) {  /* failed once: not again */
+        ob_fail(err, "%s", p->fail ? p->fail : "the program did not build");
+        return -1;
+    }
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    cl_int e;
+    if (build_program(c, c->src, options, &p->prog, p->cache, sizeof p->cache, err) != 0)
+        goto fail;
+    p->k = cl.clCreateKernel(p->prog, l == OB_CL_ITEMS ? "ob_measure_batch" : "ob_measure_groups", &e);
+    CL_CHECK(e);
+    if (l == OB_CL_GROUPS) {
+        /* the group's work-items share out a record's tables and samples: 64
+         * covers the 2 x 64 lane groups of the default 256 samples in one or
+         * two rounds; the kernel's own limit on this device may be lower
+         * (OBG_MAX in kernels/measure.cl is 256) */
+        size_t wg = 0;
+        CL_CHECK(cl.clGetKernelWorkGroupInfo(p->k, c->dev, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL));
+        p->group = wg < 64 ? (wg > 0 ? wg : 1) : 64;
+    }
+    p->state = 1;
+    p->order = c->nbuilt++;
+    warm_up(c, m, l);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    p->seconds = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+    cache_summary(c);
+    return 0;
+fail:
+    if (p->k)
+        cl.clReleaseKernel(p->k);
+    if (p->prog)
+        cl.clReleaseProgram(p->prog);
+    p->k = NULL;
+    p->prog = NULL;
+    p->state = -1;
+    free(p->fail);
+    p->fail = strdup(err->msg);
+    return -1;
 }
 
 int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err)
@@ -375,7 +543,6 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
     if (layout_set < 0)
         return -1;
     ob_cl *c = calloc(1, sizeof *c);
-    char *src = NULL;
     if (!c) {
         ob_fail(err, "out of memory");
         return -1;
@@ -423,6 +590,8 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
             ob_fail(err, "no OpenCL device with double precision (cl_khr_fp64)");
         goto fail;
     }
+    c->dev = dev;
+    cl.clGetDeviceInfo(dev, CL_DEVICE_VERSION, sizeof c->version - 1, c->version, NULL);
     /* the layout by the device unless the environment names one: a CPU
      * device runs a work-group's items in a loop on one core, where the
      * group layout only adds its barriers (0.8-0.9x the item layout on
@@ -436,36 +605,16 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
     /* profiling: the kernel's own time (ob_cl_wait), not the host's wait */
     c->q = cl.clCreateCommandQueue(c->ctx, dev, CL_QUEUE_PROFILING_ENABLE, &e);
     CL_CHECK(e);
-    src = ob_kernel_source(c->source, sizeof c->source);
-    if (!src) {
+    c->src = ob_kernel_source(c->source, sizeof c->source);
+    if (!c->src) {
         ob_fail(err, "cannot read the kernel sources metric_core.h and measure.cl in $OFFBENCH_KERNELS (%.300s)",
                 c->source);
         goto fail;
     }
-    c->kernel_hash = ob_kernel_hash(src);
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    if (build_program(c, dev, src, err) != 0)
-        goto fail;
-    c->k = cl.clCreateKernel(c->prog, "ob_measure_batch", &e);
-    CL_CHECK(e);
-    c->kg = cl.clCreateKernel(c->prog, "ob_measure_groups", &e);
-    CL_CHECK(e);
-    /* the group's work-items share out a record's tables and samples: 64
-     * covers the 2 x 64 lane groups of the default 256 samples in one or two
-     * rounds; the kernel's own limit on this device may be lower (OBG_MAX in
-     * kernels/measure.cl is 256) */
-    size_t wg = 0;
-    CL_CHECK(cl.clGetKernelWorkGroupInfo(c->kg, dev, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL));
-    c->group = wg < 64 ? (wg > 0 ? wg : 1) : 64;
-    free(src);
-    warm_up(c);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    c->build_s = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+    c->kernel_hash = ob_kernel_hash(c->src);
     *out = c;
     return 0;
 fail:
-    free(src);
     ob_cl_close(c);
     return -1;
 }
@@ -484,11 +633,13 @@ static void release_buffers(clslot *sl)
 /* The slot's events released (what was in flight is forgotten). */
 static void release_events(clslot *sl)
 {
-    if (sl->kernel)
-        cl.clReleaseEvent(sl->kernel);
+    for (int k = 0; k < sl->nk; k++)
+        if (sl->kernel[k])
+            cl.clReleaseEvent(sl->kernel[k]);
     if (sl->done)
         cl.clReleaseEvent(sl->done);
-    sl->kernel = sl->done = NULL;
+    sl->nk = 0;
+    sl->done = NULL;
 }
 
 static void slot_free(clslot *sl)
@@ -501,6 +652,7 @@ static void slot_free(clslot *sl)
     free(sl->h_adeg);
     free(sl->h_aoff);
     free(sl->h_soff);
+    free(sl->perm);
     free(sl->h_d);
     free(sl->h_stop);
     free(sl->h_ctrl);
@@ -517,16 +669,22 @@ void ob_cl_close(ob_cl *c)
         cl.clFinish(c->q);  /* nothing left in flight that writes the staging */
     for (int k = 0; k < OB_CL_SLOTS; k++)
         slot_free(&c->slot[k]);
-    if (c->k)
-        cl.clReleaseKernel(c->k);
-    if (c->kg)
-        cl.clReleaseKernel(c->kg);
-    if (c->prog)
-        cl.clReleaseProgram(c->prog);
+    for (int m = 0; m < NPROG_METRIC; m++)
+        for (int l = 0; l < 2; l++) {
+            clprog *p = &c->prog[m][l];
+            if (p->k)
+                cl.clReleaseKernel(p->k);
+            if (p->prog)
+                cl.clReleaseProgram(p->prog);
+            free(p->fail);
+        }
+    if (c->peak)
+        cl.clReleaseProgram(c->peak);
     if (c->q)
         cl.clReleaseCommandQueue(c->q);
     if (c->ctx)
         cl.clReleaseContext(c->ctx);
+    free(c->src);
     free(c);
 }
 
@@ -550,6 +708,12 @@ static int ensure_capacity(ob_cl *c, clslot *sl, size_t nrec, size_t nctrl, size
     cl_int e;
     if (nrec > sl->cap_rec) {
         size_t n = nrec + nrec / 2;
+        void *np = realloc(sl->perm, n * sizeof(int));
+        if (!np) {
+            ob_fail(err, "out of memory");
+            goto fail;
+        }
+        sl->perm = np;
         GROW(metric, h_metric, int, n, CL_MEM_READ_ONLY);
         GROW(bdeg, h_bdeg, int, n, CL_MEM_READ_ONLY);
         GROW(boff, h_boff, int, n, CL_MEM_READ_ONLY);
@@ -592,36 +756,59 @@ static size_t rec_scratch(const ob_cl *c, ob_metric m, int S)
     return c->layout == OB_CL_GROUPS ? 2 * (size_t)S : 0;
 }
 
-/* Enqueues the kernel of the layout over n records. */
-static int launch(ob_cl *c, const ob_measure_rec *recs, int n, cl_event *ev, ob_err *err)
+/* The program slot of metric m (0 .. NPROG_METRIC - 1), or -1: no sampled
+ * metric (measured as +inf, as the kernel did before the programs split). */
+static int prog_index(ob_metric m)
 {
+    return m >= OB_METRIC_RADIAL && m <= OB_METRIC_PARAM ? (int)m - OB_METRIC_RADIAL : -1;
+}
+
+/* Enqueues the program of metric m in the layout over staged records
+ * [lo, hi). */
+static int launch(ob_cl *c, clslot *sl, ob_metric m, int lo, int hi, int S, ob_err *err)
+{
+    clprog *p = &c->prog[prog_index(m)][c->layout];
+    cl_mem args[] = {sl->metric, sl->d,    sl->stop,    sl->bdeg, sl->boff, sl->adeg, sl->aoff,
+                     sl->ctrl,   sl->soff, sl->scratch, sl->err,  sl->tpar, sl->work};
+    CL_CHECK(cl.clSetKernelArg(p->k, 0, sizeof(int), &lo));
+    CL_CHECK(cl.clSetKernelArg(p->k, 1, sizeof(int), &hi));
+    CL_CHECK(cl.clSetKernelArg(p->k, 2, sizeof(int), &S));
+    for (cl_uint a = 0; a < sizeof args / sizeof *args; a++)
+        CL_CHECK(cl.clSetKernelArg(p->k, 3 + a, sizeof(cl_mem), &args[a]));
+    const size_t n = (size_t)(hi - lo);
+    cl_event *ev = &sl->kernel[sl->nk];
     if (c->layout == OB_CL_GROUPS) {
-        const size_t local = c->group, global = (size_t)n * local;
-        CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->kg, 1, NULL, &global, &local, 0, NULL, ev));
-        return 0;
+        const size_t local = p->group, global = n * local;
+        CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, p->k, 1, NULL, &global, &local, 0, NULL, ev));
+    } else {
+        /* A hausdorff or normal record is heavy (thousands of evaluations):
+         * one per work-group, so the device spreads them over all its
+         * compute units (a NULL local size let PoCL put a whole batch in one
+         * group, on one thread).  A radial or param record is light: groups
+         * of 32 amortize the group overhead. */
+        const int light = m == OB_METRIC_RADIAL || m == OB_METRIC_PARAM;
+        const size_t local = light ? 32 : 1, global = (n + local - 1) / local * local;
+        CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, p->k, 1, NULL, &global, &local, 0, NULL, ev));
     }
-    /* A hausdorff or normal record is heavy (thousands of evaluations): one
-     * per work-group, so the device spreads them over all its compute units (a
-     * NULL local size let PoCL put a whole batch in one group, on one thread).
-     * A radial or param record is light: groups of 32 amortize the group
-     * overhead. */
-    int light = 1;
-    for (int i = 0; i < n && light; i++)
-        light = recs[i].metric == OB_METRIC_RADIAL || recs[i].metric == OB_METRIC_PARAM;
-    const size_t local = light ? 32 : 1, global = ((size_t)n + local - 1) / local * local;
-    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, c->k, 1, NULL, &global, &local, 0, NULL, ev));
+    sl->nk++;
     return 0;
 fail:
     return -1;
 }
 
-/* The slot's staging filled from recs; 0, or -1 (too large, memory). */
-static int stage(ob_cl *c, clslot *sl, const ob_measure_rec *recs, int n, int S, size_t *pc_out, ob_err *err)
+/* The slot's staging filled from recs, metric by metric (radial, normal,
+ * hausdorff, param, then any other: sl->perm; lo[k] .. lo[k + 1] the
+ * records of program k); 0, or -1 (too large, memory). */
+static int stage(ob_cl *c, clslot *sl, const ob_measure_rec *recs, int n, int S, int lo[NPROG_METRIC + 2],
+                 size_t *pc_out, ob_err *err)
 {
     size_t nctrl = 0, nscr = 0;
+    int count[NPROG_METRIC + 1] = {0};
     for (int i = 0; i < n; i++) {
         nctrl += 3 * (size_t)(recs[i].base->deg + 1) + 3 * (size_t)(recs[i].approx->deg + 1);
         nscr += rec_scratch(c, recs[i].metric, S);
+        const int k = prog_index(recs[i].metric);
+        count[k < 0 ? NPROG_METRIC : k]++;
     }
     if (nctrl > (size_t)INT32_MAX || nscr > (size_t)INT32_MAX / 2) {
         ob_fail(err, "a batch too large for 32-bit offsets");
@@ -629,22 +816,33 @@ static int stage(ob_cl *c, clslot *sl, const ob_measure_rec *recs, int n, int S,
     }
     if (ensure_capacity(c, sl, (size_t)n, nctrl, nscr, err))
         return -1;
+    lo[0] = 0;
+    for (int k = 0; k <= NPROG_METRIC; k++)
+        lo[k + 1] = lo[k] + count[k];
+    int at[NPROG_METRIC + 1];
+    for (int k = 0; k <= NPROG_METRIC; k++)
+        at[k] = lo[k];
+    for (int i = 0; i < n; i++) { /* in order within each metric */
+        const int k = prog_index(recs[i].metric);
+        sl->perm[at[k < 0 ? NPROG_METRIC : k]++] = i;
+    }
     size_t pc = 0, ps = 0;
-    for (int i = 0; i < n; i++) {
-        const ob_bez *b = recs[i].base, *a = recs[i].approx;
-        sl->h_metric[i] = (int)recs[i].metric;
-        sl->h_d[i] = recs[i].d;
-        sl->h_stop[i] = recs[i].stop;
-        sl->h_bdeg[i] = b->deg;
-        sl->h_boff[i] = (int)pc;
+    for (int j = 0; j < n; j++) {
+        const ob_measure_rec *r = &recs[sl->perm[j]];
+        const ob_bez *b = r->base, *a = r->approx;
+        sl->h_metric[j] = (int)r->metric;
+        sl->h_d[j] = r->d;
+        sl->h_stop[j] = r->stop;
+        sl->h_bdeg[j] = b->deg;
+        sl->h_boff[j] = (int)pc;
         memcpy(sl->h_ctrl + pc, &b->h[0][0], 3 * (size_t)(b->deg + 1) * sizeof(double));
         pc += 3 * (size_t)(b->deg + 1);
-        sl->h_adeg[i] = a->deg;
-        sl->h_aoff[i] = (int)pc;
+        sl->h_adeg[j] = a->deg;
+        sl->h_aoff[j] = (int)pc;
         memcpy(sl->h_ctrl + pc, &a->h[0][0], 3 * (size_t)(a->deg + 1) * sizeof(double));
         pc += 3 * (size_t)(a->deg + 1);
-        sl->h_soff[i] = (int)ps;
-        ps += rec_scratch(c, recs[i].metric, S);
+        sl->h_soff[j] = (int)ps;
+        ps += rec_scratch(c, r->metric, S);
     }
     *pc_out = pc;
     return 0;
@@ -658,9 +856,14 @@ int ob_cl_submit(ob_cl *c, int slot, const ob_measure_rec *recs, int n, int samp
     clslot *sl = &c->slot[slot];
     if (sl->done)  /* a batch still in flight in this slot: its staging is in use */
         return -1;
+    /* the programs of the batch's metrics, built when first used */
+    for (int i = 0; i < n; i++)
+        if (prog_index(recs[i].metric) >= 0 && ob_cl_prepare(c, recs[i].metric, c->layout, err) != 0)
+            goto fail;
     const int S = ob_clamp_samples(samples);
     size_t pc = 0;
-    if (stage(c, sl, recs, n, S, &pc, err))
+    int lo[NPROG_METRIC + 2];
+    if (stage(c, sl, recs, n, S, lo, &pc, err))
         goto fail;
     const size_t ni = (size_t)n * sizeof(int), nd = (size_t)n * sizeof(double);
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->metric, CL_FALSE, 0, ni, sl->h_metric, 0, NULL, NULL));
@@ -672,20 +875,15 @@ int ob_cl_submit(ob_cl *c, int slot, const ob_measure_rec *recs, int n, int samp
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->aoff, CL_FALSE, 0, ni, sl->h_aoff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->soff, CL_FALSE, 0, ni, sl->h_soff, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueWriteBuffer(c->q, sl->ctrl, CL_FALSE, 0, pc * sizeof(double), sl->h_ctrl, 0, NULL, NULL));
-    cl_mem args[] = {sl->metric, sl->d,    sl->stop,    sl->bdeg, sl->boff, sl->adeg, sl->aoff,
-                     sl->ctrl,   sl->soff, sl->scratch, sl->err,  sl->tpar, sl->work};
-    cl_kernel k = c->layout == OB_CL_GROUPS ? c->kg : c->k;
-    CL_CHECK(cl.clSetKernelArg(k, 0, sizeof(int), &n));
-    CL_CHECK(cl.clSetKernelArg(k, 1, sizeof(int), &S));
-    for (cl_uint a = 0; a < sizeof args / sizeof *args; a++)
-        CL_CHECK(cl.clSetKernelArg(k, 2 + a, sizeof(cl_mem), &args[a]));
-    if (launch(c, recs, n, &sl->kernel, err))
-        goto fail;
+    for (int k = 0; k < NPROG_METRIC; k++)
+        if (lo[k + 1] > lo[k] && launch(c, sl, (ob_metric)(OB_METRIC_RADIAL + k), lo[k], lo[k + 1], S, err))
+            goto fail;
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, sl->err, CL_FALSE, 0, nd, sl->h_err, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, sl->tpar, CL_FALSE, 0, nd, sl->h_tpar, 0, NULL, NULL));
     CL_CHECK(cl.clEnqueueReadBuffer(c->q, sl->work, CL_FALSE, 0, nd, sl->h_work, 0, NULL, &sl->done));
     CL_CHECK(cl.clFlush(c->q));
     sl->n = n;
+    sl->nother = lo[NPROG_METRIC + 1] - lo[NPROG_METRIC];
     return 0;
 fail:
     /* what was enqueued finishes before the staging is used again */
@@ -703,17 +901,25 @@ int ob_cl_wait(ob_cl *c, int slot, ob_errval *out, double *device_ns)
         return -1;
     clslot *sl = &c->slot[slot];
     CL_CHECK(cl.clWaitForEvents(1, &sl->done));
-    cl_ulong t0 = 0, t1 = 0;
-    if (sl->kernel &&
-        cl.clGetEventProfilingInfo(sl->kernel, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL) == CL_SUCCESS &&
-        cl.clGetEventProfilingInfo(sl->kernel, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL) == CL_SUCCESS &&
-        t1 > t0)
-        *device_ns = (double)(t1 - t0);
+    for (int k = 0; k < sl->nk; k++) {
+        cl_ulong t0 = 0, t1 = 0;
+        if (sl->kernel[k] &&
+            cl.clGetEventProfilingInfo(sl->kernel[k], CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL) == CL_SUCCESS &&
+            cl.clGetEventProfilingInfo(sl->kernel[k], CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL) == CL_SUCCESS &&
+            t1 > t0)
+            *device_ns += (double)(t1 - t0);
+    }
     release_events(sl);
-    for (int i = 0; i < sl->n; i++) {
-        out[i].err = sl->h_err[i];
-        out[i].t = sl->h_tpar[i];
-        out[i].work = sl->h_work[i];
+    for (int j = 0; j < sl->n; j++) {
+        ob_errval *o = &out[sl->perm[j]];
+        if (j >= sl->n - sl->nother) { /* no sampled metric: no program measured it */
+            o->err = INFINITY;
+            o->t = o->work = 0.0;
+            continue;
+        }
+        o->err = sl->h_err[j];
+        o->t = sl->h_tpar[j];
+        o->work = sl->h_work[j];
     }
     return 0;
 fail:
@@ -721,6 +927,127 @@ fail:
     release_events(sl);
     ob_info("OpenCL batch of %d records: %s; measuring it on the CPU", sl->n, why.msg);
     return -1;
+}
+
+/* ---- the device's fp64 peak ------------------------------------------- */
+
+/* Independent chains of mad (a multiply and an add: 2 flops, fused or not,
+ * as the device does it) per work-item: bound by the multiply-add units,
+ * not by latency.  Two kernels, the faster counts: 8 chains of doubles (a
+ * GPU runs each work-item on one lane, its many work-items fill it) and 8
+ * chains of double8 (a CPU device's vector units: PoCL reached 9 GFLOP/s
+ * with the scalar chains on 2 cores, 45-60 with these).  The sums are
+ * written so that no chain is dead code. */
+static const char PEAK_SRC[] =
+    "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n"
+    "#define PEAK(name, T, SUM)                                                      \\\n"
+    "__kernel void name(const int iters, const double a, const double b, __global double *out) \\\n"
+    "{                                                                               \\\n"
+    "    const int g = get_global_id(0);                                             \\\n"
+    "    const T x = (T)(1.0 + 1e-3 * (g % 97));                                     \\\n"
+    "    T x0 = x, x1 = x + 0.01, x2 = x + 0.02, x3 = x + 0.03;                      \\\n"
+    "    T x4 = x + 0.04, x5 = x + 0.05, x6 = x + 0.06, x7 = x + 0.07;               \\\n"
+    "    for (int i = 0; i < iters; i++) {                                           \\\n"
+    "        x0 = mad(a, x0, b); x1 = mad(a, x1, b); x2 = mad(a, x2, b);             \\\n"
+    "        x3 = mad(a, x3, b); x4 = mad(a, x4, b); x5 = mad(a, x5, b);             \\\n"
+    "        x6 = mad(a, x6, b); x7 = mad(a, x7, b);                                 \\\n"
+    "    }                                                                           \\\n"
+    "    const T s = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;                          \\\n"
+    "    out[g] = SUM;                                                               \\\n"
+    "}\n"
+    "PEAK(ob_fma_peak1, double, s)\n"
+    "PEAK(ob_fma_peak8, double8, s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7)\n";
+enum { PEAK_CHAINS = 8 };
+
+/* One launch of a peak kernel: its own time, seconds (profiling), or -1
+ * after err. */
+static double peak_launch(ob_cl *c, cl_kernel k, cl_mem buf, size_t global, size_t local, int iters, ob_err *err)
+{
+    const double a = 0.999999, b = 1e-7;
+    cl_event ev = NULL;
+    cl_ulong t0 = 0, t1 = 0;
+    CL_CHECK(cl.clSetKernelArg(k, 0, sizeof(int), &iters));
+    CL_CHECK(cl.clSetKernelArg(k, 1, sizeof(double), &a));
+    CL_CHECK(cl.clSetKernelArg(k, 2, sizeof(double), &b));
+    CL_CHECK(cl.clSetKernelArg(k, 3, sizeof(cl_mem), &buf));
+    CL_CHECK(cl.clEnqueueNDRangeKernel(c->q, k, 1, NULL, &global, &local, 0, NULL, &ev));
+    CL_CHECK(cl.clWaitForEvents(1, &ev));
+    CL_CHECK(cl.clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL));
+    CL_CHECK(cl.clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL));
+    cl.clReleaseEvent(ev);
+    return t1 > t0 ? 1e-9 * (double)(t1 - t0) : 1e-9;
+fail:
+    if (ev)
+        cl.clReleaseEvent(ev);
+    return -1.0;
+}
+
+/* One peak kernel (W doubles a chain) timed: the flops and seconds of a
+ * launch of about target_s seconds, after an untimed first launch (a
+ * driver may compile there) and probes that size it.  0, or -1 after err. */
+static int peak_kernel(ob_cl *c, const char *name, int W, double target_s, double *flops, double *seconds,
+                       ob_err *err)
+{
+    cl_kernel k = NULL;
+    cl_mem buf = NULL;
+    cl_int e;
+    k = cl.clCreateKernel(c->peak, name, &e);
+    CL_CHECK(e);
+    /* enough work-items to fill every compute unit many times over */
+    cl_uint cu = 1;
+    cl.clGetDeviceInfo(c->dev, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof cu, &cu, NULL);
+    size_t wg = 0;
+    CL_CHECK(cl.clGetKernelWorkGroupInfo(k, c->dev, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL));
+    const size_t local = wg >= 128 ? 128 : wg > 0 ? wg : 1;
+    const size_t global = local * (size_t)(cu > 0 ? cu : 1) * (c->gpu ? 64 : 4);
+    buf = cl.clCreateBuffer(c->ctx, CL_MEM_WRITE_ONLY, global * sizeof(double), NULL, &e);
+    CL_CHECK(e);
+    int iters = 64;
+    if (peak_launch(c, k, buf, global, local, iters, err) < 0)
+        goto fail;
+    double t = peak_launch(c, k, buf, global, local, iters, err);
+    while (t >= 0 && t < 0.05 * target_s && iters < (1 << 26)) {
+        iters *= 8;
+        t = peak_launch(c, k, buf, global, local, iters, err);
+    }
+    if (t < 0)
+        goto fail;
+    const double want = iters * fmin(64.0, fmax(1.0, target_s / t));
+    iters = want > (double)(1 << 30) ? (1 << 30) : (int)want;
+    t = peak_launch(c, k, buf, global, local, iters, err);
+    if (t < 0)
+        goto fail;
+    *flops = 2.0 * PEAK_CHAINS * W * (double)iters * (double)global;
+    *seconds = t;
+    cl.clReleaseMemObject(buf);
+    cl.clReleaseKernel(k);
+    return 0;
+fail:
+    if (buf)
+        cl.clReleaseMemObject(buf);
+    if (k)
+        cl.clReleaseKernel(k);
+    return -1;
+}
+
+int ob_cl_fma_peak(ob_cl *c, double target_s, double *flops, double *seconds, ob_err *err)
+{
+    *flops = *seconds = 0.0;
+    if (!c) {
+        ob_fail(err, "no OpenCL device");
+        return -1;
+    }
+    char cache[600];
+    if (!c->peak && build_program(c, PEAK_SRC, CL_STD, &c->peak, cache, sizeof cache, err) != 0)
+        return -1;
+    double f[2], s[2];
+    if (peak_kernel(c, "ob_fma_peak1", 1, target_s, &f[0], &s[0], err) != 0 ||
+        peak_kernel(c, "ob_fma_peak8", 8, target_s, &f[1], &s[1], err) != 0)
+        return -1;
+    const int best = f[1] / s[1] > f[0] / s[0];
+    *flops = f[best];
+    *seconds = s[best];
+    return 0;
 }
 
 int ob_cl_measure_batch(void *ctx, const ob_measure_rec *recs, int n, int samples, ob_errval *out)

@@ -27,12 +27,14 @@ int ob_cl_loader_status(char *msg, size_t len);
 
 /* Purpose: open the first OpenCL device that supports double precision and
  *          whose "PLATFORM DEVICE" name contains device_substr (NULL: any),
- *          a GPU or an accelerator only when gpu_only is nonzero,
+ *          a GPU or an accelerator only when gpu_only is nonzero, and
  *          load kernels/measure.cl with kernels/metric_core.h prepended (the
- *          copy compiled in, or $OFFBENCH_KERNELS: kernsrc.h) and build it.
+ *          copy compiled in, or $OFFBENCH_KERNELS: kernsrc.h).  No program
+ *          is built yet: each metric's, in each layout, is built when first
+ *          used (ob_cl_prepare; a batch prepares its records' metrics).
  * Errors:  returns 0; -1 with the reason in err->msg: no loader, no platform, no
- *          matching device, no fp64, a failing call (named), or the build log
- *          of a failed build. */
+ *          matching device, no fp64, a failing call (named), or kernel
+ *          sources that cannot be read. */
 int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err);
 
 /* Always safe to call (NULL included). */
@@ -44,9 +46,12 @@ const char *ob_cl_device(const ob_cl *cl);
 const char *ob_cl_driver(const ob_cl *cl);
 const char *ob_cl_source(const ob_cl *cl);   /* where the kernel text came from */
 uint64_t ob_cl_kernel_hash(const ob_cl *cl); /* FNV-1a of that text (kernsrc.h) */
+/* The seconds of every program build so far (ob_cl_builds), summed. */
 double ob_cl_build_seconds(const ob_cl *cl);
-/* What the program binary cache did at open (clcache.h): "hit: FILE",
- * "miss: WHY; built and stored" (or why it was not stored), or "off (WHY)". */
+/* What the program binary cache did (clcache.h): for one program built,
+ * "hit: FILE", "miss: WHY; built and stored" (or why it was not stored), or
+ * "off (WHY)"; for several, "METRIC/LAYOUT: that; ..." in the order built;
+ * "" before any. */
 const char *ob_cl_cache_status(const ob_cl *cl);
 /* 1 when the device is a GPU or an accelerator (CL_DEVICE_TYPE). */
 int ob_cl_is_gpu(const ob_cl *cl);
@@ -74,8 +79,66 @@ void ob_cl_set_layout(ob_cl *cl, ob_cl_layout layout);
 ob_cl_layout ob_cl_get_layout(const ob_cl *cl);
 const char *ob_cl_layout_name(ob_cl_layout layout); /* "groups", "items" */
 /* Work-items per group in the group layout (the device's limit for the
- * kernel, at most 64). */
+ * kernel, at most 64; the least over the group-layout programs built so
+ * far, 0 before any). */
 int ob_cl_group_size(const ob_cl *cl);
+
+/* ---- the programs: one per metric and layout, built when first used ----
+ *
+ * A program holds one sampled metric's code in one layout's kernel
+ * (kernels/measure.cl built with -D OBC_ONLY_<METRIC> -D OBC_ONLY_<LAYOUT>):
+ * the whole kernel with every metric in both layouts took NVIDIA's compiler
+ * about three minutes (issue 40; kernels/README.md "Build time").  Each is
+ * kept in the binary cache under its own key (the options are in it). */
+
+/* Purpose: the build options of the program of sampled metric m in layout
+ *          l into buf: "-cl-std=CL1.2 -D OBC_ONLY_<METRIC> -D OBC_ONLY_<LAYOUT>".
+ * Returns: 0; -1 when m is no sampled metric (bound). */
+int ob_cl_program_options(ob_metric m, ob_cl_layout l, char *buf, size_t len);
+
+/* Purpose: the binary cache's key (clcache.h) of a program: the platform,
+ *          device, driver and device version, the build options and the
+ *          source (its length and FNV-1a hash), one "name=value" a line.
+ * Returns: a malloc'ed text, NULL without memory. */
+char *ob_cl_program_key(const char *platform, const char *device, const char *driver, const char *device_version,
+                        const char *options, const char *src);
+
+/* Purpose: build the program of sampled metric m in layout l, from the
+ *          binary cache when it holds it, and launch it once (a driver that
+ *          compiles at the first launch, as PoCL does, does it here); nothing
+ *          when it is built already.  A run prepares its metric before any
+ *          timed work (select.h); a batch prepares its records' metrics.
+ * Returns: 0; -1 with the reason in err->msg (the build log of a failed
+ *          build, which is not tried again; m no sampled metric). */
+int ob_cl_prepare(ob_cl *cl, ob_metric m, ob_cl_layout l, ob_err *err);
+
+/* One program's build, for the build report (meta.json, bench). */
+typedef struct {
+    ob_metric metric;
+    ob_cl_layout layout;
+    double seconds;      /* the build, or the load from the cache, and its first launch */
+    char cache[600];     /* what the binary cache did, as ob_cl_cache_status says it */
+} ob_cl_build;
+
+/* Purpose: the programs built so far, in the order built, into out[0 ..
+ *          max - 1].  Returns their number (all of them, even beyond max). */
+int ob_cl_builds(const ob_cl *cl, ob_cl_build *out, int max);
+
+/* Purpose: the bytes a record of base degree nb and approximation degree
+ *          na moves: to the device (its control points, degrees, offsets,
+ *          d, stop and metric) into *to, back from it (error, parameter,
+ *          work) into *back; scratch stays on the device. */
+void ob_cl_record_bytes(int nb, int na, size_t *to, size_t *back);
+
+/* Purpose: the device's double-precision peak: kernels of their own (their
+ *          own program, cached), many work-items each running 8 independent
+ *          chains of multiply-adds (mad), counted as 2 flops each, on
+ *          doubles and on double8 (a CPU device's vectors), the faster
+ *          counting; each launched once untimed (the first launch), then
+ *          sized to run about target_s seconds, timed by its profiling event.
+ * Outputs: *flops counted, *seconds the kernel's own time.
+ * Returns: 0; -1 with the reason in err->msg. */
+int ob_cl_fma_peak(ob_cl *cl, double target_s, double *flops, double *seconds, ob_err *err);
 
 /* The driver's batch backend (ob_batch_fn): ctx is an ob_cl*.  Submits in
  * slot 0 and waits. */

@@ -12,8 +12,9 @@
  * a GPU or accelerator with fp64 when there is one (or the device --device
  * names), else the CPU backend, and says why in meta.json (on a CPU, PoCL
  * measures the same jobs at 0.6-0.8x the CPU backend's speed, issue 35);
- * cpu never tries.  The kernel is built here, once, before any timed work. */
-int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_cl **cl)
+ * cpu never tries.  The programs of the run's metrics are built here, once,
+ * before any timed work (one per metric and layout, clrt.h). */
+int ob_open_backend(ob_backend kind, const char *device, unsigned metrics, ob_backend_info *b, ob_cl **cl)
 {
     b->kernel_hash = ob_embedded_kernel_hash();
     if (kind == OB_BACKEND_CPU) {
@@ -27,7 +28,13 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
         return -1;
     }
     const int gpu_only = kind == OB_BACKEND_AUTO && !device;
-    if (ob_cl_open(device, gpu_only, cl, &err) != 0) {
+    int rc = ob_cl_open(device, gpu_only, cl, &err);
+    for (int m = 0; rc == 0 && m < OB_METRIC_COUNT; m++)
+        if ((metrics & (1u << m)) && m != OB_METRIC_BOUND)
+            rc = ob_cl_prepare(*cl, (ob_metric)m, ob_cl_get_layout(*cl), &err);
+    if (rc != 0) {
+        ob_cl_close(*cl);
+        *cl = NULL;
         if (kind == OB_BACKEND_OPENCL || device) {
             ob_error("--backend opencl: %s", err.msg);
             return -1;
@@ -44,12 +51,15 @@ int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_
     b->kernel_hash = ob_cl_kernel_hash(*cl);
     b->build_seconds = ob_cl_build_seconds(*cl);
     snprintf(b->cache, sizeof b->cache, "%s", ob_cl_cache_status(*cl));
+    b->nbuilds = ob_cl_builds(*cl, b->builds, (int)(sizeof b->builds / sizeof *b->builds));
+    if (b->nbuilds > (int)(sizeof b->builds / sizeof *b->builds))
+        b->nbuilds = (int)(sizeof b->builds / sizeof *b->builds);
     snprintf(b->layout, sizeof b->layout, "%s", ob_cl_layout_name(ob_cl_get_layout(*cl)));
     b->group_size = ob_cl_get_layout(*cl) == OB_CL_GROUPS ? ob_cl_group_size(*cl) : 1;
     b->gpu = ob_cl_is_gpu(*cl);
-    ob_info("OpenCL %s / %s, kernels from %s built in %.2f s (binary cache %.4s), layout %s (%d work-item%s "
-            "per record)", b->platform, b->device, b->kernels, b->build_seconds, b->cache, b->layout,
-            b->group_size, b->group_size == 1 ? "" : "s");
+    ob_info("OpenCL %s / %s, kernels from %s: %d program%s built in %.2f s (binary cache %.4s), layout %s (%d "
+            "work-item%s per record)", b->platform, b->device, b->kernels, b->nbuilds, b->nbuilds == 1 ? "" : "s",
+            b->build_seconds, b->cache, b->layout, b->group_size, b->group_size == 1 ? "" : "s");
     return 0;
 }
 

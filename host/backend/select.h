@@ -20,21 +20,25 @@ typedef struct {
     char layout[16];             /* the kernel's layout: groups or items (clrt.h) */
     int group_size;              /* work-items per record in the group layout */
     int gpu;                     /* the device is a GPU or an accelerator */
-    double build_seconds;
+    double build_seconds;        /* every program built at open, summed */
     char cache[600];             /* the program binary cache (ob_cl_cache_status) */
+    ob_cl_build builds[8];       /* the programs built at open: the run's metrics in its layout */
+    int nbuilds;
     long fallbacks;              /* batches the OpenCL backend gave back to the CPU */
     char why_cpu[512];           /* with auto: why OpenCL was not used */
 } ob_backend_info;
 
 /* Purpose: open the backend a run asks for (--backend kind, --device
- *          substring or NULL); the kernel is built here, once, before any
- *          timed work.
+ *          substring or NULL) and build the programs of the metrics it
+ *          measures (metrics: a set of 1u << ob_metric; only the sampled
+ *          ones have one) in the layout it runs, here, once, before any
+ *          timed work: a run builds only what it uses (clrt.h).
  * Outputs: *cl, or NULL when the CPU measures; *b: what and why.
  * Returns: 0; -1 after ob_error() when OpenCL was required (kind opencl, or
- *          a device named) and cannot start, or $OFFBENCH_CL_LAYOUT is not a
- *          layout (unless kind is cpu).  auto falls back to the CPU and says
- *          why in b->why_cpu. */
-int ob_open_backend(ob_backend kind, const char *device, ob_backend_info *b, ob_cl **cl);
+ *          a device named) and cannot start or build, or $OFFBENCH_CL_LAYOUT
+ *          is not a layout (unless kind is cpu).  auto falls back to the CPU
+ *          and says why in b->why_cpu. */
+int ob_open_backend(ob_backend kind, const char *device, unsigned metrics, ob_backend_info *b, ob_cl **cl);
 
 /* Purpose: plug an opened OpenCL backend into a driver run's hooks (the
  *          batch measurer; batches given back counted in b->fallbacks).

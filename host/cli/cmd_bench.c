@@ -1,5 +1,5 @@
 /*
- * cmd_bench.c - `./offbench bench [--out DIR] [--quick]`: the sampling engine
+ * cmd_bench.c - `./offbench bench [--out DIR] [--quick] [--kernels] [--device NAME]`: the sampling engine
  * and whole runs, every figure measured in this one run and reported as
  * ratios (OpenCL vs CPU, 1 vs N threads), never compared with numbers from
  * elsewhere.  Writes DIR/bench.csv: what,backend,threads,items,seconds,rate,unit.
@@ -9,19 +9,45 @@
  *                    double-precision rate, 1 thread and all threads
  *   fma_vector       the same with the widest vector FMA the CPU has (AVX-512
  *                    or AVX2): the machine's peak
+ *   cl_build/<metric>/<layout>
+ *                    the OpenCL program of each sampled metric in each layout
+ *                    (one each, clrt.h): seconds to build it (or load it from
+ *                    the binary cache) and launch it once; the backend column
+ *                    says what the cache did: cache-hit, cache-miss, cache-off
+ *   kernel_build     those summed
+ *   cl_fma_peak      the OpenCL device's double-precision peak, by a kernel of
+ *                    its own (independent mad chains on many work-items,
+ *                    counted 2 flops each, its own time from its profiling
+ *                    event, a warm-up launch untimed); the backend column is
+ *                    the device's name
  *   samples/<metric> a fixed batch of records (random convex cubics and their
  *                    Cobb approximations at d = +-0.1), S samples each, measured
  *                    by the CPU path with 1 and N threads and by the OpenCL
  *                    kernel in both layouts, a work-group per record (rows
  *                    "opencl-groups") and a work-item per record
  *                    ("opencl-items"), and as "opencl" the layout runs use on
- *                    the device (after a warm-up launch, build time apart)
+ *                    the device (after a warm-up launch, build time apart).
+ *                    On a GPU or accelerator the batch is one launch of at
+ *                    least 1e7 samples (OB_BENCH_GPU_SAMPLES); else 2,000
+ *                    records (200 with --quick), and 1 thread measures at most
+ *                    2,000 of them
  *   gflops/<metric>  the same as double-precision operations per second: the
- *                    curve evaluations the metric makes (counted on the CPU
- *                    pass; the kernel runs the same code) times their operation
- *                    count 4.5 n(n+1) + 30 (de Casteljau on homogeneous points,
- *                    derivatives, quotient rule).  A lower bound: the rest of
- *                    the metric's arithmetic is not counted.
+ *                    work the metric core counts for itself (OBC_OPS_*: curve
+ *                    evaluations weighted by degree, distances to samples,
+ *                    chords and blocks; counted on the CPU pass, the kernel
+ *                    runs the same code and counts the same).  A lower bound:
+ *                    the rest of the metric's arithmetic is not counted.
+ *   cl_peak_fraction/<metric>
+ *                    those flops over the kernel's own time (profiling
+ *                    events), as a fraction of cl_fma_peak (rate; unit
+ *                    of_peak), per layout
+ *   samples_per_record/<metric>, ops_per_sample/<metric>,
+ *   bytes_per_record/<metric>, bytes_back_per_record/<metric>
+ *                    the work counts (rate column): S; the counted flops per
+ *                    sample; the bytes a record moves to the device and back
+ *                    (ob_cl_record_bytes: control points, degrees, offsets,
+ *                    d, stop, metric; error, parameter, work)
+ *   With --kernels, only the figures above: no whole runs.
  *   run              a whole run (published curves, tiller/cobb/ahn, hausdorff,
  *                    4 tolerances) with 1 and N threads: jobs per second
  *   random_run       all methods at 5 tolerances on a fixed random set (--random
@@ -83,12 +109,22 @@ typedef struct {
     FILE *csv;
 } bench_out;
 
+/* A row whose rate is given (not items / seconds): a count or a fraction. */
+static void row_rate(bench_out *b, const char *what, const char *backend, int threads, double items, double seconds,
+                     double rate, const char *unit)
+{
+    fprintf(b->csv, "%s,%s,%d,%.0f,%.6f,%.6g,%s\n", what, backend, threads, items, seconds, rate, unit);
+}
+
 static void row(bench_out *b, const char *what, const char *backend, int threads, double items, double seconds,
                 const char *unit)
 {
-    double rate = seconds > 0 ? items / seconds : 0.0;
-    fprintf(b->csv, "%s,%s,%d,%.0f,%.6f,%.6g,%s\n", what, backend, threads, items, seconds, rate, unit);
+    row_rate(b, what, backend, threads, items, seconds, seconds > 0 ? items / seconds : 0.0, unit);
 }
+
+/* Samples per launch of the kernel benchmark on a GPU or an accelerator:
+ * enough to fill it (issue 40). */
+#define OB_BENCH_GPU_SAMPLES 1e7
 
 /* ---- FMA peak ---------------------------------------------------------- */
 
@@ -373,20 +409,28 @@ static double whole_run(int threads, const ob_curveset *set, const ob_driver_opt
 }
 
 typedef struct {
-    const char *out;
-    int quick;
+    const char *out, *device;
+    int quick, kernels;
 } bench_args;
 
 static const ob_flag bench_flags[] = {
     {"out", "DIR", "output directory (default out/bench)", 0, OB_FLAG_ONCE},
     {"quick", NULL, "a tenth of the records (a smoke test of the figures)", 1, OB_FLAG_ONCE},
+    {"kernels", NULL, "only the peaks, the OpenCL builds and each metric's samples (no whole runs)", 2,
+     OB_FLAG_ONCE},
+    {"device", "NAME", "the OpenCL device whose name contains NAME (default: the first with fp64)", 3,
+     OB_FLAG_ONCE},
 };
 
 static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
 {
     bench_args *a = ctx;
-    if (id == 1) {
-        a->quick = 1;
+    if (id == 1 || id == 2) {
+        *(id == 1 ? &a->quick : &a->kernels) = 1;
+        return 0;
+    }
+    if (id == 3) {
+        a->device = v;
         return 0;
     }
     return ob_cli_apply_dir(&a->out, id, opt, v);
@@ -416,26 +460,84 @@ static void bench_peaks(bench_out *b, int N, double peak[2], double *vpeak)
 
 }
 
-/* The OpenCL backend, or NULL (said on stdout). */
-static ob_cl *bench_open_cl(bench_out *b)
+/* The sampled metrics the bench measures. */
+static const ob_metric bench_mets[4] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF, OB_METRIC_PARAM};
+
+/* The OpenCL backend with every metric's program built in both layouts
+ * (cl_build rows), or NULL (said on stdout). */
+static ob_cl *bench_open_cl(bench_out *b, const char *device)
 {
     ob_cl *cl = NULL;
     ob_err err;
-    if (ob_cl_open(NULL, 0, &cl, &err) != 0) {
+    if (ob_cl_open(device, 0, &cl, &err) != 0) {
         printf("OpenCL: not available (%s); its rows are missing\n", err.msg);
-        cl = NULL;
-    } else {
-        printf("OpenCL: %s / %s, kernel built in %.2f s (not in any timing below)\n", ob_cl_platform(cl),
-               ob_cl_device(cl), ob_cl_build_seconds(cl));
-        row(b, "kernel_build", "opencl", 0, 1, ob_cl_build_seconds(cl), "builds/s");
+        return NULL;
     }
-
+    for (int lay = 0; lay < 2 && !ob_stop_signal(); lay++)
+        for (int mi = 0; mi < 4 && !ob_stop_signal(); mi++)
+            if (ob_cl_prepare(cl, bench_mets[mi], lay ? OB_CL_ITEMS : OB_CL_GROUPS, &err) != 0) {
+                printf("OpenCL: %s; its rows are missing\n", err.msg);
+                ob_cl_close(cl);
+                return NULL;
+            }
+    ob_cl_build rep[16];
+    const int n = ob_cl_builds(cl, rep, 16);
+    printf("OpenCL: %s / %s: %d programs (a metric in a layout each) built in %.2f s (not in any timing below):\n",
+           ob_cl_platform(cl), ob_cl_device(cl), n, ob_cl_build_seconds(cl));
+    for (int i = 0; i < n && i < 16; i++) {
+        char what[64];
+        snprintf(what, sizeof what, "cl_build/%s/%s", ob_metric_name(rep[i].metric), ob_cl_layout_name(rep[i].layout));
+        const char *how = strncmp(rep[i].cache, "hit", 3) == 0 ? "cache-hit"
+                          : strncmp(rep[i].cache, "off", 3) == 0 ? "cache-off" : "cache-miss";
+        row(b, what, how, 0, 1, rep[i].seconds, "builds/s");
+        printf("  %-28s %7.2f s  %s\n", what, rep[i].seconds, rep[i].cache);
+    }
+    row(b, "kernel_build", "opencl", 0, n, ob_cl_build_seconds(cl), "builds/s");
     return cl;
 }
 
-/* The sampling engine, per metric: R records of S samples on the CPU (1 and
- * N threads) and with OpenCL (cl, or NULL); 0, or -1 after ob_error(). */
-static int bench_metrics(bench_out *b, ob_cl *cl, int R, int S, int N, const double peak[2], double vpeak)
+/* The OpenCL device's double-precision peak (cl_fma_peak, the device by
+ * name), flop/s; 0 when it could not be measured (said on stdout). */
+static double bench_cl_peak(bench_out *b, ob_cl *cl, int quick)
+{
+    double fl = 0.0, secs = 0.0;
+    ob_err err;
+    if (ob_cl_fma_peak(cl, quick ? 0.1 : 0.5, &fl, &secs, &err) != 0 || secs <= 0.0) {
+        printf("OpenCL fp64 peak: not measured (%s)\n", err.msg);
+        return 0.0;
+    }
+    char dev[256];  /* a CSV field: no commas */
+    snprintf(dev, sizeof dev, "%s", ob_cl_device(cl));
+    for (char *p = dev; *p; p++)
+        if (*p == ',' || *p == '\n' || *p == '"')
+            *p = ' ';
+    row(b, "cl_fma_peak", dev, 0, fl, secs, "flop/s");
+    printf("OpenCL fp64 peak (mad chains, counted 2 flops each), %s: %.2f GFLOP/s\n", ob_cl_device(cl),
+           fl / secs / 1e9);
+    return fl / secs;
+}
+
+/* One OpenCL batch of the records in layout l: host wall seconds (*wall)
+ * and the kernels' own time (*kern, profiling events; the wall when the
+ * driver gives none).  0, or -1 when the batch failed. */
+static int cl_timed(ob_cl *cl, const ob_measure_rec *recs, int R, int S, ob_errval *out, double *wall, double *kern)
+{
+    double dev_ns = 0.0;
+    ob_cl_measure_batch(cl, recs, 8 < R ? 8 : R, S, out);  /* warm-up: buffers, first launch */
+    const double t0 = now_s();
+    if (ob_cl_submit(cl, 0, recs, R, S) != 0 || ob_cl_wait(cl, 0, out, &dev_ns) != 0)
+        return -1;
+    *wall = now_s() - t0;
+    *kern = dev_ns > 0 ? 1e-9 * dev_ns : *wall;
+    return 0;
+}
+
+/* The sampling engine, per metric: R records of S samples on the CPU (1
+ * thread on the first R1 of them, N threads on all) and with OpenCL (cl, or
+ * NULL; clpeak its fp64 peak, 0 unknown), and the work counts; 0, or -1
+ * after ob_error(). */
+static int bench_metrics(bench_out *b, ob_cl *cl, int R, int R1, int S, int N, const double peak[2], double vpeak,
+                         double clpeak)
 {
     ob_bez *base = malloc((size_t)R * sizeof *base), *approx = malloc((size_t)R * sizeof *approx);
     ob_measure_rec *recs = malloc((size_t)R * sizeof *recs);
@@ -446,46 +548,56 @@ static int bench_metrics(bench_out *b, ob_cl *cl, int R, int S, int N, const dou
         rc = -1;
         goto out;
     }
-    const ob_metric mets[3] = {OB_METRIC_RADIAL, OB_METRIC_NORMAL, OB_METRIC_HAUSDORFF};
-    for (int mi = 0; mi < 3 && !ob_stop_signal(); mi++) {
-        const ob_metric m = mets[mi];
+    if (cl)
+        printf("OpenCL batches: %d records of %d samples, %.3g samples a launch%s\n", R, S, (double)R * S,
+               ob_cl_is_gpu(cl) ? " (a GPU: at least 1e7)" : "");
+    for (int mi = 0; mi < 4 && !ob_stop_signal(); mi++) {
+        const ob_metric m = bench_mets[mi];
+        const char *mn = ob_metric_name(m);
         char what[64];
-        snprintf(what, sizeof what, "samples/%s", ob_metric_name(m));
+        snprintf(what, sizeof what, "samples/%s", mn);
         make_batch(R, base, approx, recs, m);
         cpu_batch(recs, 8, S, o1, 1);  /* warm-up */
         double t0 = now_s();
-        cpu_batch(recs, R, S, o1, 1);
+        cpu_batch(recs, R1, S, o1, 1);
         double c1 = now_s() - t0;
-        double flops = 0.0;  /* as the metric core counts them */
-        for (int i = 0; i < R; i++)
-            flops += o1[i].work;
         t0 = now_s();
         cpu_batch(recs, R, S, o1, N);
         double cN = now_s() - t0;
-        row(b, what, "cpu", 1, (double)R * S, c1, "samples/s");
+        double flops = 0.0;  /* as the metric core counts them */
+        size_t to = 0, back = 0;
+        for (int i = 0; i < R; i++) {
+            flops += o1[i].work;
+            size_t t, bk;
+            ob_cl_record_bytes(recs[i].base->deg, recs[i].approx->deg, &t, &bk);
+            to += t;
+            back += bk;
+        }
+        row(b, what, "cpu", 1, (double)R1 * S, c1, "samples/s");
         row(b, what, "cpu", N, (double)R * S, cN, "samples/s");
-        printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", what, R * S / c1, R * S / cN, N,
-               c1 / cN);
-        char gw[64];
-        snprintf(gw, sizeof gw, "gflops/%s", ob_metric_name(m));
+        printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", what, R1 * S / c1, R * S / cN, N,
+               (R1 * S / c1) > 0 ? (R * S / cN) / (R1 * S / c1) : 0.0);
+        char gw[64], wk[64];
+        snprintf(gw, sizeof gw, "gflops/%s", mn);
         row(b, gw, "cpu", N, flops, cN, "flop/s");
         double gbest = flops / cN;
         /* both layouts of the kernel (rows "opencl-groups", "opencl-items"),
          * and as "opencl" the one runs use on this device */
         const ob_cl_layout runs_use = ob_cl_get_layout(cl);
-        for (int lay = 0; cl && lay < 2; lay++) {
+        char share[2][96] = {"", ""};
+        for (int lay = 0; cl && lay < 2 && !ob_stop_signal(); lay++) {
             const ob_cl_layout l = lay ? OB_CL_ITEMS : OB_CL_GROUPS;
             char bk[32];
             snprintf(bk, sizeof bk, "opencl-%s", ob_cl_layout_name(l));
             ob_cl_set_layout(cl, l);
-            ob_cl_measure_batch(cl, recs, 8, S, o2);  /* warm-up: buffers, first launch */
-            t0 = now_s();
-            int crc = ob_cl_measure_batch(cl, recs, R, S, o2);
-            double g = now_s() - t0;
-            if (crc == 0) {
+            double g, kern;
+            if (cl_timed(cl, recs, R, S, o2, &g, &kern) == 0) {
+                snprintf(wk, sizeof wk, "cl_peak_fraction/%s", mn);
                 for (int as_run = 0; as_run < (l == runs_use ? 2 : 1); as_run++) {
                     row(b, what, as_run ? "opencl" : bk, 0, (double)R * S, g, "samples/s");
                     row(b, gw, as_run ? "opencl" : bk, 0, flops, g, "flop/s");
+                    if (clpeak > 0)
+                        row_rate(b, wk, as_run ? "opencl" : bk, 0, flops, kern, flops / kern / clpeak, "of_peak");
                 }
                 int same = 0;
                 for (int i = 0; i < R; i++)
@@ -493,6 +605,9 @@ static int bench_metrics(bench_out *b, ob_cl *cl, int R, int S, int N, const dou
                 printf("; OpenCL %s%s %9.0f (x%.2f vs CPU on %d threads; %d of %d errors bit for bit)",
                        ob_cl_layout_name(l), l == runs_use ? " (runs)" : "", R * S / g, cN / g, N, same, R);
                 gbest = fmax(gbest, flops / g);
+                if (clpeak > 0)
+                    snprintf(share[lay], sizeof share[lay], "%s %.3g GFLOP/s in the kernel's own time, %.2f%%",
+                             ob_cl_layout_name(l), flops / kern / 1e9, 100.0 * flops / kern / clpeak);
             }
         }
         ob_cl_set_layout(cl, runs_use);
@@ -500,6 +615,20 @@ static int bench_metrics(bench_out *b, ob_cl *cl, int R, int S, int N, const dou
                "", gbest / 1e9, 100.0 * gbest / peak[1], vpeak > 0 ? "" : "\n");
         if (vpeak > 0)
             printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
+        if (share[0][0] || share[1][0])
+            printf("%-18s of the device's fp64 peak: %s%s%s\n", "", share[0], share[0][0] && share[1][0] ? "; " : "",
+                   share[1]);
+        /* the work counts */
+        snprintf(wk, sizeof wk, "samples_per_record/%s", mn);
+        row_rate(b, wk, "any", 0, R, 0.0, S, "samples/record");
+        snprintf(wk, sizeof wk, "ops_per_sample/%s", mn);
+        row_rate(b, wk, "any", 0, (double)R * S, 0.0, flops / ((double)R * S), "flop/sample");
+        snprintf(wk, sizeof wk, "bytes_per_record/%s", mn);
+        row_rate(b, wk, "opencl", 0, R, 0.0, (double)to / R, "bytes/record");
+        snprintf(wk, sizeof wk, "bytes_back_per_record/%s", mn);
+        row_rate(b, wk, "opencl", 0, R, 0.0, (double)back / R, "bytes/record");
+        printf("%-18s work: %d samples a record, %.0f flops a sample (counted), %.0f bytes a record to the device, "
+               "%.0f back\n", "", S, flops / ((double)R * S), (double)to / R, (double)back / R);
     }
 
 out:
@@ -688,9 +817,10 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
 
 int ob_cmd_bench(int argc, char **argv)
 {
-    bench_args a = {"out/bench", 0};
-    const ob_flagset flags = {bench_flags, 2, NULL, NULL, "options", apply_bench_flag, &a};
-    const int prc = ob_cli_parse("[--out DIR] [--quick]", &flags, 1, argc, argv, 0, NULL, NULL);
+    bench_args a = {"out/bench", NULL, 0, 0};
+    const ob_flagset flags = {bench_flags, 4, NULL, NULL, "options", apply_bench_flag, &a};
+    const int prc = ob_cli_parse("[--out DIR] [--quick] [--kernels] [--device NAME]", &flags, 1, argc, argv, 0, NULL,
+                                 NULL);
     if (prc != OB_CLI_OK)
         return prc == OB_CLI_HELP ? 0 : 2;
     if (ob_mkdir_p(a.out) != 0) {
@@ -710,11 +840,21 @@ int ob_cmd_bench(int argc, char **argv)
     const int N = omp_get_num_procs();
     double peak[2], vpeak;
     bench_peaks(&b, N, peak, &vpeak);
-    ob_cl *cl = bench_open_cl(&b);
-    int rc = ob_stop_signal() ? 0 : bench_metrics(&b, cl, a.quick ? 200 : 2000, OB_DEFAULT_SAMPLES, N, peak, vpeak);
-    if (rc == 0 && !ob_stop_signal())
+    ob_cl *cl = ob_stop_signal() ? NULL : bench_open_cl(&b, a.device);
+    if (a.device && !cl && !ob_stop_signal()) {  /* asked for by name, as run --device is */
+        ob_outfile_discard(&of);
+        ob_error("bench --device %s: that OpenCL device cannot measure (see above); nothing written", a.device);
+        return 2;
+    }
+    const double clpeak = cl && !ob_stop_signal() ? bench_cl_peak(&b, cl, a.quick) : 0.0;
+    /* records: on a GPU at least 1e7 samples a launch; on the CPU (and a CPU
+     * device) few enough for a 2-core machine */
+    const int S = OB_DEFAULT_SAMPLES, small = a.quick ? 200 : 2000;
+    const int R = cl && ob_cl_is_gpu(cl) ? (int)ceil(OB_BENCH_GPU_SAMPLES / S) : small;
+    int rc = ob_stop_signal() ? 0 : bench_metrics(&b, cl, R, R < small ? R : small, S, N, peak, vpeak, clpeak);
+    if (rc == 0 && !a.kernels && !ob_stop_signal())
         bench_whole_runs(&b, cl, N);
-    if (rc == 0 && !ob_stop_signal())
+    if (rc == 0 && !a.kernels && !ob_stop_signal())
         bench_random(&b, cl, N, a.quick);
     ob_cl_close(cl);
     if (ob_stop_signal()) {  /* a section cut short has no figures: none are written */

@@ -294,7 +294,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         st = plan_run(&r);
     if (st == GO_ON && (st = ob_export_prepare(&r.o, r.rec.mpi_ranks, r.njobs, &r.spans)) == 0)
         st = GO_ON;  /* --export: a span log per job */
-    if (st == GO_ON && ob_open_backend(r.o.backend, r.o.device, &r.rec.binfo, &r.cl) != 0)
+    if (st == GO_ON && ob_open_backend(r.o.backend, r.o.device, 1u << r.o.metric, &r.rec.binfo, &r.cl) != 0)
         st = 2;
     if (st == GO_ON)
         st = take_out_dir(&r);

@@ -460,7 +460,10 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
         goto done;
     }
     ob_backend_info binfo = {0};
-    if (ob_open_backend(o.backend, o.device, &binfo, &cl) != 0)  /* before --out: a run that cannot start creates nothing */
+    unsigned metrics = 0;  /* the programs the tables' jobs use */
+    for (long i = 0; i < pl.nslots; i++)
+        metrics |= 1u << pl.slots[i].job.metric;
+    if (ob_open_backend(o.backend, o.device, metrics, &binfo, &cl) != 0)  /* before --out: a run that cannot start creates nothing */
         goto done;
     if (ob_mkdir_p(o.out_dir) != 0) {
         ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));

@@ -187,6 +187,15 @@ static void meta_build(FILE *f, const ob_backend_info *b)
         fprintf(f, ", \"layout\": \"%s\", \"work_items_per_record\": %d", b->layout, b->group_size);
         fprintf(f, ", \"build_seconds\": %.3f, \"binary_cache\": ", b->build_seconds);
         ob_json_string(f, b->cache);
+        fprintf(f, ", \"programs\": [");  /* one per metric and layout built (clrt.h) */
+        for (int i = 0; i < b->nbuilds; i++) {
+            fprintf(f, "%s{\"metric\": \"%s\", \"layout\": \"%s\", \"build_seconds\": %.3f, \"binary_cache\": ",
+                    i ? ", " : "", ob_metric_name(b->builds[i].metric), ob_cl_layout_name(b->builds[i].layout),
+                    b->builds[i].seconds);
+            ob_json_string(f, b->builds[i].cache);
+            fprintf(f, "}");
+        }
+        fprintf(f, "]");
         fprintf(f, ", \"cpu_fallback_batches\": %ld},\n", b->fallbacks);
     } else {
         fprintf(f, "null,\n  \"cpu_because\": ");

@@ -113,7 +113,7 @@ static int refit_span(ob_jobview *v, const ob_span *sp, void *work, int *cap, in
 
 int ob_jobview_run(ob_jobview *v)
 {
-    if (ob_open_backend(v->o.backend, v->o.device, &v->binfo, &v->cl) != 0)
+    if (ob_open_backend(v->o.backend, v->o.device, 1u << v->o.metric, &v->binfo, &v->cl) != 0)
         return 2;
     if (v->o.threads > 0)
         omp_set_num_threads(v->o.threads);

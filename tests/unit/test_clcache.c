@@ -6,7 +6,11 @@
  * on an OpenCL device (PoCL here): the first open builds and stores, the
  * second reads the cache, a cached program measures as the CPU does, a
  * corrupted cache file is rebuilt, a changed kernel source builds anew,
- * OFFBENCH_CL_CACHE=off turns it off.
+ * OFFBENCH_CL_CACHE=off turns it off.  The programs are one per metric and
+ * layout (issue 40): their build options name both, the key holds the
+ * options (a file each), opening builds none, a batch builds only the
+ * programs of its records' metrics (the build report, ob_cl_builds, lists
+ * what was built).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -118,6 +122,51 @@ static void test_files(void)
     unsetenv("XDG_CACHE_HOME");
 }
 
+/* The programs' build options and cache keys: each metric and layout its
+ * own defines, and the key holds them, so each program has its own file. */
+static void test_keys(void)
+{
+    char oh[256], or_[256], og[256], why[300];
+    CHECK(ob_cl_program_options(OB_METRIC_HAUSDORFF, OB_CL_ITEMS, oh, sizeof oh) == 0 &&
+              strstr(oh, "-cl-std=CL1.2") && strstr(oh, "-D OBC_ONLY_HAUSDORFF") && strstr(oh, "-D OBC_ONLY_ITEMS") &&
+              !strstr(oh, "GROUPS"),
+          "hausdorff, items: %s", oh);
+    CHECK(ob_cl_program_options(OB_METRIC_RADIAL, OB_CL_ITEMS, or_, sizeof or_) == 0 &&
+              strstr(or_, "-D OBC_ONLY_RADIAL") && !strstr(or_, "HAUSDORFF"),
+          "radial, items: %s", or_);
+    CHECK(ob_cl_program_options(OB_METRIC_HAUSDORFF, OB_CL_GROUPS, og, sizeof og) == 0 &&
+              strstr(og, "-D OBC_ONLY_GROUPS") && !strstr(og, "ITEMS"),
+          "hausdorff, groups: %s", og);
+    char tmp[256];
+    CHECK(ob_cl_program_options(OB_METRIC_NORMAL, OB_CL_GROUPS, tmp, sizeof tmp) == 0 && strstr(tmp, "OBC_ONLY_NORMAL"),
+          "normal: %s", tmp);
+    CHECK(ob_cl_program_options(OB_METRIC_PARAM, OB_CL_GROUPS, tmp, sizeof tmp) == 0 && strstr(tmp, "OBC_ONLY_PARAM"),
+          "param: %s", tmp);
+    CHECK(ob_cl_program_options(OB_METRIC_BOUND, OB_CL_ITEMS, tmp, sizeof tmp) == -1, "bound: no program");
+    char *kh = ob_cl_program_key("P", "D", "1.0", "OpenCL 3.0", oh, "src"),
+         *kr = ob_cl_program_key("P", "D", "1.0", "OpenCL 3.0", or_, "src"),
+         *kg = ob_cl_program_key("P", "D", "1.0", "OpenCL 3.0", og, "src"),
+         *ks = ob_cl_program_key("P", "D", "1.0", "OpenCL 3.0", oh, "src2");
+    CHECK(kh && kr && kg && ks, "keys made");
+    if (kh && kr && kg && ks) {
+        char want[300];
+        snprintf(want, sizeof want, "options=%s\n", oh);
+        CHECK(strstr(kh, want) != NULL, "the key holds the build options, defines included: %s", kh);
+        CHECK(strcmp(kh, kr) != 0 && strcmp(kh, kg) != 0 && strcmp(kh, ks) != 0,
+              "another metric, layout or source: another key");
+        char ph[4200], pr[4200];
+        setenv("OFFBENCH_CL_CACHE", dir, 1);
+        CHECK(ob_clcache_path(kh, ph, sizeof ph, why, sizeof why) == 0 &&
+                  ob_clcache_path(kr, pr, sizeof pr, why, sizeof why) == 0 && strcmp(ph, pr) != 0,
+              "each metric's program its own cache file: %s, %s", ph, pr);
+        unsetenv("OFFBENCH_CL_CACHE");
+    }
+    free(kh);
+    free(kr);
+    free(kg);
+    free(ks);
+}
+
 /* One record measured through cl equals the CPU's, bit for bit. */
 static int measures_like_cpu(ob_cl *cl)
 {
@@ -134,19 +183,92 @@ static int measures_like_cpu(ob_cl *cl)
     return memcmp(&g.err, &c.err, sizeof g.err) == 0;
 }
 
-/* Open, say what the cache did, check a measurement, close. */
+/* Open, build the hausdorff program of the device's layout, say what the
+ * cache did, check a measurement, close. */
 static int open_status(char *status, size_t len)
 {
     ob_cl *cl = NULL;
     ob_err err = {""};
-    if (ob_cl_open(NULL, 0, &cl, &err) != 0) {
+    if (ob_cl_open(NULL, 0, &cl, &err) != 0 ||
+        ob_cl_prepare(cl, OB_METRIC_HAUSDORFF, ob_cl_get_layout(cl), &err) != 0) {
         snprintf(status, len, "%s", err.msg);
+        ob_cl_close(cl);
         return -1;
     }
     snprintf(status, len, "%s", ob_cl_cache_status(cl));
     const int ok = measures_like_cpu(cl);
     ob_cl_close(cl);
     return ok ? 0 : 1;
+}
+
+/* One record of metric m measured through cl, as the CPU does. */
+static int measure_one(ob_cl *cl, ob_metric m)
+{
+    ob_bez base, approx;
+    const double b[3][2] = {{0, 0}, {0.5, 0.6}, {1, 0}}, a[3][2] = {{0, 0.1}, {0.5, 0.72}, {1, 0.1}};
+    ob_bez_from_points(&base, 2, b);
+    ob_bez_from_points(&approx, 2, a);
+    ob_measure_rec r = {&base, &approx, 0.1, m, 0.0};
+    ob_errval g, c;
+    if (ob_cl_measure_batch(cl, &r, 1, 32, &g) != 0)
+        return 0;
+    ob_measure(m, &base, &approx, 0.1, 32, &c);
+    return memcmp(&g.err, &c.err, sizeof g.err) == 0;
+}
+
+/* Opening builds nothing; a batch builds the programs of its records'
+ * metrics, in the layout in use, and nothing else; the build report lists
+ * them in the order built, each with its time and what the cache did. */
+static void test_lazy(void)
+{
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -f %s/*.bin", dir);
+    if (system(cmd) != 0)
+        return;
+    setenv("OFFBENCH_CL_CACHE", dir, 1);
+    ob_cl *cl = NULL;
+    ob_err err = {""};
+    if (ob_cl_open(NULL, 0, &cl, &err) != 0) {
+        SKIP("the programs built on first use: no OpenCL platform");
+        unsetenv("OFFBENCH_CL_CACHE");
+        return;
+    }
+    ob_cl_build rep[16];
+    CHECK(ob_cl_builds(cl, rep, 16) == 0 && ob_cl_build_seconds(cl) == 0.0, "opening builds no program");
+    ob_cl_set_layout(cl, OB_CL_ITEMS);
+    CHECK(measure_one(cl, OB_METRIC_RADIAL), "radial measured as on the CPU");
+    int n = ob_cl_builds(cl, rep, 16);
+    CHECK(n == 1 && rep[0].metric == OB_METRIC_RADIAL && rep[0].layout == OB_CL_ITEMS && rep[0].seconds > 0.0 &&
+              strncmp(rep[0].cache, "miss", 4) == 0,
+          "a radial batch builds the radial program of the items layout alone: %d programs, %s",
+          n, n > 0 ? rep[0].cache : "");
+    CHECK(measure_one(cl, OB_METRIC_RADIAL) && ob_cl_builds(cl, rep, 16) == 1, "built once");
+    CHECK(measure_one(cl, OB_METRIC_HAUSDORFF), "hausdorff measured as on the CPU");
+    ob_cl_set_layout(cl, OB_CL_GROUPS);
+    CHECK(measure_one(cl, OB_METRIC_HAUSDORFF), "hausdorff, groups, measured as on the CPU");
+    n = ob_cl_builds(cl, rep, 16);
+    CHECK(n == 3 && rep[1].metric == OB_METRIC_HAUSDORFF && rep[1].layout == OB_CL_ITEMS &&
+              rep[2].metric == OB_METRIC_HAUSDORFF && rep[2].layout == OB_CL_GROUPS,
+          "then hausdorff's, in each layout used: %d programs", n);
+    CHECK(ob_cl_group_size(cl) >= 1, "the group layout's work-items per record: %d", ob_cl_group_size(cl));
+    CHECK(strstr(ob_cl_cache_status(cl), "radial") && strstr(ob_cl_cache_status(cl), "hausdorff"),
+          "the cache status names each program: %s", ob_cl_cache_status(cl));
+    ob_cl_close(cl);
+    snprintf(cmd, sizeof cmd, "test $(ls %s/*.bin | wc -l) -eq 3", dir);
+    CHECK(system(cmd) == 0, "three programs, three cache files");
+    /* opened again: each from the cache */
+    if (ob_cl_open(NULL, 0, &cl, &err) == 0) {
+        CHECK(ob_cl_prepare(cl, OB_METRIC_RADIAL, OB_CL_ITEMS, &err) == 0 &&
+                  ob_cl_prepare(cl, OB_METRIC_HAUSDORFF, OB_CL_GROUPS, &err) == 0,
+              "prepared: %s", err.msg);
+        n = ob_cl_builds(cl, rep, 16);
+        CHECK(n == 2 && strncmp(rep[0].cache, "hit", 3) == 0 && strncmp(rep[1].cache, "hit", 3) == 0,
+              "opened again, each program from its cache file: %s / %s", n > 0 ? rep[0].cache : "",
+              n > 1 ? rep[1].cache : "");
+        CHECK(ob_cl_prepare(cl, OB_METRIC_BOUND, OB_CL_ITEMS, &err) == -1, "bound: no program to build");
+        ob_cl_close(cl);
+    }
+    unsetenv("OFFBENCH_CL_CACHE");
 }
 
 /* The cache file of the one .bin in dir (the test's only key). */
@@ -229,7 +351,9 @@ int main(void)
         return check_done();
     }
     test_files();
+    test_keys();
     test_device();
+    test_lazy();
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)

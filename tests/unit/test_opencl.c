@@ -7,7 +7,8 @@
  * CPU path one by one, under both layouts of the kernel (a work-group per
  * record, a work-item per record), at several sample counts and under
  * stops (ob_measure_until): error, parameter of the maximum and counted
- * work must agree bit for bit.
+ * work must agree bit for bit.  Each metric and layout is its own program,
+ * built when first used: the mixed batches build all eight, once each.
  * Without an OpenCL platform every check here is skipped (and counted so).
  */
 #include <math.h>
@@ -189,6 +190,14 @@ int main(void)
         CHECK(same_bits(r, e2, e1, 4, ln) == 4, "%s: NaN records bit for bit", ln);
     }
     fprintf(stderr, "largest relative difference of errors: %.3g\n", worst);
+    /* one program per metric and layout, each built once, when first used */
+    ob_cl_build rep[16];
+    const int nb = ob_cl_builds(cl, rep, 16);
+    int each = nb == 8;
+    for (int i = 0; i < nb && each; i++)
+        for (int j = 0; j < i; j++)
+            each &= rep[i].metric != rep[j].metric || rep[i].layout != rep[j].layout;
+    CHECK(each, "8 programs built (4 metrics, 2 layouts), each once: %d", nb);
     ob_cl_close(cl);
     return check_done();
 }
