@@ -28,18 +28,7 @@ case $OB in
         || skip_all "$OB is a sanitizer build and ${CC:-cc} names no libasan.so and libubsan.so to preload into python"
     PRELOAD=$asan:$ubsan ;;
 esac
-# the library beside the program: ./offbench is build/'s or (make MPI=1)
-# build-mpi/'s, as .offbench-flavor says
-build=$(dirname "$OB")
-if [ "$build" = "$(pwd)" ]; then
-    build=$(pwd)/$(cat .offbench-flavor 2>/dev/null || echo build)
-fi
-LIB=$build/liboffbench.so.0
-if [ ! -e "$LIB" ]; then
-    mpi=0; case $build in */build-mpi) mpi=1 ;; esac
-    env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory MPI=$mpi lib >"$T/make.out" 2>&1 \
-        || { echo "FAIL: make lib: $(tail -n 5 "$T/make.out")"; echo "0 passed, 1 failed"; exit 1; }
-fi
+LIB=$(e2e_liboffbench) || { echo "0 passed, 1 failed"; exit 1; }  # beside the program (lib_e2e.sh)
 
 PY=
 for p in /usr/bin/python3 python3; do

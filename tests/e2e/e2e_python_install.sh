@@ -23,14 +23,8 @@ case $OB in
     echo "0 passed, 0 failed, $NCHECKS skipped"
     exit 0 ;;
 esac
-build=$(dirname "$OB")
-[ "$build" = "$ROOT" ] && build=$ROOT/$(cat .offbench-flavor 2>/dev/null || echo build)
-LIB=$build/liboffbench.so.0
-if [ ! -e "$LIB" ]; then
-    mpi=0; case $build in */build-mpi) mpi=1 ;; esac
-    env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory MPI=$mpi lib >"$T/make.out" 2>&1 \
-        || { echo "FAIL: make lib: $(tail -n 5 "$T/make.out")"; echo "0 passed, 1 failed"; exit 1; }
-fi
+LIB=$(e2e_liboffbench) || { echo "0 passed, 1 failed"; exit 1; }  # beside the program (lib_e2e.sh)
+build=$(dirname "$LIB")
 
 PY=
 for p in /usr/bin/python3 python3; do

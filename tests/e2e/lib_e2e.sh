@@ -85,3 +85,18 @@ dropcols() {
     awkc 'FNR==1{split(drop, d, " "); delete x; for(j in d) x[d[j]]=1; nk=0; for(i=1;i<=NF;i++) if(!($i in x)) keep[++nk]=$i}
         {s=""; for(j=1;j<=nk;j++) s=s (j>1?",":"") v(keep[j]); print s}' drop="$*" "$_df"
 }
+
+# e2e_liboffbench: the path of the library beside the program ($OB is
+# build/'s, or under `make MPI=1` build-mpi/'s, as .offbench-flavor says),
+# made with `make lib` when it is not there (run from the checkout's root);
+# 1 after a FAIL line on stderr when make fails.
+e2e_liboffbench() {
+    _b=$(dirname "$OB")
+    [ "$_b" = "$(pwd)" ] && _b=$(pwd)/$(cat .offbench-flavor 2>/dev/null || echo build)
+    if [ ! -e "$_b/liboffbench.so.0" ]; then
+        _mpi=0; case $_b in */build-mpi) _mpi=1 ;; esac
+        env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory MPI=$_mpi lib >"$T/make.out" 2>&1 \
+            || { echo "FAIL: make lib: $(tail -n 5 "$T/make.out")" >&2; return 1; }
+    fi
+    echo "$_b/liboffbench.so.0"
+}
