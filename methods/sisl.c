@@ -370,13 +370,14 @@ static char **server_environ(const char *var)
  * stays held in the child: a sanitizer's allocator lock once left a
  * server waiting in malloc for ever): close what is not its own, exec
  * this program afresh, or report exec's errno on `status` and end. */
-static void exec_server(int keep_in, int keep_out, int status, int maxfd, char *const envp[])
+static void exec_server(const char *exe, int keep_in, int keep_out, int status, int maxfd,
+                        char *const envp[])
 {
     for (int fd = 3; fd < maxfd; fd++)
         if (fd != keep_in && fd != keep_out && fd != status)
             close(fd);
     char *const argv[] = {(char *)SERVER_ARGV0, NULL};
-    execve(server_exe, argv, envp);
+    execve(exe, argv, envp);
     const int e = errno;
     ssize_t w = write(status, &e, sizeof e);
     (void)w;
@@ -402,6 +403,27 @@ static int open_pipes(int req[2], int rep[2], int st[2])
     return -1;
 }
 
+/* The file to execute as the server, into buf: server_exe, where that is
+ * /proc/self/exe the path it links to.  Why: under valgrind (and other
+ * tools that load the program themselves) /proc/self/exe is the tool's own
+ * image, which refuses to run as the server, while readlink is answered
+ * with the program's path.  A program replaced since it started (a rebuild
+ * during a run) reads "PATH (deleted)": then /proc/self/exe itself, which
+ * is still the image that runs. */
+static const char *server_program(char *buf, size_t len)
+{
+    if (strcmp(server_exe, "/proc/self/exe") != 0)
+        return server_exe;
+    const ssize_t n = readlink(server_exe, buf, len - 1);
+    static const char deleted[] = " (deleted)";
+    const size_t dl = sizeof deleted - 1;
+    if (n <= 0 || (size_t)n >= len - 1 || buf[0] != '/'
+        || ((size_t)n >= dl && memcmp(buf + n - dl, deleted, dl) == 0))
+        return server_exe;
+    buf[n] = '\0';
+    return buf;
+}
+
 /* Purpose: start this thread's server: this program executed afresh (the
  *          constructor above makes it serve), its two pipe ends named in
  *          its environment.  Returns 0, or -1 with the reason in msg. */
@@ -420,9 +442,11 @@ static int server_start(char *msg, size_t msglen)
     char **envp = server_environ(var);
     const long om = sysconf(_SC_OPEN_MAX);
     const int maxfd = om > 0 && om < 65536 ? (int)om : 1024;
+    char path[4096];
+    const char *exe = server_program(path, sizeof path);
     pid_t pid = envp ? fork() : -1;
     if (pid == 0)
-        exec_server(req[0], rep[1], st[1], maxfd, envp);
+        exec_server(exe, req[0], rep[1], st[1], maxfd, envp);
     int why = !envp ? ENOMEM : pid < 0 ? errno : 0;
     free(envp);
     close(req[0]);
@@ -445,7 +469,7 @@ static int server_start(char *msg, size_t msglen)
         while (waitpid(pid, NULL, 0) < 0 && errno == EINTR)
             ;
     ob_method_msg(msg, msglen, "cannot start the SISL process: %s%s: %s", pid > 0 ? "exec " : "",
-                  pid > 0 ? server_exe : "fork", strerror(got > 0 ? why : pid > 0 ? EIO : why));
+                  pid > 0 ? exe : "fork", strerror(got > 0 ? why : pid > 0 ? EIO : why));
     return -1;
 }
 

@@ -31,7 +31,7 @@ static ob_fit_status sleepy_fit(const ob_bez *b, const ob_fit_args *a, void *w, 
     ob_fit_single(out, b);
     return OB_FIT_OK;
 }
-static int same_degree(int n, int r) { (void)r; return n; }
+static int same_degree(int n, int r, const double *par) { (void)r, (void)par; return n; }
 
 static void setup(ob_job *j, ob_curve *c, const ob_method *m, double tol)
 {
