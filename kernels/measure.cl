@@ -84,7 +84,7 @@ long obg_sum_ops(__local long *lops, long mine)
  * samples per task; then the margins; then the block circles) over the
  * work-items, a barrier between the parts that read the earlier ones; then
  * both sides' coarse samples over the work-items, exact; item 0 (A's side)
- * and item `second` (O's) replay the serial scan over them; then both
+ * and item `second` (O's; 0 in a group of one) replay the serial scan over them; then both
  * sides' other samples over the work-items, each asked only above its
  * side's coarse maximum; the two items replay the rest and finish their
  * side (the refinement, A's foot).  Item 0 returns the result: the serial
@@ -95,7 +95,10 @@ void obg_hausdorff(const __global double *hb, int nb, const __global double *ha,
                    double stop, __global double *O, __global double *A, __global double *E, __local long *lops,
                    __local double *hs, double *err, double *t, long *total)
 {
-    const int lid = get_local_id(0), second = get_local_size(0) > 1 ? 1 : 0;
+    const int lid = get_local_id(0), second = (int)get_local_size(0) / 2;
+    /* O's side on the first item of the group's second half: in another
+     * warp (wavefront) than A's, so that the two serial refinements run side
+     * by side instead of in turn */
     const int G = (S + OBC_LANES - 1) / OBC_LANES, pb = obc_table_poly(hb, nb), pa = obc_table_poly(ha, na);
     long ops = 0;
     OBG_EACH(g, 2 * G) {
