@@ -144,8 +144,56 @@ static int check_pair(const double *hb, int nb, const double *ha, int na, double
     return bad;
 }
 
+/* The work model of the group kernel (printed, for docs/performance.md):
+ * per record at S = 256, the counted flops of the tables, of the serial
+ * scan and of its refinement, and of the two phases; over 400 random pairs
+ * of degrees 2..7 close to each other (a fitted piece's distance). */
+static void work_model(void)
+{
+    static double hb[3 * (OBC_MAX_DEG + 1)], ha[3 * (OBC_MAX_DEG + 1)];
+    const int S = 256, N = 400, NC = obc_scan_ncoarse(S);
+    double tabs = 0, scan = 0, ref = 0, ph = 0;
+    for (int r = 0; r < N; r++) {
+        const int n = 2 + r % 6, na = n + r % 3;
+        const double d = (r % 2 ? 1.0 : -1.0) * urand(0.05, 0.6);
+        make_pair(hb, n, ha, na, r % 3 == 1, d, 1e-3 * urand(0.1, 10.0));
+        long o = 0;
+        obc_fill_table(hb, n, d, S, tab_o, &o);
+        obc_fill_table(ha, na, 0.0, S, tab_a, &o);
+        tabs += o;
+        for (int side = 0; side < 2; side++) {
+            const int kind = side ? OBC_K_H_OFFSET : OBC_K_H_APPROX;
+            const double *tgt = side ? tab_a : tab_o, *qry = side ? tab_o : tab_a;
+            long os = 0, orf = 0, op = 0;
+            double best = -1.0, e, t;
+            int kb = 0, hint = OBC_NO_HINT;
+            for (int i = 0; i < S; i++) { /* the serial scan, in its order */
+                const int k = obc_scan_at(i, S);
+                obc_scan_take(obc_err_at(kind, hb, n, ha, na, d, S, tgt, qry, &os, obc_sample_t(k, S), k, best, &hint),
+                              k, &best, &kb);
+            }
+            obc_scan_refine(kind, hb, n, ha, na, d, S, tgt, qry, &orf, best, kb, &hint, &e, &t);
+            double b2 = -1.0;
+            int k2 = 0;
+            for (int i = 0; i < S; i++) {
+                if (i == NC)
+                    obc_scan_replay(errs, S, 0, NC, OBC_INF, &b2, &k2);
+                const int k = obc_scan_at(i, S);
+                errs[k] = obc_side_query(kind, hb, n, ha, na, d, S, tgt, qry, &op, k, i < NC ? -1.0 : b2);
+            }
+            scan += os, ref += orf, ph += op;
+        }
+    }
+    fprintf(stderr,
+            "work model, S = 256, flops per record: tables %.0f, serial scan %.0f, refinement %.0f (%.0f%% of the "
+            "serial total, in 2 x 42 queries); the phases %.0f instead of the scan (x%.2f the serial total)\n",
+            tabs / N, scan / N, ref / N, 100.0 * ref / (tabs + scan + ref), ph / N,
+            (tabs + ph + ref) / (tabs + scan + ref));
+}
+
 int main(void)
 {
+    work_model();
     static double hb[3 * (OBC_MAX_DEG + 1)], ha[3 * (OBC_MAX_DEG + 1)];
     const int Ss[4] = {8, 11, 128, 257};
     int pairs = 0, bad = 0;
