@@ -23,8 +23,9 @@
  *   bdeg[i], boff[i]         degree of the base piece, offset of its
  *   adeg[i], aoff[i]         homogeneous control points in ctrl (doubles)
  *   soff[i]                  offset of its scratch in scratch: 2 OBC_TABLE_SIZE(S)
- *                            doubles for hausdorff; in the group layout 2 S for
- *                            the other metrics (ob_cl_group_scratch)
+ *                            doubles for hausdorff (and 2 S more in the group
+ *                            layout: both sides' sample errors); in the group
+ *                            layout 2 S for the other metrics (rec_scratch)
  *   err[i], tpar[i]          the error and the base parameter of its maximum
  *   work[i]                  the work it took (flops, counted as OBC_OPS_* say),
  *                            by which the host shares the launch's time
@@ -78,18 +79,26 @@ long obg_sum_ops(__local long *lops, long mine)
 }
 
 #if OBC_WANT_HAUSDORFF
-/* Hausdorff: the four tables' parts (rows of O and A, OBC_LANES samples per
- * task; then the margins; then the block circles) over the work-items, with
- * a barrier between the parts that read the earlier ones; then the two
- * sides, item 0 and item 1 each running one of them whole (a side's samples
- * chain their nearest feet, so their order is part of the result).  Item 0
- * returns the result.  Where A's side ends above stop the serial code does
- * not run O's side: its result and its work are then left out. */
+/* Hausdorff, data-parallel (kernels/metric_core.h, "one side's scan,
+ * data-parallel"): the four tables' parts (rows of O and A, OBC_LANES
+ * samples per task; then the margins; then the block circles) over the
+ * work-items, a barrier between the parts that read the earlier ones; then
+ * both sides' coarse samples over the work-items, exact; item 0 (A's side)
+ * and item `second` (O's; 0 in a group of one) replay the serial scan over them; then both
+ * sides' other samples over the work-items, each asked only above its
+ * side's coarse maximum; the two items replay the rest and finish their
+ * side (the refinement, A's foot).  Item 0 returns the result: the serial
+ * code's bits.  Its work is what the group did, which is more than the
+ * serial scan's (every coarse sample exact, O's side even where A's ends
+ * above stop). hs: 8 local doubles. */
 void obg_hausdorff(const __global double *hb, int nb, const __global double *ha, int na, double d, int S,
-                   double stop, __global double *O, __global double *A, __local long *lops, __local double *side,
-                   double *err, double *t, long *total)
+                   double stop, __global double *O, __global double *A, __global double *E, __local long *lops,
+                   __local double *hs, double *err, double *t, long *total)
 {
-    const int lid = get_local_id(0), second = get_local_size(0) > 1 ? 1 : 0;
+    const int lid = get_local_id(0), second = (int)get_local_size(0) / 2;
+    /* O's side on the first item of the group's second half: in another
+     * warp (wavefront) than A's, so that the two serial refinements run side
+     * by side instead of in turn */
     const int G = (S + OBC_LANES - 1) / OBC_LANES, pb = obc_table_poly(hb, nb), pa = obc_table_poly(ha, na);
     long ops = 0;
     OBG_EACH(g, 2 * G) {
@@ -104,23 +113,47 @@ void obg_hausdorff(const __global double *hb, int nb, const __global double *ha,
     const int NB = OBC_NBLK(S);
     OBG_EACH(b, 2 * NB) obc_table_block(S, b < NB ? O : A, b < NB ? b : b - NB);
     barrier(CLK_GLOBAL_MEM_FENCE);
-    double e, te;
-    if (lid == 0) {
-        obc_h_side_approx(hb, nb, ha, na, d, S, O, A, &ops, stop, &e, &te);
-        side[0] = e, side[1] = te;
+    /* side 0: A's samples to O (E[0 .. S-1]); side 1: O's to A (E[S ..]) */
+    const int NC = obc_scan_ncoarse(S), NR = S - NC;
+    OBG_EACH(q, 2 * NC) {
+        const int s = q >= NC, k = OBC_COARSE * (s ? q - NC : q);
+        E[s * S + k] = s ? obc_side_query(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, &ops, k, -1.0)
+                         : obc_side_query(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, &ops, k, -1.0);
     }
-    if (lid == second) {
-        long so = 0;
-        obc_h_side_offset(hb, nb, ha, na, d, S, A, O, &so, stop, &e, &te);
-        side[2] = e, side[3] = te, side[4] = (double)so; /* a whole number, exact */
-        ops += so;
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    double best[2] = {-1.0, -1.0};
+    int kb[2] = {0, 0}, end[2] = {0, 0};
+    for (int s = 0; s < 2; s++)
+        if (lid == (s ? second : 0)) {
+            end[s] = obc_scan_replay(E + s * S, S, 0, NC, stop, &best[s], &kb[s]);
+            hs[2 * s] = end[s] ? OBC_INF : best[s]; /* +inf: the side needs no more samples */
+        }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    OBG_EACH(q, 2 * NR) {
+        const int s = q >= NR, k = obc_scan_at(NC + (s ? q - NR : q), S);
+        const double cut = hs[2 * s];
+        if (cut != OBC_INF)
+            E[s * S + k] = s ? obc_side_query(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, &ops, k, cut)
+                             : obc_side_query(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, &ops, k, cut);
     }
-    *total = obg_sum_ops(lops, ops); /* its barrier also publishes side[] */
-    if (lid == 0) {
-        if (side[0] > stop)
-            *total -= (long)side[4];
-        obc_h_pick(side[0], side[1], side[2], side[3], stop, err, t);
-    }
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (int s = 0; s < 2; s++)
+        if (lid == (s ? second : 0)) {
+            if (!end[s])
+                obc_scan_replay(E + s * S, S, NC, S, stop, &best[s], &kb[s]);
+            double e, te;
+            if (s == 0) {
+                obc_scan_finish(OBC_K_H_APPROX, hb, nb, ha, na, d, S, O, A, &ops, stop, best[s], kb[s], &e, &te);
+                if (!(isnan(e) || isinf(e)))
+                    te = obc_h_foot(hb, nb, ha, na, d, S, O, A, &ops, te);
+            } else {
+                obc_scan_finish(OBC_K_H_OFFSET, hb, nb, ha, na, d, S, A, O, &ops, stop, best[s], kb[s], &e, &te);
+            }
+            hs[4 + 2 * s] = e, hs[5 + 2 * s] = te;
+        }
+    *total = obg_sum_ops(lops, ops); /* its barrier also publishes hs[] */
+    if (lid == 0)
+        obc_h_pick(hs[4], hs[5], hs[6], hs[7], stop, err, t);
 }
 
 #endif
@@ -193,7 +226,7 @@ __kernel void ob_measure_groups(OBK_ARGS)
     __local long lops[OBG_MAX];
     __local int lk[OBG_MAX];
     __local double lbest[OBG_MAX];
-    __local double side[5];
+    __local double hs[8];
     const int i = i0 + (int)get_group_id(0); /* the same for the whole group: it returns as one */
     if (i >= nrec)
         return;
@@ -205,8 +238,8 @@ __kernel void ob_measure_groups(OBK_ARGS)
     const double st = obc_stop_of(stop[i]);
 #if OBC_WANT_HAUSDORFF
     if (m == OBC_HAUSDORFF)
-        obg_hausdorff(hb, bdeg[i], ha, adeg[i], d[i], S, st, scr, scr + OBC_TABLE_SIZE(S), lops, side, &e, &t,
-                      &ops);
+        obg_hausdorff(hb, bdeg[i], ha, adeg[i], d[i], S, st, scr, scr + OBC_TABLE_SIZE(S),
+                      scr + 2 * OBC_TABLE_SIZE(S), lops, hs, &e, &t, &ops);
 #endif
 #if OBC_WANT_SCAN
     if (kind >= 0)

@@ -1037,6 +1037,13 @@ OBC_CALL_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut
             *hint = jb - kq;
             return e;
         }
+        /* not settled: the search below starts afresh, so that its nearest
+         * sample (the first of equal ones in its own order) is the one a
+         * query without a hint finds: a distance above the cut is the same
+         * whatever the last query was (the group kernel computes a side's
+         * samples out of order, kernels/measure.cl) */
+        db = OBC_INF;
+        jb = -1;
     }
     /* (1) the nearest sample point: the nearest block, then any other block
      * that can hold a nearer one */
@@ -1230,6 +1237,88 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double stop, double *err, doub
     obc_scan_refine(kind, OBC_PASS, best, kb, &hint, err, targ);
 }
 
+/* ---- one side's scan, data-parallel (the group kernel) ---------------- */
+
+/* The scan above, in an order-free form: a GPU work-group computes a side's
+ * sample errors all at once (kernels/measure.cl) and must find what the
+ * serial scan finds, bit for bit.  It can, because a query's distance above
+ * its cut does not depend on the query's history: the hint only seeds the
+ * nearest-sample search, which starts afresh when the hint does not settle
+ * the query (obc_side_dist), and a cut only lets a query return early with
+ * a value at or below it.  So:
+ *   phase 1  the coarse samples (every OBC_COARSE-th), each exact (no cut);
+ *   replay   the serial scan's bookkeeping over them (obc_scan_replay);
+ *   phase 2  the other samples, each asked only for errors above the
+ *            coarse maximum: the serial running maximum is never below it
+ *            at that point, so a value at or below it is one the serial scan
+ *            does not take either, and a value above it is exact in both;
+ *   replay   over them, from where the first replay ended;
+ *   end      obc_scan_finish: the sample above stop, the non-finite one, or
+ *            the golden-section refinement, as obc_sample_refine ends.
+ * A side's distance is never NaN (a finite query point has a finite
+ * distance to its nearest sample, from which every search starts), so a
+ * value settled by the cut in one order is finite in every order. */
+
+/* Samples in the coarse pass of the scan: k = 0, OBC_COARSE, ... < S. */
+OBC_FN int obc_scan_ncoarse(int S) { return (S + OBC_COARSE - 1) / OBC_COARSE; }
+
+/* The sample at position i of the scan's order (the coarse pass, then the
+ * rest in increasing k). */
+OBC_FN int obc_scan_at(int i, int S)
+{
+    const int nc = obc_scan_ncoarse(S);
+    if (i < nc)
+        return OBC_COARSE * i;
+    const int j = i - nc; /* the j-th sample that is no multiple of OBC_COARSE */
+    return j + j / (OBC_COARSE - 1) + 1;
+}
+
+/* Sample k's distance to the target, asked only above cut (< 0: exact), as
+ * a query with no history makes it. */
+OBC_FN double obc_side_query(int kind, OBC_ARGS, int k, double cut)
+{
+    int hint = OBC_NO_HINT;
+    double tf;
+    return obc_side_dist(kind, OBC_PASS, obc_sample_t(k, S), k, cut, &hint, &tf);
+}
+
+/* The serial scan's bookkeeping (obc_scan_take, then the stop) over the
+ * errors E[k] of scan positions i0 .. i1 - 1, on the running maximum
+ * (*best, *kb).  Returns 1 where the scan ends there (a NaN or inf sample,
+ * or a maximum above stop), else 0. */
+OBC_FN int obc_scan_replay(const OBC_G double *E, int S, int i0, int i1, double stop, double *best, int *kb)
+{
+    for (int i = i0; i < i1; i++) {
+        const int k = obc_scan_at(i, S);
+        if (obc_scan_take(E[k], k, best, kb) || *best > stop)
+            return 1;
+    }
+    return 0;
+}
+
+/* The end of a replayed scan, as obc_sample_refine ends: a maximum above
+ * stop is the result at its sample; else the refinement (a non-finite
+ * maximum gives +inf there). */
+OBC_FN void obc_scan_finish(int kind, OBC_ARGS, double stop, double best, int kb, double *err, double *targ)
+{
+    if (best > stop) {
+        *err = best;
+        *targ = obc_sample_t(kb, S);
+        return;
+    }
+    int hint = OBC_NO_HINT;
+    obc_scan_refine(kind, OBC_PASS, best, kb, &hint, err, targ);
+}
+
+/* The foot on O of A's point at t (A's side reports that parameter). */
+OBC_FN double obc_h_foot(OBC_ARGS, double t)
+{
+    int hint = OBC_NO_HINT;
+    double tf;
+    obc_side_dist(OBC_K_H_APPROX, OBC_PASS, t, -1, -1.0, &hint, &tf);
+    return tf;
+}
+
 /* ---- the two sides of the Hausdorff distance ------------------------- */
 
 /* From A to O (tgt = O's table, qry = A's): the largest distance and, where
@@ -1237,12 +1326,8 @@ OBC_FN void obc_sample_refine(int kind, OBC_ARGS, double stop, double *err, doub
 OBC_FN void obc_h_side_approx(OBC_ARGS, double stop, double *e, double *t)
 {
     obc_sample_refine(OBC_K_H_APPROX, OBC_PASS, stop, e, t);
-    if (!(isnan(*e) || isinf(*e))) {
-        int hint = OBC_NO_HINT;
-        double tf;
-        obc_side_dist(OBC_K_H_APPROX, OBC_PASS, *t, -1, -1.0, &hint, &tf);
-        *t = tf;
-    }
+    if (!(isnan(*e) || isinf(*e)))
+        *t = obc_h_foot(OBC_PASS, *t);
 }
 
 /* From O to A (tgt = A's table, qry = O's): the largest distance and its

@@ -145,7 +145,8 @@ else
                 $1 ~ /^gflops\// && $2 ~ /^opencl-/ {split($1, a, "/"); gf[a[2] " " substr($2, 8)] = $6}
                 $1 ~ /^cl_peak_fraction\// && $2 ~ /^opencl-/ {split($1, a, "/"); fr[a[2] " " substr($2, 8)] = $6}
                 $1 ~ /^samples_per_record\// {split($1, a, "/"); spr[a[2]] = $6}
-                $1 ~ /^ops_per_sample\// {split($1, a, "/"); ops[a[2]] = $6}
+                $1 ~ /^ops_per_sample\// && $2 == "any" {split($1, a, "/"); ops[a[2]] = $6}
+                $1 ~ /^ops_per_sample\// && $2 ~ /^opencl-/ {split($1, a, "/"); own[a[2] " " substr($2, 8)] = $6}
                 $1 ~ /^bytes_per_record\// {split($1, a, "/"); by[a[2]] = $6}
                 $1 ~ /^bytes_back_per_record\// {split($1, a, "/"); bb[a[2]] = $6}
                 END {
@@ -158,6 +159,7 @@ else
                             k = ms[i] " " lay
                             if (!(k in sps)) continue
                             w = l == 1 ? sprintf("%d, %.0f, %.0f/%.0f", spr[ms[i]], ops[ms[i]], by[ms[i]], bb[ms[i]]) : ""
+                            if (k in own) w = w sprintf("%s(this layout does %.0f flop/sample)", w == "" ? "" : " ", own[k])
                             printf "   %-10s %-7s %12.4g %9.3g %8.2f%%   %s\n", ms[i], lay, sps[k], gf[k] / 1e9, 100 * fr[k], w
                         }
                 }' "$d/bench.csv"; } | tee -a "$ksummary"

@@ -747,12 +747,13 @@ fail:
     return -1;
 }
 
-/* Scratch doubles of one record: hausdorff's two sample tables; in the
- * group layout, the other metrics' errors and work per sample. */
+/* Scratch doubles of one record: hausdorff's two sample tables (in the
+ * group layout with both sides' sample errors after them); in the group
+ * layout, the other metrics' errors and work per sample. */
 static size_t rec_scratch(const ob_cl *c, ob_metric m, int S)
 {
     if (m == OB_METRIC_HAUSDORFF)
-        return ob_metric_scratch(S);
+        return ob_metric_scratch(S) + (c->layout == OB_CL_GROUPS ? 2 * (size_t)S : 0);
     return c->layout == OB_CL_GROUPS ? 2 * (size_t)S : 0;
 }
 

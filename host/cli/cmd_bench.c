@@ -44,7 +44,9 @@
  *   samples_per_record/<metric>, ops_per_sample/<metric>,
  *   bytes_per_record/<metric>, bytes_back_per_record/<metric>
  *                    the work counts (rate column): S; the counted flops per
- *                    sample; the bytes a record moves to the device and back
+ *                    sample (backend "any": the serial scan's; a layout's
+ *                    own row where it does other work: hausdorff's groups,
+ *                    kernels/README.md); the bytes a record moves to the device and back
  *                    (ob_cl_record_bytes: control points, degrees, offsets,
  *                    d, stop, metric; error, parameter, work)
  *   With --kernels, only the figures above: no whole runs.
@@ -600,10 +602,20 @@ static int bench_metrics(bench_out *b, ob_cl *cl, int R, int R1, int S, int N, c
                         row_rate(b, wk, as_run ? "opencl" : bk, 0, flops, kern, flops / kern / clpeak, "of_peak");
                 }
                 int same = 0;
-                for (int i = 0; i < R; i++)
+                double lw = 0.0; /* the work this layout did (hausdorff's groups do more) */
+                for (int i = 0; i < R; i++) {
                     same += memcmp(&o1[i].err, &o2[i].err, sizeof(double)) == 0;
-                printf("; OpenCL %s%s %9.0f (x%.2f vs CPU on %d threads; %d of %d errors bit for bit)",
+                    lw += o2[i].work;
+                }
+                printf("; OpenCL %s%s %9.0f (x%.2f vs CPU on %d threads; %d of %d errors bit for bit",
                        ob_cl_layout_name(l), l == runs_use ? " (runs)" : "", R * S / g, cN / g, N, same, R);
+                if (lw != flops) {
+                    snprintf(wk, sizeof wk, "ops_per_sample/%s", mn);
+                    row_rate(b, wk, bk, 0, (double)R * S, 0.0, lw / ((double)R * S), "flop/sample");
+                    printf("; its own work %.0f flops a sample, x%.2f the serial scan's", lw / ((double)R * S),
+                           lw / flops);
+                }
+                printf(")");
                 gbest = fmax(gbest, flops / g);
                 if (clpeak > 0)
                     snprintf(share[lay], sizeof share[lay], "%s %.3g GFLOP/s in the kernel's own time, %.2f%%",
