@@ -11,7 +11,7 @@ enum { MAXK = 3 };  /* highest derivative ever needed (O'' needs C''') */
  * width^k, so over a narrower interval the enclosure widens again (for the
  * offset's second derivative, eps / w^3 against |C''''| w: balanced near
  * w = 1e-4). */
-#define RANGE_MIN_WIDTH 0x1p-12
+#define RANGE_MIN_WIDTH 0x1p-14
 
 typedef ob_iv hpt[3];  /* homogeneous point (w x, w y, w) */
 

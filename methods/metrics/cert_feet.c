@@ -70,10 +70,15 @@ static double polish(const ob_cv *q, const double p[2], double a, double b)
     if (!(fa > 0 && fb < 0))
         return -1.0;
     int side = 0;
-    for (int it = 0; it < 60 && b - a > 1e-17; it++) {
-        const double c = (a * fb - b * fa) / (fb - fa), fc = slope_at(q, p, c);
-        if (!(c > a && c < b) || fc == 0)
-            return c > a && c < b ? c : 0.5 * (a + b);
+    for (int it = 0; it < 80; it++) {
+        double c = a + (b - a) * (fa / (fa - fb));  /* no cancellation: a step from a */
+        if (!(c > a && c < b))
+            c = 0.5 * (a + b);
+        if (!(c > a && c < b))  /* a and b adjacent doubles */
+            break;
+        const double fc = slope_at(q, p, c);
+        if (fc == 0)
+            return c;
         if (fc > 0) {
             a = c, fa = fc;
             if (side == -1)
