@@ -30,7 +30,7 @@ int ob_open_backend(ob_backend kind, const char *device, unsigned metrics, ob_ba
     const int gpu_only = kind == OB_BACKEND_AUTO && !device;
     int rc = ob_cl_open(device, gpu_only, cl, &err);
     for (int m = 0; rc == 0 && m < OB_METRIC_COUNT; m++)
-        if ((metrics & (1u << m)) && m != OB_METRIC_BOUND)
+        if ((metrics & (1u << m)) && ob_metric_batched((ob_metric)m))
             rc = ob_cl_prepare(*cl, (ob_metric)m, ob_cl_get_layout(*cl), &err);
     if (rc != 0) {
         ob_cl_close(*cl);

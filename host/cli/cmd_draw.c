@@ -586,8 +586,12 @@ static int run_cmd(int trace, int argc, char **argv)
         report(&v);
         if (trace && ob_jobview_has_approx(&v))
             ob_info("trace: err is the %s error at t%s; x,y is the %s",
-                    v.job.metric == OB_METRIC_BOUND ? "radial" : ob_metric_name(v.job.metric),
-                    v.job.metric == OB_METRIC_BOUND ? " (bound has no pointwise form)" : "",
+                    v.job.metric == OB_METRIC_BOUND       ? "radial"
+                    : v.job.metric == OB_METRIC_CERTIFIED ? "hausdorff"
+                                                          : ob_metric_name(v.job.metric),
+                    v.job.metric == OB_METRIC_BOUND       ? " (bound has no pointwise form)"
+                    : v.job.metric == OB_METRIC_CERTIFIED ? " (certified has no pointwise form)"
+                                                          : "",
                     ob_jobview_point_is_approx(&v) ? "approximation point A(t)" : "exact offset point O(t)");
         if (trace && !ob_jobview_has_approx(&v))
             ob_info("trace: the job ended %s, so there is no approximation to trace",

@@ -394,7 +394,7 @@ static int check_curve_d(const obx_curveset *set, int curve, double d, obx_error
 static int parse_metric(const char *name, ob_metric *m, obx_error *err)
 {
     if (ob_metric_parse(name ? name : "hausdorff", m) != 0)
-        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param; obx_measure: hausdorff-whole too)", name);
+        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param, certified; obx_measure: hausdorff-whole too)", name);
     return 0;
 }
 

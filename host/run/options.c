@@ -207,7 +207,7 @@ const ob_flag ob_run_flags[] = {
     {"random", "N[:SEED]", "N random test curves of the families (seed 1 by default)", RO_RANDOM, OB_FLAG_ONCE},
     {"methods", "LIST|all", "methods to run (default all; './offbench list methods')", RO_METHODS, OB_FLAG_LIST},
     {"tols", "T,...", "tolerances (default 1e-1,1e-2,1e-3,1e-4,1e-5)", RO_TOLS, OB_FLAG_LIST},
-    {"metric", "M", "bound, radial, normal, hausdorff (default) or param", RO_METRIC, OB_FLAG_ONCE},
+    {"metric", "M", "bound, radial, normal, hausdorff (default), param or certified", RO_METRIC, OB_FLAG_ONCE},
     {"split", "RULE", "mid (default), maxerr, greedy or optimal", RO_SPLIT, OB_FLAG_ONCE},
     {"backend", "B", "auto (default), opencl or cpu", RO_BACKEND, OB_FLAG_ONCE},
     {"device", "NAME", "the OpenCL device whose name contains NAME", RO_DEVICE, OB_FLAG_ONCE},
@@ -266,7 +266,7 @@ static int apply_selection(ob_run_opts *o, int id, const char *opt, const char *
     case RO_TOLS: return parse_tols(v, o);
     case RO_METRIC:
         if (ob_metric_parse(v, &o->metric)) {
-            ob_error("--metric: unknown metric '%s' (bound, radial, normal, hausdorff, param)", v);
+            ob_error("--metric: unknown metric '%s' (bound, radial, normal, hausdorff, param, certified)", v);
             return -1;
         }
         return 0;

@@ -207,7 +207,8 @@ static int err_kind(ob_metric m)
 {
     switch (m) {
     case OB_METRIC_NORMAL: return OBC_K_NORMAL;
-    case OB_METRIC_HAUSDORFF: return OBC_K_H_OFFSET;
+    case OB_METRIC_HAUSDORFF:
+    case OB_METRIC_CERTIFIED: return OBC_K_H_OFFSET; /* the certificate has no pointwise form: hausdorff's */
     default: return OBC_K_RADIAL; /* radial; bound has no pointwise form */
     }
 }

@@ -262,7 +262,7 @@ static void trace_chunk(ob_trace *t, const drv_scratch *S, long cnt)
     first = t->ntask;
     const int n = S->B.first[cnt];
     for (int r = 0; r < n; r++)
-        if (!(S->B.backend_n > 0 && S->B.rec[r].metric != OB_METRIC_BOUND))
+        if (!(S->B.backend_n > 0 && ob_metric_batched(S->B.rec[r].metric)))
             drv_trace_task(t, S->B.ns[r]);
     drv_trace_phase(t, first, 4, S->B.backend_wall);
 }

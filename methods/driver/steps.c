@@ -176,7 +176,7 @@ static void measure_record(const void *ctx, long r)
 {
     const chunk_ctx *c = ctx;
     batch *B = c->B;
-    if (c->backend_ok && B->rec[r].metric != OB_METRIC_BOUND)
+    if (c->backend_ok && ob_metric_batched(B->rec[r].metric))
         return;
     const double t0 = drv_thread_ns();
     if (ob_measure_until(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, c->samples,
@@ -236,7 +236,7 @@ int drv_measure_prepare(const ob_job *jobs, const item *its, long cnt, const ob_
     B->backend_wall = 0.0;
     if (h->batch)
         for (int r = 0; r < n; r++)
-            if (B->rec[r].metric != OB_METRIC_BOUND) {
+            if (ob_metric_batched(B->rec[r].metric)) {
                 B->srec[B->nsampled] = B->rec[r];
                 B->sampled[B->nsampled++] = r;
             }

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const names[OB_METRIC_COUNT] = {"bound", "radial", "normal", "hausdorff", "param"};
+static const char *const names[OB_METRIC_COUNT] = {"bound", "radial", "normal", "hausdorff", "param", "certified"};
 
 /* One line per metric, for meta.json (the definitions are metric.h's). */
 static const char *const docs[OB_METRIC_COUNT] = {
@@ -17,6 +17,8 @@ static const char *const docs[OB_METRIC_COUNT] = {
     "max |(A(t) - C(t) - d N(t)) . N(t)|, the error at the given parameter (Zhao & Zhou 2017, section 3), "
     "sampled; defined for every method, but for one whose output is not in the base's parameter it is the "
     "normal component at the same t, not the geometric distance",
+    "certified upper bound of the two-sided Hausdorff distance between A and the exact offset (interval "
+    "enclosures, outward rounding; never below the true distance)",
 };
 
 const char *ob_metric_doc(ob_metric m)
@@ -44,6 +46,11 @@ int ob_metric_same_param(ob_metric m)
     return m == OB_METRIC_BOUND || m == OB_METRIC_RADIAL;
 }
 
+int ob_metric_batched(ob_metric m)
+{
+    return m == OB_METRIC_RADIAL || m == OB_METRIC_NORMAL || m == OB_METRIC_HAUSDORFF || m == OB_METRIC_PARAM;
+}
+
 int ob_metric_reads_param(ob_metric m)
 {
     return ob_metric_same_param(m) || m == OB_METRIC_PARAM;
@@ -65,6 +72,7 @@ int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, doub
     case OB_METRIC_NORMAL:
     case OB_METRIC_HAUSDORFF:
     case OB_METRIC_PARAM: return ob_metric_sampled(m, base, approx, d, samples, stop, out);
+    case OB_METRIC_CERTIFIED: return ob_metric_certified(base, approx, d, samples, out);
     default: break;
     }
     out->err = INFINITY;

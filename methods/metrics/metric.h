@@ -20,6 +20,12 @@
  *              refuse other methods: for them it is the normal component of
  *              A(t) - O(t), blind to a drift of A along the offset to first
  *              order, neither the geometric distance nor a bound of it.
+ *   certified  the upper end of a certified enclosure of the two-sided
+ *              Hausdorff distance (metric_certified.h: interval arithmetic
+ *              with outward rounding, lower <= true <= upper by
+ *              construction): never below the true distance, within a
+ *              relative 1e-3 of it where the search meets its target.  Its t
+ *              is the sampled hausdorff's.  On the CPU only, like bound.
  * Sampled metrics use S parameters t_k = k/(S-1) and refine the largest sample
  * by golden-section search between its neighbours.
  *
@@ -38,6 +44,7 @@ typedef enum {
     OB_METRIC_NORMAL,
     OB_METRIC_HAUSDORFF,
     OB_METRIC_PARAM,
+    OB_METRIC_CERTIFIED,
     OB_METRIC_COUNT
 } ob_metric;
 
@@ -50,6 +57,10 @@ int ob_metric_parse(const char *name, ob_metric *m);
  * the base (bound, radial: the driver skips the others).  param reads A at the
  * base's parameter too but is defined for any A (see above): 0. */
 int ob_metric_same_param(ob_metric m);
+/* 1 if a batch backend (the OpenCL kernel) measures metric m: the sampled
+ * ones (radial, normal, hausdorff, param); bound and certified are measured
+ * on the CPU. */
+int ob_metric_batched(ob_metric m);
 /* 1 if the metric reads A at the base's parameter t, so that it changes when
  * A is reparameterized (bound, radial, param); 0 for the geometric ones
  * (normal, hausdorff). */
@@ -106,6 +117,9 @@ int ob_metric_radial(const ob_bez *base, const ob_bez *approx, double d, int S, 
 int ob_metric_normal(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 int ob_metric_param(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+/* certified: err = the enclosure's upper end (+inf where none exists: a cusp
+ * of the base), t and work the sampled hausdorff's at S samples. */
+int ob_metric_certified(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
 /* A sampled metric m (radial, normal, hausdorff, param) under a stop, as
  * ob_measure_until. */
 int ob_metric_sampled(ob_metric m, const ob_bez *base, const ob_bez *approx, double d, int S, double stop,

@@ -241,8 +241,8 @@ check '[ $? -eq 2 ]' "unknown command exits 2"
 $OB list nothing >/dev/null 2>&1
 check '[ $? -eq 2 ]' "list of an unknown subject exits 2"
 $OB list metrics >"$T/metrics.txt" 2>&1
-check '[ $? -eq 0 ] && [ "$(cut -d" " -f1 "$T/metrics.txt" | tr "\n" " ")" = "bound radial normal hausdorff param " ]' \
-    "list metrics: the five metrics in order"
+check '[ $? -eq 0 ] && [ "$(cut -d" " -f1 "$T/metrics.txt" | tr "\n" " ")" = "bound radial normal hausdorff param certified " ]' \
+    "list metrics: the six metrics in order"
 $OB run --curve liu2002_ex1 --methods tiller,hoschek --tols 1e-2 --metric param --threads 1 --out "$T/param" 2>/dev/null
 check '[ $? -eq 0 ] && [ "$(rcols "$T/param/results.csv" method metric status | sort -u | tr "\n" " ")" = "hoschek:param:ok tiller:param:ok " ]' \
     "--metric param runs every method (hoschek too), rows say param"

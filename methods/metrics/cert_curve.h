@@ -1,0 +1,44 @@
+/*
+ * cert_curve.h - rigorous enclosures of a Bézier segment, or of the exact
+ * offset of one, and of their derivatives: the evaluations the certified
+ * Hausdorff bound (metric_certified.h) is built from.
+ *
+ * A curve here is either a (rational) Bézier segment B(t), or the untrimmed
+ * exact offset O(t) = C(t) + d N(t) of one, N = (-y', x') / |C'|.  Its
+ * derivatives, from the Frenet formulas (kappa = (C' x C'') / |C'|^3):
+ *   O'  = C' (1 - d kappa)
+ *   O'' = C'' (1 - d kappa) - d kappa' C',
+ *   kappa' = ((C' x C''') |C'|^2 - 3 (C' x C'') (C' . C'')) / |C'|^5.
+ * Method: interval de Casteljau on the homogeneous control points
+ * (interval.h): at a point t for the value and derivatives there; over
+ * [t0, t1] the subsegment's Bernstein coefficients, whose k-th differences
+ * enclose the k-th derivative of the homogeneous polynomial there (the
+ * Bernstein convex-hull property: Farin, "Curves and Surfaces for CAGD",
+ * ch. 5); then the quotient rule and the formulas above in interval
+ * arithmetic.  The subsegment is cut at t1 and then at t0 / t1, a ratio
+ * carried as an interval, so the enclosure is of the exact [t0, t1].
+ * Errors: -1 where the enclosure cannot be bounded: the offset where the
+ * interval of |C'|^2 reaches 0 (a cusp, a collapsed end leg), a rational
+ * segment whose weight interval reaches 0, an overflow.
+ */
+#ifndef OB_CERT_CURVE_H
+#define OB_CERT_CURVE_H
+
+#include "methods/core/curve.h"
+#include "methods/metrics/interval.h"
+
+typedef struct {
+    const ob_bez *b;
+    double d;    /* the offset distance when `offset` */
+    int offset;  /* 0: the segment itself; 1: its exact d-offset */
+} ob_cv;
+
+/* Purpose: enclosures of the point and first derivative at the float t
+ *          (t in [0, 1]).  Outputs: p[2], d1[2].  Returns 0 or -1. */
+int ob_cv_point(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2]);
+
+/* Purpose: an enclosure of the k-th derivative (k = 1 or 2) over every t in
+ *          [t0, t1] (0 <= t0 <= t1 <= 1).  Output: out[2].  Returns 0 or -1. */
+int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2]);
+
+#endif

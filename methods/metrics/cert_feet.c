@@ -1,0 +1,138 @@
+/*
+ * cert_feet.c - nearest points in floating point (see cert_feet.h).
+ */
+#include "methods/metrics/cert_feet.h"
+
+#include <math.h>
+
+void ob_cert_eval(const ob_cv *c, double t, double p[2], double d1[2])
+{
+    double o[3][2];
+    ob_bez_eval(c->b, t, c->offset ? 2 : 1, o);
+    p[0] = o[0][0], p[1] = o[0][1], d1[0] = o[1][0], d1[1] = o[1][1];
+    if (!c->offset)
+        return;
+    const double sp = hypot(o[1][0], o[1][1]);
+    if (!(sp > 0)) {  /* the limit normal (curve.h); no derivative */
+        ob_bez_offset_point(c->b, t, c->d, p);
+        d1[0] = d1[1] = 0.0;
+        return;
+    }
+    const double f = 1.0 - c->d * (o[1][0] * o[2][1] - o[1][1] * o[2][0]) / (sp * sp * sp);
+    p[0] -= c->d * o[1][1] / sp, p[1] += c->d * o[1][0] / sp;
+    d1[0] *= f, d1[1] *= f;
+}
+
+void ob_cert_table(const ob_cv *c, int M, double (*tab)[2])
+{
+    double d1[2];
+    for (int k = 0; k < M; k++)
+        ob_cert_eval(c, (double)k / (M - 1), tab[k], d1);
+}
+
+static double dist_at(const ob_cv *q, const double p[2], double t)
+{
+    double x[2], d1[2];
+    ob_cert_eval(q, t, x, d1);
+    return hypot(p[0] - x[0], p[1] - x[1]);
+}
+
+/* (p - q(t)) . q'(t): > 0 where the distance falls as t grows */
+static double slope_at(const ob_cv *q, const double p[2], double t)
+{
+    double x[2], d1[2];
+    ob_cert_eval(q, t, x, d1);
+    return (p[0] - x[0]) * d1[0] + (p[1] - x[1]) * d1[1];
+}
+
+/* Golden section on [a, b]: the bracket left around the minimum. */
+static void golden(const ob_cv *q, const double p[2], double *a, double *b)
+{
+    const double g = 0.6180339887498949;
+    double x1 = *b - g * (*b - *a), x2 = *a + g * (*b - *a);
+    double f1 = dist_at(q, p, x1), f2 = dist_at(q, p, x2);
+    for (int it = 0; it < 30; it++) {
+        if (f1 <= f2) {
+            *b = x2, x2 = x1, f2 = f1;
+            x1 = *b - g * (*b - *a), f1 = dist_at(q, p, x1);
+        } else {
+            *a = x1, x1 = x2, f1 = f2;
+            x2 = *a + g * (*b - *a), f2 = dist_at(q, p, x2);
+        }
+    }
+}
+
+/* Regula falsi (Illinois) for the zero of slope_at in [a, b] where it
+ * changes sign from + to -: the foot to full precision.  -1 if no sign change. */
+static double polish(const ob_cv *q, const double p[2], double a, double b)
+{
+    double fa = slope_at(q, p, a), fb = slope_at(q, p, b);
+    if (!(fa > 0 && fb < 0))
+        return -1.0;
+    int side = 0;
+    for (int it = 0; it < 80; it++) {
+        double c = a + (b - a) * (fa / (fa - fb));  /* no cancellation: a step from a */
+        if (!(c > a && c < b))
+            c = 0.5 * (a + b);
+        if (!(c > a && c < b))  /* a and b adjacent doubles */
+            break;
+        const double fc = slope_at(q, p, c);
+        if (fc == 0)
+            return c;
+        if (fc > 0) {
+            a = c, fa = fc;
+            if (side == -1)
+                fb *= 0.5;
+            side = -1;
+        } else {
+            b = c, fb = fc;
+            if (side == 1)
+                fa *= 0.5;
+            side = 1;
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+double ob_cert_nearest(const ob_cv *q, const double p[2], const double (*tab)[2], int M, double *t)
+{
+    int best = 0;
+    double bd = INFINITY;
+    for (int k = 0; k < M; k++) {
+        const double dd = hypot(p[0] - tab[k][0], p[1] - tab[k][1]);
+        if (dd < bd)
+            bd = dd, best = k;
+    }
+    double a = (double)(best > 0 ? best - 1 : 0) / (M - 1), b = (double)(best < M - 1 ? best + 1 : M - 1) / (M - 1);
+    golden(q, p, &a, &b);
+    const double cands[4] = {polish(q, p, a, b), 0.5 * (a + b), a == 0.0 ? 0.0 : -1.0, b == 1.0 ? 1.0 : -1.0};
+    double tb = (double)best / (M - 1);
+    for (int i = 0; i < 4; i++)
+        if (cands[i] >= 0.0 && cands[i] <= 1.0) {
+            const double dd = dist_at(q, p, cands[i]);
+            if (dd < bd)
+                bd = dd, tb = cands[i];
+        }
+    *t = tb;
+    return bd;
+}
+
+double ob_cert_foot(const ob_cv *p, const ob_cv *q, double u, const double (*tab)[2], int M, double *t,
+                    double *slope)
+{
+    double x[2], dp[2], y[2], dq[2];
+    ob_cert_eval(p, u, x, dp);
+    const double dist = ob_cert_nearest(q, x, tab, M, t);
+    ob_cert_eval(q, *t, y, dq);
+    const double qq = dq[0] * dq[0] + dq[1] * dq[1];
+    const int end = *t <= 0.0 || *t >= 1.0;
+    *slope = end || !(qq > 0) ? 0.0 : (dp[0] * dq[0] + dp[1] * dq[1]) / qq;
+    return dist;
+}
+
+void ob_cert_feet(const ob_cv *p, const ob_cv *q, int S, const double (*tab)[2], double *foot, double *dist,
+                  double *slope)
+{
+    for (int j = 0; j < S; j++)
+        dist[j] = ob_cert_foot(p, q, (double)j / (S - 1), tab, S, &foot[j], &slope[j]);
+}

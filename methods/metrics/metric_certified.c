@@ -1,0 +1,228 @@
+/*
+ * metric_certified.c - the certified two-sided Hausdorff enclosure: the
+ * search (feet, branch and bound) around the enclosures of cert_bounds.c.
+ * Method and contract in metric_certified.h.
+ */
+#include "methods/metrics/metric_certified.h"
+
+#include <stdlib.h>
+
+#include "methods/metrics/cert_bounds.h"
+#include "methods/metrics/cert_feet.h"
+#include "methods/metrics/cert_heap.h"
+#include "methods/metrics/metric.h"
+
+enum { LOWER_ROOTS = 16, PROBE_EVERY = 16 };
+enum { LOWER_BUDGET = 4000 };  /* interval bounds per certified point */
+#define MIN_WIDTH 1e-13  /* intervals narrower than this are not split */
+
+/* One one-sided distance: points of P, their distance to Q. */
+typedef struct {
+    ob_cv P, Q;
+    int S;
+    double (*tab)[2];              /* Q at the S sample parameters */
+    double *foot, *dist, *slope;   /* the feet of P's samples on Q (cert_feet.h) */
+    ob_cert_heap heap;             /* intervals of P's parameter, largest bound first */
+} side_t;
+
+/* The whole certificate's state. */
+typedef struct {
+    side_t side[2];
+    ob_cert_opts o;
+    double floor;
+    long upper_work;  /* upper enclosures so far: what the budget limits */
+    ob_certified *out;
+} cert_t;
+
+static double target(const cert_t *c) { return fmax(c->out->lower * (1.0 + c->o.rtol), c->floor); }
+
+/* The least bound over an interval's three lines (metric_certified.h): the
+ * interpolation of its ends' feet and each foot continued at its speed; the
+ * others only while the first is above `want`. */
+static double leaf_bound(cert_t *c, const side_t *s, const ob_cert_item *it, double want)
+{
+    const double m = 0.5 * (it->a + it->b), k0 = (it->tb - it->ta) / (it->b - it->a);
+    const double line[3][2] = {{it->ta + k0 * (m - it->a), k0},
+                               {it->ta + it->ka * (m - it->a), it->ka},
+                               {it->tb + it->kb * (m - it->b), it->kb}};
+    double U = INFINITY;
+    for (int i = 0; i < 3 && U > want; i++) {
+        U = fmin(U, ob_cert_upper(&s->P, &s->Q, it->a, it->b, line[i][0], line[i][1]));
+        c->out->leaves++, c->upper_work++;
+    }
+    return U;
+}
+
+static void push_leaf(cert_t *c, side_t *s, ob_cert_item it)
+{
+    it.key = leaf_bound(c, s, &it, target(c));
+    ob_cert_heap_push(&s->heap, it);
+}
+
+/* A certified lower bound of the distance from the box a to curve Q, refined
+ * towards goal (branch and bound over Q's parameter, least bound first). */
+static double point_lower(cert_t *c, const ob_cv *Q, const ob_iv a[2], double goal)
+{
+    ob_cert_heap h = {malloc((LOWER_ROOTS + 2 * (size_t)LOWER_BUDGET + 2) * sizeof(ob_cert_item)), 0,
+                      LOWER_ROOTS + 2 * (size_t)LOWER_BUDGET + 2};
+    if (!h.v)
+        return 0.0;
+    for (int i = 0; i < LOWER_ROOTS; i++) {
+        const double t0 = (double)i / LOWER_ROOTS, t1 = (double)(i + 1) / LOWER_ROOTS;
+        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, t0, t1), t0, t1, 0, 0, 0, 0});
+    }
+    double L = 0.0;
+    for (long n = 0;; n++) {
+        const ob_cert_item it = ob_cert_heap_pop(&h);
+        L = -it.key;
+        if (L >= goal || n >= LOWER_BUDGET || it.b - it.a < MIN_WIDTH)
+            break;
+        const double m = 0.5 * (it.a + it.b);
+        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, it.a, m), it.a, m, 0, 0, 0, 0});
+        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, m, it.b), m, it.b, 0, 0, 0, 0});
+        c->out->leaves += 2;
+    }
+    free(h.v);
+    return L;
+}
+
+/* Certify the distance of P(u) to Q when its estimate could raise the lower bound. */
+static void probe(cert_t *c, int k, double u)
+{
+    const side_t *s = &c->side[k];
+    double p[2], d1[2], t;
+    ob_iv a[2], a1[2];
+    ob_cert_eval(&s->P, u, p, d1);
+    const double est = ob_cert_nearest(&s->Q, p, (const double (*)[2])s->tab, s->S, &t);
+    if (!(est > fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor)) || ob_cv_point(&s->P, u, a, a1))
+        return;
+    const double L = point_lower(c, &s->Q, a, est * (1.0 - 1e-5));
+    if (L > c->out->lower)
+        c->out->lower = L, c->out->lower_side = k, c->out->lower_param = u;
+}
+
+/* The sampled maximum of side k, refined by golden section, then probed. */
+static void first_lower(cert_t *c, int k)
+{
+    const side_t *s = &c->side[k];
+    int j = 0;
+    for (int i = 1; i < s->S; i++)
+        if (s->dist[i] > s->dist[j])
+            j = i;
+    double a = (double)(j > 0 ? j - 1 : 0) / (s->S - 1), b = (double)(j < s->S - 1 ? j + 1 : j) / (s->S - 1);
+    for (int it = 0; it < 40; it++) {  /* ternary search on the estimate */
+        double x[2][2], d1[2], t, g[2];
+        for (int i = 0; i < 2; i++) {
+            ob_cert_eval(&s->P, i ? b - (b - a) / 3 : a + (b - a) / 3, x[i], d1);
+            g[i] = ob_cert_nearest(&s->Q, x[i], (const double (*)[2])s->tab, s->S, &t);
+        }
+        if (g[0] < g[1])
+            a += (b - a) / 3;
+        else
+            b -= (b - a) / 3;
+    }
+    probe(c, k, (double)j / (s->S - 1));
+    probe(c, k, 0.5 * (a + b));
+}
+
+/* Branch and bound on side k until its largest bound meets the target: the
+ * sample intervals first, then the worst interval halved, its middle given
+ * its own foot (so a foot map that bends or jumps inside is followed). */
+static void refine(cert_t *c, int k)
+{
+    side_t *s = &c->side[k];
+    const double h = 1.0 / (s->S - 1);
+    for (int j = 0; j + 1 < s->S; j++)
+        push_leaf(c, s, (ob_cert_item){0, j * h, (j + 1) * h, s->foot[j], s->foot[j + 1], s->slope[j], s->slope[j + 1]});
+    for (long n = 1; c->upper_work < c->o.budget * (k + 1); n++) {
+        if (n % PROBE_EVERY == 0)
+            probe(c, k, 0.5 * (s->heap.v[0].a + s->heap.v[0].b));
+        const ob_cert_item it = s->heap.v[0];
+        if (!(it.key > target(c)) || it.b - it.a < MIN_WIDTH || (isinf(it.key) && it.b - it.a < 1e-9))
+            break;
+        ob_cert_heap_pop(&s->heap);
+        const double m = 0.5 * (it.a + it.b);
+        double tm, km;
+        ob_cert_foot(&s->P, &s->Q, m, (const double (*)[2])s->tab, s->S, &tm, &km);
+        push_leaf(c, s, (ob_cert_item){0, it.a, m, it.ta, tm, it.ka, km});
+        push_leaf(c, s, (ob_cert_item){0, m, it.b, tm, it.tb, km, it.kb});
+    }
+}
+
+static double curve_size(const ob_bez *b)
+{
+    double m = 0.0, p[2];
+    for (int i = 0; i <= b->deg; i++) {
+        ob_bez_ctrl(b, i, p);
+        m = fmax(m, fmax(fabs(p[0]), fabs(p[1])));
+    }
+    return m;
+}
+
+static int side_alloc(side_t *s, int S, long budget)
+{
+    s->S = S;
+    s->tab = malloc((size_t)S * sizeof *s->tab);
+    s->foot = malloc(3 * (size_t)S * sizeof *s->foot);
+    s->heap.cap = (size_t)S + 2 * (size_t)budget + 8;
+    s->heap.v = malloc(s->heap.cap * sizeof *s->heap.v);
+    s->heap.n = 0;
+    if (!s->tab || !s->foot || !s->heap.v)
+        return -1;
+    s->dist = s->foot + S, s->slope = s->foot + 2 * S;
+    ob_cert_table(&s->Q, S, s->tab);
+    ob_cert_feet(&s->P, &s->Q, S, (const double (*)[2])s->tab, s->foot, s->dist, s->slope);
+    return 0;
+}
+
+static void side_free(side_t *s)
+{
+    free(s->tab);
+    free(s->foot);
+    free(s->heap.v);
+}
+
+void ob_cert_defaults(ob_cert_opts *o)
+{
+    o->rtol = 1e-3;
+    o->floor_rel = 1e-13;
+    o->budget = 20000;
+}
+
+int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,
+                              const ob_cert_opts *opts, ob_certified *out)
+{
+    cert_t c = {.out = out};
+    if (opts)
+        c.o = *opts;
+    else
+        ob_cert_defaults(&c.o);
+    *out = (ob_certified){0};
+    out->upper = INFINITY;
+    const ob_cv A = {approx, 0.0, 0}, O = {base, d, 1};
+    c.side[0].P = A, c.side[0].Q = O, c.side[1].P = O, c.side[1].Q = A;
+    c.floor = c.o.floor_rel * (fmax(curve_size(base), curve_size(approx)) + fabs(d));
+    const int S = ob_clamp_samples(samples);
+    int rc = -1;
+    if (side_alloc(&c.side[0], S, c.o.budget) == 0 && side_alloc(&c.side[1], S, c.o.budget) == 0) {
+        first_lower(&c, 0);
+        first_lower(&c, 1);
+        refine(&c, 0);
+        refine(&c, 1);
+        out->upper_ao = c.side[0].heap.n ? c.side[0].heap.v[0].key : 0.0;
+        out->upper_oa = c.side[1].heap.n ? c.side[1].heap.v[0].key : 0.0;
+        out->upper = fmax(out->upper_ao, out->upper_oa);
+        out->met = out->upper <= target(&c);
+        rc = isinf(out->upper) || out->upper != out->upper ? -1 : 0;
+        if (rc)
+            out->upper = INFINITY;
+    }
+    side_free(&c.side[0]);
+    side_free(&c.side[1]);
+    return rc;
+}
+
+int ob_certify_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int samples, ob_certified *out)
+{
+    return ob_certify_hausdorff_opts(base, approx, d, samples, NULL, out);
+}

@@ -1,0 +1,256 @@
+/*
+ * test_certified.c - the certified Hausdorff enclosure (methods/metrics/
+ * metric_certified.h): lower <= true distance <= upper by construction.
+ *
+ * Why: the enclosure is the claim a user cuts metal by; each test states what
+ * the mathematics guarantees and checks exactly that:
+ *   - exact offsets (a line, circles as rational quadratics, both senses):
+ *     the bound collapses to round-off;
+ *   - random pairs (random cubics, interpolants of their offsets, perturbed,
+ *     some made rational) against a brute force written here (its own
+ *     evaluation by Bernstein sums, testlib.h): the brute force's value is
+ *     the max over dense samples of a distance to a found point, so it is at
+ *     most the true sup plus its foot's refinement error, and at least the
+ *     true sup less what the samples miss;
+ *   - the sampled `hausdorff` metric at 256 samples (ob_metric_hausdorff):
+ *     its value is a distance to a found foot, so at most the true distance
+ *     plus its refinement error: sampled <= upper (1 + 1e-9);
+ *   - a planted spike the 256 samples step over: the sampled value misses
+ *     it, the upper bound does not.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "methods/core/curve.h"
+#include "methods/metrics/metric.h"
+#include "methods/metrics/metric_certified.h"
+#include "tests/check.h"
+#include "tests/testlib.h"
+
+/* ---- a brute force, independent of the library -------------------------- */
+
+typedef struct {
+    const ob_bez *b;
+    double d;
+    int offset;
+} bcurve;
+
+static void bpoint(const bcurve *c, double t, double p[2])
+{
+    if (c->offset)
+        ref_offset(c->b, t, c->d, p);
+    else
+        ref_point(c->b, t, p);
+}
+
+enum { TAB = 2000, BLK = 20 };
+
+typedef struct {
+    const bcurve *q;
+    double (*tab)[2];
+    double cen[TAB / BLK][2], radius[TAB / BLK];
+} btarget;
+
+static void btarget_init(btarget *T, const bcurve *q)
+{
+    T->q = q;
+    T->tab = malloc((TAB + 1) * sizeof *T->tab);
+    for (int k = 0; k <= TAB; k++)
+        bpoint(q, (double)k / TAB, T->tab[k]);
+    for (int b = 0; b < TAB / BLK; b++) {
+        double cx = 0, cy = 0, r = 0;
+        for (int k = b * BLK; k <= (b + 1) * BLK; k++)
+            cx += T->tab[k][0] / (BLK + 1), cy += T->tab[k][1] / (BLK + 1);
+        for (int k = b * BLK; k <= (b + 1) * BLK; k++)
+            r = fmax(r, hypot(T->tab[k][0] - cx, T->tab[k][1] - cy));
+        T->cen[b][0] = cx, T->cen[b][1] = cy, T->radius[b] = r;
+    }
+}
+
+/* distance from p to the table's nearest row (exact table min), its index */
+static double table_min(const btarget *T, const double p[2], int *kbest)
+{
+    double best = INFINITY;
+    for (int b = 0; b < TAB / BLK; b++) {
+        if (hypot(p[0] - T->cen[b][0], p[1] - T->cen[b][1]) - T->radius[b] > best)
+            continue;
+        for (int k = b * BLK; k <= (b + 1) * BLK; k++) {
+            const double dd = hypot(p[0] - T->tab[k][0], p[1] - T->tab[k][1]);
+            if (dd < best)
+                best = dd, *kbest = k;
+        }
+    }
+    return best;
+}
+
+/* the distance to a point of q found by golden section around row k */
+static double refine_min(const btarget *T, const double p[2], int k)
+{
+    double a = (double)(k > 0 ? k - 1 : 0) / TAB, b = (double)(k < TAB ? k + 1 : TAB) / TAB, x[2];
+    const double g = 0.6180339887498949;
+    for (int it = 0; it < 60; it++) {
+        const double m1 = b - g * (b - a), m2 = a + g * (b - a);
+        double p1[2], p2[2];
+        bpoint(T->q, m1, p1);
+        bpoint(T->q, m2, p2);
+        if (hypot(p[0] - p1[0], p[1] - p1[1]) <= hypot(p[0] - p2[0], p[1] - p2[1]))
+            b = m2;
+        else
+            a = m1;
+    }
+    bpoint(T->q, 0.5 * (a + b), x);
+    return fmin(hypot(p[0] - x[0], p[1] - x[1]), hypot(p[0] - T->tab[k][0], p[1] - T->tab[k][1]));
+}
+
+/* max over n samples of p of the distance to a found point of q */
+static double brute_side(const bcurve *p, const bcurve *q, long n)
+{
+    btarget T;
+    btarget_init(&T, q);
+    double best = 0.0;
+    for (long i = 0; i < n; i++) {
+        double x[2];
+        int k = 0;
+        bpoint(p, (double)i / (n - 1), x);
+        if (table_min(&T, x, &k) > best)  /* refining only lowers it */
+            best = fmax(best, refine_min(&T, x, k));
+    }
+    free(T.tab);
+    return best;
+}
+
+static double brute(const ob_bez *base, const ob_bez *approx, double d, long n)
+{
+    const bcurve A = {approx, 0, 0}, O = {base, d, 1};
+    return fmax(brute_side(&A, &O, n), brute_side(&O, &A, n));
+}
+
+/* ---- curves -------------------------------------------------------------- */
+
+/* Solve the n x n system M x = r (partial pivoting), r overwritten by x. */
+static void solve(double *M, double (*r)[2], int n)
+{
+    for (int c = 0; c < n; c++) {
+        int p = c;
+        for (int i = c + 1; i < n; i++)
+            if (fabs(M[i * n + c]) > fabs(M[p * n + c]))
+                p = i;
+        for (int j = 0; j < n; j++) {
+            const double t = M[c * n + j];
+            M[c * n + j] = M[p * n + j], M[p * n + j] = t;
+        }
+        for (int j = 0; j < 2; j++) {
+            const double t = r[c][j];
+            r[c][j] = r[p][j], r[p][j] = t;
+        }
+        for (int i = c + 1; i < n; i++) {
+            const double f = M[i * n + c] / M[c * n + c];
+            for (int j = c; j < n; j++)
+                M[i * n + j] -= f * M[c * n + j];
+            r[i][0] -= f * r[c][0], r[i][1] -= f * r[c][1];
+        }
+    }
+    for (int c = n - 1; c >= 0; c--) {
+        for (int j = c + 1; j < n; j++)
+            r[c][0] -= M[c * n + j] * r[j][0], r[c][1] -= M[c * n + j] * r[j][1];
+        r[c][0] /= M[c * n + c], r[c][1] /= M[c * n + c];
+    }
+}
+
+/* The degree-n polynomial through the offset at n + 1 Chebyshev-Lobatto nodes. */
+static ob_bez interp_offset(const ob_bez *base, double d, int n)
+{
+    double M[(OB_MAX_DEG + 1) * (OB_MAX_DEG + 1)], r[OB_MAX_DEG + 1][2];
+    for (int i = 0; i <= n; i++) {
+        const double t = 0.5 - 0.5 * cos(OB_PI * i / n);
+        for (int j = 0; j <= n; j++)
+            M[i * (n + 1) + j] = bern(n, j, t);
+        ref_offset(base, t, d, r[i]);
+    }
+    solve(M, r, n + 1);
+    return make(n, (const double (*)[2])r, NULL);
+}
+
+static ob_bez random_cubic(void)
+{
+    double xy[4][2];
+    for (int i = 0; i < 4; i++)
+        xy[i][0] = i / 3.0 + urange(-0.2, 0.2), xy[i][1] = urange(-0.5, 0.5);
+    return make(3, (const double (*)[2])xy, NULL);
+}
+
+static double size_of(const ob_bez *b)
+{
+    double m = 0;
+    for (int i = 0; i <= b->deg; i++)
+        m = fmax(m, fmax(fabs(b->h[i][0] / b->h[i][2]), fabs(b->h[i][1] / b->h[i][2])));
+    return m;
+}
+
+/* ---- tests --------------------------------------------------------------- */
+
+static void check_exact(const char *what, const ob_bez *base, const ob_bez *approx, double d)
+{
+    ob_certified c;
+    ob_cert_opts o;
+    ob_cert_defaults(&o);
+    o.budget = 200000;
+    const int rc = ob_certify_hausdorff_opts(base, approx, d, 256, &o, &c);
+    const double size = size_of(base) + fabs(d);
+    CHECK(rc == 0 && c.lower >= 0 && c.lower <= c.upper, "%s: rc %d lower %g upper %g", what, rc, c.lower, c.upper);
+    CHECK(c.upper < 1e-12 * size, "%s: upper %.3g not round-off (size %g, %ld leaves)", what, c.upper, size,
+          c.leaves);
+    printf("exact %-28s upper %.3g lower %.3g leaves %ld\n", what, c.upper, c.lower, c.leaves);
+}
+
+static void test_exact(void)
+{
+    const double line[2][2] = {{0, 0}, {2, 1}}, off[2][2] = {{-0.2, 0.4}, {1.8, 1.4}};
+    const ob_bez L = make(1, line, NULL), LO = make(1, off, NULL);
+    check_exact("line d = 0.2 sqrt 5", &L, &LO, 0.2 * sqrt(5.0));
+    const ob_bez C = quarter_circle(1.0, 0), Cin = quarter_circle(0.75, 0), Cout = quarter_circle(1.5, 0);
+    check_exact("circle ccw d = 0.25", &C, &Cin, 0.25);
+    check_exact("circle ccw d = -0.5", &C, &Cout, -0.5);
+    const ob_bez W = quarter_circle(1.0, 1), Wout = quarter_circle(1.25, 1);
+    check_exact("circle cw d = 0.25", &W, &Wout, 0.25);
+}
+
+/* lower <= brute + what samples miss; brute <= upper + its refinement error;
+ * the sampled metric likewise <= upper. */
+static void test_random_pairs(int npairs, long nbrute)
+{
+    double worst_ratio = 1.0;
+    for (int p = 0; p < npairs; p++) {
+        const ob_bez base = random_cubic();
+        const double d = (p % 2 ? 1 : -1) * urange(0.03, 0.2);
+        ob_bez A = interp_offset(&base, d, 3 + p % 5);
+        for (int i = 0; i <= A.deg; i++)
+            ob_bez_set(&A, i, A.h[i][0] + urange(-1e-4, 1e-4), A.h[i][1] + urange(-1e-4, 1e-4),
+                       p % 3 == 2 ? urange(0.8, 1.25) : 1.0);
+        ob_certified c;
+        ob_errval s;
+        const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
+        ob_metric_hausdorff(&base, &A, d, 256, &s);
+        const double b = brute(&base, &A, d, nbrute);
+        CHECK(c.lower <= c.upper, "pair %d: lower %.17g > upper %.17g", p, c.lower, c.upper);
+        CHECK(b <= c.upper * (1 + 1e-9) + 1e-15, "pair %d: brute %.17g > upper %.17g", p, b, c.upper);
+        CHECK(c.lower <= b * (1 + 1e-7) + 1e-15, "pair %d: lower %.17g > brute %.17g", p, c.lower, b);
+        CHECK(s.err <= c.upper * (1 + 1e-9) + 1e-15, "pair %d: sampled %.17g > upper %.17g", p, s.err, c.upper);
+        if (rc == 0)
+            worst_ratio = fmax(worst_ratio, c.upper / c.lower);
+        printf("pair %2d deg %d%s: lower %.9g sampled %.9g brute %.9g upper %.9g (rc %d, %ld leaves)\n", p, A.deg,
+               A.rational ? "r" : " ", c.lower, s.err, b, c.upper, rc, c.leaves);
+    }
+    printf("random pairs: worst upper / lower %.6f\n", worst_ratio);
+}
+
+int main(int argc, char **argv)
+{
+    (void)argv;
+    testlib_seed(0x41C3A7E5ULL);
+    test_exact();
+    test_random_pairs(30, argc > 1 ? 1000000 : 20000);
+    return check_done();
+}
