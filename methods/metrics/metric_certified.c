@@ -10,6 +10,7 @@
 #include "methods/metrics/cert_bounds.h"
 #include "methods/metrics/cert_feet.h"
 #include "methods/metrics/cert_heap.h"
+#include "methods/metrics/cert_job.h"
 #include "methods/metrics/metric.h"
 
 enum { LOWER_ROOTS = 16, PROBE_EVERY = 16 };
@@ -30,11 +31,15 @@ typedef struct {
     side_t side[2];
     ob_cert_opts o;
     double floor;
+    double stop;      /* a bound already certified elsewhere (cert_job.h): no need to refine below it */
     long upper_work;  /* upper enclosures so far: what the budget limits */
     ob_certified *out;
 } cert_t;
 
-static double target(const cert_t *c) { return fmax(c->out->lower * (1.0 + c->o.rtol), c->floor); }
+static double target(const cert_t *c)
+{
+    return fmax(fmax(c->out->lower * (1.0 + c->o.rtol), c->floor), c->stop);
+}
 
 /* The least bound over an interval's three lines (metric_certified.h): the
  * interpolation of its ends' feet and each foot continued at its speed; the
@@ -94,7 +99,8 @@ static void probe(cert_t *c, int k, double u)
     ob_iv a[2], a1[2];
     ob_cert_eval(&s->P, u, p, d1);
     const double est = ob_cert_nearest(&s->Q, p, (const double (*)[2])s->tab, s->S, &t);
-    if (!(est > fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor)) || ob_cv_point(&s->P, u, a, a1))
+    const double useful = fmax(fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor), c->stop / (1.0 + c->o.rtol));
+    if (!(est > useful) || ob_cv_point(&s->P, u, a, a1))
         return;
     const double L = point_lower(c, &s->Q, a, est * (1.0 - 1e-5));
     if (L > c->out->lower)
@@ -189,10 +195,10 @@ void ob_cert_defaults(ob_cert_opts *o)
     o->budget = 20000;
 }
 
-int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,
-                              const ob_cert_opts *opts, ob_certified *out)
+int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double d, int samples,
+                               const ob_cert_opts *opts, double stop, ob_certified *out)
 {
-    cert_t c = {.out = out};
+    cert_t c = {.out = out, .stop = stop > 0 && stop < INFINITY ? stop : 0.0};
     if (opts)
         c.o = *opts;
     else
@@ -220,6 +226,12 @@ int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d
     side_free(&c.side[0]);
     side_free(&c.side[1]);
     return rc;
+}
+
+int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,
+                              const ob_cert_opts *opts, ob_certified *out)
+{
+    return ob_certify_hausdorff_until(base, approx, d, samples, opts, 0.0, out);
 }
 
 int ob_certify_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int samples, ob_certified *out)
