@@ -51,8 +51,10 @@ static double leaf_bound(cert_t *c, const side_t *s, const ob_cert_item *it, dou
                                {it->ta + it->ka * (m - it->a), it->ka},
                                {it->tb + it->kb * (m - it->b), it->kb}};
     double U = INFINITY;
+    ob_cert_pside ps;
+    ob_cert_upper_prep(&s->P, it->a, it->b, &ps);
     for (int i = 0; i < 3 && U > want; i++) {
-        U = fmin(U, ob_cert_upper(&s->P, &s->Q, it->a, it->b, line[i][0], line[i][1]));
+        U = fmin(U, ob_cert_upper_line(&ps, &s->Q, line[i][0], line[i][1]));
         c->out->leaves++, c->upper_work++;
     }
     return U;
