@@ -109,6 +109,14 @@ static void probe(cert_t *c, int k, double u)
         c->out->lower = L, c->out->lower_side = k, c->out->lower_param = u;
 }
 
+/* The estimated distance from P(u) to Q. */
+static double estimate(const side_t *s, double u)
+{
+    double x[2], d1[2], t;
+    ob_cert_eval(&s->P, u, x, d1);
+    return ob_cert_nearest(&s->Q, x, (const double (*)[2])s->tab, s->S, &t);
+}
+
 /* The sampled maximum of side k, refined by golden section, then probed. */
 static void first_lower(cert_t *c, int k)
 {
@@ -118,16 +126,18 @@ static void first_lower(cert_t *c, int k)
         if (s->dist[i] > s->dist[j])
             j = i;
     double a = (double)(j > 0 ? j - 1 : 0) / (s->S - 1), b = (double)(j < s->S - 1 ? j + 1 : j) / (s->S - 1);
-    for (int it = 0; it < 40; it++) {  /* ternary search on the estimate */
-        double x[2][2], d1[2], t, g[2];
-        for (int i = 0; i < 2; i++) {
-            ob_cert_eval(&s->P, i ? b - (b - a) / 3 : a + (b - a) / 3, x[i], d1);
-            g[i] = ob_cert_nearest(&s->Q, x[i], (const double (*)[2])s->tab, s->S, &t);
+    /* golden section for the largest estimate: one foot per step */
+    const double g = 0.6180339887498949;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = estimate(s, x1), f2 = estimate(s, x2);
+    for (int it = 0; it < 36; it++) {
+        if (f1 >= f2) {
+            b = x2, x2 = x1, f2 = f1;
+            x1 = b - g * (b - a), f1 = estimate(s, x1);
+        } else {
+            a = x1, x1 = x2, f1 = f2;
+            x2 = a + g * (b - a), f2 = estimate(s, x2);
         }
-        if (g[0] < g[1])
-            a += (b - a) / 3;
-        else
-            b -= (b - a) / 3;
     }
     probe(c, k, (double)j / (s->S - 1));
     probe(c, k, 0.5 * (a + b));
