@@ -16,7 +16,10 @@
  *     its value is a distance to a found foot, so at most the true distance
  *     plus its refinement error: sampled <= upper (1 + 1e-9);
  *   - a planted spike the 256 samples step over: the sampled value misses
- *     it, the upper bound does not.
+ *     it, the upper bound does not;
+ *   - jobs of pieces whose distances differ by orders of magnitude
+ *     (cert_job.h): the job's enclosure holds the largest brute force and
+ *     meets rtol.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -25,6 +28,7 @@
 
 #include "methods/core/curve.h"
 #include "methods/metrics/metric.h"
+#include "methods/metrics/cert_job.h"
 #include "methods/metrics/metric_certified.h"
 #include "tests/check.h"
 #include "tests/testlib.h"
@@ -360,6 +364,46 @@ static void test_spike(void)
     CHECK(!c.met, "spike, budget 1: met without refining");
 }
 
+/* A job of pieces whose distances differ by orders of magnitude
+ * (cert_job.h): the job's enclosure holds the brute force's largest piece,
+ * and meets rtol, though its small pieces are only shown below it. */
+static void test_job(int njobs)
+{
+    for (int jb = 0; jb < njobs; jb++) {
+        enum { NP = 3 };
+        ob_bez base[NP], A[NP];
+        const double d = (jb % 2 ? 1 : -1) * urange(0.03, 0.2), scale[NP] = {1e-8, 1e-4, 1e-6};
+        const int deg[NP] = {11, 3, 7};  /* interpolation errors far apart too */
+        double truth = 0.0, hint[NP];
+        for (int k = 0; k < NP; k++) {
+            base[k] = random_cubic();
+            A[k] = interp_offset(&base[k], d, deg[k]);
+            for (int i = 0; i <= A[k].deg; i++)
+                ob_bez_set(&A[k], i, A[k].h[i][0] + urange(-1, 1) * scale[k], A[k].h[i][1] + urange(-1, 1) * scale[k],
+                           1.0);
+            truth = fmax(truth, brute(&base[k], &A[k], d, 20000));
+            ob_errval e;
+            ob_metric_hausdorff(&base[k], &A[k], d, 256, &e);
+            hint[k] = e.err;
+        }
+        ob_cert_job J, Jh;
+        ob_certified piece[NP];
+        const int rc = ob_certify_job(NP, base, A, d, 256, NULL, NULL, &J, piece);
+        const int rch = ob_certify_job(NP, base, A, d, 256, NULL, hint, &Jh, NULL);
+        printf("job %d: brute %.9g certified [%.9g, %.9g] met %d, %ld leaves (piece uppers %.3g %.3g %.3g)\n", jb,
+               truth, J.lower, J.upper, J.met, J.leaves, piece[0].upper, piece[1].upper, piece[2].upper);
+        CHECK(rc == 0 && rch == 0 && J.met && Jh.met, "job %d: rc %d %d met %d %d", jb, rc, rch, J.met, Jh.met);
+        CHECK(truth <= J.upper * (1 + 1e-9) && J.lower <= truth * (1 + 1e-7), "job %d: [%.17g, %.17g] misses %.17g",
+              jb, J.lower, J.upper, truth);
+        CHECK(J.upper <= J.lower * (1 + 1e-3) && J.upper_piece >= 0 && J.upper == piece[J.upper_piece].upper,
+              "job %d: upper %.17g lower %.17g piece %d", jb, J.upper, J.lower, J.upper_piece);
+        CHECK(J.lower == Jh.lower && J.upper == Jh.upper, "job %d: the hint changed the result", jb);
+        for (int k = 0; k < NP; k++)
+            CHECK(piece[k].upper <= J.upper, "job %d: piece %d upper %g above the job's %g", jb, k, piece[k].upper,
+                  J.upper);
+    }
+}
+
 int main(int argc, char **argv)
 {
     (void)argv;
@@ -367,5 +411,6 @@ int main(int argc, char **argv)
     test_exact();
     test_spike();
     test_random_pairs(30, argc > 1 ? 1000000 : 20000);
+    test_job(4);
     return check_done();
 }
