@@ -30,10 +30,17 @@ static double side_bound(const ob_iv e[3][2], double ux, double uy, ob_iv H)
     return r.hi == r.hi ? r.hi : INFINITY;
 }
 
-double ob_cert_upper(const ob_cv *P, const ob_cv *Q, double u0, double u1, double tm, double k)
+int ob_cert_upper_prep(const ob_cv *P, double u0, double u1, ob_cert_pside *ps)
 {
-    const double m = 0.5 * (u0 + u1);
-    const ob_iv hl = ob_iv_sub(pt(m), pt(u0)), hr = ob_iv_sub(pt(u1), pt(m));
+    ps->u0 = u0, ps->u1 = u1, ps->m = 0.5 * (u0 + u1);
+    ps->hl = ob_iv_sub(pt(ps->m), pt(u0)), ps->hr = ob_iv_sub(pt(u1), pt(ps->m));
+    ps->bad = ob_cv_point(P, ps->m, ps->Pp, ps->P1) || ob_cv_range(P, u0, u1, 2, ps->P2);
+    return ps->bad ? -1 : 0;
+}
+
+double ob_cert_upper_line(const ob_cert_pside *ps, const ob_cv *Q, double tm, double k)
+{
+    const ob_iv hl = ps->hl, hr = ps->hr;
     tm = fmin(fmax(tm, 0.0), 1.0);
     const double w = ob_iv_up(fabs(k) * fmax(hl.hi, hr.hi));
     double tlo = ob_iv_dn(tm - w), thi = ob_iv_up(tm + w);
@@ -43,23 +50,30 @@ double ob_cert_upper(const ob_cv *P, const ob_cv *Q, double u0, double u1, doubl
     }
     if (!(tlo >= 0.0 && thi <= 1.0))  /* the line still leaves it: hold t */
         k = 0.0, tm = fmin(fmax(tm, 0.0), 1.0), tlo = thi = tm;
-    ob_iv Pp[2], P1[2], P2[2], Qp[2], Q1[2], Q2[2] = {{0, 0}, {0, 0}};
-    if (ob_cv_point(P, m, Pp, P1) || ob_cv_range(P, u0, u1, 2, P2) || ob_cv_point(Q, tm, Qp, Q1))
+    ob_iv Qp[2], Q1[2], Q2[2] = {{0, 0}, {0, 0}};
+    if (ps->bad || ob_cv_point(Q, tm, Qp, Q1))
         return INFINITY;
     if (k != 0.0 && ob_cv_range(Q, tlo, thi, 2, Q2))
         return INFINITY;
     const ob_iv K = pt(k), K2 = ob_iv_sqr(K);
     ob_iv e[3][2];
     for (int c = 0; c < 2; c++) {
-        e[0][c] = ob_iv_sub(Pp[c], Qp[c]);
-        e[1][c] = ob_iv_sub(P1[c], ob_iv_mul(K, Q1[c]));
-        e[2][c] = ob_iv_sub(P2[c], ob_iv_mul(K2, Q2[c]));
+        e[0][c] = ob_iv_sub(ps->Pp[c], Qp[c]);
+        e[1][c] = ob_iv_sub(ps->P1[c], ob_iv_mul(K, Q1[c]));
+        e[2][c] = ob_iv_sub(ps->P2[c], ob_iv_mul(K2, Q2[c]));
     }
     double ux = mid(e[0][0]), uy = mid(e[0][1]);
     if (!(fabs(ux) + fabs(uy) > 0))
         ux = 1.0, uy = 0.0;
     const double U = fmax(side_bound(e, ux, uy, (ob_iv){-hl.hi, 0.0}), side_bound(e, ux, uy, (ob_iv){0.0, hr.hi}));
     return U == U ? U : INFINITY;
+}
+
+double ob_cert_upper(const ob_cv *P, const ob_cv *Q, double u0, double u1, double tm, double k)
+{
+    ob_cert_pside ps;
+    ob_cert_upper_prep(P, u0, u1, &ps);
+    return ob_cert_upper_line(&ps, Q, tm, k);
 }
 
 /* A lower bound of |x|, x an interval. */

@@ -16,6 +16,18 @@
  * Returns: U, +inf where an enclosure cannot be bounded. */
 double ob_cert_upper(const ob_cv *P, const ob_cv *Q, double u0, double u1, double tm, double k);
 
+/* ob_cert_upper in two steps, so that several lines over one interval share
+ * the enclosures of P: prep (returns -1 where P cannot be enclosed; the
+ * lines then give +inf), then one line (the same number as ob_cert_upper). */
+typedef struct {
+    double u0, u1, m;
+    ob_iv hl, hr;                /* m - u0, u1 - m */
+    ob_iv Pp[2], P1[2], P2[2];   /* P(m), P'(m), P'' over [u0, u1] */
+    int bad;
+} ob_cert_pside;
+int ob_cert_upper_prep(const ob_cv *P, double u0, double u1, ob_cert_pside *ps);
+double ob_cert_upper_line(const ob_cert_pside *ps, const ob_cv *Q, double tm, double k);
+
 /* Purpose: L <= |a - Q(t)| for every t in [t0, t1] and every a in the box a[2].
  * Method:  first-order enclosure Q(m) + Q'([t0, t1]) (t - m), exact
  *          point-to-segment distance from its centre, less the radii.

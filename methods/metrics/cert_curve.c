@@ -24,21 +24,26 @@ static void load(const ob_bez *b, hpt *q)
 
 static ob_iv lerp(ob_iv a, ob_iv b, ob_iv t) { return ob_iv_add(a, ob_iv_mul(t, ob_iv_sub(b, a))); }
 
-/* q becomes the piece over [0, t] (descending in place: q[j] is level j's first point). */
-static void split_left(hpt *q, int n, ob_iv t)
+/* The homogeneous coordinates that carry information: a polynomial
+ * segment's weights are all 1 and never read (euclid). */
+static int ncoords(const ob_bez *b) { return b->rational ? 3 : 2; }
+
+/* q becomes the piece over [0, t] (descending in place: q[j] is level j's first point);
+ * coordinates 0 .. nc - 1. */
+static void split_left(hpt *q, int n, int nc, ob_iv t)
 {
     for (int r = 1; r <= n; r++)
         for (int i = n; i >= r; i--)
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < nc; c++)
                 q[i][c] = lerp(q[i - 1][c], q[i][c], t);
 }
 
 /* q becomes the piece over [t, 1] (ascending in place: q[j] is level n - j's last point). */
-static void split_right(hpt *q, int n, ob_iv t)
+static void split_right(hpt *q, int n, int nc, ob_iv t)
 {
     for (int r = 1; r <= n; r++)
         for (int i = 0; i <= n - r; i++)
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < nc; c++)
                 q[i][c] = lerp(q[i][c], q[i + 1][c], t);
 }
 
@@ -63,7 +68,7 @@ static double falling(int n, int k)
  * holds the k-th derivative as falling(n, k) times its k-th difference. */
 static void hjet_point(const ob_bez *b, double t, int K, hpt *H)
 {
-    const int n = b->deg;
+    const int n = b->deg, nc = ncoords(b);
     hpt q[OB_MAX_DEG + 1];
     load(b, q);
     for (int k = 0; k <= K; k++)
@@ -72,11 +77,11 @@ static void hjet_point(const ob_bez *b, double t, int K, hpt *H)
     for (int r = 0; r <= n; r++) {
         if (r > 0)
             for (int i = 0; i <= n - r; i++)
-                for (int c = 0; c < 3; c++)
+                for (int c = 0; c < nc; c++)
                     q[i][c] = lerp(q[i][c], q[i + 1][c], ob_iv_pt(t));
         const int k = n - r;
         if (k <= K)
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < nc; c++)
                 H[k][c] = ob_iv_scale(diff(q, 0, k, c), falling(n, k));
     }
 }
@@ -85,27 +90,39 @@ static void hjet_point(const ob_bez *b, double t, int K, hpt *H)
  * subsegment's scaled differences. */
 static void hjet_range(const ob_bez *b, double t0, double t1, int K, hpt *H)
 {
-    const int n = b->deg;
+    const int n = b->deg, nc = ncoords(b);
     hpt q[OB_MAX_DEG + 1];
     load(b, q);
     if (t1 < 1.0)
-        split_left(q, n, ob_iv_pt(t1));
+        split_left(q, n, nc, ob_iv_pt(t1));
     if (t0 > 0.0)
-        split_right(q, n, ob_iv_div(ob_iv_pt(t0), ob_iv_pt(t1)));
+        split_right(q, n, nc, ob_iv_div(ob_iv_pt(t0), ob_iv_pt(t1)));
     const ob_iv len = ob_iv_sub(ob_iv_pt(t1), ob_iv_pt(t0));
-    ob_iv scale = ob_iv_pt(1.0);
-    for (int k = 0; k <= K; k++) {
-        for (int c = 0; c < 3; c++) {
+    ob_iv scale[MAXK + 1];
+    scale[0] = ob_iv_pt(1.0);
+    for (int k = 1; k <= K; k++)
+        scale[k] = ob_iv_div(scale[k - 1], len);
+    for (int k = 0; k <= K; k++)
+        H[k][2] = ob_iv_pt(0.0);  /* unread unless rational */
+    for (int c = 0; c < nc; c++) {
+        /* the difference table, level k in place: D[i] = diff(q, i, k, c),
+         * the same operations as diff() without its recomputation */
+        ob_iv D[OB_MAX_DEG + 1];
+        for (int i = 0; i <= n; i++)
+            D[i] = q[i][c];
+        for (int k = 0; k <= K; k++) {
             if (k > n) {
                 H[k][c] = ob_iv_pt(0.0);
                 continue;
             }
-            ob_iv h = diff(q, 0, k, c);
+            if (k > 0)
+                for (int i = 0; i + k <= n; i++)
+                    D[i] = ob_iv_sub(D[i + 1], D[i]);
+            ob_iv h = D[0];
             for (int i = 1; i + k <= n; i++)
-                h = ob_iv_hull(h, diff(q, i, k, c));
-            H[k][c] = ob_iv_mul(ob_iv_scale(h, falling(n, k)), scale);
+                h = ob_iv_hull(h, D[i]);
+            H[k][c] = ob_iv_mul(ob_iv_scale(h, falling(n, k)), scale[k]);
         }
-        scale = ob_iv_div(scale, len);
     }
 }
 

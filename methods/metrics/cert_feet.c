@@ -98,14 +98,22 @@ double ob_cert_nearest(const ob_cv *q, const double p[2], const double (*tab)[2]
 {
     int best = 0;
     double bd = INFINITY;
-    for (int k = 0; k < M; k++) {
-        const double dd = hypot(p[0] - tab[k][0], p[1] - tab[k][1]);
+    for (int k = 0; k < M; k++) {  /* squared: the scan only ranks rows */
+        const double dx = p[0] - tab[k][0], dy = p[1] - tab[k][1], dd = dx * dx + dy * dy;
         if (dd < bd)
             bd = dd, best = k;
     }
+    bd = hypot(p[0] - tab[best][0], p[1] - tab[best][1]);
     double a = (double)(best > 0 ? best - 1 : 0) / (M - 1), b = (double)(best < M - 1 ? best + 1 : M - 1) / (M - 1);
-    golden(q, p, &a, &b);
-    const double cands[4] = {polish(q, p, a, b), 0.5 * (a + b), a == 0.0 ? 0.0 : -1.0, b == 1.0 ? 1.0 : -1.0};
+    /* the bracket of the nearest row's two spans usually holds one sign
+     * change of the slope: regula falsi straight away; golden section first
+     * only where it does not (a foot at an end, or two minima) */
+    double tp = polish(q, p, a, b);
+    if (tp < 0.0) {
+        golden(q, p, &a, &b);
+        tp = polish(q, p, a, b);
+    }
+    const double cands[4] = {tp, 0.5 * (a + b), a == 0.0 ? 0.0 : -1.0, b == 1.0 ? 1.0 : -1.0};
     double tb = (double)best / (M - 1);
     for (int i = 0; i < 4; i++)
         if (cands[i] >= 0.0 && cands[i] <= 1.0) {

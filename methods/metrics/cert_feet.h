@@ -15,8 +15,9 @@
 void ob_cert_eval(const ob_cv *c, double t, double p[2], double d1[2]);
 
 /* Purpose: the nearest point to p on curve q found by a scan of tab (q at
- *          the M >= 2 parameters k / (M - 1)), golden section around the
- *          nearest row, then regula falsi on (p - q(t)) . q'(t).
+ *          the M >= 2 parameters k / (M - 1)), then regula falsi on
+ *          (p - q(t)) . q'(t) over the nearest row's two spans (after a
+ *          golden section there where the slope does not change sign once).
  * Outputs: *t, its parameter.  Returns: the distance |p - q(t)|. */
 double ob_cert_nearest(const ob_cv *q, const double p[2], const double (*tab)[2], int M, double *t);
 

@@ -10,6 +10,7 @@
 #include "methods/metrics/cert_bounds.h"
 #include "methods/metrics/cert_feet.h"
 #include "methods/metrics/cert_heap.h"
+#include "methods/metrics/cert_job.h"
 #include "methods/metrics/metric.h"
 
 enum { LOWER_ROOTS = 16, PROBE_EVERY = 16 };
@@ -30,11 +31,15 @@ typedef struct {
     side_t side[2];
     ob_cert_opts o;
     double floor;
+    double stop;      /* a bound already certified elsewhere (cert_job.h): no need to refine below it */
     long upper_work;  /* upper enclosures so far: what the budget limits */
     ob_certified *out;
 } cert_t;
 
-static double target(const cert_t *c) { return fmax(c->out->lower * (1.0 + c->o.rtol), c->floor); }
+static double target(const cert_t *c)
+{
+    return fmax(fmax(c->out->lower * (1.0 + c->o.rtol), c->floor), c->stop);
+}
 
 /* The least bound over an interval's three lines (metric_certified.h): the
  * interpolation of its ends' feet and each foot continued at its speed; the
@@ -46,8 +51,10 @@ static double leaf_bound(cert_t *c, const side_t *s, const ob_cert_item *it, dou
                                {it->ta + it->ka * (m - it->a), it->ka},
                                {it->tb + it->kb * (m - it->b), it->kb}};
     double U = INFINITY;
+    ob_cert_pside ps;
+    ob_cert_upper_prep(&s->P, it->a, it->b, &ps);
     for (int i = 0; i < 3 && U > want; i++) {
-        U = fmin(U, ob_cert_upper(&s->P, &s->Q, it->a, it->b, line[i][0], line[i][1]));
+        U = fmin(U, ob_cert_upper_line(&ps, &s->Q, line[i][0], line[i][1]));
         c->out->leaves++, c->upper_work++;
     }
     return U;
@@ -94,11 +101,20 @@ static void probe(cert_t *c, int k, double u)
     ob_iv a[2], a1[2];
     ob_cert_eval(&s->P, u, p, d1);
     const double est = ob_cert_nearest(&s->Q, p, (const double (*)[2])s->tab, s->S, &t);
-    if (!(est > fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor)) || ob_cv_point(&s->P, u, a, a1))
+    const double useful = fmax(fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor), c->stop / (1.0 + c->o.rtol));
+    if (!(est > useful) || ob_cv_point(&s->P, u, a, a1))
         return;
     const double L = point_lower(c, &s->Q, a, est * (1.0 - 1e-5));
     if (L > c->out->lower)
         c->out->lower = L, c->out->lower_side = k, c->out->lower_param = u;
+}
+
+/* The estimated distance from P(u) to Q. */
+static double estimate(const side_t *s, double u)
+{
+    double x[2], d1[2], t;
+    ob_cert_eval(&s->P, u, x, d1);
+    return ob_cert_nearest(&s->Q, x, (const double (*)[2])s->tab, s->S, &t);
 }
 
 /* The sampled maximum of side k, refined by golden section, then probed. */
@@ -110,16 +126,18 @@ static void first_lower(cert_t *c, int k)
         if (s->dist[i] > s->dist[j])
             j = i;
     double a = (double)(j > 0 ? j - 1 : 0) / (s->S - 1), b = (double)(j < s->S - 1 ? j + 1 : j) / (s->S - 1);
-    for (int it = 0; it < 40; it++) {  /* ternary search on the estimate */
-        double x[2][2], d1[2], t, g[2];
-        for (int i = 0; i < 2; i++) {
-            ob_cert_eval(&s->P, i ? b - (b - a) / 3 : a + (b - a) / 3, x[i], d1);
-            g[i] = ob_cert_nearest(&s->Q, x[i], (const double (*)[2])s->tab, s->S, &t);
+    /* golden section for the largest estimate: one foot per step */
+    const double g = 0.6180339887498949;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = estimate(s, x1), f2 = estimate(s, x2);
+    for (int it = 0; it < 36; it++) {
+        if (f1 >= f2) {
+            b = x2, x2 = x1, f2 = f1;
+            x1 = b - g * (b - a), f1 = estimate(s, x1);
+        } else {
+            a = x1, x1 = x2, f1 = f2;
+            x2 = a + g * (b - a), f2 = estimate(s, x2);
         }
-        if (g[0] < g[1])
-            a += (b - a) / 3;
-        else
-            b -= (b - a) / 3;
     }
     probe(c, k, (double)j / (s->S - 1));
     probe(c, k, 0.5 * (a + b));
@@ -189,10 +207,10 @@ void ob_cert_defaults(ob_cert_opts *o)
     o->budget = 20000;
 }
 
-int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,
-                              const ob_cert_opts *opts, ob_certified *out)
+int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double d, int samples,
+                               const ob_cert_opts *opts, double stop, ob_certified *out)
 {
-    cert_t c = {.out = out};
+    cert_t c = {.out = out, .stop = stop > 0 && stop < INFINITY ? stop : 0.0};
     if (opts)
         c.o = *opts;
     else
@@ -220,6 +238,12 @@ int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d
     side_free(&c.side[0]);
     side_free(&c.side[1]);
     return rc;
+}
+
+int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,
+                              const ob_cert_opts *opts, ob_certified *out)
+{
+    return ob_certify_hausdorff_until(base, approx, d, samples, opts, 0.0, out);
 }
 
 int ob_certify_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int samples, ob_certified *out)

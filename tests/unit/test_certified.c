@@ -16,7 +16,10 @@
  *     its value is a distance to a found foot, so at most the true distance
  *     plus its refinement error: sampled <= upper (1 + 1e-9);
  *   - a planted spike the 256 samples step over: the sampled value misses
- *     it, the upper bound does not.
+ *     it, the upper bound does not;
+ *   - jobs of pieces whose distances differ by orders of magnitude
+ *     (cert_job.h): the job's enclosure holds the largest brute force and
+ *     meets rtol.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -25,6 +28,7 @@
 
 #include "methods/core/curve.h"
 #include "methods/metrics/metric.h"
+#include "methods/metrics/cert_job.h"
 #include "methods/metrics/metric_certified.h"
 #include "tests/check.h"
 #include "tests/testlib.h"
@@ -246,11 +250,167 @@ static void test_random_pairs(int npairs, long nbrute)
     printf("random pairs: worst upper / lower %.6f\n", worst_ratio);
 }
 
+/* ---- a planted spike ------------------------------------------------------ */
+
+/* c = a (degree p) times b (degree q), Bernstein coefficients. */
+static void bprod(const double *a, int p, const double *b, int q, double *c)
+{
+    for (int k = 0; k <= p + q; k++)
+        c[k] = 0.0;
+    for (int i = 0; i <= p; i++)
+        for (int j = 0; j <= q; j++)
+            c[i + j] += a[i] * b[j] * binom(p, i) * binom(q, j) / binom(p + q, i + j);
+}
+
+enum { SPK_K = 16, SPK_J = 4, SPK_DEG = SPK_K + 4 };
+
+/* The exact offset of the unit quarter circle at d = 0.25 (the circle of
+ * radius 0.75) scaled radially by rho(t) = 1 + 4 c0 t (1 - t) + h phi(s(t)):
+ * A(t) = rho(t) Q(t), Q the rational quadratic quarter circle.
+ *   - 4 c0 t (1 - t): a broad error, largest at t = 1/2, that the samples see;
+ *   - phi(s) = B_j^k(s) / B_j^k(j / k): a bump of height 1 at s = j / k, read
+ *     through the Moebius map s(t) = r t / ((1 - t) + r t): then phi(s(t)) =
+ *     Phi(t) / m(t), m = ((1 - t) + r t)^k, Phi with the coefficients of phi
+ *     times r^i (Farin, ch. 13).  With r = 1000 the map sends (0, 1/255) onto
+ *     (0, 0.8): the bump, s in about (0.1, 0.45), lies between the first two
+ *     samples, at t ~ 1e-4 .. 8e-4, an arc of ~ 6e-4 (a needle h tall; O's
+ *     samples at t = 0 and 1/255 step over it too, both sides sharing t).
+ * A = (R Q_xy) / (m Q_w), R = m (1 + 4 c0 t (1 - t)) + h Phi: degree k + 4,
+ * weights m Q_w (x (1, 1, 1) to the same degree), all positive. */
+static ob_bez spike_curve(double r, double c0, double h)
+{
+    double m[SPK_K + 1], Phi[SPK_K + 1], R[SPK_K + 3], tmp[SPK_K + 3], W[SPK_K + 3];
+    double H[SPK_DEG + 1][3], q[3][3];
+    const double broad[3] = {1.0, 1.0 + 2.0 * c0, 1.0}, one[3] = {1.0, 1.0, 1.0};
+    const ob_bez Q = quarter_circle(0.75, 0);
+    for (int i = 0; i <= SPK_K; i++)
+        m[i] = pow(r, i - SPK_K / 2), Phi[i] = 0.0;  /* scaled by r^-k/2: one homogeneous factor */
+    Phi[SPK_J] = h * m[SPK_J] / bern(SPK_K, SPK_J, (double)SPK_J / SPK_K);
+    bprod(m, SPK_K, broad, 2, R);
+    bprod(Phi, SPK_K, one, 2, tmp);
+    for (int i = 0; i <= SPK_K + 2; i++)
+        R[i] += tmp[i];
+    for (int c = 0; c < 3; c++) {
+        for (int i = 0; i < 3; i++)
+            q[c][i] = Q.h[i][c];
+        double col[SPK_DEG + 1];
+        if (c < 2)
+            bprod(R, SPK_K + 2, q[c], 2, col);
+        else {
+            bprod(m, SPK_K, q[c], 2, W);
+            bprod(W, SPK_K + 2, one, 2, col);
+        }
+        for (int i = 0; i <= SPK_DEG; i++)
+            H[i][c] = col[i];
+    }
+    ob_bez A;
+    memset(&A, 0, sizeof A);
+    A.deg = SPK_DEG;
+    for (int i = 0; i <= SPK_DEG; i++)
+        ob_bez_set(&A, i, H[i][0] / H[i][2], H[i][1] / H[i][2], H[i][2]);
+    return A;
+}
+
+/* | |A(t)| - 0.75 |: A(t) lies on the ray of Q(t), inside the quarter, so
+ * this is its distance to the arc O; and |O(t) - A(t)| is the same number,
+ * so O's side is no larger: H(A, O) = sup_t of it. */
+static double spike_dist(const ob_bez *A, double t)
+{
+    double p[2];
+    ref_point(A, t, p);
+    return fabs(hypot(p[0], p[1]) - 0.75);
+}
+
+static void test_spike(void)
+{
+    const double r = 1000.0, c0 = 1e-4, h = 0.01;
+    const ob_bez base = quarter_circle(1.0, 0), A = spike_curve(r, c0, h);
+    /* the true distance, densely: 1e6 parameters over the first sample
+     * interval, 1e5 over the whole */
+    double truth = 0.0, tpeak = 0.0;
+    for (long i = 0; i <= 1000000; i++) {
+        const double t = (double)i / 1000000 / 255.0, e = spike_dist(&A, t);
+        if (e > truth)
+            truth = e, tpeak = t;
+    }
+    double broad_max = 0.0;
+    for (long i = 0; i <= 100000; i++)
+        broad_max = fmax(broad_max, spike_dist(&A, (double)i / 100000));
+    truth = fmax(truth, broad_max);
+    CHECK(truth > 0.74 * h && tpeak > 0 && tpeak < 1.0 / 255, "spike: true %g at t %g, not planted", truth, tpeak);
+    /* what the samples see: the ends of the first interval, and the broad error */
+    CHECK(spike_dist(&A, 1.0 / 255) < 0.1 * broad_max, "spike: %g at the second sample", spike_dist(&A, 1.0 / 255));
+
+    ob_errval s;
+    ob_certified c;
+    ob_metric_hausdorff(&base, &A, 0.25, 256, &s);
+    const int rc = ob_certify_hausdorff(&base, &A, 0.25, 256, &c);
+    printf("spike: true %.9g at t %.3g (broad %.3g); sampled %.9g; certified [%.9g, %.9g] rc %d met %d, %ld leaves\n",
+           truth, tpeak, broad_max, s.err, c.lower, c.upper, rc, c.met, c.leaves);
+    CHECK(s.err < 0.1 * truth, "spike: the sampled value %g does not miss the spike %g", s.err, truth);
+    CHECK(rc == 0 && c.upper >= truth, "spike: upper %.17g below the true %.17g (rc %d)", c.upper, truth, rc);
+    CHECK(c.lower <= truth * (1 + 1e-9), "spike: lower %.17g above the true %.17g", c.lower, truth);
+    CHECK(c.met && c.upper <= 1.01 * c.lower, "spike: [%g, %g] not tight (met %d)", c.lower, c.upper, c.met);
+
+    /* no refinement at all (budget 1): the bound over the sample intervals
+     * is looser but still a bound; the lower bound is the sampled one */
+    ob_cert_opts o;
+    ob_cert_defaults(&o);
+    o.budget = 1;
+    ob_certify_hausdorff_opts(&base, &A, 0.25, 256, &o, &c);
+    printf("spike, budget 1: certified [%.9g, %.9g] met %d, %ld leaves\n", c.lower, c.upper, c.met, c.leaves);
+    CHECK(c.upper >= truth && c.lower <= truth * (1 + 1e-9), "spike, budget 1: [%.17g, %.17g] misses %.17g",
+          c.lower, c.upper, truth);
+    CHECK(!c.met, "spike, budget 1: met without refining");
+}
+
+/* A job of pieces whose distances differ by orders of magnitude
+ * (cert_job.h): the job's enclosure holds the brute force's largest piece,
+ * and meets rtol, though its small pieces are only shown below it. */
+static void test_job(int njobs)
+{
+    for (int jb = 0; jb < njobs; jb++) {
+        enum { NP = 3 };
+        ob_bez base[NP], A[NP];
+        const double d = (jb % 2 ? 1 : -1) * urange(0.03, 0.2), scale[NP] = {1e-8, 1e-4, 1e-6};
+        const int deg[NP] = {11, 3, 7};  /* interpolation errors far apart too */
+        double truth = 0.0, hint[NP];
+        for (int k = 0; k < NP; k++) {
+            base[k] = random_cubic();
+            A[k] = interp_offset(&base[k], d, deg[k]);
+            for (int i = 0; i <= A[k].deg; i++)
+                ob_bez_set(&A[k], i, A[k].h[i][0] + urange(-1, 1) * scale[k], A[k].h[i][1] + urange(-1, 1) * scale[k],
+                           1.0);
+            truth = fmax(truth, brute(&base[k], &A[k], d, 20000));
+            ob_errval e;
+            ob_metric_hausdorff(&base[k], &A[k], d, 256, &e);
+            hint[k] = e.err;
+        }
+        ob_cert_job J, Jh;
+        ob_certified piece[NP];
+        const int rc = ob_certify_job(NP, base, A, d, 256, NULL, NULL, &J, piece);
+        const int rch = ob_certify_job(NP, base, A, d, 256, NULL, hint, &Jh, NULL);
+        printf("job %d: brute %.9g certified [%.9g, %.9g] met %d, %ld leaves (piece uppers %.3g %.3g %.3g)\n", jb,
+               truth, J.lower, J.upper, J.met, J.leaves, piece[0].upper, piece[1].upper, piece[2].upper);
+        CHECK(rc == 0 && rch == 0 && J.met && Jh.met, "job %d: rc %d %d met %d %d", jb, rc, rch, J.met, Jh.met);
+        CHECK(truth <= J.upper * (1 + 1e-9) && J.lower <= truth * (1 + 1e-7), "job %d: [%.17g, %.17g] misses %.17g",
+              jb, J.lower, J.upper, truth);
+        CHECK(J.upper <= J.lower * (1 + 1e-3) && J.upper_piece >= 0 && J.upper == piece[J.upper_piece].upper,
+              "job %d: upper %.17g lower %.17g piece %d", jb, J.upper, J.lower, J.upper_piece);
+        CHECK(J.lower == Jh.lower && J.upper == Jh.upper, "job %d: the hint changed the result", jb);
+        for (int k = 0; k < NP; k++)
+            CHECK(piece[k].upper <= J.upper, "job %d: piece %d upper %g above the job's %g", jb, k, piece[k].upper,
+                  J.upper);
+    }
+}
+
 int main(int argc, char **argv)
 {
     (void)argv;
     testlib_seed(0x41C3A7E5ULL);
     test_exact();
+    test_spike();
     test_random_pairs(30, argc > 1 ? 1000000 : 20000);
+    test_job(4);
     return check_done();
 }

@@ -1,0 +1,68 @@
+/*
+ * cert_job.c - a job's certified Hausdorff enclosure (see cert_job.h).
+ */
+#include "methods/metrics/cert_job.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "methods/metrics/metric.h"
+
+typedef struct {
+    double key;
+    int i;
+} order_t;
+
+static int by_key_desc(const void *a, const void *b)
+{
+    const order_t *x = a, *y = b;
+    if (x->key != y->key)
+        return x->key > y->key ? -1 : 1;
+    return x->i - y->i;  /* deterministic */
+}
+
+int ob_certify_job(int n, const ob_bez *base, const ob_bez *approx, double d, int samples, const ob_cert_opts *opts,
+                   const double *hint, ob_cert_job *out, ob_certified *piece)
+{
+    ob_cert_opts o;
+    if (opts)
+        o = *opts;
+    else
+        ob_cert_defaults(&o);
+    *out = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0};
+    order_t *ord = malloc((size_t)(n > 0 ? n : 1) * sizeof *ord);
+    if (!ord) {
+        out->upper = INFINITY, out->met = 0;
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        double h = hint ? hint[i] : NAN;
+        if (!hint) {
+            ob_errval e;
+            ob_metric_hausdorff(&base[i], &approx[i], d, samples, &e);
+            h = e.err;
+        }
+        ord[i] = (order_t){h == h ? h : INFINITY, i};  /* unknown first: it may be the largest */
+    }
+    qsort(ord, (size_t)n, sizeof *ord, by_key_desc);
+    for (int k = 0; k < n; k++) {
+        const int i = ord[k].i;
+        ob_certified r;
+        const int rc = ob_certify_hausdorff_until(&base[i], &approx[i], d, samples, &o,
+                                                  out->lower * (1.0 + o.rtol), &r);
+        if (piece)
+            piece[i] = r;
+        out->failed += rc != 0;
+        out->met &= r.met;
+        out->leaves += r.leaves;
+        out->lower = fmax(out->lower, r.lower);
+        if (!(r.upper <= out->upper) || out->upper_piece < 0)
+            out->upper = fmax(out->upper, r.upper), out->upper_piece = i;
+    }
+    free(ord);
+    if (out->failed) {
+        out->upper = INFINITY, out->met = 0;
+        return -1;
+    }
+    return 0;
+}
