@@ -30,6 +30,13 @@
 
 #include "methods/core/curve.h"
 #include "methods/method.h"
+#include "methods/metrics/metric.h"
+
+/* How close to 0 metric m can show an exact offset to be: round-off for
+ * the sampled and symbolic metrics; for certified, an enclosure, what its
+ * default budget proves on lines and circles (a few 1e-9 of the size:
+ * docs/certified.md; test_certified reaches round-off with a larger one). */
+static inline double testlib_exact_tol(ob_metric m) { return m == OB_METRIC_CERTIFIED ? 1e-7 : 1e-12; }
 
 /* ---- random numbers -------------------------------------------------------- */
 

@@ -694,7 +694,7 @@ static void test_tiller(void)
             for (ob_metric mt = 0; mt < OB_METRIC_COUNT; mt++) {
                 ob_errval e;
                 ob_measure(mt, &C, &f.seg[0], d, OB_DEFAULT_SAMPLES, &e);
-                CHECK(e.err < 1e-12, "tiller line deg %d d %g: %s error %g", n, d,
+                CHECK(e.err < testlib_exact_tol(mt), "tiller line deg %d d %g: %s error %g", n, d,
                       ob_metric_name(mt), e.err);
             }
             for (int i = 0; i <= n; i++) {

@@ -353,7 +353,7 @@ static void test_exact_cases(void)
                 for (ob_metric mt = OB_METRIC_RADIAL; mt < OB_METRIC_COUNT; mt++) {
                     ob_errval e;
                     ob_measure(mt, &qc, &f.seg[0], d, 256, &e);
-                    CHECK(e.err < 1e-12, "%s circle cw %d d %g: %s error %g", NAMES[mi], cw, d,
+                    CHECK(e.err < testlib_exact_tol(mt), "%s circle cw %d d %g: %s error %g", NAMES[mi], cw, d,
                           ob_metric_name(mt), e.err);
                 }
             }
