@@ -39,6 +39,19 @@ def test_metrics():
         assert na.status == "n/a" and math.isnan(na.max_err) and na.message, met
 
 
+def test_certified():
+    """certified: a proven upper bound of the Hausdorff distance, never below
+    the sampled value and within the enclosure's target (1e-3) of it here;
+    a fit under it ends within tol by proof."""
+    r = offbench.fit("liu2002_ex1", "ahn", 1, 1e-3)
+    h = offbench.measure("liu2002_ex1", 1, r, metric="hausdorff")
+    c = offbench.measure("liu2002_ex1", 1, r, metric="certified")
+    assert c.status == "ok" and c.metric == "certified"
+    assert h.max_err <= c.max_err <= h.max_err * (1 + 2e-3)
+    f = offbench.fit("liu2002_ex1", "ahn", 1, 1e-3, metric="certified")
+    assert f.status == "ok" and f.metric == "certified" and f.max_err <= 1e-3
+
+
 def test_hausdorff_whole():
     """hausdorff-whole: at most the per-piece value, the fit's here; pieces
     that leave a gap are refused."""
