@@ -221,6 +221,24 @@ static void test_exact(void)
     check_exact("circle cw d = 0.25", &W, &Wout, 0.25);
 }
 
+/* A base with a cusp (C'(0) = 0: its first two control points coincide):
+ * the offset's normal is undefined there, so no bound exists: rc -1 and
+ * upper +inf, and the certified metric reports +inf (the driver splits such
+ * a piece); the lower bound, a distance attained, is still valid. */
+static void test_cusp(void)
+{
+    const double cusp[4][2] = {{0, 0}, {0, 0}, {1, 1}, {2, 0}};
+    const ob_bez C = make(3, cusp, NULL);
+    const ob_bez A = interp_offset(&C, 0.1, 5);
+    ob_certified c;
+    const int rc = ob_certify_hausdorff(&C, &A, 0.1, 256, &c);
+    CHECK(rc == -1 && isinf(c.upper) && c.upper > 0, "cusp of C: rc %d, upper %g (no bound exists)", rc, c.upper);
+    CHECK(c.lower >= 0 && isfinite(c.lower), "cusp of C: lower %g still a distance", c.lower);
+    ob_errval e;
+    CHECK(ob_measure(OB_METRIC_CERTIFIED, &C, &A, 0.1, 256, &e) == 0 && isinf(e.err) && e.t >= 0 && e.t <= 1,
+          "cusp of C: the certified metric is +inf (%g) at t = %g", e.err, e.t);
+}
+
 /* lower <= brute + what samples miss; brute <= upper + its refinement error;
  * the sampled metric likewise <= upper. */
 static void test_random_pairs(int npairs, long nbrute)
@@ -409,6 +427,7 @@ int main(int argc, char **argv)
     (void)argv;
     testlib_seed(0x41C3A7E5ULL);
     test_exact();
+    test_cusp();
     test_spike();
     test_random_pairs(30, argc > 1 ? 1000000 : 20000);
     test_job(4);
