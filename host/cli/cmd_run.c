@@ -20,6 +20,7 @@
 #include "host/diag.h"
 #include "host/io/export.h"
 #include "host/io/fsutil.h"
+#include "host/run/certify.h"
 #include "host/run/files.h"
 #include "host/run/journal.h"
 #include "host/run/modes.h"
@@ -43,7 +44,8 @@ typedef struct {
     ob_cl *cl;
     ob_journal journal;
     int lock_fd;
-    ob_span_log *spans;          /* --export: the accepted pieces of each job (host/io/export.h) */
+    ob_span_log *spans;          /* --export, --certify: the accepted pieces of each job (host/io/export.h) */
+    int cert_failed;             /* --certify: a job could not be certified (exit 1; its columns empty) */
     double wall;
     double *rep_fit, *rep_eval;  /* --reps: reps x njobs timings */
 } run_cmd;
@@ -222,9 +224,16 @@ static int run_jobs(run_cmd *r)
     c.hooks.spans = r->spans;
     size_t restored = 0;
     ob_loadavg_sample(&r->rec.load);  /* before the first job (hostinfo.h) */
-    int drc = o->reps > 0 || r->ranks > 1
-                  ? ob_run_plain(&c, r->jobs, r->njobs, o->reps > 0 ? "warm-up run" : NULL, &r->wall)
-                  : ob_run_journaled(&c, r->jobs, r->njobs, r->where, &r->journal, &r->wall, &restored);
+    const int journaled = !(o->reps > 0 || r->ranks > 1);
+    int drc = !journaled ? ob_run_plain(&c, r->jobs, r->njobs, o->reps > 0 ? "warm-up run" : NULL, &r->wall)
+                         : ob_run_journaled(&c, r->jobs, r->njobs, r->where, &r->journal, &r->wall, &restored);
+    c.hooks.spans = NULL;  /* the first run's pieces: --reps repeats it for the timings only */
+    if (drc == 0 && o->certify) {  /* outside every timing; a stop here is a stop of the run */
+        const int crc = ob_certify_run(o, r->jobs, r->njobs, r->spans, journaled ? &r->journal : NULL,
+                                       &r->rec.cert_seconds);
+        r->cert_failed = crc < 0;
+        drc = crc > 0 ? 1 : 0;
+    }
     if (r->ranks > 1 && ob_mpi_max(drc == 1) > 0 && drc != 1) {
         drc = 1;  /* another rank was stopped: none writes */
         ob_note_stop(SIGTERM);
@@ -257,7 +266,8 @@ static int write_files(run_cmd *r)
     const int written = ob_write_run_files(&w) == 0;
     ob_journal_close(&r->journal, written);  /* results.csv has every row now */
     ob_run_summary(&w, written);
-    return ob_export_finish(&r->o, r->spans, r->jobs, written ? 0 : 1);  /* --export, outside every timing */
+    const int st = ob_export_finish(&r->o, r->spans, r->jobs, written ? 0 : 1);  /* --export, outside every timing */
+    return st == 0 && r->cert_failed ? 1 : st;
 }
 
 static void run_cmd_free(run_cmd *r)
@@ -294,6 +304,10 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         st = plan_run(&r);
     if (st == GO_ON && (st = ob_export_prepare(&r.o, r.rec.mpi_ranks, r.njobs, &r.spans)) == 0)
         st = GO_ON;  /* --export: a span log per job */
+    if (st == GO_ON && r.o.certify && !r.spans && !(r.spans = ob_span_logs_new(r.njobs))) {
+        ob_error("--certify: out of memory");  /* --certify: the same logs */
+        st = 1;
+    }
     if (st == GO_ON && ob_open_backend(r.o.backend, r.o.device, 1u << r.o.metric, &r.rec.binfo, &r.cl) != 0)
         st = 2;
     if (st == GO_ON)

@@ -30,6 +30,12 @@ const ob_column ob_columns[OB_NCOLS] = {
     [OB_COL_TIME_IQR_NS] = {"time_iqr_ns", "--reps N >= 2: interquartile range of the repetitions' fit_ns + eval_ns, whole ns "
                                            "(empty without)"},
     [OB_COL_TIME_CV] = {"time_cv", "--reps N >= 2: their coefficient of variation, sd / mean (empty without)"},
+    [OB_COL_ERR_UPPER] = {"err_upper", "--certify: a certified upper bound of the two-sided Hausdorff distance to "
+                                       "the exact offset (inf: a piece could not be bounded; empty without)"},
+    [OB_COL_ERR_LOWER] = {"err_lower", "--certify: a certified lower bound of it, a distance attained (empty without)"},
+    [OB_COL_CERTIFIED] = {"certified", "--certify: yes when err_upper <= tol, else no (empty without, or no "
+                                       "approximation)"},
+    [OB_COL_CERT_NS] = {"cert_ns", "--certify: thread CPU time of the job's certificate, ns (empty without)"},
 };
 
 static char header[512];

@@ -116,15 +116,21 @@ int ob_export_prepare(const ob_run_opts *o, int mpi_ranks, size_t njobs, ob_span
     }
     if (ob_export_check_dir("run", o->export_dir, o->curves_file) != 0)
         return 2;
-    /* one log more than jobs, its cap -1: the end mark, so that
-     * ob_export_finish and ob_export_free need no count */
-    *spans = calloc(njobs + 1, sizeof **spans);
-    if (!*spans) {
+    if (!(*spans = ob_span_logs_new(njobs))) {
         ob_error("--export: out of memory");
         return 1;
     }
-    (*spans)[njobs].cap = -1;
     return 0;
+}
+
+ob_span_log *ob_span_logs_new(size_t njobs)
+{
+    /* one log more than jobs, its cap -1: the end mark, so that
+     * ob_export_finish and ob_export_free need no count */
+    ob_span_log *s = calloc(njobs + 1, sizeof *s);
+    if (s)
+        s[njobs].cap = -1;
+    return s;
 }
 
 /* Whether job j has an approximation to export (ok or limit). */

@@ -81,7 +81,12 @@ int ob_export_prepare(const ob_run_opts *o, int mpi_ranks, size_t njobs, ob_span
  * Returns: status, or 1 after ob_error() when the export failed. */
 int ob_export_finish(const ob_run_opts *o, const ob_span_log *spans, const ob_job *jobs, int status);
 
-/* Frees the logs of ob_export_prepare (NULL is fine). */
+/* Purpose: njobs zeroed span logs for the driver's hooks (--export and
+ *          --certify), with the end mark ob_export_finish and
+ *          ob_export_free count by.  NULL when out of memory. */
+ob_span_log *ob_span_logs_new(size_t njobs);
+
+/* Frees the logs of ob_export_prepare or ob_span_logs_new (NULL is fine). */
 void ob_export_free(ob_span_log *spans);
 
 #endif

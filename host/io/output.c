@@ -16,6 +16,7 @@
 #include "host/io/columns.h"
 #include "host/io/numfmt.h"
 #include "host/run/hostinfo.h"
+#include "methods/metrics/metric_certified.h"
 
 #include <flint/flint.h>
 
@@ -91,6 +92,23 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
     case OB_COL_TIME_CV:
         if (j->time_reps >= 2)
             put_double(f, j->time_cv);
+        break;
+    /* the certificate (host/run/certify.h): empty without --certify or an approximation */
+    case OB_COL_ERR_UPPER:
+        if (j->cert_done)
+            put_double(f, j->err_upper);
+        break;
+    case OB_COL_ERR_LOWER:
+        if (j->cert_done)
+            put_double(f, j->err_lower);
+        break;
+    case OB_COL_CERTIFIED:
+        if (j->cert_done)
+            fputs(j->err_upper <= j->tol ? "yes" : "no", f);
+        break;
+    case OB_COL_CERT_NS:
+        if (j->cert_done)
+            fprintf(f, "%.0f", j->cert_ns);
         break;
     case OB_NCOLS: break;
     }
@@ -212,7 +230,7 @@ static void meta_build(FILE *f, const ob_backend_info *b)
 
 /* meta.json: the settings that decide results (seed, samples, limits,
  * method parameters and versions). */
-static void meta_settings(FILE *f, const ob_run_opts *o)
+static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
 {
     if (o->random_n > 0)
         fprintf(f, "  \"seed\": %" PRIu64 ",\n  \"random_curves\": %ld,\n", o->random_seed, o->random_n);
@@ -244,6 +262,22 @@ static void meta_settings(FILE *f, const ob_run_opts *o)
         fprintf(f, ": %d", ob_methods[m]->version);
     }
     fprintf(f, "},\n");
+    /* --certify (host/run/certify.h): what the certificate's columns mean */
+    if (o->certify) {
+        ob_cert_opts co;
+        ob_cert_defaults(&co);
+        fprintf(f, "  \"certify\": {\"rtol\": %.17g, \"floor_rel\": %.17g, \"budget\": %ld, \"doc\": \"every job "
+                   "with an approximation (ok, limit): err_lower <= H <= err_upper, H the two-sided Hausdorff distance "
+                   "of its pieces to the exact offsets of their base pieces (untrimmed), whatever the run's metric; "
+                   "err_upper by interval enclosures of a parameter correspondence, err_lower a distance attained; "
+                   "refined until err_upper <= err_lower (1 + rtol) or budget enclosures per side and piece; inf: a "
+                   "piece unbounded (a cusp of the base); certified: yes when err_upper <= tol; cert_ns: thread CPU "
+                   "time of the certificate (docs/certified.md); wall_seconds: the certificate pass, after the jobs ran "
+                   "(not in meta's wall_seconds)\", \"wall_seconds\": %.3f},\n",
+                co.rtol, co.floor_rel, co.budget, rec->cert_seconds);
+    } else {
+        fprintf(f, "  \"certify\": null,\n");
+    }
     /* the test hook OFFBENCH_TEST_SLOW (driver.h): a run with it is slower on purpose */
     if (o->driver.test_slow_method)
         fprintf(f, "  \"test_slow\": \"%s:%d\",\n", o->driver.test_slow_method->name, o->driver.test_slow_factor);
@@ -371,7 +405,7 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
     gmtime_r(&now, &tmv);
     strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%SZ", &tmv);
     meta_build(f, &rec->binfo);
-    meta_settings(f, o);
+    meta_settings(f, o, rec);
     meta_definitions(f, o, rec);
     meta_host(f, o, rec);
     meta_engine(f, o, rec);

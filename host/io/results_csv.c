@@ -257,6 +257,8 @@ static const char *read_row(char **f, const int *at, int has_joints, ob_res_row 
 {
     const char *bad = read_key(f, at, row);
     row->family = at[17] >= 0 ? f[at[17]] : "";
+    row->certified = "";
+    row->err_upper = row->err_lower = row->cert_ns = NAN;
     row->status = f[at[10]];
     row->message = f[at[13]];
     row->max_err_text = f[at[9]];
@@ -286,6 +288,33 @@ static const char *read_row(char **f, const int *at, int has_joints, ob_res_row 
     else if (strcmp(row->status, "ok") == 0 && !ob_err_can_pass(row->max_err))
         bad = "status ok with a max_err that is not a finite number (an error that is not finite is never ok)";
     return bad;
+}
+
+/* The certificate's columns of a row (at[18..21]): all empty, or all set
+ * and consistent (err_lower <= err_upper, certified = yes exactly when
+ * err_upper <= tol).  Returns NULL, or what is wrong. */
+static const char *read_cert(char **f, const int *at, ob_res_row *row)
+{
+    const char *up = f[at[18]], *lo = f[at[19]], *ns = f[at[21]];
+    row->certified = f[at[20]];
+    row->err_upper = row->err_lower = row->cert_ns = NAN;
+    const int nset = (*up != 0) + (*lo != 0) + (*row->certified != 0) + (*ns != 0);
+    if (nset == 0)
+        return NULL;
+    if (nset != 4)
+        return "err_upper, err_lower, certified and cert_ns are all empty or all set";
+    if (parse_err(up, &row->err_upper) || isnan(row->err_upper))
+        return "err_upper is not a number >= 0 (inf: unbounded)";
+    if (ob_parse_double(lo, &row->err_lower) || row->err_lower < 0 || row->err_lower > row->err_upper)
+        return "err_lower is not a finite number from 0 to err_upper";
+    if (strcmp(row->certified, "yes") && strcmp(row->certified, "no"))
+        return "certified is not empty, yes or no";
+    if ((strcmp(row->certified, "yes") == 0) != (row->err_upper <= row->tol))
+        return "certified must be yes exactly when err_upper <= tol";
+    if (parse_ns(ns, &row->cert_ns))
+        return "cert_ns is not a finite number >= 0";
+    row->cert_done = 1;
+    return NULL;
 }
 
 /* t->sorted: the rows by job key; two rows of one job are refused. */
@@ -319,7 +348,9 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         ob_columns[OB_COL_CTRL_POINTS].name, ob_columns[OB_COL_SEGMENTS].name,  ob_columns[OB_COL_OUT_DEGREE].name,
         ob_columns[OB_COL_MAX_ERR].name,    ob_columns[OB_COL_STATUS].name,     ob_columns[OB_COL_FIT_NS].name,
         ob_columns[OB_COL_EVAL_NS].name,    ob_columns[OB_COL_MESSAGE].name,    ob_columns[OB_COL_MAX_GAP].name,
-        ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name, ob_columns[OB_COL_FAMILY].name};
+        ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name, ob_columns[OB_COL_FAMILY].name,
+        ob_columns[OB_COL_ERR_UPPER].name,  ob_columns[OB_COL_ERR_LOWER].name,  ob_columns[OB_COL_CERTIFIED].name,
+        ob_columns[OB_COL_CERT_NS].name};
     enum { NCOL = sizeof cols / sizeof cols[0], NREQ = 14 };
     int at[NCOL];
     memset(t, 0, sizeof *t);
@@ -337,6 +368,13 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
     }
     t->has_joints = njc == 3;
     t->has_family = at[17] >= 0;
+    const int ncc = (at[18] >= 0) + (at[19] >= 0) + (at[20] >= 0) + (at[21] >= 0);
+    if (ncc != 0 && ncc != 4) {
+        csv_fail(&r, first_line, "the certificate's columns err_upper, err_lower, certified and cert_ns come together "
+                 "(this header has %d of them)", ncc);
+        goto fail;
+    }
+    t->has_cert = ncc == 4;
     for (;;) {
         const int got = csv_row(&r, &line, nh);
         if (got == 0)
@@ -356,6 +394,8 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         memset(row, 0, sizeof *row);
         row->line = line;
         const char *bad = read_row(r.f, at, t->has_joints, row);
+        if (!bad && t->has_cert)
+            bad = read_cert(r.f, at, row);
         if (bad) {
             csv_fail(&r, line, "%s", bad);
             goto fail;

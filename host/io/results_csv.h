@@ -9,6 +9,8 @@
  * without it reads family "" on every row, has_family 0).
  * Optional: max_gap, max_kink, continuity (the joints; files written before
  * they existed have none, and are read all the same: has_joints 0).
+ * Optional: err_upper, err_lower, certified, cert_ns (run --certify; all four
+ * or none in the header, and on a row all empty or all set).
  * Fields may be quoted ("a, b" with "" for a quote, newlines inside quotes),
  * lines end in LF or CRLF, blank lines are skipped.  A job is identified by
  * its key (curve, d, method, metric, split, tol), d and tol compared as
@@ -36,6 +38,9 @@ typedef struct {
     double max_gap, max_kink;  /* NAN when empty or the column is absent */
     const char *continuity;  /* "" when empty or absent */
     const char *family;      /* "" when empty or the column is absent */
+    int cert_done;           /* 1: the certificate's columns are set (run --certify) */
+    double err_upper, err_lower, cert_ns; /* NAN when empty or absent */
+    const char *certified;   /* "yes", "no"; "" when empty or absent */
     int line;                /* first line of the row in the file */
     const double *rep_t;     /* samples.csv: fit_ns + eval_ns of repetition r
                                 at rep_t[r - 1], NAN where absent; NULL without */
@@ -51,6 +56,7 @@ typedef struct {
     int maxrep;              /* largest rep in samples.csv; 0 without */
     int has_joints;          /* the header has max_gap, max_kink and continuity */
     int has_family;          /* the header has family */
+    int has_cert;            /* the header has err_upper, err_lower, certified and cert_ns */
 } ob_res_table;
 
 /* Purpose: parse the text of a results.csv named `name` (copied: the caller
@@ -64,7 +70,10 @@ typedef struct {
  *          only some of the three joint columns, segments or
  *          out_degree not whole numbers >= 0, fit_ns or
  *          eval_ns not a finite number >= 0, a status other than ok / limit /
- *          fail / skip / timeout, a duplicate key (naming both lines), no memory.  *t is
+ *          fail / skip / timeout, the certificate's columns
+ *          not all present or a row's not all set or empty, inconsistent
+ *          (err_lower > err_upper, certified not yes exactly when
+ *          err_upper <= tol), a duplicate key (naming both lines), no memory.  *t is
  *          always left safe for ob_res_free() (empty after an error). */
 int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, ob_err *err);
 /* As ob_res_parse, for text that starts on line first_line of the file name

@@ -163,8 +163,18 @@ void ob_run_summary(const ob_run_files *r, int written)
     char timeouts[48] = "";
     if (cnt[OB_TIMEOUT])
         snprintf(timeouts, sizeof timeouts, ", timeout %zu", cnt[OB_TIMEOUT]);
-    ob_info("%zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu%s; %s %s/results.csv",
+    char cert[96] = "";
+    if (r->o->certify) {  /* --certify: how many the certificate holds within tol */
+        size_t yes = 0, done = 0;
+        for (size_t i = 0; i < r->njobs; i++)
+            if (r->jobs[i].cert_done) {
+                done++;
+                yes += r->jobs[i].err_upper <= r->jobs[i].tol;
+            }
+        snprintf(cert, sizeof cert, "; certified within tol %zu of %zu (%.2f s)", yes, done, r->rec->cert_seconds);
+    }
+    ob_info("%zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu%s%s; %s %s/results.csv",
             r->njobs, r->wall, omp_get_max_threads(), r->o->reps > 0 ? ", median of the timed repetitions" : "",
-            cnt[OB_OK], cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], timeouts, written ? "wrote" : "could not write",
+            cnt[OB_OK], cnt[OB_LIMIT], cnt[OB_FAIL], cnt[OB_SKIP], timeouts, cert, written ? "wrote" : "could not write",
             r->o->out_dir);
 }

@@ -42,6 +42,10 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where, uint64_t data_
     /* the curves' content, not just their path: shards or MPI ranks that
      * loaded other curves under one name get other plan hashes */
     n += (size_t)snprintf(s + n, cap - n, " data_hash=%016" PRIx64, data_hash);
+    /* only when set: the plan hashes of runs without it are as before; shards
+     * with and without certificates have other plan hashes (merge refuses) */
+    if (o->certify)
+        n += (size_t)snprintf(s + n, cap - n, " certify=1");
     for (int m = 0; ob_methods[m]; m++)
         for (int k = 0; k < ob_methods[m]->nparams; k++) {
             char num[40];
@@ -172,6 +176,7 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, cons
     }
     fp_tok(&b, "metric", ob_metric_name(o->metric));
     fp_tok(&b, "split", ob_split_name(o->split));
+    fp_tok(&b, "certify", o->certify ? "yes" : "no");
     snprintf(v, sizeof v, "%d/%d", o->shard_k, o->shard_n);
     fp_tok(&b, "shard", o->shard_n > 0 ? v : "none");
     fp_tok(&b, "git", OB_GIT_COMMIT);
@@ -214,6 +219,7 @@ static void key_label(const char *key, size_t klen, char *out, size_t len)
         {"tols", "--tols"},
         {"metric", "--metric"},
         {"split", "--split"},
+        {"certify", "--certify"},
         {"shard", "--shard"},
         {"git", "the build (git commit)"},
         {"dirty", "the build (uncommitted changes: git dirty flag)"},
@@ -479,5 +485,9 @@ int ob_job_from_row(ob_job *job, const ob_res_row *row)
     job->max_kink = row->max_kink;
     if (ob_cont_parse(row->continuity ? row->continuity : "", &job->continuity) != 0)
         job->continuity = OB_CONT_NONE;
+    job->cert_done = row->cert_done;
+    job->err_upper = row->err_upper;
+    job->err_lower = row->err_lower;
+    job->cert_ns = row->cert_ns;
     return 0;
 }

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "host/diag.h"
+#include "host/run/certify.h"
 #include "host/run/modes.h"
 #include "host/run/progress.h"
 #include "host/run/shard.h"
@@ -116,11 +117,14 @@ typedef struct {
     ob_journal *jr;
     const ob_job *jobs;
     int failed;
+    int certify;  /* --certify: a job with an approximation is journaled once certified (certify.h) */
 } journal_ctx;
 
 static void journal_job_done(void *ctx, size_t i)
 {
     journal_ctx *c = ctx;
+    if (c->certify && ob_certify_wants(&c->jobs[i]))
+        return;
     if (!c->failed && ob_journal_add(c->jr, &c->jobs[i]) != 0) {
         c->failed = 1;
         ob_error("%s: cannot write: rows are no longer saved as jobs finish", c->jr->path);
@@ -155,13 +159,18 @@ int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char
                                 .metric = ob_metric_name(j->metric), .split = ob_split_name(j->split), .d = j->d,
                                 .tol = j->tol};
         const ob_res_row *row = prev.n ? ob_res_find(&prev, &key) : NULL;
-        if (row && ob_job_from_row(j, row) == 0) {
+        /* with --certify a row is restored only with its certificate (a
+         * run stopped before it was certified reruns the job) */
+        if (row && ob_job_from_row(j, row) == 0 && !(o->certify && ob_certify_wants(j) && !j->cert_done)) {
             ++*restored_n;
             if (jr->from_results && ob_journal_add(jr, j) != 0) {
                 ob_error("%s: cannot write", jr->path);
                 goto out;
             }
         } else {
+            *j = (ob_job){.curve = j->curve, .d = j->d, .method = j->method, .params = j->params,
+                          .test_fit_repeat = j->test_fit_repeat, .metric = j->metric, .split = j->split,
+                          .tol = j->tol};  /* the inputs only: a row read back but not restored leaves nothing */
             idx[np] = i;
             pend[np++] = *j;
         }
@@ -169,14 +178,27 @@ int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char
     if (*restored_n)
         ob_info("resuming %s: %zu of %zu jobs restored, %zu to run", o->out_dir, *restored_n,
                 njobs, np);
-    journal_ctx jc = {jr, pend, 0};
+    journal_ctx jc = {jr, pend, 0, o->certify};
     h.job_done = journal_job_done;
     h.job_done_ctx = &jc;
+    /* the driver runs pend: its span logs are pend's, put back at the jobs' places after */
+    ob_span_log *logs = h.spans && np ? calloc(np, sizeof *logs) : NULL;
+    if (h.spans && np && !logs) {
+        rc = -1;  /* the caller says: out of memory */
+        goto out;
+    }
+    h.spans = logs;
     ob_run_ctx cj = *c;
     cj.hooks = h;
     rc = ob_run_plain(&cj, pend, np, NULL, wall);
-    for (size_t k = 0; k < np; k++)
+    for (size_t k = 0; k < np; k++) {
         jobs[idx[k]] = pend[k];
+        if (logs) {
+            free(c->hooks.spans[idx[k]].v);
+            c->hooks.spans[idx[k]] = logs[k];
+        }
+    }
+    free(logs);
 out:
     ob_res_free(&prev);
     free(fp);

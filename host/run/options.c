@@ -198,7 +198,7 @@ static int same_param(const char *a, const char *b)
 enum {
     RO_CURVES, RO_CURVE, RO_RANDOM, RO_METHODS, RO_TOLS, RO_METRIC, RO_SPLIT, RO_BACKEND, RO_DEVICE,
     RO_THREADS, RO_SAMPLES, RO_MAX_DEPTH, RO_MAX_SEGMENTS, RO_INFLECTIONS, RO_PARAM, RO_JOB_TIMEOUT,
-    RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT, RO_ENGINE, RO_CHUNK,
+    RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT, RO_ENGINE, RO_CHUNK, RO_CERTIFY,
 };
 
 const ob_flag ob_run_flags[] = {
@@ -227,6 +227,8 @@ const ob_flag ob_run_flags[] = {
     {"resume", "DIR", "finish the interrupted run in DIR", RO_RESUME, OB_FLAG_ONCE},
     {"force", NULL, "replace the finished run in --out, or start afresh over an interrupted one's journal (without it both are refused)", RO_FORCE, OB_FLAG_ONCE},
     {"export", "DIR", "each job's approximation as JSON, .curves, DXF and SVG", RO_EXPORT, OB_FLAG_ONCE},
+    {"certify", NULL, "certify each job's error: err_upper, err_lower, certified and cert_ns (docs/certified.md)",
+     RO_CERTIFY, OB_FLAG_ONCE},
 };
 const int ob_run_nflags = (int)(sizeof ob_run_flags / sizeof ob_run_flags[0]);
 
@@ -329,6 +331,7 @@ static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *
     case RO_RESUME: return parse_dir(opt, v, &o->resume_dir);
     case RO_FORCE: o->force = 1; return 0;
     case RO_EXPORT: return parse_dir(opt, v, &o->export_dir);
+    case RO_CERTIFY: o->certify = 1; return 0;
     }
     return 1;
 }

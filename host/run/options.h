@@ -35,6 +35,7 @@ typedef struct {
                                     run (samples.csv); 0: one run, no samples */
     const char *out_dir;
     const char *export_dir;      /* --export DIR: each job's approximation (host/io/export.h) */
+    int certify;                 /* --certify: each job's certified error (host/run/certify.h) */
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
     int force;                   /* --force: a fresh run over an interrupted
                                     run's journal (which it removes) */

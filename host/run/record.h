@@ -30,6 +30,7 @@ typedef struct {
     ob_loadavg load;             /* the load average during the run (hostinfo.h) */
     ob_engine_stats engine;      /* what the driver's engine did (the last run
                                     of a --reps series) */
+    double cert_seconds;         /* --certify: wall time of the certificate pass */
 } ob_run_record;
 
 #endif

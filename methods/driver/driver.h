@@ -112,6 +112,12 @@ typedef struct {
     int time_reps;       /* repetitions the spread is over; < 2: none (empty columns) */
     double time_iqr_ns;  /* IQR of the per-repetition fit_ns + eval_ns */
     double time_cv;      /* their coefficient of variation, sd / mean */
+    /* set by the run command with --certify (host/run/certify.h), not the driver: */
+    int cert_done;       /* 1: the certificate below was taken (else empty columns) */
+    double err_upper;    /* certified: the job's two-sided Hausdorff distance to the
+                            exact offset is <= err_upper (+inf: a piece unbounded) */
+    double err_lower;    /* ... and >= err_lower (a distance attained) */
+    double cert_ns;      /* thread CPU time of the certificate */
 } ob_job;
 
 /* One measurement of a batch: an approximating piece against its base piece. */

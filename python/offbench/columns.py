@@ -37,6 +37,10 @@ KINDS = {
     "continuity": "cat",
     "time_iqr_ns": "int?",
     "time_cv": "float",
+    "err_upper": "float",
+    "err_lower": "float",
+    "certified": "yesno",
+    "cert_ns": "int?",
 }
 
 # the pandas dtype of each kind
@@ -50,7 +54,7 @@ PANDAS_DTYPES = {
 }
 
 # columns that depend on the machine and the moment, not on the job
-TIMING = ("fit_ns", "eval_ns", "time_iqr_ns", "time_cv")
+TIMING = ("fit_ns", "eval_ns", "time_iqr_ns", "time_cv", "cert_ns")
 
 
 def kind(name):

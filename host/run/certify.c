@@ -1,0 +1,146 @@
+/*
+ * certify.c - `run --certify` (see certify.h).
+ */
+#include "host/run/certify.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "host/diag.h"
+#include "host/io/approx.h"
+#include "host/run/signals.h"
+#include "methods/metrics/cert_job.h"
+
+int ob_certify_wants(const ob_job *j) { return j->status == OB_OK || j->status == OB_LIMIT; }
+
+static double thread_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
+}
+
+/* Job j's certificate from its span log: 0, or -1 with the reason in why. */
+static int certify_job(const ob_job *j, const ob_span_log *log, int samples, ob_job *out, char *why, size_t len)
+{
+    ob_approx a = {0};
+    ob_err err;
+    if (ob_approx_from_job(j, log, &a, &err) != 0) {
+        snprintf(why, len, "%.180s", err.msg);
+        ob_approx_free(&a);
+        return -1;
+    }
+    ob_bez *base = malloc((size_t)(a.n + 1) * sizeof *base), *apx = malloc((size_t)(a.n + 1) * sizeof *apx);
+    int rc = base && apx ? 0 : -1;
+    if (rc)
+        snprintf(why, len, "out of memory");
+    for (int k = 0; k < a.n && rc == 0; k++) {
+        apx[k] = a.v[k].approx;
+        if (ob_apiece_base(j->curve, &a.v[k], &base[k]) != 0) {
+            snprintf(why, len, "piece %d has no base piece", k + 1);
+            rc = -1;
+        }
+    }
+    if (rc == 0) {
+        ob_cert_opts co;
+        ob_cert_defaults(&co);
+        ob_cert_job cj;
+        const double t0 = thread_ns();
+        const int crc = ob_certify_job(a.n, base, apx, j->d, samples, &co, NULL, &cj, NULL);
+        out->cert_ns = thread_ns() - t0;
+        if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
+            snprintf(why, len, "out of memory");
+            rc = -1;
+        } else {
+            out->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
+            out->err_lower = cj.lower;
+            out->cert_done = 1;
+        }
+    }
+    free(base);
+    free(apx);
+    ob_approx_free(&a);
+    return rc;
+}
+
+/* A job to certify and its sort key. */
+typedef struct {
+    size_t i;
+    int segments;
+} todo;
+
+/* The most pieces first, then job order (a total order: qsort is stable here). */
+static int todo_cmp(const void *a, const void *b)
+{
+    const todo *x = a, *y = b;
+    if (x->segments != y->segments)
+        return x->segments > y->segments ? -1 : 1;
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+/* The jobs to certify, the most pieces first (the longest certificates
+ * start first, so that no thread is left alone with one at the end). */
+static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
+{
+    todo *t = malloc((njobs ? njobs : 1) * sizeof *t);
+    *n = 0;
+    if (!t)
+        return NULL;
+    for (size_t i = 0; i < njobs; i++)
+        if (ob_certify_wants(&jobs[i]) && !jobs[i].cert_done)
+            t[(*n)++] = (todo){i, jobs[i].segments};
+    qsort(t, *n, sizeof *t, todo_cmp);
+    return t;
+}
+
+int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr,
+                   double *seconds)
+{
+    struct timespec w0, w1;
+    clock_gettime(CLOCK_MONOTONIC, &w0);
+    *seconds = 0.0;
+    size_t n;
+    todo *idx = certify_order(jobs, njobs, &n);
+    if (!idx) {
+        ob_error("--certify: out of memory");
+        return -1;
+    }
+    if (n)
+        ob_info("certifying %zu jobs", n);
+    const int samples = ob_clamp_samples(o->driver.samples);
+    int failed = 0, stopped = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long k = 0; k < (long)n; k++) {
+        int quit;
+#pragma omp atomic read
+        quit = stopped;
+        if (quit || ob_stop_signal()) {
+#pragma omp atomic write
+            stopped = 1;
+            continue;
+        }
+        ob_job *j = &jobs[idx[k].i];
+        char why[200];
+        if (certify_job(j, &spans[idx[k].i], samples, j, why, sizeof why) != 0) {
+#pragma omp critical(ob_certify_report)
+            {
+                ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);
+                failed = 1;
+            }
+            continue;
+        }
+        if (jr) {
+#pragma omp critical(ob_certify_report)
+            if (!failed && ob_journal_add(jr, j) != 0) {
+                ob_error("%s: cannot write: rows are no longer saved as jobs are certified", jr->path);
+                failed = 1;
+            }
+        }
+    }
+    free(idx);
+    clock_gettime(CLOCK_MONOTONIC, &w1);
+    *seconds = (double)(w1.tv_sec - w0.tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
+    return failed ? -1 : stopped ? 1 : 0;
+}

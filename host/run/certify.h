@@ -1,0 +1,46 @@
+/*
+ * certify.h - `run --certify`: each job's error certified, not only sampled
+ * (issue 41, docs/certified.md).
+ *
+ * Once the driver has run, every job with an approximation (status ok or
+ * limit) has its pieces refitted from its span log (fits are deterministic:
+ * host/io/approx.h, as --export does) and enclosed by ob_certify_job
+ * (methods/metrics/cert_job.h):
+ *     err_lower <= H(A, O) <= err_upper,
+ * H the two-sided Hausdorff distance of the approximation to the untrimmed
+ * exact offset, whatever the run's --metric.  The rows gain err_upper,
+ * err_lower, certified (yes: err_upper <= tol) and cert_ns; the other
+ * columns are the same as without --certify, bit for bit.
+ *
+ * Why after the driver and not inside it: the driver's decisions are taken
+ * on one thread (the level engine) or under its lock (job_done); the
+ * certificate costs tens of times the sampled measurement, so it runs as its
+ * own parallel pass, every thread taking whole jobs, largest first.
+ */
+#ifndef OB_CERTIFY_H
+#define OB_CERTIFY_H
+
+#include <stddef.h>
+
+#include "host/run/journal.h"
+#include "host/run/options.h"
+
+/* Whether job j is one --certify certifies: it has an approximation. */
+int ob_certify_wants(const ob_job *j);
+
+/* Purpose: certify every job of jobs that has an approximation and no
+ *          certificate yet (a job restored by --resume brings its own).
+ * Inputs:  spans: the jobs' span logs (the driver's hooks.spans), one per
+ *          job; jr: the journal, or NULL: each certified job's row is added
+ *          to it as it is done (rows of jobs with an approximation are held
+ *          back from the journal until then: journal.h).
+ * Outputs: each such job's cert_done, err_upper, err_lower, cert_ns;
+ *          *seconds: the pass's wall time.
+ * Returns: 0; 1 when a stop signal came (the jobs not yet certified keep
+ *          cert_done 0); -1 after ob_error() when a job could not be
+ *          certified (a refit that does not repeat the run, no memory, a
+ *          journal that cannot be written): the others still are. */
+int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr,
+                   double *seconds);
+
+#endif
