@@ -143,7 +143,8 @@ static int is_ok(const char *s) { return strcmp(s, "ok") == 0; }
 
 static double ratio_of(double n, double b) { return b > 0 && isfinite(b) && isfinite(n) ? n / b : NAN; }
 
-/* Quality of a joined row: status, then ctrl_points, then max_err. */
+/* Quality of a joined row: status, then ctrl_points, then max_err, then
+ * (both certified) whether err_upper is within tol. */
 static int judge_quality(const ob_res_row *b, const ob_res_row *n, const ob_cmp_opts *o, ob_cmp_result *r,
                          ob_method_sum *m)
 {
@@ -164,13 +165,19 @@ static int judge_quality(const ob_res_row *b, const ob_res_row *n, const ob_cmp_
         field = "max_err";
         if (isnan(eb) && isnan(en))
             return 0;
-        if (isnan(en) || (!isnan(eb) && en > eb * (1 + o->err_rtol) + o->err_atol))
-            k = OB_CH_REGRESSION;
-        else if (isnan(eb) || eb > en * (1 + o->err_rtol) + o->err_atol)
-            k = OB_CH_IMPROVEMENT;
-        else
-            return 0;
         ratio = ratio_of(en, eb);
+        if (isnan(en) || (!isnan(eb) && en > eb * (1 + o->err_rtol) + o->err_atol)) {
+            k = OB_CH_REGRESSION;
+        } else if (isnan(eb) || eb > en * (1 + o->err_rtol) + o->err_atol) {
+            k = OB_CH_IMPROVEMENT;
+        } else if (b->cert_done && n->cert_done && (b->err_upper <= b->tol) != (n->err_upper <= n->tol)) {
+            /* both certified (run --certify): within tol no longer, or now */
+            field = "certified";
+            k = n->err_upper <= n->tol ? OB_CH_IMPROVEMENT : OB_CH_REGRESSION;
+            ratio = ratio_of(n->err_upper, b->err_upper);
+        } else {
+            return 0;
+        }
     }
     if (k == OB_CH_REGRESSION)
         r->q_reg++, m->regressions++;

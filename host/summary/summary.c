@@ -429,6 +429,17 @@ static void method_stats(const ob_summary *s, ob_sum_side *side, double *tmp)
                     tmp[n++] = r->fit_ns + r->eval_ns;
             }
         ob_sum_quartiles(tmp, n, &ms->time_ns);
+        n = 0;  /* the certificates (run --certify) */
+        for (int p = 0; p < s->np; p++)
+            for (int k = 0; k < s->nt; k++) {
+                const ob_res_row *r = side->cell[ob_sum_at(s, p, m, k)];
+                if (!r || !r->cert_done)
+                    continue;
+                ms->cert_yes += r->err_upper <= r->tol;
+                ms->cert_no += !(r->err_upper <= r->tol);
+                tmp[n++] = r->cert_ns;
+            }
+        ob_sum_quartiles(tmp, n, &ms->cert_ns);
     }
 }
 
@@ -540,6 +551,8 @@ int ob_summary_build(const ob_res_table *t, const char *name, const ob_sum_filte
     s->run.split = split;
     if (rc == 0 && side_alloc(s, &s->run) == 0) {
         rc = fill_cells(s, t, kept, &pairs) || side_stats(s, &s->run) ? -1 : 0;
+        for (int m = 0; rc == 0 && m < s->nm; m++)
+            s->has_cert |= s->run.meth[m].cert_yes + s->run.meth[m].cert_no > 0;
     } else {
         rc = -1;
     }

@@ -11,7 +11,9 @@
  *             other (non-ok) jobs;
  *   methods   per method, its jobs by status and the time per job
  *             (fit_ns + eval_ns), median and quartiles over the jobs not
- *             skipped.
+ *             skipped; with certificates (run --certify) also the jobs
+ *             certified within tol (certified yes) and not (no), and the
+ *             certificate's time per job.
  * Quartiles: linear interpolation between order statistics, Q(p) at the
  * 0-based position (n - 1) p of the sorted values (R's type 7, numpy's
  * default; the same as results.csv's time_iqr_ns).
@@ -104,6 +106,8 @@ typedef struct {
     int jobs;
     int status[OB_SUM_NSTATUS];   /* jobs by status */
     ob_sum_quart time_ns;         /* fit_ns + eval_ns over the jobs not skipped */
+    int cert_yes, cert_no;        /* run --certify: jobs certified within tol, and not */
+    ob_sum_quart cert_ns;         /* their cert_ns */
 } ob_sum_mstat;
 
 /* The rows of one run in the summary's cells (the run's own, or the
@@ -131,6 +135,7 @@ typedef struct {
     int ncurves;
     ob_sum_side run, base;
     int has_base;
+    int has_cert;                 /* some job of the run has a certificate (run --certify) */
 } ob_summary;
 
 /* The index of cell (pair p, method m, tolerance k) in the side arrays. */

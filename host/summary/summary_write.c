@@ -267,6 +267,11 @@ static void grid_methods(grid *g, const ob_summary *s)
     for (int st = 0; st < OB_SUM_NSTATUS; st++)
         grid_col(g, ob_sum_status_names[st], NULL, 'r');
     grid_col(g, "time/job (ms)", NULL, 'r');
+    if (s->has_cert) {
+        grid_col(g, "certified", NULL, 'r');
+        grid_col(g, "not certified", NULL, 'r');
+        grid_col(g, "cert/job (ms)", NULL, 'r');
+    }
     if (s->has_base) {
         grid_col(g, "base ok", NULL, 'r');
         grid_col(g, "base time/job (ms)", NULL, 'r');
@@ -276,24 +281,33 @@ static void grid_methods(grid *g, const ob_summary *s)
     for (int m = 0; m < s->nm; m++) {
         const ob_sum_mstat *ms = &s->run.meth[m];
         const int row = grid_row(g, 0);
-        grid_set(g, row, 0, s->methods[m]);
+        int col = 0;
+        grid_set(g, row, col++, s->methods[m]);
         snprintf(buf, sizeof buf, "%d", ms->jobs);
-        grid_set(g, row, 1, buf);
+        grid_set(g, row, col++, buf);
         for (int st = 0; st < OB_SUM_NSTATUS; st++) {
             snprintf(buf, sizeof buf, "%d", ms->status[st]);
-            grid_set(g, row, 2 + st, buf);
+            grid_set(g, row, col++, buf);
         }
         cell_quart(buf, sizeof buf, &ms->time_ns, 1e-6, fmt3);
-        grid_set(g, row, 2 + OB_SUM_NSTATUS, buf);
+        grid_set(g, row, col++, buf);
+        if (s->has_cert) {
+            snprintf(buf, sizeof buf, "%d", ms->cert_yes);
+            grid_set(g, row, col++, buf);
+            snprintf(buf, sizeof buf, "%d", ms->cert_no);
+            grid_set(g, row, col++, buf);
+            cell_quart(buf, sizeof buf, &ms->cert_ns, 1e-6, fmt3);
+            grid_set(g, row, col++, buf);
+        }
         if (!s->has_base)
             continue;
         const ob_sum_mstat *bs = &s->base.meth[m];
         snprintf(buf, sizeof buf, "%d", bs->status[OB_SUM_OK]);
-        grid_set(g, row, 3 + OB_SUM_NSTATUS, buf);
+        grid_set(g, row, col++, buf);
         cell_quart(buf, sizeof buf, &bs->time_ns, 1e-6, fmt3);
-        grid_set(g, row, 4 + OB_SUM_NSTATUS, buf);
+        grid_set(g, row, col++, buf);
         fmt_ratio(buf, sizeof buf, ms->time_ns.median, bs->time_ns.median);
-        grid_set(g, row, 5 + OB_SUM_NSTATUS, buf);
+        grid_set(g, row, col++, buf);
     }
 }
 
@@ -306,22 +320,26 @@ typedef struct {
     const char *what;       /* what a cell is */
     const char *what_base;  /* what the baseline's columns are */
     void (*build)(grid *, const ob_summary *);
+    const char *what_cert;  /* what the certificate's columns are (NULL: none) */
 } section;
 
 static const section sections[] = {
     {OB_SUM_CURVES, "Control points per curve and d",
      "Each cell: the job's control points when its status is ok, else its status (limit, fail, skip, timeout); "
      "- no such job.",
-     "Beside each method: the baseline's job and new/base of the control points (both ok).", grid_curves},
+     "Beside each method: the baseline's job and new/base of the control points (both ok).", grid_curves, NULL},
     {OB_SUM_FAMILIES, "Control points per family",
      "Each cell: median [q1, q3] of the control points of the ok jobs (quartiles by linear interpolation between "
      "order statistics, R's type 7); (k non-ok): the jobs with another status, left out; - no ok job.  pairs: the "
      "family's (curve, d) pairs.",
-     "Beside each method: the same over the baseline's jobs joined, and new/base of the medians.", grid_families},
+     "Beside each method: the same over the baseline's jobs joined, and new/base of the medians.", grid_families,
+     NULL},
     {OB_SUM_METHODS, "Time and failures per method",
      "Jobs by status; time/job: fit_ns + eval_ns of the jobs not skipped, median [q1, q3] in milliseconds.",
      "base ok: the baseline's ok jobs among those joined; base time/job: theirs; new/base: of the median times.",
-     grid_methods},
+     grid_methods,
+     "certified: the jobs whose certified err_upper is within tol (run --certify); not certified: the others "
+     "certified (err_upper over tol, or inf); cert/job: their cert_ns, median [q1, q3] in milliseconds."},
 };
 
 /* The sections bits selects, each built into a grid and written by emit
@@ -401,8 +419,9 @@ static void md_grid(FILE *f, const grid *g)
 
 static void md_section(FILE *f, const ob_summary *s, const section *sec, const grid *g)
 {
-    fprintf(f, "\n## %s\n\n%s%s%s\n\n", sec->title, sec->what, s->has_base ? "  " : "",
-            s->has_base ? sec->what_base : "");
+    const int cert = s->has_cert && sec->what_cert;
+    fprintf(f, "\n## %s\n\n%s%s%s%s%s\n\n", sec->title, sec->what, cert ? "  " : "", cert ? sec->what_cert : "",
+            s->has_base ? "  " : "", s->has_base ? sec->what_base : "");
     md_grid(f, g);
 }
 
@@ -501,6 +520,8 @@ static void tex_section(FILE *f, const ob_summary *s, const section *sec, const 
     fputc('\n', f);
     tex_comment(f, sec->title);
     tex_comment(f, sec->what);
+    if (s->has_cert && sec->what_cert)
+        tex_comment(f, sec->what_cert);
     if (s->has_base)
         tex_comment(f, sec->what_base);
     tex_grid(f, g);
@@ -639,6 +660,29 @@ static void csv_families(FILE *f, const ob_summary *s)
             }
 }
 
+/* A method's certificates (run --certify): rows "certified" with status
+ * yes and no (the counts), and "cert_time" (cert_ns quartiles). */
+static void csv_cert(FILE *f, const char *method, const ob_sum_mstat *ms, const ob_sum_mstat *bs)
+{
+    csv_line l;
+    for (int yes = 1; yes >= 0; yes--) {
+        csv_clear(&l);
+        l.text[CV_SECTION] = "certified";
+        l.text[CV_METHOD] = method;
+        l.text[CV_STATUS] = yes ? "yes" : "no";
+        csv_int(&l, CV_VALUE, yes ? ms->cert_yes : ms->cert_no);
+        if (bs && bs->cert_yes + bs->cert_no > 0)
+            csv_int(&l, CV_BVALUE, yes ? bs->cert_yes : bs->cert_no);
+        csv_put(f, &l);
+    }
+    csv_clear(&l);
+    l.text[CV_SECTION] = "cert_time";
+    l.text[CV_METHOD] = method;
+    csv_quart(&l, CV_VALUE, &ms->cert_ns);
+    csv_int(&l, CV_N, ms->cert_ns.n);
+    csv_put(f, &l);
+}
+
 static void csv_methods(FILE *f, const ob_summary *s)
 {
     csv_line l;
@@ -666,6 +710,8 @@ static void csv_methods(FILE *f, const ob_summary *s)
                 csv_int(&l, CV_BVALUE, bs->status[st]);
             csv_put(f, &l);
         }
+        if (s->has_cert)
+            csv_cert(f, s->methods[m], ms, bs);
     }
 }
 

@@ -82,6 +82,12 @@ awk -F, 'BEGIN{OFS=","} NR==2{$NF=""} {print}' "$T/c/results.csv" > "$T/x.csv"
 $OB compare "$T/c/results.csv" "$T/x.csv" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q "x.csv:2: err_upper, err_lower, certified and cert_ns are all empty or all set" "$T/e.txt"' \
     "a certificate without its time: $(cat "$T/e.txt")"
+# compare: a job certified within tol in BASE and not in NEW is a regression
+awk -F, 'BEGIN{OFS=","} NR>1 && !done && $(NF-1)=="yes" {$(NF-3)=$6*2; $(NF-1)="no"; done=1} {print}' "$T/c/results.csv" > "$T/x.csv"
+$OB compare "$T/c/results.csv" "$T/x.csv" >"$T/cmp.txt" 2>&1
+check '[ $? -eq 1 ] && grep -q "certified" "$T/cmp.txt"' "compare: certified yes to no is a regression: $(grep -i certified "$T/cmp.txt" | head -n 2)"
+$OB compare "$T/x.csv" "$T/c/results.csv" >"$T/cmp.txt" 2>&1
+check '[ $? -eq 0 ]' "compare: certified no to yes is not a regression"
 # draw and trace show one job: --certify is not theirs
 $OB draw --curve liu2002_ex1 --method tiller --tol 1e-2 --certify --out "$T/d.svg" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ]' "draw --certify: refused: $(cat "$T/e.txt")"

@@ -414,8 +414,83 @@ static void test_baseline(const ob_res_table *t)
     ob_res_free(&b);
 }
 
+/* A run with certificates (run --certify): m1 has two certified within
+ * tol (0.0009 <= 0.001; 0.01 <= 0.01 exactly), one not (0.0011 > 0.001),
+ * one unbounded (inf: not), and a fail without one; m2's one job has none.
+ * cert_ns of m1's four: 1e6 2e6 3e6 4e6 -> median 2.5e6, q1 (h = 0.75)
+ * 1.75e6, q3 (h = 2.25) 3.25e6. */
+#define HDRC "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message," \
+             "family,err_upper,err_lower,certified,cert_ns\n"
+static const char CERT[] = HDRC
+    "c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.0009,yes,1000000\n"
+    "c1,1,m1,hausdorff,mid,0.01,4,1,3,0.009,ok,10,0,,f,0.01,0.009,yes,2000000\n"
+    "c2,1,m1,hausdorff,mid,0.001,10,3,3,0.00099,ok,10,0,,f,0.0011,0.00099,no,3000000\n"
+    "c2,1,m1,hausdorff,mid,0.01,13,4,3,0.02,limit,10,0,depth,f,inf,0.02,no,4000000\n"
+    "c3,1,m1,hausdorff,mid,0.001,0,0,0,,fail,10,0,singular,f,,,,\n"
+    "c3,1,m2,hausdorff,mid,0.001,4,1,3,0.0001,ok,10,0,,f,,,,\n";
+
+static void test_certified(void)
+{
+    ob_res_table t;
+    ob_summary s;
+    ob_err err;
+    ob_sum_filter f = {NULL, NULL, NULL, NULL, NULL};
+    if (parse(CERT, &t) != 0 || ob_summary_build(&t, "c.csv", &f, &s, &err) != 0) {
+        CHECK(0, "the certified run parses and summarizes");
+        ob_res_free(&t);
+        return;
+    }
+    CHECK(t.has_cert && t.v[0].cert_done && !t.v[4].cert_done && isinf(t.v[3].err_upper), "rows read with and without");
+    CHECK(s.has_cert && s.run.meth[0].cert_yes == 2 && s.run.meth[0].cert_no == 2, "m1: 2 certified within tol, 2 not");
+    CHECK(s.run.meth[1].cert_yes == 0 && s.run.meth[1].cert_no == 0 && s.run.meth[1].cert_ns.n == 0, "m2: none");
+    CHECK_NEAR(s.run.meth[0].cert_ns.median, 2.5e6, 1e-6, "m1 cert_ns median");
+    CHECK_NEAR(s.run.meth[0].cert_ns.q1, 1.75e6, 1e-6, "m1 cert_ns q1");
+    char *md = render(ob_summary_write_md, &s, OB_SUM_METHODS);
+    CHECK(md && has_line(md, "| method | jobs | ok | limit | fail | skip | timeout | time/job (ms) | certified | "
+                             "not certified | cert/job (ms) |"), "methods header with the certificate's columns");
+    CHECK(md && has_line(md, "| m1 | 5 | 3 | 1 | 1 | 0 | 0 | 1e-05 [1e-05, 1e-05] | 2 | 2 | 2.5 [1.75, 3.25] |"),
+          "m1's row: %s", md ? md : "");
+    free(md);
+    char *csv = render(ob_summary_write_csv, &s, OB_SUM_METHODS);
+    CHECK(csv && strstr(csv, "certified,,,,m1,,yes,2,") && strstr(csv, "certified,,,,m1,,no,2,") &&
+          strstr(csv, "cert_time,,,,m1,,,2500000,"), "CSV rows certified and cert_time");
+    free(csv);
+    ob_summary_free(&s);
+    ob_res_free(&t);
+    /* a run without them: no such columns */
+    if (parse(RUN, &t) == 0 && ob_summary_build(&t, "t.csv", &f, &s, &err) == 0) {
+        char *m = render(ob_summary_write_md, &s, OB_SUM_METHODS);
+        CHECK(!s.has_cert && m && !strstr(m, "certified"), "no certificates: no certified columns");
+        free(m);
+        ob_summary_free(&s);
+    }
+    ob_res_free(&t);
+    /* the reader refuses a certificate that contradicts itself, naming the line */
+    static const char *const bad[][2] = {
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0011,0.0009,yes,1\n", "certified must be yes exactly"},
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.001,yes,1\n", "err_lower is not a finite"},
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.0009,yes,\n", "all empty or all set"},
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.0009,maybe,1\n", "certified is not"},
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,nan,0.0009,no,1\n", "err_upper is not"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "%s%s", HDRC, bad[i][0]);
+        const int rc = ob_res_parse(text, strlen(text), "c.csv", &t, &err);
+        CHECK(rc == -1 && strstr(err.msg, "c.csv:2:") && strstr(err.msg, bad[i][1]), "bad certificate %zu: %s", i,
+              rc ? err.msg : "accepted");
+        ob_res_free(&t);
+    }
+    static const char three[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,"
+                                "fit_ns,eval_ns,message,err_upper,err_lower,certified\n";
+    CHECK(ob_res_parse(three, strlen(three), "c.csv", &t, &err) == -1 && strstr(err.msg, "come together"),
+          "three of the four columns: refused");
+    ob_res_free(&t);
+}
+
 int main(void)
 {
+    test_certified();
     test_quantiles();
     test_lists();
     test_family_fallback();
