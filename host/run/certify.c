@@ -10,6 +10,7 @@
 
 #include "host/diag.h"
 #include "host/io/approx.h"
+#include "host/run/progress.h"
 #include "host/run/signals.h"
 #include "methods/metrics/cert_job.h"
 
@@ -20,6 +21,13 @@ static double thread_ns(void)
     struct timespec t;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
+}
+
+static double mono_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 /* Job j's certificate from its span log: 0, or -1 with the reason in why. */
@@ -98,8 +106,9 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
 int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr,
                    double *seconds)
 {
-    struct timespec w0, w1;
-    clock_gettime(CLOCK_MONOTONIC, &w0);
+    const double start = mono_s();
+    double last = start;
+    size_t done = 0;
     *seconds = 0.0;
     size_t n;
     todo *idx = certify_order(jobs, njobs, &n);
@@ -131,16 +140,21 @@ int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_sp
             }
             continue;
         }
-        if (jr) {
 #pragma omp critical(ob_certify_report)
-            if (!failed && ob_journal_add(jr, j) != 0) {
+        {
+            if (jr && !failed && ob_journal_add(jr, j) != 0) {
                 ob_error("%s: cannot write: rows are no longer saved as jobs are certified", jr->path);
                 failed = 1;
+            }
+            done++;
+            const double t = mono_s();
+            if (t - last >= OB_PROGRESS_LOG_SECONDS && done < n) {  /* a long pass is not silent */
+                last = t;
+                ob_info("certified %zu/%zu jobs, %.0f s elapsed", done, n, t - start);
             }
         }
     }
     free(idx);
-    clock_gettime(CLOCK_MONOTONIC, &w1);
-    *seconds = (double)(w1.tv_sec - w0.tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
+    *seconds = mono_s() - start;
     return failed ? -1 : stopped ? 1 : 0;
 }

@@ -132,3 +132,25 @@ def test_empty_run(tmp_path):
     df = offbench.read_results(p)
     assert len(df) == 0 and {k: str(v) for k, v in df.dtypes.items()} == DTYPES
     assert isinstance(df, pd.DataFrame)
+
+
+def test_certified_run(tmp_path):
+    """run --certify: err_upper and err_lower are floats with
+    err_lower <= err_upper, certified a boolean that is True exactly when
+    err_upper <= tol, cert_ns a whole number; empty (NaN, None) on a job
+    without an approximation."""
+    from conftest import offbench_run
+    p = offbench_run(tmp_path, "--curve", "atlas_circle", "--methods", "tiller,kim2018,zhao", "--tols", "1e-2",
+                     "--certify")
+    rows = offbench.read_results(p, as_frame=False)
+    assert [r["status"] for r in rows] == ["ok", "skip", "ok"]
+    for r in rows:
+        if r["status"] == "ok":
+            assert 0 <= r["err_lower"] <= r["err_upper"] and r["max_err"] <= r["err_upper"]
+            assert r["certified"] is (r["err_upper"] <= r["tol"]) and isinstance(r["cert_ns"], int)
+        else:
+            assert math.isnan(r["err_upper"]) and r["certified"] is None and r["cert_ns"] is None
+    pd = pytest.importorskip("pandas")
+    df = offbench.read_results(p)
+    assert str(df["certified"].dtype) == "boolean" and str(df["err_upper"].dtype) == "float64"
+    assert df["certified"].isna().tolist() == [False, True, False]
