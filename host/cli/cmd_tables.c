@@ -22,6 +22,8 @@
 #include "host/io/datadir.h"
 #include "host/cli/cliopts.h"
 #include "host/diag.h"
+#include "host/run/certify.h"
+#include "host/io/export.h"
 #include "host/run/progress.h"
 #include "host/run/signals.h"
 #include "host/tables/published.h"
@@ -315,8 +317,19 @@ static int run_slots(ob_tab_plan *pl, const ob_run_opts *o, const ob_driver_hook
         ob_driver_hooks h = *base;
         h.progress = ob_progress_cb;
         h.progress_ctx = &bar;
+        ob_span_log *logs = o->certify ? ob_span_logs_new(n) : NULL;  /* --certify: the pieces */
+        if (o->certify && !logs) {
+            ob_error("out of memory");
+            rc = -1;
+            break;
+        }
+        h.spans = logs;
         int drc = ob_driver_run(jobs, n, &d, &h);
         ob_progress_end(&bar);
+        double secs = 0.0;
+        if (drc == 0 && logs && ob_certify_run(o->driver.samples, jobs, n, logs, NULL, &secs) < 0)
+            rc = -1;  /* a job not certified: said; its columns empty */
+        ob_export_free(logs);
         for (size_t k = 0; k < n; k++) {
             const double *keep = pl->slots[idx[k]].job.params;
             pl->slots[idx[k]].job = jobs[k];
@@ -406,7 +419,7 @@ static int parse_opts(int argc, char **argv, ob_run_opts *o, const char **only, 
     const ob_flagset sets[2] = {
         {tables_flags, (int)(sizeof tables_flags / sizeof tables_flags[0]), NULL, NULL, "options",
          apply_tables_flag, &t},
-        {ob_run_flags, ob_run_nflags, "backend device threads ", NULL, "run options (as for run)",
+        {ob_run_flags, ob_run_nflags, "backend device threads certify ", NULL, "run options (as for run)",
          ob_run_flag_apply, o},
     };
     const int rc = ob_cli_parse("[--out DIR] [--table SOURCE:TABLE,...] [--protocols LIST] [run options]", sets, 2,
@@ -497,9 +510,20 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     int cnt[OB_TAB_NSTATUS] = {0};
     for (int i = 0; i < pl.nrows; i++)
         cnt[ob_tab_row_status(&pl, &pl.rows[i], NULL)]++;
+    char cert[80] = "";
+    if (o.certify) {  /* the rows whose job's certified error is within tol */
+        int yes = 0, done = 0;
+        for (int i = 0; i < pl.nrows; i++)
+            if (pl.rows[i].slot >= 0 && pl.slots[pl.rows[i].slot].job.cert_done) {
+                const ob_job *j = &pl.slots[pl.rows[i].slot].job;
+                done++;
+                yes += j->err_upper <= j->tol;
+            }
+        snprintf(cert, sizeof cert, "; certified within tol %d of %d", yes, done);
+    }
     ob_info("%d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
-            "differs %d, no-method %d, no-data %d; wrote %s/tables.csv and tables.md",
-            pl.nrows, pub.n, (int)OB_PROTO_COUNT, pl.nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4],
+            "differs %d, no-method %d, no-data %d%s; wrote %s/tables.csv and tables.md",
+            pl.nrows, pub.n, (int)OB_PROTO_COUNT, pl.nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4], cert,
             o.out_dir);
 done:
     ob_cl_close(cl);

@@ -103,8 +103,7 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
     return t;
 }
 
-int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr,
-                   double *seconds)
+int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds)
 {
     const double start = mono_s();
     double last = start;
@@ -118,7 +117,7 @@ int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_sp
     }
     if (n)
         ob_info("certifying %zu jobs", n);
-    const int samples = ob_clamp_samples(o->driver.samples);
+    samples = ob_clamp_samples(samples);
     int failed = 0, stopped = 0;
 #pragma omp parallel for schedule(dynamic, 1)
     for (long k = 0; k < (long)n; k++) {

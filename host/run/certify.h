@@ -23,14 +23,14 @@
 #include <stddef.h>
 
 #include "host/run/journal.h"
-#include "host/run/options.h"
 
 /* Whether job j is one --certify certifies: it has an approximation. */
 int ob_certify_wants(const ob_job *j);
 
 /* Purpose: certify every job of jobs that has an approximation and no
  *          certificate yet (a job restored by --resume brings its own).
- * Inputs:  spans: the jobs' span logs (the driver's hooks.spans), one per
+ * Inputs:  samples: the run's samples per piece (--samples: the feet the
+ *          certificate starts from); spans: the jobs' span logs (the driver's hooks.spans), one per
  *          job; jr: the journal, or NULL: each certified job's row is added
  *          to it as it is done (rows of jobs with an approximation are held
  *          back from the journal until then: journal.h).
@@ -40,7 +40,6 @@ int ob_certify_wants(const ob_job *j);
  *          cert_done 0); -1 after ob_error() when a job could not be
  *          certified (a refit that does not repeat the run, no memory, a
  *          journal that cannot be written): the others still are. */
-int ob_certify_run(const ob_run_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr,
-                   double *seconds);
+int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds);
 
 #endif

@@ -67,7 +67,7 @@ int ob_tab_write_csv(FILE *f, void *ctx)
     const ob_tab_out *t = ctx;
     const ob_tab_plan *pl = t->pl;
     fputs("source,table,curve,d,tol,method,label,protocol,published,ours,ratio,status,unit,d_run,metric,split,"
-          "job_status,note\n",
+          "job_status,note,err_upper,err_lower,certified\n",
           f);
     for (int i = 0; i < pl->nrows; i++) {
         const ob_tab_row *r = &pl->rows[i];
@@ -92,9 +92,19 @@ int ob_tab_write_csv(FILE *f, void *ctx)
             char note[512];
             snprintf(note, sizeof note, "%s%s%s", r->spec.note, j->message[0] ? "; job: " : "", j->message);
             ob_csv_field(f, note);
+            if (j->cert_done) {  /* tables --certify (host/run/certify.h) */
+                fputc(',', f);
+                put_num(f, j->err_upper);
+                fputc(',', f);
+                put_num(f, j->err_lower);
+                fprintf(f, ",%s", j->err_upper <= j->tol ? "yes" : "no");
+            } else {
+                fputs(",,,", f);
+            }
         } else {
             fputs(",,,,", f);
             ob_csv_field(f, r->fixed[3] == 'm' ? "offbench has no such method" : "the paper does not print the curve's data");
+            fputs(",,,", f);
         }
         fputc('\n', f);
     }
@@ -184,8 +194,10 @@ static void write_grid(FILE *f, const ob_tab_plan *pl, const ob_pub_cell *first,
             const char *flag = j && j->status != OB_OK && strcmp(hit->cell->unit, "ctrl_points") == 0
                                    ? (j->status == OB_LIMIT ? " (limit)" : " (fail)")
                                    : "";
-            fprintf(f, " %s / %s%s%s |", hit->cell->value_text, st >= OB_TAB_NO_METHOD ? ob_tab_status_names[st] : b,
-                    flag, mark(st));
+            /* --certify: an ok job whose certified error is over tol */
+            const char *cert = j && j->status == OB_OK && j->cert_done && !(j->err_upper <= j->tol) ? " (!)" : "";
+            fprintf(f, " %s / %s%s%s%s |", hit->cell->value_text, st >= OB_TAB_NO_METHOD ? ob_tab_status_names[st] : b,
+                    flag, cert, mark(st));
         }
         fputc('\n', f);
     }
@@ -382,6 +394,31 @@ static void write_sweep_md(FILE *f, const ob_tab_plan *pl)
     write_sweep_cuts(f, pl, OB_METRIC_PARAM, "lee", 0.0443, 0.0256);
 }
 
+/* tables --certify: per protocol, the ok jobs whose certified two-sided
+ * Hausdorff distance is within tol (nothing without certificates). */
+static void write_cert_md(FILE *f, const ob_tab_plan *pl)
+{
+    int yes[OB_PROTO_COUNT] = {0}, n[OB_PROTO_COUNT] = {0}, any = 0;
+    for (int q = 0; q < pl->nrows; q++) {
+        const ob_tab_row *r = &pl->rows[q];
+        const ob_job *j = r->slot >= 0 ? &pl->slots[r->slot].job : NULL;
+        if (!j || j->status != OB_OK || !j->cert_done)
+            continue;
+        n[r->proto]++;
+        yes[r->proto] += j->err_upper <= j->tol;
+        any = 1;
+    }
+    if (!any)
+        return;
+    fputs("Certified (`--certify`, docs/certified.md): of the cells whose job is ok, those whose certified "
+          "two-sided Hausdorff distance to the exact offset (err_upper in tables.csv) is within the tolerance:", f);
+    for (int p = 0; p < OB_PROTO_COUNT; p++)
+        fprintf(f, "%s %s %d of %d", p ? "," : "", ob_proto_name((ob_proto)p), yes[p], n[p]);
+    fputs(". A cell marked `(!)` is ok under its protocol's measure but not within tol by the certified "
+          "distance (a paper's radial or symbolic measure is not the distance to the offset; or the enclosure "
+          "straddles tol).\n\n", f);
+}
+
 int ob_tab_write_md(FILE *f, void *ctx)
 {
     const ob_tab_out *t = ctx;
@@ -394,6 +431,7 @@ int ob_tab_write_md(FILE *f, void *ctx)
                "**best** (the same metric, the `optimal` split: the fewest pieces a method can reach, their "
                "errors equalized).\n\n",
             t->pub->where, t->curves_from);
+    write_cert_md(f, pl);
     for (int i = 0; i < t->pub->n; i++) {
         const ob_pub_cell *first = &t->pub->v[i];
         int seen = 0;
