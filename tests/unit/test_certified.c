@@ -41,9 +41,30 @@ typedef struct {
     int offset;
 } bcurve;
 
+/* The offset of a polynomial with C' from its hodograph n sum (P_i+1 - P_i)
+ * B_i^n-1, in long double: the sum of P_i B_i' cancels to C' and carries
+ * eps |P| / |C'| of relative error into the normal, 2e-10 at the distance
+ * of a piece with legs of 1e-7 (test_short_piece), more than the distance. */
+static void hodo_offset(const ob_bez *b, double t, double d, double O[2])
+{
+    const int n = b->deg;
+    long double C[2] = {0, 0}, D[2] = {0, 0};
+    for (int i = 0; i <= n; i++)
+        for (int c = 0; c < 2; c++) {
+            C[c] += (long double)b->h[i][c] * bern(n, i, t);
+            if (i < n)
+                D[c] += n * ((long double)b->h[i + 1][c] - b->h[i][c]) * bern(n - 1, i, t);
+        }
+    const long double sp = sqrtl(D[0] * D[0] + D[1] * D[1]);
+    O[0] = (double)(C[0] - d * D[1] / sp);
+    O[1] = (double)(C[1] + d * D[0] / sp);
+}
+
 static void bpoint(const bcurve *c, double t, double p[2])
 {
-    if (c->offset)
+    if (c->offset && !c->b->rational)
+        hodo_offset(c->b, t, c->d, p);
+    else if (c->offset)
         ref_offset(c->b, t, c->d, p);
     else
         ref_point(c->b, t, p);
@@ -239,6 +260,45 @@ static void test_cusp(void)
           "cusp of C: the certified metric is +inf (%g) at t = %g", e.err, e.t);
 }
 
+/* A short piece of a septic (a leg of ~1e-7, coordinates ~0.5: what `sisl`
+ * cuts near a sharp bend).  |C'| ~ 7e-7 is far from 0, but an enclosure
+ * that subdivides the control points and then differences them carries
+ * their rounding eps |P| / w^k, and de Casteljau steps a + t (b - a) grow
+ * widths ~3x per level near t = 1: on such a `sisl` piece (rnd7_000130)
+ * C' over [0.99460, 0.99466] was enclosed in [-5.5e-8, 1.6e-6] for a true
+ * 7.5e-7, so |C'| reached 0 (+inf, rc -1); here 2 of the 6 pieces were
+ * +inf and the others bounded at 0.06 .. 2.6 for distances of 2e-11.  The
+ * hodograph subdivided in convex form encloses C' to ~1e-6 relative.  The
+ * certificate must hold the brute force (whose offset takes C' from the
+ * hodograph too: the sum of P_i B_i' cancels to 1e-9 relative, 2e-10 at
+ * the offset, more than the distance). */
+static void test_short_piece(void)
+{
+    double xy[8][2];
+    for (int i = 0; i < 8; i++)
+        xy[i][0] = i / 7.0 + urange(-0.1, 0.1), xy[i][1] = urange(0.2, 0.8);
+    const ob_bez C7 = make(7, (const double (*)[2])xy, NULL);
+    int bounded = 0, n = 0;
+    for (int p = 0; p < 6; p++) {
+        const double a = 0.15 + 0.12 * p, d = p % 2 ? 0.2 : -0.15;
+        ob_bez base;
+        ob_bez_subsegment(&C7, a, a + 1e-6, &base);
+        ob_bez A = interp_offset(&base, d, 3);
+        for (int i = 0; i <= A.deg; i++)  /* an error of ~1e-12, well above round-off */
+            ob_bez_set(&A, i, A.h[i][0] + urange(-1e-12, 1e-12), A.h[i][1] + urange(-1e-12, 1e-12), 1.0);
+        ob_certified c;
+        const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
+        const double b = brute(&base, &A, d, 20000);
+        printf("short piece at %.2f: brute %.6g certified [%.6g, %.6g] rc %d met %d, %ld leaves\n", a, b, c.lower,
+               c.upper, rc, c.met, c.leaves);
+        CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15,
+              "short piece at %.2f: [%.17g, %.17g] misses %.17g", a, c.lower, c.upper, b);
+        bounded += rc == 0 && c.upper < 1e-9;
+        n++;
+    }
+    CHECK(bounded == n, "short pieces: %d of %d bounded below 1e-9", bounded, n);
+}
+
 /* lower <= brute + what samples miss; brute <= upper + its refinement error;
  * the sampled metric likewise <= upper. */
 static void test_random_pairs(int npairs, long nbrute)
@@ -428,6 +488,7 @@ int main(int argc, char **argv)
     testlib_seed(0x41C3A7E5ULL);
     test_exact();
     test_cusp();
+    test_short_piece();
     test_spike();
     test_random_pairs(30, argc > 1 ? 1000000 : 20000);
     test_job(4);
