@@ -5,16 +5,39 @@
 
 #include <math.h>
 
+/* A polynomial segment moved so that its first control point is the
+ * origin (*o0 holds it), its weights left 1.  Why: a de Casteljau
+ * derivative is a difference of nearby level points, whose rounding is
+ * eps times their size; at the origin that is the size of the segment, not
+ * of its position, so a piece 1e-6 long at 0.5 keeps its tangent to ~eps
+ * instead of 1e-9 (an offset point then 2e-10 off, feet 1e-5 off in t, and
+ * the bound stuck above that).  The differences P_i - P_0 of nearby points
+ * are exact (Sterbenz).  A rational segment is evaluated as it is. */
+static const ob_bez *at_origin(const ob_bez *b, ob_bez *tmp, double o0[2])
+{
+    o0[0] = o0[1] = 0.0;
+    if (b->rational)
+        return b;
+    o0[0] = b->h[0][0], o0[1] = b->h[0][1];
+    tmp->deg = b->deg, tmp->rational = 0;
+    for (int i = 0; i <= b->deg; i++)
+        tmp->h[i][0] = b->h[i][0] - o0[0], tmp->h[i][1] = b->h[i][1] - o0[1], tmp->h[i][2] = 1.0;
+    return tmp;
+}
+
 void ob_cert_eval(const ob_cv *c, double t, double p[2], double d1[2])
 {
-    double o[3][2];
-    ob_bez_eval(c->b, t, c->offset ? 2 : 1, o);
-    p[0] = o[0][0], p[1] = o[0][1], d1[0] = o[1][0], d1[1] = o[1][1];
+    double o[3][2], o0[2];
+    ob_bez tmp;
+    const ob_bez *b = at_origin(c->b, &tmp, o0);
+    ob_bez_eval(b, t, c->offset ? 2 : 1, o);
+    p[0] = o[0][0] + o0[0], p[1] = o[0][1] + o0[1], d1[0] = o[1][0], d1[1] = o[1][1];
     if (!c->offset)
         return;
     const double sp = hypot(o[1][0], o[1][1]);
     if (!(sp > 0)) {  /* the limit normal (curve.h); no derivative */
-        ob_bez_offset_point(c->b, t, c->d, p);
+        ob_bez_offset_point(b, t, c->d, p);
+        p[0] += o0[0], p[1] += o0[1];
         d1[0] = d1[1] = 0.0;
         return;
     }

@@ -269,7 +269,10 @@ static void test_cusp(void)
  * 7.5e-7, so |C'| reached 0 (+inf, rc -1); here 2 of the 6 pieces were
  * +inf and the others bounded at 0.06 .. 2.6 for distances of 2e-11.  The
  * hodograph subdivided in convex form encloses C' to ~1e-6 relative.  The
- * certificate must hold the brute force (whose offset takes C' from the
+ * feet (floating point) took C' from the same cancellation, 1e-9 relative:
+ * offset points 2e-10 off, feet 1e-5 off in t, the bound stuck at 2.5 ..
+ * 4.6 times the distance; at the origin they are tight.  The certificate
+ * must be within 1.01 of its lower bound and hold the brute force (whose offset takes C' from the
  * hodograph too: the sum of P_i B_i' cancels to 1e-9 relative, 2e-10 at
  * the offset, more than the distance). */
 static void test_short_piece(void)
@@ -293,10 +296,10 @@ static void test_short_piece(void)
                c.upper, rc, c.met, c.leaves);
         CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15,
               "short piece at %.2f: [%.17g, %.17g] misses %.17g", a, c.lower, c.upper, b);
-        bounded += rc == 0 && c.upper < 1e-9;
+        bounded += rc == 0 && c.upper <= 1.01 * c.lower;
         n++;
     }
-    CHECK(bounded == n, "short pieces: %d of %d bounded below 1e-9", bounded, n);
+    CHECK(bounded == n, "short pieces: %d of %d bounded within 1.01 of the lower bound", bounded, n);
 }
 
 /* lower <= brute + what samples miss; brute <= upper + its refinement error;
