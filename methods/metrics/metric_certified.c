@@ -43,8 +43,8 @@ static double target(const cert_t *c)
 
 /* The least bound over an interval's lines (metric_certified.h): the
  * interpolation of its ends' feet, the line that bounded its parent
- * (it->lk not NaN), and each end's foot continued at its speed; the later
- * ones only while the least is above `want`.  The parent's line is why a
+ * (where a foot jumped off it), and each end's foot continued at its
+ * speed; the later ones only while the least is above `want`.  The parent's line is why a
  * half is never much worse than its parent where a new foot lands on
  * another branch of a self-intersecting offset.  Sets it->lt, it->lk to
  * the line that gave the bound. */
@@ -59,8 +59,13 @@ static double leaf_bound(cert_t *c, const side_t *s, ob_cert_item *it, double wa
     int best = -1;
     ob_cert_pside ps;
     ob_cert_upper_prep(&s->P, it->a, it->b, &ps);
+    /* the parent's line only where a foot left it by more than the
+     * interval's own extent along it (a jump between branches); elsewhere
+     * the interpolation is as good, and an extra line costs budget */
+    const double jump = fabs(it->ta - it->lt) + fabs(it->tb - (it->lt + it->lk * (it->b - it->a)));
+    const int parent = it->lk == it->lk && jump > fabs(it->lk) * (it->b - it->a);
     for (int i = 0; i < 4 && U > want; i++) {
-        if (!(line[i][1] == line[i][1]))  /* no parent line */
+        if (i == 1 && !parent)
             continue;
         const double Ui = ob_cert_upper_line(&ps, &s->Q, line[i][0], line[i][1]);
         c->out->leaves++, c->upper_work++;
