@@ -6,53 +6,34 @@
 
 enum { MAXK = 3 };  /* highest derivative ever needed (O'' needs C''') */
 
-/* Derivative ranges are taken over at least this width: the subsegment's
- * k-th differences carry a rounding of eps |P| that the range divides by
- * width^k, so over a narrower interval the enclosure widens again (for the
- * offset's second derivative, eps / w^3 against |C''''| w: balanced near
- * w = 1e-4). */
-#define RANGE_MIN_WIDTH 0x1p-14
-
-typedef ob_iv hpt[3];  /* homogeneous point (w x, w y, w) */
-
-static void load(const ob_bez *b, hpt *q)
-{
-    for (int i = 0; i <= b->deg; i++)
-        for (int c = 0; c < 3; c++)
-            q[i][c] = ob_iv_pt(b->h[i][c]);
-}
-
-static ob_iv lerp(ob_iv a, ob_iv b, ob_iv t) { return ob_iv_add(a, ob_iv_mul(t, ob_iv_sub(b, a))); }
+typedef ob_iv hpt[3];  /* homogeneous derivatives (w x, w y, w) */
 
 /* The homogeneous coordinates that carry information: a polynomial
  * segment's weights are all 1 and never read (euclid). */
 static int ncoords(const ob_bez *b) { return b->rational ? 3 : 2; }
 
-/* q becomes the piece over [0, t] (descending in place: q[j] is level j's first point);
- * coordinates 0 .. nc - 1. */
-static void split_left(hpt *q, int n, int nc, ob_iv t)
+/* (1 - t) a + t b.  The convex form, not a + t (b - a): with t in [0, 1]
+ * both weights are >= 0, so the result is no wider than a and b (plus
+ * rounding), where a + t (b - a) adds t (|a| + |b|) of width at each level
+ * and a de Casteljau of degree n near t = 1 grows the width ~3^n. */
+static ob_iv lerp(ob_iv a, ob_iv b, ob_iv t, ob_iv omt) { return ob_iv_add(ob_iv_mul(omt, a), ob_iv_mul(t, b)); }
+
+/* q[0..m] becomes the piece over [0, t] (q[j]: level j's first point). */
+static void split_left(ob_iv *q, int m, ob_iv t)
 {
-    for (int r = 1; r <= n; r++)
-        for (int i = n; i >= r; i--)
-            for (int c = 0; c < nc; c++)
-                q[i][c] = lerp(q[i - 1][c], q[i][c], t);
+    const ob_iv omt = ob_iv_sub(ob_iv_pt(1.0), t);
+    for (int r = 1; r <= m; r++)
+        for (int i = m; i >= r; i--)
+            q[i] = lerp(q[i - 1], q[i], t, omt);
 }
 
-/* q becomes the piece over [t, 1] (ascending in place: q[j] is level n - j's last point). */
-static void split_right(hpt *q, int n, int nc, ob_iv t)
+/* q[0..m] becomes the piece over [t, 1] (q[j]: level m - j's last point). */
+static void split_right(ob_iv *q, int m, ob_iv t)
 {
-    for (int r = 1; r <= n; r++)
-        for (int i = 0; i <= n - r; i++)
-            for (int c = 0; c < nc; c++)
-                q[i][c] = lerp(q[i][c], q[i + 1][c], t);
-}
-
-/* k-th forward difference of q[i .. i + k], coordinate c (k <= MAXK). */
-static ob_iv diff(const hpt *q, int i, int k, int c)
-{
-    if (k == 0)
-        return q[i][c];
-    return ob_iv_sub(diff(q, i + 1, k - 1, c), diff(q, i, k - 1, c));
+    const ob_iv omt = ob_iv_sub(ob_iv_pt(1.0), t);
+    for (int r = 1; r <= m; r++)
+        for (int i = 0; i <= m - r; i++)
+            q[i] = lerp(q[i], q[i + 1], t, omt);
 }
 
 /* n (n - 1) ... (n - k + 1) */
@@ -64,66 +45,74 @@ static double falling(int n, int k)
     return f;
 }
 
-/* Homogeneous derivatives 0..K at the point t: level n - k of de Casteljau
- * holds the k-th derivative as falling(n, k) times its k-th difference. */
-static void hjet_point(const ob_bez *b, double t, int K, hpt *H)
+/* The Bernstein coefficients D[0..n-k] of the k-th derivative of
+ * coordinate c: falling(n, k) times the k-th differences of the control
+ * points.  Returns the degree n - k, or -1 (the zero polynomial) if k > n.
+ * Why difference first and subdivide after (the hodograph): differences of
+ * nearby control points are exact or nearly so, and subdividing them keeps
+ * the rounding relative to the derivative's own size; differencing the
+ * subdivided points instead carries their rounding eps |P|, divided by the
+ * interval's width^k, which for a short piece (a leg of 1e-7) is larger
+ * than the derivative itself. */
+static int hodograph(const ob_bez *b, int k, int c, ob_iv *D)
 {
-    const int n = b->deg, nc = ncoords(b);
-    hpt q[OB_MAX_DEG + 1];
-    load(b, q);
-    for (int k = 0; k <= K; k++)
-        for (int c = 0; c < 3; c++)
-            H[k][c] = ob_iv_pt(0.0);
-    for (int r = 0; r <= n; r++) {
-        if (r > 0)
-            for (int i = 0; i <= n - r; i++)
-                for (int c = 0; c < nc; c++)
-                    q[i][c] = lerp(q[i][c], q[i + 1][c], ob_iv_pt(t));
-        const int k = n - r;
-        if (k <= K)
-            for (int c = 0; c < nc; c++)
-                H[k][c] = ob_iv_scale(diff(q, 0, k, c), falling(n, k));
-    }
+    const int n = b->deg;
+    if (k > n)
+        return -1;
+    for (int i = 0; i <= n; i++)
+        D[i] = ob_iv_pt(b->h[i][c]);
+    for (int l = 1; l <= k; l++)
+        for (int i = 0; i + l <= n; i++)
+            D[i] = ob_iv_sub(D[i + 1], D[i]);
+    for (int i = 0; i <= n - k; i++)
+        D[i] = ob_iv_scale(D[i], falling(n, k));
+    return n - k;
 }
 
-/* Homogeneous derivatives 0..K enclosed over [t0, t1]: hulls of the
- * subsegment's scaled differences. */
-static void hjet_range(const ob_bez *b, double t0, double t1, int K, hpt *H)
+/* Homogeneous derivatives k0..K at the point t: de Casteljau on each
+ * hodograph; the others are left 0. */
+static void hjet_point(const ob_bez *b, double t, int k0, int K, hpt *H)
 {
-    const int n = b->deg, nc = ncoords(b);
-    hpt q[OB_MAX_DEG + 1];
-    load(b, q);
-    if (t1 < 1.0)
-        split_left(q, n, nc, ob_iv_pt(t1));
-    if (t0 > 0.0)
-        split_right(q, n, nc, ob_iv_div(ob_iv_pt(t0), ob_iv_pt(t1)));
-    const ob_iv len = ob_iv_sub(ob_iv_pt(t1), ob_iv_pt(t0));
-    ob_iv scale[MAXK + 1];
-    scale[0] = ob_iv_pt(1.0);
-    for (int k = 1; k <= K; k++)
-        scale[k] = ob_iv_div(scale[k - 1], len);
+    const int nc = ncoords(b);
+    const ob_iv T = ob_iv_pt(t), omt = ob_iv_sub(ob_iv_pt(1.0), T);
     for (int k = 0; k <= K; k++)
-        H[k][2] = ob_iv_pt(0.0);  /* unread unless rational */
-    for (int c = 0; c < nc; c++) {
-        /* the difference table, level k in place: D[i] = diff(q, i, k, c),
-         * the same operations as diff() without its recomputation */
-        ob_iv D[OB_MAX_DEG + 1];
-        for (int i = 0; i <= n; i++)
-            D[i] = q[i][c];
-        for (int k = 0; k <= K; k++) {
-            if (k > n) {
-                H[k][c] = ob_iv_pt(0.0);
+        for (int c = 0; c < 3; c++) {
+            H[k][c] = ob_iv_pt(0.0);
+            ob_iv D[OB_MAX_DEG + 1];
+            const int m = k >= k0 && c < nc ? hodograph(b, k, c, D) : -1;
+            if (m < 0)
                 continue;
-            }
-            if (k > 0)
-                for (int i = 0; i + k <= n; i++)
-                    D[i] = ob_iv_sub(D[i + 1], D[i]);
-            ob_iv h = D[0];
-            for (int i = 1; i + k <= n; i++)
-                h = ob_iv_hull(h, D[i]);
-            H[k][c] = ob_iv_mul(ob_iv_scale(h, falling(n, k)), scale[k]);
+            for (int r = 1; r <= m; r++)
+                for (int i = 0; i <= m - r; i++)
+                    D[i] = lerp(D[i], D[i + 1], T, omt);
+            H[k][c] = D[0];
         }
-    }
+}
+
+/* Homogeneous derivatives k0..K enclosed over [t0, t1] (t0 < t1): each
+ * hodograph cut to [t0, t1] (at t1, then at t0 / t1, a ratio carried as an
+ * interval, so the cut is of the exact [t0, t1]) and the hull of its
+ * coefficients (the Bernstein convex-hull property); the others are 0. */
+static void hjet_range(const ob_bez *b, double t0, double t1, int k0, int K, hpt *H)
+{
+    const int nc = ncoords(b);
+    const ob_iv ratio = ob_iv_div(ob_iv_pt(t0), ob_iv_pt(t1));
+    for (int k = 0; k <= K; k++)
+        for (int c = 0; c < 3; c++) {
+            H[k][c] = ob_iv_pt(0.0);
+            ob_iv D[OB_MAX_DEG + 1];
+            const int m = k >= k0 && c < nc ? hodograph(b, k, c, D) : -1;
+            if (m < 0)
+                continue;
+            if (t1 < 1.0)
+                split_left(D, m, ob_iv_pt(t1));
+            if (t0 > 0.0)
+                split_right(D, m, ratio);
+            ob_iv h = D[0];
+            for (int i = 1; i <= m; i++)
+                h = ob_iv_hull(h, D[i]);
+            H[k][c] = h;
+        }
 }
 
 /* Euclidean derivatives 0..K from homogeneous ones: E_k = (X_k - sum_{i=1..k}
@@ -181,7 +170,7 @@ int ob_cv_point(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2])
     hpt H[MAXK + 1];
     ob_iv E[MAXK + 1][2];
     const int K = c->offset ? 2 : 1;
-    hjet_point(c->b, t, K, H);
+    hjet_point(c->b, t, 0, K, H);
     if (euclid(c->b, H, K, E))
         return -1;
     if (!c->offset) {
@@ -196,17 +185,15 @@ int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2])
     hpt H[MAXK + 1];
     ob_iv E[MAXK + 1][2];
     const int K = c->offset ? k + 1 : k;
+    /* the orders read: a rational segment's quotient rule needs them all,
+     * a polynomial's offset C' .. C^(k+1), a polynomial its k-th */
+    const int k0 = c->b->rational ? 0 : c->offset ? 1 : k;
     if (!(t0 <= t1) || k < 1 || k > 2)
         return -1;
-    if (t0 < t1 && t1 - t0 < RANGE_MIN_WIDTH) {  /* a wider interval's enclosure holds */
-        const double m = 0.5 * (t0 + t1);
-        t0 = fmax(0.0, fmin(m - 0.5 * RANGE_MIN_WIDTH, 1.0 - RANGE_MIN_WIDTH));
-        t1 = t0 + RANGE_MIN_WIDTH;
-    }
     if (t0 == t1)
-        hjet_point(c->b, t0, K, H);
+        hjet_point(c->b, t0, k0, K, H);
     else
-        hjet_range(c->b, t0, t1, K, H);
+        hjet_range(c->b, t0, t1, k0, K, H);
     if (euclid(c->b, H, K, E))
         return -1;
     if (!c->offset) {

@@ -9,14 +9,19 @@
  *   O'  = C' (1 - d kappa)
  *   O'' = C'' (1 - d kappa) - d kappa' C',
  *   kappa' = ((C' x C''') |C'|^2 - 3 (C' x C'') (C' . C'')) / |C'|^5.
- * Method: interval de Casteljau on the homogeneous control points
- * (interval.h): at a point t for the value and derivatives there; over
- * [t0, t1] the subsegment's Bernstein coefficients, whose k-th differences
- * enclose the k-th derivative of the homogeneous polynomial there (the
- * Bernstein convex-hull property: Farin, "Curves and Surfaces for CAGD",
- * ch. 5); then the quotient rule and the formulas above in interval
- * arithmetic.  The subsegment is cut at t1 and then at t0 / t1, a ratio
+ * Method: the k-th derivative of each homogeneous coordinate is a
+ * Bernstein polynomial whose coefficients are falling(n, k) times the k-th
+ * differences of the control points (the hodograph), taken in interval
+ * arithmetic (interval.h); interval de Casteljau in convex form
+ * (1 - t) a + t b on it: at a point t for the value there; over [t0, t1]
+ * cut to the subsegment, whose coefficients' hull encloses the derivative
+ * there (the Bernstein convex-hull property: Farin, "Curves and Surfaces
+ * for CAGD", ch. 5); then the quotient rule and the formulas above in
+ * interval arithmetic.  The cut is at t1 and then at t0 / t1, a ratio
  * carried as an interval, so the enclosure is of the exact [t0, t1].
+ * Differencing before cutting keeps the rounding relative to the
+ * derivative (not eps |P| / (t1 - t0)^k), which is what lets a piece with
+ * legs of 1e-7 at coordinates ~0.5 be enclosed at all.
  * Errors: -1 where the enclosure cannot be bounded: the offset where the
  * interval of |C'|^2 reaches 0 (a cusp, a collapsed end leg), a rational
  * segment whose weight interval reaches 0, an overflow.

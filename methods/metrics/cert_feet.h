@@ -21,11 +21,21 @@ void ob_cert_eval(const ob_cv *c, double t, double p[2], double d1[2]);
  * Outputs: *t, its parameter.  Returns: the distance |p - q(t)|. */
 double ob_cert_nearest(const ob_cv *q, const double p[2], const double (*tab)[2], int M, double *t);
 
+/* ob_cert_nearest with a hint in [0, 1] (outside: none): the spans around
+ *          it are searched too and the nearer point kept, so a foot that the
+ *          table's nearest row puts on another branch of a self-intersecting
+ *          offset is still found where the correspondence continues. */
+double ob_cert_nearest_hint(const ob_cv *q, const double p[2], const double (*tab)[2], int M, double hint, double *t);
+
 /* Purpose: the foot on q of p(u): its parameter *t, the distance (returned)
  *          and *slope, an estimate of the foot's speed dt/du,
  *          (p' . q') / |q'|^2, 0 where the foot is an end of q. */
 double ob_cert_foot(const ob_cv *p, const ob_cv *q, double u, const double (*tab)[2], int M, double *t,
                     double *slope);
+
+/* ob_cert_foot with ob_cert_nearest_hint's hint. */
+double ob_cert_foot_hint(const ob_cv *p, const ob_cv *q, double u, const double (*tab)[2], int M, double hint,
+                         double *t, double *slope);
 
 /* Purpose: the feet on q of S samples u_j = j / (S - 1) of curve p.
  * Outputs: foot[j], dist[j], slope[j], as ob_cert_foot.

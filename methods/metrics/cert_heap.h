@@ -13,6 +13,7 @@ typedef struct {
     double a, b;    /* the interval */
     double ta, tb;  /* the feet of its ends on the other curve ... */
     double ka, kb;  /* ... and their speeds (cert_feet.h) */
+    double lt, lk;  /* the line that gave key, t(u) = lt + lk (u - a), passed to the halves; lk NaN: none */
 } ob_cert_item;
 
 typedef struct {

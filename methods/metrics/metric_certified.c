@@ -41,22 +41,38 @@ static double target(const cert_t *c)
     return fmax(fmax(c->out->lower * (1.0 + c->o.rtol), c->floor), c->stop);
 }
 
-/* The least bound over an interval's three lines (metric_certified.h): the
- * interpolation of its ends' feet and each foot continued at its speed; the
- * others only while the first is above `want`. */
-static double leaf_bound(cert_t *c, const side_t *s, const ob_cert_item *it, double want)
+/* The least bound over an interval's lines (metric_certified.h): the
+ * interpolation of its ends' feet, the line that bounded its parent
+ * (where a foot jumped off it), and each end's foot continued at its
+ * speed; the later ones only while the least is above `want`.  The parent's line is why a
+ * half is never much worse than its parent where a new foot lands on
+ * another branch of a self-intersecting offset.  Sets it->lt, it->lk to
+ * the line that gave the bound. */
+static double leaf_bound(cert_t *c, const side_t *s, ob_cert_item *it, double want)
 {
     const double m = 0.5 * (it->a + it->b), k0 = (it->tb - it->ta) / (it->b - it->a);
-    const double line[3][2] = {{it->ta + k0 * (m - it->a), k0},
+    const double line[4][2] = {{it->ta + k0 * (m - it->a), k0},
+                               {it->lt + it->lk * (m - it->a), it->lk},
                                {it->ta + it->ka * (m - it->a), it->ka},
                                {it->tb + it->kb * (m - it->b), it->kb}};
     double U = INFINITY;
+    int best = -1;
     ob_cert_pside ps;
     ob_cert_upper_prep(&s->P, it->a, it->b, &ps);
-    for (int i = 0; i < 3 && U > want; i++) {
-        U = fmin(U, ob_cert_upper_line(&ps, &s->Q, line[i][0], line[i][1]));
+    /* the parent's line only where a foot left it by more than the
+     * interval's own extent along it (a jump between branches); elsewhere
+     * the interpolation is as good, and an extra line costs budget */
+    const double jump = fabs(it->ta - it->lt) + fabs(it->tb - (it->lt + it->lk * (it->b - it->a)));
+    const int parent = it->lk == it->lk && jump > fabs(it->lk) * (it->b - it->a);
+    for (int i = 0; i < 4 && U > want; i++) {
+        if (i == 1 && !parent)
+            continue;
+        const double Ui = ob_cert_upper_line(&ps, &s->Q, line[i][0], line[i][1]);
         c->out->leaves++, c->upper_work++;
+        if (Ui < U || best < 0)
+            U = fmin(U, Ui), best = i;
     }
+    it->lt = line[best][0] - line[best][1] * (m - it->a), it->lk = line[best][1];
     return U;
 }
 
@@ -76,7 +92,7 @@ static double point_lower(cert_t *c, const ob_cv *Q, const ob_iv a[2], double go
         return 0.0;
     for (int i = 0; i < LOWER_ROOTS; i++) {
         const double t0 = (double)i / LOWER_ROOTS, t1 = (double)(i + 1) / LOWER_ROOTS;
-        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, t0, t1), t0, t1, 0, 0, 0, 0});
+        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, t0, t1), t0, t1, 0, 0, 0, 0, 0, 0});
     }
     double L = 0.0;
     for (long n = 0;; n++) {
@@ -85,8 +101,8 @@ static double point_lower(cert_t *c, const ob_cv *Q, const ob_iv a[2], double go
         if (L >= goal || n >= LOWER_BUDGET || it.b - it.a < MIN_WIDTH)
             break;
         const double m = 0.5 * (it.a + it.b);
-        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, it.a, m), it.a, m, 0, 0, 0, 0});
-        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, m, it.b), m, it.b, 0, 0, 0, 0});
+        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, it.a, m), it.a, m, 0, 0, 0, 0, 0, 0});
+        ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, m, it.b), m, it.b, 0, 0, 0, 0, 0, 0});
         c->out->leaves += 2;
     }
     free(h.v);
@@ -151,7 +167,8 @@ static void refine(cert_t *c, int k)
     side_t *s = &c->side[k];
     const double h = 1.0 / (s->S - 1);
     for (int j = 0; j + 1 < s->S; j++)
-        push_leaf(c, s, (ob_cert_item){0, j * h, (j + 1) * h, s->foot[j], s->foot[j + 1], s->slope[j], s->slope[j + 1]});
+        push_leaf(c, s, (ob_cert_item){0, j * h, (j + 1) * h, s->foot[j], s->foot[j + 1], s->slope[j], s->slope[j + 1],
+                                       0.0, NAN});
     for (long n = 1; c->upper_work < c->o.budget * (k + 1); n++) {
         if (n % PROBE_EVERY == 0)
             probe(c, k, 0.5 * (s->heap.v[0].a + s->heap.v[0].b));
@@ -159,11 +176,11 @@ static void refine(cert_t *c, int k)
         if (!(it.key > target(c)) || it.b - it.a < MIN_WIDTH || (isinf(it.key) && it.b - it.a < 1e-9))
             break;
         ob_cert_heap_pop(&s->heap);
-        const double m = 0.5 * (it.a + it.b);
+        const double m = 0.5 * (it.a + it.b), hint = it.lt + it.lk * (m - it.a);  /* the parent's line at m */
         double tm, km;
-        ob_cert_foot(&s->P, &s->Q, m, (const double (*)[2])s->tab, s->S, &tm, &km);
-        push_leaf(c, s, (ob_cert_item){0, it.a, m, it.ta, tm, it.ka, km});
-        push_leaf(c, s, (ob_cert_item){0, m, it.b, tm, it.tb, km, it.kb});
+        ob_cert_foot_hint(&s->P, &s->Q, m, (const double (*)[2])s->tab, s->S, hint, &tm, &km);
+        push_leaf(c, s, (ob_cert_item){0, it.a, m, it.ta, tm, it.ka, km, it.lt, it.lk});
+        push_leaf(c, s, (ob_cert_item){0, m, it.b, tm, it.tb, km, it.kb, hint, it.lk});
     }
 }
 

@@ -23,7 +23,9 @@
  *           interpolation of its two feet and the continuation of each
  *           foot with its local speed (so a foot that jumps across a fold
  *           or a swallowtail of the offset is followed from both sides),
- *           clamped to a constant where a line would leave [0, 1].  On an
+ *           clamped to a constant where a line would leave [0, 1]; a half
+ *           of a bisected interval also tries the line that bounded its
+ *           parent, and its new foot is searched around that line too.  On an
  *           interval [s0, s1] with midpoint m and a line t(s), the error
  *           e(s) = A(s) - O(t(s)) is enclosed by the second-order Taylor
  *           form e(m) + e'(m) h + E2 h^2 / 2 (E2 an interval enclosure of

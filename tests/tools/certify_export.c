@@ -14,6 +14,9 @@
  *   --per-piece 1  each piece enclosed to rtol of its own distance
  *            (ob_certify_hausdorff_opts) instead of the job's (ob_certify_job);
  *   --roundoff X  err_upper <= X counts as certified at round-off (1e-9);
+ *   --match S  only the files whose name holds S (to study a few jobs);
+ *   --verbose 1  print each certified job's pieces (the sampled error, the
+ *            piece's enclosure, rc, met, leaves, its base's end legs);
  *   --jobs FILE  one line per job: file, method, family, pieces, max_err,
  *            sampled, lower, upper, rc, met, leaves, ns_cert, ns_sampled.
  * Per job (ob_certify_job, cert_job.h, the pieces ordered by their sampled
@@ -103,6 +106,32 @@ static int job_level = 1;
  * distance is that of an exact method, err_lower may be 0 and the ratio says
  * nothing (the unit-box curves of --random; 1e-6 of the tolerance 1e-3) */
 static double roundoff = 1e-9;
+static const char *match = NULL;  /* --match: a substring of the file names */
+static int verbose = 0;           /* --verbose: one line per piece */
+
+/* |P1 - P0| and |Pn - Pn-1| of b's control points: a collapsed end leg
+ * (a cusp of the base at an end) shows as a tiny number here */
+static void end_legs(const ob_bez *b, double leg[2])
+{
+    double p[4][2];
+    ob_bez_ctrl(b, 0, p[0]), ob_bez_ctrl(b, 1, p[1]);
+    ob_bez_ctrl(b, b->deg - 1, p[2]), ob_bez_ctrl(b, b->deg, p[3]);
+    leg[0] = hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
+    leg[1] = hypot(p[3][0] - p[2][0], p[3][1] - p[2][1]);
+}
+
+/* --verbose: each piece's enclosure, to see which piece makes a job loose */
+static void print_pieces(const char *name, int n, const ob_bez *base, const ob_bez *apx, const double *hint,
+                         const ob_certified *r)
+{
+    for (int k = 0; k < n; k++) {
+        double leg[2];
+        end_legs(&base[k], leg);
+        printf("%s piece %d: deg %d%s base deg %d%s, sampled %.9g, [%.9g, %.9g] met %d leaves %ld, base legs %.3g %.3g\n",
+               name, k, apx[k].deg, apx[k].rational ? "r" : "", base[k].deg, base[k].rational ? "r" : "", hint[k],
+               r[k].lower, r[k].upper, r[k].met, r[k].leaves, leg[0], leg[1]);
+    }
+}
 
 static int certify_job(const char *dir, const char *name, uint64_t seed_default, const ob_cert_opts *o, int S,
                        int *nok, int every, job_t *j)
@@ -118,7 +147,7 @@ static int certify_job(const char *dir, const char *name, uint64_t seed_default,
         free(text);
         return 1;
     }
-    if ((*nok)++ % every) {
+    if ((*nok)++ % every || (match && !strstr(name, match))) {
         free(text);
         return 2;
     }
@@ -167,18 +196,23 @@ static int certify_job(const char *dir, const char *name, uint64_t seed_default,
     }
     double t1 = now_ns();
     ob_cert_job cj;
+    ob_certified *piece = calloc((size_t)(a.n + 1), sizeof *piece);
     if (job_level)
-        j->rc = ob_certify_job(a.n, base, apx, a.job_d, S, o, hint, &cj, NULL);
+        j->rc = ob_certify_job(a.n, base, apx, a.job_d, S, o, hint, &cj, piece);
     else {  /* every piece to rtol of its own distance */
         cj = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0};
         for (int k = 0; k < a.n; k++) {
             ob_certified r;
             j->rc |= ob_certify_hausdorff_opts(&base[k], &apx[k], a.job_d, S, o, &r);
+            piece[k] = r;
             cj.lower = fmax(cj.lower, r.lower), cj.upper = fmax(cj.upper, r.upper);
             cj.met &= r.met, cj.leaves += r.leaves;
         }
     }
     double t2 = now_ns();
+    if (verbose)
+        print_pieces(name, a.n, base, apx, hint, piece);
+    free(piece);
     j->ns_samp = t1 - t0, j->ns_cert = t2 - t1;
     j->sampled = 0.0;
     for (int k = 0; k < a.n; k++)
@@ -251,7 +285,7 @@ static void table(const job_t *J, int n, int by_family)
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fprintf(stderr, "usage: %s DIR [--seed S] [--every K] [--budget B] [--samples S] [--jobs FILE]\n", argv[0]);
+        fprintf(stderr, "usage: %s DIR [--seed S] [--every K] [--budget B] [--samples S] [--jobs FILE] [--match S] [--verbose 1]\n", argv[0]);
         return 2;
     }
     const char *dir = argv[1], *jobs_file = NULL;
@@ -272,6 +306,10 @@ int main(int argc, char **argv)
             job_level = atoi(argv[i + 1]) == 0;
         else if (!strcmp(argv[i], "--roundoff"))
             roundoff = atof(argv[i + 1]);
+        else if (!strcmp(argv[i], "--match"))
+            match = argv[i + 1];
+        else if (!strcmp(argv[i], "--verbose"))
+            verbose = atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--jobs"))
             jobs_file = argv[i + 1];
         else

@@ -41,29 +41,58 @@ typedef struct {
     int offset;
 } bcurve;
 
+/* The offset of a polynomial with C' from its hodograph n sum (P_i+1 - P_i)
+ * B_i^n-1, in long double: the sum of P_i B_i' cancels to C' and carries
+ * eps |P| / |C'| of relative error into the normal, 2e-10 at the distance
+ * of a piece with legs of 1e-7 (test_short_piece), more than the distance. */
+static void hodo_offset(const ob_bez *b, double t, double d, double O[2])
+{
+    const int n = b->deg;
+    long double C[2] = {0, 0}, D[2] = {0, 0};
+    for (int i = 0; i <= n; i++)
+        for (int c = 0; c < 2; c++) {
+            C[c] += (long double)b->h[i][c] * bern(n, i, t);
+            if (i < n)
+                D[c] += n * ((long double)b->h[i + 1][c] - b->h[i][c]) * bern(n - 1, i, t);
+        }
+    const long double sp = sqrtl(D[0] * D[0] + D[1] * D[1]);
+    O[0] = (double)(C[0] - d * D[1] / sp);
+    O[1] = (double)(C[1] + d * D[0] / sp);
+}
+
 static void bpoint(const bcurve *c, double t, double p[2])
 {
-    if (c->offset)
+    if (c->offset && !c->b->rational)
+        hodo_offset(c->b, t, c->d, p);
+    else if (c->offset)
         ref_offset(c->b, t, c->d, p);
     else
         ref_point(c->b, t, p);
 }
 
-enum { TAB = 2000, BLK = 20 };
+enum { BLK = 20 };
+
+/* The rows of q's table: its spacing must be finer than the branches of
+ * an offset's swallowtail are apart, or the golden section refines the
+ * nearest row of the wrong branch (test_swallowtail sets it finer). */
+static int tab_rows = 2000;
 
 typedef struct {
     const bcurve *q;
-    double (*tab)[2];
-    double cen[TAB / BLK][2], radius[TAB / BLK];
+    int n;  /* rows 0 .. n, n a multiple of BLK */
+    double (*tab)[2], (*cen)[2], *radius;
 } btarget;
 
 static void btarget_init(btarget *T, const bcurve *q)
 {
+    const int n = T->n = tab_rows;
     T->q = q;
-    T->tab = malloc((TAB + 1) * sizeof *T->tab);
-    for (int k = 0; k <= TAB; k++)
-        bpoint(q, (double)k / TAB, T->tab[k]);
-    for (int b = 0; b < TAB / BLK; b++) {
+    T->tab = malloc((size_t)(n + 1) * sizeof *T->tab);
+    T->cen = malloc((size_t)(n / BLK) * sizeof *T->cen);
+    T->radius = malloc((size_t)(n / BLK) * sizeof *T->radius);
+    for (int k = 0; k <= n; k++)
+        bpoint(q, (double)k / n, T->tab[k]);
+    for (int b = 0; b < n / BLK; b++) {
         double cx = 0, cy = 0, r = 0;
         for (int k = b * BLK; k <= (b + 1) * BLK; k++)
             cx += T->tab[k][0] / (BLK + 1), cy += T->tab[k][1] / (BLK + 1);
@@ -73,11 +102,18 @@ static void btarget_init(btarget *T, const bcurve *q)
     }
 }
 
+static void btarget_free(btarget *T)
+{
+    free(T->tab);
+    free(T->cen);
+    free(T->radius);
+}
+
 /* distance from p to the table's nearest row (exact table min), its index */
 static double table_min(const btarget *T, const double p[2], int *kbest)
 {
     double best = INFINITY;
-    for (int b = 0; b < TAB / BLK; b++) {
+    for (int b = 0; b < T->n / BLK; b++) {
         if (hypot(p[0] - T->cen[b][0], p[1] - T->cen[b][1]) - T->radius[b] > best)
             continue;
         for (int k = b * BLK; k <= (b + 1) * BLK; k++) {
@@ -92,7 +128,8 @@ static double table_min(const btarget *T, const double p[2], int *kbest)
 /* the distance to a point of q found by golden section around row k */
 static double refine_min(const btarget *T, const double p[2], int k)
 {
-    double a = (double)(k > 0 ? k - 1 : 0) / TAB, b = (double)(k < TAB ? k + 1 : TAB) / TAB, x[2];
+    const int n = T->n;
+    double a = (double)(k > 0 ? k - 1 : 0) / n, b = (double)(k < n ? k + 1 : n) / n, x[2];
     const double g = 0.6180339887498949;
     for (int it = 0; it < 60; it++) {
         const double m1 = b - g * (b - a), m2 = a + g * (b - a);
@@ -121,7 +158,7 @@ static double brute_side(const bcurve *p, const bcurve *q, long n)
         if (table_min(&T, x, &k) > best)  /* refining only lowers it */
             best = fmax(best, refine_min(&T, x, k));
     }
-    free(T.tab);
+    btarget_free(&T);
     return best;
 }
 
@@ -237,6 +274,99 @@ static void test_cusp(void)
     ob_errval e;
     CHECK(ob_measure(OB_METRIC_CERTIFIED, &C, &A, 0.1, 256, &e) == 0 && isinf(e.err) && e.t >= 0 && e.t <= 1,
           "cusp of C: the certified metric is +inf (%g) at t = %g", e.err, e.t);
+}
+
+/* A short piece of a septic (a leg of ~1e-7, coordinates ~0.5: what `sisl`
+ * cuts near a sharp bend).  |C'| ~ 7e-7 is far from 0, but an enclosure
+ * that subdivides the control points and then differences them carries
+ * their rounding eps |P| / w^k, and de Casteljau steps a + t (b - a) grow
+ * widths ~3x per level near t = 1: on such a `sisl` piece (rnd7_000130)
+ * C' over [0.99460, 0.99466] was enclosed in [-5.5e-8, 1.6e-6] for a true
+ * 7.5e-7, so |C'| reached 0 (+inf, rc -1); here 2 of the 6 pieces were
+ * +inf and the others bounded at 0.06 .. 2.6 for distances of 2e-11.  The
+ * hodograph subdivided in convex form encloses C' to ~1e-6 relative.  The
+ * feet (floating point) took C' from the same cancellation, 1e-9 relative:
+ * offset points 2e-10 off, feet 1e-5 off in t, the bound stuck at 2.5 ..
+ * 4.6 times the distance; at the origin they are tight.  The certificate
+ * must be within 1.01 of its lower bound and hold the brute force (whose offset takes C' from the
+ * hodograph too: the sum of P_i B_i' cancels to 1e-9 relative, 2e-10 at
+ * the offset, more than the distance). */
+static void test_short_piece(void)
+{
+    double xy[8][2];
+    for (int i = 0; i < 8; i++)
+        xy[i][0] = i / 7.0 + urange(-0.1, 0.1), xy[i][1] = urange(0.2, 0.8);
+    const ob_bez C7 = make(7, (const double (*)[2])xy, NULL);
+    int bounded = 0, n = 0;
+    for (int p = 0; p < 6; p++) {
+        const double a = 0.15 + 0.12 * p, d = p % 2 ? 0.2 : -0.15;
+        ob_bez base;
+        ob_bez_subsegment(&C7, a, a + 1e-6, &base);
+        ob_bez A = interp_offset(&base, d, 3);
+        for (int i = 0; i <= A.deg; i++)  /* an error of ~1e-12, well above round-off */
+            ob_bez_set(&A, i, A.h[i][0] + urange(-1e-12, 1e-12), A.h[i][1] + urange(-1e-12, 1e-12), 1.0);
+        ob_certified c;
+        const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
+        const double b = brute(&base, &A, d, 20000);
+        printf("short piece at %.2f: brute %.6g certified [%.6g, %.6g] rc %d met %d, %ld leaves\n", a, b, c.lower,
+               c.upper, rc, c.met, c.leaves);
+        CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15,
+              "short piece at %.2f: [%.17g, %.17g] misses %.17g", a, c.lower, c.upper, b);
+        bounded += rc == 0 && c.upper <= 1.01 * c.lower;
+        n++;
+    }
+    CHECK(bounded == n, "short pieces: %d of %d bounded within 1.01 of the lower bound", bounded, n);
+}
+
+/* A `zhao-rational` piece of rnd7_000170 (d = 0.0737; A rational of degree
+ * 7 with weights of both signs) whose offset has a swallowtail near
+ * t = 0.475 .. 0.515 (1 - d kappa near 0, |O'| ~ 0.004): there the table's
+ * nearest row lies on another branch, the feet of A(0.48) and A(0.52) land
+ * 2e-5 and 4e-5 away (the true distance ~3e-6), and halving an interval
+ * kept such a foot at both ends of a half: certified [3.7456e-6, 1.447e-5]
+ * (met 0), the lower bound the sampled maximum, 5 percent below the truth.
+ * With the parent's line passed to the halves and the feet searched around
+ * it too, the certificate must meet rtol and hold the brute force (on a
+ * table fine enough for the swallowtail: on the usual 2000 rows it takes
+ * the wrong branch too, 5.17e-6 against 3.93908e-6 with every row). */
+static void test_swallowtail(void)
+{
+    static const double hb[8][3] = {
+        {0.45853556339992607, 0.59091083196669691, 1},
+        {0.40478799611199445, 0.6387526674675843, 1},
+        {0.35496701552651239, 0.683099365893854, 1},
+        {0.31208075690168047, 0.71294952166728098, 1},
+        {0.27852682727664185, 0.72073933890834074, 1},
+        {0.25557985900562674, 0.70486190876044463, 1},
+        {0.24370546855481834, 0.66956517641812452, 1},
+        {0.24601355553670157, 0.62304897715393981, 1}};
+    static const double ha[8][3] = {
+        {0.40953506189514793, 0.53585890764813482, 1},
+        {0.11153843648476422, 0.26415836824850697, 0.40364491581116352},
+        {-0.00050236119421603193, 0.054878675478518865, 0.06039323617996871},
+        {0.01385827349911717, -0.016804977442377828, 0.0048421170420011265},
+        {-0.004122584968004034, 0.020851571153866693, 0.0082761223136027899},
+        {0.01863119272236341, 0.020079162754029132, 0.050256635739877105},
+        {-0.02122985158470635, -0.033437282874730356, -0.065313848885418524},
+        {0.085162552645748152, 0.16698322894253018, 0.26644871506355716}};
+    const double d = 0.073700000000000002;
+    ob_bez base, A;
+    memset(&base, 0, sizeof base);
+    memset(&A, 0, sizeof A);
+    base.deg = A.deg = 7, A.rational = 1;
+    memcpy(base.h, hb, sizeof hb);
+    memcpy(A.h, ha, sizeof ha);
+    ob_certified c;
+    const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
+    tab_rows = 40000;  /* rows 2.5e-5 apart: |O'| ~ 0.004 there, 1e-7 against 4e-6 */
+    const double b = brute(&base, &A, d, 20000);
+    tab_rows = 2000;
+    printf("swallowtail: brute %.9g certified [%.9g, %.9g] rc %d met %d, %ld leaves\n", b, c.lower, c.upper, rc, c.met,
+           c.leaves);
+    CHECK(b <= c.upper * (1 + 1e-9) && c.lower <= b * (1 + 1e-7), "swallowtail: [%.17g, %.17g] misses %.17g", c.lower,
+          c.upper, b);
+    CHECK(rc == 0 && c.met && c.upper <= 1.001 * c.lower, "swallowtail: [%g, %g] rc %d met %d", c.lower, c.upper, rc,
+          c.met);
 }
 
 /* lower <= brute + what samples miss; brute <= upper + its refinement error;
@@ -428,6 +558,8 @@ int main(int argc, char **argv)
     testlib_seed(0x41C3A7E5ULL);
     test_exact();
     test_cusp();
+    test_short_piece();
+    test_swallowtail();
     test_spike();
     test_random_pairs(30, argc > 1 ? 1000000 : 20000);
     test_job(4);
