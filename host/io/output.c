@@ -270,8 +270,8 @@ static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *re
                    "with an approximation (ok, limit): err_lower <= H <= err_upper, H the two-sided Hausdorff distance "
                    "of its pieces to the exact offsets of their base pieces (untrimmed), whatever the run's metric; "
                    "err_upper by interval enclosures of a parameter correspondence, err_lower a distance attained; "
-                   "refined until err_upper <= err_lower (1 + rtol) or budget enclosures per side and piece; inf: a "
-                   "piece unbounded (a cusp of the base); certified: yes when err_upper <= tol; cert_ns: thread CPU "
+                   "refined until err_upper <= err_lower (1 + rtol), and on while tol lies between them, or budget "
+                   "enclosures per side and piece; inf: a piece unbounded (a cusp of the base); certified: yes when err_upper <= tol; cert_ns: thread CPU "
                    "time of the certificate (docs/certified.md); wall_seconds: the certificate pass, after the jobs ran "
                    "(not in meta's wall_seconds)\", \"wall_seconds\": %.3f},\n",
                 co.rtol, co.floor_rel, co.budget, rec->cert_seconds);

@@ -54,6 +54,7 @@ static int certify_job(const ob_job *j, const ob_span_log *log, int samples, ob_
     if (rc == 0) {
         ob_cert_opts co;
         ob_cert_defaults(&co);
+        co.decide = j->tol;  /* an enclosure that straddles tol is refined to a verdict where the budget allows */
         ob_cert_job cj;
         const double t0 = thread_ns();
         const int crc = ob_certify_job(a.n, base, apx, j->d, samples, &co, NULL, &cj, NULL);

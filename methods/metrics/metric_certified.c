@@ -36,9 +36,17 @@ typedef struct {
     ob_certified *out;
 } cert_t;
 
-static double target(const cert_t *c)
+static double met_target(const cert_t *c)
 {
     return fmax(fmax(c->out->lower * (1.0 + c->o.rtol), c->floor), c->stop);
+}
+
+/* What the search refines to: met_target, or below it to o.decide while the
+ * enclosure straddles it (lower <= decide < upper: no verdict yet). */
+static double target(const cert_t *c)
+{
+    const double t = met_target(c);
+    return c->o.decide > 0 && c->out->lower <= c->o.decide && t > c->o.decide ? c->o.decide : t;
 }
 
 /* The least bound over an interval's lines (metric_certified.h): the
@@ -222,6 +230,7 @@ void ob_cert_defaults(ob_cert_opts *o)
     o->rtol = 1e-3;
     o->floor_rel = 1e-13;
     o->budget = 20000;
+    o->decide = 0.0;
 }
 
 int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double d, int samples,
@@ -247,7 +256,7 @@ int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double 
         out->upper_ao = c.side[0].heap.n ? c.side[0].heap.v[0].key : 0.0;
         out->upper_oa = c.side[1].heap.n ? c.side[1].heap.v[0].key : 0.0;
         out->upper = fmax(out->upper_ao, out->upper_oa);
-        out->met = out->upper <= target(&c);
+        out->met = out->upper <= met_target(&c);
         rc = isinf(out->upper) || out->upper != out->upper ? -1 : 0;
         if (rc)
             out->upper = INFINITY;

@@ -35,7 +35,8 @@
  *           |e| <= sqrt(max N^2 + max T^2).  The interval's bound is the
  *           least over its lines.  Intervals are bisected, largest bound
  *           first (branch and bound), until the largest is within rtol of
- *           the lower bound (or below floor) or the budget is spent.  The
+ *           the lower bound (or below floor) or the budget is spent; with
+ *           opts->decide, also until the enclosure is on one side of it.  The
  *           same the other way round (points of O, correspondence into A).
  *   lower:  a distance actually attained: a point a (of A, or of O) and a
  *           certified L <= min_t |a - O(t)| (or to A), by branch and bound
@@ -76,9 +77,12 @@ typedef struct {
     double rtol;       /* stop refining when upper <= lower (1 + rtol) */
     double floor_rel;  /* ... or when upper <= floor_rel x the curves' size */
     long budget;       /* at most this many interval enclosures per side */
+    double decide;     /* > 0: a tolerance to decide against: refine on (within
+                          budget) while lower <= decide < upper, until upper <=
+                          decide or lower > decide; 0: off */
 } ob_cert_opts;
 
-void ob_cert_defaults(ob_cert_opts *o);  /* rtol 1e-3, floor 1e-13, budget 20000 */
+void ob_cert_defaults(ob_cert_opts *o);  /* rtol 1e-3, floor 1e-13, budget 20000, decide 0 (off) */
 
 int ob_certify_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int samples, ob_certified *out);
 int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,

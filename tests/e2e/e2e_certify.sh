@@ -38,11 +38,18 @@ yes=$(awkc 'NR>1 && $c["certified"]=="yes"' "$T/c/results.csv" | wc -l)
 check 'grep -q "certified within tol $yes of $nset" "$T/c.err"' "the closing line counts them: $(tail -n 1 "$T/c.err")"
 check 'grep -q "\"certify\": {\"rtol\": 0.001" "$T/c/meta.json" && grep -q "\"certify\": null" "$T/p/meta.json"' \
     "meta.json says what the certificate is, and null without"
-# sampled within tol, certified not: the bound says no (lstsq on a septic
-# curve: sampled 0.99927e-3, certified [0.99926e-3, 1.00022e-3] at tol 1e-3)
-$OB run --random 200:7 --curve rnd7_000170 --methods lstsq --tols 1e-3 --backend cpu --certify --out "$T/n" >/dev/null 2>&1
-row=$(awkc 'NR>1 && $c["d"]=="-0.1034" {print $c["status"], $c["max_err"] <= $c["tol"], $c["certified"]}' "$T/n/results.csv")
-check '[ "$row" = "ok 1 no" ]' "an ok job whose bound exceeds tol: certified no ($row)"
+# ok by its metric, not within tol by the certified distance: tiller on
+# Liu-Wang's Example 1 at d = 1 under the radial metric (max_err 0.90e-3 at
+# tol 1e-3; the Hausdorff distance to the offset, whose 1 - d kappa nears 0
+# there, is certified in [1.7950e-3, 1.7953e-3])
+$OB run --curve liu2002_ex1 --methods tiller --tols 1e-3 --metric radial --backend cpu --certify --out "$T/n" >/dev/null 2>&1
+row=$(awkc 'NR>1 && $c["d"]=="1" {print $c["status"], ($c["max_err"] <= $c["tol"]), $c["certified"], ($c["err_lower"] > 0.0017)}' "$T/n/results.csv")
+check '[ "$row" = "ok 1 no 1" ]' "an ok job whose certified distance exceeds tol: certified no ($row)"
+# an enclosure that straddles tol is refined to a verdict (lstsq on a septic
+# curve: sampled 0.99927e-3; at rtol alone [0.99926e-3, 1.00022e-3], no verdict)
+$OB run --random 200:7 --curve rnd7_000170 --methods lstsq --tols 1e-3 --backend cpu --certify --out "$T/v" >/dev/null 2>&1
+row=$(awkc 'NR>1 && $c["d"]=="-0.1034" {print $c["status"], $c["certified"], ($c["err_upper"] <= $c["tol"] || $c["err_lower"] > $c["tol"])}' "$T/v/results.csv")
+check '[ "$row" = "ok yes 1" ]' "a straddling enclosure refined to a verdict: ($row)"
 # threads and engines: the same certificate (cert_ns aside)
 for v in "--threads 1 --engine level" "--threads 2 --engine group" "--threads 3 --engine level --chunk 7"; do
     rm -rf "$T/t"

@@ -371,6 +371,29 @@ static void test_swallowtail(void)
 
 /* lower <= brute + what samples miss; brute <= upper + its refinement error;
  * the sampled metric likewise <= upper. */
+/* opts.decide: a tolerance inside the enclosure c (no verdict at rtol) is
+ * decided, upper <= tol or lower > tol, and the answer still holds the
+ * brute force b: the tolerance 3e-4 above, then below, the brute force's
+ * value (both verdicts asked for, each a third of rtol from the truth). */
+static void check_decide(const ob_bez *base, const ob_bez *A, double d, const ob_certified *c, double b, int p)
+{
+    for (int side = 0; side < 2; side++) {
+        const double tol = b * (side ? 1 - 3e-4 : 1 + 3e-4);
+        if (!(c->lower <= tol && tol < c->upper))
+            continue;  /* decided without it */
+        ob_cert_opts o;
+        ob_cert_defaults(&o);
+        o.decide = tol;
+        ob_certified r;
+        const int rc = ob_certify_hausdorff_opts(base, A, d, 256, &o, &r);
+        CHECK(rc == 0 && (r.upper <= tol || r.lower > tol), "pair %d, decide %.17g: [%.17g, %.17g] undecided", p, tol,
+              r.lower, r.upper);
+        CHECK(r.lower <= b * (1 + 1e-7) + 1e-15 && b <= r.upper * (1 + 1e-9) + 1e-15,
+              "pair %d, decide: [%.17g, %.17g] misses the brute force %.17g", p, r.lower, r.upper, b);
+        CHECK(r.upper <= c->upper * (1 + 1e-12) || r.lower >= c->lower, "pair %d, decide: no tighter side", p);
+    }
+}
+
 static void test_random_pairs(int npairs, long nbrute)
 {
     double worst_ratio = 1.0;
@@ -394,6 +417,8 @@ static void test_random_pairs(int npairs, long nbrute)
             worst_ratio = fmax(worst_ratio, c.upper / c.lower);
         printf("pair %2d deg %d%s: lower %.9g sampled %.9g brute %.9g upper %.9g (rc %d, %ld leaves)\n", p, A.deg,
                A.rational ? "r" : " ", c.lower, s.err, b, c.upper, rc, c.leaves);
+        if (rc == 0 && c.upper > c.lower * (1 + 1e-6))
+            check_decide(&base, &A, d, &c, b, p);
     }
     printf("random pairs: worst upper / lower %.6f\n", worst_ratio);
 }
