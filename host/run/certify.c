@@ -30,27 +30,44 @@ static double mono_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Job j's certificate from its span log: 0, or -1 with the reason in why. */
-static int certify_job(const ob_job *j, const ob_span_log *log, int samples, ob_job *out, char *why, size_t len)
+/* Job j's pieces, refitted from its span log, and the base piece each
+ * approximates (malloc'd arrays of a->n): 0, or -1 with the reason in why
+ * (*base and *apx are then freed, a is safe to free). */
+static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_bez **base, ob_bez **apx, char *why,
+                      size_t len)
 {
-    ob_approx a = {0};
     ob_err err;
-    if (ob_approx_from_job(j, log, &a, &err) != 0) {
+    *base = *apx = NULL;
+    if (ob_approx_from_job(j, log, a, &err) != 0) {
         snprintf(why, len, "%.180s", err.msg);
-        ob_approx_free(&a);
         return -1;
     }
-    ob_bez *base = malloc((size_t)(a.n + 1) * sizeof *base), *apx = malloc((size_t)(a.n + 1) * sizeof *apx);
-    int rc = base && apx ? 0 : -1;
+    *base = malloc((size_t)(a->n + 1) * sizeof **base);
+    *apx = malloc((size_t)(a->n + 1) * sizeof **apx);
+    int rc = *base && *apx ? 0 : -1;
     if (rc)
         snprintf(why, len, "out of memory");
-    for (int k = 0; k < a.n && rc == 0; k++) {
-        apx[k] = a.v[k].approx;
-        if (ob_apiece_base(j->curve, &a.v[k], &base[k]) != 0) {
+    for (int k = 0; k < a->n && rc == 0; k++) {
+        (*apx)[k] = a->v[k].approx;
+        if (ob_apiece_base(j->curve, &a->v[k], &(*base)[k]) != 0) {
             snprintf(why, len, "piece %d has no base piece", k + 1);
             rc = -1;
         }
     }
+    if (rc) {
+        free(*base), free(*apx);
+        *base = *apx = NULL;
+    }
+    return rc;
+}
+
+/* Job j's certificate (its cert_* fields) from its span log: 0, or -1 with
+ * the reason in why. */
+static int certify_job(ob_job *j, const ob_span_log *log, int samples, char *why, size_t len)
+{
+    ob_approx a = {0};
+    ob_bez *base, *apx;
+    int rc = job_pieces(j, log, &a, &base, &apx, why, len);
     if (rc == 0) {
         ob_cert_opts co;
         ob_cert_defaults(&co);
@@ -58,14 +75,14 @@ static int certify_job(const ob_job *j, const ob_span_log *log, int samples, ob_
         ob_cert_job cj;
         const double t0 = thread_ns();
         const int crc = ob_certify_job(a.n, base, apx, j->d, samples, &co, NULL, &cj, NULL);
-        out->cert_ns = thread_ns() - t0;
+        j->cert_ns = thread_ns() - t0;
         if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
             snprintf(why, len, "out of memory");
             rc = -1;
         } else {
-            out->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
-            out->err_lower = cj.lower;
-            out->cert_done = 1;
+            j->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
+            j->err_lower = cj.lower;
+            j->cert_done = 1;
         }
     }
     free(base);
@@ -132,7 +149,7 @@ int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *s
         }
         ob_job *j = &jobs[idx[k].i];
         char why[200];
-        if (certify_job(j, &spans[idx[k].i], samples, j, why, sizeof why) != 0) {
+        if (certify_job(j, &spans[idx[k].i], samples, why, sizeof why) != 0) {
 #pragma omp critical(ob_certify_report)
             {
                 ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);
