@@ -28,6 +28,7 @@
 
 #include "methods/core/curve.h"
 #include "methods/metrics/metric.h"
+#include "methods/metrics/cert_curve.h"
 #include "methods/metrics/cert_job.h"
 #include "methods/metrics/metric_certified.h"
 #include "tests/check.h"
@@ -256,6 +257,46 @@ static void test_exact(void)
     check_exact("circle ccw d = -0.5", &C, &Cout, -0.5);
     const ob_bez W = quarter_circle(1.0, 1), Wout = quarter_circle(1.25, 1);
     check_exact("circle cw d = 0.25", &W, &Wout, 0.25);
+}
+
+/* The third derivatives the third-order Taylor form reads (cert_curve.h:
+ * A''' from the control points, O''' from kappa''): by the mean value
+ * theorem, each component of (X''(b) - X''(a)) / (b - a) is X''' at some
+ * point of [a, b], so the enclosure of X''' over [a, b] must meet the
+ * enclosure of that quotient (from the point enclosures of X'', no slack
+ * needed).  On [a, a + 1e-4] the enclosures are 0.05 .. 1 % wide (the
+ * offset's by interval evaluation), the quotient ~1e-12, so a
+ * wrong term (a factor 2, a sign) misses by O(1). */
+static void test_third_derivative(void)
+{
+    int bad = 0, n = 0;
+    for (int p = 0; p < 12; p++) {
+        ob_bez C = random_cubic();
+        if (p % 3 == 2)  /* rational */
+            for (int i = 0; i <= C.deg; i++)
+                ob_bez_set(&C, i, C.h[i][0], C.h[i][1], urange(0.7, 1.4));
+        for (int off = 0; off < 2; off++) {
+            const ob_cv cv = {&C, urange(-0.2, 0.2), off};
+            const double a = urange(0.05, 0.9), b = a + 1e-4;
+            ob_iv pa[2], da[2], sa[2], pb[2], db[2], sb[2], r3[2];
+            if (ob_cv_point2(&cv, a, pa, da, sa) || ob_cv_point2(&cv, b, pb, db, sb) ||
+                ob_cv_range(&cv, a, b, 3, r3)) {
+                bad++;
+                continue;
+            }
+            const ob_iv w = ob_iv_sub(ob_iv_pt(b), ob_iv_pt(a));
+            for (int c = 0; c < 2; c++) {
+                const ob_iv q = ob_iv_div(ob_iv_sub(sb[c], sa[c]), w);
+                n++;
+                if (q.hi < r3[c].lo || q.lo > r3[c].hi || r3[c].hi - r3[c].lo > 0.05 * (1 + ob_iv_mag(r3[c]))) {
+                    bad++;
+                    printf("third derivative %d%s off %d c %d: quotient [%.9g, %.9g] enclosure [%.9g, %.9g]\n", p,
+                           C.rational ? "r" : "", off, c, q.lo, q.hi, r3[c].lo, r3[c].hi);
+                }
+            }
+        }
+    }
+    CHECK(bad == 0, "third derivative: %d of %d enclosures miss the mean-value quotient (or are wide)", bad, n);
 }
 
 /* A base with a cusp (C'(0) = 0: its first two control points coincide):
@@ -582,6 +623,7 @@ int main(int argc, char **argv)
     (void)argv;
     testlib_seed(0x41C3A7E5ULL);
     test_exact();
+    test_third_derivative();
     test_cusp();
     test_short_piece();
     test_swallowtail();
