@@ -222,25 +222,32 @@ int ob_cv_point2(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2], ob_iv d2[2])
     return offset_jet(E, c->d, 0, p) || offset_jet(E, c->d, 1, d1) || offset_jet(E, c->d, 2, d2) ? -1 : 0;
 }
 
-int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2])
+int ob_cv_range_n(const ob_cv *c, double t0, double t1, int k1, int k2, ob_iv out[][2])
 {
     hpt H[MAXK + 1];
     ob_iv E[MAXK + 1][2];
-    const int K = c->offset ? k + 1 : k;
-    /* the orders read: a rational segment's quotient rule needs them all,
-     * a polynomial's offset C' .. C^(k+1), a polynomial its k-th */
-    const int k0 = c->b->rational ? 0 : c->offset ? 1 : k;
-    if (!(t0 <= t1) || k < 1 || k > 3)
+    if (!(t0 <= t1) || k1 < 1 || k2 < k1 || k2 > 3)
         return -1;
+    const int K = c->offset ? k2 + 1 : k2;
+    /* the orders read: a rational segment's quotient rule needs them all,
+     * a polynomial's offset C' .. C^(k2+1), a polynomial its k1-th .. k2-th */
+    const int k0 = c->b->rational ? 0 : c->offset ? 1 : k1;
     if (t0 == t1)
         hjet_point(c->b, t0, k0, K, H);
     else
         hjet_range(c->b, t0, t1, k0, K, H);
     if (euclid(c->b, H, K, E))
         return -1;
-    if (!c->offset) {
-        out[0] = E[k][0], out[1] = E[k][1];
-        return 0;
+    for (int k = k1; k <= k2; k++) {
+        if (!c->offset)
+            out[k - k1][0] = E[k][0], out[k - k1][1] = E[k][1];
+        else if (offset_jet(E, c->d, k, out[k - k1]))
+            return -1;
     }
-    return offset_jet(E, c->d, k, out);
+    return 0;
+}
+
+int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2])
+{
+    return ob_cv_range_n(c, t0, t1, k, k, (ob_iv (*)[2])out);
 }

@@ -55,4 +55,9 @@ int ob_cv_point2(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2], ob_iv d2[2])
  *          [t0, t1] (0 <= t0 <= t1 <= 1).  Output: out[2].  Returns 0 or -1. */
 int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2]);
 
+/* Purpose: ob_cv_range for the orders k1..k2 at once (1 <= k1 <= k2 <= 3),
+ *          from one enclosure of the homogeneous jet: out[k - k1][2].
+ *          Returns 0 or -1. */
+int ob_cv_range_n(const ob_cv *c, double t0, double t1, int k1, int k2, ob_iv out[][2]);
+
 #endif

@@ -78,6 +78,10 @@ enum { BLK = 20 };
  * nearest row of the wrong branch (test_swallowtail sets it finer). */
 static int tab_rows = 2000;
 
+enum { NEAR_PAIRS = 4, NEAR_DEG = 7 };
+#define NEAR_BEND 0.001
+#define NEAR_WARP 0.4
+
 typedef struct {
     const bcurve *q;
     int n;  /* rows 0 .. n, n a multiple of BLK */
@@ -222,19 +226,24 @@ static void solve(double *M, double (*r)[2], int n)
     }
 }
 
-/* The degree-n polynomial through the offset at n + 1 Chebyshev-Lobatto nodes. */
-static ob_bez interp_offset(const ob_bez *base, double d, int n)
+/* The degree-n polynomial through the offset at n + 1 Chebyshev-Lobatto
+ * nodes s, taken at the base's parameter t = s + warp s (1 - s) (warp 0:
+ * the same parameter; else A and O parameterized apart, as a fit that
+ * does not keep the base's parameter). */
+static ob_bez interp_offset_warp(const ob_bez *base, double d, int n, double warp)
 {
     double M[(OB_MAX_DEG + 1) * (OB_MAX_DEG + 1)], r[OB_MAX_DEG + 1][2];
     for (int i = 0; i <= n; i++) {
         const double t = 0.5 - 0.5 * cos(OB_PI * i / n);
         for (int j = 0; j <= n; j++)
             M[i * (n + 1) + j] = bern(n, j, t);
-        ref_offset(base, t, d, r[i]);
+        ref_offset(base, t + warp * t * (1 - t), d, r[i]);
     }
     solve(M, r, n + 1);
     return make(n, (const double (*)[2])r, NULL);
 }
+
+static ob_bez interp_offset(const ob_bez *base, double d, int n) { return interp_offset_warp(base, d, n, 0.0); }
 
 static ob_bez random_cubic(void)
 {
@@ -378,6 +387,41 @@ static void test_short_piece(void)
         n++;
     }
     CHECK(bounded == n, "short pieces: %d of %d bounded within 1.01 of the lower bound", bounded, n);
+}
+
+/* Near-exact pairs (docs/certified.md, Limits): a piece 1e-10 .. 1e-9 from
+ * the offset of a nearly straight base, parameterized apart from it, as
+ * `sisl` and `cubic-opt` give on a `degenerate` curve (rnd7_000087: a
+ * cubic 2.27e-10 from the offset, bounded at 1.29e-9 before).  A line
+ * t(s) through the ends' feet slips along O by ~f'' w^2 / 8 (f the foot
+ * map, curved by the warp), and the slip enters the bound as
+ * slip^2 / (2 distance): at 1e-10 the intervals must be ~1e-5 wide, past
+ * the budget (before: [6.18e-11, 2.30e-8], 1.2e-9 at 2.33e-8, ... ratios
+ * 10 .. 370, 40000 leaves each); the quadratic correspondence slips
+ * O(w^3).  Each pair must be certified within 1.1 (met: 1.001) at the
+ * default budget and hold the brute force (with the certificate's point
+ * sampled: the lower bound is that point's distance). */
+static void test_near_exact(void)
+{
+    int tight = 0, n = 0;
+    for (int p = 0; p < NEAR_PAIRS; p++) {
+        double xy[4][2];
+        for (int i = 0; i < 4; i++)
+            xy[i][0] = i / 3.0 + urange(-0.1, 0.1), xy[i][1] = NEAR_BEND * urange(-1, 1);
+        const ob_bez base = make(3, (const double (*)[2])xy, NULL);
+        const double d = (p % 2 ? 1 : -1) * urange(0.05, 0.15);
+        const ob_bez A = interp_offset_warp(&base, d, NEAR_DEG, NEAR_WARP);
+        ob_certified c;
+        const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
+        const double b = fmax(brute(&base, &A, d, 20000), brute_point(&base, &A, d, c.lower_side, c.lower_param));
+        printf("near-exact %d: brute %.6g certified [%.6g, %.6g] rc %d met %d, %ld leaves\n", p, b, c.lower, c.upper,
+               rc, c.met, c.leaves);
+        CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15,
+              "near-exact %d: [%.17g, %.17g] misses %.17g", p, c.lower, c.upper, b);
+        tight += rc == 0 && c.upper <= 1.1 * c.lower;
+        n++;
+    }
+    CHECK(tight == n, "near-exact pairs: %d of %d within 1.1 of the lower bound", tight, n);
 }
 
 /* A `zhao-rational` piece of rnd7_000170 (d = 0.0737; A rational of degree
@@ -647,6 +691,7 @@ int main(int argc, char **argv)
     test_third_derivative();
     test_cusp();
     test_short_piece();
+    test_near_exact();
     test_swallowtail();
     test_spike();
     test_random_pairs(30, argc > 1 ? 1000000 : 20000);
