@@ -1,7 +1,7 @@
 /*
  * cert_bounds.h - the two certified enclosures the Hausdorff certificate is
  * made of (method in metric_certified.h): an upper bound of |P(u) - Q(t(u))|
- * over an interval of u for a linear correspondence t(u), and a lower bound
+ * over an interval of u for a linear or quadratic correspondence t(u), and a lower bound
  * of the distance from a point to a curve over an interval of t.
  */
 #ifndef OB_CERT_BOUNDS_H
