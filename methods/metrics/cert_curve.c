@@ -4,7 +4,7 @@
  */
 #include "methods/metrics/cert_curve.h"
 
-enum { MAXK = 3 };  /* highest derivative ever needed (O'' needs C''') */
+enum { MAXK = 4 };  /* highest derivative ever needed (O''' needs C'''') */
 
 typedef ob_iv hpt[3];  /* homogeneous derivatives (w x, w y, w) */
 
@@ -119,7 +119,7 @@ static void hjet_range(const ob_bez *b, double t0, double t1, int k0, int K, hpt
  * C(k,i) W_i E_{k-i}) / W (Leibniz on X = W E). */
 static int euclid(const ob_bez *b, const hpt *H, int K, ob_iv E[][2])
 {
-    static const double binom[MAXK + 1][MAXK + 1] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}};
+    static const double binom[MAXK + 1][MAXK + 1] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}};
     for (int k = 0; k <= K; k++)
         for (int c = 0; c < 2; c++) {
             ob_iv x = H[k][c];
@@ -138,7 +138,24 @@ static int euclid(const ob_bez *b, const hpt *H, int K, ob_iv E[][2])
 static ob_iv cross(const ob_iv a[2], const ob_iv b[2]) { return ob_iv_sub(ob_iv_mul(a[0], b[1]), ob_iv_mul(a[1], b[0])); }
 static ob_iv dot(const ob_iv a[2], const ob_iv b[2]) { return ob_iv_add(ob_iv_mul(a[0], b[0]), ob_iv_mul(a[1], b[1])); }
 
-/* The offset's derivative k (0..2) from the base's Euclidean jet E[0..k+1]. */
+/* kappa'' times |C'|^7: (num' |C'|^2 - 5 num q), with num = kappa' |C'|^5 =
+ * (C' x C''') |C'|^2 - 3 (C' x C'') q, q = C' . C'', and its derivative
+ * num' = (C'' x C''' + C' x C'''') |C'|^2 - (C' x C''') q
+ *        - 3 (C' x C'') (|C''|^2 + C' . C''')
+ * (d/dt |C'|^2 = 2 q, d/dt (C' x C'') = C' x C''', d/dt q = |C''|^2 + C' . C''').
+ * Only the third derivative of the offset needs it. */
+static ob_iv kappa2_num(const ob_iv E[][2], ob_iv s2, ob_iv cr, ob_iv q, ob_iv num)
+{
+    const ob_iv x13 = cross(E[1], E[3]);
+    const ob_iv dnum = ob_iv_sub(ob_iv_sub(ob_iv_mul(ob_iv_add(cross(E[2], E[3]), cross(E[1], E[4])), s2),
+                                           ob_iv_mul(x13, q)),
+                                 ob_iv_scale(ob_iv_mul(cr, ob_iv_add(dot(E[2], E[2]), dot(E[1], E[3]))), 3.0));
+    return ob_iv_sub(ob_iv_mul(dnum, s2), ob_iv_scale(ob_iv_mul(num, q), 5.0));
+}
+
+/* The offset's derivative k (0..3) from the base's Euclidean jet E[0..k+1]
+ * (the Frenet formulas of cert_curve.h; the third differentiates the second
+ * once more: O''' = C''' (1 - d kappa) - 2 d kappa' C'' - d kappa'' C'). */
 static int offset_jet(const ob_iv E[][2], double d, int k, ob_iv out[2])
 {
     const ob_iv s2 = ob_iv_add(ob_iv_sqr(E[1][0]), ob_iv_sqr(E[1][1]));
@@ -155,11 +172,20 @@ static int offset_jet(const ob_iv E[][2], double d, int k, ob_iv out[2])
             out[0] = ob_iv_mul(E[1][0], f);
             out[1] = ob_iv_mul(E[1][1], f);
         } else {
-            const ob_iv num = ob_iv_sub(ob_iv_mul(cross(E[1], E[3]), s2),
-                                        ob_iv_scale(ob_iv_mul(cr, dot(E[1], E[2])), 3.0));
-            const ob_iv dk = ob_iv_mul(D, ob_iv_div(num, ob_iv_mul(ob_iv_sqr(s2), sp)));
-            for (int c = 0; c < 2; c++)
-                out[c] = ob_iv_sub(ob_iv_mul(E[2][c], f), ob_iv_mul(dk, E[1][c]));
+            const ob_iv q = dot(E[1], E[2]);
+            const ob_iv num = ob_iv_sub(ob_iv_mul(cross(E[1], E[3]), s2), ob_iv_scale(ob_iv_mul(cr, q), 3.0));
+            const ob_iv s4 = ob_iv_sqr(s2);
+            const ob_iv dk = ob_iv_mul(D, ob_iv_div(num, ob_iv_mul(s4, sp)));  /* d kappa' */
+            if (k == 2) {
+                for (int c = 0; c < 2; c++)
+                    out[c] = ob_iv_sub(ob_iv_mul(E[2][c], f), ob_iv_mul(dk, E[1][c]));
+            } else {
+                const ob_iv dkk = ob_iv_mul(D, ob_iv_div(kappa2_num(E, s2, cr, q, num),
+                                                         ob_iv_mul(ob_iv_mul(s4, s2), sp)));  /* d kappa'' */
+                for (int c = 0; c < 2; c++)
+                    out[c] = ob_iv_sub(ob_iv_sub(ob_iv_mul(E[3][c], f), ob_iv_scale(ob_iv_mul(dk, E[2][c]), 2.0)),
+                                       ob_iv_mul(dkk, E[1][c]));
+            }
         }
     }
     return ob_iv_bad(out[0]) || ob_iv_bad(out[1]) ? -1 : 0;
@@ -180,25 +206,48 @@ int ob_cv_point(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2])
     return offset_jet(E, c->d, 0, p) || offset_jet(E, c->d, 1, d1) ? -1 : 0;
 }
 
-int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2])
+int ob_cv_point2(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2], ob_iv d2[2])
 {
     hpt H[MAXK + 1];
     ob_iv E[MAXK + 1][2];
-    const int K = c->offset ? k + 1 : k;
-    /* the orders read: a rational segment's quotient rule needs them all,
-     * a polynomial's offset C' .. C^(k+1), a polynomial its k-th */
-    const int k0 = c->b->rational ? 0 : c->offset ? 1 : k;
-    if (!(t0 <= t1) || k < 1 || k > 2)
+    const int K = c->offset ? 3 : 2;
+    hjet_point(c->b, t, 0, K, H);
+    if (euclid(c->b, H, K, E))
         return -1;
+    if (!c->offset) {
+        for (int i = 0; i < 2; i++)
+            p[i] = E[0][i], d1[i] = E[1][i], d2[i] = E[2][i];
+        return 0;
+    }
+    return offset_jet(E, c->d, 0, p) || offset_jet(E, c->d, 1, d1) || offset_jet(E, c->d, 2, d2) ? -1 : 0;
+}
+
+int ob_cv_range_n(const ob_cv *c, double t0, double t1, int k1, int k2, ob_iv out[][2])
+{
+    hpt H[MAXK + 1];
+    ob_iv E[MAXK + 1][2];
+    if (!(t0 <= t1) || k1 < 1 || k2 < k1 || k2 > 3)
+        return -1;
+    const int K = c->offset ? k2 + 1 : k2;
+    /* the orders read: a rational segment's quotient rule needs them all,
+     * a polynomial's offset C' .. C^(k2+1), a polynomial its k1-th .. k2-th */
+    const int k0 = c->b->rational ? 0 : c->offset ? 1 : k1;
     if (t0 == t1)
         hjet_point(c->b, t0, k0, K, H);
     else
         hjet_range(c->b, t0, t1, k0, K, H);
     if (euclid(c->b, H, K, E))
         return -1;
-    if (!c->offset) {
-        out[0] = E[k][0], out[1] = E[k][1];
-        return 0;
+    for (int k = k1; k <= k2; k++) {
+        if (!c->offset)
+            out[k - k1][0] = E[k][0], out[k - k1][1] = E[k][1];
+        else if (offset_jet(E, c->d, k, out[k - k1]))
+            return -1;
     }
-    return offset_jet(E, c->d, k, out);
+    return 0;
+}
+
+int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2])
+{
+    return ob_cv_range_n(c, t0, t1, k, k, (ob_iv (*)[2])out);
 }

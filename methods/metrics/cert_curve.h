@@ -8,7 +8,9 @@
  * derivatives, from the Frenet formulas (kappa = (C' x C'') / |C'|^3):
  *   O'  = C' (1 - d kappa)
  *   O'' = C'' (1 - d kappa) - d kappa' C',
- *   kappa' = ((C' x C''') |C'|^2 - 3 (C' x C'') (C' . C'')) / |C'|^5.
+ *   O''' = C''' (1 - d kappa) - 2 d kappa' C'' - d kappa'' C',
+ *   kappa' = ((C' x C''') |C'|^2 - 3 (C' x C'') (C' . C'')) / |C'|^5,
+ *   kappa'' = d/dt kappa' (cert_curve.c, kappa2_num).
  * Method: the k-th derivative of each homogeneous coordinate is a
  * Bernstein polynomial whose coefficients are falling(n, k) times the k-th
  * differences of the control points (the hodograph), taken in interval
@@ -42,8 +44,20 @@ typedef struct {
  *          (t in [0, 1]).  Outputs: p[2], d1[2].  Returns 0 or -1. */
 int ob_cv_point(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2]);
 
-/* Purpose: an enclosure of the k-th derivative (k = 1 or 2) over every t in
+/* Purpose: enclosures of the point and first and second derivatives at the
+ *          float t (t in [0, 1]): the third-order Taylor form's jet at the
+ *          midpoint (cert_bounds.c).  Outputs: p[2], d1[2], d2[2].
+ *          Returns 0 or -1. */
+int ob_cv_point2(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2], ob_iv d2[2]);
+
+/* Purpose: an enclosure of the k-th derivative (k = 1, 2 or 3) over every t in
+
  *          [t0, t1] (0 <= t0 <= t1 <= 1).  Output: out[2].  Returns 0 or -1. */
 int ob_cv_range(const ob_cv *c, double t0, double t1, int k, ob_iv out[2]);
+
+/* Purpose: ob_cv_range for the orders k1..k2 at once (1 <= k1 <= k2 <= 3),
+ *          from one enclosure of the homogeneous jet: out[k - k1][2].
+ *          Returns 0 or -1. */
+int ob_cv_range_n(const ob_cv *c, double t0, double t1, int k1, int k2, ob_iv out[][2]);
 
 #endif

@@ -23,14 +23,20 @@
  *           interpolation of its two feet and the continuation of each
  *           foot with its local speed (so a foot that jumps across a fold
  *           or a swallowtail of the offset is followed from both sides),
- *           clamped to a constant where a line would leave [0, 1]; a half
- *           of a bisected interval also tries the line that bounded its
- *           parent, and its new foot is searched around that line too.  On an
- *           interval [s0, s1] with midpoint m and a line t(s), the error
- *           e(s) = A(s) - O(t(s)) is enclosed by the second-order Taylor
- *           form e(m) + e'(m) h + E2 h^2 / 2 (E2 an interval enclosure of
- *           e'' = A'' - k^2 O'' over the interval; componentwise integral
- *           remainder), in a frame turned to e(m), so that a tangential
+ *           and a quadratic through both feet whose slope goes from one
+ *           foot's speed to the other's (a line slips along O by O(h^2),
+ *           which a piece 1e-10 from O cannot afford; the quadratic by
+ *           O(h^3)), clamped to a constant where one would leave [0, 1];
+ *           a half of a bisected interval also tries the line that bounded
+ *           its parent, and its new foot is searched around that line too.
+ *           On an interval [s0, s1] with midpoint m and a map t(s), the
+ *           error e(s) = A(s) - O(t(s)) is enclosed by the second-order
+ *           Taylor form e(m) + e'(m) h + E2 h^2 / 2 (E2 an interval
+ *           enclosure of e'' = A'' - t'^2 O'' - t'' O' over the interval;
+ *           componentwise remainder) and, where the target is within 1e4
+ *           round-off floors, also the third-order form
+ *           e(m) + e'(m) h + e''(m) h^2 / 2 + E3 h^3 / 6 (the least of the
+ *           two), in a frame turned to e(m), so that a tangential
  *           slip of the correspondence enters as the square it is:
  *           |e| <= sqrt(max N^2 + max T^2).  The interval's bound is the
  *           least over its lines.  Intervals are bisected, largest bound
