@@ -362,6 +362,22 @@ static void test_cusp(void)
  * must be within 1.01 of its lower bound and hold the brute force (whose offset takes C' from the
  * hodograph too: the sum of P_i B_i' cancels to 1e-9 relative, 2e-10 at
  * the offset, more than the distance). */
+/* Certifies (base, A, d) at the defaults, prints it beside the brute force
+ * (with the certificate's own point sampled too: the lower bound is that
+ * point's distance) and checks that the enclosure holds it.  1 when it is
+ * bounded within ratio of its lower bound. */
+static int certified_within(const char *what, double at, const ob_bez *base, const ob_bez *A, double d, double ratio)
+{
+    ob_certified c;
+    const int rc = ob_certify_hausdorff(base, A, d, 256, &c);
+    const double b = fmax(brute(base, A, d, 20000), brute_point(base, A, d, c.lower_side, c.lower_param));
+    printf("%s %.2f: brute %.6g certified [%.6g, %.6g] rc %d met %d, %ld leaves\n", what, at, b, c.lower, c.upper, rc,
+           c.met, c.leaves);
+    CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15, "%s %.2f: [%.17g, %.17g] misses %.17g",
+          what, at, c.lower, c.upper, b);
+    return rc == 0 && c.upper <= ratio * c.lower;
+}
+
 static void test_short_piece(void)
 {
     double xy[8][2];
@@ -376,14 +392,7 @@ static void test_short_piece(void)
         ob_bez A = interp_offset(&base, d, 3);
         for (int i = 0; i <= A.deg; i++)  /* an error of ~1e-12, well above round-off */
             ob_bez_set(&A, i, A.h[i][0] + urange(-1e-12, 1e-12), A.h[i][1] + urange(-1e-12, 1e-12), 1.0);
-        ob_certified c;
-        const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
-        const double b = brute(&base, &A, d, 20000);
-        printf("short piece at %.2f: brute %.6g certified [%.6g, %.6g] rc %d met %d, %ld leaves\n", a, b, c.lower,
-               c.upper, rc, c.met, c.leaves);
-        CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15,
-              "short piece at %.2f: [%.17g, %.17g] misses %.17g", a, c.lower, c.upper, b);
-        bounded += rc == 0 && c.upper <= 1.01 * c.lower;
+        bounded += certified_within("short piece", a, &base, &A, d, 1.01);
         n++;
     }
     CHECK(bounded == n, "short pieces: %d of %d bounded within 1.01 of the lower bound", bounded, n);
@@ -411,14 +420,7 @@ static void test_near_exact(void)
         const ob_bez base = make(3, (const double (*)[2])xy, NULL);
         const double d = (p % 2 ? 1 : -1) * urange(0.05, 0.15);
         const ob_bez A = interp_offset_warp(&base, d, NEAR_DEG, NEAR_WARP);
-        ob_certified c;
-        const int rc = ob_certify_hausdorff(&base, &A, d, 256, &c);
-        const double b = fmax(brute(&base, &A, d, 20000), brute_point(&base, &A, d, c.lower_side, c.lower_param));
-        printf("near-exact %d: brute %.6g certified [%.6g, %.6g] rc %d met %d, %ld leaves\n", p, b, c.lower, c.upper,
-               rc, c.met, c.leaves);
-        CHECK(b <= c.upper * (1 + 1e-9) + 1e-15 && c.lower <= b * (1 + 1e-7) + 1e-15,
-              "near-exact %d: [%.17g, %.17g] misses %.17g", p, c.lower, c.upper, b);
-        tight += rc == 0 && c.upper <= 1.1 * c.lower;
+        tight += certified_within("near-exact pair", p, &base, &A, d, 1.1);
         n++;
     }
     CHECK(tight == n, "near-exact pairs: %d of %d within 1.1 of the lower bound", tight, n);
