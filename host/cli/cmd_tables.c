@@ -517,7 +517,7 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
             if (pl.rows[i].slot >= 0 && pl.slots[pl.rows[i].slot].job.cert_done) {
                 const ob_job *j = &pl.slots[pl.rows[i].slot].job;
                 done++;
-                yes += j->err_upper <= j->tol;
+                yes += ob_job_certified(j);
             }
         snprintf(cert, sizeof cert, "; certified within tol %d of %d", yes, done);
     }

@@ -104,7 +104,7 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
         break;
     case OB_COL_CERTIFIED:
         if (j->cert_done)
-            fputs(j->err_upper <= j->tol ? "yes" : "no", f);
+            fputs(ob_job_certified(j) ? "yes" : "no", f);
         break;
     case OB_COL_CERT_NS:
         if (j->cert_done)

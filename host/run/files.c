@@ -169,7 +169,7 @@ void ob_run_summary(const ob_run_files *r, int written)
         for (size_t i = 0; i < r->njobs; i++)
             if (r->jobs[i].cert_done) {
                 done++;
-                yes += r->jobs[i].err_upper <= r->jobs[i].tol;
+                yes += ob_job_certified(&r->jobs[i]);
             }
         snprintf(cert, sizeof cert, "; certified within tol %zu of %zu (%.2f s)", yes, done, r->rec->cert_seconds);
     }

@@ -97,7 +97,7 @@ int ob_tab_write_csv(FILE *f, void *ctx)
                 put_num(f, j->err_upper);
                 fputc(',', f);
                 put_num(f, j->err_lower);
-                fprintf(f, ",%s", j->err_upper <= j->tol ? "yes" : "no");
+                fprintf(f, ",%s", ob_job_certified(j) ? "yes" : "no");
             } else {
                 fputs(",,,", f);
             }
@@ -195,7 +195,7 @@ static void write_grid(FILE *f, const ob_tab_plan *pl, const ob_pub_cell *first,
                                    ? (j->status == OB_LIMIT ? " (limit)" : " (fail)")
                                    : "";
             /* --certify: an ok job whose certified error is over tol */
-            const char *cert = j && j->status == OB_OK && j->cert_done && !(j->err_upper <= j->tol) ? " (!)" : "";
+            const char *cert = j && j->status == OB_OK && j->cert_done && !ob_job_certified(j) ? " (!)" : "";
             fprintf(f, " %s / %s%s%s%s |", hit->cell->value_text, st >= OB_TAB_NO_METHOD ? ob_tab_status_names[st] : b,
                     flag, cert, mark(st));
         }
@@ -405,7 +405,7 @@ static void write_cert_md(FILE *f, const ob_tab_plan *pl)
         if (!j || j->status != OB_OK || !j->cert_done)
             continue;
         n[r->proto]++;
-        yes[r->proto] += j->err_upper <= j->tol;
+        yes[r->proto] += ob_job_certified(j);
         any = 1;
     }
     if (!any)

@@ -120,6 +120,10 @@ typedef struct {
     double cert_ns;      /* thread CPU time of the certificate */
 } ob_job;
 
+/* Whether job j's certificate holds it within tol (results.csv's certified
+ * = yes): certified, and err_upper <= tol.  The one place the rule is. */
+static inline int ob_job_certified(const ob_job *j) { return j->cert_done && j->err_upper <= j->tol; }
+
 /* One measurement of a batch: an approximating piece against its base piece. */
 typedef struct {
     const ob_bez *base;
