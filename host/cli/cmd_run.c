@@ -20,8 +20,10 @@
 #include "host/diag.h"
 #include "host/io/export.h"
 #include "host/io/fsutil.h"
+#include "host/io/numfmt.h"
 #include "host/run/certify.h"
 #include "host/run/files.h"
+#include "host/run/fittime.h"
 #include "host/run/journal.h"
 #include "host/run/modes.h"
 #include "host/run/mpirun.h"
@@ -48,6 +50,7 @@ typedef struct {
     int cert_failed;             /* --certify: a job could not be certified (exit 1; its columns empty) */
     double wall;
     double *rep_fit, *rep_eval;  /* --reps: reps x njobs timings */
+    double *fit_round;           /* --time-fits: rounds x njobs method times */
 } run_cmd;
 
 /* Under mpirun the ranks split the run among themselves as shards. */
@@ -60,6 +63,10 @@ static int setup_ranks(run_cmd *r)
         return GO_ON;
     if (r->o.shard_n > 0 || r->o.resume_dir) {  /* every rank sees the same arguments: they all stop here alike */
         ob_error("under mpirun the ranks split the run: --shard and --resume do not apply");
+        return 2;
+    }
+    if (r->o.time_fits) {  /* the gather carries rows and samples, not fits.csv */
+        ob_error("under mpirun: --time-fits does not apply (time the fits in a run of one process, or per --shard)");
         return 2;
     }
     r->rec.shard_k = ob_mpi_rank();
@@ -78,19 +85,19 @@ static int test_slow_hook(ob_driver_opts *d)
     if (!v || !*v)
         return 0;
     const char *colon = strrchr(v, ':');
-    char name[64], *end;
-    const long k = colon ? strtol(colon + 1, &end, 10) : 0;
+    char name[64];
+    double k = 0;
     if (colon && colon - v < (long)sizeof name)
         snprintf(name, sizeof name, "%.*s", (int)(colon - v), v);
     else
         name[0] = '\0';
     d->test_slow_method = name[0] ? ob_method_find(name) : NULL;
-    if (!d->test_slow_method || k < 1 || k > 1000 || *end) {
-        ob_error("OFFBENCH_TEST_SLOW: expected METHOD:FACTOR (a method and a whole number 1..1000), got '%s'", v);
+    if (!d->test_slow_method || ob_parse_double(colon + 1, &k) || !(k >= 1 && k <= 1000)) {
+        ob_error("OFFBENCH_TEST_SLOW: expected METHOD:FACTOR (a method and a number from 1 to 1000), got '%s'", v);
         return -1;
     }
-    d->test_slow_factor = (int)k;
-    ob_warn("test hook OFFBENCH_TEST_SLOW: every fit of %s is done %d times", name, d->test_slow_factor);
+    d->test_slow_factor = k;
+    ob_warn("test hook OFFBENCH_TEST_SLOW: every fit of %s is done %g times (on average over its pieces)", name, k);
     return 0;
 }
 
@@ -142,7 +149,7 @@ static int plan_run(run_cmd *r)
  * refused before). */
 static void remove_stale(const char *dir)
 {
-    static const char *const names[] = {"results.csv", "meta.json", "samples.csv", "shard.csv",
+    static const char *const names[] = {"results.csv", "meta.json", "samples.csv", "fits.csv", "shard.csv",
                                         "results.fingerprint", "results.journal.csv"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char p[4200];
@@ -214,6 +221,19 @@ static int unfinished(run_cmd *r, int drc)
     return 1;
 }
 
+/* --time-fits: the pass that times every method's fits on the pieces its
+ * jobs accepted.  Returns the driver's codes: 0, 1 stopped, -1 failed. */
+static int time_fits(run_cmd *r)
+{
+    const ob_fittime_opts fo = {r->o.fit_rounds, r->o.fit_min_ns};
+    r->fit_round = malloc((size_t)fo.rounds * (r->njobs ? r->njobs : 1) * sizeof *r->fit_round);
+    if (!r->fit_round) {
+        ob_error("--time-fits: out of memory");
+        return -1;
+    }
+    return ob_fittime_run(&fo, r->jobs, r->njobs, r->spans, r->fit_round, &r->rec.fit_seconds);
+}
+
 /* The jobs, in the mode the options ask for: journaled (resumable), or a
  * warm-up and timed repetitions; under MPI, plain. */
 static int run_jobs(run_cmd *r)
@@ -224,7 +244,7 @@ static int run_jobs(run_cmd *r)
     c.hooks.spans = r->spans;
     size_t restored = 0;
     ob_loadavg_sample(&r->rec.load);  /* before the first job (hostinfo.h) */
-    const int journaled = !(o->reps > 0 || r->ranks > 1);
+    const int journaled = !(o->reps > 0 || r->ranks > 1 || o->time_fits);
     int drc = !journaled ? ob_run_plain(&c, r->jobs, r->njobs, o->reps > 0 ? "warm-up run" : NULL, &r->wall)
                          : ob_run_journaled(&c, r->jobs, r->njobs, r->where, &r->journal, &r->wall, &restored);
     c.hooks.spans = NULL;  /* the first run's pieces: --reps repeats it for the timings only */
@@ -233,6 +253,11 @@ static int run_jobs(run_cmd *r)
                                        journaled ? &r->journal : NULL, &r->rec.cert_seconds);
         r->cert_failed = crc < 0;
         drc = crc > 0 ? 1 : 0;
+    }
+    if (drc == 0 && o->time_fits) {  /* the method's own time (fittime.h), outside every other timing */
+        drc = time_fits(r);
+        if (drc < 0)
+            return 1;  /* said: nothing is written (no journal with --time-fits) */
     }
     if (r->ranks > 1 && ob_mpi_max(drc == 1) > 0 && drc != 1) {
         drc = 1;  /* another rank was stopped: none writes */
@@ -252,7 +277,7 @@ static int run_jobs(run_cmd *r)
     if (r->ranks > 1) {
         ob_info("rank %d: %zu jobs in %.2f s", ob_mpi_rank(), r->njobs, r->wall);
         const ob_run_files w = {o, &r->rec, r->jobs, r->njobs, r->shard_idx, r->where, ob_mpi_max(r->wall),
-                                r->rep_fit, r->rep_eval};
+                                r->rep_fit, r->rep_eval, NULL};
         return drc == 1 ? unfinished(r, drc) : ob_mpi_write_run_files(&w, drc);
     }
     return drc != 0 ? unfinished(r, drc) : GO_ON;
@@ -262,7 +287,7 @@ static int run_jobs(run_cmd *r)
 static int write_files(run_cmd *r)
 {
     const ob_run_files w = {&r->o, &r->rec, r->jobs, r->njobs, r->shard_idx, r->where, r->wall,
-                            r->rep_fit, r->rep_eval};
+                            r->rep_fit, r->rep_eval, r->fit_round};
     const int written = ob_write_run_files(&w) == 0;
     ob_journal_close(&r->journal, written);  /* results.csv has every row now */
     ob_run_summary(&w, written);
@@ -278,6 +303,7 @@ static void run_cmd_free(run_cmd *r)
     ob_cl_close(r->cl);
     free(r->rep_fit);
     free(r->rep_eval);
+    free(r->fit_round);
     free(r->shard_idx);
     ob_export_free(r->spans);
     free(r->jobs);
@@ -304,8 +330,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         st = plan_run(&r);
     if (st == GO_ON && (st = ob_export_prepare(&r.o, r.rec.mpi_ranks, r.njobs, &r.spans)) == 0)
         st = GO_ON;  /* --export: a span log per job */
-    if (st == GO_ON && r.o.certify && !r.spans && !(r.spans = ob_span_logs_new(r.njobs))) {
-        ob_error("--certify: out of memory");  /* --certify: the same logs */
+    if (st == GO_ON && (r.o.certify || r.o.time_fits) && !r.spans && !(r.spans = ob_span_logs_new(r.njobs))) {
+        ob_error("out of memory");  /* --certify, --time-fits: the same logs */
         st = 1;
     }
     if (st == GO_ON && ob_open_backend(r.o.backend, r.o.device, 1u << r.o.metric, &r.rec.binfo, &r.cl) != 0)

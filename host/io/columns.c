@@ -36,9 +36,15 @@ const ob_column ob_columns[OB_NCOLS] = {
     [OB_COL_CERTIFIED] = {"certified", "--certify: yes when err_upper <= tol, else no (empty without, or no "
                                        "approximation)"},
     [OB_COL_CERT_NS] = {"cert_ns", "--certify: thread CPU time of the job's certificate, ns (empty without)"},
+    [OB_COL_FIT_CALLS] = {"fit_calls", "--time-fits: fit calls in one pass over the job's accepted pieces (empty "
+                                       "without, or no approximation)"},
+    [OB_COL_METHOD_NS] = {"method_ns", "--time-fits: the method's own time, thread CPU ns of one fit of each accepted "
+                                       "piece, microbenchmarked, median of the rounds (empty without)"},
+    [OB_COL_METHOD_IQR_NS] = {"method_iqr_ns", "--time-fits: interquartile range of the rounds' method_ns (empty "
+                                               "without, or one round)"},
 };
 
-static char header[512];
+static char header[640];
 static pthread_once_t header_once = PTHREAD_ONCE_INIT;
 
 static void build_header(void)

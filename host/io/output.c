@@ -110,6 +110,19 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
         if (j->cert_done)
             fprintf(f, "%.0f", j->cert_ns);
         break;
+    /* the method's own time (host/run/fittime.h): empty without --time-fits or an approximation */
+    case OB_COL_FIT_CALLS:
+        if (j->fit_calls > 0)
+            fprintf(f, "%d", j->fit_calls);
+        break;
+    case OB_COL_METHOD_NS:
+        if (j->fit_calls > 0)
+            put_double(f, j->method_ns);
+        break;
+    case OB_COL_METHOD_IQR_NS:
+        if (j->fit_calls > 0)
+            put_double(f, j->method_iqr_ns);
+        break;
     case OB_NCOLS: break;
     }
 }
@@ -144,6 +157,28 @@ int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, 
         ob_csv_field(f, j->curve->id);
         fprintf(f, ",%s,%s,%s,%s,%s,%d,%.0f,%.0f\n", d, j->method->name, ob_metric_name(j->metric),
                 ob_split_name(j->split), tol, r + 1, fit[(size_t)r * stride], eval[(size_t)r * stride]);
+    }
+    return ferror(f) ? -1 : 0;
+}
+
+const char OB_FITS_HEADER[] = "curve,d,method,metric,split,tol,round,fit_calls,method_ns";
+
+int ob_write_fits(FILE *f, const ob_job *jobs, size_t njobs, int rounds, const double *round_ns)
+{
+    fprintf(f, "%s\n", OB_FITS_HEADER);
+    for (size_t i = 0; i < njobs; i++) {
+        const ob_job *j = &jobs[i];
+        if (j->fit_calls < 1)
+            continue;
+        char d[40], tol[40], ns[40];
+        ob_fmt_double(d, sizeof d, j->d);
+        ob_fmt_double(tol, sizeof tol, j->tol);
+        for (int r = 0; r < rounds; r++) {
+            ob_fmt_double(ns, sizeof ns, round_ns[(size_t)r * njobs + i]);
+            ob_csv_field(f, j->curve->id);
+            fprintf(f, ",%s,%s,%s,%s,%s,%d,%d,%s\n", d, j->method->name, ob_metric_name(j->metric),
+                    ob_split_name(j->split), tol, r + 1, j->fit_calls, ns);
+        }
     }
     return ferror(f) ? -1 : 0;
 }
@@ -278,9 +313,20 @@ static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *re
     } else {
         fprintf(f, "  \"certify\": null,\n");
     }
+    /* --time-fits (host/run/fittime.h): how the method's own time was measured */
+    if (o->time_fits)
+        fprintf(f, "  \"fit_timing\": {\"rounds\": %d, \"min_time_ms\": %.17g, \"wall_seconds\": %.3f, \"doc\": "
+                   "\"every job with an approximation (ok, limit): its accepted pieces fitted again, outside every other "
+                   "timing; a warm-up calibrates the iterations so that one measurement lasts min_time_ms of thread "
+                   "CPU time; rounds sweeps over the jobs each measure every job once; method_ns: the median over the "
+                   "rounds of the thread CPU ns of one fit of each accepted piece (fit_calls fits), method_iqr_ns "
+                   "their interquartile range; fits.csv: every round (docs/output.md)\"},\n",
+                o->fit_rounds, o->fit_min_ns * 1e-6, rec->fit_seconds);
+    else
+        fprintf(f, "  \"fit_timing\": null,\n");
     /* the test hook OFFBENCH_TEST_SLOW (driver.h): a run with it is slower on purpose */
     if (o->driver.test_slow_method)
-        fprintf(f, "  \"test_slow\": \"%s:%d\",\n", o->driver.test_slow_method->name, o->driver.test_slow_factor);
+        fprintf(f, "  \"test_slow\": \"%s:%g\",\n", o->driver.test_slow_method->name, o->driver.test_slow_factor);
     else
         fprintf(f, "  \"test_slow\": null,\n");
 }

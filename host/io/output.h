@@ -30,6 +30,13 @@ int ob_write_samples(FILE *f, const ob_job *jobs, size_t njobs, int reps, const 
  *          at fit[r * stride], eval[r * stride].  Returns 0 or -1. */
 int ob_write_job_samples(FILE *f, const ob_job *j, int reps, const double *fit, const double *eval, size_t stride);
 
+/* fits.csv (run --time-fits, host/run/fittime.h): every round of every
+ * timed job, curve,d,method,metric,split,tol,round,fit_calls,method_ns
+ * (round 1..rounds; method_ns that round's ns per pass over the job's
+ * accepted pieces).  round_ns[r * njobs + i]: job i's time in round r. */
+extern const char OB_FITS_HEADER[];
+int ob_write_fits(FILE *f, const ob_job *jobs, size_t njobs, int rounds, const double *round_ns);
+
 /* Purpose: write meta.json: what makes two runs comparable (build, backend,
  * threads, samples, limits, argv, time): the configuration o and what the
  * run recorded in rec.  Returns 0 or -1. */

@@ -22,6 +22,12 @@ static int write_samples_cb(FILE *f, void *ctx)
     return ob_write_samples(f, r->jobs, r->njobs, r->o->reps, r->rep_fit, r->rep_eval);
 }
 
+static int write_fits_cb(FILE *f, void *ctx)
+{
+    const ob_run_files *r = ctx;
+    return ob_write_fits(f, r->jobs, r->njobs, r->o->fit_rounds, r->fit_round);
+}
+
 static int write_results_cb(FILE *f, void *ctx)
 {
     const ob_run_files *r = ctx;
@@ -140,11 +146,13 @@ int ob_write_run_files(const ob_run_files *r)
      * only when all are complete, results.csv last, so a results.csv is
      * never there beside another run's fingerprint, meta.json, samples.csv
      * or shard.csv (ob_write_set_atomically; README "Output"). */
-    ob_out_file outs[5];
+    ob_out_file outs[6];
     size_t nset = 0;
     outs[nset++] = (ob_out_file){"results.fingerprint", write_line_cb, rfp};
     if (o->reps != 0)
         outs[nset++] = (ob_out_file){"samples.csv", write_samples_cb, (void *)r};
+    if (o->time_fits)
+        outs[nset++] = (ob_out_file){"fits.csv", write_fits_cb, (void *)r};
     if (o->shard_n != 0)
         outs[nset++] = (ob_out_file){"shard.csv", write_shard_cb, (void *)r};
     outs[nset++] = (ob_out_file){"meta.json", write_meta_cb, (void *)r};
@@ -163,7 +171,7 @@ void ob_run_summary(const ob_run_files *r, int written)
     char timeouts[48] = "";
     if (cnt[OB_TIMEOUT])
         snprintf(timeouts, sizeof timeouts, ", timeout %zu", cnt[OB_TIMEOUT]);
-    char cert[96] = "";
+    char cert[160] = "";
     if (r->o->certify) {  /* --certify: how many the certificate holds within tol */
         size_t yes = 0, done = 0;
         for (size_t i = 0; i < r->njobs; i++)
@@ -172,6 +180,13 @@ void ob_run_summary(const ob_run_files *r, int written)
                 yes += ob_job_certified(&r->jobs[i]);
             }
         snprintf(cert, sizeof cert, "; certified within tol %zu of %zu (%.2f s)", yes, done, r->rec->cert_seconds);
+    }
+    if (r->o->time_fits) {  /* --time-fits: how many jobs' fits were timed */
+        size_t timed = 0;
+        for (size_t i = 0; i < r->njobs; i++)
+            timed += r->jobs[i].fit_calls > 0;
+        const size_t len = strlen(cert);
+        snprintf(cert + len, sizeof cert - len, "; fits timed %zu (%.2f s)", timed, r->rec->fit_seconds);
     }
     ob_info("%zu jobs in %.2f s (%d threads%s): ok %zu, limit %zu, fail %zu, skip %zu%s%s; %s %s/results.csv",
             r->njobs, r->wall, omp_get_max_threads(), r->o->reps > 0 ? ", median of the timed repetitions" : "",

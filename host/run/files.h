@@ -1,7 +1,7 @@
 /*
  * files.h - the files a run leaves in its directory: results.csv,
- * meta.json, results.fingerprint, and samples.csv (--reps) and shard.csv
- * (--shard) where they apply; written all or none (fsutil.h).
+ * meta.json, results.fingerprint, and samples.csv (--reps), fits.csv
+ * (--time-fits) and shard.csv (--shard) where they apply; written all or none (fsutil.h).
  */
 #ifndef OB_FILES_H
 #define OB_FILES_H
@@ -21,6 +21,7 @@ typedef struct {
     const char *where;           /* the curves' source (meta.json "data") */
     double wall;                 /* seconds (the median of the timed runs with --reps) */
     const double *rep_fit, *rep_eval;  /* --reps: reps x njobs timings */
+    const double *fit_round;     /* --time-fits: rounds x njobs method times (fits.csv) */
 } ob_run_files;
 
 /* Purpose: write the run's files into o->out_dir, results.csv last.

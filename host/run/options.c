@@ -15,6 +15,7 @@
 #include "host/diag.h"
 #include "host/io/numfmt.h"
 #include "host/io/random.h"
+#include "host/run/fittime.h"
 
 static int parse_int(const char *opt, const char *s, long lo, long hi, int *out)
 {
@@ -199,6 +200,7 @@ enum {
     RO_CURVES, RO_CURVE, RO_RANDOM, RO_METHODS, RO_TOLS, RO_METRIC, RO_SPLIT, RO_BACKEND, RO_DEVICE,
     RO_THREADS, RO_SAMPLES, RO_MAX_DEPTH, RO_MAX_SEGMENTS, RO_INFLECTIONS, RO_PARAM, RO_JOB_TIMEOUT,
     RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT, RO_ENGINE, RO_CHUNK, RO_CERTIFY,
+    RO_TIME_FITS, RO_FIT_REPS, RO_FIT_MIN_TIME,
 };
 
 const ob_flag ob_run_flags[] = {
@@ -229,6 +231,11 @@ const ob_flag ob_run_flags[] = {
     {"export", "DIR", "each job's approximation as JSON, .curves, DXF and SVG", RO_EXPORT, OB_FLAG_ONCE},
     {"certify", NULL, "certify each job's error: err_upper, err_lower, certified and cert_ns (docs/certified.md)",
      RO_CERTIFY, OB_FLAG_ONCE},
+    {"time-fits", NULL, "time each method's fits as a microbenchmark: fit_calls, method_ns, method_iqr_ns and "
+     "fits.csv (docs/output.md)", RO_TIME_FITS, OB_FLAG_ONCE},
+    {"fit-reps", "N", "--time-fits: rounds of measurements per job (default 5)", RO_FIT_REPS, OB_FLAG_ONCE},
+    {"fit-min-time", "MS", "--time-fits: each measurement's length in ms of thread CPU time (default 1)",
+     RO_FIT_MIN_TIME, OB_FLAG_ONCE},
 };
 const int ob_run_nflags = (int)(sizeof ob_run_flags / sizeof ob_run_flags[0]);
 
@@ -332,6 +339,16 @@ static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *
     case RO_FORCE: o->force = 1; return 0;
     case RO_EXPORT: return parse_dir(opt, v, &o->export_dir);
     case RO_CERTIFY: o->certify = 1; return 0;
+    case RO_TIME_FITS: o->time_fits = 1; return 0;
+    case RO_FIT_REPS: o->fit_opts_given = 1; return parse_int(opt, v, 1, 1000, &o->fit_rounds);
+    case RO_FIT_MIN_TIME:
+        o->fit_opts_given = 1;
+        if (ob_parse_double(v, &s) || !(s > 0) || s > 1e4) {
+            ob_error("--fit-min-time: expected milliseconds > 0 (at most 1e4), got '%s'", v);
+            return -1;
+        }
+        o->fit_min_ns = s * 1e6;
+        return 0;
     }
     return 1;
 }
@@ -388,6 +405,8 @@ int ob_run_opts_init(ob_run_opts *o, int argc, char **argv)
     o->argc = argc;
     o->argv = argv;
     ob_driver_defaults(&o->driver);
+    o->fit_rounds = OB_FITTIME_ROUNDS;
+    o->fit_min_ns = OB_FITTIME_MIN_NS;
     static const double default_tols[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
     for (int i = 0; i < 5; i++)
         o->tols[i] = default_tols[i];
@@ -405,8 +424,16 @@ int ob_run_opts_init(ob_run_opts *o, int argc, char **argv)
 
 int ob_run_opts_finish(ob_run_opts *o)
 {
+    if (o->fit_opts_given && !o->time_fits) {
+        ob_error("--fit-reps and --fit-min-time set how --time-fits measures: add --time-fits");
+        return -1;
+    }
     if (!o->resume_dir)
         return 0;
+    if (o->time_fits) {
+        ob_error("--resume: not with --time-fits (the fits are timed in one pass over the whole run)");
+        return -1;
+    }
     if (o->out_given && strcmp(o->out_dir, o->resume_dir) != 0) {
         ob_error("--resume %s: the results go back into that directory; --out %s names another", o->resume_dir,
                  o->out_dir);

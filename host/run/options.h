@@ -36,6 +36,10 @@ typedef struct {
     const char *out_dir;
     const char *export_dir;      /* --export DIR: each job's approximation (host/io/export.h) */
     int certify;                 /* --certify: each job's certified error (host/run/certify.h) */
+    int time_fits;               /* --time-fits: each method's own time (host/run/fittime.h) */
+    int fit_rounds;              /* --fit-reps N: its rounds (default OB_FITTIME_ROUNDS) */
+    double fit_min_ns;           /* --fit-min-time MS: each measurement's length, ns */
+    int fit_opts_given;          /* --fit-reps or --fit-min-time given (parsing) */
     const char *resume_dir;      /* --resume DIR: finish the run in DIR (journal.h) */
     int force;                   /* --force: a fresh run over an interrupted
                                     run's journal (which it removes) */

@@ -31,6 +31,7 @@ typedef struct {
     ob_engine_stats engine;      /* what the driver's engine did (the last run
                                     of a --reps series) */
     double cert_seconds;         /* --certify: wall time of the certificate pass */
+    double fit_seconds;          /* --time-fits: wall time of the fit timing pass */
 } ob_run_record;
 
 #endif

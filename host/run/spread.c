@@ -36,3 +36,9 @@ void ob_spread(const double *v, int n, int stride, double *tmp, double *iqr, dou
     *iqr = quantile7(tmp, n, 0.75) - quantile7(tmp, n, 0.25);
     *cv = mean > 0 ? sqrt(ss / (n - 1)) / mean : 0;
 }
+
+double ob_median(double *x, int n)
+{
+    qsort(x, (size_t)n, sizeof *x, cmp_double);
+    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}

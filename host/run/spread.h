@@ -15,4 +15,8 @@
  * Outputs: *iqr and *cv; both NAN when n < 2. */
 void ob_spread(const double *v, int n, int stride, double *tmp, double *iqr, double *cv);
 
+/* Purpose: the median of x[0..n) (n >= 1; the mean of the middle two when n
+ *          is even).  Sorts x. */
+double ob_median(double *x, int n);
+
 #endif

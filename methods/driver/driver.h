@@ -80,10 +80,11 @@ typedef struct {
     double d;
     const ob_method *method;
     const double *params;  /* method parameter values, NULL for the defaults */
-    int test_fit_repeat;   /* test hook (0, 1: off): each fit is done this many
-                              times (same input, the last result kept), a real
-                              slowdown of the method for the timing tests:
-                              ob_driver_opts.test_slow_method */
+    double test_fit_repeat;/* test hook (0, 1: off): each fit is done this many
+                              times on average (same input, the last result
+                              kept), a real slowdown of the method for the
+                              timing tests: ob_driver_opts.test_slow_method;
+                              a fraction: ob_test_fit_times */
     ob_metric metric;
     ob_split split;
     double tol;
@@ -118,7 +119,20 @@ typedef struct {
                             exact offset is <= err_upper (+inf: a piece unbounded) */
     double err_lower;    /* ... and >= err_lower (a distance attained) */
     double cert_ns;      /* thread CPU time of the certificate */
+    /* set by the run command with --time-fits (host/run/fittime.h), not the driver: */
+    int fit_calls;       /* fits in one iteration of the job's workload (its
+                            accepted pieces); 0: not timed (empty columns) */
+    double method_ns;    /* the method's own time: thread CPU time of one fit of
+                            each accepted piece, median over the rounds */
+    double method_iqr_ns;/* the rounds' interquartile range (NAN: one round) */
 } ob_job;
+
+/* The test hook's count for one fit of base piece (seg, a, b) of job j
+ * (ob_job.test_fit_repeat = f): floor(f) times, and once more for a share
+ * f - floor(f) of the pieces, chosen by a hash of (seg, a, b), so that the
+ * same piece is always done as often (any engine, thread count or pass)
+ * and a method's many pieces take f times as long on average. */
+int ob_test_fit_times(const ob_job *j, int seg, double a, double b);
 
 /* Whether job j's certificate holds it within tol (results.csv's certified
  * = yes): certified, and err_upper <= tol.  The one place the rule is. */
@@ -279,12 +293,12 @@ typedef struct {
      * any work, checked between jobs, never inside a timed section */
     long test_oom_after;
     /* test hook (NULL: off): the jobs of this method do each fit
-     * test_slow_factor times (ob_job.test_fit_repeat), so that the method
+     * test_slow_factor times on average (ob_job.test_fit_repeat), so that the method
      * is that much slower in its fits and in nothing else; set by `run` from
      * OFFBENCH_TEST_SLOW=METHOD:FACTOR (README "Testing"), recorded in
      * meta.json ("test_slow") */
     const ob_method *test_slow_method;
-    int test_slow_factor;
+    double test_slow_factor;
 } ob_driver_opts;
 
 /* One share group's work as a progress display sees it (ob_progress_info):

@@ -29,6 +29,19 @@ double drv_wall_ns(void) { return clock_ns(CLOCK_MONOTONIC); }
  * processes, a thread descheduled mid-call). */
 double drv_thread_ns(void) { return clock_ns(CLOCK_THREAD_CPUTIME_ID); }
 
+int ob_test_fit_times(const ob_job *j, int seg, double a, double b)
+{
+    const double f = j->test_fit_repeat, whole = floor(f);
+    uint64_t h = 1469598103934665603ull ^ (uint64_t)(unsigned)seg;
+    double ab[2] = {a, b};
+    unsigned char bytes[sizeof ab];
+    memcpy(bytes, ab, sizeof ab);
+    for (size_t k = 0; k < sizeof bytes; k++)
+        h = (h ^ bytes[k]) * 1099511628211ull;
+    const double u = (double)(h >> 11) * 0x1p-53;  /* in [0, 1) */
+    return (int)whole + (u < f - whole);
+}
+
 /* Fit one item; returns the thread time spent in the method. */
 double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit, itemres *r)
 {
@@ -49,7 +62,8 @@ double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit,
     double t0 = drv_thread_ns();
     const ob_fit_args args = {j->d, j->tol, par};
     r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
-    for (int k = 1; k < j->test_fit_repeat; k++)  /* test hook (driver.h): the same fit again */
+    const int times = j->test_fit_repeat > 1 ? ob_test_fit_times(j, it->seg, it->a, it->b) : 1;
+    for (int k = 1; k < times; k++)  /* test hook (driver.h): the same fit again */
         r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
     double t1 = drv_thread_ns();
     r->n = r->st == OB_FIT_OK ? fit->n : 0;
