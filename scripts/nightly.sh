@@ -13,9 +13,11 @@
 #
 # The nightly configuration (two runs, both every method and the tolerances
 # 1e-1 ... 1e-5, hausdorff metric, mid split):
-#   published  the curves under datasets/, --reps 5: quality, and speed
-#              against this machine's baseline (the 5 timed runs after a
-#              warm-up give each method's per-repetition totals)
+#   published  the curves under datasets/, --reps 5 --time-fits: quality,
+#              and speed against this machine's baseline: each method's own
+#              fit time (--time-fits: its fits microbenchmarked in
+#              $NIGHTLY_FIT_REPS rounds, default 10, fits.csv), and the
+#              harness (eval_ns, the 5 timed runs after a warm-up)
 #   random     --random $NIGHTLY_RANDOM (default 250:2026), one run: quality
 #              only
 # Timing (compare --timing-only --method-timing-only against
@@ -23,11 +25,13 @@
 # a baseline recorded on this machine counts, never the committed one
 # (recorded elsewhere); without one the report says "timings not judged: no
 # baseline of this machine" and timing adds nothing to the status.  Methods
-# too noisy to judge (their interval wider than the change they would
-# report) are run again, alone, up to --reruns times; each re-run is
-# compared afresh (nothing is pooled) and the last decides.  A run whose
-# load average exceeded its cores is not judged (no re-run: the machine is
-# busy).
+# the data cannot decide (their interval wider than the change they would
+# report: "cannot decide: need N more repetitions") are run again, alone,
+# with the repetitions compare asks for, up to --reruns times; each re-run
+# is compared afresh (nothing is pooled) and the last decides.  A method
+# still undecided after them makes the night exit 3, never 0.  A loaded
+# machine is judged all the same: the times are thread CPU time and the
+# repetitions' own spread decides (docs/nightly.md "Noise").
 #
 # History: every run, failed or not, is then copied into a store that the
 # next night does not overwrite (scripts/nightly_history.sh), one directory
@@ -44,8 +48,9 @@
 #                                       no new run: the run just made in DIR
 #                                       becomes this machine's timing baseline
 #                                       (BASELINES/NAME-ID/published; refused
-#                                       for a run that failed or whose load
-#                                       exceeded its cores)
+#                                       for a run that failed, or whose own
+#                                       repetitions cannot tell a change: it
+#                                       is compared with itself first)
 #   scripts/nightly.sh --accept-committed [--out DIR]
 #                                       no new run: the run in DIR becomes the
 #                                       committed baseline (results/baseline/:
@@ -82,6 +87,7 @@ keep_days=${NIGHTLY_KEEP_DAYS:-0}
 site=${NIGHTLY_SITE:-}
 baselines=${NIGHTLY_BASELINES:-${XDG_DATA_HOME:-${HOME:-.}/.local/share}/offbench/baselines}
 reruns=${NIGHTLY_RERUNS:-2}
+fit_reps=${NIGHTLY_FIT_REPS:-10}
 while [ $# -gt 0 ]; do
     case "$1" in
         --out|--history|--keep|--keep-days|--site|--baselines|--reruns)
@@ -158,9 +164,17 @@ if [ -n "$accept" ]; then
         echo "nightly: the run in $out is now the committed baseline in $qbase/ (review git diff --stat $qbase and commit it with the reason)" >&2
         exit 0
     fi
-    load=$(over_load "$out/published/meta.json")
-    if [ -n "$load" ]; then
-        echo "nightly: not accepted: the run's load average reached ${load% *} on its ${load#* } cores, so compare would never judge timings against it: accept a run made on a quiet machine" >&2
+    # A loaded night is accepted when its own repetitions are consistent:
+    # compared with itself, every method's timing must be decidable (no
+    # change); a run whose rounds spread wider than the 10 % band could
+    # never be a baseline that tells a change.
+    bin_a=${NIGHTLY_BIN:-./offbench}
+    "$bin_a" compare "$out/published" "$out/published" --timing-only --method-timing-only --strict-timing \
+        --format csv --out "$out/accept-self.csv" 2>"$out/accept-self.err"
+    arc=$?
+    if [ $arc -ne 0 ]; then
+        load=$(over_load "$out/published/meta.json")
+        echo "nightly: not accepted: the run's own repetitions cannot tell a 10 % change (compared with itself, compare exits $arc: $(grep -m 1 . "$out/accept-self.err"))${load:+; its load average reached ${load% *} on its ${load#* } cores}: run the nightly again (more --fit-reps: NIGHTLY_FIT_REPS) and accept that" >&2
         exit 2
     fi
     dir=$(machine_dir "$out/published/meta.json") || {
@@ -224,7 +238,7 @@ run() {  # DIR METHODS [run options]: one run into $out/DIR, its log in $out/DIR
     [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; finish 2 "run $name"; }
 }
 # shellcheck disable=SC2086
-run published "$methods" --reps 5 $curves
+run published "$methods" --reps 5 --time-fits --fit-reps "$fit_reps" $curves
 run random "$methods" --random "$random"
 
 status=0
@@ -246,9 +260,25 @@ compare_to() {
     echo "nightly: compare $label: exit $crc" >&2
     worst $crc
 }
-# the methods whose timing a compare CSV says is too noisy to judge, comma separated
+# the methods whose timing a compare CSV says the data cannot decide, comma separated
 noisy_methods() {
     awk -F, '$1 == "method" && $8 == "time_total" && $15 == "noisy" {printf "%s%s", s, $4; s = ","}' "$1" 2>/dev/null
+}
+# the rounds those methods need per side (the largest need_reps of the CSV), at least $fit_reps
+needed_rounds() {
+    awk -F, -v at_least="$fit_reps" '$1 == "method" && $8 == "need_reps" && $9 + 0 > n {n = $9 + 0}
+        END {print (n > at_least ? (n > 200 ? 200 : n) : at_least)}' "$1" 2>/dev/null
+}
+# The timing status from the last verdict of each method (first run, or its
+# last re-run) in the CSVs given in run order: 1 when one is slower (or the
+# harness, where it counts), else 3 when one is still undecided, else 0.
+timing_status() {
+    # shellcheck disable=SC2086
+    awk -F, '$1 == "method" && $8 == "time_total" { v[$4] = $15 }
+        $1 == "harness" && $8 == "time_total" && $15 == "slower" { h = 1 }
+        END { s = h; for (m in v) if (v[m] == "slower") s = 1
+              if (!s) for (m in v) if (v[m] == "noisy") s = 3
+              print s + 0 }' "$@"
 }
 
 # quality: against the committed baseline
@@ -270,18 +300,28 @@ mid=$(machine_id "$out/published/meta.json")
 mdir=$(machine_dir "$out/published/meta.json")
 timing_csvs= timing_note= k=0
 if [ -n "$mdir" ] && [ -f "$mdir/published/results.csv" ]; then
+    # the timing compares' own exit statuses count only as errors (2): the
+    # verdict is each method's last (timing_status), so that a method the
+    # first run could not decide and a re-run decided does not end the night 3
+    tstatus=$status
     compare_to timing "$mdir/published" "$out/published" --timing-only --method-timing-only
+    [ "$crc" -eq 2 ] || status=$tstatus
     timing_csvs="$out/compare-timing.csv"
     noisy=$(noisy_methods "$out/compare-timing.csv")
     while [ -n "$noisy" ] && [ "$k" -lt "$reruns" ]; do
         k=$((k + 1))
-        echo "nightly: re-running the methods too noisy to judge: $noisy ($k of $reruns)" >&2
+        rounds=$(needed_rounds "$out/compare-timing$([ $k -gt 1 ] && echo "-rerun$((k - 1))").csv")
+        echo "nightly: re-running the methods the data cannot decide: $noisy ($k of $reruns, $rounds rounds)" >&2
         # shellcheck disable=SC2086
-        run "reruns/$k" "$noisy" --reps 5 $curves
+        run "reruns/$k" "$noisy" --reps 5 --time-fits --fit-reps "$rounds" $curves
+        tstatus=$status
         compare_to "timing-rerun$k" "$mdir/published" "$out/reruns/$k" --timing-only --method-timing-only --methods "$noisy"
+        [ "$crc" -eq 2 ] || status=$tstatus
         timing_csvs="$timing_csvs $out/compare-timing-rerun$k.csv"
         noisy=$(noisy_methods "$out/compare-timing-rerun$k.csv")
     done
+    # shellcheck disable=SC2086
+    worst "$(timing_status $timing_csvs)"
 else
     timing_note="timings not judged: no baseline of this machine ('${mname:-unknown}', id ${mid:-unknown}) in $baselines: \`scripts/nightly.sh --accept\` after a quiet night makes the run just made this machine's baseline"
     echo "nightly: $timing_note" >&2
@@ -304,7 +344,11 @@ verdict_table() {
         role == "q" && ($1 == "regression" || $1 == "missing") && $4 != "" { add($4); q[$4]++ }
         role == "t" && $1 == "method" && $8 == "time_total" {
             add($4); tb[$4] = $9; tn[$4] = $10; est[$4] = $11; lo[$4] = $13; hi[$4] = $14; v[$4] = $15
-            by[$4] = tf == 1 ? "first run" : "re-run " (tf - 1)
+            by[$4] = tf == 1 ? "first run" : "re-run " (tf - 1); need[$4] = ""
+        }
+        role == "t" && $1 == "method" && $8 == "need_reps" { need[$4] = $10 }
+        role == "t" && $1 == "harness" && $8 == "time_total" {
+            htb = $9; htn = $10; hest = $11; hlo = $13; hhi = $14; hv = $15; hseen = 1
         }
         function ms(x) { return x == "" ? "-" : sprintf("%.4g ms", x / 1e6) }
         function num(x) { return x == "" ? "-" : sprintf("%.4g", x) }
@@ -313,11 +357,16 @@ verdict_table() {
             print "|---|---:|---:|---:|---:|---|---:|---|"
             for (i = 1; i <= n; i++) {
                 m = order[i]
-                w = v[m] == "" ? "-" : v[m] == "same" ? "no change" : v[m] == "noisy" ? "not judged: noisy" : \
+                w = v[m] == "" ? "-" : v[m] == "same" ? "no change" : \
+                    v[m] == "noisy" ? "cannot decide: need " (need[m] == "" ? "more" : need[m] " more") " repetitions" : \
                     v[m] == "few_reps" ? "not judged: too few repetitions" : v[m]
                 iv = lo[m] == "" ? "-" : (hi[m] == "inf" ? "unbounded" : sprintf("[%.4g, %.4g]", lo[m], hi[m]))
                 printf "| %s | %s | %s | %s | %s | %s | %d | %s |\n", m, ms(tb[m]), ms(tn[m]), num(est[m]), iv, w,
                        q[m] + 0, m in by ? by[m] : "-"
+            }
+            if (hseen) {
+                iv = hlo == "" ? "-" : (hhi == "inf" ? "unbounded" : sprintf("[%.4g, %.4g]", hlo, hhi))
+                printf "| *harness* (eval_ns) | %s | %s | %s | %s | %s | - | first run |\n", ms(htb), ms(htn), num(hest), iv, hv
             }
         }' role=t $timing_csvs role=q "$out/compare-published-quality.csv" "$out/compare-random-quality.csv"
 }
@@ -326,7 +375,7 @@ timing_counts() {
     # shellcheck disable=SC2086
     awk -F, '$1 == "method" && $8 == "time_total" { v[$4] = $15 }
         END { for (m in v) { c[v[m]]++; if (v[m] == "slower") s = s (s == "" ? "" : ", ") m }
-              printf "%d slower%s, %d faster, %d no change, %d not judged", c["slower"] + 0, s == "" ? "" : " (" s ")",
+              printf "%d slower%s, %d faster, %d no change, %d undecided", c["slower"] + 0, s == "" ? "" : " (" s ")",
                      c["faster"] + 0, c["same"] + 0, c["noisy"] + c["few_reps"] }' $timing_csvs
 }
 first_line() { sed -n 's/^\*\*\([^*]*\)\*\* (exit \([0-9]\)).*/\1 (exit \2)/p' "$1" | head -n 1; }
@@ -345,7 +394,7 @@ report="$out/report.md"
     echo "# offbench nightly, $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo
     if [ -n "$timing_csvs" ] && grep -q '^method,.*,time_total,' $timing_csvs; then
-        tline="timing: $(timing_counts) (against this machine's baseline)"
+        tline="timing: $(timing_counts) (each method's own fit time, against this machine's baseline)"
     elif [ -n "$timing_csvs" ]; then
         tline="timing: not judged"
     else
@@ -354,7 +403,7 @@ report="$out/report.md"
     echo "**$(status_word $status)** (exit $status): $tline; quality: published $(first_line "$out/compare-published-quality.md"), random $(first_line "$out/compare-random-quality.md")."
     if [ -n "$timing_csvs" ]; then
         printf '%s' "$(grep -m 1 '^Timing: ' "$out/compare-timing.md")"
-        [ "$k" -eq 0 ] || printf ' The methods too noisy to judge were run again %d time(s): the table says which run decided.' "$k"
+        [ "$k" -eq 0 ] || printf ' The methods the data could not decide were run again %d time(s): the table says which run decided.' "$k"
         echo
     else
         echo "Timing: **not judged**: no baseline of this machine ('${mname:-unknown}', id ${mid:-unknown})."
@@ -370,7 +419,7 @@ report="$out/report.md"
         section "published: timing against this machine's baseline" timing
         i=1
         while [ "$i" -le "$k" ]; do
-            section "published: timing, re-run $i of the methods too noisy to judge" "timing-rerun$i"
+            section "published: timing, re-run $i of the methods the data could not decide" "timing-rerun$i"
             i=$((i + 1))
         done
     else

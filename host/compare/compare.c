@@ -143,6 +143,25 @@ static int is_ok(const char *s) { return strcmp(s, "ok") == 0; }
 
 static double ratio_of(double n, double b) { return b > 0 && isfinite(b) && isfinite(n) ? n / b : NAN; }
 
+/* What a row's time is (r->method_time): the method's own time (run
+ * --time-fits: method_ns, its rounds in fits.csv), or fit_ns + eval_ns
+ * (its repetitions in samples.csv). */
+static double row_time(const ob_res_row *row, int method_time)
+{
+    return method_time ? row->method_ns : row->fit_ns + row->eval_ns;
+}
+
+static const double *row_reps(const ob_res_row *row, int method_time)
+{
+    return method_time ? row->round_m : row->rep_t;
+}
+
+/* The repetitions a side holds of what is timed. */
+static int side_reps(const ob_cmp_side *s, int method_time)
+{
+    return method_time ? s->res.maxround : s->res.maxrep;
+}
+
 /* Quality of a joined row: status, then ctrl_points, then max_err, then
  * (both certified) whether err_upper is within tol. */
 static int judge_quality(const ob_res_row *b, const ob_res_row *n, const ob_cmp_opts *o, ob_cmp_result *r,
@@ -186,13 +205,13 @@ static int judge_quality(const ob_res_row *b, const ob_res_row *n, const ob_cmp_
     return add_change(r, k, field, b, n, ratio, NAN);
 }
 
-/* The repetitions of a row present in samples.csv, into x; their count. */
-static int rep_values(const ob_res_row *row, int maxrep, double *x)
+/* The repetitions v[0..maxrep) present (not NAN), into x; their count. */
+static int rep_values(const double *v, int maxrep, double *x)
 {
     int k = 0;
-    for (int i = 0; row->rep_t && i < maxrep; i++)
-        if (!isnan(row->rep_t[i]))
-            x[k++] = row->rep_t[i];
+    for (int i = 0; v && i < maxrep; i++)
+        if (!isnan(v[i]))
+            x[k++] = v[i];
     return k;
 }
 
@@ -206,13 +225,17 @@ static int judge_time(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_res
                       const ob_cmp_opts *o, ob_cmp_result *r, ob_method_sum *m, double *xb, double *xn,
                       int *judged)
 {
-    const double tb = b->fit_ns + b->eval_ns, tn = n->fit_ns + n->eval_ns;
-    *judged = r->timing && strcmp(b->status, n->status) == 0 && tb >= o->time_floor_ns &&
-              tn >= o->time_floor_ns && tb > 0 && tn > 0;
+    const int mt = r->method_time;
+    const double tb = row_time(b, mt), tn = row_time(n, mt);
+    /* the floor keeps single short timings out; a method time is already a
+     * calibrated measurement (fittime.h), so it needs none: only both timed */
+    const int long_enough = mt ? b->fit_calls > 0 && n->fit_calls > 0
+                               : tb >= o->time_floor_ns && tn >= o->time_floor_ns;
+    *judged = r->timing && strcmp(b->status, n->status) == 0 && long_enough && tb > 0 && tn > 0;
     if (!*judged)
         return 0;
     r->t_judged++;
-    int kb = rep_values(b, bs->res.maxrep, xb), kn = rep_values(n, ns->res.maxrep, xn);
+    int kb = rep_values(row_reps(b, mt), side_reps(bs, mt), xb), kn = rep_values(row_reps(n, mt), side_reps(ns, mt), xn);
     const int tested = kb >= 2 && kn >= 2;
     if (tested)
         r->t_tested++;
@@ -267,25 +290,62 @@ static int group_by_method(const pair *pr, int np, int nms, int **order, int **s
 /* Per-repetition totals over the judged rows of one method (its pairs
  * pr[grp[0..ng)]) on one side (a repetition counts when every one of those
  * rows has it); their count. */
-static int method_totals(const pair *pr, const int *grp, int ng, int new_side, int maxrep, double *tot)
+static int method_totals(const pair *pr, const int *grp, int ng, int new_side, int maxrep, int mt, int harness,
+                         double *tot)
 {
     int k = 0;
     for (int rep = 0; rep < maxrep; rep++) {
         double sum = 0;
         int complete = 1, rows = 0;
         for (int g = 0; g < ng && complete; g++) {
-            const int i = grp[g];
+            const int i = grp ? grp[g] : g;
             if (!pr[i].judged)
                 continue;
             const ob_res_row *row = new_side ? pr[i].n : pr[i].b;
-            complete = row->rep_t && !isnan(row->rep_t[rep]);
-            sum += complete ? row->rep_t[rep] : 0;
+            const double *v = harness ? row->rep_e : row_reps(row, mt);
+            complete = v && !isnan(v[rep]);
+            sum += complete ? v[rep] : 0;
             rows++;
         }
         if (complete && rows)
             tot[k++] = sum;
     }
     return k;
+}
+
+/* Repetitions per side that would make an interval of width log(hi / lo)
+ * from n per side narrow enough for time_verdict to decide: a change
+ * beyond the band needs a width of at most |log est|, no change at most
+ * the band's own 2 log(1 + threshold); the width of a rank interval
+ * shrinks about as 1 / sqrt(n). */
+static int reps_needed(double est, double lo, double hi, int n, const ob_cmp_opts *o)
+{
+    const double band = 1 + o->time_threshold, w = log(hi / lo);
+    const double target = est > band || est < 1 / band ? fabs(log(est)) : 2 * log(band);
+    const double need = ceil(n * (w / target) * (w / target));
+    return !(need > n) ? n + 1 : need > 100000 ? 100000 : (int)need;
+}
+
+/* One timing claim from per-repetition totals xb[0..reps_base),
+ * xn[0..reps_new) (both at least 2: the HL estimate and its interval), else
+ * from m->t_new / m->t_base by the threshold alone. */
+static void judge_totals(ob_method_sum *m, const ob_cmp_opts *o, double *xb, double *xn)
+{
+    if (m->reps_base >= 2 && m->reps_new >= 2) {
+        m->p = ob_mann_whitney(xn, m->reps_new, xb, m->reps_base).p;
+        m->t_base = median_sorting(xb, m->reps_base);
+        m->t_new = median_sorting(xn, m->reps_new);
+        const int bounded = hl_time(xn, m->reps_new, xb, m->reps_base, o, &m->t_est, &m->ci_lo, &m->ci_hi);
+        m->timing = time_verdict(m->t_est, m->ci_lo, m->ci_hi, bounded, o);
+        m->not_judged = strcmp(m->timing, "noisy") == 0 || strcmp(m->timing, "few_reps") == 0 ? m->timing : NULL;
+        if (strcmp(m->timing, "noisy") == 0)
+            m->need_reps = reps_needed(m->t_est, m->ci_lo, m->ci_hi,
+                                       m->reps_base < m->reps_new ? m->reps_base : m->reps_new, o);
+    } else {
+        m->t_est = m->t_new / m->t_base;
+        m->timing = threshold_verdict(m->t_est, o);
+        m->not_judged = "no_samples";
+    }
 }
 
 /* The timing verdict of each method: on its per-repetition totals when
@@ -299,28 +359,43 @@ static void judge_methods(const ob_cmp_side *bs, const ob_cmp_side *ns, const pa
         ob_method_sum *m = &r->ms[mi];
         if (!(m->n_t > 0) || !r->timing)
             continue;
-        const int *grp = order + start[mi], ng = start[mi + 1] - start[mi];
-        m->reps_base = method_totals(pr, grp, ng, 0, bs->res.maxrep, xb);
-        m->reps_new = method_totals(pr, grp, ng, 1, ns->res.maxrep, xn);
-        if (m->reps_base >= 2 && m->reps_new >= 2) {
-            m->p = ob_mann_whitney(xn, m->reps_new, xb, m->reps_base).p;
-            m->t_base = median_sorting(xb, m->reps_base);
-            m->t_new = median_sorting(xn, m->reps_new);
-            const int bounded = hl_time(xn, m->reps_new, xb, m->reps_base, o, &m->t_est, &m->ci_lo, &m->ci_hi);
-            m->timing = time_verdict(m->t_est, m->ci_lo, m->ci_hi, bounded, o);
-            m->not_judged = strcmp(m->timing, "noisy") == 0 || strcmp(m->timing, "few_reps") == 0 ? m->timing : NULL;
-        } else {
-            m->t_est = m->t_new / m->t_base;
-            m->timing = threshold_verdict(m->t_est, o);
-            m->not_judged = "no_samples";
-        }
+        const int *grp = order + start[mi], ng = start[mi + 1] - start[mi], mt = r->method_time;
+        m->reps_base = method_totals(pr, grp, ng, 0, side_reps(bs, mt), mt, 0, xb);
+        m->reps_new = method_totals(pr, grp, ng, 1, side_reps(ns, mt), mt, 0, xn);
+        judge_totals(m, o, xb, xn);
         if (strcmp(m->timing, "slower") == 0)
             m->verdict = 1, r->m_reg++;
         else if (strcmp(m->timing, "faster") == 0)
             m->verdict = -1, r->m_imp++;
+        else if (strcmp(m->timing, "noisy") == 0)
+            r->undecided++;
         if (m->verdict)
             m->not_judged = NULL;  /* a change was judged (by the threshold alone without samples) */
     }
+}
+
+/* The harness's line: the measuring time (eval_ns) of every row judged for
+ * timing, per repetition (samples.csv), judged as a method is; without
+ * repetitions on both sides, the summed eval_ns by the threshold. */
+static void judge_harness(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, int np,
+                          const ob_cmp_opts *o, ob_cmp_result *r, double *xb, double *xn)
+{
+    ob_method_sum *h = &r->harness;
+    memset(h, 0, sizeof *h);
+    h->method = "harness";
+    h->p = h->ci_lo = h->ci_hi = h->t_est = NAN;
+    double sb = 0, sn = 0;
+    for (int i = 0; i < np; i++)
+        if (pr[i].judged)
+            sb += pr[i].b->eval_ns, sn += pr[i].n->eval_ns, h->n_t++, h->rows++;
+    if (!r->timing || !h->n_t || !(sb > 0) || !(sn > 0))
+        return;
+    h->t_base = sb;
+    h->t_new = sn;
+    h->reps_base = method_totals(pr, NULL, np, 0, bs->res.maxrep, 0, 1, xb);
+    h->reps_new = method_totals(pr, NULL, np, 1, ns->res.maxrep, 0, 1, xn);
+    judge_totals(h, o, xb, xn);
+    h->verdict = strcmp(h->timing, "slower") == 0 ? 1 : strcmp(h->timing, "faster") == 0 ? -1 : 0;
 }
 
 /* The joint columns (max_gap, max_kink, continuity) are informational: a
@@ -398,9 +473,10 @@ static void method_means(const pair *pr, const int *order, const int *start, ob_
             if (isfinite(b->max_err) && isfinite(n->max_err) && b->max_err > 0 && n->max_err > 0)
                 s[1] += log(n->max_err / b->max_err), c[1]++;
             if (pr[order[g]].judged) {
-                s[2] += log((n->fit_ns + n->eval_ns) / (b->fit_ns + b->eval_ns)), c[2]++;
-                sum_b += b->fit_ns + b->eval_ns;
-                sum_n += n->fit_ns + n->eval_ns;
+                const double tb = row_time(b, r->method_time), tn = row_time(n, r->method_time);
+                s[2] += log(tn / tb), c[2]++;
+                sum_b += tb;
+                sum_n += tn;
             }
         }
         m->t_base = c[2] ? sum_b : NAN;
@@ -421,8 +497,9 @@ static void method_means(const pair *pr, const int *order, const int *start, ob_
  * judged by the threshold alone (and said to be).  0, or -1 no memory. */
 static int few_reps(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r)
 {
-    const int kb = bs->res.maxrep, kn = ns->res.maxrep;
-    if (!r->timing || !bs->has_samples || !ns->has_samples || ob_mw_min_p(kn, kb) < o->alpha)
+    const int mt = r->method_time, kb = side_reps(bs, mt), kn = side_reps(ns, mt);
+    const int have = mt ? bs->has_fits && ns->has_fits : bs->has_samples && ns->has_samples;
+    if (!r->timing || !have || ob_mw_min_p(kn, kb) < o->alpha)
         return 0;
     int need = 2;
     while (need < 1000 && !(ob_mw_min_p(need, need) < o->alpha))
@@ -432,8 +509,8 @@ static int few_reps(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_o
     r->need_reps = need;
     return ob_strlist_addf(&r->strict,
                            "too few repetitions to judge timing: need %d per side (BASE has %d, NEW %d; the smallest "
-                           "two-sided p of the rank test is then %.3g, not below alpha %g: run --reps %d)",
-                           need, kb, kn, ob_mw_min_p(kn, kb), o->alpha, need);
+                           "two-sided p of the rank test is then %.3g, not below alpha %g: run %s %d)",
+                           need, kb, kn, ob_mw_min_p(kn, kb), o->alpha, mt ? "--time-fits --fit-reps" : "--reps", need);
 }
 
 int ob_cmp_method_selected(const ob_cmp_opts *o, const char *method)
@@ -475,7 +552,8 @@ int ob_cmp_check_methods(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cm
 int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     const ob_res_table *bt = &bs->res, *nt = &ns->res;
-    const int maxrep = bt->maxrep > nt->maxrep ? bt->maxrep : nt->maxrep;
+    int maxrep = bt->maxrep > nt->maxrep ? bt->maxrep : nt->maxrep;
+    maxrep = bt->maxround > maxrep ? bt->maxround : nt->maxround > maxrep ? nt->maxround : maxrep;
     pair *pr = malloc((size_t)(bt->n ? bt->n : 1) * sizeof *pr);
     char *matched = calloc((size_t)(nt->n ? nt->n : 1), 1);
     double *xb = malloc((size_t)(maxrep ? maxrep : 1) * sizeof *xb);
@@ -518,6 +596,7 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
         goto done;
     method_means(pr, order, start, r);
     judge_methods(bs, ns, pr, order, start, o, r, xb, xn);
+    judge_harness(bs, ns, pr, np, o, r, xb, xn);
     rc = joints_note(bs, ns, pr, np, r) || strict_reasons(o, r) ? -1 : 0;
 done:
     ob_strmap_free(&mt.ix);
@@ -536,7 +615,10 @@ int ob_cmp_status(const ob_cmp_result *r)
 {
     if (r->incomparable.n || r->strict.n)
         return 3;
-    return r->q_reg || (r->t_rows_count && r->t_reg) || r->m_reg || r->n_missing ? 1 : 0;
+    const int harness_slower = r->harness_counts && r->harness.verdict > 0;
+    if (r->q_reg || (r->t_rows_count && r->t_reg) || r->m_reg || r->n_missing || harness_slower)
+        return 1;
+    return r->undecided ? 3 : 0;  /* a method's timing the data cannot decide: never a pass */
 }
 
 void ob_cmp_result_free(ob_cmp_result *r)

@@ -39,10 +39,11 @@ ob_cmp_opts ob_cmp_defaults(void);
 
 typedef struct {
     const char *label;             /* "BASE" / "NEW" */
-    char results_path[4096], meta_path[4096], samples_path[4096];
+    char results_path[4096], meta_path[4096], samples_path[4096], fits_path[4096];
     ob_res_table res;
     ob_json_flat meta;
     int has_meta, has_samples;
+    int has_fits;                  /* fits.csv with rounds (run --time-fits) */
     char samples_note[512];        /* why samples.csv was ignored, or "" */
 } ob_cmp_side;
 
@@ -96,6 +97,9 @@ typedef struct {
     double t_base, t_new, t_est;    /* the method's time (ns) and new/base; NAN: none */
     const char *timing;             /* the timing verdict (above), or NULL */
     const char *not_judged;         /* why the method's timing was not judged, or NULL */
+    int need_reps;                  /* "noisy": repetitions per side that would make
+                                       its interval narrow enough to decide (the
+                                       width shrinks as 1 / sqrt(n)); 0 otherwise */
 } ob_method_sum;
 
 /* A method's verdict as report.md's per-method table and the JSON's
@@ -132,6 +136,20 @@ typedef struct {
     int t_judged, t_tested, t_threshold_only;
     int t_noisy, t_few_reps;        /* tested rows not judged: interval too wide / unbounded */
     ob_strlist strict;              /* --strict-timing: what could not be judged (exit 3) */
+    /* What is timed: 1 the methods' own time (both runs --time-fits:
+     * method_ns and the rounds of fits.csv), 0 fit_ns + eval_ns (a run
+     * without it, e.g. an older baseline; r->notes says so). */
+    int method_time;
+    /* The harness's own line: the measuring (eval_ns) over every row judged
+     * for timing, per repetition (samples.csv), judged like a method
+     * (method "harness"; NULL timing when not judged). */
+    ob_method_sum harness;
+    int harness_counts;             /* 1: a slower harness is a regression (both
+                                       runs measured on the CPU: thread CPU time);
+                                       0: reported only (a batch backend's eval_ns
+                                       is wall time, which load inflates) */
+    int undecided;                  /* methods whose timing cannot be decided
+                                       (noisy): exit 3 */
 } ob_cmp_result;
 
 /* Purpose: the comparability checks (meta.json keys, method parameters and
@@ -181,6 +199,12 @@ double ob_cmp_noise_width(const ob_cmp_opts *o);
  * Outputs: the text in buf (cut to len). */
 void ob_cmp_timing_text(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, const ob_cmp_result *r,
                         int md, char *buf, size_t len);
+
+/* A method's (or the harness's) timing verdict in words: "slower",
+ * "no change", "cannot decide: need N more repetitions per side", ...
+ * ("(threshold only)" added where there were no repetitions); "-" none.
+ * Points to static or per-call storage: use before the next call. */
+const char *ob_cmp_timing_word(const ob_method_sum *m);
 
 /* 1 when --methods selects method (or there is no --methods). */
 int ob_cmp_method_selected(const ob_cmp_opts *o, const char *method);

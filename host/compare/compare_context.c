@@ -106,7 +106,8 @@ int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, ob_err 
     too_long = too_long ||
                snprintf(s->meta_path, sizeof s->meta_path, "%s/meta.json", dir) >= (int)sizeof s->meta_path ||
                snprintf(s->samples_path, sizeof s->samples_path, "%s/samples.csv", dir) >=
-                   (int)sizeof s->samples_path;
+                   (int)sizeof s->samples_path ||
+               snprintf(s->fits_path, sizeof s->fits_path, "%s/fits.csv", dir) >= (int)sizeof s->fits_path;
     if (too_long) {
         ob_fail(err, "%.200s...: path too long", arg);
         return -1;
@@ -126,6 +127,13 @@ int ob_cmp_load_side(const char *arg, const char *label, ob_cmp_side *s, ob_err 
             return -1;
         }
         s->has_samples = s->res.maxrep > 0;
+    }
+    if (s->res.method_timed && access(s->fits_path, F_OK) == 0) {
+        if (ob_res_load_fits(&s->res, s->fits_path, err)) {
+            ob_cmp_side_free(s);
+            return -1;
+        }
+        s->has_fits = s->res.maxround > 0;
     }
     /* a samples.csv left over from an earlier run into the same directory */
     const ob_json_entry *reps = s->has_samples ? ob_json_get(&s->meta, "reps") : NULL;
@@ -352,9 +360,12 @@ static int machine_check(const ob_cmp_side *b, const ob_cmp_side *n, ob_cmp_resu
 }
 
 /* A run whose 1-minute load average exceeded the cores it used shared the
- * CPUs with other work (its own threads count in the load): its timings are
- * noise.  Why, into r->timing_diffs.  0, or -1 no memory. */
-static int load_check(const ob_cmp_side *s, ob_cmp_result *r)
+ * CPUs with other work (its own threads count in the load).  That no longer
+ * stops timings from being judged (issue 46: shared CI runners are the
+ * normal case): the times are thread CPU time, and the repetitions' own
+ * spread decides whether a change can be told (time_verdict); a note says
+ * so.  0, or -1 no memory. */
+static int load_note(const ob_cmp_side *s, ob_cmp_result *r)
 {
     const ob_json_entry *l = ob_json_get(&s->meta, "host.loadavg_max"), *c = ob_json_get(&s->meta, "host.cores_used");
     if (!l || !c || l->type != OB_JSON_NUMBER || c->type != OB_JSON_NUMBER)
@@ -362,8 +373,31 @@ static int load_check(const ob_cmp_side *s, ob_cmp_result *r)
     const double load = strtod(l->value, NULL), cores = strtod(c->value, NULL);
     if (!(load > cores))
         return 0;
-    return ob_strlist_addf(&r->timing_diffs, "%s's load average reached %.2f on its %.0f core%s", s->label, load,
-                           cores, cores == 1 ? "" : "s");
+    return ob_strlist_addf(&r->notes, "%s's load average reached %.2f on its %.0f core%s: timings judged all the "
+                           "same, by the spread of the repetitions of thread CPU times", s->label, load, cores,
+                           cores == 1 ? "" : "s");
+}
+
+/* The backend that measured a side ("cpu", "opencl"; "" unknown). */
+static const char *backend_of(const ob_cmp_side *s)
+{
+    const ob_json_entry *e = ob_json_get(&s->meta, "backend");
+    return e && e->type == OB_JSON_STRING ? e->value : "";
+}
+
+/* What the timings are (r->method_time): the methods' own time when both
+ * runs timed their fits, else fit_ns + eval_ns, said in a note; and whether
+ * the harness's verdict counts (both measured on the CPU).  0, or -1. */
+static int what_is_timed(const ob_cmp_side *b, const ob_cmp_side *n, ob_cmp_result *r)
+{
+    int rc = 0;
+    r->method_time = b->res.method_timed > 0 && n->res.method_timed > 0;
+    if (!r->method_time && (b->res.method_timed || n->res.method_timed))
+        rc |= ob_strlist_addf(&r->notes, "%s has no method time (run --time-fits): the methods are timed by fit_ns + "
+                              "eval_ns, which is mostly offbench's own measuring", b->res.method_timed ? n->label
+                                                                                                      : b->label);
+    r->harness_counts = strcmp(backend_of(b), "cpu") == 0 && strcmp(backend_of(n), "cpu") == 0;
+    return rc;
 }
 
 /* Whether timings can be judged (after the comparability checks): both
@@ -399,12 +433,8 @@ static int timing_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_c
         r->tstate = OB_TIMING_MACHINE;
         return rc;
     }
-    rc |= load_check(b, r) | load_check(n, r);
-    if (r->timing_diffs.n) {
-        r->timing = 0;
-        r->tstate = OB_TIMING_NOISY;
-    }
-    return rc;
+    rc |= load_note(b, r) | load_note(n, r);
+    return rc | what_is_timed(b, n, r);
 }
 
 /* "a; b; c": the list l joined, into buf at used (cut to len). */
@@ -447,13 +477,17 @@ void ob_cmp_timing_text(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp
         c[strcmp(t, "slower") == 0 ? 0 : strcmp(t, "faster") == 0 ? 1 : strcmp(t, "same") == 0 ? 2
           : strcmp(t, "noisy") == 0 ? 3 : 4]++;
     }
-    used = (size_t)snprintf(buf, len, "judged: the same machine '%s' (id %s); per method %d slower, %d faster, %d no "
-                            "change, %d not judged (too noisy %d, too few complete repetitions %d)",
-                            meta_str(n, "machine.name"), meta_str(n, "machine.id"), c[0], c[1], c[2], c[3] + c[4],
-                            c[3], c[4]);
+    used = (size_t)snprintf(buf, len, "judged: the same machine '%s' (id %s), %s; per method %d slower, %d faster, "
+                            "%d no change, %d not judged (cannot decide: need more repetitions %d, too few complete "
+                            "repetitions %d)", meta_str(n, "machine.name"), meta_str(n, "machine.id"),
+                            r->method_time ? "the methods' own fit time (--time-fits)" : "fit_ns + eval_ns",
+                            c[0], c[1], c[2], c[3] + c[4], c[3], c[4]);
     if (c[5] && used < len)
-        snprintf(buf + used, len - used, "; %d method(s) by the threshold alone (no repetitions on both sides: one "
-                 "measurement a side, noise not accounted for)", c[5]);
+        used += (size_t)snprintf(buf + used, len - used, "; %d method(s) by the threshold alone (no repetitions on both "
+                                 "sides: one measurement a side, noise not accounted for)", c[5]);
+    if (r->harness.timing && used < len)
+        snprintf(buf + used, len - used, "; harness (eval_ns) %s%s", ob_cmp_timing_word(&r->harness),
+                 r->harness_counts ? "" : " (reported only: a batch backend's eval_ns is wall time)");
 }
 
 int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)

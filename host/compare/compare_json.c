@@ -137,6 +137,8 @@ static void jmethod(FILE *f, const ob_method_sum *m)
             m->reps_base, m->reps_new, m->regressions, m->improvements,
             m->verdict > 0 ? "slower" : m->verdict < 0 ? "faster" : "same");
     jstr(f, m->not_judged);
+    fprintf(f, ", \"need_reps\": %d, \"timing_words\": ", m->need_reps);
+    ob_json_string(f, ob_cmp_timing_word(m));
     /* "verdict" is the timing's (as it always was); this is the method's, as
      * report.md's per-method table gives it */
     fprintf(f, ", \"method_verdict\": \"%s\"}", ob_method_verdict(m));
@@ -200,6 +202,13 @@ int ob_cmp_write_json(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const
         fputs(i ? ",\n" : "\n", f);
         jmethod(f, &r->ms[i]);
     }
-    fprintf(f, "%s]\n}\n", r->nms && !r->incomparable.n ? "\n  " : "");
+    fprintf(f, "%s],\n  \"timed\": \"%s\",\n  \"harness\": ", r->nms && !r->incomparable.n ? "\n  " : "",
+            r->method_time ? "method_ns" : "fit_ns+eval_ns");
+    if (r->harness.timing && !r->incomparable.n) {
+        jmethod(f, &r->harness);
+        fprintf(f, ",\n  \"harness_counts\": %s\n}\n", r->harness_counts ? "true" : "false");
+    } else {
+        fprintf(f, "null,\n  \"harness_counts\": %s\n}\n", r->harness_counts ? "true" : "false");
+    }
     return ferror(f) ? -1 : 0;
 }

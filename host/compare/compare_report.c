@@ -137,9 +137,9 @@ static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, row_filte
         fprintf(f, "\n%d more not shown (--max-rows %d).\n", total - shown, max_rows);
 }
 
-/* A method's timing verdict as the table says it. */
-static const char *timing_words(const ob_method_sum *m)
+const char *ob_cmp_timing_word(const ob_method_sum *m)
 {
+    static _Thread_local char need[96];
     if (!m->timing)
         return "-";
     const int tested = m->reps_base >= 2 && m->reps_new >= 2;
@@ -149,7 +149,30 @@ static const char *timing_words(const ob_method_sum *m)
         return tested ? "faster" : "faster (threshold only)";
     if (strcmp(m->timing, "same") == 0)
         return tested ? "no change" : "no change (threshold only)";
-    return strcmp(m->timing, "noisy") == 0 ? "not judged: noisy" : "not judged: too few repetitions";
+    if (strcmp(m->timing, "noisy") != 0)
+        return "not judged: too few repetitions";
+    const int have = m->reps_base < m->reps_new ? m->reps_base : m->reps_new;
+    snprintf(need, sizeof need, "cannot decide: need %d more repetitions per side", m->need_reps - have);
+    return need;
+}
+
+static const char *timing_words(const ob_method_sum *m) { return ob_cmp_timing_word(m); }
+
+/* The harness's line of the per-method table (compare.h). */
+static void md_harness(FILE *f, const ob_cmp_result *r)
+{
+    const ob_method_sum *h = &r->harness;
+    if (!h->timing)
+        return;
+    char tb[32], tn[32], t[32], p[32], ci[64];
+    num_text(tb, sizeof tb, h->t_base * 1e-6, 1, "%.4g ms");
+    num_text(tn, sizeof tn, h->t_new * 1e-6, 1, "%.4g ms");
+    num_text(t, sizeof t, h->t_est, 1, "%.4g");
+    num_text(p, sizeof p, h->p, 1, "%.3g");
+    interval_text(ci, sizeof ci, h->ci_lo, h->ci_hi);
+    fprintf(f, "| *harness* (eval_ns) | %d | - | - | - | - | %s | %s | %s | %s | %s | %s | %s |\n", h->rows, tb, tn, t,
+            ci, p, timing_words(h), !r->harness_counts ? "reported only" : h->verdict > 0 ? "regression"
+                                                        : h->verdict < 0 ? "improvement" : "same");
 }
 
 /* The table that decides the verdict: per method, the quality summary
@@ -163,11 +186,14 @@ static void md_methods(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
         return;
     }
     fprintf(f, "ctrl_points, max_err: geometric means of new/base over the joined rows; regressions, "
-               "improvements: the row changes that count; time: the method's total (fit_ns + eval_ns over its rows "
-               "judged for timing), base and new the medians of the per-repetition totals, new/base the "
+               "improvements: the row changes that count; time: the method's total (%s over its rows "
+               "judged for timing), base and new the medians of the per-%s totals, new/base the "
                "Hodges-Lehmann estimate of their ratio and interval that estimate's own %g%% interval (without "
                "repetitions: the summed times, no interval); slower or faster when the estimate is beyond %g%%, the interval excludes 1 "
-               "and is no wider than the change.\n\n", 100 * (1 - o->alpha), 100 * o->time_threshold);
+               "and is no wider than the change; the last line is the harness (eval_ns: offbench's measuring) over "
+               "every row judged.\n\n",
+            r->method_time ? "method_ns, the method's own fit time" : "fit_ns + eval_ns",
+            r->method_time ? "round (fits.csv)" : "repetition", 100 * (1 - o->alpha), 100 * o->time_threshold);
     fprintf(f, "| method | rows | ctrl_points | max_err | regressions | improvements | time base | time new | "
                "time new/base | interval | p | timing | verdict |\n"
                "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
@@ -184,6 +210,7 @@ static void md_methods(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
         fprintf(f, "| %s | %d | %s | %s | %d | %d | %s | %s | %s | %s | %s | %s | %s |\n", m->method, m->rows, cp, er,
                 m->regressions, m->improvements, tb, tn, t, ci, p, timing_words(m), ob_method_verdict(m));
     }
+    md_harness(f, r);
 }
 
 /* The inputs, the comparability and how timings were judged. */
@@ -319,6 +346,34 @@ static void csv_line(FILE *f, const char *kind, const ob_res_row *k, const char 
     fputc('\n', f);
 }
 
+/* "cannot decide": the repetitions needed per side (base) and how many more
+ * (new), field need_reps. */
+static void csv_need(FILE *f, const char *kind, const ob_method_sum *m)
+{
+    if (!m->need_reps)
+        return;
+    const int have = m->reps_base < m->reps_new ? m->reps_base : m->reps_new;
+    char need[24], more[24];
+    snprintf(need, sizeof need, "%d", m->need_reps);
+    snprintf(more, sizeof more, "%d", m->need_reps - have);
+    csv_line(f, kind, NULL, m->method, "need_reps", need, more, NAN, NAN, NAN, NAN, "noisy");
+}
+
+/* The harness's line: kind harness, field time_total; note its verdict,
+ * with "reported_only" when it does not count (compare.h). */
+static void csv_harness(FILE *f, const ob_cmp_result *r)
+{
+    const ob_method_sum *h = &r->harness;
+    if (!h->timing)
+        return;
+    char tb[40], tn[40], note[64];
+    num_text(tb, sizeof tb, h->t_base, 0, NULL);
+    num_text(tn, sizeof tn, h->t_new, 0, NULL);
+    snprintf(note, sizeof note, "%s%s", h->timing, r->harness_counts ? "" : " reported_only");
+    csv_line(f, "harness", NULL, "harness", "time_total", tb, tn, h->t_est, h->p, h->ci_lo, h->ci_hi, note);
+    csv_need(f, "harness", h);
+}
+
 int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
                      const ob_cmp_result *r)
 {
@@ -361,6 +416,8 @@ int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const 
         if (m->timing)
             csv_line(f, "method", NULL, m->method, "time_total", tb, tn, m->t_est, m->p, m->ci_lo, m->ci_hi,
                      m->timing);
+        csv_need(f, "method", m);
     }
+    csv_harness(f, r);
     return ferror(f) ? -1 : 0;
 }

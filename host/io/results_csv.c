@@ -216,6 +216,8 @@ void ob_res_free(ob_res_table *t)
     free(t->v);
     free(t->sorted);
     free(t->rep_t);
+    free(t->rep_e);
+    free(t->round_m);
     memset(t, 0, sizeof *t);
 }
 
@@ -317,6 +319,25 @@ static const char *read_cert(char **f, const int *at, ob_res_row *row)
     return NULL;
 }
 
+/* The method time's columns of a row (at[22..24], run --time-fits):
+ * fit_calls and method_ns both empty or both set, method_iqr_ns empty
+ * (one round) or set with them.  Returns NULL, or what is wrong. */
+static const char *read_method_time(char **f, const int *at, ob_res_row *row)
+{
+    const char *calls = f[at[22]], *ns = f[at[23]], *iqr = f[at[24]];
+    if (!*calls && !*ns && !*iqr)
+        return NULL;
+    if (!*calls || !*ns)
+        return "fit_calls and method_ns are both empty or both set (method_iqr_ns only with them)";
+    long k;
+    if (parse_long(calls, 1, 1000000000L, &k))
+        return "fit_calls is not a whole number >= 1";
+    if (parse_ns(ns, &row->method_ns) || (*iqr && parse_ns(iqr, &row->method_iqr_ns)))
+        return "method_ns and method_iqr_ns must be finite numbers >= 0";
+    row->fit_calls = k;
+    return NULL;
+}
+
 /* t->sorted: the rows by job key; two rows of one job are refused. */
 static int index_rows(ob_res_table *t, csv_reader *r, int line)
 {
@@ -350,7 +371,8 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         ob_columns[OB_COL_EVAL_NS].name,    ob_columns[OB_COL_MESSAGE].name,    ob_columns[OB_COL_MAX_GAP].name,
         ob_columns[OB_COL_MAX_KINK].name,   ob_columns[OB_COL_CONTINUITY].name, ob_columns[OB_COL_FAMILY].name,
         ob_columns[OB_COL_ERR_UPPER].name,  ob_columns[OB_COL_ERR_LOWER].name,  ob_columns[OB_COL_CERTIFIED].name,
-        ob_columns[OB_COL_CERT_NS].name};
+        ob_columns[OB_COL_CERT_NS].name,    ob_columns[OB_COL_FIT_CALLS].name,  ob_columns[OB_COL_METHOD_NS].name,
+        ob_columns[OB_COL_METHOD_IQR_NS].name};
     enum { NCOL = sizeof cols / sizeof cols[0], NREQ = 14 };
     int at[NCOL];
     memset(t, 0, sizeof *t);
@@ -375,6 +397,13 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         goto fail;
     }
     t->has_cert = ncc == 4;
+    const int nfc = (at[22] >= 0) + (at[23] >= 0) + (at[24] >= 0);
+    if (nfc != 0 && nfc != 3) {
+        csv_fail(&r, first_line, "the method time's columns fit_calls, method_ns and method_iqr_ns come together "
+                 "(this header has %d of them)", nfc);
+        goto fail;
+    }
+    t->has_method_time = nfc == 3;
     for (;;) {
         const int got = csv_row(&r, &line, nh);
         if (got == 0)
@@ -396,6 +425,10 @@ static int parse_owned(char *buf, size_t len, const char *name, int first_line, 
         const char *bad = read_row(r.f, at, t->has_joints, row);
         if (!bad && t->has_cert)
             bad = read_cert(r.f, at, row);
+        row->method_ns = row->method_iqr_ns = NAN;
+        if (!bad && t->has_method_time)
+            bad = read_method_time(r.f, at, row);
+        t->method_timed += row->fit_calls > 0;
         if (bad) {
             csv_fail(&r, line, "%s", bad);
             goto fail;
@@ -440,91 +473,166 @@ int ob_res_load(const char *path, ob_res_table *t, ob_err *err)
     return parse_owned(buf, len, path, 1, t, err);
 }
 
+/* A file of per-repetition timings beside results.csv: its index column
+ * and its two value columns.  samples.csv: rep, fit_ns, eval_ns; fits.csv:
+ * round, fit_calls (checked against the row), method_ns. */
+typedef struct {
+    const char *idx, *v0, *v1;
+    int v0_is_calls;
+} series_spec;
+
+static const series_spec SAMPLES_SPEC = {"rep", "fit_ns", "eval_ns", 0};
+static const series_spec FITS_SPEC = {"round", "fit_calls", "method_ns", 1};
+
 typedef struct {
     int row, rep, line;
-    double t;
+    double a, b;    /* the two values */
 } sample;
 
-static int attach_owned(ob_res_table *t, char *buf, size_t len, const char *name, ob_err *err)
+/* The samples of the file (after its header), each checked against t. */
+typedef struct {
+    sample *s;
+    int n, cap, maxrep, line;
+} sample_list;
+
+static const char *read_sample(csv_reader *r, const int *at, const series_spec *sp, const ob_res_table *t,
+                               sample *out)
 {
-    static const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", "rep", "fit_ns", "eval_ns"};
+    ob_res_row key;
+    long rep;
+    const char *bad = read_key(r->f, at, &key);
+    if (bad)
+        return bad;
+    if (parse_long(r->f[at[6]], 1, MAX_REP, &rep))
+        return sp->v0_is_calls ? "round is not a whole number from 1 to 100000"
+                               : "rep is not a whole number from 1 to 100000";
+    if (parse_ns(r->f[at[7]], &out->a) || parse_ns(r->f[at[8]], &out->b))
+        return sp->v0_is_calls ? "fit_calls and method_ns must be finite numbers >= 0"
+                               : "fit_ns and eval_ns must be finite numbers >= 0";
+    const ob_res_row *row = ob_res_find(t, &key);
+    if (!row)
+        return "this job is not in results.csv";
+    if (sp->v0_is_calls && out->a != (double)row->fit_calls)
+        return "fit_calls differs from the job's in results.csv";
+    out->row = (int)(row - t->v);
+    out->rep = (int)rep;
+    return NULL;
+}
+
+static int read_samples(csv_reader *r, const series_spec *sp, const ob_res_table *t, sample_list *l)
+{
+    const char *const cols[] = {"curve", "d", "method", "metric", "split", "tol", sp->idx, sp->v0, sp->v1};
     enum { NCOL = sizeof cols / sizeof cols[0] };
-    int at[NCOL], line = 0, n = 0, cap = 0, maxrep = 0, rc = -1;
-    sample *s = NULL;
-    double *rep_t = NULL;
-    csv_reader r = {buf, buf + len, 1, name, NULL, 0, err};
-    int nh = csv_header(&r, cols, NCOL, NCOL, at);
+    int at[NCOL];
+    const int nh = csv_header(r, cols, NCOL, NCOL, at);
     if (nh < 0)
-        goto done;
+        return -1;
     for (;;) {
-        const int got = csv_row(&r, &line, nh);
-        if (got == 0)
-            break;
-        if (got < 0)
-            goto done;
-        ob_res_row key;
-        long rep;
-        double fit, eval;
-        const char *bad = read_key(r.f, at, &key);
-        const ob_res_row *row = NULL;
+        const int got = csv_row(r, &l->line, nh);
+        if (got <= 0)
+            return got;
+        sample sm;
+        const char *bad = read_sample(r, at, sp, t, &sm);
         if (bad)
-            ;
-        else if (parse_long(r.f[at[6]], 1, MAX_REP, &rep))
-            bad = "rep is not a whole number from 1 to 100000";
-        else if (parse_ns(r.f[at[7]], &fit) || parse_ns(r.f[at[8]], &eval))
-            bad = "fit_ns and eval_ns must be finite numbers >= 0";
-        else if (!(row = ob_res_find(t, &key)))
-            bad = "this job is not in results.csv";
-        if (bad) {
-            csv_fail(&r, line, "%s", bad);
-            goto done;
+            return csv_fail(r, l->line, "%s", bad);
+        if (l->n == l->cap) {
+            l->cap = l->cap ? 2 * l->cap : 1024;
+            sample *ns = realloc(l->s, (size_t)l->cap * sizeof *ns);
+            if (!ns)
+                return csv_fail(r, l->line, "out of memory");
+            l->s = ns;
         }
-        if (n == cap) {
-            cap = cap ? 2 * cap : 1024;
-            sample *ns = realloc(s, (size_t)cap * sizeof *ns);
-            if (!ns) {
-                csv_fail(&r, line, "out of memory");
-                goto done;
-            }
-            s = ns;
-        }
-        s[n++] = (sample){(int)(row - t->v), (int)rep, line, fit + eval};
-        if (rep > maxrep)
-            maxrep = (int)rep;
+        sm.line = l->line;
+        l->s[l->n++] = sm;
+        if (sm.rep > l->maxrep)
+            l->maxrep = sm.rep;
     }
-    if (maxrep > 0) {
-        size_t cells = (size_t)t->n * (size_t)maxrep;
-        if (cells / (size_t)maxrep != (size_t)t->n || cells > ((size_t)1 << 28) ||
-            !(rep_t = malloc(cells * sizeof *rep_t))) {
-            csv_fail(&r, line, "out of memory (%d rows x %d repetitions)", t->n, maxrep);
-            goto done;
-        }
-        for (size_t i = 0; i < cells; i++)
-            rep_t[i] = NAN;
-        for (int i = 0; i < n; i++) {
-            double *cell = &rep_t[(size_t)s[i].row * (size_t)maxrep + (size_t)(s[i].rep - 1)];
-            if (!isnan(*cell)) {
-                csv_fail(&r, s[i].line, "repetition %d of this job given twice", s[i].rep);
-                goto done;
-            }
-            *cell = s[i].t;
-        }
+}
+
+/* A rows x maxrep matrix of NAN (NULL without memory or when too large). */
+static double *nan_matrix(int rows, int maxrep)
+{
+    const size_t cells = (size_t)rows * (size_t)maxrep;
+    if (!maxrep || cells / (size_t)maxrep != (size_t)rows || cells > ((size_t)1 << 28))
+        return NULL;
+    double *m = malloc((cells ? cells : 1) * sizeof *m);
+    for (size_t i = 0; m && i < cells; i++)
+        m[i] = NAN;
+    return m;
+}
+
+/* Fills m0 (and m1 when not NULL) from the samples: m0 = a + b, m1 = b
+ * (samples.csv: fit + eval, eval), or m0 = b (fits.csv); a (key, rep)
+ * given twice is refused. */
+static int fill_matrices(csv_reader *r, const sample_list *l, const series_spec *sp, double *m0, double *m1)
+{
+    for (int i = 0; i < l->n; i++) {
+        const size_t k = (size_t)l->s[i].row * (size_t)l->maxrep + (size_t)(l->s[i].rep - 1);
+        if (!isnan(m0[k]))
+            return csv_fail(r, l->s[i].line, "%s %d of this job given twice", sp->v0_is_calls ? "round" : "repetition",
+                            l->s[i].rep);
+        m0[k] = sp->v0_is_calls ? l->s[i].b : l->s[i].a + l->s[i].b;
+        if (m1)
+            m1[k] = l->s[i].b;
     }
-    free(t->rep_t);
-    t->rep_t = rep_t;
-    t->maxrep = maxrep;
-    rep_t = NULL;
+    return 0;
+}
+
+/* Each row's pointer into matrix m (NULL without), and its count present. */
+static void point_rows(ob_res_table *t, double *m, int maxrep, int fits)
+{
     for (int i = 0; i < t->n; i++) {
         ob_res_row *row = &t->v[i];
-        row->rep_t = maxrep ? &t->rep_t[(size_t)i * (size_t)maxrep] : NULL;
+        const double *p = maxrep ? &m[(size_t)i * (size_t)maxrep] : NULL;
+        if (fits) {
+            row->round_m = p;
+            continue;
+        }
+        row->rep_t = p;
+        row->rep_e = maxrep ? &t->rep_e[(size_t)i * (size_t)maxrep] : NULL;
         row->nsamples = 0;
         for (int k = 0; k < maxrep; k++)
-            row->nsamples += !isnan(row->rep_t[k]);
+            row->nsamples += !isnan(p[k]);
     }
+}
+
+static int attach_owned(ob_res_table *t, char *buf, size_t len, const char *name, const series_spec *sp, ob_err *err)
+{
+    const int fits = sp->v0_is_calls;
+    sample_list l = {0};
+    double *m0 = NULL, *m1 = NULL;
+    int rc = -1;
+    csv_reader r = {buf, buf + len, 1, name, NULL, 0, err};
+    if (read_samples(&r, sp, t, &l) != 0)
+        goto done;
+    if (l.maxrep > 0) {
+        m0 = nan_matrix(t->n, l.maxrep);
+        m1 = fits ? NULL : nan_matrix(t->n, l.maxrep);
+        if (!m0 || (!fits && !m1)) {
+            csv_fail(&r, l.line, "out of memory (%d rows x %d repetitions)", t->n, l.maxrep);
+            goto done;
+        }
+        if (fill_matrices(&r, &l, sp, m0, m1) != 0)
+            goto done;
+    }
+    if (fits) {
+        free(t->round_m);
+        t->round_m = m0;
+        t->maxround = l.maxrep;
+    } else {
+        free(t->rep_t);
+        free(t->rep_e);
+        t->rep_t = m0;
+        t->rep_e = m1;
+        t->maxrep = l.maxrep;
+    }
+    point_rows(t, m0, l.maxrep, fits);
+    m0 = m1 = NULL;
     rc = 0;
 done:
-    free(rep_t);
-    free(s);
+    free(m0);
+    free(m1);
+    free(l.s);
     free(r.f);
     free(buf);
     return rc;
@@ -539,7 +647,7 @@ int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const c
     }
     memcpy(buf, text, len);
     buf[len] = '\0';
-    return attach_owned(t, buf, len, name, err);
+    return attach_owned(t, buf, len, name, &SAMPLES_SPEC, err);
 }
 
 int ob_res_load_samples(ob_res_table *t, const char *path, ob_err *err)
@@ -548,5 +656,14 @@ int ob_res_load_samples(ob_res_table *t, const char *path, ob_err *err)
     size_t len;
     if (ob_slurp(path, &buf, &len, err))
         return -1;
-    return attach_owned(t, buf, len, path, err);
+    return attach_owned(t, buf, len, path, &SAMPLES_SPEC, err);
+}
+
+int ob_res_load_fits(ob_res_table *t, const char *path, ob_err *err)
+{
+    char *buf;
+    size_t len;
+    if (ob_slurp(path, &buf, &len, err))
+        return -1;
+    return attach_owned(t, buf, len, path, &FITS_SPEC, err);
 }

@@ -16,9 +16,13 @@
  * its key (curve, d, method, metric, split, tol), d and tol compared as
  * doubles (1e-05 == 0.00001); a key given twice is an error.
  *
+ * Optional: fit_calls, method_ns, method_iqr_ns (run --time-fits; all three
+ * or none in the header).
+ *
  * samples.csv (run --reps N): curve,d,method,metric,split,tol,rep,fit_ns,
  * eval_ns, one row per job and repetition rep = 1..N; every key must be a
- * row of results.csv and every (key, rep) appear once.
+ * row of results.csv and every (key, rep) appear once.  fits.csv (run
+ * --time-fits) likewise with round,fit_calls,method_ns.
  */
 #ifndef OB_RESULTS_CSV_H
 #define OB_RESULTS_CSV_H
@@ -41,10 +45,16 @@ typedef struct {
     int cert_done;           /* 1: the certificate's columns are set (run --certify) */
     double err_upper, err_lower, cert_ns; /* NAN when empty or absent */
     const char *certified;   /* "yes", "no"; "" when empty or absent */
+    long fit_calls;          /* run --time-fits: 0 when empty or absent */
+    double method_ns, method_iqr_ns; /* NAN when empty or absent */
     int line;                /* first line of the row in the file */
     const double *rep_t;     /* samples.csv: fit_ns + eval_ns of repetition r
                                 at rep_t[r - 1], NAN where absent; NULL without */
     int nsamples;            /* repetitions present for this row */
+    const double *rep_e;     /* samples.csv: eval_ns of repetition r (the
+                                harness's share), as rep_t; NULL without */
+    const double *round_m;   /* fits.csv: method_ns of round r at
+                                round_m[r - 1], NAN where absent; NULL without */
 } ob_res_row;
 
 typedef struct {
@@ -57,6 +67,11 @@ typedef struct {
     int has_joints;          /* the header has max_gap, max_kink and continuity */
     int has_family;          /* the header has family */
     int has_cert;            /* the header has err_upper, err_lower, certified and cert_ns */
+    int has_method_time;     /* the header has fit_calls, method_ns and method_iqr_ns */
+    int method_timed;        /* rows with a method time (fit_calls > 0) */
+    double *rep_e;           /* n x maxrep eval_ns of samples.csv (owned), or NULL */
+    double *round_m;         /* n x maxround method_ns of fits.csv (owned), or NULL */
+    int maxround;            /* largest round in fits.csv; 0 without */
 } ob_res_table;
 
 /* Purpose: parse the text of a results.csv named `name` (copied: the caller
@@ -95,6 +110,13 @@ int ob_res_attach_samples(ob_res_table *t, const char *text, size_t len, const c
 
 /* Purpose: as ob_res_attach_samples, reading the file at path. */
 int ob_res_load_samples(ob_res_table *t, const char *path, ob_err *err);
+
+/* Purpose: attach the rounds of a fits.csv (run --time-fits) at path:
+ *          curve,d,method,metric,split,tol,round,fit_calls,method_ns; fills
+ *          t->round_m, t->maxround and each row's round_m.
+ * Errors:  as ob_res_attach_samples (round for rep), plus a fit_calls that
+ *          is not the row's in results.csv. */
+int ob_res_load_fits(ob_res_table *t, const char *path, ob_err *err);
 
 /* Orders two rows by key: curve, d, method, metric, split, tol. */
 int ob_res_key_cmp(const ob_res_row *a, const ob_res_row *b);
