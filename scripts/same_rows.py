@@ -5,13 +5,13 @@ never change a row: docs/performance.md "Engines".)
 
 Rows are matched by their job key (curve, d, method, metric, split, tol);
 every other column except the timings (fit_ns, eval_ns, time_iqr_ns,
-time_cv, cert_ns) must be equal as text, so max_err is compared to the last bit.
+time_cv, cert_ns, method_ns, method_iqr_ns) must be equal as text, so max_err is compared to the last bit.
 Prints "N rows, M differ" and up to --show differing rows; exit 0 when none
 differ and both runs have the same jobs, 1 when some do, 2 on bad input."""
 import csv
 import sys
 
-TIMING = {"fit_ns", "eval_ns", "time_iqr_ns", "time_cv", "cert_ns"}
+TIMING = {"fit_ns", "eval_ns", "time_iqr_ns", "time_cv", "cert_ns", "method_ns", "method_iqr_ns"}
 KEY = ("curve", "d", "method", "metric", "split", "tol")
 
 

@@ -462,7 +462,8 @@ void ob_cmp_timing_text(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp
         return;
     case OB_TIMING_FEW_REPS:
         snprintf(buf, len, "%stoo few repetitions to judge timing: need %d per side%s (BASE has %d, NEW %d: no "
-                 "change could be significant at alpha %g)", em, r->need_reps, em, b->res.maxrep, n->res.maxrep,
+                 "change could be significant at alpha %g)", em, r->need_reps, em,
+                 r->method_time ? b->res.maxround : b->res.maxrep, r->method_time ? n->res.maxround : n->res.maxrep,
                  o->alpha);
         return;
     case OB_TIMING_JUDGED:

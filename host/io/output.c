@@ -315,7 +315,7 @@ static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *re
     }
     /* --time-fits (host/run/fittime.h): how the method's own time was measured */
     if (o->time_fits)
-        fprintf(f, "  \"fit_timing\": {\"rounds\": %d, \"min_time_ms\": %.17g, \"wall_seconds\": %.3f, \"doc\": "
+        fprintf(f, "  \"fit_timing\": {\"rounds\": %d, \"min_time_ms\": %g, \"wall_seconds\": %.3f, \"doc\": "
                    "\"every job with an approximation (ok, limit): its accepted pieces fitted again, outside every other "
                    "timing; a warm-up calibrates the iterations so that one measurement lasts min_time_ms of thread "
                    "CPU time; rounds sweeps over the jobs each measure every job once; method_ns: the median over the "

@@ -41,6 +41,9 @@ KINDS = {
     "err_lower": "float",
     "certified": "yesno",
     "cert_ns": "int?",
+    "fit_calls": "int?",
+    "method_ns": "float",
+    "method_iqr_ns": "float",
 }
 
 # the pandas dtype of each kind
@@ -54,7 +57,7 @@ PANDAS_DTYPES = {
 }
 
 # columns that depend on the machine and the moment, not on the job
-TIMING = ("fit_ns", "eval_ns", "time_iqr_ns", "time_cv", "cert_ns")
+TIMING = ("fit_ns", "eval_ns", "time_iqr_ns", "time_cv", "cert_ns", "method_ns", "method_iqr_ns")
 
 
 def kind(name):

@@ -175,6 +175,49 @@ check 'grep -q "^\*\*OK: no regression\*\* (exit 0): 4 joined rows" "$T/out" && 
 cmp_rc 2 "$T/q1" "$T/slowcp" --methods nosuch
 check 'grep -q -- "--methods" "$T/err"' "--methods with a method neither run has: $(cat "$T/err")"
 
+# --- the methods' own fit time (run --time-fits, issue 46) ---
+# mkfits SRC DST EXPR [EVAL]: SRC (a run with --time-fits) with every round's
+# method_ns set to EXPR (awk, r the round, m the method) in fits.csv and at
+# r = 3 in results.csv; eval_ns of every repetition EVAL (default 10 ms)
+mkfits() {
+    mkdir -p "$2"
+    cp "$1/meta.json" "$2/"
+    ev=${4:-10000000}
+    awkc 'BEGIN{OFS=","} NR>1 && $c["fit_calls"] != "" {r=3; m=$c["method"]; $c["method_ns"]='"$3"'} NR>1 {$c["eval_ns"]='"$ev"'} {print}' \
+        "$1/results.csv" > "$2/results.csv"
+    awkc 'BEGIN{OFS=","} NR>1 {r=$c["round"]; m=$c["method"]; $c["method_ns"]='"$3"'} {print}' "$1/fits.csv" > "$2/fits.csv"
+    awkc 'BEGIN{OFS=","} NR>1 {r=$c["rep"]; m=$c["method"]; $c["eval_ns"]='"$ev"'} {print}' "$1/samples.csv" > "$2/samples.csv"
+}
+OFFBENCH_MACHINE=box-a OFFBENCH_LOADAVG=$T/idle $OB run $RUN --reps 5 --time-fits --fit-reps 5 --fit-min-time 0.1 \
+    --out "$T/f5" 2>/dev/null
+check '[ $? -eq 0 ] && [ -s "$T/f5/fits.csv" ]' "run --reps 5 --time-fits on box-a"
+mkfits "$T/f5" "$T/fq" '100000 + 1000 * r'
+# tiller's fits 1.5x as long, its fit_ns + eval_ns (eval 10 ms) unchanged:
+# the method time sees it, the old sum could not
+mkfits "$T/f5" "$T/fslow" '(m == "tiller" ? 1.5 : 1) * (100000 + 1000 * r)'
+cmp_rc 1 "$T/fq" "$T/fslow" --timing-only --method-timing-only
+check 'grep -q "^Timing: judged: .*the methods. own fit time (--time-fits); per method 1 slower, 0 faster, 1 no change" "$T/out" && grep -q "^| tiller | .* | 1.5 | .* | slower | regression |" "$T/out"' \
+    "a method whose fits take 1.5x as long is slower: $(grep "^| tiller" "$T/out")"
+check 'grep -q "^| \*harness\* (eval_ns) | .* | no change | same |" "$T/out"' "the harness's own line: $(grep harness "$T/out")"
+cmp_rc 0 "$T/fq" "$T/fq" --timing-only --method-timing-only
+check 'grep -q "per method 0 slower, 0 faster, 2 no change" "$T/out"' "unchanged fits: no change: $(grep "^Timing" "$T/out")"
+# the harness twice as slow: a regression on the CPU backend (thread CPU time) ...
+mkfits "$T/f5" "$T/fharn" '100000 + 1000 * r' '20000000 + 10000 * r'
+cmp_rc 1 "$T/fq" "$T/fharn" --timing-only --method-timing-only
+check 'grep -q "^| \*harness\* (eval_ns) | .* | slower | regression |" "$T/out" && grep -q "harness (eval_ns) slower" "$T/out"' \
+    "the harness 2x slower: a regression on the CPU backend: $(grep harness "$T/out" | head -n 1)"
+check '$OB compare "$T/fq" "$T/fharn" --timing-only --method-timing-only --format csv 2>/dev/null | grep -q "^harness,,,harness,,,,time_total,.*,slower$"' \
+    "CSV: the harness line"
+# ... reported only where a batch backend measured (its eval_ns is wall time)
+for d in fq fharn; do sed -i 's/"backend": "cpu"/"backend": "opencl"/' "$T/$d/meta.json"; done
+cmp_rc 0 "$T/fq" "$T/fharn" --timing-only --method-timing-only
+check 'grep -q "^| \*harness\* (eval_ns) | .* | slower | reported only |" "$T/out"' \
+    "the harness of a batch backend: reported, not counted: $(grep harness "$T/out" | head -n 1)"
+# one side without --time-fits: fit_ns + eval_ns, said
+cmp_rc 0 "$T/q1" "$T/fslow" --timing-only --method-timing-only
+check 'grep -q "BASE has no method time (run --time-fits)" "$T/out" && grep -q "fit_ns + eval_ns;" "$T/out"' \
+    "a run without --time-fits: the old sum (which cannot see the 1.5x fits), and a note: $(grep "no method time" "$T/out")"
+
 # --- JSON: the machine of each side, the per-method estimate ---
 if [ -n "$PY" ]; then
     $OB compare "$T/q1" "$T/slow5" --format json --method-timing-only >"$T/j.json" 2>/dev/null

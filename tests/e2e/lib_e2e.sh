@@ -16,11 +16,12 @@ e2e_done() {
     [ "$fail" -eq 0 ]
 }
 # a results.csv without its timing columns (fit_ns, eval_ns, the spread
-# of --reps: time_iqr_ns, time_cv, and --certify's cert_ns), found by name (fit_ns and eval_ns come
+# of --reps: time_iqr_ns, time_cv, --certify's cert_ns and --time-fits'
+# method_ns, method_iqr_ns), found by name (fit_ns and eval_ns come
 # before the message, the one field that may hold a comma; the others are
 # counted from the end of the line)
 body() {
-    awk -F, 'NR==1{n=NF; for(i=1;i<=NF;i++){if($i=="fit_ns"||$i=="eval_ns") drop[i]=1; if($i=="time_iqr_ns"||$i=="time_cv"||$i=="cert_ns") dropend[n-i]=1}}
+    awk -F, 'NR==1{n=NF; for(i=1;i<=NF;i++){if($i=="fit_ns"||$i=="eval_ns") drop[i]=1; if($i=="time_iqr_ns"||$i=="time_cv"||$i=="cert_ns"||$i=="method_ns"||$i=="method_iqr_ns") dropend[n-i]=1}}
         {s=""; for(i=1;i<=NF;i++) if(!(i in drop) && !((NF-i) in dropend)) s=s (s=="" ? "" : ",") $i; print s}' "$1"
 }
 # a results.csv as builds before the joint columns wrote it (max_gap,
