@@ -398,6 +398,17 @@ def gen_occt_summary(ctx):
     return m.summary(rows, occt)
 
 
+POWER = "results/power/nightly_power.md"
+
+
+def gen_nightly_power(ctx):
+    """the detection and false-alarm table scripts/nightly_power.sh printed,
+    committed under results/power/ with the conditions it ran in"""
+    text = ctx.text(POWER).strip()
+    need("| condition | plant |" in text, f"{POWER}: no table of scripts/nightly_power.sh")
+    return text
+
+
 # ------------------------------------------------------- transcripts
 
 def run_ok(ctx, script, what):
@@ -490,6 +501,7 @@ GENERATORS = {
     "measure-example": gen_measure_example,
     "occt-table": gen_occt_table,
     "occt-summary": gen_occt_summary,
+    "nightly-power": gen_nightly_power,
 }
 
 

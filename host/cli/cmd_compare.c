@@ -3,14 +3,16 @@
  * for nightly regression checks.
  *
  * Inputs.  BASE and NEW are each a results.csv or a run directory DIR
- * (DIR/results.csv); meta.json and samples.csv are taken from the same
- * directory when they exist (readers: results_csv.h, metajson.h).
+ * (DIR/results.csv); meta.json, samples.csv and fits.csv are taken from the
+ * same directory when they exist (readers: results_csv.h, metajson.h).
  *
  * Exit status: 0 no regression; 1 a regression (quality, timing, or a row of
  * BASE missing from NEW); 2 an error (unreadable or missing file, malformed
  * CSV or JSON, missing column, duplicate job, bad option: the message names
  * FILE:LINE or the option); 3 not comparable (or timings that cannot be
- * judged for too few repetitions, or with --strict-timing not judged).
+ * judged for too few repetitions, a method whose timing the repetitions
+ * cannot decide, or with --strict-timing not judged; a regression found
+ * elsewhere still exits 1).
  *
  * Comparability (exit 3; every reason is printed, on stderr and in the
  * report).  When both meta.json exist: samples_per_segment, max_depth,
@@ -32,12 +34,13 @@
  * runs have a meta.json, both record a machine (meta.json "machine",
  * hostinfo.h) with the same id, logical cores and memory (within 5 %),
  * compiler, cflags, backend, opencl.device, opencl.driver, omp_threads and
- * cpu_model agree, and neither run's load average (host.loadavg_max)
- * exceeded its cores (host.cores_used).  Otherwise the report's "Timing:"
- * line says "not judged: baseline from machine 'X' (id ...), this is 'Y'
- * (id ...)" (or which key differs, or "not judged: noisy: NEW's load average
- * reached L on its C cores"), stderr says it too, and timing adds nothing to
- * the exit status; quality is judged all the same.
+ * cpu_model agree.  Otherwise the report's "Timing:" line says "not
+ * judged: baseline from machine 'X' (id ...), this is 'Y' (id ...)" (or
+ * which key differs), stderr says it too, and timing adds nothing to the
+ * exit status; quality is judged all the same.  A run whose load average
+ * (host.loadavg_max) exceeded its cores (host.cores_used) is judged all
+ * the same, with a note: the times are thread CPU time and the
+ * repetitions' spread decides (issue 46).
  *
  * Join: rows are matched on (curve, d, method, metric, split, tol), d and tol
  * as doubles.  A row of BASE missing from NEW is a regression (a lost job); a
@@ -57,11 +60,13 @@
  *      a max_err that becomes nan is a regression, one that stops being nan
  *      an improvement).
  *
- * Timing of a joined row: t = fit_ns + eval_ns (the medians of the
- * repetitions when the run had --reps).  Judged only when timings are
- * judged (above), the statuses are equal and both t >= --time-floor-ns
- * (shorter jobs are timer noise).  With at least 2 repetitions of the row on
- * both sides (samples.csv) the ratio new/base is the Hodges-Lehmann estimate
+ * Timing of a joined row: when both runs timed their fits (run --time-fits),
+ * t = method_ns, the method's own time (its rounds in fits.csv), judged
+ * when both rows have it; else t = fit_ns + eval_ns (the medians of the
+ * repetitions when the run had --reps; samples.csv), judged when both
+ * t >= --time-floor-ns (shorter jobs are timer noise), and a note says
+ * so.  Judged only when timings are judged (above) and the statuses are
+ * equal.  With at least 2 repetitions of the row on both sides the ratio new/base is the Hodges-Lehmann estimate
  * of the log times' shift and its interval is that estimate's own Moses
  * interval at level 1 - alpha (hlshift.h: the interval that inverts the
  * Mann-Whitney test of ranktest.h, whose p is reported too), and the
@@ -69,11 +74,12 @@
  *   - no bounded interval: not judged, few_reps;
  *   - estimate beyond the band (above it, or below 1 / band): slower /
  *     faster when the interval excludes 1 on that side and is no wider
- *     than the change it reports (log(hi / lo) <= |log estimate|), else not
- *     judged, noisy: repetitions that spread wider than the change cannot
- *     tell it;
- *   - estimate within the band: no change when hi / lo <= band^2, else not
- *     judged, noisy.
+ *     than the change it reports (log(hi / lo) <= |log estimate|), else
+ *     noisy: repetitions that spread wider than the change cannot tell it
+ *     (for a method: "cannot decide: need N more repetitions per side",
+ *     exit 3, N from the interval's width, which shrinks as 1 / sqrt(n));
+ *   - estimate within the band: no change when hi / lo <= band^2, else
+ *     noisy.
  * Without those samples the ratio of the two times and the threshold alone
  * decide (the report counts such rows).  Slower is a regression, faster an
  * improvement.
@@ -95,8 +101,13 @@
  * ratio of the summed times and the threshold.  Slower is a regression
  * (exit 1), faster an improvement.
  *
+ * The harness: eval_ns (offbench's measuring) summed over every row judged,
+ * per repetition, judged as a method is (its own line in every format); a
+ * regression only when both runs measured on the CPU backend (thread CPU
+ * time), else reported only (a batch backend's eval_ns is wall time).
+ *
  * --strict-timing: timings that could not be judged make the exit status 3
- * (timings not judged for the machine, context or load, rows judged by the
+ * (timings not judged for the machine or context, rows judged by the
  * threshold alone for want of repetitions, rows not judged, methods not
  * judged; with --method-timing-only only the methods), the report lists
  * each reason.
