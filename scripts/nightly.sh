@@ -36,7 +36,7 @@
 # History: every run, failed or not, is then copied into a store that the
 # next night does not overwrite (scripts/nightly_history.sh), one directory
 # per run, DIR/STAMP_COMMIT_HOST/ (published/ and random/ with results.csv,
-# samples.csv and meta.json; report.md, compare-*.err, logs, run.json with
+# samples.csv, fits.csv and meta.json; report.md, compare-*.err, logs, run.json with
 # the exit status), old runs are pruned (never the newest), and when python3
 # is there scripts/report.py rebuilds the HTML report of the store in
 # SITE/index.html (a failed report is said on stderr and leaves the exit
@@ -140,11 +140,12 @@ over_load() {
     sed -n 's/.*"cores_used": \([0-9]*\),.*"loadavg_max": \([0-9.]*\),.*/\2 \1/p' "$1" 2>/dev/null | head -n 1 |
         awk '$1 > $2 {print}'
 }
-# copy_set SRC DST: a run set (results.csv, meta.json, samples.csv) into
-# DST, through DST.tmp and a rename
+# copy_set SRC DST: a run set (results.csv, meta.json, samples.csv,
+# fits.csv) into DST, through DST.tmp and a rename
 copy_set() {
     rm -rf "$2.tmp" && mkdir -p "$2.tmp" && cp "$1/results.csv" "$1/meta.json" "$2.tmp/" &&
-        { [ ! -f "$1/samples.csv" ] || cp "$1/samples.csv" "$2.tmp/"; } && rm -rf "$2" && mv "$2.tmp" "$2"
+        { [ ! -f "$1/samples.csv" ] || cp "$1/samples.csv" "$2.tmp/"; } &&
+        { [ ! -f "$1/fits.csv" ] || cp "$1/fits.csv" "$2.tmp/"; } && rm -rf "$2" && mv "$2.tmp" "$2"
 }
 
 # --accept / --accept-committed: the run just made in $out, no new run

@@ -9,7 +9,7 @@
 #       copies the nightly output OUT into DIR/STAMP_COMMIT_HOST/ (STAMP the
 #       UTC time, e.g. 2026-12-02T031205Z; COMMIT the short commit; HOST the
 #       machine's name) and prints that directory.  Per run set (published,
-#       random): results.csv, samples.csv, meta.json, the run's log; beside
+#       random): results.csv, samples.csv, fits.csv, meta.json, the run's log; beside
 #       them report.md, compare-*.err, compare-*.json (compare --format json,
 #       when the nightly wrote it), build.log and run.json (status N, its
 #       meaning, the stage that ended the run, commit, dirty flag, host,
@@ -55,7 +55,7 @@ copy_run() {
         [ -d "$set" ] || continue
         [ -f "$set/results.csv" ] || [ -f "$set/meta.json" ] || continue
         mkdir -p "$d/${set##*/}" || return 1
-        for f in results.csv samples.csv meta.json; do
+        for f in results.csv samples.csv fits.csv meta.json; do
             [ -f "$set/$f" ] && { cp "$set/$f" "$d/${set##*/}/" || return 1; }
         done
     done
