@@ -154,6 +154,15 @@ typedef struct ob_method {
                          char *msg, size_t msglen);
 } ob_method;
 
+/* ---- work done outside the calling thread ------------------------------ */
+
+/* A method whose fit runs its work elsewhere (sisl: s1360 in a server
+ * process) adds the CPU time spent there for the calling thread, so that a
+ * timer reading the thread's CPU clock can count it too (the method's own
+ * time, host/run/fittime.c); the total is the calling thread's, never reset. */
+void ob_fit_foreign_add(double ns);
+double ob_fit_foreign_ns(void);
+
 /* ---- registry (methods/registry.c) ------------------------------------ */
 
 extern const ob_method *const ob_methods[];   /* NULL-terminated */

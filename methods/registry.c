@@ -150,3 +150,10 @@ int ob_method_msg(char *msg, size_t msglen, const char *fmt, ...)
     va_end(ap);
     return n;
 }
+
+/* The calling thread's CPU time spent outside it by its fits (method.h). */
+static _Thread_local double foreign_ns;
+
+void ob_fit_foreign_add(double ns) { foreign_ns += ns; }
+
+double ob_fit_foreign_ns(void) { return foreign_ns; }

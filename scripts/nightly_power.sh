@@ -22,7 +22,8 @@
 #
 # Usage: sh scripts/nightly_power.sh [--nights N] [--conditions idle,loaded]
 #            [--plants tiller:1.5,tiller:3,...] [--out DIR]
-# Environment: OFFBENCH (default ./offbench), POWER_CURVES (the curves),
+# Environment: OFFBENCH (default ./offbench), POWER_CURVES (the curves,
+# default liu2002_ex1,atlas_folium: 270 jobs),
 # LOAD_PROCS, POWER_FIT_REPS (rounds per run, default 10).
 set -u
 cd "$(dirname "$0")/.."
@@ -41,7 +42,7 @@ while [ $# -gt 0 ]; do
     esac
 done
 ob=${OFFBENCH:-./offbench}
-curves=${POWER_CURVES:-liu2002_ex1,zhao2017_quintic,atlas_folium,arc_quarter}
+curves=${POWER_CURVES:-liu2002_ex1,atlas_folium}
 fit_reps=${POWER_FIT_REPS:-10}
 [ -x "$ob" ] || { echo "nightly_power: no $ob (make first)" >&2; exit 2; }
 rm -rf "$out" && mkdir -p "$out" || exit 2
@@ -49,7 +50,7 @@ rm -rf "$out" && mkdir -p "$out" || exit 2
 # timed_run DIR METHODS ROUNDS: the nightly's timed run on the small set
 timed_run() {
     "$ob" run --curve "$curves" --methods "$2" --backend cpu --time-fits --fit-reps "$3" \
-        --out "$1" >/dev/null 2>"$1.log"
+        --out "$1" --force >/dev/null 2>"$1.log"
 }
 # night NAME PLANT: one night; prints "verdicts;load" where verdicts are
 # method=verdict pairs of the deciding comparison
@@ -64,7 +65,7 @@ night() {
         OFFBENCH_TEST_SLOW=$2 timed_run "$d-rerun" "$undecided" "$need" &&
             "$ob" compare "$out/base" "$d-rerun" --timing-only --method-timing-only --methods "$undecided" \
                 --format csv --out "$d-rerun.csv" 2>/dev/null
-        final="$d.csv $d-rerun.csv"
+        [ -s "$d-rerun.csv" ] && final="$d.csv $d-rerun.csv"
     fi
     # shellcheck disable=SC2086
     v=$(awk -F, '$1 == "method" && $8 == "time_total" {v[$4] = $15} END {for (m in v) printf "%s=%s ", m, v[m]}' $final)

@@ -28,6 +28,8 @@
  *     by the iterations;
  *   - the job's method_ns is the median over the rounds, method_iqr_ns their
  *     interquartile range; fits.csv holds every round.
+ * A method that fits in another process (sisl's server) reports the CPU
+ * time spent there (ob_fit_foreign_add, methods/method.h): it is counted.
  * Results (every other column) do not change: the fits' outputs are thrown
  * away.  The test hook OFFBENCH_TEST_SLOW (ob_job.test_fit_repeat) repeats
  * each fit here as in the driver, so a method made slower on purpose is
