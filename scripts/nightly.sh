@@ -20,7 +20,14 @@
 #              harness (eval_ns, the 5 timed runs after a warm-up)
 #   random     --random $NIGHTLY_RANDOM (default 250:2026), one run: quality
 #              only
-# Timing (compare --timing-only --method-timing-only against
+# Timing, two ways.  With NIGHTLY_BASE_REF (a git commit or ref, e.g. the
+# commit of the last accepted baseline, or HEAD~1): that commit is built
+# from this repository (OUT/base-build) and its build and this one run the
+# published set alternately, base, new, base, new, half the rounds each
+# (asv's "continuous"), their rounds joined (scripts/join_rounds.sh) and
+# compared: a burst of load hits both sides, and no stored baseline is
+# needed (hosted CI runners).  The commit must have run --time-fits.
+# Otherwise (compare --timing-only --method-timing-only against
 # BASELINES/NAME-ID/published, NAME and ID the machine in meta.json): only
 # a baseline recorded on this machine counts, never the committed one
 # (recorded elsewhere); without one the report says "timings not judged: no
@@ -69,7 +76,10 @@
 # made with another set is not comparable: compare exits 3), OFFBENCH_THREADS
 # the thread count (default: OpenMP's), NIGHTLY_BACKEND the backend (default
 # opencl: the kernel through PoCL on a machine without a GPU),
-# NIGHTLY_METHODS the methods (default all), NIGHTLY_CURVES the published
+# NIGHTLY_METHODS the methods (default all), NIGHTLY_FIT_REPS the rounds of
+# --time-fits (default 10), NIGHTLY_BASE_REF the baseline commit for
+# interleaved timing (above; NIGHTLY_BASE_BIN: its build made elsewhere, no
+# build step), NIGHTLY_CURVES the published
 # set's curves (--curve ID,...; default every curve under datasets/: a
 # smaller nightly, e.g. for tests), NIGHTLY_BASELINE the committed
 # baseline (default results/baseline), NIGHTLY_BIN a built offbench to use
@@ -88,6 +98,7 @@ site=${NIGHTLY_SITE:-}
 baselines=${NIGHTLY_BASELINES:-${XDG_DATA_HOME:-${HOME:-.}/.local/share}/offbench/baselines}
 reruns=${NIGHTLY_RERUNS:-2}
 fit_reps=${NIGHTLY_FIT_REPS:-10}
+base_ref=${NIGHTLY_BASE_REF:-}
 while [ $# -gt 0 ]; do
     case "$1" in
         --out|--history|--keep|--keep-days|--site|--baselines|--reruns)
@@ -100,7 +111,7 @@ while [ $# -gt 0 ]; do
             shift 2 ;;
         --accept) accept=machine; shift ;;
         --accept-committed) accept=committed; shift ;;
-        -h|--help) sed -n '2,74p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,90p' "$0"; exit 0 ;;
         *) echo "nightly: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -238,6 +249,43 @@ run() {  # DIR METHODS [run options]: one run into $out/DIR, its log in $out/DIR
     echo "nightly: $name: exit $rc in $(($(date +%s) - t0)) s ($(tail -n 1 "$out/$name.log"))" >&2
     [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; finish 2 "run $name"; }
 }
+# NIGHTLY_BASE_REF: the baseline build, built once from git in a shared
+# clone under OUT/base-build (its log OUT/base-build.log); base_bin
+build_base() {
+    if [ -n "${NIGHTLY_BASE_BIN:-}" ]; then   # built elsewhere (and the tests)
+        base_bin=$NIGHTLY_BASE_BIN bsha=$base_ref
+        echo "not built: NIGHTLY_BASE_BIN=$base_bin" >"$out/base-build.log"
+        return
+    fi
+    bsha=$(git rev-parse --verify -q "$base_ref^{commit}") || {
+        echo "nightly: NIGHTLY_BASE_REF '$base_ref' is not a commit of this repository" >"$out/base-build.log"
+        cat "$out/base-build.log" >&2; finish 2 "build base"; }
+    rm -rf "$out/base-build"
+    { git clone --quiet --shared --no-checkout . "$out/base-build" && git -C "$out/base-build" checkout --quiet --detach "$bsha" &&
+        make -C "$out/base-build"; } >"$out/base-build.log" 2>&1 || {
+        echo "nightly: the baseline build of $base_ref ($bsha) failed (see $out/base-build.log)" >&2; finish 2 "build base"; }
+    base_bin="$out/base-build/offbench"
+    echo "nightly: the baseline build: $base_ref ($(printf '%s' "$bsha" | cut -c1-12))" >&2
+}
+# timing_pair NAME METHODS ROUNDS: the baseline build and this one run
+# alternately (base, new, base, new; asv's "continuous"), each time half the
+# rounds, on the published set, --time-fits; their rounds joined into
+# OUT/NAME/base and OUT/NAME/new (scripts/join_rounds.sh): a burst of load
+# hits both sides alike
+timing_pair() {
+    h=$(( ($3 + 1) / 2 ))
+    for half in 1 2; do
+        new_bin=$bin bin=$base_bin
+        # shellcheck disable=SC2086
+        run "$1/base$half" "$2" --reps 2 --time-fits --fit-reps "$h" $curves
+        bin=$new_bin
+        # shellcheck disable=SC2086
+        run "$1/new$half" "$2" --reps 2 --time-fits --fit-reps "$h" $curves
+    done
+    sh scripts/join_rounds.sh "$out/$1/base" "$out/$1/base1" "$out/$1/base2" &&
+        sh scripts/join_rounds.sh "$out/$1/new" "$out/$1/new1" "$out/$1/new2" ||
+        { echo "nightly: joining the rounds of $1 failed" >&2; finish 2 "timing $1"; }
+}
 # shellcheck disable=SC2086
 run published "$methods" --reps 5 --time-fits --fit-reps "$fit_reps" $curves
 run random "$methods" --random "$random"
@@ -295,17 +343,27 @@ for name in published random; do
     fi
 done
 
-# timing: against this machine's own baseline, the noisy methods run again
+# timing: against this machine's own baseline, or (NIGHTLY_BASE_REF) the
+# baseline build run alternately with this one tonight; the methods the
+# data cannot decide run again
 mname=$(machine_name "$out/published/meta.json")
 mid=$(machine_id "$out/published/meta.json")
 mdir=$(machine_dir "$out/published/meta.json")
-timing_csvs= timing_note= k=0
-if [ -n "$mdir" ] && [ -f "$mdir/published/results.csv" ]; then
+timing_csvs= timing_note= k=0 tbase=
+if [ -n "$base_ref" ]; then
+    build_base
+    timing_pair timing "$methods" "$fit_reps"
+    tbase="$out/timing/base"
+elif [ -n "$mdir" ] && [ -f "$mdir/published/results.csv" ]; then
+    tbase="$mdir/published"
+fi
+if [ -n "$tbase" ]; then
     # the timing compares' own exit statuses count only as errors (2): the
     # verdict is each method's last (timing_status), so that a method the
     # first run could not decide and a re-run decided does not end the night 3
     tstatus=$status
-    compare_to timing "$mdir/published" "$out/published" --timing-only --method-timing-only
+    compare_to timing "$tbase" "$([ -n "$base_ref" ] && echo "$out/timing/new" || echo "$out/published")" \
+        --timing-only --method-timing-only
     [ "$crc" -eq 2 ] || status=$tstatus
     timing_csvs="$out/compare-timing.csv"
     noisy=$(noisy_methods "$out/compare-timing.csv")
@@ -313,10 +371,16 @@ if [ -n "$mdir" ] && [ -f "$mdir/published/results.csv" ]; then
         k=$((k + 1))
         rounds=$(needed_rounds "$out/compare-timing$([ $k -gt 1 ] && echo "-rerun$((k - 1))").csv")
         echo "nightly: re-running the methods the data cannot decide: $noisy ($k of $reruns, $rounds rounds)" >&2
-        # shellcheck disable=SC2086
-        run "reruns/$k" "$noisy" --reps 5 --time-fits --fit-reps "$rounds" $curves
+        if [ -n "$base_ref" ]; then
+            timing_pair "reruns/$k" "$noisy" "$rounds"
+            rb="$out/reruns/$k/base" rn="$out/reruns/$k/new"
+        else
+            # shellcheck disable=SC2086
+            run "reruns/$k" "$noisy" --reps 5 --time-fits --fit-reps "$rounds" $curves
+            rb="$tbase" rn="$out/reruns/$k"
+        fi
         tstatus=$status
-        compare_to "timing-rerun$k" "$mdir/published" "$out/reruns/$k" --timing-only --method-timing-only --methods "$noisy"
+        compare_to "timing-rerun$k" "$rb" "$rn" --timing-only --method-timing-only --methods "$noisy"
         [ "$crc" -eq 2 ] || status=$tstatus
         timing_csvs="$timing_csvs $out/compare-timing-rerun$k.csv"
         noisy=$(noisy_methods "$out/compare-timing-rerun$k.csv")
@@ -367,7 +431,11 @@ verdict_table() {
             }
             if (hseen) {
                 iv = hlo == "" ? "-" : (hhi == "inf" ? "unbounded" : sprintf("[%.4g, %.4g]", hlo, hhi))
-                printf "| *harness* (eval_ns) | %s | %s | %s | %s | %s | - | first run |\n", ms(htb), ms(htn), num(hest), iv, hv
+                split(hv, hw, " ")
+                w = hw[1] == "same" ? "no change" : hw[1] == "noisy" ? "cannot decide" : \
+                    hw[1] == "few_reps" ? "not judged: too few repetitions" : hw[1]
+                printf "| *harness* (eval_ns) | %s | %s | %s | %s | %s%s | - | first run |\n", ms(htb), ms(htn), num(hest), iv, w,
+                       hw[2] == "reported_only" ? " (reported only)" : ""
             }
         }' role=t $timing_csvs role=q "$out/compare-published-quality.csv" "$out/compare-random-quality.csv"
 }
@@ -395,7 +463,7 @@ report="$out/report.md"
     echo "# offbench nightly, $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo
     if [ -n "$timing_csvs" ] && grep -q '^method,.*,time_total,' $timing_csvs; then
-        tline="timing: $(timing_counts) (each method's own fit time, against this machine's baseline)"
+        tline="timing: $(timing_counts) (each method's own fit time, against $([ -n "$base_ref" ] && echo "$base_ref built and run alternately tonight" || echo "this machine's baseline"))"
     elif [ -n "$timing_csvs" ]; then
         tline="timing: not judged"
     else
@@ -410,14 +478,14 @@ report="$out/report.md"
         echo "Timing: **not judged**: no baseline of this machine ('${mname:-unknown}', id ${mid:-unknown})."
     fi
     echo
-    echo "Commit $(printf '%s' "$commit" | cut -c1-12)$([ "$dirty" = true ] && echo ' (dirty)'); machine '${mname:-unknown}' (id ${mid:-unknown}); quality against $qbase/ (committed); timing against ${mdir:-none}/published$([ -n "$timing_csvs" ] || echo ' (none yet)'); random set $random; methods $methods."
+    echo "Commit $(printf '%s' "$commit" | cut -c1-12)$([ "$dirty" = true ] && echo ' (dirty)'); machine '${mname:-unknown}' (id ${mid:-unknown}); quality against $qbase/ (committed); timing against $([ -n "$base_ref" ] && echo "the build of $base_ref ($(printf '%s' "${bsha:-}" | cut -c1-12)), run alternately with this one tonight" || echo "${mdir:-none}/published$([ -n "$timing_csvs" ] || echo ' (none yet)')"); random set $random; methods $methods."
     echo
     echo "## Verdict by method"
     echo
     verdict_table
     echo
     if [ -n "$timing_csvs" ]; then
-        section "published: timing against this machine's baseline" timing
+        section "published: timing against $([ -n "$base_ref" ] && echo "the build of $base_ref, interleaved" || echo "this machine's baseline")" timing
         i=1
         while [ "$i" -le "$k" ]; do
             section "published: timing, re-run $i of the methods the data could not decide" "timing-rerun$i"

@@ -127,6 +127,21 @@ check 'grep -q "^| ahn | .* | cannot decide: need [0-9]* more repetitions | .* |
 check 'grep -q "^| zhao-rational | .* | faster | .* | first run |" "$T/r1/report.md"' \
     "zhao-rational judged on the first run: $(grep "^| zhao-rational |" "$T/r1/report.md" | head -n 1)"
 
+# --- interleaved timing (NIGHTLY_BASE_REF; the baseline build given by
+# NIGHTLY_BASE_BIN: no build here): base, new, base, new, rounds joined ---
+OFFBENCH_LOADAVG=$T/idle NIGHTLY_BASE_REF=HEAD NIGHTLY_BASE_BIN="$OB" NIGHTLY_FIT_REPS=4 NIGHTLY_RERUNS=0 nightly "$T/il"
+check '[ $rc -ne 2 ] && grep -q "^Commit .*timing against the build of HEAD (HEAD), run alternately with this one tonight" "$T/il/report.md"' \
+    "interleaved: judged against the baseline build run tonight: $rc $(grep "^Commit" "$T/il/report.md")"
+check 'for d in base1 new1 base2 new2; do [ -s "$T/il/timing/$d/fits.csv" ] || exit 1; done' "interleaved: base, new, base, new: $(ls "$T/il/timing" | tr "\n" " ")"
+check '[ "$(awkc "NR>1 {print \$c[\"round\"]}" "$T/il/timing/base/fits.csv" | sort -u | tr "\n" " ")" = "1 2 3 4 " ] && grep -q "\"reps\": 4," "$T/il/timing/new/meta.json"' \
+    "the halves' rounds joined (1 2 3 4), and their repetitions (reps 4)"
+check 'grep -q "^| ahn | .* | first run |" "$T/il/report.md" && grep -q "^| \*harness\* (eval_ns) |" "$T/il/report.md"' \
+    "the per-method table and the harness line: $(grep "^| ahn" "$T/il/report.md")"
+NIGHTLY_BASE_REF=no-such-ref nightly "$T/ilbad"
+check '[ $rc -eq 2 ] && grep -q "NIGHTLY_BASE_REF .no-such-ref. is not a commit" "$T/ilbad.err"' "a baseline ref that is no commit: exit 2: $(tail -n 2 "$T/ilbad.err")"
+sh "$ROOT/scripts/join_rounds.sh" "$T/j" "$T/il/timing/base1" "$T/n1/random" 2>"$T/err"
+check '[ $? -eq 2 ] && grep -q "not a run with --time-fits" "$T/err" && [ ! -e "$T/j" ]' "join_rounds refuses a run without fits.csv: $(cat "$T/err")"
+
 # --- the usage ---
 $NS --reruns x >/dev/null 2>"$T/err"
 check '[ $? -eq 2 ] && grep -q "reruns" "$T/err"' "--reruns x: 2"
