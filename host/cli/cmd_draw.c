@@ -83,7 +83,7 @@ static const ob_flag draw_flags[] = {
 
 /* The run options draw and trace do not take: they show one job (--method,
  * --tol) and write one file (their own --out). */
-static const char RUN_SKIP[] = "methods tols out resume force shard reps certify ";
+static const char RUN_SKIP[] = "methods tols out resume force shard reps certify time-fits fit-reps fit-min-time ";
 
 static int apply_draw_flag(void *ctx, int id, const char *opt, const char *val)
 {
