@@ -199,6 +199,13 @@ def parse_compare_json(doc):
     if not isinstance(methods, list):
         raise ValueError("methods is not a list")
     rows = []
+    harness = doc.get("harness")
+    if isinstance(harness, dict):  # offbench's own measuring, its own line (compare.h)
+        harness = dict(harness, method="(harness)", regressions=0, improvements=0)
+        if not doc.get("harness_counts"):
+            harness["method_verdict"] = "same"
+            harness["timing_not_judged"] = "reported only (a batch backend's eval_ns is wall time)"
+        methods = list(methods) + [harness]
     for m in methods:
         if not isinstance(m, dict) or not isinstance(m.get("method"), str):
             raise ValueError("a method entry without a name: %r" % (m,))
@@ -213,7 +220,9 @@ def parse_compare_json(doc):
                 "regression" if reg > 0 or tv == "slower" else "improvement" if imp > 0 or tv == "faster"
                 else "same")
         word += " (slower)" if tv == "slower" else " (faster)" if tv == "faster" else ""
-        if m.get("timing_not_judged"):
+        if m.get("timing") == "noisy" and isinstance(m.get("timing_words"), str):
+            word += "; " + m["timing_words"]  # "cannot decide: need N more repetitions per side"
+        elif m.get("timing_not_judged"):
             word += "; timing not judged: %s" % m["timing_not_judged"]
         lo, hi = m.get("ci_lo"), m.get("ci_hi")
         ci = "-" if lo is None or hi is None else "%s..%s" % (num(lo, "%.3g"), num(hi, "%.3g"))

@@ -184,17 +184,29 @@ def set_names(run):
 
 
 def load_set(run, s, warn):
-    """Reads run/s/results.csv (and samples.csv, meta.json) into run.sets[s]."""
+    """Reads run/s/results.csv (and samples.csv or fits.csv, meta.json) into
+    run.sets[s].  A method's time is its own fit time (method_ns: run
+    --time-fits, its rounds in fits.csv) where the run has it, else
+    fit_ns + eval_ns (its repetitions in samples.csv); the "harness" line
+    is eval_ns over every row (offbench's measuring), per repetition.  What
+    is timed enters the jobs hash: a switch is a "jobs" mark, not a step."""
     d = os.path.join(run.path, s)
     try:
         methods = read_results(os.path.join(d, "results.csv"))
+        timed = any(m["method_ns"] for m in methods.values())
+        if timed:
+            for m in methods.values():
+                m["time_ns"] = m["method_ns"]
+            if os.path.join(s, "fits.csv") in run.files:
+                read_fits(os.path.join(d, "fits.csv"), methods)
         if os.path.join(s, "samples.csv") in run.files:
-            read_samples(os.path.join(d, "samples.csv"), methods)
+            read_samples(os.path.join(d, "samples.csv"), methods, timed)
     except (OSError, ValueError, csv.Error) as e:
         run.flag("%s (run set left out)" % e, warn)
         return
-    for m in methods.values():
-        m["jobs"] = hashlib.sha1("\n".join(sorted(m["jobs"])).encode()).hexdigest()[:12]
+    for name, m in methods.items():
+        what = "harness" if name == HARNESS else "method_ns" if timed else "fit_ns+eval_ns"
+        m["jobs"] = hashlib.sha1("\n".join(sorted(m["jobs"]) + [what]).encode()).hexdigest()[:12]
         tot = sorted(m.pop("reps").values())
         m["rep_totals"] = tot
         m["iqr_ns"] = iqr(tot) if len(tot) >= 2 else None
@@ -210,6 +222,10 @@ def read_results(path):
     for row, col, line in csv_rows(path, NEEDED, True):
         m = methods.setdefault(row[col["method"]], new_method())
         add_row(m, row, col, path, line)
+        h = methods.setdefault(HARNESS, new_method())
+        h["rows"] += 1
+        h["time_ns"] += number(row[col["eval_ns"]], "eval_ns", path, line, int)
+        h["jobs"].append("|".join(row[col[k]] for k in KEY))
     return methods
 
 
@@ -238,9 +254,13 @@ def csv_rows(path, needed, whole_list, empty_is_error=True):
             yield row, col, line
 
 
+# The harness's line among the methods: eval_ns, offbench's own measuring.
+HARNESS = "(harness)"
+
+
 def new_method():
     return {"rows": 0, "ctrl": 0, "ok": 0, "limit": 0, "fail": 0, "timeout": 0, "skip": 0,
-            "time_ns": 0, "jobs": [], "reps": {}}
+            "time_ns": 0, "method_ns": 0, "jobs": [], "reps": {}}
 
 
 def add_row(m, row, col, path, line):
@@ -252,6 +272,8 @@ def add_row(m, row, col, path, line):
     m["ctrl"] += number(row[col["ctrl_points"]], "ctrl_points", path, line, int)
     m["time_ns"] += (number(row[col["fit_ns"]], "fit_ns", path, line, int)
                      + number(row[col["eval_ns"]], "eval_ns", path, line, int))
+    if "method_ns" in col:  # run --time-fits: the method's own fit time
+        m["method_ns"] += number(row[col["method_ns"]], "method_ns", path, line, float)
     m["jobs"].append("|".join(row[col[k]] for k in KEY if k != "method"))
 
 
@@ -265,16 +287,30 @@ def number(text, name, path, line, kind):
         raise ValueError("%s:%d: %s is '%s', not a number" % (path, line, name, text)) from None
 
 
-def read_samples(path, methods):
+def read_samples(path, methods, timed=False):
     """Adds each repetition's method total (fit_ns + eval_ns over the
-    method's rows) from samples.csv."""
+    method's rows; not where TIMED: fits.csv has those) and the harness's
+    (eval_ns over every row) from samples.csv."""
     for row, col, line in csv_rows(path, ("method", "rep", "fit_ns", "eval_ns"), False, False):
-        m = methods.get(row[col["method"]])
-        if m is None:
-            continue
         rep = row[col["rep"]]
-        m["reps"][rep] = (m["reps"].get(rep, 0) + number(row[col["fit_ns"]], "fit_ns", path, line, int)
-                          + number(row[col["eval_ns"]], "eval_ns", path, line, int))
+        ev = number(row[col["eval_ns"]], "eval_ns", path, line, int)
+        h = methods.get(HARNESS)
+        if h is not None:
+            h["reps"][rep] = h["reps"].get(rep, 0) + ev
+        m = methods.get(row[col["method"]])
+        if m is None or timed:
+            continue
+        m["reps"][rep] = m["reps"].get(rep, 0) + number(row[col["fit_ns"]], "fit_ns", path, line, int) + ev
+
+
+def read_fits(path, methods):
+    """Adds each round's method total (method_ns over the method's timed
+    rows) from fits.csv (run --time-fits)."""
+    for row, col, line in csv_rows(path, ("method", "round", "method_ns"), False, False):
+        m = methods.get(row[col["method"]])
+        if m is not None:
+            r = row[col["round"]]
+            m["reps"][r] = m["reps"].get(r, 0) + number(row[col["method_ns"]], "method_ns", path, line, float)
 
 
 def iqr(values):

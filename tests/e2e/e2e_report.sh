@@ -131,10 +131,11 @@ check '[ $? -eq 0 ] && [ -s "$T/site/index.html" ] && [ -s "$T/site/method-cobb.
     "report.py: index and method pages: $(cat "$T/err")"
 I=$T/site/index.html
 check '[ "$(grep -o "<tr class=\"run[ \"][^>]*data-commit=\"[a-e]\{7\}\"" "$I" | wc -l)" -eq 5 ]' "index: 5 run rows"
-# the steps: exactly these two, as "commit set method kind"
+# the steps: exactly these three, as "commit set method kind" (the
+# harness's line sums every row's eval_ns: tiller's tripled moves it too)
 steps() { grep -o '<tr class="step"[^>]*>' "$1" | sed -E 's/.*data-commit="([^"]*)" data-set="([^"]*)" data-method="([^"]*)" data-kind="([^"]*)".*/\1 \2 \3 \4/' | sort | tr '\n' ';'; }
-check '[ "$(steps "$I")" = "ddddddd published cobb quality;eeeeeee published tiller time;" ]' \
-    "index: the steps are cobb's quality and tiller's time: '$(steps "$I")'"
+check '[ "$(steps "$I")" = "ddddddd published cobb quality;eeeeeee published (harness) time;eeeeeee published tiller time;" ]' \
+    "index: the steps are cobb's quality, tiller's time and the harness's: '$(steps "$I")'"
 check 'grep -q "<g class=\"step\" data-run=\"[^\"]*_ddddddd_[^\"]*\" data-commit=\"ddddddd\" data-kind=\"quality\"" "$T/site/method-cobb.html"' \
     "method-cobb.html: the quality step in its chart"
 qd=$(sed -n 's|.*<td class="step" data-kind="quality">ctrl \([0-9]*\) -&gt; \([0-9]*\)</td>.*|\1 \2|p' "$T/site/method-cobb.html")
@@ -148,7 +149,7 @@ check 'grep -q "id=\"step-rule\"" "$I" && grep -q "10 %" "$I" && grep -q "<pre i
 check '! grep -q -i "src=\"http\|href=\"http\|@import\|url(http" "$T"/site/*.html' "no external resource"
 $VC "$I" "$T/s/$(ls "$T/s" | grep _eeeeeee_)/run.json" --methods tiller,cobb > "$T/vc" 2>&1
 check '[ $? -eq 0 ] && ! grep -q "mismatch" "$I"' "index: the latest run's verdict (status 0) and tables are the first section: $(cat "$T/vc")"
-check '[ $(grep -o "<svg[^>]*class=\"chart small\"" "$I" | wc -l) -eq 8 ] && [ $(grep -o "<text class=\"min[ \"]" "$I" | wc -l) -eq 8 ] && [ $(grep -o "<text class=\"[a-z ]*max\"" "$I" | wc -l) -eq 8 ] && grep -q "<text class=\"min max\"[^>]*>[0-9][0-9]*<" "$I"' \
+check '[ $(grep -o "<svg[^>]*class=\"chart small\"" "$I" | wc -l) -eq 12 ] && [ $(grep -o "<text class=\"min[ \"]" "$I" | wc -l) -eq 12 ] && [ $(grep -o "<text class=\"[a-z ]*max\"" "$I" | wc -l) -eq 12 ] && grep -q "<text class=\"min max\"[^>]*>[0-9][0-9]*<" "$I"' \
     "index: every sparkline shows its min and max (one label when flat)"
 check 'grep -q "<rect class=\"hit\"[^>]*><title>eeeeeee 2026-[^<]*: [0-9.]* ms" "$I"' "index: the sparklines' points have hover values"
 bad_links=""
@@ -247,8 +248,8 @@ else
     render "$I" index
     check '[ $? -eq 0 ] && grep -q "data-ready=\"yes\"" "$T/index.dom"' "chromium: the page's script ran"
     check '[ -z "$(console index)" ]' "chromium: console messages: $(console index | head -n 3)"
-    check '[ "$(grep -o "<tr class=\"run[ \"][^>]*data-commit=\"[a-e]\{7\}\"" "$T/index.dom" | wc -l)" -eq 5 ] && [ "$(steps "$T/index.dom")" = "ddddddd published cobb quality;eeeeeee published tiller time;" ]' \
-        "chromium: the rendered index holds the 5 runs and the 2 steps: '$(steps "$T/index.dom")'"
+    check '[ "$(grep -o "<tr class=\"run[ \"][^>]*data-commit=\"[a-e]\{7\}\"" "$T/index.dom" | wc -l)" -eq 5 ] && [ "$(steps "$T/index.dom")" = "ddddddd published cobb quality;eeeeeee published (harness) time;eeeeeee published tiller time;" ]' \
+        "chromium: the rendered index holds the 5 runs and the 3 steps: '$(steps "$T/index.dom")'"
     render "$T/site/method-tiller.html" tiller
     check '[ -z "$(console tiller)" ] && grep -q "<g class=\"step\"[^>]*data-commit=\"eeeeeee\" data-kind=\"time\"" "$T/tiller.dom"' \
         "chromium: method-tiller.html rendered with its time step, no console message"
