@@ -10,25 +10,12 @@
 
 #include "host/diag.h"
 #include "host/io/approx.h"
+#include "host/run/clock.h"
 #include "host/run/progress.h"
 #include "host/run/signals.h"
 #include "methods/metrics/cert_job.h"
 
 int ob_certify_wants(const ob_job *j) { return j->status == OB_OK || j->status == OB_LIMIT; }
-
-static double thread_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
-}
-
-static double mono_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Job j's pieces, refitted from its span log, and the base piece each
  * approximates (malloc'd arrays of a->n): 0, or -1 with the reason in why
@@ -73,9 +60,9 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, char *why
         ob_cert_defaults(&co);
         co.decide = j->tol;  /* an enclosure that straddles tol is refined to a verdict where the budget allows */
         ob_cert_job cj;
-        const double t0 = thread_ns();
+        const double t0 = ob_thread_ns();
         const int crc = ob_certify_job(a.n, base, apx, j->d, samples, &co, NULL, &cj, NULL);
-        j->cert_ns = thread_ns() - t0;
+        j->cert_ns = ob_thread_ns() - t0;
         if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
             snprintf(why, len, "out of memory");
             rc = -1;
@@ -123,7 +110,7 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
 
 int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds)
 {
-    const double start = mono_s();
+    const double start = ob_mono_s();
     double last = start;
     size_t done = 0;
     *seconds = 0.0;
@@ -164,7 +151,7 @@ int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *s
                 failed = 1;
             }
             done++;
-            const double t = mono_s();
+            const double t = ob_mono_s();
             if (t - last >= OB_PROGRESS_LOG_SECONDS && done < n) {  /* a long pass is not silent */
                 last = t;
                 ob_info("certified %zu/%zu jobs, %.0f s elapsed", done, n, t - start);
@@ -172,6 +159,6 @@ int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *s
         }
     }
     free(idx);
-    *seconds = mono_s() - start;
+    *seconds = ob_mono_s() - start;
     return failed ? -1 : stopped ? 1 : 0;
 }

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "host/diag.h"
+#include "host/run/clock.h"
 #include "host/run/progress.h"
 #include "host/run/signals.h"
 #include "host/run/spread.h"
@@ -19,20 +20,6 @@
 #define MAX_ITERS 1000000L
 
 int ob_fittime_wants(const ob_job *j) { return j->status == OB_OK || j->status == OB_LIMIT; }
-
-static double thread_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
-}
-
-static double mono_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* One timed job: its workload, cut out before any clock runs. */
 typedef struct {
@@ -66,7 +53,7 @@ static int fit_all(const ob_job *j, const timed_job *t, const scratch *s)
 
 /* The calling thread's CPU time, and what its fits spent outside it (a
  * server process: sisl), ns. */
-static double fit_clock_ns(void) { return thread_ns() + ob_fit_foreign_ns(); }
+static double fit_clock_ns(void) { return ob_thread_ns() + ob_fit_foreign_ns(); }
 
 /* CPU time of `iters` iterations, per iteration: 0, or -1. */
 static int measure(const ob_job *j, const timed_job *t, const scratch *s, long iters, double *per)
@@ -193,7 +180,7 @@ static void run_phase(pass *p, int r, const scratch *s)
                          j->curve->id, j->d, j->method->name, j->tol);
                 p->failed = 1;
             }
-            const double now = mono_s();
+            const double now = ob_mono_s();
             if (++p->done < p->total && now - p->last >= OB_PROGRESS_LOG_SECONDS) {
                 p->last = now;
                 ob_info("timed the fits %zu/%zu measurements, %.0f s elapsed", p->done, p->total, now - p->start);
@@ -229,7 +216,7 @@ static void summarize(pass *p)
 int ob_fittime_run(const ob_fittime_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, double *round_ns,
                    double *seconds)
 {
-    pass p = {.o = o, .jobs = jobs, .njobs = njobs, .round_ns = round_ns, .start = mono_s()};
+    pass p = {.o = o, .jobs = jobs, .njobs = njobs, .round_ns = round_ns, .start = ob_mono_s()};
     p.last = p.start;
     *seconds = 0;
     for (size_t i = 0; i < (size_t)o->rounds * njobs; i++)
@@ -261,7 +248,7 @@ int ob_fittime_run(const ob_fittime_opts *o, ob_job *jobs, size_t njobs, const o
     else if (!p.stopped)
         ob_error("--time-fits: the fits could not be timed");
     free_jobs(p.t, p.n);
-    *seconds = mono_s() - p.start;
+    *seconds = ob_mono_s() - p.start;
     if (p.failed || p.stopped)
         for (size_t i = 0; i < njobs; i++)
             jobs[i].fit_calls = 0;
