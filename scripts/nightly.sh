@@ -32,7 +32,7 @@
 # splits, tolerances):
 #   - a baseline row outside that selection is left out: not a regression;
 #     the report's "Left out:" lines say what (e.g. "230 random curves
-#     (rnd2026_000020 ... rnd2026_000249): 31,050 rows left out"), compare's
+#     (rnd2026_000020 ... rnd2026_000249): 30,600 rows left out"), compare's
 #     own report lists the rows (CSV kind left_out), and alone it exits 0;
 #   - a baseline row inside the selection that the run lacks is missing: a
 #     regression, exit 1;
