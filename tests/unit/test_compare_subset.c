@@ -127,6 +127,14 @@ static int compare(ob_cmp_side *bs, ob_cmp_side *ns, ob_cmp_result *r, const cha
     return ob_cmp_status(r);
 }
 
+/* compare with NEW's selection sel (selection()) and NEW's rows keep, both sides of seed 7 */
+static int compare_sel(ob_cmp_side *b, ob_cmp_side *n, ob_cmp_result *r, const sel_spec *sel, keep_fn keep)
+{
+    char extra[1024];
+    selection(extra, sizeof extra, sel);
+    return compare(b, n, r, "7", keep, "7", extra);
+}
+
 static void done(ob_cmp_side *b, ob_cmp_side *n, ob_cmp_result *r)
 {
     ob_cmp_result_free(r);
@@ -200,9 +208,7 @@ static void left_out_methods(void)
 {
     ob_cmp_side b, n;
     ob_cmp_result r;
-    char extra[1024];
-    selection(extra, sizeof extra, &(sel_spec){.methods = "[\"tiller\"]"});
-    int st = compare(&b, &n, &r, "7", tiller_only, "7", extra);
+    int st = compare_sel(&b, &n, &r, &(sel_spec){.methods = "[\"tiller\"]"}, tiller_only);
     CHECK(st == 0 && r.n_left_out == 12 && r.n_missing == 0 && r.joined == 12 && r.q_reg == 0 && r.q_imp == 0,
           "methods subset: exit 0 (got %d), 12 left out (got %d), 0 missing (got %d)", st, r.n_left_out,
           r.n_missing);
@@ -220,9 +226,7 @@ static void expect_left_out(const char *what, const sel_spec *sel, keep_fn keep,
 {
     ob_cmp_side b, n;
     ob_cmp_result r;
-    char extra[1024];
-    selection(extra, sizeof extra, sel);
-    const int st = compare(&b, &n, &r, "7", keep, "7", extra);
+    const int st = compare_sel(&b, &n, &r, sel, keep);
     const char *t = ob_cmp_left_out_text(&r);
     CHECK(st == 0 && r.n_left_out == rows && r.n_missing == 0 && r.q_reg == 0 && r.q_imp == 0 &&
               r.joined == NROWS - rows && t && strstr(t, said),
@@ -251,9 +255,7 @@ static void full_selection(void)
 {
     ob_cmp_side b, n;
     ob_cmp_result r;
-    char extra[1024];
-    selection(extra, sizeof extra, &(sel_spec){0});
-    int st = compare(&b, &n, &r, "7", keep_all, "7", extra);
+    int st = compare_sel(&b, &n, &r, &(sel_spec){0}, keep_all);
     CHECK(st == 0 && r.n_left_out == 0 && r.nch == 0 && !ob_cmp_left_out_text(&r) && r.notes.n == 0,
           "full run, full selection: exit 0, nothing left out, no note (%d notes)", r.notes.n);
     done(&b, &n, &r);
@@ -271,9 +273,7 @@ static void missing_inside(void)
 {
     ob_cmp_side b, n;
     ob_cmp_result r;
-    char extra[1024];
-    selection(extra, sizeof extra, &(sel_spec){.methods = "[\"tiller\"]"});
-    int st = compare(&b, &n, &r, "7", tiller_but_one, "7", extra);
+    int st = compare_sel(&b, &n, &r, &(sel_spec){.methods = "[\"tiller\"]"}, tiller_but_one);
     CHECK(st == 1 && r.n_missing == 1 && r.n_left_out == 12 && count_kind(&r, OB_CH_MISSING) == 1,
           "a row inside the selection lost: exit 1 (got %d), 1 missing (got %d), 12 left out (got %d)", st,
           r.n_missing, r.n_left_out);
@@ -295,9 +295,7 @@ static void no_selection(void)
     CHECK(st == 1 && r.n_missing == 12 && has_note(&r.notes, "NEW has no meta.json"),
           "NEW without meta.json: missing rows are regressions, said: exit %d", st);
     done(&b, &n, &r);
-    char extra[1024];
-    selection(extra, sizeof extra, &(sel_spec){.tols = "[\"0.1\"]"});
-    st = compare(&b, &n, &r, "7", tol_01, "7", extra);
+    st = compare_sel(&b, &n, &r, &(sel_spec){.tols = "[\"0.1\"]"}, tol_01);
     CHECK(st == 1 && r.n_missing == 12 && has_note(&r.notes, "selection.tols"),
           "a selection that cannot be read is not used, said: exit %d", st);
     done(&b, &n, &r);
@@ -336,9 +334,7 @@ static void reports(void)
     ob_cmp_result r;
     ob_cmp_opts o = ob_cmp_defaults();
     o.no_timing = 1;
-    char extra[1024];
-    selection(extra, sizeof extra, &(sel_spec){.methods = "[\"tiller\"]"});
-    compare(&b, &n, &r, "7", tiller_only, "7", extra);
+    compare_sel(&b, &n, &r, &(sel_spec){.methods = "[\"tiller\"]"}, tiller_only);
     char *md = report(&b, &n, &o, &r, 0), *csv = report(&b, &n, &o, &r, 1), *json = report(&b, &n, &o, &r, 2);
     int lines = 0;
     for (const char *p = csv; p && (p = strstr(p, "\nleft_out,")); p++)
