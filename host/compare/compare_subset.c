@@ -132,10 +132,12 @@ static int read_random(ob_cmp_subset *s)
     const ob_json_entry *n = ob_json_get(s->meta, "selection.random.n"),
                         *seed = ob_json_get(s->meta, "selection.random.seed"),
                         *only = ob_json_get(s->meta, "selection.random.only");
-    char *end;
+    const int seed_ok = seed && seed->type == OB_JSON_NUMBER && seed->value[0] != '-';
+    char *end = NULL;
     errno = 0;
-    s->seed = seed && seed->type == OB_JSON_NUMBER && seed->value[0] != '-' ? strtoull(seed->value, &end, 10) : 0;
-    if (!n || n->type != OB_JSON_NUMBER || !seed || errno || *end || !only) {
+    if (seed_ok)
+        s->seed = strtoull(seed->value, &end, 10);
+    if (!n || n->type != OB_JSON_NUMBER || !seed_ok || errno || *end || !only) {
         snprintf(s->why, sizeof s->why, "selection.random is not null or {\"n\": N, \"seed\": S, \"only\": ...}");
         return -1;
     }

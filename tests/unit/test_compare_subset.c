@@ -299,6 +299,10 @@ static void no_selection(void)
     CHECK(st == 1 && r.n_missing == 12 && has_note(&r.notes, "selection.tols"),
           "a selection that cannot be read is not used, said: exit %d", st);
     done(&b, &n, &r);
+    st = compare_sel(&b, &n, &r, &(sel_spec){.random = "{\"n\": 3, \"seed\": \"7\", \"only\": null}"}, tol_01);
+    CHECK(st == 1 && r.n_missing == 12 && has_note(&r.notes, "selection.random"),
+          "a random set whose seed is not a number is not read: exit %d", st);
+    done(&b, &n, &r);
     st = compare(&b, &n, &r, "7", keep_all, "7", NULL);
     CHECK(st == 0 && r.notes.n == 0, "nothing missing: no note (the output of a full run does not move)");
     done(&b, &n, &r);
