@@ -222,8 +222,8 @@ def gen_paper_cells_share(ctx):
     return f"{100 * good / have:.1f} %"
 
 
-def nightly_jobs(ctx, which):
-    rel = f"results/baseline/{which}"
+def nightly_jobs(ctx, which, base="results/baseline"):
+    rel = f"{base}/{which}"
     meta = ctx.meta(rel + "/meta.json")
     n = len(ctx.rows(rel + "/results.csv"))
     need(meta.get("jobs") == n, f"{rel}: meta.json says {meta.get('jobs')} jobs, results.csv has {n} rows")
@@ -236,6 +236,14 @@ def gen_nightly_jobs_published(ctx):
 
 def gen_nightly_jobs_random(ctx):
     return nightly_jobs(ctx, "random")
+
+
+def gen_nightly_jobs_small_published(ctx):
+    return nightly_jobs(ctx, "published", "results/baseline-small")
+
+
+def gen_nightly_jobs_small_random(ctx):
+    return nightly_jobs(ctx, "random", "results/baseline-small")
 
 
 # ------------------------------------------------------- continuity table
@@ -488,6 +496,8 @@ GENERATORS = {
     "paper-cells-share": gen_paper_cells_share,
     "nightly-jobs-published": gen_nightly_jobs_published,
     "nightly-jobs-random": gen_nightly_jobs_random,
+    "nightly-jobs-small-published": gen_nightly_jobs_small_published,
+    "nightly-jobs-small-random": gen_nightly_jobs_small_random,
     "continuity": gen_continuity,
     "continuity-degenerate-open": gen_continuity_degenerate_open,
     "continuity-closed-gap": gen_continuity_closed_gap,

@@ -20,6 +20,27 @@
 #              harness (eval_ns, the 5 timed runs after a warm-up)
 #   random     --random $NIGHTLY_RANDOM (default 250:2026), one run: quality
 #              only
+# --size small (NIGHTLY_SIZE=small), for runners that cannot afford that (a
+# minute or two on 2 cores, docs/nightly.md): published on 9 curves under
+# datasets/ (the papers' examples, arc_quarter, ph_cubic, atlas_ellipse,
+# atlas_cardioid), random --random 20:2026, against the committed baseline of
+# that size, results/baseline-small/, and this machine's own small baseline.
+#
+# A smaller nightly (fewer curves, NIGHTLY_CURVES; methods, NIGHTLY_METHODS;
+# a smaller N of the same seed, NIGHTLY_RANDOM; --size small against the
+# full baseline, NIGHTLY_BASELINE=results/baseline) compares the rows it
+# ran.  compare reads what the run set out to run from its meta.json
+# ("selection": curves and their offsets, random set, methods, metrics,
+# splits, tolerances):
+#   - a baseline row outside that selection is left out: not a regression;
+#     the report's "Left out:" lines say what (e.g. "230 random curves
+#     (rnd2026_000020 ... rnd2026_000249): 30,600 rows left out"), compare's
+#     own report lists the rows (CSV kind left_out), and alone it exits 0;
+#   - a baseline row inside the selection that the run lacks is missing: a
+#     regression, exit 1;
+#   - another random seed makes other curves: not comparable, exit 3 (curve
+#     i of a seed is the same for every N, so a smaller N of the same seed
+#     is a subset).
 # Timing, two ways.  With NIGHTLY_BASE_REF (a git commit or ref, e.g. the
 # commit of the last accepted baseline, or HEAD~1): that commit is built
 # from this repository (OUT/base-build) and its build and this one run the
@@ -28,7 +49,8 @@
 # compared: a burst of load hits both sides, and no stored baseline is
 # needed (hosted CI runners).  The commit must have run --time-fits.
 # Otherwise (compare --timing-only --method-timing-only against
-# BASELINES/NAME-ID/published, NAME and ID the machine in meta.json): only
+# BASELINES/NAME-ID/published, small: BASELINES/NAME-ID/small/published,
+# NAME and ID the machine in meta.json): only
 # a baseline recorded on this machine counts, never the committed one
 # (recorded elsewhere); without one the report says "timings not judged: no
 # baseline of this machine" and timing adds nothing to the status.  Methods
@@ -50,7 +72,8 @@
 # status alone).
 #
 # Usage:
-#   scripts/nightly.sh [--out DIR]      build, run and compare (default out/nightly)
+#   scripts/nightly.sh [--size full|small] [--out DIR]
+#                                       build, run and compare (default out/nightly)
 #   scripts/nightly.sh --accept [--out DIR]
 #                                       no new run: the run just made in DIR
 #                                       becomes this machine's timing baseline
@@ -60,9 +83,13 @@
 #                                       is compared with itself first)
 #   scripts/nightly.sh --accept-committed [--out DIR]
 #                                       no new run: the run in DIR becomes the
-#                                       committed baseline (results/baseline/:
-#                                       review `git diff --stat` and commit it)
+#                                       committed baseline of its size
+#                                       (results/baseline/, small:
+#                                       results/baseline-small/: review `git
+#                                       diff --stat` and commit it)
+#   Both take the run's size from DIR/size; a --size that differs is refused.
 # Options (each also an environment variable):
+#   --size S        NIGHTLY_SIZE       full (default) or small (above)
 #   --baselines DIR NIGHTLY_BASELINES  the machines' own baselines (default
 #                                      ${XDG_DATA_HOME:-~/.local/share}/offbench/baselines,
 #                                      outside the repository)
@@ -72,21 +99,22 @@
 #   --keep N        NIGHTLY_KEEP       keep the N newest runs (default 0: all)
 #   --keep-days D   NIGHTLY_KEEP_DAYS  drop runs older than D days (0: never)
 #   --site DIR      NIGHTLY_SITE       the report (default HISTORY/site)
-# Environment: NIGHTLY_RANDOM=N:SEED overrides the random set (a baseline
-# made with another set is not comparable: compare exits 3), OFFBENCH_THREADS
+# Environment: NIGHTLY_RANDOM=N:SEED overrides the random set (another seed
+# than the baseline's is not comparable, exit 3; a smaller N of its seed is a
+# subset, above), OFFBENCH_THREADS
 # the thread count (default: OpenMP's), NIGHTLY_BACKEND the backend (default
 # opencl: the kernel through PoCL on a machine without a GPU),
 # NIGHTLY_METHODS the methods (default all), NIGHTLY_FIT_REPS the rounds of
 # --time-fits (default 10), NIGHTLY_BASE_REF the baseline commit for
 # interleaved timing (above; NIGHTLY_BASE_BIN: its build made elsewhere, no
 # build step), NIGHTLY_CURVES the published
-# set's curves (--curve ID,...; default every curve under datasets/: a
-# smaller nightly, e.g. for tests), NIGHTLY_BASELINE the committed
-# baseline (default results/baseline), NIGHTLY_BIN a built offbench to use
+# set's curves (--curve ID,...; default every curve under datasets/, small:
+# the 9 above), NIGHTLY_BASELINE the committed baseline (default
+# results/baseline, small: results/baseline-small), NIGHTLY_BIN a built offbench to use
 # (no build step), OFFBENCH_MACHINE this machine's name (default: the host
 # name; set it where cloned machines share /etc/machine-id and a host name).
-# Files: OUT/report.md, OUT/status, OUT/compare-*.{md,csv,err}, OUT/*.log,
-# OUT/published, OUT/random, OUT/reruns/K (the K-th re-run).
+# Files: OUT/report.md, OUT/status, OUT/size, OUT/compare-*.{md,csv,err},
+# OUT/*.log, OUT/published, OUT/random, OUT/reruns/K (the K-th re-run).
 set -u
 cd "$(dirname "$0")/.."
 out=out/nightly
@@ -99,19 +127,20 @@ baselines=${NIGHTLY_BASELINES:-${XDG_DATA_HOME:-${HOME:-.}/.local/share}/offbenc
 reruns=${NIGHTLY_RERUNS:-2}
 fit_reps=${NIGHTLY_FIT_REPS:-10}
 base_ref=${NIGHTLY_BASE_REF:-}
+size=${NIGHTLY_SIZE:-}
 while [ $# -gt 0 ]; do
     case "$1" in
-        --out|--history|--keep|--keep-days|--site|--baselines|--reruns)
+        --out|--history|--keep|--keep-days|--site|--baselines|--reruns|--size)
             [ $# -ge 2 ] || { echo "nightly: $1 needs a value" >&2; exit 2; }
             case "$1" in
                 --out) out=$2 ;; --history) history=$2 ;; --keep) keep=$2 ;;
                 --keep-days) keep_days=$2 ;; --site) site=$2 ;; --baselines) baselines=$2 ;;
-                --reruns) reruns=$2 ;;
+                --reruns) reruns=$2 ;; --size) size=$2 ;;
             esac
             shift 2 ;;
         --accept) accept=machine; shift ;;
         --accept-committed) accept=committed; shift ;;
-        -h|--help) sed -n '2,90p' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1' "$0"; exit 0 ;;
         *) echo "nightly: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -122,15 +151,41 @@ done
 case "${history%/}/" in "${out%/}/"*)
     echo "nightly: the history store $history lies inside the output directory $out, which each run removes" >&2; exit 2 ;;
 esac
-random=${NIGHTLY_RANDOM:-250:2026}
+# --accept, --accept-committed: the size of the run they take (OUT/size)
+if [ -n "$accept" ]; then
+    run_size=$(cat "$out/size" 2>/dev/null || echo full)
+    if [ -n "$size" ] && [ "$size" != "$run_size" ]; then
+        echo "nightly: not accepted: the run in $out is a $run_size nightly, not $size (leave --size out to accept it as it is)" >&2
+        exit 2
+    fi
+    size=$run_size
+fi
+size=${size:-full}
+case "$size" in full|small) ;; *) echo "nightly: --size is full or small, not '$size'" >&2; exit 2 ;; esac
+# The small configuration: a subset of the full one (its curves among
+# datasets/, the first 20 curves of the full random set), so that a small
+# nightly is judged against the full baseline too (its other rows left out).
+small_curves=liu2002_ex1,liu2002_ex2,liu2002_ex2_unclamped,zhao2017_quintic,zhao2017_septic,arc_quarter,ph_cubic,atlas_ellipse,atlas_cardioid
+if [ "$size" = small ]; then
+    random=${NIGHTLY_RANDOM:-20:2026}
+    curve_list=${NIGHTLY_CURVES:-$small_curves}
+    qbase=${NIGHTLY_BASELINE:-results/baseline-small}
+    mset=small/published  # this machine's small timing baseline, BASELINES/NAME-ID/small/published
+    small='small '
+else
+    random=${NIGHTLY_RANDOM:-250:2026}
+    curve_list=${NIGHTLY_CURVES:-}
+    qbase=${NIGHTLY_BASELINE:-results/baseline}
+    mset=published
+    small=
+fi
 threads=${OFFBENCH_THREADS:+--threads $OFFBENCH_THREADS}
 # The nightly measures through OpenCL on the machine's CPU (PoCL) by name:
 # --backend auto now takes the CPU backend where there is no GPU, and the
 # kernel path is what the nightly guards (NIGHTLY_BACKEND=cpu to skip it).
 backend=${NIGHTLY_BACKEND:-opencl}
 methods=${NIGHTLY_METHODS:-all}
-curves=${NIGHTLY_CURVES:+--curve $NIGHTLY_CURVES}
-qbase=${NIGHTLY_BASELINE:-results/baseline}
+curves=${curve_list:+--curve $curve_list}
 bin=${NIGHTLY_BIN:-./offbench}
 
 # The machine of a run, from its meta.json's one-line "machine" object
@@ -173,7 +228,7 @@ if [ -n "$accept" ]; then
         for name in published random; do
             copy_set "$out/$name" "$qbase/$name" || { echo "nightly: could not copy $out/$name into $qbase/$name" >&2; exit 2; }
         done
-        echo "nightly: the run in $out is now the committed baseline in $qbase/ (review git diff --stat $qbase and commit it with the reason)" >&2
+        echo "nightly: the $size run in $out is now the committed baseline in $qbase/ (review git diff --stat $qbase and commit it with the reason)" >&2
         exit 0
     fi
     # A loaded night is accepted when its own repetitions are consistent:
@@ -191,8 +246,8 @@ if [ -n "$accept" ]; then
     fi
     dir=$(machine_dir "$out/published/meta.json") || {
         echo "nightly: not accepted: $out/published/meta.json records no machine (a run of an older offbench)" >&2; exit 2; }
-    copy_set "$out/published" "$dir/published" || { echo "nightly: could not copy $out/published into $dir/published" >&2; exit 2; }
-    echo "nightly: the run in $out is now the timing baseline of machine '$(machine_name "$out/published/meta.json")' in $dir" >&2
+    copy_set "$out/published" "$dir/$mset" || { echo "nightly: could not copy $out/published into $dir/$mset" >&2; exit 2; }
+    echo "nightly: the run in $out is now the $size timing baseline of machine '$(machine_name "$out/published/meta.json")' in $dir/$mset" >&2
     exit 0
 fi
 
@@ -237,6 +292,7 @@ fi
 rm -rf "$out"
 mkdir -p "$out"
 mv "$out.build.log" "$out/build.log"
+echo "$size" >"$out/size"  # what --accept and --accept-committed take it for
 
 run() {  # DIR METHODS [run options]: one run into $out/DIR, its log in $out/DIR.log
     name=$1 m=$2; shift 2
@@ -354,8 +410,8 @@ if [ -n "$base_ref" ]; then
     build_base
     timing_pair timing "$methods" "$fit_reps"
     tbase="$out/timing/base"
-elif [ -n "$mdir" ] && [ -f "$mdir/published/results.csv" ]; then
-    tbase="$mdir/published"
+elif [ -n "$mdir" ] && [ -f "$mdir/$mset/results.csv" ]; then
+    tbase="$mdir/$mset"
 fi
 if [ -n "$tbase" ]; then
     # the timing compares' own exit statuses count only as errors (2): the
@@ -388,7 +444,7 @@ if [ -n "$tbase" ]; then
     # shellcheck disable=SC2086
     worst "$(timing_status $timing_csvs)"
 else
-    timing_note="timings not judged: no baseline of this machine ('${mname:-unknown}', id ${mid:-unknown}) in $baselines: \`scripts/nightly.sh --accept\` after a quiet night makes the run just made this machine's baseline"
+    timing_note="timings not judged: no ${small}baseline of this machine ('${mname:-unknown}', id ${mid:-unknown}) in $baselines: \`scripts/nightly.sh --accept\` after a quiet night makes the run just made this machine's baseline"
     echo "nightly: $timing_note" >&2
 fi
 
@@ -447,6 +503,14 @@ timing_counts() {
               printf "%d slower%s, %d faster, %d no change, %d undecided", c["slower"] + 0, s == "" ? "" : " (" s ")",
                      c["faster"] + 0, c["same"] + 0, c["noisy"] + c["few_reps"] }' $timing_csvs
 }
+# what each quality comparison left out of the baseline (compare's "Left
+# out:" line: the rows outside this run's selection, not regressions)
+left_out_lines() {
+    for name in published random; do
+        sed -n "s/^Left out: \(.*\) (rows of BASE outside NEW's selection: not regressions)\.\$/Left out of $name (a subset chosen on purpose, not regressions): \1./p" \
+            "$out/compare-$name-quality.md" 2>/dev/null | head -n 1
+    done
+}
 first_line() { sed -n 's/^\*\*\([^*]*\)\*\* (exit \([0-9]\)).*/\1 (exit \2)/p' "$1" | head -n 1; }
 section() {  # TITLE LABEL: one comparison's report, headings one level down, its messages quoted
     echo "## $1"
@@ -467,7 +531,7 @@ report="$out/report.md"
     elif [ -n "$timing_csvs" ]; then
         tline="timing: not judged"
     else
-        tline="timing: not judged (no baseline of this machine)"
+        tline="timing: not judged (no ${small}baseline of this machine)"
     fi
     echo "**$(status_word $status)** (exit $status): $tline; quality: published $(first_line "$out/compare-published-quality.md"), random $(first_line "$out/compare-random-quality.md")."
     if [ -n "$timing_csvs" ]; then
@@ -475,10 +539,11 @@ report="$out/report.md"
         [ "$k" -eq 0 ] || printf ' The methods the data could not decide were run again %d time(s): the table says which run decided.' "$k"
         echo
     else
-        echo "Timing: **not judged**: no baseline of this machine ('${mname:-unknown}', id ${mid:-unknown})."
+        echo "Timing: **not judged**: no ${small}baseline of this machine ('${mname:-unknown}', id ${mid:-unknown})."
     fi
+    left_out_lines
     echo
-    echo "Commit $(printf '%s' "$commit" | cut -c1-12)$([ "$dirty" = true ] && echo ' (dirty)'); machine '${mname:-unknown}' (id ${mid:-unknown}); quality against $qbase/ (committed); timing against $([ -n "$base_ref" ] && echo "the build of $base_ref ($(printf '%s' "${bsha:-}" | cut -c1-12)), run alternately with this one tonight" || echo "${mdir:-none}/published$([ -n "$timing_csvs" ] || echo ' (none yet)')"); random set $random; methods $methods."
+    echo "Commit $(printf '%s' "$commit" | cut -c1-12)$([ "$dirty" = true ] && echo ' (dirty)'); machine '${mname:-unknown}' (id ${mid:-unknown}); quality against $qbase/ (committed); timing against $([ -n "$base_ref" ] && echo "the build of $base_ref ($(printf '%s' "${bsha:-}" | cut -c1-12)), run alternately with this one tonight" || echo "${mdir:-none}/$mset$([ -n "$timing_csvs" ] || echo ' (none yet)')"); size $size; random set $random; methods $methods."
     echo
     echo "## Verdict by method"
     echo

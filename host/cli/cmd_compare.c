@@ -43,8 +43,14 @@
  * repetitions' spread decides (issue 46).
  *
  * Join: rows are matched on (curve, d, method, metric, split, tol), d and tol
- * as doubles.  A row of BASE missing from NEW is a regression (a lost job); a
- * row only in NEW is reported as new, not a regression.
+ * as doubles.  A row of BASE missing from NEW is a regression (a lost job),
+ * unless it lies outside what NEW set out to run (NEW's meta.json
+ * "selection": its curves and their offsets, random set, methods, metrics,
+ * splits, tolerances): then it was left out on purpose (a smaller run), is
+ * counted and listed as left out, not a regression (compare_subset.h).
+ * Without NEW's meta.json or a selection in it every missing row is a
+ * regression, and a note says so.  A row only in NEW is reported as new,
+ * not a regression.
  *
  * Quality of a joined row (exact rules, first that applies):
  *   1. status changed: ok -> anything else is a regression, anything else ->
@@ -129,6 +135,7 @@
  * (joined rows, regressions: quality / timing / missing rows, improvements,
  * new and missing rows, methods slower / faster), the "Timing:" line
  * (judged on the same machine, with the per-method counts, or why not),
+ * when rows were left out the "Left out:" line (what, how many rows),
  * then the table that decides it, "Verdict by method" (method, joined rows,
  * geometric means of ctrl_points and max_err, row regressions and
  * improvements that count, time base and new, new/base and its interval, p,
@@ -136,7 +143,8 @@
  * counts), the context (the inputs, comparability, how timings were judged,
  * notes), and last, in a collapsed <details> section, what does not count:
  * improvements, new rows, row-level timing changes under
- * --method-timing-only, rows not judged.  Each table is capped at
+ * --method-timing-only, rows not judged; then, collapsed too, the rows
+ * left out.  Each table is capped at
  * --max-rows, saying how many were left out.  When not comparable: the
  * verdict, the inputs and the reasons only.
  *
@@ -152,6 +160,8 @@
  *                           curve, d, metric, split, tol empty, field
  *                           time_total, as its method line below.
  *   missing                 a row of BASE not in NEW: field status, base its status
+ *   left_out                a row of BASE outside NEW's selection (not a
+ *                           regression): field status, base its status
  *   new                     a row only in NEW: field status, new its status
  *   method                  per method: fields ctrl_points_gm, max_err_gm and
  *                           time_gm with the geometric mean in ratio (empty
@@ -166,8 +176,10 @@
  *   context                 field not_comparable, timing_not_compared (why
  *                           timings were not judged; note noisy for a load),
  *                           timing_not_judged (exit 3: too few repetitions,
- *                           or --strict-timing), note, or timing (the
- *                           report's "Timing:" line); the text in base
+ *                           or --strict-timing), note, timing (the
+ *                           report's "Timing:" line), or left_out (the
+ *                           summary of what was left out, when any); the
+ *                           text in base
  * d and tol are written as in the input file; numbers in full precision.
  * When not comparable only the context lines follow the header.
  *
@@ -177,7 +189,9 @@
  * machine_id, repetitions), options, context (checked, timing_compared,
  * timing (the "Timing:" line), interval, noise_width, and the lists
  * not_comparable, timing_not_compared, timing_not_judged, notes), counts,
- * changes (the CSV's change lines as objects: d and tol as numbers, base and
+ * left_out (rows: how many, summary: the "Left out:" line, selection: what
+ * NEW set out to run; null without), changes (the CSV's change lines as
+ * objects: d and tol as numbers, base and
  * new typed, null for none) and methods (with time_base_ns, time_new_ns,
  * time_estimate, ci_lo, ci_hi, p_value and timing, the verdict); numbers
  * that are not finite are null.

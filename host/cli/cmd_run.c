@@ -106,6 +106,7 @@ static int plan_run(run_cmd *r)
     const ob_run_opts *o = &r->o;
     if (ob_load_run_curves(o, &r->set, r->where, sizeof r->where) != 0)
         return 2;
+    r->rec.curves = &r->set;
     if (o->threads > 0)
         omp_set_num_threads(o->threads);
     ob_offset_degrees(o, &r->set);

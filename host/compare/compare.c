@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/compare/compare_subset.h"
 #include "host/compare/hlshift.h"
 #include "host/compare/ranktest.h"
 #include "host/io/strmap.h"
@@ -567,6 +568,12 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
         const ob_res_row *b = &bt->v[i], *n = ob_res_find(nt, b);
         if (!ob_cmp_method_selected(o, b->method) || (!n && o->timing_only))
             continue;
+        /* outside NEW's selection: left out on purpose, not missing (compare_subset.h) */
+        const int left_out = n ? 0 : ob_cmp_subset_left_out(r, b);
+        if (left_out < 0 || (left_out && add_change(r, OB_CH_LEFT_OUT, "status", b, NULL, NAN, NAN)))
+            goto done;
+        if (left_out)
+            continue;
         int mi = method_index(r, &mt, b->method);
         if (mi < 0)
             goto done;
@@ -592,6 +599,8 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
             if (add_change(r, OB_CH_NEW, "status", NULL, &nt->v[j], NAN, NAN))
                 goto done;
         }
+    if (ob_cmp_subset_finish(r) != 0)
+        goto done;
     if (group_by_method(pr, np, r->nms, &order, &start) != 0)
         goto done;
     method_means(pr, order, start, r);
@@ -629,6 +638,7 @@ void ob_cmp_result_free(ob_cmp_result *r)
     ob_strlist_free(&r->timing_diffs);
     ob_strlist_free(&r->notes);
     ob_strlist_free(&r->strict);
+    ob_cmp_subset_free(r->subset);
     free(r->ch);
     free(r->ms);
     memset(r, 0, sizeof *r);

@@ -62,8 +62,10 @@ typedef struct {
 } ob_strlist;
 
 /* OB_CH_NOT_JUDGED: a row whose timing was due to be judged but could not
- * be (its interval is unbounded or too wide: ob_cmp_rows) */
-typedef enum { OB_CH_REGRESSION, OB_CH_IMPROVEMENT, OB_CH_NEW, OB_CH_MISSING, OB_CH_NOT_JUDGED } ob_ch_kind;
+ * be (its interval is unbounded or too wide: ob_cmp_rows); OB_CH_LEFT_OUT:
+ * a row of BASE outside NEW's selection, not a regression (compare_subset.h) */
+typedef enum { OB_CH_REGRESSION, OB_CH_IMPROVEMENT, OB_CH_NEW, OB_CH_MISSING, OB_CH_NOT_JUDGED,
+               OB_CH_LEFT_OUT } ob_ch_kind;
 
 typedef struct {
     ob_ch_kind kind;
@@ -150,6 +152,8 @@ typedef struct {
                                        is wall time, which load inflates) */
     int undecided;                  /* methods whose timing cannot be decided
                                        (noisy): exit 3 */
+    int n_left_out;                 /* rows of BASE outside NEW's selection (compare_subset.h) */
+    struct ob_cmp_subset *subset;   /* NEW's selection and what it left out (owned) */
 } ob_cmp_result;
 
 /* Purpose: the comparability checks (meta.json keys, method parameters and

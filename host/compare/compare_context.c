@@ -3,6 +3,7 @@
  * comparability checks (the rules are spelled out in cmd_compare.c).
  */
 #include "host/compare/compare.h"
+#include "host/compare/compare_subset.h"
 
 #include "host/io/strmap.h"
 #include "methods/method.h"
@@ -526,7 +527,7 @@ int ob_cmp_context(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts
             rc |= ob_strlist_addf(&r->notes, "%s's run warned (meta.json warnings): %.700s", sd->label, w->value);
     }
     if (!rc)
-        rc = check_values(b, n, cols, r) || timing_context(b, n, o, r);
+        rc = check_values(b, n, cols, r) || timing_context(b, n, o, r) || ob_cmp_subset_load(b, n, r);
     for (int side = 0; side < 2; side++)
         for (int col = 0; col < NCOLS; col++)
             ob_strmap_free(&cols[side][col]);

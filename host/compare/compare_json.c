@@ -4,6 +4,7 @@
  * ratio, no p, an unbounded interval end) are written as null.
  */
 #include "host/compare/compare.h"
+#include "host/compare/compare_subset.h"
 
 #include <math.h>
 #include <string.h>
@@ -144,6 +145,17 @@ static void jmethod(FILE *f, const ob_method_sum *m)
     fprintf(f, ", \"method_verdict\": \"%s\"}", ob_method_verdict(m));
 }
 
+/* "left_out": the rows of BASE outside NEW's selection (compare_subset.h):
+ * how many, the summary and NEW's selection in words (null without). */
+static void jleft_out(FILE *f, const ob_cmp_result *r)
+{
+    fprintf(f, "  \"left_out\": {\"rows\": %d, \"summary\": ", r->n_left_out);
+    jstr(f, ob_cmp_left_out_text(r));
+    fprintf(f, ", \"selection\": ");
+    jstr(f, ob_cmp_selection_text(r));
+    fprintf(f, "},\n");
+}
+
 int ob_cmp_write_json(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
                       const ob_cmp_result *r)
 {
@@ -190,11 +202,13 @@ int ob_cmp_write_json(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const
                "\"timing_few_reps\": %d},\n",
             r->joined, r->q_reg, r->t_reg, r->t_rows_count ? "true" : "false", r->n_missing, r->n_new, r->q_imp,
             r->t_imp, r->m_reg, r->m_imp, r->t_judged, r->t_tested, r->t_threshold_only, r->t_noisy, r->t_few_reps);
+    jleft_out(f, r);
     fprintf(f, "  \"changes\": [");
     int first = 1;
     for (int i = 0; !r->incomparable.n && i < r->nch; i++) {
         fputs(first ? "\n" : ",\n", f);
-        jchange(f, &r->ch[i], (const char *[]){"regression", "improvement", "new", "missing", "not_judged"}[r->ch[i].kind]);
+        jchange(f, &r->ch[i], (const char *[]){"regression", "improvement", "new", "missing", "not_judged",
+                                               "left_out"}[r->ch[i].kind]);
         first = 0;
     }
     fprintf(f, "%s],\n  \"methods\": [", first ? "" : "\n  ");

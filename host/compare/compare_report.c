@@ -3,6 +3,7 @@
  * layout is documented in cmd_compare.c).
  */
 #include "host/compare/compare.h"
+#include "host/compare/compare_subset.h"
 
 #include <math.h>
 #include <string.h>
@@ -63,7 +64,7 @@ static void side_line(FILE *f, const ob_cmp_side *s)
 
 static const char *kind_name(ob_ch_kind k)
 {
-    static const char *const n[] = {"regression", "improvement", "new", "missing", "not_judged"};
+    static const char *const n[] = {"regression", "improvement", "new", "missing", "not_judged", "left_out"};
     return n[k];
 }
 
@@ -105,7 +106,7 @@ static void md_table(FILE *f, const ob_cmp_result *r, ob_ch_kind kind, row_filte
         fprintf(f, "None.\n");
         return;
     }
-    const int rows_only = kind == OB_CH_NEW || kind == OB_CH_MISSING;
+    const int rows_only = kind == OB_CH_NEW || kind == OB_CH_MISSING || kind == OB_CH_LEFT_OUT;
     fprintf(f, "| curve | d | method | metric | split | tol | %s |\n",
             rows_only ? "status | ctrl_points | max_err" : "field | base | new | new/base | p | interval");
     fprintf(f, "|---|---:|---|---|---|---:|%s\n", rows_only ? "---|---:|---:|" : "---|---:|---:|---:|---:|---:|");
@@ -213,6 +214,27 @@ static void md_methods(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
     md_harness(f, r);
 }
 
+/* The rows NEW left out on purpose (compare_subset.h): what NEW set out
+ * to run, in the context; the rows, last and collapsed.  Nothing when no
+ * row was left out, so that a full run's report stays as it was. */
+static void md_selection(FILE *f, const ob_cmp_result *r)
+{
+    if (ob_cmp_left_out_text(r))
+        fprintf(f, "- selection: NEW set out to run %s (meta.json \"selection\"); the %d rows of BASE outside it are "
+                   "left out, not regressions; a row inside it that NEW lacks is missing, a regression\n",
+                ob_cmp_selection_text(r), r->n_left_out);
+}
+
+static void md_left_out(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
+{
+    if (!ob_cmp_left_out_text(r))
+        return;
+    fprintf(f, "\n<details>\n<summary>Left out, not regressions: %d rows of BASE outside NEW's selection</summary>\n",
+            r->n_left_out);
+    md_table(f, r, OB_CH_LEFT_OUT, ROWS_ALL, "Left out: outside NEW's selection", o->max_rows, 0);
+    fprintf(f, "\n</details>\n");
+}
+
 /* The inputs, the comparability and how timings were judged. */
 static void md_context(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const ob_cmp_opts *o,
                        const ob_cmp_result *r)
@@ -250,6 +272,7 @@ static void md_context(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, cons
                     ? (b->has_samples || n->has_samples ? " (samples.csv on one side only)" : " (no samples.csv)")
                     : "");
     }
+    md_selection(f, r);
     for (int i = 0; i < r->notes.n; i++)
         fprintf(f, "- note: %s\n", r->notes.v[i]);
     for (int i = 0; i < r->strict.n; i++)
@@ -302,11 +325,14 @@ int ob_cmp_write_md(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const o
     char timing[2048];
     ob_cmp_timing_text(b, n, o, r, 1, timing, sizeof timing);
     fprintf(f, "Timing: %s.\n", timing);
+    if (ob_cmp_left_out_text(r))
+        fprintf(f, "Left out: %s (rows of BASE outside NEW's selection: not regressions).\n", ob_cmp_left_out_text(r));
     md_methods(f, o, r);
     md_table(f, r, OB_CH_REGRESSION, ROWS_COUNTED, "Regressions: quality and timing", o->max_rows, 1);
     md_table(f, r, OB_CH_MISSING, ROWS_ALL, "Missing rows: regressions", o->max_rows, 0);
     md_context(f, b, n, o, r);
     md_not_counted(f, o, r);
+    md_left_out(f, o, r);
     return ferror(f) ? -1 : 0;
 }
 
@@ -392,6 +418,8 @@ int ob_cmp_write_csv(FILE *f, const ob_cmp_side *b, const ob_cmp_side *n, const 
         ob_cmp_timing_text(b, n, o, r, 0, timing, sizeof timing);
         csv_line(f, "context", NULL, NULL, "timing", timing, "", NAN, NAN, NAN, NAN, "");
     }
+    if (!r->incomparable.n && ob_cmp_left_out_text(r))  /* the summary of the left_out lines below */
+        csv_line(f, "context", NULL, NULL, "left_out", ob_cmp_left_out_text(r), "", NAN, NAN, NAN, NAN, "");
     if (r->incomparable.n)
         return ferror(f) ? -1 : 0;
     for (int i = 0; i < r->nch; i++) {

@@ -14,6 +14,7 @@
 
 #include "buildinfo.h"
 #include "host/io/columns.h"
+#include "host/io/meta_selection.h"
 #include "host/io/numfmt.h"
 #include "host/run/hostinfo.h"
 #include "methods/metrics/metric_certified.h"
@@ -457,7 +458,9 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
     meta_engine(f, o, rec);
     fprintf(f, "  \"data\": ");
     ob_json_string(f, data_source);
-    fprintf(f, ",\n  \"jobs\": %zu,\n", njobs);
+    fprintf(f, ",\n");
+    ob_meta_write_selection(f, o, rec->curves);
+    fprintf(f, "  \"jobs\": %zu,\n", njobs);
     /* the shard lines are rewritten by merge (cmd_merge.c): keep them one
      * key per line */
     if (rec->mpi_ranks > 1)

@@ -453,6 +453,22 @@ static int parse_u64(const char *s, uint64_t *v)
     return 0;
 }
 
+int ob_random_id_parse(const char *id, uint64_t *seed, long *index)
+{
+    char digits[32], canon[64];
+    const char *us = strncmp(id, "rnd", 3) == 0 ? strchr(id + 3, '_') : NULL;
+    if (!us || (size_t)(us - id - 3) >= sizeof digits)
+        return -1;
+    memcpy(digits, id + 3, (size_t)(us - id - 3));
+    digits[us - id - 3] = '\0';
+    const size_t nd = strlen(us + 1);
+    if (parse_u64(digits, seed) != 0 || nd == 0 || nd > 9 || strspn(us + 1, "0123456789") != nd)
+        return -1;
+    *index = strtol(us + 1, NULL, 10);
+    ob_random_id(*seed, *index, canon, sizeof canon);
+    return strcmp(canon, id) == 0 ? 0 : -1;
+}
+
 int ob_random_parse(const char *opt, const char *spec, long *n, uint64_t *seed)
 {
     char buf[64];

@@ -56,6 +56,12 @@ int ob_random_parse(const char *opt, const char *spec, long *n, uint64_t *seed);
 /* The id of curve `index` of `seed`: "rnd<SEED>_<index, 6 digits or more>". */
 void ob_random_id(uint64_t seed, long index, char *buf, size_t len);
 
+/* Purpose: read an id back: 0 with its seed and index when id is exactly
+ *          ob_random_id(seed, index) (the canonical spelling, index below
+ *          10^9), else -1 (compare asks whether a row's curve is one of a
+ *          random set: host/compare/compare_subset.c). */
+int ob_random_id_parse(const char *id, uint64_t *seed, long *index);
+
 /* Purpose: generate curve `index` (>= 0) of `seed` into *c (overwritten; the
  *          caller frees it with ob_curve_free).  One polynomial or rational
  *          Bézier segment, one or two offsets.  Takes microseconds.

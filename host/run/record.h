@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "host/backend/select.h"
+#include "host/io/curvefile.h"
 #include "host/run/hostinfo.h"
 #include "methods/driver/driver.h"
 
@@ -32,6 +33,8 @@ typedef struct {
                                     of a --reps series) */
     double cert_seconds;         /* --certify: wall time of the certificate pass */
     double fit_seconds;          /* --time-fits: wall time of the fit timing pass */
+    const ob_curveset *curves;   /* the curves loaded (plan.h), for meta.json's
+                                    "selection" (meta_selection.h); NULL: unknown */
 } ob_run_record;
 
 #endif
