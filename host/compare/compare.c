@@ -553,8 +553,12 @@ int ob_cmp_check_methods(const ob_cmp_side *b, const ob_cmp_side *n, const ob_cm
 int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts *o, ob_cmp_result *r, ob_err *err)
 {
     const ob_res_table *bt = &bs->res, *nt = &ns->res;
+    /* room for the most repetitions or rounds of any side (xb, xn) */
     int maxrep = bt->maxrep > nt->maxrep ? bt->maxrep : nt->maxrep;
-    maxrep = bt->maxround > maxrep ? bt->maxround : nt->maxround > maxrep ? nt->maxround : maxrep;
+    if (bt->maxround > maxrep)
+        maxrep = bt->maxround;
+    if (nt->maxround > maxrep)
+        maxrep = nt->maxround;
     pair *pr = malloc((size_t)(bt->n ? bt->n : 1) * sizeof *pr);
     char *matched = calloc((size_t)(nt->n ? nt->n : 1), 1);
     double *xb = malloc((size_t)(maxrep ? maxrep : 1) * sizeof *xb);

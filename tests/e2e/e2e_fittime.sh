@@ -73,6 +73,14 @@ check '[ $? -eq 2 ] && grep -q "not with --time-fits" "$T/err"' "--resume with -
 rc=$?
 check '[ $rc -ne 2 ] && grep -q "the methods. own fit time (--time-fits)" "$T/out" && grep -q "^| tiller | .*per-round\|^| tiller |" "$T/out"' \
     "compare judges the methods' own fit time (exit $rc): $(grep '^Timing' "$T/out")"
+# NEW with many more rounds than BASE (its 4 joined 6 times: 24): every
+# round is read and judged (the per-method buffers once had room for BASE's
+# count only: a heap overflow)
+sh "$(dirname "$0")/../../scripts/join_rounds.sh" "$T/d24" "$T/d" "$T/d" "$T/d" "$T/d" "$T/d" "$T/d"
+"$OB" compare "$T/a" "$T/d24" --timing-only --method-timing-only --format csv >"$T/out" 2>"$T/err"
+rc=$?
+check '[ $rc -ne 2 ] && [ "$(awk -F, "NR>1 {print \$7}" "$T/d24/fits.csv" | sort -n | tail -n 1)" = 24 ] && grep -q "^method,,,tiller,,,,time_total," "$T/out"' \
+    "24 rounds against 4: judged (exit $rc): $(grep "time_total" "$T/out" | head -n 1) $(head -c 300 "$T/err")"
 mkdir "$T/f" && cp "$T/a/results.csv" "$T/a/meta.json" "$T/f/"
 awk -F, 'BEGIN{OFS=","} NR==2{$8=$8+1} {print}' "$T/a/fits.csv" >"$T/f/fits.csv"
 "$OB" compare "$T/a" "$T/f" >"$T/out" 2>"$T/err"
