@@ -266,6 +266,28 @@ static void cpu_limit_next_call(double seconds)
     setrlimit(RLIMIT_CPU, &rl);
 }
 
+/* The test hook's sleep (test_sleep_hook below): a server that gets no CPU,
+ * wall time passing without CPU time, for `seconds` or until the parent goes
+ * away (its end of the request pipe closes: 1), so that a server of a
+ * killed run does not sleep on. */
+static int test_sleep(int in, double seconds)
+{
+    struct timespec t0, t;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        const double left = seconds - (double)(t.tv_sec - t0.tv_sec) - 1e-9 * (double)(t.tv_nsec - t0.tv_nsec);
+        if (left <= 0)
+            return 0;
+        struct pollfd pf = {in, POLLIN, 0};
+        const int pr = poll(&pf, 1, left > 86400 ? 86400000 : (int)(left * 1000) + 1);
+        if (pr > 0)
+            return 1;
+        if (pr < 0 && errno != EINTR)
+            return 0;
+    }
+}
+
 /* The server: answer requests until the parent goes away; never returns.
  * The reply's sixth word asks the parent to start a fresh server: this one
  * has grown SERVER_RESTART_BYTES past what it started with. */
@@ -277,9 +299,8 @@ static void server_loop(int in, int out)
     while (xfer_all(in, &q, sizeof q, 0) == 0) {
         cap_next_call();
         cpu_limit_next_call(q.timeout);
-        if (q.test_sleep > 0)  /* a server that gets no CPU: wall time passes, CPU time does not */
-            nanosleep(&(struct timespec){(time_t)q.test_sleep, (long)(1e9 * (q.test_sleep - floor(q.test_sleep)))},
-                      NULL);
+        if (q.test_sleep > 0 && test_sleep(in, q.test_sleep))
+            break;  /* the parent went away meanwhile */
         double knots[2 * (OB_MAX_DEG + 1)];
         for (int i = 0; i <= q.n; i++) {
             knots[i] = 0.0;
