@@ -70,7 +70,12 @@
 # baseline (default results/baseline), NIGHTLY_BIN a built offbench to use
 # (no build step), OFFBENCH_MACHINE this machine's name (default: the host
 # name; set it where cloned machines share /etc/machine-id and a host name).
-# Files: OUT/report.md, OUT/status, OUT/compare-*.{md,csv,err}, OUT/*.log,
+# Killed (SIGTERM, SIGINT, SIGHUP: `timeout`, a CI job's time limit): the
+# offbench process of the moment is stopped, OUT/status is 2, the night is
+# recorded with the stage it reached ("run published (killed by SIGTERM)")
+# and the site rebuilt; exit 2.
+# Files: OUT/report.md, OUT/status, OUT/timings.csv (each stage's wall
+# seconds, then the total), OUT/compare-*.{md,csv,err}, OUT/*.log,
 # OUT/published, OUT/random, OUT/reruns/K (the K-th re-run).
 set -u
 cd "$(dirname "$0")/.."
@@ -94,7 +99,7 @@ while [ $# -gt 0 ]; do
             shift 2 ;;
         --accept) accept=machine; shift ;;
         --accept-committed) accept=committed; shift ;;
-        -h|--help) sed -n '2,74p' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && /^set -u$/ { exit } NR > 1' "$0"; exit 0 ;;
         *) echo "nightly: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -177,11 +182,84 @@ commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
 dirty=false
 [ "$commit" != unknown ] && ! git diff --quiet HEAD -- 2>/dev/null && dirty=true
 
-# finish STATUS STAGE: writes OUT/status, records the run in the history
-# store, prunes it, rebuilds the report, and exits with STATUS (the store
-# and the report never change it: their failures are said on stderr)
+# --- the stages, their wall time, and a night that is killed on the way ---
+# now: seconds since 1970, with decimals (GNU date)
+now() { date +%s.%N; }
+t_start=$(now)
+stage=start t_stage=$t_start timings= child=
+# stage_begin NAME: the night is in stage NAME from now on (what a signal records)
+stage_begin() { stage=$1; t_stage=$(now); }
+# stage_end [LABEL]: the stage's wall seconds, a line of OUT/timings.csv
+stage_end() {
+    timings="$timings${1:-$stage},$(awk -v a="$t_stage" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')
+"
+}
+# OUT/timings.csv: each stage's wall seconds in the order run, then the
+# night's total up to here (the history store and the site come after it)
+write_timings() {
+    { echo "stage,seconds"; printf '%s' "$timings"
+      echo "total,$(awk -v a="$t_start" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')"; } >"$out/timings.csv"
+}
+# bg CMD...: CMD in the background, waited for; its exit status.  Why: a
+# POSIX sh runs a trap only once its foreground child has returned, which
+# for a run is minutes, while `wait` is cut short by a trapped signal, so
+# the trap below runs at once; $child names CMD meanwhile (the trap stops it)
+bg() {
+    "$@" &
+    child=$!
+    wait "$child"
+    bg_rc=$?
+    child=
+    return $bg_rc
+}
+# alive PID: PID is a child of this script that has not ended (read in
+# /proc; without it, not known: false)
+alive() {
+    # shellcheck disable=SC2046
+    set -- $(sed 's/.*) //' "/proc/$1/stat" 2>/dev/null)
+    [ $# -ge 2 ] && [ "$1" != Z ] && [ "$2" = $$ ]
+}
+# stop_child: the child of the moment ($child, or $! when the signal came
+# before it was noted) asked to stop with TERM, killed if it is still there
+# 2 s later (a run ends its batch first, which may wait on a SISL fit: the
+# night is over, and the journal it leaves is never resumed), and reaped
+stop_child() {
+    p=${child:-${!:-}}
+    [ -n "$p" ] && alive "$p" || return 0
+    kill -TERM "$p" 2>/dev/null
+    i=0
+    while [ $i -lt 20 ] && alive "$p"; do sleep 0.1; i=$((i + 1)); done
+    kill -KILL "$p" 2>/dev/null
+    wait "$p" 2>/dev/null
+    child=
+}
+# on_signal SIG: TERM, INT or HUP (`timeout`, a CI job's time limit, a
+# closed terminal) ends the night as a failed one that still reports: its
+# child stopped, status 2 with the stage it reached, recorded and the site
+# rebuilt.  Further signals are ignored from here on, and by the recording's
+# children too (an ignored signal stays ignored across exec), so that a
+# second one cannot cut the store's copy short (a run is copied under a dot
+# name and renamed whole: even SIGKILL leaves no half run in it).
+on_signal() {
+    trap '' TERM INT HUP
+    stop_child
+    echo "nightly: killed by SIG$1 in stage '$stage'" >&2
+    killed="$stage (killed by SIG$1)"
+    stage_end "$killed"
+    [ "$stage" = build ] && mkdir -p "$out" && mv "$out.build.log" "$out/build.log" 2>/dev/null
+    finish 2 "$killed"
+}
+trap 'on_signal TERM' TERM
+trap 'on_signal INT' INT
+trap 'on_signal HUP' HUP
+
+# finish STATUS STAGE: writes OUT/status and OUT/timings.csv, records the
+# run in the history store, prunes it, rebuilds the report, and exits with
+# STATUS (the store and the report never change it: their failures are
+# said on stderr).  No signal interrupts it (on_signal above).
 finish() {
-    mkdir -p "$out" 2>/dev/null && echo "$1" >"$out/status"
+    trap '' TERM INT HUP
+    mkdir -p "$out" 2>/dev/null && echo "$1" >"$out/status" && write_timings
     if [ "$history" != none ]; then
         run_dir=$(sh scripts/nightly_history.sh record --out "$out" --history "$history" --status "$1" \
                   --stage "$2" --started "$start" --random "$random" --commit "$commit" --dirty $dirty) \
@@ -202,11 +280,13 @@ finish() {
 
 mkdir -p "$(dirname "$out")" || exit 2
 rm -f "$out/status"
+stage_begin build
 if [ -n "${NIGHTLY_BIN:-}" ]; then
     echo "not built: NIGHTLY_BIN=$bin" >"$out.build.log"
 else
-    make >"$out.build.log" 2>&1 || { mkdir -p "$out"; mv "$out.build.log" "$out/build.log" 2>/dev/null;
+    bg make >"$out.build.log" 2>&1 || { stage_end; mkdir -p "$out"; mv "$out.build.log" "$out/build.log" 2>/dev/null;
         echo "nightly: the build failed (see $out/build.log)" >&2; finish 2 build; }
+    stage_end
 fi
 rm -rf "$out"
 mkdir -p "$out"
@@ -215,11 +295,13 @@ mv "$out.build.log" "$out/build.log"
 run() {  # DIR METHODS [run options]: one run into $out/DIR, its log in $out/DIR.log
     name=$1 m=$2; shift 2
     t0=$(date +%s)
+    stage_begin "run $name"
     mkdir -p "$(dirname "$out/$name")"
     # shellcheck disable=SC2086
-    "$bin" run --methods "$m" --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
+    bg "$bin" run --methods "$m" --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
         $threads --backend "$backend" "$@" --out "$out/$name" 2>"$out/$name.log"
     rc=$?
+    stage_end
     echo "nightly: $name: exit $rc in $(($(date +%s) - t0)) s ($(tail -n 1 "$out/$name.log"))" >&2
     [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; finish 2 "run $name"; }
 }
@@ -240,9 +322,11 @@ worst() {  # keeps the most severe status: 2 > 3 > 1 > 0
 # its messages in OUT/compare-LABEL.err; its status into the nightly's
 compare_to() {
     label=$1 b=$2 n=$3; shift 3
-    "$bin" compare "$b" "$n" "$@" --format csv --out "$out/compare-$label.csv" 2>/dev/null
-    "$bin" compare "$b" "$n" "$@" --format md --out "$out/compare-$label.md" 2>"$out/compare-$label.err"
+    stage_begin "compare $label"
+    bg "$bin" compare "$b" "$n" "$@" --format csv --out "$out/compare-$label.csv" 2>/dev/null
+    bg "$bin" compare "$b" "$n" "$@" --format md --out "$out/compare-$label.md" 2>"$out/compare-$label.err"
     crc=$?
+    stage_end
     echo "nightly: compare $label: exit $crc" >&2
     worst $crc
 }
@@ -341,6 +425,7 @@ section() {  # TITLE LABEL: one comparison's report, headings one level down, it
     echo
 }
 report="$out/report.md"
+stage_begin report
 {
     echo "# offbench nightly, $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo

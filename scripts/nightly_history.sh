@@ -11,10 +11,12 @@
 #       machine's name) and prints that directory.  Per run set (published,
 #       random): results.csv, samples.csv, meta.json, the run's log; beside
 #       them report.md, compare-*.err, compare-*.json (compare --format json,
-#       when the nightly wrote it), build.log and run.json (status N, its
-#       meaning, the stage that ended the run, commit, dirty flag, host,
-#       time).  STAGE "build" copies only build.log: OUT then still holds the
-#       previous night's files.  A failed run is recorded all the same.
+#       when the nightly wrote it), build.log, timings.csv (each stage's wall
+#       seconds) and run.json (status N, its meaning, the stage that ended
+#       the run, commit, dirty flag, host, time).  STAGE "build" (or "build
+#       (killed by SIG...)") copies only build.log and timings.csv: OUT then
+#       still holds the previous night's files.  A failed run is recorded
+#       all the same.
 #       --commit, --dirty and --time record a run made elsewhere or earlier
 #       (default: the checkout's HEAD, whether it has changes, and now).
 #   sh scripts/nightly_history.sh prune --history DIR [--keep N] [--keep-days D]
@@ -42,11 +44,15 @@ status_text() {
     esac
 }
 
-# copy_run OUT DEST STAGE: the nightly's files that exist, into DEST
+# copy_run OUT DEST STAGE: the nightly's files that exist, into DEST; at
+# the build stage (failed, or killed: "build (killed by SIGTERM)") only
+# its log and timings, the rest of OUT being the previous night's
 copy_run() {
     o=$1 d=$2
-    [ -f "$o/build.log" ] && { cp "$o/build.log" "$d/" || return 1; }
-    [ "$3" = build ] && return 0
+    for f in "$o/build.log" "$o/timings.csv"; do
+        [ -f "$f" ] && { cp "$f" "$d/" || return 1; }
+    done
+    case "$3" in build|"build "*) return 0 ;; esac
     for f in "$o"/report.md "$o"/compare-*.err "$o"/compare-*.json "$o"/*.log; do
         [ -f "$f" ] && { cp "$f" "$d/" || return 1; }
     done

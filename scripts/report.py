@@ -276,11 +276,13 @@ def link_to(r, label):
 
 
 def stage_files(r):
-    """The files that tell why a run ended at its stage."""
-    if r.stage == "build":
+    """The files that tell why a run ended at its stage (a killed night's
+    stage is said "run published (killed by SIGTERM)": its log all the same)."""
+    stage = r.stage.split(" (killed by ", 1)[0]
+    if stage == "build":
         want = ["build.log"]
-    elif r.stage.startswith("run "):
-        want = [r.stage[4:] + ".log"]
+    elif stage.startswith("run "):
+        want = [stage[4:] + ".log"]
     else:
         want = ["report.md"] + [l for l, _ in r.links if l.startswith("compare-")]
     return [w for w in want if any(l == w for l, _ in r.links)]
