@@ -6,10 +6,14 @@
 # the verdict and the per-method table that decides it, and exit with the
 # worst status of the comparisons:
 #   0 no regression, 1 regression, 2 error, 3 not comparable (or timings
-#   that cannot be judged for too few repetitions).
+#   that cannot be judged for too few repetitions).  A 3 against the
+#   committed baseline (its configuration, a method's version or parameters
+#   changed) is mended by --accept-committed (make accept-committed-baseline)
+#   after a night, then review and commit; --accept (make accept-baseline)
+#   is this machine's timing baseline only.
 # The status is also written to OUT/status (the number alone): `make
 # nightly` exits 2 for every status but 0 (make's own exit status), so CI
-# runs this script directly or reads OUT/status (README "Nightly").
+# runs this script directly or reads OUT/status (docs/nightly.md "Nightly in CI").
 #
 # The nightly configuration (two runs, both every method and the tolerances
 # 1e-1 ... 1e-5, hausdorff metric, mid split):

@@ -201,7 +201,7 @@ fi
 # rows are a few of the baseline's: missing rows), never 3.  A parameter
 # added since the baseline is taken at its default; a changed default or
 # version makes it 3 here, and the baseline is then to be accepted anew
-# (make accept-baseline). ---
+# (make accept-committed-baseline). ---
 BASELINE=$HERE/../../results/baseline
 NIGHTLY="--methods all --tols 1e-1 --metric hausdorff --split mid"
 for spec in "published:--curve liu2002_ex1" "random:--random 2:2026"; do
