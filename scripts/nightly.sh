@@ -266,7 +266,8 @@ finish() {
     mkdir -p "$out" 2>/dev/null && echo "$1" >"$out/status" && write_timings
     if [ "$history" != none ]; then
         run_dir=$(sh scripts/nightly_history.sh record --out "$out" --history "$history" --status "$1" \
-                  --stage "$2" --started "$start" --random "$random" --commit "$commit" --dirty $dirty) \
+                  --stage "$2" --started "$start" --random "$random" --baseline "$qbase" --commit "$commit" \
+                  --dirty $dirty) \
             && echo "nightly: recorded in $run_dir" >&2 \
             || echo "nightly: could not record this run in $history (see above)" >&2
         sh scripts/nightly_history.sh prune --history "$history" --keep "$keep" --keep-days "$keep_days" \

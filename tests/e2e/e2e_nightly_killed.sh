@@ -47,8 +47,8 @@ killed_checks() {
         "$what: exit 2 and OUT/status 2: exit $rc, status '$(cat "$o/status" 2>/dev/null)': $(tail -n 3 "$o.err")"
     runs=$(ls "$h" 2>/dev/null | grep -v '^site$')
     rj="$h/$runs/run.json"
-    check '[ "$(echo "$runs" | grep -c .)" -eq 1 ] && grep -q "\"status\": 2," "$rj" && grep -q "\"stage\": \"run published (killed by SIGTERM)\"" "$rj"' \
-        "$what: one run in the store, run.json status 2 at the stage reached: $runs $(cat "$rj" 2>/dev/null | tr '\n' ' ')"
+    check '[ "$(echo "$runs" | grep -c .)" -eq 1 ] && grep -q "\"status\": 2," "$rj" && grep -q "\"stage\": \"run published (killed by SIGTERM)\"" "$rj" && grep -qF "\"baseline\": \"$T/committed\"" "$rj"' \
+        "$what: one run in the store, run.json status 2 at the stage reached, NIGHTLY_BASELINE recorded: $runs $(cat "$rj" 2>/dev/null | tr '\n' ' ')"
     check '[ -f "$h/$runs/published.log" ] && [ -z "$(ls -A "$h" | grep "^\.")" ]' \
         "$what: the stage's log kept, no half-copied run: $(ls -A "$h" "$h/$runs" 2>/dev/null | tr '\n' ' ')"
     check 'grep -q "^run published (killed by SIGTERM),[0-9.]*$" "$o/timings.csv" 2>/dev/null' \
