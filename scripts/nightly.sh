@@ -473,5 +473,6 @@ stage_begin report
     section "random: quality against $qbase/random" random-quality
     echo "Exit status $status ($(status_word $status); 0 no regression, 1 regression, 2 error, 3 not comparable); $(($(date +%s) - start)) s in all."
 } >"$report"
+stage_end
 echo "nightly: report in $report; exit $status" >&2
 finish $status compare

@@ -60,6 +60,11 @@ killed_checks() {
         echo "skipped: no /usr/bin/python3, so no site to check"; skipped=$((skipped + 1))
     fi
     check 'no_leftovers' "$what: no process of the night left: $(leftovers)"
+    if [ -x /usr/bin/python3 ]; then
+        /usr/bin/python3 "$ROOT/scripts/nightly_wall.py" "$o" --out "$T/wall.txt" >/dev/null 2>"$T/err"
+        check '[ $? -eq 2 ] && [ ! -e "$T/wall.txt" ] && grep -q "failed" "$T/err"' \
+            "$what: nightly_wall.py refuses a killed night (its stages are not a night's): $(cat "$T/err")"
+    fi
 }
 
 # --- SIGTERM to nightly.sh alone, inside the published run ---
