@@ -9,6 +9,8 @@
 #                   machine's baseline (report and status in out/nightly; make exits 2 on 1, 2 or 3)
 #   make accept-baseline  the nightly run just made becomes this machine's timing baseline
 #   make accept-committed-baseline  ... becomes the committed baseline results/baseline/
+#   make nightly-wall  results/baseline/nightly_wall.txt (the stages' wall time, make docs
+#                   quotes it) from the night in out/nightly (NIGHTLY_OUT=DIR)
 #   make report     the HTML report of the nightly history (out/history/site/index.html)
 #   make report-screenshot  results/report.png from the test's synthetic history (Chromium)
 #   make SAN=1 test the same under ASan + UBSan (objects in build-san/)
@@ -69,7 +71,7 @@ DATASETS := $(sort $(wildcard datasets/*.curves))
 KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
-.PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline report \
+.PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline nightly-wall report \
         report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-example FORCE
 all: $(BIN)
 
@@ -281,7 +283,7 @@ $(OCCT_BIN): examples/occt/occt_offset.cpp
 occt-example: $(OCCT_BIN) $(BIN)
 	/usr/bin/python3 scripts/occt_table.py --offbench ./$(BIN) --occt $(OCCT_BIN) --out out/occt
 
-# The nightly regression run (README "Nightly regression runs").  Its
+# The nightly regression run (docs/nightly.md "Nightly regression runs").  Its
 # status, 0 no regression, 1 regression, 2 error, 3 not comparable, is
 # printed and written to out/nightly/status; make itself can only exit 0 or
 # 2 (any failing recipe is make's exit 2), so CI runs scripts/nightly.sh
@@ -300,6 +302,12 @@ accept-baseline:
 
 accept-committed-baseline:
 	sh scripts/nightly.sh --accept-committed --out out/nightly
+
+# How long the night just made took, stage by stage, for docs/nightly.md
+# (make docs quotes the file): regenerate it from a full night.
+NIGHTLY_OUT ?= out/nightly
+nightly-wall:
+	/usr/bin/python3 scripts/nightly_wall.py $(NIGHTLY_OUT) --out results/baseline/nightly_wall.txt
 
 # The nightly history's HTML report (nightly.sh rebuilds it after each run;
 # NIGHTLY_HISTORY as there), and the screenshot of it in docs/nightly.md.

@@ -29,9 +29,13 @@
  * in msg, and both end the job (status fail / skip).  OB_FIT_RETRY_SMALLER:
  * the method has no output for this piece that it may return (e.g. more
  * pieces than OB_SPLIT_PIECES or OB_MAX_PIECES, a pole); the driver then
- * splits the piece as if its error were too large. */
-typedef enum { OB_FIT_OK = 0, OB_FIT_FAIL, OB_FIT_SKIP, OB_FIT_RETRY_SMALLER } ob_fit_status;
-/* "ok", "fail", "skip", "retry-smaller" (messages; not a CSV column). */
+ * splits the piece as if its error were too large.  OB_FIT_TIMEOUT: the fit
+ * was stopped by a wall-clock cap of its own (sisl's server), which depends
+ * on the machine's load and not on the input: the job ends with status
+ * timeout, the reason in msg, so that it does not read as the method's
+ * failure. */
+typedef enum { OB_FIT_OK = 0, OB_FIT_FAIL, OB_FIT_SKIP, OB_FIT_RETRY_SMALLER, OB_FIT_TIMEOUT } ob_fit_status;
+/* "ok", "fail", "skip", "retry-smaller", "timeout" (messages; not a CSV column). */
 const char *ob_fit_status_name(ob_fit_status s);
 
 /* OB_MAX_PIECES: the most pieces one fit can hold (one B-spline of up to 64

@@ -79,6 +79,7 @@ const char *ob_fit_status_name(ob_fit_status s)
     case OB_FIT_FAIL: return "fail";
     case OB_FIT_SKIP: return "skip";
     case OB_FIT_RETRY_SMALLER: return "retry-smaller";
+    case OB_FIT_TIMEOUT: return "timeout";
     }
     return "?";
 }

@@ -83,10 +83,22 @@
  * the server's CPU time, default 20, enforced by the kernel through
  * RLIMIT_CPU in whole seconds, rounded up); past it the server ends (and
  * is started afresh by the next fit) and the fit fails with that reason.
+ * A wall-clock cap as well (sisl.wall_timeout; default 0 = 3 x (timeout + 1)
+ * seconds): the CPU deadline alone, on a loaded machine where the server
+ * got 5 % of a CPU, kept a fit waiting for minutes (issue 46).  Why that
+ * default: RLIMIT_CPU counts whole seconds rounded up, so a call may run up
+ * to timeout + 1 CPU seconds, and with three times that the server reaches
+ * its CPU deadline first whenever it gets at least a third of a CPU; an
+ * idle or moderately loaded machine (load up to three per core) never sees
+ * the cap, and no fit that finishes is affected.  Past the cap the server
+ * is killed and the fit ends OB_FIT_TIMEOUT (the job's status `timeout`,
+ * the message naming the cap): what the cap decides depends on the load,
+ * not on the input, so it must not read as a failure of the method.
  * Outside the sanitizer builds each s1360 call may grow the server's data
  * by 1 GiB, so a runaway allocation ends at once.  Both limits are the
  * call's own, not the machine's or the server's history: CPU time, not
- * wall time (a loaded machine must not turn a fit into a failure), and
+ * wall time (a loaded machine must not turn a fit into a failure; the wall
+ * cap above turns extreme load into a timeout, never a failure), and
  * 1 GiB above what the server holds when the call starts, not 1 GiB in all
  * (a server that served a large fit before keeps its heap, and which fits
  * a server serves depends on the threads and the engine: issue 35 found 6
@@ -149,6 +161,11 @@ static const ob_param sisl_params[] = {
      "CPU seconds one s1360 call may take, counted in whole seconds rounded up (it runs in a child "
      "process, ended past this; the fit then fails): s1360 loops without end on some inputs.  Our "
      "choice; 0.1..3600", 0.1, 3600, 0},
+    {"wall_timeout", 0.0,
+     "wall-clock seconds one s1360 call may take; 0 (default) = 3 x (timeout + 1), which a server "
+     "that gets at least a third of a CPU never reaches before its CPU deadline.  Past it the "
+     "server is stopped and the job's status is timeout (the machine was too loaded), not fail.  "
+     "Our choice; 0..36000", 0, 36000, 0},
 };
 
 /* s1360's result as plain arrays (ik order, in vertices, idim 2, ikind 1). */
@@ -180,6 +197,7 @@ typedef struct {
     int n, rational;
     double d, tol, amax;
     double timeout;     /* CPU seconds the call may take (RLIMIT_CPU in the server) */
+    double test_sleep;  /* test hook: wall seconds the server sleeps first (below) */
     double coef[3 * (OB_MAX_DEG + 1)];
 } sisl_request;
 
@@ -260,6 +278,28 @@ static double cpu_ns(void)
     return 1e9 * (double)ts.tv_sec + (double)ts.tv_nsec;
 }
 
+/* The test hook's sleep (test_sleep_hook below): a server that gets no CPU,
+ * wall time passing without CPU time, for `seconds` or until the parent goes
+ * away (its end of the request pipe closes: 1), so that a server of a
+ * killed run does not sleep on. */
+static int test_sleep(int in, double seconds)
+{
+    struct timespec t0, t;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        const double left = seconds - (double)(t.tv_sec - t0.tv_sec) - 1e-9 * (double)(t.tv_nsec - t0.tv_nsec);
+        if (left <= 0)
+            return 0;
+        struct pollfd pf = {in, POLLIN, 0};
+        const int pr = poll(&pf, 1, left > 86400 ? 86400000 : (int)(left * 1000) + 1);
+        if (pr > 0)
+            return 1;
+        if (pr < 0 && errno != EINTR)
+            return 0;
+    }
+}
+
 /* The server: answer requests until the parent goes away; never returns.
  * The reply's sixth word asks the parent to start a fresh server: this one
  * has grown SERVER_RESTART_BYTES past what it started with. */
@@ -271,6 +311,8 @@ static void server_loop(int in, int out)
     while (xfer_all(in, &q, sizeof q, 0) == 0) {
         cap_next_call();
         cpu_limit_next_call(q.timeout);
+        if (q.test_sleep > 0 && test_sleep(in, q.test_sleep))
+            break;  /* the parent went away meanwhile */
         double knots[2 * (OB_MAX_DEG + 1)];
         for (int i = 0; i <= q.n; i++) {
             knots[i] = 0.0;
@@ -522,11 +564,25 @@ static int read_deadline(int fd, void *buf, size_t n, double deadline)
     return 0;
 }
 
-/* Purpose: s1360 in this thread's server process, with a deadline.
+/* The test hook OFFBENCH_TEST_SISL_SLEEP=S (docs/contributing.md
+ * "Testing"): the server sleeps S wall-clock seconds before each s1360 call,
+ * as a server that gets no CPU on a loaded machine would wait; 0 without it. */
+static double test_sleep_hook(void)
+{
+    const char *v = getenv("OFFBENCH_TEST_SISL_SLEEP");
+    char *end;
+    const double s = v && *v ? strtod(v, &end) : 0.0;
+    return v && *v && !*end && s > 0 && s <= 1e6 ? s : 0.0;
+}
+
+/* Purpose: s1360 in this thread's server process, with its CPU deadline
+ *          (timeout, in the server) and a wall-clock cap (wall seconds).
  * Returns: 0 with *r filled (free r->et, r->ecoef; NULL when s1360 gave no
- *          curve); -1 with the reason in msg (timed out and killed, the
- *          server crashed or could not start). */
-static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, char *msg, size_t msglen)
+ *          curve); -1 with the reason in msg (past its CPU deadline or
+ *          memory cap and ended, the server crashed or could not start);
+ *          1 past the wall-clock cap (killed), the reason in msg. */
+static int guarded_s1360(const sisl_request *q, double timeout, double wall, sisl_result *r, char *msg,
+                         size_t msglen)
 {
     memset(r, 0, sizeof *r);
     if (srv.pid <= 0 && server_start(msg, msglen) != 0)
@@ -538,10 +594,10 @@ static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, 
     sigaction(SIGPIPE, &ign, &old);
     sisl_request copy = *q;
     copy.timeout = timeout;
-    /* the server's CPU time decides (RLIMIT_CPU there); this wall-clock
-     * backstop, for a server that does not run at all, is generous: a
-     * loaded machine slows the server down */
-    const double deadline = now_s() + 10.0 * timeout + 60.0;
+    copy.test_sleep = test_sleep_hook();
+    /* the server's CPU time decides (RLIMIT_CPU there) unless the machine
+     * is so loaded that the wall-clock cap comes first (the file's comment) */
+    const double deadline = now_s() + wall;
     int wrc = xfer_all(srv.to, &copy, sizeof copy, 1);
     sigaction(SIGPIPE, &old, NULL);
     int hdr[6];
@@ -578,10 +634,15 @@ static int guarded_s1360(const sisl_request *q, double timeout, sisl_result *r, 
     free(r->et), free(r->ecoef);
     r->et = r->ecoef = NULL;
     server_stop(SIGKILL);
+    if (rc == 1) {  /* the load decided, not the input: a timeout, said as such */
+        /* short: the driver keeps 100 characters of it before the piece's place */
+        ob_method_msg(msg, msglen, "SISL s1360 stopped at its wall-clock cap of %g s (sisl.wall_timeout; CPU "
+                      "deadline %g s)", wall, timeout);
+        return 1;
+    }
     /* One message for the deadline, the memory cap and a crash: a runaway
      * s1360 meets whichever limit first depends on the machine's load, and
      * results.csv must not depend on it (same rows for any thread count). */
-    (void)rc;
     ob_method_msg(msg, msglen, "SISL s1360 did not finish in %g s within %s (stopped; it loops on some inputs)",
                   timeout, SERVER_MEMORY_NOTE);
     return -1;
@@ -632,14 +693,18 @@ static ob_fit_status sisl_fit(const ob_bez *base, const ob_fit_args *a, void *wo
         for (int c = 0; c < dim; c++)
             q.coef[dim * i + c] = base->h[i][c];  /* polynomial: w = 1, h = (x, y) */
     sisl_result res;
-    const double timeout = a->par[1];
-    if (!(timeout >= 0.1 && timeout <= 3600) || !(q.amax >= 0.0 && q.amax <= 1e12)) {
+    const double timeout = a->par[1], wall_par = a->par[2];
+    if (!(timeout >= 0.1 && timeout <= 3600) || !(q.amax >= 0.0 && q.amax <= 1e12) ||
+        !(wall_par >= 0.0 && wall_par <= 36000)) {
         /* --param refuses these; a caller that bypasses it gets no silent substitute */
-        ob_method_msg(msg, msglen, "timeout %g (0.1..3600) or max_step %g (0..1e12) out of range", timeout, q.amax);
+        ob_method_msg(msg, msglen, "timeout %g (0.1..3600), max_step %g (0..1e12) or wall_timeout %g (0..36000) "
+                      "out of range", timeout, q.amax, wall_par);
         return OB_FIT_FAIL;
     }
-    if (guarded_s1360(&q, timeout, &res, msg, msglen) != 0)
-        return OB_FIT_FAIL;
+    const double wall = wall_par > 0.0 ? wall_par : 3.0 * (timeout + 1.0);  /* why: the file's comment */
+    const int grc = guarded_s1360(&q, timeout, wall, &res, msg, msglen);
+    if (grc != 0)
+        return grc > 0 ? OB_FIT_TIMEOUT : OB_FIT_FAIL;
     const sisl_result *rc = &res;
     if (res.stat < 0 || !res.et) {
         ob_method_msg(msg, msglen, "SISL s1360 failed with status %d", res.stat);
@@ -701,7 +766,7 @@ const ob_method ob_method_sisl = {
     .cost_ms = 4.48,
     .work_size = 0,
     .params = sisl_params,
-    .nparams = 2,
+    .nparams = 3,
     .fit_uses_tol = ob_fit_uses_tol_always, /* s1360 offsets to tol */
     .fit = sisl_fit,
 };

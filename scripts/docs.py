@@ -246,6 +246,63 @@ def gen_nightly_jobs_small_random(ctx):
     return nightly_jobs(ctx, "random", "results/baseline-small")
 
 
+NIGHTLY_WALL = "results/baseline/nightly_wall.txt"   # scripts/nightly_wall.py
+
+
+def nightly_wall(ctx):
+    """results/baseline/nightly_wall.txt's `key: value` lines"""
+    kv = {}
+    for line in ctx.text(NIGHTLY_WALL).split("\n"):
+        if line.strip() and not line.startswith("#"):
+            k, sep, v = line.partition(": ")
+            need(sep, f"{NIGHTLY_WALL}: not a 'key: value' line: {line!r}")
+            kv[k] = v
+    for k in ("configuration", "config", "measured", "commit", "machine", "backend", "threads", "load_max",
+              "published_jobs", "published_runs", "random_jobs", "seconds_run_published", "seconds_run_random",
+              "seconds_total"):
+        need(k in kv, f"{NIGHTLY_WALL}: no '{k}' (write it with make nightly-wall)")
+    return kv
+
+
+def minutes(s):
+    return f"{s / 60:.1f} min" if s >= 60 else f"{s:.0f} s"
+
+
+def gen_nightly_wall(ctx):
+    """the stages' wall time of the night in NIGHTLY_WALL, and what the
+    full configuration would take at its rates"""
+    w = nightly_wall(ctx)
+    sec = lambda k: float(w.get("seconds_" + k, 0))
+    pj, pr, rj = int(w["published_jobs"]), int(w["published_runs"]), int(w["random_jobs"])
+    full = w["configuration"] == "full"
+    head = (f"Measured on the **full** nightly ({w['config']})" if full else
+            f"Measured on a **small** configuration ({w['config']}), **not the full nightly**")
+    rows = [("build", "", f"{sec('build'):.1f}" if "seconds_build" in w else "not built (NIGHTLY_BIN)"),
+            (f"run published ({pr} runs: a warm-up and the timed repetitions)", f"{commas(pj)} × {pr}",
+             f"{sec('run_published'):.1f}"),
+            ("run random (one run)", commas(rj), f"{sec('run_random'):.1f}"),
+            ("compares", "", f"{sec('compare'):.1f}"),
+            ("re-runs of methods too noisy to judge", "", f"{sec('reruns'):.1f}"),
+            ("report", "", f"{sec('report'):.1f}"),
+            ("**total** (before the history store and the site)", "", f"**{sec('total'):.1f}**")]
+    out = [f"{head}: commit {w['commit']}, {w['measured']}, on {w['machine']} ({w['threads']} threads, backend "
+           f"{w['backend']}, load average up to {w['load_max']}), from `{NIGHTLY_WALL}`:", "",
+           "| stage | jobs | wall seconds |", "|---|---:|---:|"]
+    out += [f"| {a} | {b} | {c} |" for a, b, c in rows]
+    ncurves = int(w.get("random_set", "0:").split(":")[0] or 0)
+    need(ncurves > 0, f"{NIGHTLY_WALL}: random_set {w.get('random_set')!r}: no N:SEED")
+    out += ["", f"Per job, {1e3 * sec('run_published') / (pj * pr):.1f} ms in each published run; per random "
+            f"curve ({rj // ncurves} jobs), {sec('run_random') / ncurves:.1f} s in the random run: what "
+            f"`NIGHTLY_RANDOM` adds per curve on this machine."]
+    if full:
+        out[-1] += f" The full nightly took {minutes(sec('total'))} in all."
+    else:
+        out[-1] += (" The full configuration's time is not extrapolated from these curves (their costs differ "
+                    "widely, and SISL's runaway fits wait up to their caps): `make nightly-wall` after a full "
+                    "night replaces this table with its measurement.")
+    return "\n".join(out)
+
+
 # ------------------------------------------------------- continuity table
 
 APPROX = lambda r: r["status"] not in ("fail", "skip", "timeout")   # a job with an approximation
@@ -498,6 +555,7 @@ GENERATORS = {
     "nightly-jobs-random": gen_nightly_jobs_random,
     "nightly-jobs-small-published": gen_nightly_jobs_small_published,
     "nightly-jobs-small-random": gen_nightly_jobs_small_random,
+    "nightly-wall": gen_nightly_wall,
     "continuity": gen_continuity,
     "continuity-degenerate-open": gen_continuity_degenerate_open,
     "continuity-closed-gap": gen_continuity_closed_gap,

@@ -6,10 +6,14 @@
 # the verdict and the per-method table that decides it, and exit with the
 # worst status of the comparisons:
 #   0 no regression, 1 regression, 2 error, 3 not comparable (or timings
-#   that cannot be judged for too few repetitions).
+#   that cannot be judged for too few repetitions).  A 3 against the
+#   committed baseline (its configuration, a method's version or parameters
+#   changed) is mended by --accept-committed (make accept-committed-baseline)
+#   after a night, then review and commit; --accept (make accept-baseline)
+#   is this machine's timing baseline only.
 # The status is also written to OUT/status (the number alone): `make
 # nightly` exits 2 for every status but 0 (make's own exit status), so CI
-# runs this script directly or reads OUT/status (README "Nightly").
+# runs this script directly or reads OUT/status (docs/nightly.md "Nightly in CI").
 #
 # The nightly configuration (two runs, both every method and the tolerances
 # 1e-1 ... 1e-5, hausdorff metric, mid split):
@@ -113,8 +117,14 @@
 # results/baseline, small: results/baseline-small), NIGHTLY_BIN a built offbench to use
 # (no build step), OFFBENCH_MACHINE this machine's name (default: the host
 # name; set it where cloned machines share /etc/machine-id and a host name).
-# Files: OUT/report.md, OUT/status, OUT/size, OUT/compare-*.{md,csv,err},
-# OUT/*.log, OUT/published, OUT/random, OUT/reruns/K (the K-th re-run).
+# Killed (SIGTERM, SIGINT, SIGHUP: `timeout`, a CI job's time limit): the
+# offbench process of the moment is stopped, OUT/status is 2, the night is
+# recorded with the stage it reached ("run published (killed by SIGTERM)")
+# and the site rebuilt; exit 2.
+# Files: OUT/report.md, OUT/status, OUT/size, OUT/timings.csv (each stage's
+# wall seconds, then the total), OUT/compare-*.{md,csv,err}, OUT/*.log,
+# OUT/published, OUT/random, OUT/reruns/K (the K-th re-run), OUT/timing
+# (NIGHTLY_BASE_REF: the interleaved runs).
 set -u
 cd "$(dirname "$0")/.."
 out=out/nightly
@@ -140,7 +150,7 @@ while [ $# -gt 0 ]; do
             shift 2 ;;
         --accept) accept=machine; shift ;;
         --accept-committed) accept=committed; shift ;;
-        -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && /^set -u$/ { exit } NR > 1' "$0"; exit 0 ;;
         *) echo "nightly: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -258,14 +268,88 @@ commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
 dirty=false
 [ "$commit" != unknown ] && ! git diff --quiet HEAD -- 2>/dev/null && dirty=true
 
-# finish STATUS STAGE: writes OUT/status, records the run in the history
-# store, prunes it, rebuilds the report, and exits with STATUS (the store
-# and the report never change it: their failures are said on stderr)
+# --- the stages, their wall time, and a night that is killed on the way ---
+# now: seconds since 1970, with decimals (GNU date)
+now() { date +%s.%N; }
+t_start=$(now)
+stage=start t_stage=$t_start timings= child=
+# stage_begin NAME: the night is in stage NAME from now on (what a signal records)
+stage_begin() { stage=$1; t_stage=$(now); }
+# stage_end [LABEL]: the stage's wall seconds, a line of OUT/timings.csv
+stage_end() {
+    timings="$timings${1:-$stage},$(awk -v a="$t_stage" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')
+"
+}
+# OUT/timings.csv: each stage's wall seconds in the order run, then the
+# night's total up to here (the history store and the site come after it)
+write_timings() {
+    { echo "stage,seconds"; printf '%s' "$timings"
+      echo "total,$(awk -v a="$t_start" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')"; } >"$out/timings.csv"
+}
+# bg CMD...: CMD in the background, waited for; its exit status.  Why: a
+# POSIX sh runs a trap only once its foreground child has returned, which
+# for a run is minutes, while `wait` is cut short by a trapped signal, so
+# the trap below runs at once; $child names CMD meanwhile (the trap stops it)
+bg() {
+    "$@" &
+    child=$!
+    wait "$child"
+    bg_rc=$?
+    child=
+    return $bg_rc
+}
+# alive PID: PID is a child of this script that has not ended (read in
+# /proc; without it, not known: false)
+alive() {
+    # shellcheck disable=SC2046
+    set -- $(sed 's/.*) //' "/proc/$1/stat" 2>/dev/null)
+    [ $# -ge 2 ] && [ "$1" != Z ] && [ "$2" = $$ ]
+}
+# stop_child: the child of the moment ($child, or $! when the signal came
+# before it was noted) asked to stop with TERM, killed if it is still there
+# 2 s later (a run ends its batch first, which may wait on a SISL fit: the
+# night is over, and the journal it leaves is never resumed), and reaped
+stop_child() {
+    p=${child:-${!:-}}
+    [ -n "$p" ] && alive "$p" || return 0
+    kill -TERM "$p" 2>/dev/null
+    i=0
+    while [ $i -lt 20 ] && alive "$p"; do sleep 0.1; i=$((i + 1)); done
+    kill -KILL "$p" 2>/dev/null
+    wait "$p" 2>/dev/null
+    child=
+}
+# on_signal SIG: TERM, INT or HUP (`timeout`, a CI job's time limit, a
+# closed terminal) ends the night as a failed one that still reports: its
+# child stopped, status 2 with the stage it reached, recorded and the site
+# rebuilt.  Further signals are ignored from here on, and by the recording's
+# children too (an ignored signal stays ignored across exec), so that a
+# second one cannot cut the store's copy short (a run is copied under a dot
+# name and renamed whole: even SIGKILL leaves no half run in it).
+on_signal() {
+    trap '' TERM INT HUP
+    stop_child
+    echo "nightly: killed by SIG$1 in stage '$stage'" >&2
+    killed="$stage (killed by SIG$1)"
+    stage_end "$killed"
+    [ "$stage" = build ] && mkdir -p "$out" && mv "$out.build.log" "$out/build.log" 2>/dev/null
+    finish 2 "$killed"
+}
+trap 'on_signal TERM' TERM
+trap 'on_signal INT' INT
+trap 'on_signal HUP' HUP
+
+# finish STATUS STAGE: writes OUT/status and OUT/timings.csv, records the
+# run in the history store, prunes it, rebuilds the report, and exits with
+# STATUS (the store and the report never change it: their failures are
+# said on stderr).  No signal interrupts it (on_signal above).
 finish() {
-    mkdir -p "$out" 2>/dev/null && echo "$1" >"$out/status"
+    trap '' TERM INT HUP
+    mkdir -p "$out" 2>/dev/null && echo "$1" >"$out/status" && write_timings
     if [ "$history" != none ]; then
         run_dir=$(sh scripts/nightly_history.sh record --out "$out" --history "$history" --status "$1" \
-                  --stage "$2" --started "$start" --random "$random" --commit "$commit" --dirty $dirty) \
+                  --stage "$2" --started "$start" --random "$random" --baseline "$qbase" --commit "$commit" \
+                  --dirty $dirty) \
             && echo "nightly: recorded in $run_dir" >&2 \
             || echo "nightly: could not record this run in $history (see above)" >&2
         sh scripts/nightly_history.sh prune --history "$history" --keep "$keep" --keep-days "$keep_days" \
@@ -283,11 +367,13 @@ finish() {
 
 mkdir -p "$(dirname "$out")" || exit 2
 rm -f "$out/status"
+stage_begin build
 if [ -n "${NIGHTLY_BIN:-}" ]; then
     echo "not built: NIGHTLY_BIN=$bin" >"$out.build.log"
 else
-    make >"$out.build.log" 2>&1 || { mkdir -p "$out"; mv "$out.build.log" "$out/build.log" 2>/dev/null;
+    bg make >"$out.build.log" 2>&1 || { stage_end; mkdir -p "$out"; mv "$out.build.log" "$out/build.log" 2>/dev/null;
         echo "nightly: the build failed (see $out/build.log)" >&2; finish 2 build; }
+    stage_end
 fi
 rm -rf "$out"
 mkdir -p "$out"
@@ -297,11 +383,13 @@ echo "$size" >"$out/size"  # what --accept and --accept-committed take it for
 run() {  # DIR METHODS [run options]: one run into $out/DIR, its log in $out/DIR.log
     name=$1 m=$2; shift 2
     t0=$(date +%s)
+    stage_begin "run $name"
     mkdir -p "$(dirname "$out/$name")"
     # shellcheck disable=SC2086
-    "$bin" run --methods "$m" --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
+    bg "$bin" run --methods "$m" --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
         $threads --backend "$backend" "$@" --out "$out/$name" 2>"$out/$name.log"
     rc=$?
+    stage_end
     echo "nightly: $name: exit $rc in $(($(date +%s) - t0)) s ($(tail -n 1 "$out/$name.log"))" >&2
     [ $rc -eq 0 ] || { echo "nightly: the $name run failed (see $out/$name.log)" >&2; finish 2 "run $name"; }
 }
@@ -317,9 +405,12 @@ build_base() {
         echo "nightly: NIGHTLY_BASE_REF '$base_ref' is not a commit of this repository" >"$out/base-build.log"
         cat "$out/base-build.log" >&2; finish 2 "build base"; }
     rm -rf "$out/base-build"
+    stage_begin "build base"
+    # (the make in the background, waited for: a signal's trap fires at once)
     { git clone --quiet --shared --no-checkout . "$out/base-build" && git -C "$out/base-build" checkout --quiet --detach "$bsha" &&
-        make -C "$out/base-build"; } >"$out/base-build.log" 2>&1 || {
+        bg make -C "$out/base-build"; } >"$out/base-build.log" 2>&1 || {
         echo "nightly: the baseline build of $base_ref ($bsha) failed (see $out/base-build.log)" >&2; finish 2 "build base"; }
+    stage_end
     base_bin="$out/base-build/offbench"
     echo "nightly: the baseline build: $base_ref ($(printf '%s' "$bsha" | cut -c1-12))" >&2
 }
@@ -359,9 +450,11 @@ worst() {  # keeps the most severe status: 2 > 3 > 1 > 0
 # its messages in OUT/compare-LABEL.err; its status into the nightly's
 compare_to() {
     label=$1 b=$2 n=$3; shift 3
-    "$bin" compare "$b" "$n" "$@" --format csv --out "$out/compare-$label.csv" 2>/dev/null
-    "$bin" compare "$b" "$n" "$@" --format md --out "$out/compare-$label.md" 2>"$out/compare-$label.err"
+    stage_begin "compare $label"
+    bg "$bin" compare "$b" "$n" "$@" --format csv --out "$out/compare-$label.csv" 2>/dev/null
+    bg "$bin" compare "$b" "$n" "$@" --format md --out "$out/compare-$label.md" 2>"$out/compare-$label.err"
     crc=$?
+    stage_end
     echo "nightly: compare $label: exit $crc" >&2
     worst $crc
 }
@@ -523,6 +616,7 @@ section() {  # TITLE LABEL: one comparison's report, headings one level down, it
     echo
 }
 report="$out/report.md"
+stage_begin report
 {
     echo "# offbench nightly, $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo
@@ -566,5 +660,6 @@ report="$out/report.md"
     section "random: quality against $qbase/random" random-quality
     echo "Exit status $status ($(status_word $status); 0 no regression, 1 regression, 2 error, 3 not comparable); $(($(date +%s) - start)) s in all."
 } >"$report"
+stage_end
 echo "nightly: report in $report; exit $status" >&2
 finish $status compare

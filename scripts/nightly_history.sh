@@ -4,17 +4,21 @@
 # output directory is overwritten the next night, and prunes old runs.
 #
 #   sh scripts/nightly_history.sh record --out OUT --history DIR --status N
-#        [--stage STAGE] [--started EPOCH] [--random N:SEED]
+#        [--stage STAGE] [--started EPOCH] [--random N:SEED] [--baseline DIR]
 #        [--commit SHA [--dirty true|false]] [--time EPOCH]
 #       copies the nightly output OUT into DIR/STAMP_COMMIT_HOST/ (STAMP the
 #       UTC time, e.g. 2026-12-02T031205Z; COMMIT the short commit; HOST the
 #       machine's name) and prints that directory.  Per run set (published,
 #       random): results.csv, samples.csv, fits.csv, meta.json, the run's log; beside
 #       them report.md, compare-*.err, compare-*.json (compare --format json,
-#       when the nightly wrote it), build.log and run.json (status N, its
-#       meaning, the stage that ended the run, commit, dirty flag, host,
-#       time).  STAGE "build" copies only build.log: OUT then still holds the
-#       previous night's files.  A failed run is recorded all the same.
+#       when the nightly wrote it), build.log, timings.csv (each stage's wall
+#       seconds) and run.json (status N, its meaning, the stage that ended
+#       the run, commit, dirty flag, host, time, and the committed baseline
+#       the run was compared with, DIR, as NIGHTLY_BASELINE named it: null
+#       without --baseline).  STAGE "build" (or "build
+#       (killed by SIG...)") copies only build.log and timings.csv: OUT then
+#       still holds the previous night's files.  A failed run is recorded
+#       all the same.
 #       --commit, --dirty and --time record a run made elsewhere or earlier
 #       (default: the checkout's HEAD, whether it has changes, and now).
 #   sh scripts/nightly_history.sh prune --history DIR [--keep N] [--keep-days D]
@@ -42,11 +46,15 @@ status_text() {
     esac
 }
 
-# copy_run OUT DEST STAGE: the nightly's files that exist, into DEST
+# copy_run OUT DEST STAGE: the nightly's files that exist, into DEST; at
+# the build stage (failed, or killed: "build (killed by SIGTERM)") only
+# its log and timings, the rest of OUT being the previous night's
 copy_run() {
     o=$1 d=$2
-    [ -f "$o/build.log" ] && { cp "$o/build.log" "$d/" || return 1; }
-    [ "$3" = build ] && return 0
+    for f in "$o/build.log" "$o/timings.csv"; do
+        [ -f "$f" ] && { cp "$f" "$d/" || return 1; }
+    done
+    case "$3" in build|"build "*) return 0 ;; esac
     for f in "$o"/report.md "$o"/compare-*.err "$o"/compare-*.json "$o"/*.log; do
         [ -f "$f" ] && { cp "$f" "$d/" || return 1; }
     done
@@ -63,7 +71,7 @@ copy_run() {
 }
 
 # write_meta FILE NAME STATUS STAGE STARTED RANDOM: the run's run.json
-# (uses $commit, $dirty, $when and $host of record)
+# (uses $commit, $dirty, $when, $host and $baseline of record)
 write_meta() {
     secs=null
     is_count "$5" && secs=$((when - $5))
@@ -79,13 +87,14 @@ write_meta() {
         echo "  \"status_text\": $(json_str "$(status_text "$3")"),"
         echo "  \"stage\": $(json_str "$4"),"
         echo "  \"seconds\": $secs,"
-        echo "  \"random\": $(json_str "$6")"
+        echo "  \"random\": $(json_str "$6"),"
+        echo "  \"baseline\": $([ -n "$baseline" ] && json_str "$baseline" || echo null)"
         echo "}"
     } >"$1"
 }
 
 record() {
-    out="" hist="" status="" stage="done" started="" random="" commit="" when="" dirty=false
+    out="" hist="" status="" stage="done" started="" random="" commit="" when="" dirty=false baseline=""
     while [ $# -gt 0 ]; do
         case "$1" in
             --out) need "$1" $#; out=$2; shift 2 ;;
@@ -94,6 +103,7 @@ record() {
             --stage) need "$1" $#; stage=$2; shift 2 ;;
             --started) need "$1" $#; started=$2; shift 2 ;;
             --random) need "$1" $#; random=$2; shift 2 ;;
+            --baseline) need "$1" $#; baseline=$2; shift 2 ;;
             --commit) need "$1" $#; commit=$2; shift 2 ;;
             --dirty) need "$1" $#; dirty=$2; shift 2 ;;
             --time) need "$1" $#; when=$2; shift 2 ;;

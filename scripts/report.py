@@ -276,11 +276,13 @@ def link_to(r, label):
 
 
 def stage_files(r):
-    """The files that tell why a run ended at its stage."""
-    if r.stage == "build":
+    """The files that tell why a run ended at its stage (a killed night's
+    stage is said "run published (killed by SIGTERM)": its log all the same)."""
+    stage = r.stage.split(" (killed by ", 1)[0]
+    if stage == "build":
         want = ["build.log"]
-    elif r.stage.startswith("run "):
-        want = [r.stage[4:] + ".log"]
+    elif stage.startswith("run "):
+        want = [stage[4:] + ".log"]
     else:
         want = ["report.md"] + [l for l, _ in r.links if l.startswith("compare-")]
     return [w for w in want if any(l == w for l, _ in r.links)]
@@ -310,6 +312,13 @@ def compare_table(entry, methods):
     return "\n".join(out)
 
 
+def baseline_of(r):
+    """the committed baseline the run was compared with, as nightly.sh
+    recorded it in run.json (NIGHTLY_BASELINE: results/baseline by default)"""
+    b = r.meta.get("baseline")
+    return escape(b.rstrip("/") + "/") if isinstance(b, str) and b else "its path not recorded in run.json"
+
+
 def latest_section(runs, latest, methods):
     """The top of the page: the newest run's verdict, which is its exit
     status in run.json (the nightly's exit code), and its comparison with
@@ -328,7 +337,7 @@ def latest_section(runs, latest, methods):
            % (escape(r.name), escape(r.date), commit_cell(r), escape(r.host),
               (", %s s" % escape(str(r.seconds))) if r.seconds is not None else "",
               "; below, per run set, compare's verdict and per-method table against the committed baseline "
-              "(results/baseline/)" if latest.sets else "",
+              "(%s)" % baseline_of(r) if latest.sets else "",
               " It is the first run of this history: there is nothing to draw a step from yet."
               if len(runs) == 1 else "")]
     if r.status not in (0, 1, 3) or r.stage not in ("compare", ""):

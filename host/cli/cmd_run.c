@@ -28,6 +28,7 @@
 #include "host/run/modes.h"
 #include "host/run/mpirun.h"
 #include "host/run/plan.h"
+#include "host/run/resume_opts.h"
 #include "host/run/shard.h"
 #include "host/run/signals.h"
 
@@ -210,8 +211,8 @@ static int unfinished(run_cmd *r, int drc)
     if (drc == 1) {
         if (o->reps > 0)
             return ob_stop_exit("nothing written (a run with --reps cannot be resumed)");
-        return ob_stop_exit("the finished jobs' rows are in %s; run the same command with --resume %s to finish",
-                            r->journal.path, o->out_dir);
+        return ob_stop_exit("the finished jobs' rows are in %s; run --resume %s finishes the run (its options "
+                            "are taken from the journal)", r->journal.path, o->out_dir);
     }
     /* jobs that never ran are no results: nothing is written */
     if (o->reps > 0)
@@ -325,7 +326,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         const char *oom = getenv("OFFBENCH_TEST_OOM_AFTER");  /* test hook (driver.h) */
         if (oom && *oom)
             r.o.driver.test_oom_after = strtol(oom, NULL, 10);
-        st = test_slow_hook(&r.o.driver) ? 2 : setup_ranks(&r);
+        /* --resume DIR: the run's own options, for those not given (resume_opts.h) */
+        st = r.o.resume_dir && ob_resume_take_options(&r.o) ? 2 : test_slow_hook(&r.o.driver) ? 2 : setup_ranks(&r);
     }
     if (st == GO_ON)
         st = plan_run(&r);

@@ -61,9 +61,11 @@ int ob_fittime_wants(const ob_job *j);
  *          keep fit_calls 0: empty columns); round_ns[r * njobs + i]: job
  *          i's time in round r (ns per iteration of its workload; NAN for a
  *          job not timed); *seconds: the pass's wall time.
- * Returns: 0; 1 when a stop signal came (nothing is kept: fit_calls 0
- *          everywhere); -1 after ob_error() when a refit failed (a fit that
- *          does not repeat the run's) or memory ran out. */
+ * Returns: 0 (a job one of whose fits does not succeed again, e.g. sisl
+ *          past its wall cap on a loaded machine, keeps fit_calls 0, with a
+ *          warning: its row is kept, without a method time); 1 when a stop
+ *          signal came (nothing is kept: fit_calls 0 everywhere); -1 after
+ *          ob_error() when memory ran out. */
 int ob_fittime_run(const ob_fittime_opts *o, ob_job *jobs, size_t njobs, const ob_span_log *spans, double *round_ns,
                    double *seconds);
 

@@ -253,6 +253,37 @@ static const char *fp_find(const char *fp, const char *key, size_t klen, size_t 
     return NULL;
 }
 
+/* A value as fp_tok escaped it (v, n bytes), as the user wrote it: the
+ * %XX escapes undone, into out (cut to len - 1 bytes). */
+static int hex_digit(char c)
+{
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+}
+
+static void unescape(const char *v, size_t n, char *out, size_t len)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n && k + 1 < len; i++) {
+        if (v[i] == '%' && i + 2 < n && hex_digit(v[i + 1]) >= 0 && hex_digit(v[i + 2]) >= 0) {
+            out[k++] = (char)(16 * hex_digit(v[i + 1]) + hex_digit(v[i + 2]));
+            i += 2;
+        } else {
+            out[k++] = v[i];
+        }
+    }
+    out[k] = '\0';
+}
+
+char *ob_fp_get(const char *fp, const char *key)
+{
+    size_t vlen = 0;
+    const char *v = fp_find(fp, key, strlen(key), &vlen);
+    char *out = v ? malloc(vlen + 1) : NULL;
+    if (out)
+        unescape(v, vlen, out, vlen + 1);
+    return out;
+}
+
 int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
 {
     out[0] = '\0';
@@ -271,12 +302,15 @@ int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len)
                 size_t blen = 0;
                 const char *bv = fp_find(b, p, klen, &blen);
                 if (!bv || blen != alen || memcmp(bv, eq + 1, alen) != 0) {
-                    char label[160];
+                    char label[160], ws[81] = "none", ns[81] = "none";
                     key_label(p, klen, label, sizeof label);
                     const char *wv = pass ? eq + 1 : bv, *nv = pass ? bv : eq + 1;
                     const size_t wl = pass ? alen : blen, nl = pass ? blen : alen;
-                    snprintf(out, len, "%s differs (the run's %.*s, now %.*s)", label, wv ? (int)(wl > 80 ? 80 : wl) : 4,
-                             wv ? wv : "none", nv ? (int)(nl > 80 ? 80 : nl) : 4, nv ? nv : "none");
+                    if (wv)  /* as written, not %-escaped: "random 250:2026" */
+                        unescape(wv, wl, ws, sizeof ws);
+                    if (nv)
+                        unescape(nv, nl, ns, sizeof ns);
+                    snprintf(out, len, "%s differs (the run's %s, now %s)", label, ws, ns);
                     return 1;
                 }
             }
@@ -330,8 +364,9 @@ static int continue_journal(ob_journal *j, int fd, const char *text, size_t len,
         ob_fingerprint_diff(was ? was : "", fp, diff, sizeof diff);
         free(was);
         close(fd);
-        return ob_fail(err, "%s:1: the interrupted run had other options, data or build: %s; resume it with the "
-                       "same options and build, or start afresh (another --out, or --force)", j->path, diff);
+        return ob_fail(err, "%s:1: the interrupted run had other options, data or build: %s; resume it with its "
+                       "own options (run --resume DIR alone takes them) on the same data and build, or start "
+                       "afresh (another --out, or --force)", j->path, diff);
     }
     size_t keep = len;
     while (keep > first + 1 && text[keep - 1] != '\n')
@@ -426,7 +461,8 @@ int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, 
         was[--wlen] = '\0';
     if (ob_fingerprint_diff(was, fp, diff, sizeof diff) != 0) {
         ob_fail(err, "--resume: %s: the finished run had other options, data or build: %s; resume it with "
-                "the same options and build, or run afresh (another --out)", fpath, diff);
+                "its own options (run --resume DIR alone takes them) on the same data and build, or run afresh "
+                "(another --out)", fpath, diff);
         free(was);
         ob_res_free(restored);
         return -1;
@@ -434,6 +470,54 @@ int ob_journal_open(ob_journal *j, const char *dir, const char *fp, int resume, 
     free(was);
     j->from_results = 1;
     return create(j, fp, err);
+}
+
+/* The first line of the regular file at path (at most max bytes; the end
+ * of the file ends it when eof_ends), malloc'd; NULL without one.  Opened
+ * without blocking and checked first: a FIFO there is not read from. */
+static char *first_line(const char *path, size_t max, int eof_ends)
+{
+    const int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return NULL;
+    struct stat st;
+    char *buf = NULL;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (buf = malloc(max + 1))) {
+        size_t n = 0;
+        ssize_t r;
+        while (n < max && ((r = read(fd, buf + n, max - n)) > 0 || (r < 0 && errno == EINTR)))
+            n += r > 0 ? (size_t)r : 0;
+        char *nl = memchr(buf, '\n', n);
+        if (nl || (eof_ends && n < max)) {
+            buf[nl ? (size_t)(nl - buf) : n] = '\0';
+        } else {
+            free(buf);
+            buf = NULL;
+        }
+    }
+    close(fd);
+    return buf;
+}
+
+char *ob_stored_fingerprint(const char *dir, char *path, size_t plen, int *journal_there)
+{
+    struct stat st;
+    snprintf(path, plen, "%s/results.journal.csv", dir);
+    *journal_there = stat(path, &st) == 0;
+    if (*journal_there) {
+        char *line = first_line(path, (size_t)1 << 20, 0);
+        if (line && strncmp(line, MAGIC, sizeof MAGIC - 1) == 0) {
+            memmove(line, line + sizeof MAGIC - 1, strlen(line + sizeof MAGIC - 1) + 1);
+            return line;
+        }
+        free(line);
+        return NULL;
+    }
+    snprintf(path, plen, "%s/results.fingerprint", dir);
+    char *fp = first_line(path, (size_t)1 << 20, 1);
+    if (fp && fp[0] && fp[strlen(fp) - 1] == '\r')
+        fp[strlen(fp) - 1] = '\0';
+    return fp;
 }
 
 int ob_journal_add(ob_journal *j, const ob_job *job)

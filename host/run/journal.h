@@ -52,8 +52,22 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, cons
 
 /* Purpose: 0 when fingerprints was and now agree; else 1 with the first
  *          difference in out, named as the user knows it ("--samples differs
- *          (the run's 8, now 256)"). */
+ *          (the run's 8, now 256)"), its values as written ("random 250:2026",
+ *          not %-escaped). */
 int ob_fingerprint_diff(const char *was, const char *now, char *out, size_t len);
+
+/* Purpose: the value of key in fingerprint fp as the user wrote it (the
+ *          %-escapes undone), malloc'd; NULL when fp has no such key (or
+ *          without memory). */
+char *ob_fp_get(const char *fp, const char *key);
+
+/* Purpose: the fingerprint that the run in dir left, for `run --resume DIR`
+ *          to take the run's own options from: its journal's first line (an
+ *          interrupted run) or results.fingerprint (a finished one), as
+ *          written (%-escaped); malloc'd, the file it came from in path.
+ *          NULL when dir holds neither, or a journal without a whole first
+ *          line (*journal_there says whether a journal is there). */
+char *ob_stored_fingerprint(const char *dir, char *path, size_t plen, int *journal_there);
 
 /* Purpose: start the journal of a run in dir.  Fresh (resume 0): create it
  *          (replacing an old one).  resume 1: read dir's journal (its

@@ -200,8 +200,9 @@ enum {
     RO_CURVES, RO_CURVE, RO_RANDOM, RO_METHODS, RO_TOLS, RO_METRIC, RO_SPLIT, RO_BACKEND, RO_DEVICE,
     RO_THREADS, RO_SAMPLES, RO_MAX_DEPTH, RO_MAX_SEGMENTS, RO_INFLECTIONS, RO_PARAM, RO_JOB_TIMEOUT,
     RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT, RO_ENGINE, RO_CHUNK, RO_CERTIFY,
-    RO_TIME_FITS, RO_FIT_REPS, RO_FIT_MIN_TIME,
+    RO_TIME_FITS, RO_FIT_REPS, RO_FIT_MIN_TIME, RO_COUNT
 };
+_Static_assert((int)RO_COUNT <= (int)OB_RUN_MAX_FLAGS, "ob_run_opts.typed holds every run option");
 
 const ob_flag ob_run_flags[] = {
     {"curves", "FILE", "curve file (default: every file under datasets/)", RO_CURVES, OB_FLAG_ONCE},
@@ -226,7 +227,8 @@ const ob_flag ob_run_flags[] = {
     {"reps", "N", "timed repetitions after a warm-up run (samples.csv)", RO_REPS, OB_FLAG_ONCE},
     {"shard", "K/N", "run shard K of N (merge the shards with 'merge')", RO_SHARD, OB_FLAG_ONCE},
     {"out", "DIR", "output directory (default out)", RO_OUT, OB_FLAG_ONCE},
-    {"resume", "DIR", "finish the interrupted run in DIR", RO_RESUME, OB_FLAG_ONCE},
+    {"resume", "DIR", "finish the interrupted run in DIR with its own options (any given must be its own)", RO_RESUME,
+     OB_FLAG_ONCE},
     {"force", NULL, "replace the finished run in --out, or start afresh over an interrupted one's journal (without it both are refused)", RO_FORCE, OB_FLAG_ONCE},
     {"export", "DIR", "each job's approximation as JSON, .curves, DXF and SVG", RO_EXPORT, OB_FLAG_ONCE},
     {"certify", NULL, "certify each job's error: err_upper, err_lower, certified and cert_ns (docs/certified.md)",
@@ -371,6 +373,8 @@ static int apply_param(ob_run_opts *o, const char *v)
 int ob_run_flag_apply(void *ctx, int id, const char *opt, const char *value)
 {
     ob_run_opts *o = ctx;
+    if (id >= 0 && id < RO_COUNT)  /* as given, for the messages of --resume (resume_opts.h) */
+        o->typed[id] = value ? value : "";
     if (id == RO_PARAM)
         return apply_param(o, value);
     int rc = apply_selection(o, id, opt, value);
@@ -393,6 +397,23 @@ int ob_run_opt_set(ob_run_opts *o, const char *name, const char *value)
             return ob_run_flag_apply(o, ob_run_flags[i].id, opt, value);
     ob_error("%s: not an option of run", opt);
     return -1;
+}
+
+const char *ob_run_opt_typed(const ob_run_opts *o, const char *name)
+{
+    for (int i = 0; i < ob_run_nflags; i++)
+        if (strcmp(ob_run_flags[i].name, name) == 0)
+            return o->typed[ob_run_flags[i].id];
+    return NULL;
+}
+
+const char *ob_run_param_typed(const ob_run_opts *o, const char *key)
+{
+    const size_t n = strlen(key);
+    for (int k = 0; k < o->nparam_seen; k++)
+        if (strncmp(o->param_seen[k], key, n) == 0 && o->param_seen[k][n] == '=')
+            return o->param_seen[k] + n + 1;
+    return NULL;
 }
 
 int ob_run_opts_init(ob_run_opts *o, int argc, char **argv)
@@ -469,6 +490,8 @@ void ob_run_opts_free(ob_run_opts *o)
     free_list(o->curve_ids, o->ncurve_ids);
     free(o->methods);
     free(o->params);
+    free(o->curves_file_owned);
+    o->curves_file_owned = NULL;
     o->curve_ids = NULL;
     o->methods = NULL;
     o->params = NULL;

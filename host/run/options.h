@@ -9,7 +9,7 @@
 #include "host/backend/select.h"
 #include "methods/driver/driver.h"
 
-enum { OB_MAX_TOLS = 64, OB_MAX_PARAM_ARGS = 256 };
+enum { OB_MAX_TOLS = 64, OB_MAX_PARAM_ARGS = 256, OB_RUN_MAX_FLAGS = 32 };
 
 /* What the command line asked for: set by parsing (ob_run_opts_parse), then
  * read only.  What the run finds out goes to an ob_run_record (record.h). */
@@ -46,6 +46,10 @@ typedef struct {
     int out_given;               /* --out was given (parsing) */
     const char *param_seen[OB_MAX_PARAM_ARGS]; /* the --param values so far (parsing) */
     int nparam_seen;
+    const char *typed[OB_RUN_MAX_FLAGS]; /* each option's value as given on the
+                                    command line, by flag ("" for a flag
+                                    without value); NULL: not given */
+    char *curves_file_owned;     /* --curves taken from a resumed run (owned) */
     int shard_k, shard_n;        /* --shard K/N: this process runs shard K of N
                                     (shard.h); shard_n 0: the whole run */
     ob_driver_opts driver;
@@ -70,6 +74,14 @@ int ob_run_flag_apply(void *ctx, int id, const char *opt, const char *value);
 /* Purpose: apply the run option --name value (what draw and trace turn
  *          their --method and --tol into).  Returns 0, or -1 after ob_error(). */
 int ob_run_opt_set(ob_run_opts *o, const char *name, const char *value);
+
+/* Purpose: the value of option --name as given on the command line ("" for
+ *          a flag without value), or NULL when it was not given. */
+const char *ob_run_opt_typed(const ob_run_opts *o, const char *name);
+
+/* Purpose: the value of --param key=VALUE (key "METHOD.NAME") as given, or
+ *          NULL when that parameter was not given. */
+const char *ob_run_param_typed(const ob_run_opts *o, const char *key);
 
 /* Purpose: the defaults, before any option (argv: recorded for meta.json).
  * Returns 0, or -1 when out of memory.  *o is then safe to free. */

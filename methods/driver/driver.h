@@ -70,7 +70,8 @@ int ob_split_parse(const char *name, ob_split *s);
  * limit was reached and what was accepted is kept (max_err may exceed tol);
  * OB_FAIL / OB_SKIP: a fit failed or did not apply (the method's
  * OB_FIT_FAIL / OB_FIT_SKIP), or the driver could not go on; OB_TIMEOUT: the
- * job used more than the run's --job-timeout.  Set by the driver only. */
+ * job used more than the run's --job-timeout, or a fit passed a wall-clock
+ * cap of its own (OB_FIT_TIMEOUT: sisl.wall_timeout).  Set by the driver only. */
 typedef enum { OB_OK = 0, OB_LIMIT, OB_FAIL, OB_SKIP, OB_TIMEOUT } ob_status;
 const char *ob_status_name(ob_status s);
 

@@ -22,6 +22,7 @@ static ob_status job_status_of(ob_fit_status st)
     switch (st) {
     case OB_FIT_FAIL: return OB_FAIL;
     case OB_FIT_SKIP: return OB_SKIP;
+    case OB_FIT_TIMEOUT: return OB_TIMEOUT;
     case OB_FIT_OK:
     case OB_FIT_RETRY_SMALLER: break;
     }

@@ -15,7 +15,10 @@ For github-nightly.yml (GitHub Actions) and gitlab-nightly.yml (GitLab CI):
   first-party actions/* pinned to a major version; no ${{ }} expression
   inside a run: (they go through env:);
 - the nightly is `sh scripts/nightly.sh` (never `make nightly`: make turns
-  every failing exit status into 2) and its exit status reaches the job:
+  every failing exit status into 2), under a `timeout` below the job's own
+  time limit (a night that runs long is killed by SIGTERM, which nightly.sh
+  records as a failed night, and the steps after it still save the store
+  and publish the site), and its exit status reaches the job:
   the lines are run, with stand-ins for the repository's scripts, for exit
   statuses 0 to 3, and the job must pass on 0, fail on 1 and 2, and warn on
   3 (docs/nightly.md: not comparable is a warning, the baseline needs accepting);
@@ -23,7 +26,13 @@ For github-nightly.yml (GitHub Actions) and gitlab-nightly.yml (GitLab CI):
   when the night fails (actions/cache restore/save; GitLab cache with
   when: always), and the site, written with --copy-files, is published
   (upload-pages-artifact and deploy-pages; the GitLab job "pages" with
-  public/, run even after a failed night)."""
+  public/, run even after a failed night);
+- every document the recipe cites (in its comments and messages too)
+  exists, and so does the section it names: `docs/nightly.md "Nightly in
+  CI"` (a heading of that text) or `docs/nightly.md#nightly-in-ci` (a
+  heading with that anchor); the README, a front door, is cited only with
+  the section meant.  (A reader sent to a section that is not there, as
+  `README "Per-machine baselines"` once, finds nothing.)"""
 
 import os
 import re
@@ -41,7 +50,7 @@ BUILTINS = {"if", "then", "else", "elif", "fi", "for", "do", "done", "while", "u
 BASE_TOOLS = {"sh", "bash", "cp", "mv", "rm", "mkdir", "rmdir", "ls", "cat", "tar", "gzip", "find", "xargs",
               "date", "du", "df", "head", "tail", "sed", "grep", "sort", "wc", "tee", "env", "id", "touch",
               "chmod", "ln", "apt-get", "dpkg", "dpkg-query", "uname", "hostname", "mktemp", "dirname",
-              "basename", "sleep", "nproc", "cut", "tr", "diff", "cmp"}
+              "basename", "sleep", "nproc", "cut", "tr", "diff", "cmp", "timeout"}
 # tools a recipe may call once it installed their Debian package
 PACKAGE_OF = {"git": "git", "gcc": "gcc", "cc": "gcc", "make": "make", "python3": "python3",
               "/usr/bin/python3": "python3", "curl": "curl", "unzip": "unzip", "zstd": "zstd"}
@@ -127,11 +136,34 @@ def deps_packages(root):
                               f.read()))
 
 
+def duration(text):
+    """seconds of a time limit: timeout's 280m, 90s, 60; GitLab's 5h or 3h 30m"""
+    parts = re.findall(r"(\d+(?:\.\d+)?)\s*([smhd]?)", str(text))
+    if not parts or re.sub(r"[\d.\s]|[smhd]", "", str(text)):
+        return None
+    return sum(float(n) * {"": 1, "s": 1, "m": 60, "h": 3600, "d": 86400}[u] for n, u in parts)
+
+
+def under_timeout(cmd):
+    """(its limit in seconds, the command) of `timeout [OPTION]... DURATION
+    COMMAND...`; (None, CMD) for any other command"""
+    if cmd[:1] != ["timeout"]:
+        return None, cmd
+    i = 1
+    while i < len(cmd) and cmd[i].startswith("-"):
+        i += 2 if cmd[i] in ("-s", "--signal", "-k", "--kill-after") else 1
+    return (duration(cmd[i]), cmd[i + 1:]) if i < len(cmd) else (None, [])
+
+
 def command_problems(cmd, root, packages, targets):
     """Why the command CMD cannot run, or None."""
     w = cmd[0]
     if w.startswith("<unparsable"):
         return w
+    if w == "timeout":
+        limit, inner = under_timeout(cmd)
+        return ("timeout: no limit or no command: %s" % " ".join(cmd) if limit is None or not inner
+                else command_problems(inner, root, packages, targets))
     if w in BUILTINS:
         return None
     if w in ("sh", "bash", "python3", "/usr/bin/python3"):
@@ -160,7 +192,8 @@ def command_problems(cmd, root, packages, targets):
     return "%s: not a known tool" % w
 
 
-def lint_commands(name, texts, root, packages):
+def lint_commands(name, texts, root, packages, job_limit):
+    """the commands of TEXTS; job_limit: the nightly job's time limit, seconds"""
     targets = make_targets(root)
     n = 0
     for t in texts:
@@ -171,8 +204,12 @@ def lint_commands(name, texts, root, packages):
     check(n > 0, "%s: commands found" % name)
     for pk in NIGHTLY_NEEDS:
         check(pk in packages, "%s: installs %s (scripts/nightly.sh needs it)" % (name, pk))
-    nightly = [c for t in texts for c in commands(t) if "scripts/nightly.sh" in c]
-    check(len(nightly) == 1 and nightly[0][0] == "sh", "%s: one `sh scripts/nightly.sh`: %s" % (name, nightly))
+    nightly = [under_timeout(c) for t in texts for c in commands(t) if "scripts/nightly.sh" in c]
+    check(len(nightly) == 1 and nightly[0][1][:1] == ["sh"], "%s: one `sh scripts/nightly.sh`: %s" % (name, nightly))
+    limit = nightly[0][0] if len(nightly) == 1 else None
+    check(limit is not None and job_limit is not None and limit < job_limit,
+          "%s: the nightly runs under `timeout` below the job's time limit (%s s), so that a night that runs "
+          "long is recorded and the store still saved: its limit %s s" % (name, job_limit, limit))
 
 
 def cron_ok(c):
@@ -230,7 +267,9 @@ def github(root, y):
                   "%s: %s: a first-party action pinned to a major version" % (name, u))
     for r in runs:
         check("${{" not in r, "%s: no ${{ }} inside a run: (use env:): %s" % (name, r.splitlines()[0]))
-    lint_commands(name, runs, root, apt_packages(runs))
+    limits = [60 * float(j.get("timeout-minutes", 360)) for j in jobs.values()
+              if isinstance(j, dict) and "scripts/nightly.sh" in str(j.get("steps"))]
+    lint_commands(name, runs, root, apt_packages(runs), limits[0] if limits else None)
     env = dict(y.get("env") or {})
     hist = str(env.get("NIGHTLY_HISTORY", "out/history"))
     k_n = next((k for k, s in enumerate(steps) if "scripts/nightly.sh" in str(s.get("run", ""))), None)
@@ -322,7 +361,8 @@ def gitlab(root, y):
                 # a plain `- echo "a: b"` is a mapping in YAML, not a line
                 check(isinstance(x, str), "%s: %s: %s: a line of text, not %r (quote it)" % (name, jn, key, x))
             texts += [x for x in v if isinstance(x, str)]
-    lint_commands(name, texts, root, apt_packages(texts))
+    limits = [duration(j.get("timeout", "1h")) for j in jobs.values() if "scripts/nightly.sh" in str(j.get("script"))]
+    lint_commands(name, texts, root, apt_packages(texts), limits[0] if limits else None)
     var = {k: str(v) for k, v in (y.get("variables") or {}).items()}
     hist = var.get("NIGHTLY_HISTORY", "out/history")
     nj = next((k for k, j in jobs.items() if any("scripts/nightly.sh" in str(x) for x in j.get("script") or [])),
@@ -376,6 +416,53 @@ def gitlab(root, y):
                   "%s: nightly exit %d: the site is written all the same" % (name, st))
 
 
+CITE = re.compile(r'\b(README(?:\.md)?|docs/[\w./-]+\.md)(?:#([\w-]+)|\s+"([^"]+)")?')
+
+
+def headings(path):
+    """the headings of a markdown file (outside code fences): their text"""
+    out, fence = [], False
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if re.match(r" {0,3}(```|~~~)", line):
+                fence = not fence
+            elif not fence and re.match(r"#{1,6} ", line):
+                out.append(line.lstrip("#").strip())
+    return out
+
+
+def anchor(text):
+    """GitHub's anchor of a heading (as scripts/docs.py makes them)"""
+    s = re.sub(r"[^\w\- ]", "", text.replace("`", "").replace("*", "").lower())
+    return s.replace(" ", "-")
+
+
+def lint_citations(root, name, text):
+    """every document, section and anchor the recipe's text cites exists"""
+    n = 0
+    for m in CITE.finditer(text):
+        doc, frag, section = m.group(1), m.group(2), m.group(3)
+        if section:  # a title that goes on on the next comment line
+            section = re.sub(r"\s*\n\s*#?\s*", " ", section)
+        rel = "README.md" if doc.startswith("README") else doc
+        path = os.path.join(root, rel)
+        n += 1
+        if not os.path.isfile(path):
+            check(False, "%s: cites %s, which does not exist" % (name, doc))
+            continue
+        heads = headings(path)
+        if frag:
+            check(frag in [anchor(h) for h in heads], "%s: cites %s#%s: no heading of %s has that anchor"
+                  % (name, doc, frag, rel))
+        elif section:
+            check(section.lower() in [h.lower() for h in heads], '%s: cites %s "%s": %s has no such section'
+                  % (name, doc, section, rel))
+        else:
+            check(rel != "README.md", "%s: cites the README without the section meant (%s)"
+                  % (name, text[max(0, m.start() - 40):m.end() + 10].replace("\n", " ")))
+    check(n > 0, "%s: cites its documentation" % name)
+
+
 def main(root):
     global skipped
     try:
@@ -395,6 +482,8 @@ def main(root):
         check(isinstance(y, dict), "%s parses as a YAML mapping" % fname)
         if isinstance(y, dict):
             fn(root, y)
+        with open(path, encoding="utf-8") as f:
+            lint_citations(root, fname, f.read())
 
 
 main(os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else ".")

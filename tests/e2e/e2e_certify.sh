@@ -68,8 +68,15 @@ awk -F, 'BEGIN{OFS=","} NR==7{for(i=NF-3;i<=NF;i++) $i=""} NR>=7 && NR<=7' "$T/c
 $OB run $R --certify --threads 2 --resume "$T/j" >/dev/null 2>"$T/j.err"
 check '[ $? -eq 0 ] && [ "$(body "$T/j/results.csv")" = "$(body "$T/c/results.csv")" ] && grep -q "5 of [0-9]* jobs restored" "$T/j.err"' \
     "--resume --certify: certified rows restored, the uncertified one rerun: $(cat "$T/j.err" | head -n 2)"
-$OB run $R --threads 2 --resume "$T/c" >/dev/null 2>"$T/e.txt"
-check '[ $? -eq 2 ] && grep -q -- "--certify differs" "$T/e.txt"' "resume without --certify of a certified run: refused: $(cat "$T/e.txt")"
+# --certify is the run's own: taken when left out, refused when the run had none
+cp "$T/c/results.csv" "$T/c.csv"
+$OB run --threads 2 --resume "$T/c" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 0 ] && [ "$(body "$T/c/results.csv")" = "$(body "$T/c.csv")" ]' \
+    "resume of a certified run without --certify: taken from the run, the same rows and certificates: $(cat "$T/e.txt")"
+$OB run $R --out "$T/u" >/dev/null 2>&1
+$OB run --certify --resume "$T/u" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--certify (as given), the run.s no --certify" "$T/e.txt"' \
+    "resume of an uncertified run with --certify: refused, naming it: $(cat "$T/e.txt")"
 # shards: merged, the whole run; a certified shard with an uncertified one: refused
 $OB run $R --certify --shard 0/2 --out "$T/s1" >/dev/null 2>&1
 $OB run $R --certify --shard 1/2 --out "$T/s2" >/dev/null 2>&1

@@ -3,9 +3,11 @@
 # - tests/e2e/ci_recipes_check.py: github-nightly.yml and gitlab-nightly.yml
 #   parse as YAML, run on a schedule, call only commands that exist (the
 #   repository's scripts and make targets, tools the image has or the
-#   recipe installs), run `sh scripts/nightly.sh` and pass its exit status
-#   to the job (run with stand-ins: pass on 0, fail on 1 and 2, warn on 3),
-#   keep the history store across runs and publish the site; without PyYAML
+#   recipe installs), run `sh scripts/nightly.sh` under a `timeout` below the
+#   job's limit and pass its exit status to the job (run with stand-ins:
+#   pass on 0, fail on 1 and 2, warn on 3), keep the history store across
+#   runs, publish the site and cite only documents and sections that exist
+#   (README.md, docs/*.md); without PyYAML
 #   (Debian python3-yaml) these count as skipped;
 # - scripts/ci/history_from_site.sh: a store restored from a site written
 #   with report.py --copy-files (what a runner that starts empty gets from
@@ -31,7 +33,7 @@ check '[ $? -eq 0 ] && grep -q "no PyYAML (Debian python3-yaml)" "$T/nolint" && 
     "lint without PyYAML: skipped with the reason: $(cat "$T/nolint")"
 # the lint catches what it is there for: each broken copy of a recipe fails
 # with its reason (skipped with the lint when there is no PyYAML)
-NBROKEN=8
+NBROKEN=11
 if grep -q "skipped" "$T/lint"; then
     skipped=$((skipped + NBROKEN))
 else
@@ -57,6 +59,12 @@ else
         "curl: its package curl is not installed" "a tool the image lacks"
     broken gitlab-nightly.yml "s|    - 'echo \"nightly: exit status \$status\"'|    - echo \"nightly: exit status \$status\"|" \
         "a line of text, not" "an unquoted colon makes a mapping"
+    broken github-nightly.yml 's|docs/nightly.md "Nightly in CI")|docs/nightly.md "Nightly on CI")|' \
+        'cites docs/nightly.md "Nightly on CI": docs/nightly.md has no such section' "a section cited that is not there"
+    broken gitlab-nightly.yml 's|timeout --preserve-status -s TERM 280m sh scripts/nightly.sh|sh scripts/nightly.sh|' \
+        "below the job's time limit" "a nightly without a timeout of its own"
+    broken github-nightly.yml 's|TERM 280m sh|TERM 400m sh|' "below the job's time limit" \
+        "a nightly whose timeout is past the job's"
 fi
 
 # --- the store from a published site ---------------------------------------------

@@ -69,6 +69,17 @@ check 'grep -q "^Timing: judged: .*the methods. own fit time (--time-fits)" "$T/
     "the methods' own fit time is judged: $(grep "^Timing:" "$T/n1/report.md" | head -n 1)"
 check 'grep -q "^## Verdict by method" "$T/n1/report.md" && [ "$(grep -n "^## " "$T/n1/report.md" | head -n 1 | cut -d: -f2-)" = "## Verdict by method" ]' \
     "the first section is the deciding per-method table"
+# each stage's wall seconds (OUT/timings.csv), and the file make docs quotes
+# them from (scripts/nightly_wall.py): this is a small configuration
+check '[ "$(cut -d, -f1 "$T/n1/timings.csv" | tr "\n" "|")" = "stage|run published|run random|compare published-quality|compare random-quality|compare timing|report|total|" ] && ! grep -v "^stage,seconds$" "$T/n1/timings.csv" | grep -qv "^[a-z -]*,[0-9.]*$"' \
+    "OUT/timings.csv: each stage in order, then the total: $(tr '\n' ' ' < "$T/n1/timings.csv")"
+if [ -x /usr/bin/python3 ]; then
+/usr/bin/python3 "$ROOT/scripts/nightly_wall.py" "$T/n1" --out "$T/wall.txt" 2>"$T/err"
+check '[ $? -eq 0 ] && grep -qx "configuration: small" "$T/wall.txt" && grep -qx "config: --curve liu2002_ex1,zhao2017_septic, --methods ahn,zhao-rational, --random 2:2026" "$T/wall.txt" && grep -qx "published_runs: 6" "$T/wall.txt" && grep -q "^seconds_compare: [0-9.]*$" "$T/wall.txt" && grep -q "^seconds_total: [0-9.]*$" "$T/wall.txt" && ! grep -q "^seconds_build:" "$T/wall.txt"' \
+    "nightly_wall.py: the night's configuration (small), its runs and stages, no build (NIGHTLY_BIN): $(cat "$T/err") $(grep -v "^#" "$T/wall.txt" | tr '\n' '|')"
+else
+    echo "skipped: no /usr/bin/python3 for scripts/nightly_wall.py"; skipped=$((skipped + 1))
+fi
 
 # --- a night under load: judged, the load noted; --accept by the run's own rounds ---
 OFFBENCH_LOADAVG=$T/busy nightly "$T/nbusy"

@@ -219,6 +219,9 @@ done
 check 'grep -q "id=\"no-steps\"[^>]*>[^<]*baseline" "$T/vsite1/index.html"' "first night: 'no steps' points to the baseline comparison"
 check 'grep -q "no column [^ ]*method[^ ]* in the header" "$T/vsite2/index.html"' "exit 2 at compare: compare's message shown"
 check 'grep -q "seed 7 vs 99" "$T/vsite3/index.html"' "exit 3: the reasons shown"
+# the baseline the run was compared with (NIGHTLY_BASELINE), not results/baseline/
+check 'grep -qF "\"baseline\": \"$T/vscratch/base\"" "$(ls -d "$T/v1"/2*)/run.json" && grep -qF "committed baseline ($T/vscratch/base/)" "$T/vsite1/index.html" && ! grep -q "results/baseline" "$T/vsite1/index.html"' \
+    "the page names the baseline the run was compared with: $(grep -o "committed baseline ([^)]*)" "$T/vsite1/index.html")"
 check 'grep -q "class=\"stage\"[^>]*>[^<]*<[^>]*>build<" "$T/vsite2-build/index.html" && ! grep -q "compare-methods" "$T/vsite2-build/index.html" && grep -q "href=\"[^\"]*build.log\"" "$T/vsite2-build/index.html"' \
     "exit 2 at the build: the stage said, build.log linked, no table"
 check 'grep -q "<table class=\"compare-methods\" data-set=\"published\" data-source=\"compare-published.json\"" "$T/vsite1-json/index.html" && grep -q "<table class=\"compare-methods\" data-set=\"published\" data-source=\"report.md\"" "$T/vsite1/index.html"' \

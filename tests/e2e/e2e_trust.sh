@@ -13,13 +13,14 @@ L="--random 12:5 --methods tiller,cobb,ahn,zhao,interp --backend cpu --threads 2
 waitfor() { n=0; while [ ! -s "$1" ] && [ $n -lt 200 ]; do sleep 0.05; n=$((n + 1)); done; }
 
 # 1. a finished run resumed with other options: refused, naming the option;
-# results.csv and meta.json untouched
+# results.csv and meta.json untouched (an option left out is the run's own:
+# --resume takes it, tests/e2e/e2e_resume.sh)
 $OB run $S --methods tiller,cobb --samples 8 --max-segments 5 --out "$T/f" 2>/dev/null
 check '[ $? -eq 0 ] && [ -s "$T/f/results.csv" ] && [ ! -e "$T/f/results.journal.csv" ]' "finished run"
 cp "$T/f/results.csv" "$T/f.csv"; cp "$T/f/meta.json" "$T/f.json"
-$OB run $S --methods tiller,cobb --resume "$T/f" >/dev/null 2>"$T/e.txt"
-check '[ $? -eq 2 ] && grep -q -- "--samples" "$T/e.txt" && cmp -s "$T/f.csv" "$T/f/results.csv" && cmp -s "$T/f.json" "$T/f/meta.json"' \
-    "resume of a finished run with other --samples/--max-segments: exit 2 naming --samples: $(cat "$T/e.txt")"
+$OB run $S --methods tiller,cobb --samples 256 --resume "$T/f" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q -- "--samples 256" "$T/e.txt" && cmp -s "$T/f.csv" "$T/f/results.csv" && cmp -s "$T/f.json" "$T/f/meta.json"' \
+    "resume of a finished run with another --samples: exit 2 naming --samples: $(cat "$T/e.txt")"
 $OB run $S --methods tiller --samples 8 --max-segments 5 --resume "$T/f" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--methods" "$T/e.txt" && cmp -s "$T/f.csv" "$T/f/results.csv"' \
     "resume of a finished run with other --methods: exit 2 naming --methods: $(cat "$T/e.txt")"

@@ -13,6 +13,8 @@
 #   1  published: cobb's first row +2 ctrl_points (a quality regression)
 #   2  published: a results.csv with a broken header (compare: error)
 #   3  random: another seed in meta.json (not comparable)
+# The run is recorded with its baseline's path, SCRATCH/base, as nightly.sh
+# records NIGHTLY_BASELINE.
 # STAGE other than compare (build, "run random") records what nightly.sh
 # would then have: build.log only (build), or the logs and the run sets
 # without any compare output.  --json also writes compare-SET.json
@@ -79,4 +81,4 @@ if [ "$STAGE" = compare ]; then
     [ "$worst" = "$ST" ] || { echo "report_verdict_fixture: compare gave $worst, not $ST" >&2; exit 1; }
 fi
 sh "$ROOT/scripts/nightly_history.sh" record --out "$N" --history "$H" --status "$ST" --stage "$STAGE" \
-    --commit 0123456789abcdef0123456789abcdef01234567 --time 1795000000 --random 2:7 >/dev/null
+    --commit 0123456789abcdef0123456789abcdef01234567 --time 1795000000 --random 2:7 --baseline "$B" >/dev/null

@@ -548,9 +548,10 @@ static void test_status(void)
     }
 
     /* max_step reaches s1360: it changes SISL's step and so the count */
-    CHECK(M->nparams == 2 && strcmp(M->params[0].name, "max_step") == 0 && M->params[0].def == 0.0 &&
-              strcmp(M->params[1].name, "timeout") == 0 && M->params[1].def > 0.0,
-          "max_step and timeout parameters");
+    CHECK(M->nparams == 3 && strcmp(M->params[0].name, "max_step") == 0 && M->params[0].def == 0.0 &&
+              strcmp(M->params[1].name, "timeout") == 0 && M->params[1].def > 0.0 &&
+              strcmp(M->params[2].name, "wall_timeout") == 0 && M->params[2].def == 0.0,
+          "max_step, timeout and wall_timeout parameters");
     int stat = 0;
     SISLCurve *rc = sisl_direct(&C, 1.0, 1e-2, 0.5, &stat);
     st = fit(&C, 1.0, 1e-2, 0.5, &f, msg);
@@ -654,6 +655,7 @@ static void test_runaway(void)
     double par[OB_MAX_PARAMS];
     ob_param_defaults(sm, par);
     par[1] = 0.5; /* timeout, seconds */
+    par[2] = 600; /* wall_timeout: the CPU deadline is what is tested, whatever the load */
     ob_job j;
     memset(&j, 0, sizeof j);
     j.curve = &set.v[0];
@@ -698,6 +700,7 @@ static void test_load_and_history(void)
     double par[OB_MAX_PARAMS];
     ob_param_defaults(sm, par);
     par[1] = 0.1; /* timeout: CPU seconds (the server counts whole seconds) */
+    par[2] = 600; /* wall_timeout: the CPU deadline is what is tested, under any load */
     ob_bez sub;
     ob_bez_subsegment(&c.seg[0], 0.996094, 1.0, &sub);
     enum { NSPIN = 24 };

@@ -4,7 +4,8 @@
  *
  * The fingerprint changes with each option, the data hash, and each method
  * version that decides a resumed run's results; ob_fingerprint_diff names
- * the first difference as the user knows it.  A second lock of a locked
+ * the first difference as the user knows it, its values as written (no
+ * %-escapes), and ob_fp_get reads a value back the same way.  A second lock of a locked
  * directory (from another process: fcntl locks are per process) is refused
  * with the holder's pid, and granted once the holder has died.
  */
@@ -81,6 +82,13 @@ static void test_fingerprint(void)
     /* a key that only one side has (an older journal) is a difference too */
     CHECK(ob_fingerprint_diff("samples=8", "samples=8 git=abc", diff, sizeof diff) == 1 && strstr(diff, "git"),
           "missing key: %s", diff);
+    /* values as the user wrote them, not %-escaped (issue 46: "random%20250:2026") */
+    CHECK(ob_fingerprint_diff("data=random%20250:2026 x=1", "data=random%202:2026 x=1", diff, sizeof diff) == 1 &&
+              strstr(diff, "the run's random 250:2026, now random 2:2026") && !strchr(diff, '%'),
+          "unescaped values: %s", diff);
+    char *got = ob_fp_get("a=1 data=my%20file%25.curves b=2", "data"), *none = ob_fp_get("a=1", "data");
+    CHECK(got && strcmp(got, "my file%.curves") == 0 && !none, "ob_fp_get: '%s'", got ? got : "(null)");
+    free(got);
     free(fp0);
 }
 
