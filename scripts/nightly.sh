@@ -499,11 +499,30 @@ mname=$(machine_name "$out/published/meta.json")
 mid=$(machine_id "$out/published/meta.json")
 mdir=$(machine_dir "$out/published/meta.json")
 timing_csvs= timing_note= k=0 tbase=
+# A stored baseline against a loaded night (or a baseline made under load)
+# is confounded: load moves every method's thread CPU time (caches, memory
+# bandwidth), and measured that way 8 of 10 unchanged loaded nights were
+# false alarms (docs/nightly.md "How often the verdicts are right").  Then
+# the baseline's own commit is built and run alternately with this one
+# (interleaved, as NIGHTLY_BASE_REF), where git has that commit; where it
+# has not, the night cannot decide its timings (3), never a guess.
+if [ -z "$base_ref" ] && [ -n "$mdir" ] && [ -f "$mdir/$mset/results.csv" ] &&
+    { [ -n "$(over_load "$out/published/meta.json")" ] || [ -n "$(over_load "$mdir/$mset/meta.json")" ]; }; then
+    bc=$(sed -n 's/^  "git_commit": "\([0-9a-f]\{40\}\)",$/\1/p' "$mdir/$mset/meta.json" | head -n 1)
+    if [ -n "$bc" ] && git rev-parse --verify -q "$bc^{commit}" >/dev/null 2>&1; then
+        base_ref=$bc
+        echo "nightly: loaded: timing against the baseline's commit $(printf '%s' "$bc" | cut -c1-12), built and run alternately with this build" >&2
+    else
+        timing_note="timings not decided: the machine was loaded (load average above its cores) and the stored baseline's commit (${bc:-unknown}) is not in this repository to run beside this build: set NIGHTLY_BASE_REF"
+        echo "nightly: $timing_note" >&2
+        worst 3
+    fi
+fi
 if [ -n "$base_ref" ]; then
     build_base
     timing_pair timing "$methods" "$fit_reps"
     tbase="$out/timing/base"
-elif [ -n "$mdir" ] && [ -f "$mdir/$mset/results.csv" ]; then
+elif [ -n "$mdir" ] && [ -f "$mdir/$mset/results.csv" ] && [ -z "$timing_note" ]; then
     tbase="$mdir/$mset"
 fi
 if [ -n "$tbase" ]; then
@@ -536,7 +555,7 @@ if [ -n "$tbase" ]; then
     done
     # shellcheck disable=SC2086
     worst "$(timing_status $timing_csvs)"
-else
+elif [ -z "$timing_note" ]; then
     timing_note="timings not judged: no ${small}baseline of this machine ('${mname:-unknown}', id ${mid:-unknown}) in $baselines: \`scripts/nightly.sh --accept\` after a quiet night makes the run just made this machine's baseline"
     echo "nightly: $timing_note" >&2
 fi
@@ -625,7 +644,7 @@ stage_begin report
     elif [ -n "$timing_csvs" ]; then
         tline="timing: not judged"
     else
-        tline="timing: not judged (no ${small}baseline of this machine)"
+        tline="timing: $(case "$timing_note" in "timings not decided"*) echo "not decided (loaded, the baseline's commit not at hand)" ;; *) echo "not judged (no ${small}baseline of this machine)" ;; esac)"
     fi
     echo "**$(status_word $status)** (exit $status): $tline; quality: published $(first_line "$out/compare-published-quality.md"), random $(first_line "$out/compare-random-quality.md")."
     if [ -n "$timing_csvs" ]; then
@@ -633,7 +652,10 @@ stage_begin report
         [ "$k" -eq 0 ] || printf ' The methods the data could not decide were run again %d time(s): the table says which run decided.' "$k"
         echo
     else
-        echo "Timing: **not judged**: no ${small}baseline of this machine ('${mname:-unknown}', id ${mid:-unknown})."
+        case "$timing_note" in
+            "timings not decided"*) echo "Timing: **not decided**: ${timing_note#timings not decided: }." ;;
+            *) echo "Timing: **not judged**: no ${small}baseline of this machine ('${mname:-unknown}', id ${mid:-unknown})." ;;
+        esac
     fi
     left_out_lines
     echo
