@@ -32,7 +32,10 @@ if [ -f "$out/a/results.csv" ]; then
     bad=$(awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="status") s=i; next} $s!="ok" && $s!="limit"{n++} END{print n+0}' "$out/a/results.csv")
     [ "$bad" -eq 0 ] || { echo "valgrind_check: FAIL: $bad jobs neither ok nor limit" >&2; fails=$((fails + 1)); }
 fi
-step "compare" 0 $vg "$OB" compare "$out/a" "$out/a" --out "$out/report.md"
+# (a run against itself; the band so wide that the verdict cannot depend on
+# how much valgrind's slowdown spread the repetitions: the timing code runs,
+# its outcome is fixed)
+step "compare" 0 $vg "$OB" compare "$out/a" "$out/a" --time-threshold 1000 --out "$out/report.md"
 step "draw" 0 $vg "$OB" draw --curve liu2002_ex1 --method ahn --tol 1e-2 --backend cpu --out "$out/ahn.svg"
 here=$(cd "$(dirname "$0")/.." && pwd)
 step "malformed curves" 2 $vg "$OB" run --curves "$here/tests/data/bad_curves/nan.curves" --out "$out/bad"

@@ -18,8 +18,8 @@ cmp_rc() {
 
 RUN="--curve liu2002_ex1 --methods tiller,ahn --tols 1e-1,1e-2"
 # the runs here on an idle machine (the load average's test hook): their
-# timings are set by hand below, and compare judges timings only of quiet
-# runs (e2e_verdict.sh tests that rule)
+# timings are set by hand below, and a load above the cores would add a
+# note to every report (e2e_verdict.sh tests that rule)
 printf '0.00 0.00 0.00 1/100 1\n' > "$T/idle"
 export OFFBENCH_LOADAVG="$T/idle"
 $OB run $RUN --out "$T/a" 2>/dev/null
