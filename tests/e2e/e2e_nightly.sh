@@ -161,6 +161,11 @@ rm -rf "$T/committed" && mv "$T/committed.orig" "$T/committed"
 awkc 'BEGIN{OFS=","} NR>1 && $c["method"]=="ahn" && $c["round"]%2==0 {$c["method_ns"]*=3}
       NR>1 && $c["method"]=="zhao-rational" {$c["method_ns"]*=10} {print}' \
     "$mdir/published/fits.csv" > "$T/s.csv" && mv "$T/s.csv" "$mdir/published/fits.csv"
+# (and its measuring ten times as long: the harness's line, judged on real
+# eval_ns on the CPU backend, is then faster whatever the load, and cannot
+# make the night a regression)
+awkc 'BEGIN{OFS=","} NR>1 {$c["eval_ns"]*=10} {print}' "$mdir/published/samples.csv" > "$T/s.csv" &&
+    mv "$T/s.csv" "$mdir/published/samples.csv"
 OFFBENCH_LOADAVG=$T/idle NIGHTLY_RERUNS=2 nightly "$T/r1"
 check '[ $rc -eq 3 ] && [ -f "$T/r1/reruns/1/results.csv" ] && [ -f "$T/r1/reruns/2/results.csv" ] && [ ! -e "$T/r1/reruns/3" ]' \
     "an undecided method is run again twice, still undecided: exit 3: $rc $(ls "$T/r1")"
