@@ -157,7 +157,6 @@ const char *ob_cmp_timing_word(const ob_method_sum *m)
     return need;
 }
 
-static const char *timing_words(const ob_method_sum *m) { return ob_cmp_timing_word(m); }
 
 /* The harness's line of the per-method table (compare.h). */
 static void md_harness(FILE *f, const ob_cmp_result *r)
@@ -172,7 +171,7 @@ static void md_harness(FILE *f, const ob_cmp_result *r)
     num_text(p, sizeof p, h->p, 1, "%.3g");
     interval_text(ci, sizeof ci, h->ci_lo, h->ci_hi);
     fprintf(f, "| *harness* (eval_ns) | %d | - | - | - | - | %s | %s | %s | %s | %s | %s | %s |\n", h->rows, tb, tn, t,
-            ci, p, timing_words(h), !r->harness_counts ? "reported only" : h->verdict > 0 ? "regression"
+            ci, p, ob_cmp_timing_word(h), !r->harness_counts ? "reported only" : h->verdict > 0 ? "regression"
                                                         : h->verdict < 0 ? "improvement" : "same");
 }
 
@@ -209,7 +208,7 @@ static void md_methods(FILE *f, const ob_cmp_opts *o, const ob_cmp_result *r)
         num_text(p, sizeof p, m->p, 1, "%.3g");
         interval_text(ci, sizeof ci, m->ci_lo, m->ci_hi);
         fprintf(f, "| %s | %d | %s | %s | %d | %d | %s | %s | %s | %s | %s | %s | %s |\n", m->method, m->rows, cp, er,
-                m->regressions, m->improvements, tb, tn, t, ci, p, timing_words(m), ob_method_verdict(m));
+                m->regressions, m->improvements, tb, tn, t, ci, p, ob_cmp_timing_word(m), ob_method_verdict(m));
     }
     md_harness(f, r);
 }
