@@ -157,7 +157,6 @@ const char *ob_cmp_timing_word(const ob_method_sum *m)
     return need;
 }
 
-
 /* The harness's line of the per-method table (compare.h). */
 static void md_harness(FILE *f, const ob_cmp_result *r)
 {
