@@ -69,12 +69,13 @@ static int hodograph(const ob_bez *b, int k, int c, ob_iv *D)
     return n - k;
 }
 
-/* Homogeneous derivatives k0..K at the point t: de Casteljau on each
- * hodograph; the others are left 0. */
-static void hjet_point(const ob_bez *b, double t, int k0, int K, hpt *H)
+/* Homogeneous derivatives k0..K at the parameter T (a point, or the few
+ * ulps a mapped parameter is known to): de Casteljau on each hodograph; the
+ * others are left 0. */
+static void hjet_point(const ob_bez *b, ob_iv T, int k0, int K, hpt *H)
 {
     const int nc = ncoords(b);
-    const ob_iv T = ob_iv_pt(t), omt = ob_iv_sub(ob_iv_pt(1.0), T);
+    const ob_iv omt = ob_iv_sub(ob_iv_pt(1.0), T);
     for (int k = 0; k <= K; k++)
         for (int c = 0; c < 3; c++) {
             H[k][c] = ob_iv_pt(0.0);
@@ -191,13 +192,62 @@ static int offset_jet(const ob_iv E[][2], double d, int k, ob_iv out[2])
     return ob_iv_bad(out[0]) || ob_iv_bad(out[1]) ? -1 : 0;
 }
 
+/* The curve the enclosures read: the stored segment where there is one. */
+static const ob_bez *stored(const ob_cv *c) { return c->src ? c->src : c->b; }
+
+/* The parameter of the curve the enclosures read, at the piece's t0 (and
+ * t1 >= t0): [t0, t1] itself, or the stored segment's u0 + du [t0, t1],
+ * rounded outward and kept in [0, 1] (the exact range is inside it). */
+static ob_iv src_range(const ob_cv *c, double t0, double t1)
+{
+    if (!c->src)
+        return (ob_iv){t0, t1};
+    const ob_iv lo = ob_iv_add(c->u0, ob_iv_mul(c->du, ob_iv_pt(t0)));
+    const ob_iv hi = t1 == t0 ? lo : ob_iv_add(c->u0, ob_iv_mul(c->du, ob_iv_pt(t1)));
+    return (ob_iv){fmin(fmax(lo.lo, 0.0), 1.0), fmin(fmax(hi.hi, 0.0), 1.0)};
+}
+
+/* The curve's homogeneous jet 0..K (k0..K read) at or over the piece's
+ * [t0, t1], in the piece's parameter: read from the stored segment, the
+ * k-th derivative is du^k times the segment's (u = u0 + du t). */
+static void hjet(const ob_cv *c, double t0, double t1, int k0, int K, hpt *H)
+{
+    const ob_bez *b = stored(c);
+    const ob_iv U = src_range(c, t0, t1);
+    if (t0 == t1)
+        hjet_point(b, U, k0, K, H);
+    else
+        hjet_range(b, U.lo, U.hi, k0, K, H);
+    ob_iv f = ob_iv_pt(1.0);
+    for (int k = 1; k <= K && c->src; k++) {
+        f = ob_iv_mul(f, c->du);
+        for (int i = 0; i < 3; i++)
+            H[k][i] = ob_iv_mul(H[k][i], f);
+    }
+}
+
+int ob_cv_from_src(ob_cv *c, const ob_bez *piece, const ob_cert_src *src, double d, int offset)
+{
+    *c = (ob_cv){piece, d, offset, NULL, {0, 0}, {0, 0}};
+    if (!src)
+        return 0;
+    if (!src->seg || !(0.0 <= src->a && src->a < src->b && src->b <= 1.0 && 0.0 <= src->t0 && src->t0 < src->t1 &&
+                       src->t1 <= 1.0))
+        return -1;
+    const ob_iv w = ob_iv_sub(ob_iv_pt(src->b), ob_iv_pt(src->a));
+    c->src = src->seg;
+    c->u0 = ob_iv_add(ob_iv_pt(src->a), ob_iv_mul(w, ob_iv_pt(src->t0)));
+    c->du = ob_iv_mul(w, ob_iv_sub(ob_iv_pt(src->t1), ob_iv_pt(src->t0)));
+    return 0;
+}
+
 int ob_cv_point(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2])
 {
     hpt H[MAXK + 1];
     ob_iv E[MAXK + 1][2];
     const int K = c->offset ? 2 : 1;
-    hjet_point(c->b, t, 0, K, H);
-    if (euclid(c->b, H, K, E))
+    hjet(c, t, t, 0, K, H);
+    if (euclid(stored(c), H, K, E))
         return -1;
     if (!c->offset) {
         p[0] = E[0][0], p[1] = E[0][1], d1[0] = E[1][0], d1[1] = E[1][1];
@@ -211,8 +261,8 @@ int ob_cv_point2(const ob_cv *c, double t, ob_iv p[2], ob_iv d1[2], ob_iv d2[2])
     hpt H[MAXK + 1];
     ob_iv E[MAXK + 1][2];
     const int K = c->offset ? 3 : 2;
-    hjet_point(c->b, t, 0, K, H);
-    if (euclid(c->b, H, K, E))
+    hjet(c, t, t, 0, K, H);
+    if (euclid(stored(c), H, K, E))
         return -1;
     if (!c->offset) {
         for (int i = 0; i < 2; i++)
@@ -231,12 +281,9 @@ int ob_cv_range_n(const ob_cv *c, double t0, double t1, int k1, int k2, ob_iv ou
     const int K = c->offset ? k2 + 1 : k2;
     /* the orders read: a rational segment's quotient rule needs them all,
      * a polynomial's offset C' .. C^(k2+1), a polynomial its k1-th .. k2-th */
-    const int k0 = c->b->rational ? 0 : c->offset ? 1 : k1;
-    if (t0 == t1)
-        hjet_point(c->b, t0, k0, K, H);
-    else
-        hjet_range(c->b, t0, t1, k0, K, H);
-    if (euclid(c->b, H, K, E))
+    const int k0 = stored(c)->rational ? 0 : c->offset ? 1 : k1;
+    hjet(c, t0, t1, k0, K, H);
+    if (euclid(stored(c), H, K, E))
         return -1;
     for (int k = k1; k <= k2; k++) {
         if (!c->offset)

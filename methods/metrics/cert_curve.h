@@ -38,7 +38,32 @@ typedef struct {
     const ob_bez *b;
     double d;    /* the offset distance when `offset` */
     int offset;  /* 0: the segment itself; 1: its exact d-offset */
+    /* Where b came from, when it was cut out of a stored segment: NULL, or
+     * that segment, which the enclosures then read instead of b, over the
+     * real parameters u = u0 + du t (ob_cv_from_src).  b itself is rounded
+     * (each control point of a cut is off by ~eps |P|): on a piece with
+     * legs near 1e-13 that turns its tangent, so its offset swings through
+     * a fan the true offset does not have, and a zero of C' (a cusp) can be
+     * rounded away.  The floating-point searches (cert_feet.h) still read b:
+     * they only propose, never bound. */
+    const ob_bez *src;
+    ob_iv u0, du;
 } ob_cv;
+
+/* Where a base piece comes from: segment seg as stored, cut to the real
+ * parameters u = a + (b - a) (t0 + (t1 - t0) s), s in [0, 1] (the driver's
+ * span [a, b] and the fit's piece [t0, t1] of it: host/io/approx.h). */
+typedef struct {
+    const ob_bez *seg;
+    double a, b, t0, t1;
+} ob_cert_src;
+
+/* Purpose: the curve `piece` (its offset at d when offset = 1) enclosed from
+ *          src->seg as stored (src NULL: from piece itself).
+ * Inputs:  piece: src->seg cut to src's range in floating point (what the
+ *          feet search); 0 <= a < b <= 1, 0 <= t0 < t1 <= 1.
+ * Returns: 0, or -1 when src's numbers are not such ranges. */
+int ob_cv_from_src(ob_cv *c, const ob_bez *piece, const ob_cert_src *src, double d, int offset);
 
 /* Purpose: enclosures of the point and first derivative at the float t
  *          (t in [0, 1]).  Outputs: p[2], d1[2].  Returns 0 or -1. */

@@ -21,15 +21,36 @@ static int by_key_desc(const void *a, const void *b)
     return x->i - y->i;  /* deterministic */
 }
 
+/* Piece k's options and stop (in decreasing hint) given the job so far: to
+ * rtol of the job's lower bound; in verdict mode to the tol, with a lower
+ * bound sought only on the first piece, and once the job is over the tol
+ * (a distance attained above it) the grid's bounds alone (budget 0). */
+static double piece_opts(const ob_cert_opts *o, const ob_cert_job *job, int k, ob_cert_opts *po)
+{
+    *po = *o;
+    if (!(o->verdict && o->decide > 0))
+        return job->lower * (1.0 + o->rtol);
+    po->no_lower = k > 0;
+    if (job->lower > o->decide)
+        po->budget = 0, po->no_lower = 1;
+    return 0.0;
+}
+
 int ob_certify_job(int n, const ob_bez *base, const ob_bez *approx, double d, int samples, const ob_cert_opts *opts,
                    const double *hint, ob_cert_job *out, ob_certified *piece)
+{
+    return ob_certify_job_src(n, base, NULL, approx, d, samples, opts, hint, out, piece);
+}
+
+int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int samples,
+                       const ob_cert_opts *opts, const double *hint, ob_cert_job *out, ob_certified *piece)
 {
     ob_cert_opts o;
     if (opts)
         o = *opts;
     else
         ob_cert_defaults(&o);
-    *out = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0};
+    *out = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0, 0};
     order_t *ord = malloc((size_t)(n > 0 ? n : 1) * sizeof *ord);
     if (!ord) {
         out->upper = INFINITY, out->met = 0;
@@ -45,13 +66,15 @@ int ob_certify_job(int n, const ob_bez *base, const ob_bez *approx, double d, in
         ord[i] = (order_t){h == h ? h : INFINITY, i};  /* unknown first: it may be the largest */
     }
     qsort(ord, (size_t)n, sizeof *ord, by_key_desc);
-    for (int k = 0; k < n; k++) {
+    for (int k = 0; k < n && !out->cancelled; k++) {
         const int i = ord[k].i;
         ob_certified r;
-        const int rc = ob_certify_hausdorff_until(&base[i], &approx[i], d, samples, &o,
-                                                  out->lower * (1.0 + o.rtol), &r);
+        ob_cert_opts po;
+        const double stop = piece_opts(&o, out, k, &po);
+        const int rc = ob_certify_piece(&base[i], src ? &src[i] : NULL, &approx[i], d, samples, &po, stop, &r);
         if (piece)
             piece[i] = r;
+        out->cancelled = r.cancelled;
         out->failed += rc != 0;
         out->met &= r.met;
         out->leaves += r.leaves;
@@ -60,7 +83,11 @@ int ob_certify_job(int n, const ob_bez *base, const ob_bez *approx, double d, in
             out->upper = fmax(out->upper, r.upper), out->upper_piece = i;
     }
     free(ord);
-    if (out->failed) {
+    if (o.verdict && o.decide > 0)
+        out->met = out->upper <= o.decide || out->lower > o.decide;
+    if (out->cancelled)
+        out->met = 0;
+    if (out->failed || out->cancelled) {
         out->upper = INFINITY, out->met = 0;
         return -1;
     }

@@ -15,6 +15,7 @@
 #ifndef OB_CERT_JOB_H
 #define OB_CERT_JOB_H
 
+#include "methods/metrics/cert_curve.h"
 #include "methods/metrics/metric_certified.h"
 
 /* Purpose: ob_certify_hausdorff_opts, refining no further than `stop`: the
@@ -29,12 +30,24 @@
 int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double d, int samples,
                                const ob_cert_opts *opts, double stop, ob_certified *out);
 
+/* Purpose: ob_certify_hausdorff_until with the base piece enclosed from the
+ *          segment it was cut from (src, cert_curve.h): the offset of the
+ *          curve as stored over the exact range, not of the rounded cut
+ *          `base` (which only guides the search).  src NULL: `base` is the
+ *          curve as stored.
+ * Returns: as ob_certify_hausdorff_opts; -1 also for a src whose ranges are
+ *          not inside [0, 1] (upper +inf). */
+int ob_certify_piece(const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int samples,
+                     const ob_cert_opts *opts, double stop, ob_certified *out);
+
 typedef struct {
     double lower, upper;  /* max over pieces of lower, of upper: lower <= the job's H <= upper */
     int met;              /* 1: upper <= max(lower (1 + rtol), the largest floor) */
     int failed;           /* pieces whose ob_certify returned -1 (upper then +inf) */
     int upper_piece;      /* the piece whose upper is the job's */
     long leaves;          /* sum over pieces */
+    int cancelled;        /* opts->cancel stopped it: pieces left unenclosed
+                             (upper +inf), the verdict unknown */
 } ob_cert_job;
 
 /* Purpose: the certified enclosure of a job of n pieces: piece i is approx[i]
@@ -49,5 +62,18 @@ typedef struct {
  *          still valid) or no memory. */
 int ob_certify_job(int n, const ob_bez *base, const ob_bez *approx, double d, int samples, const ob_cert_opts *opts,
                    const double *hint, ob_cert_job *out, ob_certified *piece);
+
+/* Purpose: ob_certify_job with each base piece enclosed from where it was
+ *          cut (src[i], ob_certify_piece; src NULL: as ob_certify_job).
+ * Method:  with opts->verdict (decide = the job's tol), the question is
+ *          only "is the job within tol?": each piece is refined until its
+ *          upper <= tol, or until a distance attained above tol is found;
+ *          once one is (the job is over tol), the other pieces keep the
+ *          bounds of their sample grid (no refinement), which still make
+ *          err_upper a bound.  Only the first piece (the largest hint)
+ *          seeks a lower bound where it cannot decide.  met: the verdict
+ *          is reached (upper <= tol or lower > tol). */
+int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int samples,
+                       const ob_cert_opts *opts, const double *hint, ob_cert_job *out, ob_certified *piece);
 
 #endif

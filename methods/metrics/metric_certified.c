@@ -15,6 +15,7 @@
 
 enum { LOWER_ROOTS = 16, PROBE_EVERY = 16 };
 enum { LOWER_BUDGET = 4000 };  /* interval bounds per certified point */
+enum { CANCEL_EVERY = 64 };    /* search steps between two calls of the cancel hook */
 #define MIN_WIDTH 1e-13  /* intervals narrower than this are not split */
 #define THIRD_FLOORS 1e4  /* the third-order form below this many round-off floors (leaf_bound) */
 
@@ -34,8 +35,12 @@ typedef struct {
     double floor;
     double stop;      /* a bound already certified elsewhere (cert_job.h): no need to refine below it */
     long upper_work;  /* upper enclosures so far: what the budget limits */
+    long cancel_tick;
     ob_certified *out;
 } cert_t;
+
+/* verdict mode (ob_cert_opts.verdict): only whether H <= decide is asked */
+static int verdict(const cert_t *c) { return c->o.verdict && c->o.decide > 0; }
 
 static double met_target(const cert_t *c)
 {
@@ -43,11 +48,26 @@ static double met_target(const cert_t *c)
 }
 
 /* What the search refines to: met_target, or below it to o.decide while the
- * enclosure straddles it (lower <= decide < upper: no verdict yet). */
+ * enclosure straddles it (lower <= decide < upper: no verdict yet).  In
+ * verdict mode: decide until lower > decide, then nothing (decided: over). */
 static double target(const cert_t *c)
 {
+    if (verdict(c))
+        return c->out->lower > c->o.decide ? INFINITY : fmax(fmax(c->o.decide, c->floor), c->stop);
     const double t = met_target(c);
     return c->o.decide > 0 && c->out->lower <= c->o.decide && t > c->o.decide ? c->o.decide : t;
+}
+
+/* Whether the caller's cancel hook stops the search (asked every
+ * CANCEL_EVERY calls; once it has, always). */
+static int cancelled(cert_t *c)
+{
+    if (c->out->cancelled)
+        return 1;
+    if (!c->o.cancel || ++c->cancel_tick % CANCEL_EVERY)
+        return 0;
+    c->out->cancelled = c->o.cancel(c->o.cancel_ctx) != 0;
+    return c->out->cancelled;
 }
 
 /* The least bound over an interval's lines (metric_certified.h): the
@@ -115,7 +135,7 @@ static double point_lower(cert_t *c, const ob_cv *Q, const ob_iv a[2], double go
     for (long n = 0;; n++) {
         const ob_cert_item it = ob_cert_heap_pop(&h);
         L = -it.key;
-        if (L >= goal || n >= LOWER_BUDGET || it.b - it.a < MIN_WIDTH)
+        if (L >= goal || n >= LOWER_BUDGET || it.b - it.a < MIN_WIDTH || cancelled(c))
             break;
         const double m = 0.5 * (it.a + it.b);
         ob_cert_heap_push(&h, (ob_cert_item){-ob_cert_lower(Q, a, it.a, m), it.a, m, 0, 0, 0, 0, 0, 0});
@@ -126,15 +146,19 @@ static double point_lower(cert_t *c, const ob_cv *Q, const ob_iv a[2], double go
     return L;
 }
 
-/* Certify the distance of P(u) to Q when its estimate could raise the lower bound. */
-static void probe(cert_t *c, int k, double u)
+/* Certify the distance of P(u) to Q when its estimate could raise the lower
+ * bound (in verdict mode, when it could decide: above decide, unless the
+ * first bound of a piece that seeks one, `first`). */
+static void probe(cert_t *c, int k, double u, int first)
 {
     const side_t *s = &c->side[k];
     double p[2], d1[2], t;
     ob_iv a[2], a1[2];
     ob_cert_eval(&s->P, u, p, d1);
     const double est = ob_cert_nearest(&s->Q, p, (const double (*)[2])s->tab, s->S, &t);
-    const double useful = fmax(fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor), c->stop / (1.0 + c->o.rtol));
+    double useful = fmax(fmax(c->out->lower * (1.0 + 0.1 * c->o.rtol), c->floor), c->stop / (1.0 + c->o.rtol));
+    if (verdict(c) && (!first || c->o.no_lower))
+        useful = fmax(useful, c->o.decide);
     if (!(est > useful) || ob_cv_point(&s->P, u, a, a1))
         return;
     const double L = point_lower(c, &s->Q, a, est * (1.0 - 1e-5));
@@ -172,8 +196,8 @@ static void first_lower(cert_t *c, int k)
             x2 = a + g * (b - a), f2 = estimate(s, x2);
         }
     }
-    probe(c, k, (double)j / (s->S - 1));
-    probe(c, k, 0.5 * (a + b));
+    probe(c, k, (double)j / (s->S - 1), 1);
+    probe(c, k, 0.5 * (a + b), 1);
 }
 
 /* Branch and bound on side k until its largest bound meets the target: the
@@ -188,9 +212,10 @@ static void refine(cert_t *c, int k)
                                        0.0, NAN});
     for (long n = 1; c->upper_work < c->o.budget * (k + 1); n++) {
         if (n % PROBE_EVERY == 0)
-            probe(c, k, 0.5 * (s->heap.v[0].a + s->heap.v[0].b));
+            probe(c, k, 0.5 * (s->heap.v[0].a + s->heap.v[0].b), 0);
         const ob_cert_item it = s->heap.v[0];
-        if (!(it.key > target(c)) || it.b - it.a < MIN_WIDTH || (isinf(it.key) && it.b - it.a < 1e-9))
+        if (!(it.key > target(c)) || it.b - it.a < MIN_WIDTH || (isinf(it.key) && it.b - it.a < 1e-9) ||
+            cancelled(c))
             break;
         ob_cert_heap_pop(&s->heap);
         const double m = 0.5 * (it.a + it.b), hint = it.lt + it.lk * (m - it.a);  /* the parent's line at m */
@@ -240,10 +265,14 @@ void ob_cert_defaults(ob_cert_opts *o)
     o->floor_rel = 1e-13;
     o->budget = 20000;
     o->decide = 0.0;
+    o->verdict = 0;
+    o->no_lower = 0;
+    o->cancel = NULL;
+    o->cancel_ctx = NULL;
 }
 
-int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double d, int samples,
-                               const ob_cert_opts *opts, double stop, ob_certified *out)
+int ob_certify_piece(const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int samples,
+                     const ob_cert_opts *opts, double stop, ob_certified *out)
 {
     cert_t c = {.out = out, .stop = stop > 0 && stop < INFINITY ? stop : 0.0};
     if (opts)
@@ -252,7 +281,10 @@ int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double 
         ob_cert_defaults(&c.o);
     *out = (ob_certified){0};
     out->upper = INFINITY;
-    const ob_cv A = {approx, 0.0, 0}, O = {base, d, 1};
+    ob_cv A, O;
+    ob_cv_from_src(&A, approx, NULL, 0.0, 0);
+    if (ob_cv_from_src(&O, base, src, d, 1) != 0)
+        return -1;
     c.side[0].P = A, c.side[0].Q = O, c.side[1].P = O, c.side[1].Q = A;
     c.floor = c.o.floor_rel * (fmax(curve_size(base), curve_size(approx)) + fabs(d));
     const int S = ob_clamp_samples(samples);
@@ -265,7 +297,7 @@ int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double 
         out->upper_ao = c.side[0].heap.n ? c.side[0].heap.v[0].key : 0.0;
         out->upper_oa = c.side[1].heap.n ? c.side[1].heap.v[0].key : 0.0;
         out->upper = fmax(out->upper_ao, out->upper_oa);
-        out->met = out->upper <= met_target(&c);
+        out->met = verdict(&c) ? out->upper <= c.o.decide || out->lower > c.o.decide : out->upper <= met_target(&c);
         rc = isinf(out->upper) || out->upper != out->upper ? -1 : 0;
         if (rc)
             out->upper = INFINITY;
@@ -273,6 +305,12 @@ int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double 
     side_free(&c.side[0]);
     side_free(&c.side[1]);
     return rc;
+}
+
+int ob_certify_hausdorff_until(const ob_bez *base, const ob_bez *approx, double d, int samples,
+                               const ob_cert_opts *opts, double stop, ob_certified *out)
+{
+    return ob_certify_piece(base, NULL, approx, d, samples, opts, stop, out);
 }
 
 int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,

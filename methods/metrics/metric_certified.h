@@ -76,7 +76,9 @@ typedef struct {
     int lower_side;             /* the lower bound's point: 0 on A, 1 on O */
     double lower_param;         /* ... at this parameter */
     long leaves;                /* intervals enclosed (the work) */
-    int met;                    /* 1: upper <= max(lower (1 + rtol), floor) */
+    int met;                    /* 1: upper <= max(lower (1 + rtol), floor); with
+                                   opts->verdict: the verdict is reached */
+    int cancelled;              /* 1: opts->cancel stopped the search (bounds valid) */
 } ob_certified;
 
 typedef struct {
@@ -86,9 +88,21 @@ typedef struct {
     double decide;     /* > 0: a tolerance to decide against: refine on (within
                           budget) while lower <= decide < upper, until upper <=
                           decide or lower > decide; 0: off */
+    int verdict;       /* with decide > 0: decide and no more.  The search stops
+                          as soon as upper <= decide (within) or lower > decide
+                          (over: one distance attained above it is the proof),
+                          not refined to rtol: both ends stay proofs, neither
+                          need be tight.  0: tight (to rtol), as without it */
+    int no_lower;      /* with verdict: seek a lower bound only where it could
+                          prove lower > decide (the job's other pieces) */
+    int (*cancel)(void *ctx);  /* NULL, or asked every few hundred enclosures:
+                                  nonzero stops the search (out->cancelled) */
+    void *cancel_ctx;
 } ob_cert_opts;
 
-void ob_cert_defaults(ob_cert_opts *o);  /* rtol 1e-3, floor 1e-13, budget 20000, decide 0 (off) */
+/* rtol 1e-3, floor 1e-13, budget 20000, decide 0 (off), verdict 0, no_lower 0,
+ * cancel NULL */
+void ob_cert_defaults(ob_cert_opts *o);
 
 int ob_certify_hausdorff(const ob_bez *base, const ob_bez *approx, double d, int samples, ob_certified *out);
 int ob_certify_hausdorff_opts(const ob_bez *base, const ob_bez *approx, double d, int samples,
