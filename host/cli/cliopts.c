@@ -87,7 +87,7 @@ static int index_flags(const ob_flagset *sets, int nsets, flagindex *x)
             const ob_flag *g = &sets[k].flags[i];
             if (!takes(&sets[k], g))
                 continue;
-            x->lo[x->n] = (struct option){g->name, g->value ? required_argument : no_argument, NULL, 256 + x->n};
+            x->lo[x->n] = (struct option){g->name, !g->value ? no_argument : g->value[0] == '[' ? optional_argument : required_argument, NULL, 256 + x->n};
             x->flag[x->n] = g;
             x->set[x->n] = k;
             x->n++;

@@ -24,7 +24,8 @@ typedef enum {
 
 typedef struct {
     const char *name;    /* without the leading "--" */
-    const char *value;   /* what its value is, for --help ("N", "FILE"); NULL: no value */
+    const char *value;   /* what its value is, for --help ("N", "FILE"); NULL: no value;
+                            "[...]": an optional value, given only as --name=VALUE */
     const char *help;    /* one line for --help */
     int id;              /* passed to the table's apply function */
     ob_flag_rule rule;

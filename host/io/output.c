@@ -302,15 +302,19 @@ static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *re
     if (o->certify) {
         ob_cert_opts co;
         ob_cert_defaults(&co);
-        fprintf(f, "  \"certify\": {\"rtol\": %.17g, \"floor_rel\": %.17g, \"budget\": %ld, \"doc\": \"every job "
+        fprintf(f, "  \"certify\": {\"mode\": \"%s\", \"rtol\": %.17g, \"floor_rel\": %.17g, \"budget\": %ld, "
+                   "\"doc\": \"every job "
                    "with an approximation (ok, limit): err_lower <= H <= err_upper, H the two-sided Hausdorff distance "
-                   "of its pieces to the exact offsets of their base pieces (untrimmed), whatever the run's metric; "
+                   "of its pieces to the exact offsets of their base pieces (untrimmed; each enclosed from the segment "
+                   "as stored, over its exact parameter range), whatever the run's metric; "
                    "err_upper by interval enclosures of a parameter correspondence, err_lower a distance attained; "
-                   "refined until err_upper <= err_lower (1 + rtol), and on while tol lies between them, or budget "
-                   "enclosures per side and piece; inf: a piece unbounded (a cusp of the base); certified: yes when err_upper <= tol; cert_ns: thread CPU "
+                   "mode verdict: refined only until err_upper <= tol or err_lower > tol (neither end need be tight); "
+                   "mode tight: until err_upper <= err_lower (1 + rtol), and on while tol lies between them; at most budget "
+                   "enclosures per side and piece; inf: a piece unbounded (C' may vanish on it: a cusp, a collapsed leg); certified: yes when err_upper <= tol; cert_ns: thread CPU "
                    "time of the certificate (docs/certified.md); wall_seconds: the certificate pass, after the jobs ran "
                    "(not in meta's wall_seconds)\", \"wall_seconds\": %.3f},\n",
-                co.rtol, co.floor_rel, co.budget, rec->cert_seconds);
+                o->certify == OB_CERTIFY_TIGHT ? "tight" : "verdict", co.rtol, co.floor_rel, co.budget,
+                rec->cert_seconds);
     } else {
         fprintf(f, "  \"certify\": null,\n");
     }

@@ -17,51 +17,61 @@
 
 int ob_certify_wants(const ob_job *j) { return j->status == OB_OK || j->status == OB_LIMIT; }
 
-/* Job j's pieces, refitted from its span log, and the base piece each
- * approximates (malloc'd arrays of a->n): 0, or -1 with the reason in why
- * (*base and *apx are then freed, a is safe to free). */
-static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_bez **base, ob_bez **apx, char *why,
-                      size_t len)
+/* Job j's pieces, refitted from its span log, the base piece each
+ * approximates, cut in floating point, and where that was cut from (the
+ * certificate encloses the segment as stored: cert_curve.h) (malloc'd
+ * arrays of a->n): 0, or -1 with the reason in why (*base, *src and *apx are
+ * then freed, a is safe to free). */
+static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_bez **base, ob_cert_src **src,
+                      ob_bez **apx, char *why, size_t len)
 {
     ob_err err;
     *base = *apx = NULL;
+    *src = NULL;
     if (ob_approx_from_job(j, log, a, &err) != 0) {
         snprintf(why, len, "%.180s", err.msg);
         return -1;
     }
     *base = malloc((size_t)(a->n + 1) * sizeof **base);
     *apx = malloc((size_t)(a->n + 1) * sizeof **apx);
-    int rc = *base && *apx ? 0 : -1;
+    *src = malloc((size_t)(a->n + 1) * sizeof **src);
+    int rc = *base && *apx && *src ? 0 : -1;
     if (rc)
         snprintf(why, len, "out of memory");
     for (int k = 0; k < a->n && rc == 0; k++) {
-        (*apx)[k] = a->v[k].approx;
-        if (ob_apiece_base(j->curve, &a->v[k], &(*base)[k]) != 0) {
+        const ob_apiece *p = &a->v[k];
+        (*apx)[k] = p->approx;
+        if (ob_apiece_base(j->curve, p, &(*base)[k]) == 0)
+            (*src)[k] = (ob_cert_src){&j->curve->seg[p->seg], p->a, p->b, p->t0, p->t1};
+        else {
             snprintf(why, len, "piece %d has no base piece", k + 1);
             rc = -1;
         }
     }
     if (rc) {
-        free(*base), free(*apx);
+        free(*base), free(*apx), free(*src);
         *base = *apx = NULL;
+        *src = NULL;
     }
     return rc;
 }
 
 /* Job j's certificate (its cert_* fields) from its span log: 0, or -1 with
  * the reason in why. */
-static int certify_job(ob_job *j, const ob_span_log *log, int samples, char *why, size_t len)
+static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode, char *why, size_t len)
 {
     ob_approx a = {0};
     ob_bez *base, *apx;
-    int rc = job_pieces(j, log, &a, &base, &apx, why, len);
+    ob_cert_src *src;
+    int rc = job_pieces(j, log, &a, &base, &src, &apx, why, len);
     if (rc == 0) {
         ob_cert_opts co;
         ob_cert_defaults(&co);
         co.decide = j->tol;  /* an enclosure that straddles tol is refined to a verdict where the budget allows */
+        co.verdict = mode != OB_CERTIFY_TIGHT;  /* the verdict alone (cert_job.h), or tight to rtol */
         ob_cert_job cj;
         const double t0 = ob_thread_ns();
-        const int crc = ob_certify_job(a.n, base, apx, j->d, samples, &co, NULL, &cj, NULL);
+        const int crc = ob_certify_job_src(a.n, base, src, apx, j->d, samples, &co, NULL, &cj, NULL);
         j->cert_ns = ob_thread_ns() - t0;
         if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
             snprintf(why, len, "out of memory");
@@ -73,6 +83,7 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, char *why
         }
     }
     free(base);
+    free(src);
     free(apx);
     ob_approx_free(&a);
     return rc;
@@ -108,7 +119,7 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
     return t;
 }
 
-int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds)
+int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds)
 {
     const double start = ob_mono_s();
     double last = start;
@@ -136,7 +147,7 @@ int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *s
         }
         ob_job *j = &jobs[idx[k].i];
         char why[200];
-        if (certify_job(j, &spans[idx[k].i], samples, why, sizeof why) != 0) {
+        if (certify_job(j, &spans[idx[k].i], samples, mode, why, sizeof why) != 0) {
 #pragma omp critical(ob_certify_report)
             {
                 ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);

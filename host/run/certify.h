@@ -29,7 +29,9 @@ int ob_certify_wants(const ob_job *j);
 
 /* Purpose: certify every job of jobs that has an approximation and no
  *          certificate yet (a job restored by --resume brings its own).
- * Inputs:  samples: the run's samples per piece (--samples: the feet the
+ * Inputs:  mode: OB_CERTIFY_VERDICT (refined until the job is shown within
+ *          its tol or over it: cert_job.h) or OB_CERTIFY_TIGHT (to rtol, 1e-3);
+ *          samples: the run's samples per piece (--samples: the feet the
  *          certificate starts from); spans: the jobs' span logs (the driver's hooks.spans), one per
  *          job; jr: the journal, or NULL: each certified job's row is added
  *          to it as it is done (rows of jobs with an approximation are held
@@ -40,6 +42,6 @@ int ob_certify_wants(const ob_job *j);
  *          cert_done 0); -1 after ob_error() when a job could not be
  *          certified (a refit that does not repeat the run, no memory, a
  *          journal that cannot be written): the others still are. */
-int ob_certify_run(int samples, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds);
+int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds);
 
 #endif

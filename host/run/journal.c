@@ -44,8 +44,8 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where, uint64_t data_
     n += (size_t)snprintf(s + n, cap - n, " data_hash=%016" PRIx64, data_hash);
     /* only when set: the plan hashes of runs without it are as before; shards
      * with and without certificates have other plan hashes (merge refuses) */
-    if (o->certify)
-        n += (size_t)snprintf(s + n, cap - n, " certify=1");
+    if (o->certify)  /* the two modes give other columns: other plans */
+        n += (size_t)snprintf(s + n, cap - n, " certify=%s", o->certify == OB_CERTIFY_TIGHT ? "tight" : "verdict");
     for (int m = 0; ob_methods[m]; m++)
         for (int k = 0; k < ob_methods[m]->nparams; k++) {
             char num[40];
@@ -176,7 +176,7 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, cons
     }
     fp_tok(&b, "metric", ob_metric_name(o->metric));
     fp_tok(&b, "split", ob_split_name(o->split));
-    fp_tok(&b, "certify", o->certify ? "yes" : "no");
+    fp_tok(&b, "certify", o->certify == OB_CERTIFY_TIGHT ? "tight" : o->certify ? "verdict" : "no");
     snprintf(v, sizeof v, "%d/%d", o->shard_k, o->shard_n);
     fp_tok(&b, "shard", o->shard_n > 0 ? v : "none");
     fp_tok(&b, "git", OB_GIT_COMMIT);

@@ -231,7 +231,8 @@ const ob_flag ob_run_flags[] = {
      OB_FLAG_ONCE},
     {"force", NULL, "replace the finished run in --out, or start afresh over an interrupted one's journal (without it both are refused)", RO_FORCE, OB_FLAG_ONCE},
     {"export", "DIR", "each job's approximation as JSON, .curves, DXF and SVG", RO_EXPORT, OB_FLAG_ONCE},
-    {"certify", NULL, "certify each job's error: err_upper, err_lower, certified and cert_ns (docs/certified.md)",
+    {"certify", "[=tight]", "certify each job's error: err_upper, err_lower, certified and cert_ns, refined until "
+     "the verdict (within tol or not) is proven; =tight: to err_upper <= err_lower (1 + 1e-3) (docs/certified.md)",
      RO_CERTIFY, OB_FLAG_ONCE},
     {"time-fits", NULL, "time each method's fits as a microbenchmark: fit_calls, method_ns, method_iqr_ns and "
      "fits.csv (docs/output.md)", RO_TIME_FITS, OB_FLAG_ONCE},
@@ -340,7 +341,13 @@ static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *
     case RO_RESUME: return parse_dir(opt, v, &o->resume_dir);
     case RO_FORCE: o->force = 1; return 0;
     case RO_EXPORT: return parse_dir(opt, v, &o->export_dir);
-    case RO_CERTIFY: o->certify = 1; return 0;
+    case RO_CERTIFY:
+        if (v && strcmp(v, "tight") != 0 && strcmp(v, "verdict") != 0) {
+            ob_error("--certify: unknown mode '%s' (--certify alone: the verdict; --certify=tight)", v);
+            return -1;
+        }
+        o->certify = v && strcmp(v, "tight") == 0 ? OB_CERTIFY_TIGHT : OB_CERTIFY_VERDICT;
+        return 0;
     case RO_TIME_FITS: o->time_fits = 1; return 0;
     case RO_FIT_REPS: o->fit_opts_given = 1; return parse_int(opt, v, 1, 1000, &o->fit_rounds);
     case RO_FIT_MIN_TIME:

@@ -9,6 +9,9 @@
 #include "host/backend/select.h"
 #include "methods/driver/driver.h"
 
+/* --certify's modes (host/run/certify.h) */
+enum { OB_CERTIFY_VERDICT = 1, OB_CERTIFY_TIGHT = 2 };
+
 enum { OB_MAX_TOLS = 64, OB_MAX_PARAM_ARGS = 256, OB_RUN_MAX_FLAGS = 32 };
 
 /* What the command line asked for: set by parsing (ob_run_opts_parse), then
@@ -35,7 +38,8 @@ typedef struct {
                                     run (samples.csv); 0: one run, no samples */
     const char *out_dir;
     const char *export_dir;      /* --export DIR: each job's approximation (host/io/export.h) */
-    int certify;                 /* --certify: each job's certified error (host/run/certify.h) */
+    int certify;                 /* --certify: each job's certified error (host/run/certify.h):
+                                    0 off, OB_CERTIFY_VERDICT, OB_CERTIFY_TIGHT */
     int time_fits;               /* --time-fits: each method's own time (host/run/fittime.h) */
     int fit_rounds;              /* --fit-reps N: its rounds (default OB_FITTIME_ROUNDS) */
     double fit_min_ns;           /* --fit-min-time MS: each measurement's length, ns */

@@ -85,7 +85,7 @@ static int take_one(ob_run_opts *o, const key_flag *k, const char *v)
         return 0;
     }
     if (strcmp(k->key, "certify") == 0) {
-        o->certify = strcmp(v, "yes") == 0;
+        o->certify = strcmp(v, "tight") == 0 ? OB_CERTIFY_TIGHT : strcmp(v, "verdict") == 0 ? OB_CERTIFY_VERDICT : 0;
         return 0;
     }
     if ((strcmp(k->key, "curves") == 0 && strcmp(v, "all") == 0) || (strcmp(k->key, "shard") == 0 && strcmp(v, "none") == 0))
@@ -134,7 +134,7 @@ static void run_value(const key_flag *k, const char *v, char *out, size_t len)
     else if (strcmp(k->key, "job_timeout") == 0)
         snprintf(out, len, strtod(v, NULL) > 0 ? "--job-timeout %g" : "no --job-timeout", strtod(v, NULL) * 1e-9);
     else if (strcmp(k->key, "certify") == 0)
-        snprintf(out, len, "%s--certify", strcmp(v, "yes") == 0 ? "" : "no ");
+        snprintf(out, len, "%s", strcmp(v, "tight") == 0 ? "--certify=tight" : strcmp(v, "verdict") == 0 ? "--certify" : "no --certify");
     else if (strcmp(k->key, "curves") == 0 && strcmp(v, "all") == 0)
         snprintf(out, len, "every curve (no --curve)");
     else if (strcmp(k->key, "shard") == 0 && strcmp(v, "none") == 0)

@@ -100,7 +100,7 @@ static double leaf_bound(cert_t *c, const side_t *s, ob_cert_item *it, double wa
      * the interpolation is as good, and an extra line costs budget */
     const double jump = fabs(it->ta - it->lt) + fabs(it->tb - (it->lt + it->lk * (it->b - it->a)));
     const int parent = it->lk == it->lk && jump > fabs(it->lk) * (it->b - it->a);
-    for (int i = 0; i < 5 && U > want; i++) {
+    for (int i = 0; i < 5 && (best < 0 || U > want); i++) {  /* one line at least: want may be +inf */
         if ((i == 2 && !parent) || (i == 1 && !(q == q && q != 0.0)))
             continue;
         const double Ui = ob_cert_upper_quad(&ps, &s->Q, line[i][0], line[i][1], line[i][2]);
