@@ -8,6 +8,8 @@
 
 #include "methods/metrics/metric.h"
 
+enum { HINT_SAMPLES = 32 };  /* the coarse sampling that orders a verdict's pieces */
+
 typedef struct {
     double key;
     int i;
@@ -59,8 +61,11 @@ int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const 
     for (int i = 0; i < n; i++) {
         double h = hint ? hint[i] : NAN;
         if (!hint) {
+            /* verdict mode orders by a coarse sampling: the order only
+             * decides which piece seeks the lower bound first, and the
+             * full sampling costs as much as the verdict itself */
             ob_errval e;
-            ob_metric_hausdorff(&base[i], &approx[i], d, samples, &e);
+            ob_metric_hausdorff(&base[i], &approx[i], d, o.verdict && o.decide > 0 ? HINT_SAMPLES : samples, &e);
             h = e.err;
         }
         ord[i] = (order_t){h == h ? h : INFINITY, i};  /* unknown first: it may be the largest */

@@ -42,6 +42,16 @@ typedef struct {
 /* verdict mode (ob_cert_opts.verdict): only whether H <= decide is asked */
 static int verdict(const cert_t *c) { return c->o.verdict && c->o.decide > 0; }
 
+/* The sample index that ends interval g of the G intervals of the grid. */
+static int grid_end(int S, int G, int g) { return (int)((long)g * (S - 1) / G); }
+
+/* The number of intervals the search starts from on S samples (opts.grid). */
+static int grid_count(const cert_t *c, int S)
+{
+    const int G = c->o.grid > 0 ? c->o.grid : c->o.verdict && c->o.decide > 0 ? OB_CERT_VERDICT_GRID : 0;
+    return G > 0 && G < S - 1 ? G : S - 1;
+}
+
 static double met_target(const cert_t *c)
 {
     return fmax(fmax(c->out->lower * (1.0 + c->o.rtol), c->floor), c->stop);
@@ -207,9 +217,12 @@ static void refine(cert_t *c, int k)
 {
     side_t *s = &c->side[k];
     const double h = 1.0 / (s->S - 1);
-    for (int j = 0; j + 1 < s->S; j++)
-        push_leaf(c, s, (ob_cert_item){0, j * h, (j + 1) * h, s->foot[j], s->foot[j + 1], s->slope[j], s->slope[j + 1],
-                                       0.0, NAN});
+    const int G = grid_count(c, s->S);
+    for (int g = 0, j0 = 0; g < G; g++) {
+        const int j1 = grid_end(s->S, G, g + 1);
+        push_leaf(c, s, (ob_cert_item){0, j0 * h, j1 * h, s->foot[j0], s->foot[j1], s->slope[j0], s->slope[j1], 0.0, NAN});
+        j0 = j1;
+    }
     for (long n = 1; c->upper_work < c->o.budget * (k + 1); n++) {
         if (n % PROBE_EVERY == 0)
             probe(c, k, 0.5 * (s->heap.v[0].a + s->heap.v[0].b), 0);
@@ -236,7 +249,27 @@ static double curve_size(const ob_bez *b)
     return m;
 }
 
-static int side_alloc(side_t *s, int S, long budget)
+/* The feet of the samples of side s not found yet (side_alloc found the
+ * grid's alone): what the sampled maximum (first_lower) reads. */
+static void side_all_feet(side_t *s)
+{
+    for (int j = 0; j < s->S; j++)
+        if (!(s->dist[j] >= 0))
+            s->dist[j] = ob_cert_foot(&s->P, &s->Q, (double)j / (s->S - 1), (const double (*)[2])s->tab, s->S,
+                                      &s->foot[j], &s->slope[j]);
+}
+
+/* The largest distance found at a foot of side s (the grid's, or all). */
+static double side_max(const side_t *s)
+{
+    double m = 0.0;
+    for (int j = 0; j < s->S; j++)
+        if (s->dist[j] > m)
+            m = s->dist[j];
+    return m;
+}
+
+static int side_alloc(side_t *s, int S, long budget, int G)
 {
     s->S = S;
     s->tab = malloc((size_t)S * sizeof *s->tab);
@@ -248,7 +281,17 @@ static int side_alloc(side_t *s, int S, long budget)
         return -1;
     s->dist = s->foot + S, s->slope = s->foot + 2 * S;
     ob_cert_table(&s->Q, S, s->tab);
-    ob_cert_feet(&s->P, &s->Q, S, (const double (*)[2])s->tab, s->foot, s->dist, s->slope);
+    if (G >= S - 1) {
+        ob_cert_feet(&s->P, &s->Q, S, (const double (*)[2])s->tab, s->foot, s->dist, s->slope);
+        return 0;
+    }
+    for (int j = 0; j < S; j++)  /* the grid's feet alone; the others when asked (side_all_feet) */
+        s->dist[j] = -1.0;
+    for (int g = 0; g <= G; g++) {
+        const int j = grid_end(S, G, g);
+        s->dist[j] = ob_cert_foot(&s->P, &s->Q, (double)j / (S - 1), (const double (*)[2])s->tab, S, &s->foot[j],
+                                  &s->slope[j]);
+    }
     return 0;
 }
 
@@ -267,6 +310,7 @@ void ob_cert_defaults(ob_cert_opts *o)
     o->decide = 0.0;
     o->verdict = 0;
     o->no_lower = 0;
+    o->grid = 0;
     o->cancel = NULL;
     o->cancel_ctx = NULL;
 }
@@ -289,9 +333,16 @@ int ob_certify_piece(const ob_bez *base, const ob_cert_src *src, const ob_bez *a
     c.floor = c.o.floor_rel * (fmax(curve_size(base), curve_size(approx)) + fabs(d));
     const int S = ob_clamp_samples(samples);
     int rc = -1;
-    if (side_alloc(&c.side[0], S, c.o.budget) == 0 && side_alloc(&c.side[1], S, c.o.budget) == 0) {
-        first_lower(&c, 0);
-        first_lower(&c, 1);
+    const int G = grid_count(&c, S);
+    if (side_alloc(&c.side[0], S, c.o.budget, G) == 0 && side_alloc(&c.side[1], S, c.o.budget, G) == 0) {
+        /* the sampled maximum's distance certified: always, but in verdict
+         * mode on a piece that seeks no lower bound only where the grid
+         * already says it may be over decide */
+        for (int k = 0; k < 2; k++)
+            if (!verdict(&c) || !c.o.no_lower || side_max(&c.side[k]) > c.o.decide) {
+                side_all_feet(&c.side[k]);
+                first_lower(&c, k);
+            }
         refine(&c, 0);
         refine(&c, 1);
         out->upper_ao = c.side[0].heap.n ? c.side[0].heap.v[0].key : 0.0;

@@ -93,12 +93,21 @@ typedef struct {
                           (over: one distance attained above it is the proof),
                           not refined to rtol: both ends stay proofs, neither
                           need be tight.  0: tight (to rtol), as without it */
+    int grid;          /* > 0: the search starts from this many intervals of
+                          the sample grid (their ends on samples) and only
+                          their ends' feet are searched first; 0: every
+                          sample interval, or OB_CERT_VERDICT_GRID in
+                          verdict mode (a verdict rarely needs the
+                          resolution of the samples: bisection finds it
+                          where it does) */
     int no_lower;      /* with verdict: seek a lower bound only where it could
                           prove lower > decide (the job's other pieces) */
     int (*cancel)(void *ctx);  /* NULL, or asked every few hundred enclosures:
                                   nonzero stops the search (out->cancelled) */
     void *cancel_ctx;
 } ob_cert_opts;
+
+enum { OB_CERT_VERDICT_GRID = 8 };
 
 /* rtol 1e-3, floor 1e-13, budget 20000, decide 0 (off), verdict 0, no_lower 0,
  * cancel NULL */
