@@ -23,7 +23,7 @@ int ob_certify_wants(const ob_job *j) { return j->status == OB_OK || j->status =
  * arrays of a->n): 0, or -1 with the reason in why (*base, *src and *apx are
  * then freed, a is safe to free). */
 static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_bez **base, ob_cert_src **src,
-                      ob_bez **apx, char *why, size_t len)
+                      ob_bez **apx, double **hint, char *why, size_t len)
 {
     ob_err err;
     *base = *apx = NULL;
@@ -35,11 +35,17 @@ static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_
     *base = malloc((size_t)(a->n + 1) * sizeof **base);
     *apx = malloc((size_t)(a->n + 1) * sizeof **apx);
     *src = malloc((size_t)(a->n + 1) * sizeof **src);
-    int rc = *base && *apx && *src ? 0 : -1;
+    *hint = malloc((size_t)(a->n + 1) * sizeof **hint);
+    int rc = *base && *apx && *src && *hint ? 0 : -1;
     if (rc)
         snprintf(why, len, "out of memory");
-    for (int k = 0; k < a->n && rc == 0; k++) {
+    for (int k = 0, s = 0; k < a->n && rc == 0; k++) {
         const ob_apiece *p = &a->v[k];
+        /* the pieces come in the log's order, each span's fit's pieces
+         * together (host/io/approx.h): each has its span's error */
+        while (s < log->n && !(log->v[s].seg == p->seg && log->v[s].a == p->a && log->v[s].b == p->b))
+            s++;
+        (*hint)[k] = s < log->n ? log->v[s].err : NAN;
         (*apx)[k] = p->approx;
         if (ob_apiece_base(j->curve, p, &(*base)[k]) == 0)
             (*src)[k] = (ob_cert_src){&j->curve->seg[p->seg], p->a, p->b, p->t0, p->t1};
@@ -49,9 +55,10 @@ static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_
         }
     }
     if (rc) {
-        free(*base), free(*apx), free(*src);
+        free(*base), free(*apx), free(*src), free(*hint);
         *base = *apx = NULL;
         *src = NULL;
+        *hint = NULL;
     }
     return rc;
 }
@@ -63,7 +70,8 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode,
     ob_approx a = {0};
     ob_bez *base, *apx;
     ob_cert_src *src;
-    int rc = job_pieces(j, log, &a, &base, &src, &apx, why, len);
+    double *hint;
+    int rc = job_pieces(j, log, &a, &base, &src, &apx, &hint, why, len);
     if (rc == 0) {
         ob_cert_opts co;
         ob_cert_defaults(&co);
@@ -71,7 +79,9 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode,
         co.verdict = mode != OB_CERTIFY_TIGHT;  /* the verdict alone (cert_job.h), or tight to rtol */
         ob_cert_job cj;
         const double t0 = ob_thread_ns();
-        const int crc = ob_certify_job_src(a.n, base, src, apx, j->d, samples, &co, NULL, &cj, NULL);
+        /* the run's errors order a verdict's pieces (the largest first;
+         * tight orders by its own sampling, as it always has) */
+        const int crc = ob_certify_job_src(a.n, base, src, apx, j->d, samples, &co, co.verdict ? hint : NULL, &cj, NULL);
         j->cert_ns = ob_thread_ns() - t0;
         if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
             snprintf(why, len, "out of memory");
@@ -84,6 +94,7 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode,
     }
     free(base);
     free(src);
+    free(hint);
     free(apx);
     ob_approx_free(&a);
     return rc;

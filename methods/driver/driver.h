@@ -163,10 +163,14 @@ typedef int (*ob_batch_fn)(void *ctx, const ob_measure_rec *recs, int n, int sam
 typedef int (*ob_batch_submit_fn)(void *ctx, int slot, const ob_measure_rec *recs, int n, int samples);
 typedef int (*ob_batch_wait_fn)(void *ctx, int slot, ob_errval *out, double *device_ns);
 
-/* One accepted piece of a job: base parameters [a, b] of base segment seg. */
+/* One accepted piece of a job: base parameters [a, b] of base segment seg,
+ * and the error the run measured for its fit (the largest of its pieces',
+ * by the run's metric): what orders the certificate's work (host/run/
+ * certify.c), read nowhere else. */
 typedef struct {
     int seg;
     double a, b;
+    double err;
 } ob_span;
 
 /* The accepted pieces of one job, in curve order (seg, then a) when the run

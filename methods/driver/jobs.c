@@ -120,7 +120,7 @@ int drv_plan_job(const ob_job *j, int jobidx, int grp, const ob_driver_opts *o, 
     return 0;
 }
 
-static void log_span(ob_span_log *L, int seg, double a, double b)
+static void log_span(ob_span_log *L, int seg, double a, double b, double err)
 {
     if (!L)
         return;
@@ -134,7 +134,7 @@ static void log_span(ob_span_log *L, int seg, double a, double b)
         L->v = nv;
         L->cap = nc;
     }
-    L->v[L->n++] = (ob_span){seg, a, b};
+    L->v[L->n++] = (ob_span){seg, a, b, err};
 }
 
 int drv_span_cmp(const void *x, const void *y)
@@ -166,7 +166,7 @@ static void keep_ends(jstate *s, int seg, double a, const fitjoints *fj)
 void drv_accept(ob_job *j, jstate *s, int seg, double a, double b, int npieces, int ctrl_add, int maxdeg,
                    double err, const fitjoints *fj)
 {
-    log_span(s->spans, seg, a, b);
+    log_span(s->spans, seg, a, b, err);
     keep_ends(s, seg, a, fj);
     ob_joint_merge(&s->st, &fj->in);
     s->open_count += fj->count_open;

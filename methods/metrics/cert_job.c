@@ -25,16 +25,13 @@ static int by_key_desc(const void *a, const void *b)
 
 /* Piece k's options and stop (in decreasing hint) given the job so far: to
  * rtol of the job's lower bound; in verdict mode to the tol, with a lower
- * bound sought only on the first piece, and once the job is over the tol
- * (a distance attained above it) the grid's bounds alone (budget 0). */
-static double piece_opts(const ob_cert_opts *o, const ob_cert_job *job, int k, ob_cert_opts *po)
+ * bound sought first on the first piece only. */
+static double piece_opts(const ob_cert_opts *o, int k, const ob_cert_job *job, ob_cert_opts *po)
 {
     *po = *o;
     if (!(o->verdict && o->decide > 0))
         return job->lower * (1.0 + o->rtol);
     po->no_lower = k > 0;
-    if (job->lower > o->decide)
-        po->budget = 0, po->no_lower = 1;
     return 0.0;
 }
 
@@ -52,7 +49,7 @@ int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const 
         o = *opts;
     else
         ob_cert_defaults(&o);
-    *out = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0, 0};
+    *out = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0, 0, 0};
     order_t *ord = malloc((size_t)(n > 0 ? n : 1) * sizeof *ord);
     if (!ord) {
         out->upper = INFINITY, out->met = 0;
@@ -71,11 +68,20 @@ int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const 
         ord[i] = (order_t){h == h ? h : INFINITY, i};  /* unknown first: it may be the largest */
     }
     qsort(ord, (size_t)n, sizeof *ord, by_key_desc);
+    const int verdict = o.verdict && o.decide > 0;
     for (int k = 0; k < n && !out->cancelled; k++) {
         const int i = ord[k].i;
+        if (verdict && out->lower > o.decide) {  /* decided: over tol; the rest is not sought */
+            out->unsought = n - k;
+            out->upper = INFINITY;
+            if (piece)
+                for (int r = k; r < n; r++)
+                    piece[ord[r].i] = (ob_certified){.upper = INFINITY};
+            break;
+        }
         ob_certified r;
         ob_cert_opts po;
-        const double stop = piece_opts(&o, out, k, &po);
+        const double stop = piece_opts(&o, k, out, &po);
         const int rc = ob_certify_piece(&base[i], src ? &src[i] : NULL, &approx[i], d, samples, &po, stop, &r);
         if (piece)
             piece[i] = r;
@@ -88,7 +94,7 @@ int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const 
             out->upper = fmax(out->upper, r.upper), out->upper_piece = i;
     }
     free(ord);
-    if (o.verdict && o.decide > 0)
+    if (verdict)
         out->met = out->upper <= o.decide || out->lower > o.decide;
     if (out->cancelled)
         out->met = 0;

@@ -48,6 +48,8 @@ typedef struct {
     long leaves;          /* sum over pieces */
     int cancelled;        /* opts->cancel stopped it: pieces left unenclosed
                              (upper +inf), the verdict unknown */
+    int unsought;         /* verdict mode: pieces not enclosed once the job was
+                             shown over tol (upper then +inf: not sought) */
 } ob_cert_job;
 
 /* Purpose: the certified enclosure of a job of n pieces: piece i is approx[i]
@@ -68,11 +70,12 @@ int ob_certify_job(int n, const ob_bez *base, const ob_bez *approx, double d, in
  * Method:  with opts->verdict (decide = the job's tol), the question is
  *          only "is the job within tol?": each piece is refined until its
  *          upper <= tol, or until a distance attained above tol is found;
- *          once one is (the job is over tol), the other pieces keep the
- *          bounds of their sample grid (no refinement), which still make
- *          err_upper a bound.  Only the first piece (the largest hint)
- *          seeks a lower bound where it cannot decide.  met: the verdict
- *          is reached (upper <= tol or lower > tol). */
+ *          once one is (the job is over tol), the other pieces are not
+ *          enclosed (out->unsought) and upper is +inf: the verdict needs
+ *          none, and a job over tol (a `limit` job) has the most pieces.
+ *          Only the first piece (the largest hint) seeks a lower bound
+ *          where it cannot decide.  met: the verdict is reached (upper <=
+ *          tol or lower > tol). */
 int ob_certify_job_src(int n, const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int samples,
                        const ob_cert_opts *opts, const double *hint, ob_cert_job *out, ob_certified *piece);
 
