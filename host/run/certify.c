@@ -56,9 +56,13 @@ static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_
     return rc;
 }
 
+int ob_certify_past_deadline(void *ctx) { return ob_thread_ns() > *(const double *)ctx; }
+
 /* Job j's certificate (its cert_* fields) from its span log: 0, or -1 with
- * the reason in why. */
-static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode, char *why, size_t len)
+ * the reason in why.  timeout_ns > 0: one that runs past it in thread time
+ * has no verdict (cert_done OB_CERT_TIMEOUT). */
+static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode, double timeout_ns, char *why,
+                       size_t len)
 {
     ob_approx a = {0};
     ob_bez *base, *apx;
@@ -71,15 +75,21 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode,
         co.verdict = mode != OB_CERTIFY_TIGHT;  /* the verdict alone (cert_job.h), or tight to rtol */
         ob_cert_job cj;
         const double t0 = ob_thread_ns();
+        double deadline = t0 + timeout_ns;  /* --job-timeout, in the certificate's own thread time */
+        if (timeout_ns > 0)
+            co.cancel = ob_certify_past_deadline, co.cancel_ctx = &deadline;
         const int crc = ob_certify_job_src(a.n, base, src, apx, j->d, samples, &co, NULL, &cj, NULL);
         j->cert_ns = ob_thread_ns() - t0;
-        if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
+        if (cj.cancelled) {  /* past --job-timeout: no verdict, never a wrong one */
+            j->err_upper = j->err_lower = NAN;
+            j->cert_done = OB_CERT_TIMEOUT;
+        } else if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
             snprintf(why, len, "out of memory");
             rc = -1;
         } else {
             j->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
             j->err_lower = cj.lower;
-            j->cert_done = 1;
+            j->cert_done = OB_CERT_DONE;
         }
     }
     free(base);
@@ -119,7 +129,8 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
     return t;
 }
 
-int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds)
+int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_t njobs, const ob_span_log *spans,
+                   ob_journal *jr, double *seconds)
 {
     const double start = ob_mono_s();
     double last = start;
@@ -147,7 +158,7 @@ int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_s
         }
         ob_job *j = &jobs[idx[k].i];
         char why[200];
-        if (certify_job(j, &spans[idx[k].i], samples, mode, why, sizeof why) != 0) {
+        if (certify_job(j, &spans[idx[k].i], samples, mode, timeout_ns, why, sizeof why) != 0) {
 #pragma omp critical(ob_certify_report)
             {
                 ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);
@@ -157,6 +168,10 @@ int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_s
         }
 #pragma omp critical(ob_certify_report)
         {
+            if (j->cert_done == OB_CERT_TIMEOUT)
+                ob_warn("--certify: %s d=%g %s tol=%g: the certificate passed --job-timeout (%g s of thread time): "
+                        "no verdict (err_upper, err_lower and certified empty)",
+                        j->curve->id, j->d, j->method->name, j->tol, 1e-9 * timeout_ns);
             if (jr && !failed && ob_journal_add(jr, j) != 0) {
                 ob_error("%s: cannot write: rows are no longer saved as jobs are certified", jr->path);
                 failed = 1;

@@ -92,7 +92,7 @@ int ob_tab_write_csv(FILE *f, void *ctx)
             char note[512];
             snprintf(note, sizeof note, "%s%s%s", r->spec.note, j->message[0] ? "; job: " : "", j->message);
             ob_csv_field(f, note);
-            if (j->cert_done) {  /* tables --certify (host/run/certify.h) */
+            if (j->cert_done == OB_CERT_DONE) {  /* tables --certify (host/run/certify.h); timed out: empty */
                 fputc(',', f);
                 put_num(f, j->err_upper);
                 fputc(',', f);
