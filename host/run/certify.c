@@ -4,6 +4,7 @@
 #include "host/run/certify.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -11,6 +12,7 @@
 #include "host/diag.h"
 #include "host/io/approx.h"
 #include "host/run/clock.h"
+#include "host/run/cert_progress.h"
 #include "host/run/progress.h"
 #include "host/run/signals.h"
 #include "methods/metrics/cert_job.h"
@@ -129,16 +131,27 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
     return t;
 }
 
+/* The pass's progress (cert_progress.h) over the jobs in idx's order: 0,
+ * or -1 without memory. */
+static int progress_init(ob_cert_progress *cp, const ob_job *jobs, const todo *idx, size_t n)
+{
+    if (ob_cert_progress_init(cp, n, omp_get_max_threads()) != 0)
+        return -1;
+    for (size_t k = 0; k < n; k++)
+        ob_cert_progress_set(cp, k, &jobs[idx[k].i]);
+    return 0;
+}
+
 int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_t njobs, const ob_span_log *spans,
                    ob_journal *jr, double *seconds)
 {
     const double start = ob_mono_s();
-    double last = start;
-    size_t done = 0;
     *seconds = 0.0;
     size_t n;
     todo *idx = certify_order(jobs, njobs, &n);
-    if (!idx) {
+    ob_cert_progress cp;
+    if (!idx || progress_init(&cp, jobs, idx, n) != 0) {
+        free(idx);
         ob_error("--certify: out of memory");
         return -1;
     }
@@ -158,11 +171,14 @@ int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_
         }
         ob_job *j = &jobs[idx[k].i];
         char why[200];
+#pragma omp critical(ob_certify_report)
+        ob_cert_progress_start(&cp, (size_t)k, ob_cert_progress_now(&cp));
         if (certify_job(j, &spans[idx[k].i], samples, mode, timeout_ns, why, sizeof why) != 0) {
 #pragma omp critical(ob_certify_report)
             {
                 ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);
                 failed = 1;
+                ob_cert_progress_done(&cp, (size_t)k, j->cert_ns, ob_cert_progress_now(&cp));
             }
             continue;
         }
@@ -176,14 +192,12 @@ int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_
                 ob_error("%s: cannot write: rows are no longer saved as jobs are certified", jr->path);
                 failed = 1;
             }
-            done++;
-            const double t = ob_mono_s();
-            if (t - last >= OB_PROGRESS_LOG_SECONDS && done < n) {  /* a long pass is not silent */
-                last = t;
-                ob_info("certified %zu/%zu jobs, %.0f s elapsed", done, n, t - start);
-            }
+            /* a long pass is not silent: "certified N/M jobs, X s elapsed, ETA Y s" */
+            ob_cert_progress_done(&cp, (size_t)k, j->cert_ns, ob_cert_progress_now(&cp));
+            ob_cert_progress_show(&cp);
         }
     }
+    ob_cert_progress_end(&cp);
     free(idx);
     *seconds = ob_mono_s() - start;
     return failed ? -1 : stopped ? 1 : 0;
