@@ -34,23 +34,6 @@ static void fmt3(char *buf, size_t len, double v)
         snprintf(buf, len, "%.3g", v);
 }
 
-/* A bound at 3 significant digits, rounded outward (up for an upper bound,
- * dir > 0; down for a lower one) so that what is shown is still a bound;
- * "inf" for +inf. */
-static void fmt_bound(char *buf, size_t len, double v, int dir)
-{
-    if (isinf(v) || v <= 0 || !isfinite(v)) {
-        snprintf(buf, len, isinf(v) ? "inf" : "%g", v);
-        return;
-    }
-    snprintf(buf, len, "%.3g", v);
-    const double w = strtod(buf, NULL);
-    if (dir > 0 ? w < v : w > v) {
-        const double e = pow(10.0, floor(log10(v)) - 2);
-        snprintf(buf, len, "%.3g", (dir > 0 ? floor(v / e) + 1 : ceil(v / e) - 1) * e);
-    }
-}
-
 /* new/base of two positive finite values into buf, else "-". */
 static void fmt_ratio(char *buf, size_t len, double a, double b)
 {
@@ -89,7 +72,7 @@ static void cell_job_cert(char *buf, size_t len, const ob_res_row *r)
         return;
     }
     char up[40];
-    fmt_bound(up, sizeof up, r->err_upper, 1);
+    ob_fmt_bound(up, sizeof up, r->err_upper, 1);
     snprintf(buf + k, len - k, " (%s%s)", up, r->err_upper <= r->tol ? "" : " !");
 }
 
@@ -428,9 +411,9 @@ static void grid_cert_misses(grid *g, const ob_summary *s)
                 snprintf(buf, sizeof buf, "%.3g", r->max_err);
                 grid_set(g, row, 5, buf);
                 if (r->cert_done == 1) {
-                    fmt_bound(buf, sizeof buf, r->err_upper, 1);
+                    ob_fmt_bound(buf, sizeof buf, r->err_upper, 1);
                     grid_set(g, row, 6, buf);
-                    fmt_bound(buf, sizeof buf, r->err_lower, -1);
+                    ob_fmt_bound(buf, sizeof buf, r->err_lower, -1);
                     grid_set(g, row, 7, buf);
                 }
                 grid_set(g, row, 8, why);
