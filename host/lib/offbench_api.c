@@ -24,8 +24,10 @@
 #include "host/io/output.h"
 #include "host/lib/sisl_exe.h"
 #include "host/measure/measure.h"
+#include "host/run/clock.h"
 #include "methods/core/offdeg.h"
 #include "methods/driver/driver.h"
+#include "methods/metrics/cert_job.h"
 
 struct obx_curveset {
     ob_curveset set;
@@ -551,6 +553,70 @@ int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap,
     char what[32];
     snprintf(what, sizeof what, "piece %d", k);
     return bez_out(&r->pieces.v[k].approx, what, xy, w, cap, err);
+}
+
+/* ---- certify ---------------------------------------------------------------- */
+
+int obx_result_certify(obx_result *r, double *upper, double *lower, obx_error *err)
+{
+    if (upper)
+        *upper = NAN;
+    if (lower)
+        *lower = NAN;
+    if (!r)
+        return fail(err, OBX_E_INVALID, "obx_result_certify: NULL result");
+    ob_job *j = &r->job;
+    if (!(j->status == OB_OK || j->status == OB_LIMIT) || r->pieces.n == 0)
+        return 0;  /* no approximation: nothing to certify, its columns stay empty (as run --certify's) */
+    if (j->cert_done == OB_CERT_DONE) {  /* twice: the same certificate */
+        if (upper)
+            *upper = j->err_upper;
+        if (lower)
+            *lower = j->err_lower;
+        return 0;
+    }
+    /* as host/run/certify.c: each piece against the exact offset of its base piece */
+    const int n = r->pieces.n;
+    ob_bez *base = malloc((size_t)n * sizeof *base), *apx = malloc((size_t)n * sizeof *apx);
+    if (!base || !apx) {
+        free(base);
+        free(apx);
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    }
+    for (int k = 0; k < n; k++) {
+        apx[k] = r->pieces.v[k].approx;
+        if (ob_apiece_base(j->curve, &r->pieces.v[k], &base[k]) != 0) {
+            free(base);
+            free(apx);
+            return fail(err, OBX_E_INVALID, "obx_result_certify: piece %d has no base piece", k);
+        }
+    }
+    ob_cert_opts co;
+    ob_cert_defaults(&co);
+    co.decide = j->tol;  /* refined to a verdict where the enclosure straddles tol (certify.c) */
+    ob_driver_opts dopt;
+    ob_driver_defaults(&dopt);  /* obx_fit's samples: the feet the certificate starts from */
+    ob_cert_job cj;
+    const double t0 = ob_thread_ns();
+    const int crc = ob_certify_job(n, base, apx, j->d, ob_clamp_samples(dopt.samples), &co, NULL, &cj, NULL);
+    const double ns = ob_thread_ns() - t0;
+    free(base);
+    free(apx);
+    if (crc != 0 && cj.failed == 0)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    j->cert_ns = ns;
+    j->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
+    j->err_lower = cj.lower;
+    j->cert_done = OB_CERT_DONE;
+    free(r->row);
+    r->row = NULL;
+    if (make_row(r) != 0)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    if (upper)
+        *upper = j->err_upper;
+    if (lower)
+        *lower = j->err_lower;
+    return 0;
 }
 
 /* ---- batch ------------------------------------------------------------------ */

@@ -163,3 +163,63 @@ def test_threads():
         t.join()
     strip = lambda r: r[:11] + r[13:]  # noqa: E731  (fit_ns, eval_ns are the 12th and 13th)
     assert [strip(r) for r in got] == [strip(r) for r in want]
+
+
+def test_certify():
+    """fit(..., certify=True): the job's certified enclosure, as `run
+    --certify` writes it: err_lower <= err_upper, the sampled max_err <=
+    err_upper, certified True exactly when err_upper <= tol, cert_ns an
+    int; its row is run --certify's (the timings aside)."""
+    r = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify=True)
+    assert r.status == "ok" and 0 < r.err_lower <= r.err_upper and r.max_err <= r.err_upper
+    assert r.err_upper <= r.err_lower * 1.01 and r.certified is (r.err_upper <= r.tol) is True
+    assert isinstance(r.cert_ns, int) and r.cert_ns > 0
+    plain = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3)
+    assert math.isnan(plain.err_upper) and plain.certified is None and plain.cert_ns is None
+    assert [getattr(r, k) for k in r.columns if k not in columns.TIMING + ("err_upper", "err_lower", "certified")] \
+        == [getattr(plain, k) for k in r.columns if k not in columns.TIMING + ("err_upper", "err_lower", "certified")]
+    # ok by the radial metric, over tol by the certified distance (e2e_certify.sh's job)
+    n = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, metric="radial", certify=True)
+    assert n.status == "ok" and n.max_err <= 1e-3 and n.certified is False and n.err_lower > 0.0017
+    # a job without an approximation: nothing to certify, not an error
+    skip = offbench.fit("atlas_circle", "kim2018", 0.125, 1e-3, certify=True)
+    assert skip.status == "skip" and math.isnan(skip.err_upper) and skip.certified is None and skip.cert_ns is None
+
+
+def test_certify_row_is_offbench_runs(tmp_path):
+    """fit(certify=True)'s row is the row of `offbench run --certify`."""
+    from conftest import offbench_run
+    p = offbench_run(tmp_path, "--curve", "liu2002_ex1", "--methods", "tiller,lee", "--tols", "1e-2", "--certify")
+    for want in run_rows(p):
+        r = offbench.fit(want["curve"], want["method"], float(want["d"]), float(want["tol"]), certify=True)
+        got = next(csv.DictReader([r.row], fieldnames=list(want)))
+        for k in want:
+            if k not in columns.TIMING:
+                assert got[k] == want[k], (k, want, r.row)
+
+
+@pytest.mark.parametrize("value, words", [("yes", "certify: True or False, not 'yes'"),
+                                          (1, "certify: True or False, not 1"),
+                                          (None, "certify: True or False, not None")])
+def test_certify_bad_argument(value, words):
+    with pytest.raises(offbench.InvalidError) as e:
+        offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify=value)
+    assert words in str(e.value), str(e.value)
+
+
+def test_certify_needs_a_new_library(monkeypatch):
+    """An older library (before 0.4) has no obx_result_certify: fit without
+    certify works, with it an UnsupportedError says what to rebuild."""
+    real = offbench._lib.lib()
+
+    class Old:
+        def __getattr__(self, name):
+            if name == "obx_result_certify":
+                raise AttributeError(name)
+            return getattr(real, name)
+
+    monkeypatch.setattr(offbench._lib, "lib", lambda: Old())
+    assert offbench.fit("liu2002_ex1", "tiller", 1, 1e-2).status == "ok"
+    with pytest.raises(offbench.UnsupportedError) as e:
+        offbench.fit("liu2002_ex1", "tiller", 1, 1e-2, certify=True)
+    assert "obx_result_certify needs liboffbench 0.4" in str(e.value) and "make lib" in str(e.value)
