@@ -88,6 +88,11 @@ void ob_cert_progress_show(ob_cert_progress *p)
     ob_progress_cb(&p->bar, &pi);
 }
 
+void ob_cert_progress_clear(ob_cert_progress *p)
+{
+    ob_progress_end(&p->bar);  /* blanks the line; the display's buffers are made again as needed */
+}
+
 void ob_cert_progress_end(ob_cert_progress *p)
 {
     ob_progress_end(&p->bar);

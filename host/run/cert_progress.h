@@ -63,6 +63,9 @@ double ob_cert_progress_now(const ob_cert_progress *p);
 /* Purpose: the display told (a bar redrawn, or a log line every
  *          OB_PROGRESS_LOG_SECONDS): call after each job done. */
 void ob_cert_progress_show(ob_cert_progress *p);
+/* Purpose: the bar's line cleared before a message (a warning) is written
+ *          on a terminal; the next show draws it again. */
+void ob_cert_progress_clear(ob_cert_progress *p);
 /* Purpose: the bar cleared and what p holds freed. */
 void ob_cert_progress_end(ob_cert_progress *p);
 

@@ -176,6 +176,7 @@ int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_
         if (certify_job(j, &spans[idx[k].i], samples, mode, timeout_ns, why, sizeof why) != 0) {
 #pragma omp critical(ob_certify_report)
             {
+                ob_cert_progress_clear(&cp);
                 ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);
                 failed = 1;
                 ob_cert_progress_done(&cp, (size_t)k, j->cert_ns, ob_cert_progress_now(&cp));
@@ -184,10 +185,12 @@ int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_
         }
 #pragma omp critical(ob_certify_report)
         {
-            if (j->cert_done == OB_CERT_TIMEOUT)
+            if (j->cert_done == OB_CERT_TIMEOUT) {
+                ob_cert_progress_clear(&cp);
                 ob_warn("--certify: %s d=%g %s tol=%g: the certificate passed --job-timeout (%g s of thread time): "
                         "no verdict (err_upper, err_lower and certified empty)",
                         j->curve->id, j->d, j->method->name, j->tol, 1e-9 * timeout_ns);
+            }
             if (jr && !failed && ob_journal_add(jr, j) != 0) {
                 ob_error("%s: cannot write: rows are no longer saved as jobs are certified", jr->path);
                 failed = 1;
