@@ -239,19 +239,24 @@ int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap,
 /* Purpose: certify a result's error, as `offbench run --certify` certifies
  *          its row (docs/certified.md): err_lower <= H <= err_upper, H the
  *          two-sided Hausdorff distance of the pieces to the exact offsets
- *          of their base pieces, whatever the job's metric; refined to a
- *          verdict where the enclosure straddles tol.
- * Inputs:  r from obx_fit or obx_run_batch.
+ *          of their base pieces (each enclosed from the segment as stored),
+ *          whatever the job's metric.
+ * Inputs:  r from obx_fit or obx_run_batch; mode: NULL or "verdict" (run
+ *          --certify's default: refined only until err_upper <= tol or
+ *          err_lower > tol, neither end need be tight) or "tight" (run
+ *          --certify=tight: until err_upper <= err_lower (1 + 1e-3), and on
+ *          while tol lies between them).
  * Outputs: r's row (obx_result_row) gains err_upper, err_lower, certified
  *          (yes: err_upper <= tol) and cert_ns (this call's thread CPU
  *          time); *upper and *lower (each may be NULL): the enclosure
  *          (+inf upper: a piece unbounded, a cusp of the base).  A job
  *          without an approximation (fail, skip, timeout) has nothing to
  *          certify: not an error, *upper and *lower NAN, its columns stay
- *          empty.  A second call gives the first's certificate.
- * Errors:  OBX_E_INVALID: r NULL; OBX_E_NOMEM.
+ *          empty.  A second call in the same mode gives the first's
+ *          certificate; in the other mode it certifies again.
+ * Errors:  OBX_E_INVALID: r NULL, an unknown mode; OBX_E_NOMEM.
  * Threads: safe on distinct results. */
-int obx_result_certify(obx_result *r, double *upper, double *lower, obx_error *err);
+int obx_result_certify(obx_result *r, const char *mode, double *upper, double *lower, obx_error *err);
 
 /* ---- batch: many jobs at once --------------------------------------------- */
 

@@ -121,7 +121,7 @@ SIGNATURES = {
 # name: (restype, argtypes) of functions a library of NEED_MINOR may lack
 # (declared where present; the call that needs one says which version has it)
 OPTIONAL = {
-    "obx_result_certify": ((0, 4), _int, [ResultP, _dp, _dp, _ep]),
+    "obx_result_certify": ((0, 4), _int, [ResultP, _str, _dp, _dp, _ep]),
 }
 
 _lock = threading.Lock()

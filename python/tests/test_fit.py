@@ -171,9 +171,13 @@ def test_certify():
     err_upper, certified True exactly when err_upper <= tol, cert_ns an
     int; its row is run --certify's (the timings aside)."""
     r = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify=True)
-    assert r.status == "ok" and 0 < r.err_lower <= r.err_upper and r.max_err <= r.err_upper
-    assert r.err_upper <= r.err_lower * 1.01 and r.certified is (r.err_upper <= r.tol) is True
+    assert r.status == "ok" and 0 <= r.err_lower <= r.err_upper <= r.tol and r.certified is True
     assert isinstance(r.cert_ns, int) and r.cert_ns > 0
+    t = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify="tight")
+    assert 0 < t.err_lower <= t.err_upper <= t.err_lower * 1.001 and t.max_err <= t.err_upper
+    assert t.certified is (t.err_upper <= t.tol) is True
+    v = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify="verdict")
+    assert (v.err_upper, v.err_lower, v.certified) == (r.err_upper, r.err_lower, r.certified)
     plain = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3)
     assert math.isnan(plain.err_upper) and plain.certified is None and plain.cert_ns is None
     assert [getattr(r, k) for k in r.columns if k not in columns.TIMING + ("err_upper", "err_lower", "certified")] \
@@ -186,21 +190,22 @@ def test_certify():
     assert skip.status == "skip" and math.isnan(skip.err_upper) and skip.certified is None and skip.cert_ns is None
 
 
-def test_certify_row_is_offbench_runs(tmp_path):
-    """fit(certify=True)'s row is the row of `offbench run --certify`."""
+@pytest.mark.parametrize("flag, certify", [("--certify", True), ("--certify=tight", "tight")])
+def test_certify_row_is_offbench_runs(tmp_path, flag, certify):
+    """fit(certify=...)'s row is the row of `offbench run --certify[=tight]`."""
     from conftest import offbench_run
-    p = offbench_run(tmp_path, "--curve", "liu2002_ex1", "--methods", "tiller,lee", "--tols", "1e-2", "--certify")
+    p = offbench_run(tmp_path, "--curve", "liu2002_ex1", "--methods", "tiller,lee", "--tols", "1e-2", flag)
     for want in run_rows(p):
-        r = offbench.fit(want["curve"], want["method"], float(want["d"]), float(want["tol"]), certify=True)
+        r = offbench.fit(want["curve"], want["method"], float(want["d"]), float(want["tol"]), certify=certify)
         got = next(csv.DictReader([r.row], fieldnames=list(want)))
         for k in want:
             if k not in columns.TIMING:
                 assert got[k] == want[k], (k, want, r.row)
 
 
-@pytest.mark.parametrize("value, words", [("yes", "certify: True or False, not 'yes'"),
-                                          (1, "certify: True or False, not 1"),
-                                          (None, "certify: True or False, not None")])
+@pytest.mark.parametrize("value, words", [("yes", "certify: True, False, 'verdict' or 'tight', not 'yes'"),
+                                          (1, "certify: True, False, 'verdict' or 'tight', not 1"),
+                                          (None, "certify: True, False, 'verdict' or 'tight', not None")])
 def test_certify_bad_argument(value, words):
     with pytest.raises(offbench.InvalidError) as e:
         offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify=value)

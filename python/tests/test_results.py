@@ -163,7 +163,7 @@ def test_certificate_timed_out(tmp_path):
     the file's other certificate rows as before."""
     from conftest import offbench_run
     p = offbench_run(tmp_path, "--random", "20:7", "--curve", "rnd7_000010", "--methods", "lee,tiller", "--tols",
-                     "1e-3", "--job-timeout", "0.5", "--certify")
+                     "1e-3", "--job-timeout", "0.5", "--certify=tight")
     rows = {r["method"]: r for r in offbench.read_results(p, as_frame=False)}
     lee, tiller = rows["lee"], rows["tiller"]
     assert lee["status"] == "limit" and math.isnan(lee["err_upper"]) and math.isnan(lee["err_lower"])

@@ -358,14 +358,20 @@ static void test_certify(const obx_curveset *s, int c)
         return;
     CHECK(strstr(obx_result_row(r), ",,,,") != NULL, "before: the certificate's columns empty");
     double up = 0, lo = 0;
-    CHECK(obx_result_certify(r, &up, &lo, &e) == 0, "certify: %s", e.message);
-    CHECK(0 < lo && lo <= up && up <= 1e-3 && obx_result_max_err(r) <= up, "[%g, %g]", lo, up);
+    CHECK(obx_result_certify(r, NULL, &up, &lo, &e) == 0, "certify: %s", e.message);
+    CHECK(0 <= lo && lo <= up && up <= 1e-3, "the verdict: within tol [%g, %g]", lo, up);
     CHECK(strstr(obx_result_row(r), ",yes,") != NULL, "the row says certified yes: %s", obx_result_row(r));
     double up2 = 0, lo2 = 0;
-    CHECK(obx_result_certify(r, &up2, &lo2, &e) == 0 && up2 == up && lo2 == lo, "twice: the same");
+    CHECK(obx_result_certify(r, "verdict", &up2, &lo2, &e) == 0 && up2 == up && lo2 == lo, "twice: the same");
+    CHECK(obx_result_certify(r, "tight", &up2, &lo2, &e) == 0 && lo2 <= up2 && up2 <= lo2 * (1 + 1e-3) && lo2 > 0 &&
+              up2 <= 1e-3,
+          "tight: within rtol [%g, %g]", lo2, up2);
+    CHECK(obx_result_certify(r, "loose", &up2, &lo2, &e) == -1 && e.code == OBX_E_INVALID &&
+              strstr(e.message, "unknown certificate mode 'loose' (verdict, tight)") && isnan(up2),
+          "an unknown mode: %s", e.message);
     obx_result_free(r);
     /* a job without an approximation: python/tests/test_fit.py (a built-in curve's) */
-    CHECK(obx_result_certify(NULL, &up, NULL, &e) == -1 && e.code == OBX_E_INVALID && isnan(up), "NULL: %s",
+    CHECK(obx_result_certify(NULL, NULL, &up, NULL, &e) == -1 && e.code == OBX_E_INVALID && isnan(up), "NULL: %s",
           e.message);
 }
 
