@@ -55,9 +55,9 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 3
+#define OBX_VERSION_MINOR 4
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.3.0"
+#define OBX_VERSION "0.4.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
@@ -233,6 +233,30 @@ int obx_result_piece_count(const obx_result *r);
  * Returns: the degree (>= 0); -1 with OBX_E_INVALID when k is out of range
  *          or the buffers are too small (the degree is then in the message). */
 int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap, obx_error *err);
+
+/* ---- certify (since 0.4) ------------------------------------------------------ */
+
+/* Purpose: certify a result's error, as `offbench run --certify` certifies
+ *          its row (docs/certified.md): err_lower <= H <= err_upper, H the
+ *          two-sided Hausdorff distance of the pieces to the exact offsets
+ *          of their base pieces (each enclosed from the segment as stored),
+ *          whatever the job's metric.
+ * Inputs:  r from obx_fit or obx_run_batch; mode: NULL or "verdict" (run
+ *          --certify's default: refined only until err_upper <= tol or
+ *          err_lower > tol, neither end need be tight) or "tight" (run
+ *          --certify=tight: until err_upper <= err_lower (1 + 1e-3), and on
+ *          while tol lies between them).
+ * Outputs: r's row (obx_result_row) gains err_upper, err_lower, certified
+ *          (yes: err_upper <= tol) and cert_ns (this call's thread CPU
+ *          time); *upper and *lower (each may be NULL): the enclosure
+ *          (+inf upper: a piece unbounded, a cusp of the base).  A job
+ *          without an approximation (fail, skip, timeout) has nothing to
+ *          certify: not an error, *upper and *lower NAN, its columns stay
+ *          empty.  A second call in the same mode gives the first's
+ *          certificate; in the other mode it certifies again.
+ * Errors:  OBX_E_INVALID: r NULL, an unknown mode; OBX_E_NOMEM.
+ * Threads: safe on distinct results. */
+int obx_result_certify(obx_result *r, const char *mode, double *upper, double *lower, obx_error *err);
 
 /* ---- batch: many jobs at once --------------------------------------------- */
 

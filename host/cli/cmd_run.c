@@ -251,7 +251,8 @@ static int run_jobs(run_cmd *r)
                          : ob_run_journaled(&c, r->jobs, r->njobs, r->where, &r->journal, &r->wall, &restored);
     c.hooks.spans = NULL;  /* the first run's pieces: --reps repeats it for the timings only */
     if (drc == 0 && o->certify) {  /* outside every timing; a stop here is a stop of the run */
-        const int crc = ob_certify_run(o->driver.samples, o->certify, r->jobs, r->njobs, r->spans,
+        const int crc = ob_certify_run(o->driver.samples, o->certify, o->driver.job_timeout_ns, r->jobs, r->njobs,
+                                       r->spans,
                                        journaled ? &r->journal : NULL, &r->rec.cert_seconds);
         r->cert_failed = crc < 0;
         drc = crc > 0 ? 1 : 0;

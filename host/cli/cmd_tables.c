@@ -327,7 +327,8 @@ static int run_slots(ob_tab_plan *pl, const ob_run_opts *o, const ob_driver_hook
         int drc = ob_driver_run(jobs, n, &d, &h);
         ob_progress_end(&bar);
         double secs = 0.0;
-        if (drc == 0 && logs && ob_certify_run(o->driver.samples, o->certify, jobs, n, logs, NULL, &secs) < 0)
+        if (drc == 0 && logs &&
+            ob_certify_run(o->driver.samples, o->certify, o->driver.job_timeout_ns, jobs, n, logs, NULL, &secs) < 0)
             rc = -1;  /* a job not certified: said; its columns empty */
         ob_export_free(logs);
         for (size_t k = 0; k < n; k++) {

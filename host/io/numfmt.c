@@ -41,3 +41,17 @@ int ob_parse_double(const char *s, double *out)
     *out = v;
     return 0;
 }
+
+void ob_fmt_bound(char *buf, size_t len, double x, int dir)
+{
+    if (!(x > 0) || !isfinite(x)) {
+        snprintf(buf, len, isinf(x) ? "inf" : "%g", x);
+        return;
+    }
+    snprintf(buf, len, "%.3g", x);
+    const double w = strtod(buf, NULL);
+    if (dir > 0 ? w < x : w > x) {  /* the third digit one step outward */
+        const double e = pow(10.0, floor(log10(x)) - 2);
+        snprintf(buf, len, "%.3g", (dir > 0 ? floor(x / e) + 1 : ceil(x / e) - 1) * e);
+    }
+}

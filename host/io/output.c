@@ -94,17 +94,18 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
         if (j->time_reps >= 2)
             put_double(f, j->time_cv);
         break;
-    /* the certificate (host/run/certify.h): empty without --certify or an approximation */
+    /* the certificate (host/run/certify.h): empty without --certify or an approximation;
+     * one stopped by --job-timeout has its cert_ns only */
     case OB_COL_ERR_UPPER:
-        if (j->cert_done)
+        if (j->cert_done == OB_CERT_DONE)
             put_double(f, j->err_upper);
         break;
     case OB_COL_ERR_LOWER:
-        if (j->cert_done)
+        if (j->cert_done == OB_CERT_DONE)
             put_double(f, j->err_lower);
         break;
     case OB_COL_CERTIFIED:
-        if (j->cert_done)
+        if (j->cert_done == OB_CERT_DONE)
             fputs(ob_job_certified(j) ? "yes" : "no", f);
         break;
     case OB_COL_CERT_NS:

@@ -18,6 +18,7 @@
 
 #include "host/io/numfmt.h"
 #include "host/io/slurp.h"
+#include "methods/driver/driver.h"
 #include "methods/metrics/metric.h"
 
 enum { MAX_REP = 100000 };
@@ -294,7 +295,9 @@ static const char *read_row(char **f, const int *at, int has_joints, ob_res_row 
 
 /* The certificate's columns of a row (at[18..21]): all empty, or all set
  * and consistent (err_lower <= err_upper, certified = yes exactly when
- * err_upper <= tol).  Returns NULL, or what is wrong. */
+ * err_upper <= tol), or only cert_ns set: a certificate stopped by
+ * --job-timeout (cert_done OB_CERT_TIMEOUT, no verdict).  Returns NULL, or
+ * what is wrong. */
 static const char *read_cert(char **f, const int *at, ob_res_row *row)
 {
     const char *up = f[at[18]], *lo = f[at[19]], *ns = f[at[21]];
@@ -303,8 +306,15 @@ static const char *read_cert(char **f, const int *at, ob_res_row *row)
     const int nset = (*up != 0) + (*lo != 0) + (*row->certified != 0) + (*ns != 0);
     if (nset == 0)
         return NULL;
+    if (nset == 1 && *ns) {  /* timed out */
+        if (parse_ns(ns, &row->cert_ns))
+            return "cert_ns is not a finite number >= 0";
+        row->cert_done = OB_CERT_TIMEOUT;
+        return NULL;
+    }
     if (nset != 4)
-        return "err_upper, err_lower, certified and cert_ns are all empty or all set";
+        return "err_upper, err_lower, certified and cert_ns are all empty or all set (or cert_ns alone: a "
+               "certificate stopped by --job-timeout)";
     if (parse_err(up, &row->err_upper) || isnan(row->err_upper))
         return "err_upper is not a number >= 0 (inf: unbounded)";
     if (ob_parse_double(lo, &row->err_lower) || row->err_lower < 0 || row->err_lower > row->err_upper)
@@ -315,7 +325,7 @@ static const char *read_cert(char **f, const int *at, ob_res_row *row)
         return "certified must be yes exactly when err_upper <= tol";
     if (parse_ns(ns, &row->cert_ns))
         return "cert_ns is not a finite number >= 0";
-    row->cert_done = 1;
+    row->cert_done = OB_CERT_DONE;
     return NULL;
 }
 

@@ -10,7 +10,8 @@
  * Optional: max_gap, max_kink, continuity (the joints; files written before
  * they existed have none, and are read all the same: has_joints 0).
  * Optional: err_upper, err_lower, certified, cert_ns (run --certify; all four
- * or none in the header, and on a row all empty or all set).
+ * or none in the header, and on a row all empty or all set, or cert_ns alone:
+ * a certificate stopped by --job-timeout).
  * Fields may be quoted ("a, b" with "" for a quote, newlines inside quotes),
  * lines end in LF or CRLF, blank lines are skipped.  A job is identified by
  * its key (curve, d, method, metric, split, tol), d and tol compared as
@@ -42,7 +43,9 @@ typedef struct {
     double max_gap, max_kink;  /* NAN when empty or the column is absent */
     const char *continuity;  /* "" when empty or absent */
     const char *family;      /* "" when empty or the column is absent */
-    int cert_done;           /* 1: the certificate's columns are set (run --certify) */
+    int cert_done;           /* as ob_job.cert_done: 1 (OB_CERT_DONE), the certificate's
+                                columns are set (run --certify); 2 (OB_CERT_TIMEOUT),
+                                only cert_ns: stopped by --job-timeout, no verdict */
     double err_upper, err_lower, cert_ns; /* NAN when empty or absent */
     const char *certified;   /* "yes", "no"; "" when empty or absent */
     long fit_calls;          /* run --time-fits: 0 when empty or absent */

@@ -24,8 +24,10 @@
 #include "host/io/output.h"
 #include "host/lib/sisl_exe.h"
 #include "host/measure/measure.h"
+#include "host/run/clock.h"
 #include "methods/core/offdeg.h"
 #include "methods/driver/driver.h"
+#include "methods/metrics/cert_job.h"
 
 struct obx_curveset {
     ob_curveset set;
@@ -36,6 +38,7 @@ struct obx_result {
     double params[OB_MAX_PARAMS];
     ob_approx pieces;
     char *row;
+    int cert_tight;     /* its certificate (job.cert_done) is obx_result_certify's tight mode */
 };
 
 /* Sets err (may be NULL) and returns -1. */
@@ -551,6 +554,81 @@ int obx_result_piece(const obx_result *r, int k, double *xy, double *w, int cap,
     char what[32];
     snprintf(what, sizeof what, "piece %d", k);
     return bez_out(&r->pieces.v[k].approx, what, xy, w, cap, err);
+}
+
+/* ---- certify ---------------------------------------------------------------- */
+
+int obx_result_certify(obx_result *r, const char *mode, double *upper, double *lower, obx_error *err)
+{
+    if (upper)
+        *upper = NAN;
+    if (lower)
+        *lower = NAN;
+    if (!r)
+        return fail(err, OBX_E_INVALID, "obx_result_certify: NULL result");
+    const int tight = mode && strcmp(mode, "tight") == 0;
+    if (mode && !tight && strcmp(mode, "verdict") != 0)
+        return fail(err, OBX_E_INVALID, "unknown certificate mode '%s' (verdict, tight)", mode);
+    ob_job *j = &r->job;
+    if (!(j->status == OB_OK || j->status == OB_LIMIT) || r->pieces.n == 0)
+        return 0;  /* no approximation: nothing to certify, its columns stay empty (as run --certify's) */
+    if (j->cert_done == OB_CERT_DONE && r->cert_tight == tight) {  /* twice: the same certificate */
+        if (upper)
+            *upper = j->err_upper;
+        if (lower)
+            *lower = j->err_lower;
+        return 0;
+    }
+    /* as host/run/certify.c: each piece against the exact offset of its base piece */
+    const int n = r->pieces.n;
+    ob_bez *base = malloc((size_t)n * sizeof *base), *apx = malloc((size_t)n * sizeof *apx);
+    ob_cert_src *src = malloc((size_t)n * sizeof *src);
+    if (!base || !apx || !src) {
+        free(base);
+        free(apx);
+        free(src);
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    }
+    for (int k = 0; k < n; k++) {
+        const ob_apiece *p = &r->pieces.v[k];
+        apx[k] = p->approx;
+        if (ob_apiece_base(j->curve, p, &base[k]) != 0) {
+            free(base);
+            free(apx);
+            free(src);
+            return fail(err, OBX_E_INVALID, "obx_result_certify: piece %d has no base piece", k);
+        }
+        src[k] = (ob_cert_src){&j->curve->seg[p->seg], p->a, p->b, p->t0, p->t1};  /* the segment as stored */
+    }
+    ob_cert_opts co;
+    ob_cert_defaults(&co);
+    co.decide = j->tol;  /* refined to a verdict where the enclosure straddles tol (certify.c) */
+    co.verdict = !tight;  /* run --certify's default: the verdict alone; tight: to rtol */
+    ob_driver_opts dopt;
+    ob_driver_defaults(&dopt);  /* obx_fit's samples: the feet the certificate starts from */
+    ob_cert_job cj;
+    const double t0 = ob_thread_ns();
+    const int crc = ob_certify_job_src(n, base, src, apx, j->d, ob_clamp_samples(dopt.samples), &co, NULL, &cj, NULL);
+    const double ns = ob_thread_ns() - t0;
+    free(base);
+    free(apx);
+    free(src);
+    if (crc != 0 && cj.failed == 0)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    j->cert_ns = ns;
+    j->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
+    j->err_lower = cj.lower;
+    j->cert_done = OB_CERT_DONE;
+    r->cert_tight = tight;
+    free(r->row);
+    r->row = NULL;
+    if (make_row(r) != 0)
+        return fail(err, OBX_E_NOMEM, "out of memory");
+    if (upper)
+        *upper = j->err_upper;
+    if (lower)
+        *lower = j->err_lower;
+    return 0;
 }
 
 /* ---- batch ------------------------------------------------------------------ */

@@ -4,6 +4,7 @@
 #include "host/run/certify.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -11,6 +12,7 @@
 #include "host/diag.h"
 #include "host/io/approx.h"
 #include "host/run/clock.h"
+#include "host/run/cert_progress.h"
 #include "host/run/progress.h"
 #include "host/run/signals.h"
 #include "methods/metrics/cert_job.h"
@@ -63,9 +65,13 @@ static int job_pieces(const ob_job *j, const ob_span_log *log, ob_approx *a, ob_
     return rc;
 }
 
+int ob_certify_past_deadline(void *ctx) { return ob_thread_ns() > *(const double *)ctx; }
+
 /* Job j's certificate (its cert_* fields) from its span log: 0, or -1 with
- * the reason in why. */
-static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode, char *why, size_t len)
+ * the reason in why.  timeout_ns > 0: one that runs past it in thread time
+ * has no verdict (cert_done OB_CERT_TIMEOUT). */
+static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode, double timeout_ns, char *why,
+                       size_t len)
 {
     ob_approx a = {0};
     ob_bez *base, *apx;
@@ -79,17 +85,23 @@ static int certify_job(ob_job *j, const ob_span_log *log, int samples, int mode,
         co.verdict = mode != OB_CERTIFY_TIGHT;  /* the verdict alone (cert_job.h), or tight to rtol */
         ob_cert_job cj;
         const double t0 = ob_thread_ns();
+        double deadline = t0 + timeout_ns;  /* --job-timeout, in the certificate's own thread time */
+        if (timeout_ns > 0)
+            co.cancel = ob_certify_past_deadline, co.cancel_ctx = &deadline;
         /* the run's errors order a verdict's pieces (the largest first;
          * tight orders by its own sampling, as it always has) */
         const int crc = ob_certify_job_src(a.n, base, src, apx, j->d, samples, &co, co.verdict ? hint : NULL, &cj, NULL);
         j->cert_ns = ob_thread_ns() - t0;
-        if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
+        if (cj.cancelled) {  /* past --job-timeout: no verdict, never a wrong one */
+            j->err_upper = j->err_lower = NAN;
+            j->cert_done = OB_CERT_TIMEOUT;
+        } else if (crc != 0 && cj.failed == 0) {  /* not an unbounded piece: no memory */
             snprintf(why, len, "out of memory");
             rc = -1;
         } else {
             j->err_upper = crc != 0 ? INFINITY : cj.upper;  /* a piece unbounded: the job is */
             j->err_lower = cj.lower;
-            j->cert_done = 1;
+            j->cert_done = OB_CERT_DONE;
         }
     }
     free(base);
@@ -130,15 +142,27 @@ static todo *certify_order(const ob_job *jobs, size_t njobs, size_t *n)
     return t;
 }
 
-int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds)
+/* The pass's progress (cert_progress.h) over the jobs in idx's order: 0,
+ * or -1 without memory. */
+static int progress_init(ob_cert_progress *cp, const ob_job *jobs, const todo *idx, size_t n)
+{
+    if (ob_cert_progress_init(cp, n, omp_get_max_threads()) != 0)
+        return -1;
+    for (size_t k = 0; k < n; k++)
+        ob_cert_progress_set(cp, k, &jobs[idx[k].i]);
+    return 0;
+}
+
+int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_t njobs, const ob_span_log *spans,
+                   ob_journal *jr, double *seconds)
 {
     const double start = ob_mono_s();
-    double last = start;
-    size_t done = 0;
     *seconds = 0.0;
     size_t n;
     todo *idx = certify_order(jobs, njobs, &n);
-    if (!idx) {
+    ob_cert_progress cp;
+    if (!idx || progress_init(&cp, jobs, idx, n) != 0) {
+        free(idx);
         ob_error("--certify: out of memory");
         return -1;
     }
@@ -158,28 +182,36 @@ int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_s
         }
         ob_job *j = &jobs[idx[k].i];
         char why[200];
-        if (certify_job(j, &spans[idx[k].i], samples, mode, why, sizeof why) != 0) {
+#pragma omp critical(ob_certify_report)
+        ob_cert_progress_start(&cp, (size_t)k, ob_cert_progress_now(&cp));
+        if (certify_job(j, &spans[idx[k].i], samples, mode, timeout_ns, why, sizeof why) != 0) {
 #pragma omp critical(ob_certify_report)
             {
+                ob_cert_progress_clear(&cp);
                 ob_error("--certify: %s d=%g %s tol=%g: %s", j->curve->id, j->d, j->method->name, j->tol, why);
                 failed = 1;
+                ob_cert_progress_done(&cp, (size_t)k, j->cert_ns, ob_cert_progress_now(&cp));
             }
             continue;
         }
 #pragma omp critical(ob_certify_report)
         {
+            if (j->cert_done == OB_CERT_TIMEOUT) {
+                ob_cert_progress_clear(&cp);
+                ob_warn("--certify: %s d=%g %s tol=%g: the certificate passed --job-timeout (%g s of thread time): "
+                        "no verdict (err_upper, err_lower and certified empty)",
+                        j->curve->id, j->d, j->method->name, j->tol, 1e-9 * timeout_ns);
+            }
             if (jr && !failed && ob_journal_add(jr, j) != 0) {
                 ob_error("%s: cannot write: rows are no longer saved as jobs are certified", jr->path);
                 failed = 1;
             }
-            done++;
-            const double t = ob_mono_s();
-            if (t - last >= OB_PROGRESS_LOG_SECONDS && done < n) {  /* a long pass is not silent */
-                last = t;
-                ob_info("certified %zu/%zu jobs, %.0f s elapsed", done, n, t - start);
-            }
+            /* a long pass is not silent: "certified N/M jobs, X s elapsed, ETA Y s" */
+            ob_cert_progress_done(&cp, (size_t)k, j->cert_ns, ob_cert_progress_now(&cp));
+            ob_cert_progress_show(&cp);
         }
     }
+    ob_cert_progress_end(&cp);
     free(idx);
     *seconds = ob_mono_s() - start;
     return failed ? -1 : stopped ? 1 : 0;

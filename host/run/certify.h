@@ -32,7 +32,11 @@ int ob_certify_wants(const ob_job *j);
  * Inputs:  mode: OB_CERTIFY_VERDICT (refined until the job is shown within
  *          its tol or over it: cert_job.h) or OB_CERTIFY_TIGHT (to rtol, 1e-3);
  *          samples: the run's samples per piece (--samples: the feet the
- *          certificate starts from); spans: the jobs' span logs (the driver's hooks.spans), one per
+ *          certificate starts from); timeout_ns: --job-timeout (0:
+ *          none): a certificate past it in thread time is stopped and has
+ *          no verdict (cert_done OB_CERT_TIMEOUT, a warning naming the
+ *          job; its row's err_upper, err_lower and certified empty, cert_ns
+ *          the time it ran); spans: the jobs' span logs (the driver's hooks.spans), one per
  *          job; jr: the journal, or NULL: each certified job's row is added
  *          to it as it is done (rows of jobs with an approximation are held
  *          back from the journal until then: journal.h).
@@ -42,6 +46,12 @@ int ob_certify_wants(const ob_job *j);
  *          cert_done 0); -1 after ob_error() when a job could not be
  *          certified (a refit that does not repeat the run, no memory, a
  *          journal that cannot be written): the others still are. */
-int ob_certify_run(int samples, int mode, ob_job *jobs, size_t njobs, const ob_span_log *spans, ob_journal *jr, double *seconds);
+int ob_certify_run(int samples, int mode, double timeout_ns, ob_job *jobs, size_t njobs, const ob_span_log *spans,
+                   ob_journal *jr, double *seconds);
+
+/* Purpose: ob_cert_opts.cancel for --job-timeout: nonzero once the calling
+ *          thread's time (ob_thread_ns) is past ctx's deadline (ctx points
+ *          to a double, the deadline in ns). */
+int ob_certify_past_deadline(void *ctx);
 
 #endif

@@ -173,13 +173,18 @@ void ob_run_summary(const ob_run_files *r, int written)
         snprintf(timeouts, sizeof timeouts, ", timeout %zu", cnt[OB_TIMEOUT]);
     char cert[160] = "";
     if (r->o->certify) {  /* --certify: how many the certificate holds within tol */
-        size_t yes = 0, done = 0;
+        size_t yes = 0, done = 0, late = 0;
         for (size_t i = 0; i < r->njobs; i++)
             if (r->jobs[i].cert_done) {
                 done++;
                 yes += ob_job_certified(&r->jobs[i]);
+                late += r->jobs[i].cert_done == OB_CERT_TIMEOUT;
             }
-        snprintf(cert, sizeof cert, "; certified within tol %zu of %zu (%.2f s)", yes, done, r->rec->cert_seconds);
+        char timed_out[48] = "";  /* past --job-timeout: no verdict */
+        if (late)
+            snprintf(timed_out, sizeof timed_out, "%zu timed out, ", late);
+        snprintf(cert, sizeof cert, "; certified within tol %zu of %zu (%s%.2f s)", yes, done, timed_out,
+                 r->rec->cert_seconds);
     }
     if (r->o->time_fits) {  /* --time-fits: how many jobs' fits were timed */
         size_t timed = 0;

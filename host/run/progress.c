@@ -192,6 +192,24 @@ void ob_progress_format(char *buf, size_t len, size_t done, size_t total, const 
                  total ? 100.0 * (double)done / (double)total : 0.0, work, elapsed_s, eta);
 }
 
+void ob_progress_format_pass(char *buf, size_t len, const char *what, size_t done, size_t total,
+                             const ob_progress_est *e, double elapsed_s, int tty)
+{
+    char eta[32];
+    fmt_eta(eta, sizeof eta, e->eta_s);
+    snprintf(buf, len, "%s %zu/%zu jobs, %.0f s%s, %s", what, done, total, elapsed_s, tty ? "" : " elapsed", eta);
+}
+
+/* The line p shows (without the bar). */
+static void format_line(const ob_progress *p, char *buf, size_t len, const ob_progress_info *pi,
+                        const ob_progress_est *e, double el, int tty)
+{
+    if (p->what)
+        ob_progress_format_pass(buf, len, p->what, pi->done, pi->total, e, el, tty);
+    else
+        ob_progress_format(buf, len, pi->done, pi->total, e, el, tty);
+}
+
 void ob_progress_init(ob_progress *p)
 {
     memset(p, 0, sizeof *p);
@@ -268,7 +286,7 @@ static void draw_bar(ob_progress *p, const ob_progress_info *pi, const ob_progre
     for (int i = 0; i < W; i++)
         bar[i] = i < fill ? '#' : '.';
     bar[W] = '\0';
-    ob_progress_format(line, sizeof line, pi->done, pi->total, e, el, 1);
+    format_line(p, line, sizeof line, pi, e, el, 1);
     /* raw, not through the funnel: a bar redrawn in place ("\r", no newline,
      * no "offbench: " prefix), drawn only on a terminal; blanks cover what
      * is left of a longer line drawn before */
@@ -310,7 +328,7 @@ void ob_progress_cb(void *ctx, const ob_progress_info *pi)
         draw_bar(p, pi, &e, el);
     } else {
         char line[160];
-        ob_progress_format(line, sizeof line, pi->done, pi->total, &e, el, 0);
+        format_line(p, line, sizeof line, pi, &e, el, 0);
         ob_info("%s", line);
     }
 }

@@ -95,7 +95,17 @@ int ob_progress_estimate(const ob_progress_in *in, ob_progress_est *e);
 void ob_progress_format(char *buf, size_t len, size_t done, size_t total, const ob_progress_est *e, double elapsed_s,
                         int tty);
 
+/* Purpose: a pass's line (ob_progress.what set: run --certify's), without
+ *          the bar: "WHAT D/T jobs, E s elapsed, ETA X s" (a log line) or
+ *          "WHAT D/T jobs, E s, ETA X s" (the bar's); "ETA ?" while
+ *          e->eta_s < 0.
+ * Outputs: buf (len bytes, cut if short). */
+void ob_progress_format_pass(char *buf, size_t len, const char *what, size_t done, size_t total,
+                             const ob_progress_est *e, double elapsed_s, int tty);
+
 typedef struct {
+    const char *what;   /* NULL: the run's line; else a pass's, named so
+                           (ob_progress_format_pass; set after init) */
     int tty;            /* stderr is a terminal */
     int drawn;          /* something is on the line */
     int width;          /* columns drawn */

@@ -58,6 +58,37 @@ static void cell_job(char *buf, size_t len, const ob_res_row *r)
         snprintf(buf, len, "%s", r->status);
 }
 
+/* A job's cell in a run with certificates: an ok job's control points and
+ * its certified err_upper, "!" where that is over tol, "no verdict" where
+ * the certificate timed out; else as cell_job. */
+static void cell_job_cert(char *buf, size_t len, const ob_res_row *r)
+{
+    cell_job(buf, len, r);
+    if (!is_ok(r) || !r->cert_done)
+        return;
+    const size_t k = strlen(buf);
+    if (r->cert_done != 1) {
+        snprintf(buf + k, len - k, " (no verdict)");
+        return;
+    }
+    char up[40];
+    ob_fmt_bound(up, sizeof up, r->err_upper, 1);
+    snprintf(buf + k, len - k, " (%s%s)", up, r->err_upper <= r->tol ? "" : " !");
+}
+
+/* Whether an ok job has a certificate that does not hold it within tol
+ * (over tol, unbounded, or timed out): why, else NULL. */
+static const char *not_certified(const ob_res_row *r)
+{
+    if (!is_ok(r) || !r->cert_done)
+        return NULL;
+    if (r->cert_done != 1)
+        return "timed out";
+    if (r->err_upper <= r->tol)
+        return NULL;
+    return isinf(r->err_upper) ? "unbounded" : "over tol";
+}
+
 static void cell_job_ratio(char *buf, size_t len, const ob_res_row *a, const ob_res_row *b)
 {
     if (is_ok(a) && is_ok(b))
@@ -215,7 +246,10 @@ static void grid_curves(grid *g, const ob_summary *s)
             int col = 3;
             for (int m = 0; m < s->nm; m++) {
                 const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
-                cell_job(buf, sizeof buf, r);
+                if (s->has_cert)
+                    cell_job_cert(buf, sizeof buf, r);
+                else
+                    cell_job(buf, sizeof buf, r);
                 grid_set(g, row, col++, buf);
                 if (!s->has_base)
                     continue;
@@ -311,6 +345,83 @@ static void grid_methods(grid *g, const ob_summary *s)
     }
 }
 
+/* Of method m's ok jobs at tolerance k that have a certificate: *n, and
+ * *yes those it holds within tol. */
+static void cert_count(const ob_summary *s, int m, int k, int *yes, int *n)
+{
+    *yes = *n = 0;
+    for (int p = 0; p < s->np; p++) {
+        const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
+        if (!is_ok(r) || !r->cert_done)
+            continue;
+        ++*n;
+        *yes += r->cert_done == 1 && r->err_upper <= r->tol;
+    }
+}
+
+/* Per method and tolerance: the ok jobs certified within tol, of those
+ * with a certificate (run --certify). */
+static void grid_cert_tols(grid *g, const ob_summary *s)
+{
+    grid_col(g, "method", NULL, 'l');
+    for (int k = 0; k < s->nt; k++)
+        grid_col(g, s->tol_text[k], NULL, 'r');
+    char buf[64];
+    for (int m = 0; m < s->nm; m++) {
+        const int row = grid_row(g, 0);
+        grid_set(g, row, 0, s->methods[m]);
+        for (int k = 0; k < s->nt; k++) {
+            int yes, n;
+            cert_count(s, m, k, &yes, &n);
+            if (n)
+                snprintf(buf, sizeof buf, "%d of %d", yes, n);
+            else
+                snprintf(buf, sizeof buf, "-");
+            grid_set(g, row, 1 + k, buf);
+        }
+    }
+}
+
+/* The ok jobs whose certificate does not hold them within tol, in the
+ * curves table's order. */
+static void grid_cert_misses(grid *g, const ob_summary *s)
+{
+    static const char *const label[] = {"curve", "d", "method", "tol", "ctrl_points", "max_err", "err_upper",
+                                        "err_lower", "why"};
+    for (size_t c = 0; c < sizeof label / sizeof label[0]; c++)
+        grid_col(g, label[c], NULL, c == 0 || c == 2 || c == 8 ? 'l' : 'r');
+    char buf[64];
+    int any = 0;
+    for (int p = 0; p < s->np; p++)
+        for (int m = 0; m < s->nm; m++)
+            for (int k = 0; k < s->nt; k++) {
+                const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
+                const char *why = not_certified(r);
+                if (!why)
+                    continue;
+                const int row = grid_row(g, 0);
+                any = 1;
+                grid_set(g, row, 0, s->pairs[p].curve);
+                snprintf(buf, sizeof buf, "%.6g", s->pairs[p].d);
+                grid_set(g, row, 1, buf);
+                grid_set(g, row, 2, s->methods[m]);
+                grid_set(g, row, 3, s->tol_text[k]);
+                snprintf(buf, sizeof buf, "%ld", r->ctrl_points);
+                grid_set(g, row, 4, buf);
+                snprintf(buf, sizeof buf, "%.3g", r->max_err);
+                grid_set(g, row, 5, buf);
+                if (r->cert_done == 1) {
+                    ob_fmt_bound(buf, sizeof buf, r->err_upper, 1);
+                    grid_set(g, row, 6, buf);
+                    ob_fmt_bound(buf, sizeof buf, r->err_lower, -1);
+                    grid_set(g, row, 7, buf);
+                }
+                grid_set(g, row, 8, why);
+            }
+    if (!any)
+        grid_set(g, grid_row(g, 0), 0, "(none)");
+}
+
 /* ---------------------------------------------------------------- text */
 
 /* One section: its title, what its cells are, and its grid builder. */
@@ -321,25 +432,37 @@ typedef struct {
     const char *what_base;  /* what the baseline's columns are */
     void (*build)(grid *, const ob_summary *);
     const char *what_cert;  /* what the certificate's columns are (NULL: none) */
+    int cert_only;          /* written only for a run with certificates */
 } section;
 
 static const section sections[] = {
     {OB_SUM_CURVES, "Control points per curve and d",
      "Each cell: the job's control points when its status is ok, else its status (limit, fail, skip, timeout); "
      "- no such job.",
-     "Beside each method: the baseline's job and new/base of the control points (both ok).", grid_curves, NULL},
+     "Beside each method: the baseline's job and new/base of the control points (both ok).", grid_curves,
+     "Run --certify: beside an ok job's control points, its certified err_upper (rounded up: still a bound on the "
+     "two-sided Hausdorff distance to the exact offset); ! over tol; no verdict: the certificate timed out.", 0},
     {OB_SUM_FAMILIES, "Control points per family",
      "Each cell: median [q1, q3] of the control points of the ok jobs (quartiles by linear interpolation between "
      "order statistics, R's type 7); (k non-ok): the jobs with another status, left out; - no ok job.  pairs: the "
      "family's (curve, d) pairs.",
      "Beside each method: the same over the baseline's jobs joined, and new/base of the medians.", grid_families,
-     NULL},
+     NULL, 0},
     {OB_SUM_METHODS, "Time and failures per method",
      "Jobs by status; time/job: fit_ns + eval_ns of the jobs not skipped, median [q1, q3] in milliseconds.",
      "base ok: the baseline's ok jobs among those joined; base time/job: theirs; new/base: of the median times.",
      grid_methods,
      "certified: the jobs whose certified err_upper is within tol (run --certify); not certified: the others "
-     "certified (err_upper over tol, or inf); cert/job: their cert_ns, median [q1, q3] in milliseconds."},
+     "certified (err_upper over tol, or inf); cert/job: their cert_ns, median [q1, q3] in milliseconds.", 0},
+    {OB_SUM_METHODS, "Certified within tol per tolerance",
+     "Run --certify: per method and tolerance, the ok jobs whose certified err_upper is within tol, of the ok jobs "
+     "with a certificate; - none.",
+     "The run's jobs only.", grid_cert_tols, NULL, 1},
+    {OB_SUM_METHODS, "Ok but not certified within tol",
+     "Run --certify: the ok jobs whose certificate does not hold them within tol: over tol (err_upper > tol), "
+     "unbounded (err_upper inf: a piece whose base has a cusp) or timed out (--job-timeout: no verdict).  "
+     "err_upper rounded up, err_lower down.",
+     "The run's jobs only.", grid_cert_misses, NULL, 1},
 };
 
 /* The sections bits selects, each built into a grid and written by emit
@@ -350,7 +473,7 @@ static int each_section(FILE *f, const ob_summary *s, int bits,
 {
     int rc = 0;
     for (size_t i = 0; i < sizeof sections / sizeof sections[0] && rc == 0; i++) {
-        if (!(bits & sections[i].bit))
+        if (!(bits & sections[i].bit) || (sections[i].cert_only && !s->has_cert))
             continue;
         grid g;
         memset(&g, 0, sizeof g);
@@ -541,7 +664,9 @@ int ob_summary_write_latex(FILE *f, const ob_summary *s, int bits)
 
 enum {
     CV_SECTION, CV_FAMILY, CV_CURVE, CV_D, CV_METHOD, CV_TOL, CV_STATUS, CV_VALUE, CV_Q1, CV_Q3, CV_N, CV_NONOK,
-    CV_BSTATUS, CV_BVALUE, CV_BQ1, CV_BQ3, CV_BN, CV_RATIO, CV_NCOL
+    CV_BSTATUS, CV_BVALUE, CV_BQ1, CV_BQ3, CV_BN, CV_RATIO,
+    CV_EUP, CV_ELO, CV_CERT, /* a run with certificates only: its header has them */
+    CV_NCOL
 };
 
 static const char *const csv_header =
@@ -552,10 +677,14 @@ static const char *const csv_header =
 typedef struct {
     char f[CV_NCOL][64];
     const char *text[CV_NCOL]; /* long text fields (names), else f[] */
+    int ncol;                  /* the fields written: CV_NCOL with certificates, else up to ratio */
 } csv_line;
 
-static void csv_clear(csv_line *l)
+static int csv_ncol(const ob_summary *s) { return s->has_cert ? CV_NCOL : CV_RATIO + 1; }
+
+static void csv_clear(csv_line *l, const ob_summary *s)
 {
+    l->ncol = csv_ncol(s);
     for (int c = 0; c < CV_NCOL; c++) {
         l->f[c][0] = '\0';
         l->text[c] = NULL;
@@ -587,7 +716,7 @@ static void csv_field(FILE *f, const char *t)
 
 static void csv_put(FILE *f, const csv_line *l)
 {
-    for (int c = 0; c < CV_NCOL; c++) {
+    for (int c = 0; c < l->ncol; c++) {
         if (c)
             fputc(',', f);
         csv_field(f, l->text[c] ? l->text[c] : l->f[c]);
@@ -603,6 +732,20 @@ static void csv_quart(csv_line *l, int at, const ob_sum_quart *q)
     csv_num(l, at + 2, q->q3);
 }
 
+/* A job's certificate into err_upper, err_lower, certified (empty
+ * without one, or when it timed out). */
+static void csv_job_cert(csv_line *l, const ob_res_row *r)
+{
+    if (r->cert_done != 1)
+        return;
+    if (isinf(r->err_upper))
+        l->text[CV_EUP] = "inf";
+    else
+        csv_num(l, CV_EUP, r->err_upper);
+    csv_num(l, CV_ELO, r->err_lower);
+    l->text[CV_CERT] = r->certified;
+}
+
 static void csv_curves(FILE *f, const ob_summary *s)
 {
     csv_line l;
@@ -612,7 +755,7 @@ static void csv_curves(FILE *f, const ob_summary *s)
                 const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
                 if (!r)
                     continue;
-                csv_clear(&l);
+                csv_clear(&l, s);
                 l.text[CV_SECTION] = "curve";
                 l.text[CV_FAMILY] = s->pairs[p].family;
                 l.text[CV_CURVE] = s->pairs[p].curve;
@@ -622,6 +765,7 @@ static void csv_curves(FILE *f, const ob_summary *s)
                 l.text[CV_STATUS] = r->status;
                 if (is_ok(r))
                     csv_int(&l, CV_VALUE, r->ctrl_points);
+                csv_job_cert(&l, r);
                 if (s->has_base) {
                     const ob_res_row *b = s->base.cell[ob_sum_at(s, p, m, k)];
                     l.text[CV_BSTATUS] = b ? b->status : "missing";
@@ -641,7 +785,7 @@ static void csv_families(FILE *f, const ob_summary *s)
         for (int m = 0; m < s->nm; m++)
             for (int k = 0; k < s->nt; k++) {
                 const ob_sum_fcell *c = &s->run.fam[ob_sum_fat(s, fi, m, k)];
-                csv_clear(&l);
+                csv_clear(&l, s);
                 l.text[CV_SECTION] = "family";
                 l.text[CV_FAMILY] = s->families[fi];
                 l.text[CV_METHOD] = s->methods[m];
@@ -662,11 +806,11 @@ static void csv_families(FILE *f, const ob_summary *s)
 
 /* A method's certificates (run --certify): rows "certified" with status
  * yes and no (the counts), and "cert_time" (cert_ns quartiles). */
-static void csv_cert(FILE *f, const char *method, const ob_sum_mstat *ms, const ob_sum_mstat *bs)
+static void csv_cert(FILE *f, const ob_summary *s, const char *method, const ob_sum_mstat *ms, const ob_sum_mstat *bs)
 {
     csv_line l;
     for (int yes = 1; yes >= 0; yes--) {
-        csv_clear(&l);
+        csv_clear(&l, s);
         l.text[CV_SECTION] = "certified";
         l.text[CV_METHOD] = method;
         l.text[CV_STATUS] = yes ? "yes" : "no";
@@ -675,7 +819,7 @@ static void csv_cert(FILE *f, const char *method, const ob_sum_mstat *ms, const 
             csv_int(&l, CV_BVALUE, yes ? bs->cert_yes : bs->cert_no);
         csv_put(f, &l);
     }
-    csv_clear(&l);
+    csv_clear(&l, s);
     l.text[CV_SECTION] = "cert_time";
     l.text[CV_METHOD] = method;
     csv_quart(&l, CV_VALUE, &ms->cert_ns);
@@ -683,12 +827,52 @@ static void csv_cert(FILE *f, const char *method, const ob_sum_mstat *ms, const 
     csv_put(f, &l);
 }
 
+/* Run --certify: per method and tolerance, rows certified_tol (value: the
+ * ok jobs certified within tol, n: those with a certificate); then a row
+ * not_certified per ok job not held within tol (status: why, value: its
+ * control points, and its certificate). */
+static void csv_cert_tables(FILE *f, const ob_summary *s)
+{
+    csv_line l;
+    for (int m = 0; m < s->nm; m++)
+        for (int k = 0; k < s->nt; k++) {
+            int yes, n;
+            cert_count(s, m, k, &yes, &n);
+            csv_clear(&l, s);
+            l.text[CV_SECTION] = "certified_tol";
+            l.text[CV_METHOD] = s->methods[m];
+            l.text[CV_TOL] = s->tol_text[k];
+            csv_int(&l, CV_VALUE, yes);
+            csv_int(&l, CV_N, n);
+            csv_put(f, &l);
+        }
+    for (int p = 0; p < s->np; p++)
+        for (int m = 0; m < s->nm; m++)
+            for (int k = 0; k < s->nt; k++) {
+                const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
+                const char *why = not_certified(r);
+                if (!why)
+                    continue;
+                csv_clear(&l, s);
+                l.text[CV_SECTION] = "not_certified";
+                l.text[CV_FAMILY] = s->pairs[p].family;
+                l.text[CV_CURVE] = s->pairs[p].curve;
+                l.text[CV_D] = s->pairs[p].d_text;
+                l.text[CV_METHOD] = s->methods[m];
+                l.text[CV_TOL] = s->tol_text[k];
+                l.text[CV_STATUS] = why;
+                csv_int(&l, CV_VALUE, r->ctrl_points);
+                csv_job_cert(&l, r);
+                csv_put(f, &l);
+            }
+}
+
 static void csv_methods(FILE *f, const ob_summary *s)
 {
     csv_line l;
     for (int m = 0; m < s->nm; m++) {
         const ob_sum_mstat *ms = &s->run.meth[m], *bs = s->has_base ? &s->base.meth[m] : NULL;
-        csv_clear(&l);
+        csv_clear(&l, s);
         l.text[CV_SECTION] = "time";
         l.text[CV_METHOD] = s->methods[m];
         csv_quart(&l, CV_VALUE, &ms->time_ns);
@@ -701,7 +885,7 @@ static void csv_methods(FILE *f, const ob_summary *s)
         }
         csv_put(f, &l);
         for (int st = 0; st < OB_SUM_NSTATUS; st++) {
-            csv_clear(&l);
+            csv_clear(&l, s);
             l.text[CV_SECTION] = "status";
             l.text[CV_METHOD] = s->methods[m];
             l.text[CV_STATUS] = ob_sum_status_names[st];
@@ -711,18 +895,20 @@ static void csv_methods(FILE *f, const ob_summary *s)
             csv_put(f, &l);
         }
         if (s->has_cert)
-            csv_cert(f, s->methods[m], ms, bs);
+            csv_cert(f, s, s->methods[m], ms, bs);
     }
 }
 
 int ob_summary_write_csv(FILE *f, const ob_summary *s, int bits)
 {
-    fprintf(f, "%s\n", csv_header);
+    fprintf(f, "%s%s\n", csv_header, s->has_cert ? ",err_upper,err_lower,certified" : "");
     if (bits & OB_SUM_CURVES)
         csv_curves(f, s);
     if (bits & OB_SUM_FAMILIES)
         csv_families(f, s);
     if (bits & OB_SUM_METHODS)
         csv_methods(f, s);
+    if ((bits & OB_SUM_METHODS) && s->has_cert)
+        csv_cert_tables(f, s);
     return ferror(f) ? -1 : 0;
 }

@@ -92,7 +92,7 @@ int ob_tab_write_csv(FILE *f, void *ctx)
             char note[512];
             snprintf(note, sizeof note, "%s%s%s", r->spec.note, j->message[0] ? "; job: " : "", j->message);
             ob_csv_field(f, note);
-            if (j->cert_done) {  /* tables --certify (host/run/certify.h) */
+            if (j->cert_done == OB_CERT_DONE) {  /* tables --certify (host/run/certify.h); timed out: empty */
                 fputc(',', f);
                 put_num(f, j->err_upper);
                 fputc(',', f);
@@ -157,6 +157,22 @@ static int same_table(const ob_pub_cell *a, const ob_pub_cell *b)
     return strcmp(a->source, b->source) == 0 && strcmp(a->table, b->table) == 0;
 }
 
+/* --certify: an ok job's certificate as its cell shows it: " (err_upper)"
+ * rounded up, " (err_upper !)" over tol, " (no verdict)" timed out; ""
+ * for none. */
+static void cert_note(char *buf, size_t len, const ob_job *j)
+{
+    if (!j || j->status != OB_OK || !j->cert_done)
+        return;
+    if (j->cert_done != OB_CERT_DONE) {
+        snprintf(buf, len, " (no verdict)");
+        return;
+    }
+    char up[40];
+    ob_fmt_bound(up, sizeof up, j->err_upper, 1);
+    snprintf(buf, len, " (%s%s)", up, ob_job_certified(j) ? "" : " !");
+}
+
 static void write_grid(FILE *f, const ob_tab_plan *pl, const ob_pub_cell *first, ob_proto p, const strlist *rows,
                        const strlist *cols)
 {
@@ -194,8 +210,8 @@ static void write_grid(FILE *f, const ob_tab_plan *pl, const ob_pub_cell *first,
             const char *flag = j && j->status != OB_OK && strcmp(hit->cell->unit, "ctrl_points") == 0
                                    ? (j->status == OB_LIMIT ? " (limit)" : " (fail)")
                                    : "";
-            /* --certify: an ok job whose certified error is over tol */
-            const char *cert = j && j->status == OB_OK && j->cert_done && !ob_job_certified(j) ? " (!)" : "";
+            char cert[64] = "";
+            cert_note(cert, sizeof cert, j);
             fprintf(f, " %s / %s%s%s%s |", hit->cell->value_text, st >= OB_TAB_NO_METHOD ? ob_tab_status_names[st] : b,
                     flag, cert, mark(st));
         }
@@ -394,6 +410,38 @@ static void write_sweep_md(FILE *f, const ob_tab_plan *pl)
     write_sweep_cuts(f, pl, OB_METRIC_PARAM, "lee", 0.0443, 0.0256);
 }
 
+/* tables --certify: the ok cells whose certificate does not hold them
+ * within tol (nothing when there is none). */
+static void write_cert_misses(FILE *f, const ob_tab_plan *pl)
+{
+    int any = 0;
+    for (int q = 0; q < pl->nrows; q++) {
+        const ob_tab_row *r = &pl->rows[q];
+        const ob_job *j = r->slot >= 0 ? &pl->slots[r->slot].job : NULL;
+        if (!j || j->status != OB_OK || !j->cert_done || ob_job_certified(j))
+            continue;
+        if (!any++)
+            fputs("Not certified within tol (ok cells):\n\n"
+                  "| source | table | column | row | protocol | ours | err_upper | err_lower | why |\n"
+                  "|---|---|---|---|---|---|---|---|---|\n", f);
+        char up[40] = "", lo[40] = "", ours[40];
+        const char *why = "timed out";
+        if (j->cert_done == OB_CERT_DONE) {
+            ob_fmt_bound(up, sizeof up, j->err_upper, 1);
+            ob_fmt_bound(lo, sizeof lo, j->err_lower, -1);
+            why = isinf(j->err_upper) ? "unbounded" : "over tol";
+        }
+        if (strcmp(r->cell->unit, "max_err") == 0)
+            snprintf(ours, sizeof ours, "%.3g", j->max_err);
+        else
+            snprintf(ours, sizeof ours, "%ld", j->ctrl_points);
+        fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r->cell->source, r->cell->table, r->cell->label,
+                row_key(r->cell), ob_proto_name(r->proto), ours, up, lo, why);
+    }
+    if (any)
+        fputc('\n', f);
+}
+
 /* tables --certify: per protocol, the ok jobs whose certified two-sided
  * Hausdorff distance is within tol (nothing without certificates). */
 static void write_cert_md(FILE *f, const ob_tab_plan *pl)
@@ -414,9 +462,11 @@ static void write_cert_md(FILE *f, const ob_tab_plan *pl)
           "two-sided Hausdorff distance to the exact offset (err_upper in tables.csv) is within the tolerance:", f);
     for (int p = 0; p < OB_PROTO_COUNT; p++)
         fprintf(f, "%s %s %d of %d", p ? "," : "", ob_proto_name((ob_proto)p), yes[p], n[p]);
-    fputs(". A cell marked `(!)` is ok under its protocol's measure but not within tol by the certified "
+    fputs(". Beside ours, a cell whose job is ok shows its certified err_upper (rounded up: still a bound); "
+          "`!` marks one that is ok under its protocol's measure but not within tol by the certified "
           "distance (a paper's radial or symbolic measure is not the distance to the offset; or the enclosure "
-          "straddles tol).\n\n", f);
+          "straddles tol); `no verdict`: its certificate passed --job-timeout.\n\n", f);
+    write_cert_misses(f, pl);
 }
 
 int ob_tab_write_md(FILE *f, void *ctx)

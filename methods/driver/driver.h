@@ -115,7 +115,10 @@ typedef struct {
     double time_iqr_ns;  /* IQR of the per-repetition fit_ns + eval_ns */
     double time_cv;      /* their coefficient of variation, sd / mean */
     /* set by the run command with --certify (host/run/certify.h), not the driver: */
-    int cert_done;       /* 1: the certificate below was taken (else empty columns) */
+    int cert_done;       /* OB_CERT_DONE: the certificate below was taken;
+                            OB_CERT_TIMEOUT: it passed --job-timeout, no
+                            verdict (only cert_ns: err_upper and err_lower
+                            NAN, empty columns); OB_CERT_NONE: empty columns */
     double err_upper;    /* certified: the job's two-sided Hausdorff distance to the
                             exact offset is <= err_upper (+inf: a piece unbounded) */
     double err_lower;    /* ... and >= err_lower (a distance attained) */
@@ -135,9 +138,12 @@ typedef struct {
  * and a method's many pieces take f times as long on average. */
 int ob_test_fit_times(const ob_job *j, int seg, double a, double b);
 
+/* ob_job.cert_done: no certificate, one, one stopped by --job-timeout. */
+enum { OB_CERT_NONE = 0, OB_CERT_DONE = 1, OB_CERT_TIMEOUT = 2 };
+
 /* Whether job j's certificate holds it within tol (results.csv's certified
  * = yes): certified, and err_upper <= tol.  The one place the rule is. */
-static inline int ob_job_certified(const ob_job *j) { return j->cert_done && j->err_upper <= j->tol; }
+static inline int ob_job_certified(const ob_job *j) { return j->cert_done == OB_CERT_DONE && j->err_upper <= j->tol; }
 
 /* One measurement of a batch: an approximating piece against its base piece. */
 typedef struct {

@@ -118,6 +118,12 @@ SIGNATURES = {
     "obx_measure": (_int, [CurveSetP, _int, _dbl, _int, _ip, _dp, _dp, _str, ctypes.POINTER(Measurement), _ep]),
 }
 
+# name: (restype, argtypes) of functions a library of NEED_MINOR may lack
+# (declared where present; the call that needs one says which version has it)
+OPTIONAL = {
+    "obx_result_certify": ((0, 4), _int, [ResultP, _str, _dp, _dp, _ep]),
+}
+
 _lock = threading.Lock()
 _loaded = None  # (CDLL, path)
 
@@ -142,6 +148,24 @@ def _declare(dll):
         f = getattr(dll, name)  # AttributeError: an older library; caught by the version check first
         f.restype = res
         f.argtypes = args
+    for name, (_since, res, args) in OPTIONAL.items():
+        f = getattr(dll, name, None)
+        if f is not None:
+            f.restype = res
+            f.argtypes = args
+
+
+def optional(name):
+    """The library's function `name` of OPTIONAL; UnsupportedError naming
+    the version that has it when the loaded library is older."""
+    L = lib()
+    f = getattr(L, name, None)
+    if f is None:
+        from .errors import UnsupportedError
+        since = OPTIONAL[name][0]
+        raise UnsupportedError("%s needs liboffbench %d.%d or newer (loaded: %s at %s); rebuild it with `make lib`"
+                               % (name, since[0], since[1], text(L.obx_version()), path()))
+    return f
 
 
 def _open():

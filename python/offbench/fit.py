@@ -65,15 +65,34 @@ def _result(r):
     return Result("fit", values, pieces, row)
 
 
-def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None):
+def _certify_mode(certify):
+    """obx_result_certify's mode for fit's certify (None: no certificate)."""
+    if certify is False:
+        return None
+    if certify is True:
+        return b"verdict"
+    if certify in ("verdict", "tight"):
+        return certify.encode()
+    raise InvalidError("certify: True, False, 'verdict' or 'tight', not %r" % (certify,))
+
+
+def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None, certify=False):
     """One job, exactly as one row of `offbench run`: method on curve at
     offset d and tolerance tol, measured under metric, split by split.
 
     curve: a Curve, or the id of a built-in curve; method: a name of
     methods(); params: the method's parameters, {name: value} or
-    "NAME=VALUE,..." (None: the paper's defaults).  Returns a Result (a job
-    that ends fail, skip or limit is a Result with that status, not an
-    exception).  InvalidError for a bad argument (the message names it)."""
+    "NAME=VALUE,..." (None: the paper's defaults); certify: True (or
+    "verdict") to certify the job's error as `offbench run --certify` does
+    (docs/certified.md), "tight" as `--certify=tight`: the Result's
+    err_lower <= H <= err_upper (H the two-sided Hausdorff distance to the
+    exact offset, whatever the metric; the verdict mode refines only until
+    H is shown within tol or over it, tight until err_upper is within 1e-3
+    of err_lower), certified (True when err_upper <= tol) and cert_ns; a
+    job without an approximation has none (NaN, None).  Returns a Result (a job that ends fail, skip or
+    limit is a Result with that status, not an exception).  InvalidError
+    for a bad argument (the message names it)."""
+    mode = _certify_mode(certify)
     c = resolve(curve)
     m = _cstr(method, "method", allow_none=False)
     dd, tt = number(d, "d"), number(tol, "tol")
@@ -83,6 +102,8 @@ def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None):
     _lib.check(L.obx_fit(c.set._h, c.index, m, dd, tt, _cstr(metric, "metric"), _cstr(split, "split"),
                          _params_text(params), ctypes.byref(out), ctypes.byref(err)), err)
     try:
+        if mode is not None:
+            _lib.check(_lib.optional("obx_result_certify")(out, mode, None, None, ctypes.byref(err)), err)
         return _result(out)
     finally:
         L.obx_result_free(out)

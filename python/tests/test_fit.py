@@ -163,3 +163,68 @@ def test_threads():
         t.join()
     strip = lambda r: r[:11] + r[13:]  # noqa: E731  (fit_ns, eval_ns are the 12th and 13th)
     assert [strip(r) for r in got] == [strip(r) for r in want]
+
+
+def test_certify():
+    """fit(..., certify=True): the job's certified enclosure, as `run
+    --certify` writes it: err_lower <= err_upper, the sampled max_err <=
+    err_upper, certified True exactly when err_upper <= tol, cert_ns an
+    int; its row is run --certify's (the timings aside)."""
+    r = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify=True)
+    assert r.status == "ok" and 0 <= r.err_lower <= r.err_upper <= r.tol and r.certified is True
+    assert isinstance(r.cert_ns, int) and r.cert_ns > 0
+    t = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify="tight")
+    assert 0 < t.err_lower <= t.err_upper <= t.err_lower * 1.001 and t.max_err <= t.err_upper
+    assert t.certified is (t.err_upper <= t.tol) is True
+    v = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify="verdict")
+    assert (v.err_upper, v.err_lower, v.certified) == (r.err_upper, r.err_lower, r.certified)
+    plain = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3)
+    assert math.isnan(plain.err_upper) and plain.certified is None and plain.cert_ns is None
+    assert [getattr(r, k) for k in r.columns if k not in columns.TIMING + ("err_upper", "err_lower", "certified")] \
+        == [getattr(plain, k) for k in r.columns if k not in columns.TIMING + ("err_upper", "err_lower", "certified")]
+    # ok by the radial metric, over tol by the certified distance (e2e_certify.sh's job)
+    n = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, metric="radial", certify=True)
+    assert n.status == "ok" and n.max_err <= 1e-3 and n.certified is False and n.err_lower > 0.0017
+    # a job without an approximation: nothing to certify, not an error
+    skip = offbench.fit("atlas_circle", "kim2018", 0.125, 1e-3, certify=True)
+    assert skip.status == "skip" and math.isnan(skip.err_upper) and skip.certified is None and skip.cert_ns is None
+
+
+@pytest.mark.parametrize("flag, certify", [("--certify", True), ("--certify=tight", "tight")])
+def test_certify_row_is_offbench_runs(tmp_path, flag, certify):
+    """fit(certify=...)'s row is the row of `offbench run --certify[=tight]`."""
+    from conftest import offbench_run
+    p = offbench_run(tmp_path, "--curve", "liu2002_ex1", "--methods", "tiller,lee", "--tols", "1e-2", flag)
+    for want in run_rows(p):
+        r = offbench.fit(want["curve"], want["method"], float(want["d"]), float(want["tol"]), certify=certify)
+        got = next(csv.DictReader([r.row], fieldnames=list(want)))
+        for k in want:
+            if k not in columns.TIMING:
+                assert got[k] == want[k], (k, want, r.row)
+
+
+@pytest.mark.parametrize("value, words", [("yes", "certify: True, False, 'verdict' or 'tight', not 'yes'"),
+                                          (1, "certify: True, False, 'verdict' or 'tight', not 1"),
+                                          (None, "certify: True, False, 'verdict' or 'tight', not None")])
+def test_certify_bad_argument(value, words):
+    with pytest.raises(offbench.InvalidError) as e:
+        offbench.fit("liu2002_ex1", "tiller", 1, 1e-3, certify=value)
+    assert words in str(e.value), str(e.value)
+
+
+def test_certify_needs_a_new_library(monkeypatch):
+    """An older library (before 0.4) has no obx_result_certify: fit without
+    certify works, with it an UnsupportedError says what to rebuild."""
+    real = offbench._lib.lib()
+
+    class Old:
+        def __getattr__(self, name):
+            if name == "obx_result_certify":
+                raise AttributeError(name)
+            return getattr(real, name)
+
+    monkeypatch.setattr(offbench._lib, "lib", lambda: Old())
+    assert offbench.fit("liu2002_ex1", "tiller", 1, 1e-2).status == "ok"
+    with pytest.raises(offbench.UnsupportedError) as e:
+        offbench.fit("liu2002_ex1", "tiller", 1, 1e-2, certify=True)
+    assert "obx_result_certify needs liboffbench 0.4" in str(e.value) and "make lib" in str(e.value)

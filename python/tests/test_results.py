@@ -155,3 +155,20 @@ def test_certified_run(tmp_path):
     df = offbench.read_results(p)
     assert str(df["certified"].dtype) == "boolean" and str(df["err_upper"].dtype) == "float64"
     assert df["certified"].isna().tolist() == [False, True, False]
+
+
+def test_certificate_timed_out(tmp_path):
+    """A certificate stopped by --job-timeout (issue 47): cert_ns alone, no
+    verdict: err_upper and err_lower NaN, certified None, cert_ns an int;
+    the file's other certificate rows as before."""
+    from conftest import offbench_run
+    p = offbench_run(tmp_path, "--random", "20:7", "--curve", "rnd7_000010", "--methods", "lee,tiller", "--tols",
+                     "1e-3", "--job-timeout", "0.5", "--certify=tight")
+    rows = {r["method"]: r for r in offbench.read_results(p, as_frame=False)}
+    lee, tiller = rows["lee"], rows["tiller"]
+    assert lee["status"] == "limit" and math.isnan(lee["err_upper"]) and math.isnan(lee["err_lower"])
+    assert lee["certified"] is None and isinstance(lee["cert_ns"], int) and lee["cert_ns"] >= 5e8
+    assert tiller["certified"] is True and tiller["err_lower"] <= tiller["err_upper"] <= 1e-3
+    pd = pytest.importorskip("pandas")
+    df = offbench.read_results(p)
+    assert df["certified"].isna().tolist() == [True, False] and df["cert_ns"].notna().all()

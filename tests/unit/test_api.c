@@ -347,6 +347,34 @@ static void test_batch(const obx_curveset *s, int c)
     CHECK(obx_run_batch(s, jobs, 0, NULL, NULL, out, NULL) == -1, "no jobs");
 }
 
+/* obx_result_certify (0.4): the enclosure, the row's four columns; a second
+ * call the same; NULL refused. */
+static void test_certify(const obx_curveset *s, int c)
+{
+    obx_result *r = NULL;
+    obx_error e = {0, ""};
+    CHECK(obx_fit(s, c, "tiller", 1.0, 1e-3, NULL, NULL, NULL, &r, &e) == 0, "fit: %s", e.message);
+    if (!r)
+        return;
+    CHECK(strstr(obx_result_row(r), ",,,,") != NULL, "before: the certificate's columns empty");
+    double up = 0, lo = 0;
+    CHECK(obx_result_certify(r, NULL, &up, &lo, &e) == 0, "certify: %s", e.message);
+    CHECK(0 <= lo && lo <= up && up <= 1e-3, "the verdict: within tol [%g, %g]", lo, up);
+    CHECK(strstr(obx_result_row(r), ",yes,") != NULL, "the row says certified yes: %s", obx_result_row(r));
+    double up2 = 0, lo2 = 0;
+    CHECK(obx_result_certify(r, "verdict", &up2, &lo2, &e) == 0 && up2 == up && lo2 == lo, "twice: the same");
+    CHECK(obx_result_certify(r, "tight", &up2, &lo2, &e) == 0 && lo2 <= up2 && up2 <= lo2 * (1 + 1e-3) && lo2 > 0 &&
+              up2 <= 1e-3,
+          "tight: within rtol [%g, %g]", lo2, up2);
+    CHECK(obx_result_certify(r, "loose", &up2, &lo2, &e) == -1 && e.code == OBX_E_INVALID &&
+              strstr(e.message, "unknown certificate mode 'loose' (verdict, tight)") && isnan(up2),
+          "an unknown mode: %s", e.message);
+    obx_result_free(r);
+    /* a job without an approximation: python/tests/test_fit.py (a built-in curve's) */
+    CHECK(obx_result_certify(NULL, NULL, &up, NULL, &e) == -1 && e.code == OBX_E_INVALID && isnan(up), "NULL: %s",
+          e.message);
+}
+
 int main(void)
 {
     test_version();
@@ -362,6 +390,7 @@ int main(void)
         test_fit_cross(s, c);
         test_sisl(s, c);
         test_batch(s, c);
+        test_certify(s, c);
     }
     obx_curves_free(s);
     test_arrays();

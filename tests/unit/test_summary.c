@@ -429,6 +429,154 @@ static const char CERT[] = HDRC
     "c3,1,m1,hausdorff,mid,0.001,0,0,0,,fail,10,0,singular,f,,,,\n"
     "c3,1,m2,hausdorff,mid,0.001,4,1,3,0.0001,ok,10,0,,f,,,,\n";
 
+/* The certificate in the tables (issue 47): err_upper beside the control
+ * points of an ok job ("!" over tol, "no verdict" timed out), the jobs
+ * certified within tol per method and tol, the ok jobs not certified
+ * within tol listed; in all three formats. */
+static void test_certified_tables(const ob_summary *s)
+{
+    char *md = render(ob_summary_write_md, s, OB_SUM_ALL);
+    CHECK(md && has_line(md, "| c1 | 1 | 0.01 | 4 (0.01) | - |") && has_line(md, "|  |  | 0.001 | 7 (0.0009) | - |"),
+          "the curves table: err_upper beside the control points: %s", md ? md : "");
+    CHECK(md && has_line(md, "| c2 | 1 | 0.01 | limit | - |") && has_line(md, "|  |  | 0.001 | 10 (0.0011 !) | - |"),
+          "over tol marked; a limit job as before");
+    CHECK(md && has_line(md, "| c3 | 1 | 0.01 | - | - |") && has_line(md, "|  |  | 0.001 | fail | 4 |"),
+          "an ok job without a certificate: its control points alone");
+    CHECK(md && strstr(md, "## Certified within tol per tolerance") &&
+              has_line(md, "| method | 0.01 | 0.001 |") && has_line(md, "| m1 | 1 of 1 | 1 of 2 |") &&
+              has_line(md, "| m2 | - | - |"),
+          "certified within tol per method and tol (of the ok jobs with a certificate)");
+    CHECK(md && strstr(md, "## Ok but not certified within tol") &&
+              has_line(md, "| curve | d | method | tol | ctrl_points | max_err | err_upper | err_lower | why |") &&
+              has_line(md, "| c2 | 1 | m1 | 0.001 | 10 | 0.00099 | 0.0011 | 0.00099 | over tol |"),
+          "the ok jobs not certified within tol listed");
+    free(md);
+    char *csv = render(ob_summary_write_csv, s, OB_SUM_ALL);
+    CHECK(csv && strncmp(csv, "section,family,curve,d,method,tol,status,value,q1,q3,n,n_nonok,base_status,base_value,"
+                              "base_q1,base_q3,base_n,ratio,err_upper,err_lower,certified\n", 145) == 0,
+          "the CSV's header: the certificate's columns at the end");
+    CHECK(csv && strstr(csv, "\ncurve,f,c2,1,m1,0.001,ok,10,,,,,,,,,,,0.0011,0.00099,no\n") &&
+              strstr(csv, "\ncurve,f,c3,1,m1,0.001,fail,,,,,,,,,,,,,,\n"),
+          "CSV curve rows with their certificates: %s", csv ? csv : "");
+    CHECK(csv && strstr(csv, "\ncertified_tol,,,,m1,0.001,,1,,,2,,,,,,,,,,\n") &&
+              strstr(csv, "\ncertified_tol,,,,m1,0.01,,1,,,1,,,,,,,,,,\n"),
+          "CSV rows certified_tol: yes in value, of n");
+    CHECK(csv && strstr(csv, "\nnot_certified,f,c2,1,m1,0.001,over tol,10,,,,,,,,,,,0.0011,0.00099,no\n"),
+          "CSV rows not_certified");
+    free(csv);
+    char *tex = render(ob_summary_write_latex, s, OB_SUM_ALL);
+    CHECK(tex && strstr(tex, "10 (0.0011 !)") && strstr(tex, "m1 & 1 of 1 & 1 of 2 \\\\") &&
+              strstr(tex, "c2 & 1 & m1 & 0.001 & 10 & 0.00099 & 0.0011 & 0.00099 & over tol \\\\"),
+          "LaTeX: the same tables");
+    free(tex);
+}
+
+/* A certificate stopped by --job-timeout (cert_ns alone): no verdict, not
+ * certified within tol, listed. */
+static void test_cert_timeout(void)
+{
+    static const char text[] = HDRC "c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.0009,yes,1000000\n"
+                                    "c2,1,m1,hausdorff,mid,0.001,9,2,3,0.0009,ok,10,0,,f,,,,5000000\n";
+    ob_res_table t;
+    ob_summary s;
+    ob_err err;
+    ob_sum_filter f = {NULL, NULL, NULL, NULL, NULL};
+    if (parse(text, &t) != 0 || ob_summary_build(&t, "c.csv", &f, &s, &err) != 0) {
+        CHECK(0, "a run with a timed-out certificate parses and summarizes");
+        ob_res_free(&t);
+        return;
+    }
+    CHECK(t.v[1].cert_done == 2 && isnan(t.v[1].err_upper) && t.v[1].cert_ns == 5e6, "read: timed out, its time");
+    CHECK(s.run.meth[0].cert_yes == 1 && s.run.meth[0].cert_no == 1, "counted not certified");
+    char *md = render(ob_summary_write_md, &s, OB_SUM_ALL);
+    CHECK(md && has_line(md, "| c2 | 1 | 0.001 | 9 (no verdict) |") && has_line(md, "| m1 | 1 of 2 |") &&
+              has_line(md, "| c2 | 1 | m1 | 0.001 | 9 | 0.0009 |  |  | timed out |"),
+          "shown as no verdict, listed as timed out: %s", md ? md : "");
+    free(md);
+    ob_summary_free(&s);
+    ob_res_free(&t);
+}
+
+/* A file name's whole text (malloc'ed), or NULL. */
+static char *slurp_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    size_t len = 0, cap = 0, n;
+    char chunk[4096];
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (len + n + 1 > cap) {
+            cap = 2 * (len + n + 1);
+            char *b = realloc(buf, cap);
+            if (!b) {
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            buf = b;
+        }
+        memcpy(buf + len, chunk, n);
+        len += n;
+    }
+    fclose(f);
+    if (buf)
+        buf[len] = '\0';
+    return buf;
+}
+
+/* Runs without certificates: the summary byte for byte as before the
+ * certificate's tables (tests/data/summary/: written by the build before
+ * them), in every format, with and without a baseline, also when the four
+ * columns are there but empty. */
+static void test_no_cert_unchanged(void)
+{
+    /* RUN with the certificate's four columns, empty */
+    static char empty4[sizeof RUN + 64 * 21];
+    size_t at = 0;
+    for (const char *p = RUN; *p; p++) {
+        if (*p == '\n')
+            at += (size_t)snprintf(empty4 + at, sizeof empty4 - at, "%s",
+                                   p == strchr(RUN, '\n') ? ",err_upper,err_lower,certified,cert_ns" : ",,,,");
+        empty4[at++] = *p;
+    }
+    empty4[at] = '\0';
+    const char *const runs[2] = {RUN, empty4};
+    static const char *const ext[3] = {"md", "csv", "tex"};
+    int (*const fn[3])(FILE *, const ob_summary *, int) = {ob_summary_write_md, ob_summary_write_csv,
+                                                           ob_summary_write_latex};
+    for (int r = 0; r < 2; r++) {
+        ob_res_table t, b;
+        ob_summary s;
+        ob_err err;
+        ob_sum_filter f = {NULL, NULL, NULL, NULL, NULL};
+        if (parse(runs[r], &t) != 0 || parse(BASE, &b) != 0) {
+            CHECK(0, "the run parses (%d)", r);
+            return;
+        }
+        for (int base = 0; base < 2; base++) {
+            if (ob_summary_build(&t, "t.csv", &f, &s, &err) != 0 ||
+                (base && ob_summary_join(&s, &b, "b.csv", &f, &err) != 0)) {
+                CHECK(0, "summary: %s", err.msg);
+                continue;
+            }
+            for (int k = 0; k < 3; k++) {
+                char path[128];
+                snprintf(path, sizeof path, "tests/data/summary/run%s.%s", base ? "_base" : "", ext[k]);
+                char *want = slurp_file(path), *got = render(fn[k], &s, OB_SUM_ALL);
+                CHECK(want && got && strcmp(want, got) == 0, "%s (%s): as before, byte for byte:\n%s", path,
+                      r ? "empty certificate columns" : "none", got ? got : "(nothing)");
+                free(want);
+                free(got);
+            }
+            ob_summary_free(&s);
+        }
+        ob_res_free(&t);
+        ob_res_free(&b);
+    }
+}
+
 static void test_certified(void)
 {
     ob_res_table t;
@@ -455,6 +603,7 @@ static void test_certified(void)
     CHECK(csv && strstr(csv, "certified,,,,m1,,yes,2,") && strstr(csv, "certified,,,,m1,,no,2,") &&
           strstr(csv, "cert_time,,,,m1,,,2500000,"), "CSV rows certified and cert_time");
     free(csv);
+    test_certified_tables(&s);
     ob_summary_free(&s);
     ob_res_free(&t);
     /* a run without them: no such columns */
@@ -491,6 +640,8 @@ static void test_certified(void)
 int main(void)
 {
     test_certified();
+    test_cert_timeout();
+    test_no_cert_unchanged();
     test_quantiles();
     test_lists();
     test_family_fallback();

@@ -228,8 +228,74 @@ static void test_status_rules(void)
     CHECK(status_of("max_err", "1.24", OB_OK, 0, 1.5, &v) == OB_TAB_DIFFERS, "1.5 vs 1.24 differs");
 }
 
+/* The tables.md of three cells of one published table (tables --certify):
+ * one certified within tol, one over tol, one whose certificate timed out.
+ * md: the tables.md text (malloc'ed). */
+static char *cert_md(void)
+{
+    static ob_pub_cell c[3];
+    static const char *const label[3] = {"Til", "Cob", "Coq"};
+    for (int k = 0; k < 3; k++) {
+        c[k] = cell("liu2002", "1", "liu2002_ex1", label[k], label[k], "ctrl_points", 1e-3);
+        snprintf(c[k].tol_text, sizeof c[k].tol_text, "1e-3");
+        snprintf(c[k].value_text, sizeof c[k].value_text, "31");
+        c[k].value = 31;
+    }
+    ob_pub_set pub = {c, 3, "test"};
+    ob_tab_slot slot[3];
+    ob_tab_row row[3];
+    memset(slot, 0, sizeof slot);
+    memset(row, 0, sizeof row);
+    const double up[3] = {0.00090012, 0.0011, NAN};
+    for (int k = 0; k < 3; k++) {
+        slot[k].job.status = OB_OK;
+        slot[k].job.ctrl_points = 31;
+        slot[k].job.tol = 1e-3;
+        slot[k].job.max_err = 0.0009;
+        slot[k].job.cert_done = k < 2 ? OB_CERT_DONE : OB_CERT_TIMEOUT;
+        slot[k].job.err_upper = up[k];
+        slot[k].job.err_lower = k < 2 ? 0.0009 : NAN;
+        row[k].cell = &c[k];
+        row[k].proto = OB_PROTO_PAPER;
+        row[k].slot = k;
+        row[k].d_run = 1.0;
+        row[k].spec.note = "the paper's reading";
+    }
+    ob_tab_plan *pl = calloc(1, sizeof *pl);
+    pl->slots = slot;
+    pl->nslots = 3;
+    pl->rows = row;
+    pl->nrows = 3;
+    ob_tab_out out = {pl, &pub, "test", NULL, 0.0};
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    CHECK(f && ob_tab_write_md(f, &out) == 0, "tables.md written");
+    if (f)
+        fclose(f);
+    free(pl);
+    return buf;
+}
+
+/* tables --certify: err_upper beside ours in the reproduced tables, the
+ * counts, and the ok cells not certified within tol listed. */
+static void test_cert_md(void)
+{
+    char *md = cert_md();
+    CHECK(md && strstr(md, "| 1e-3 | 31 / 31 (0.000901) = | 31 / 31 (0.0011 !) = | 31 / 31 (no verdict) = |"),
+          "err_upper (rounded up) beside ours; ! over tol; no verdict timed out: %s", md ? md : "");
+    CHECK(md && strstr(md, "paper 1 of 3"), "counted: 1 of the 3 ok cells certified within tol");
+    CHECK(md && strstr(md, "| source | table | column | row | protocol | ours | err_upper | err_lower | why |") &&
+              strstr(md, "| liu2002 | 1 | Cob | 1e-3 | paper | 31 | 0.0011 | 0.0009 | over tol |") &&
+              strstr(md, "| liu2002 | 1 | Coq | 1e-3 | paper | 31 |  |  | timed out |") &&
+              !strstr(md, "| liu2002 | 1 | Til |"),
+          "the ok cells not certified within tol listed");
+    free(md);
+}
+
 int main(void)
 {
+    test_cert_md();
     test_parser();
     test_protocols();
     test_status_rules();
