@@ -106,6 +106,21 @@ fi
 check '[ "$(certs "$T/k/results.csv")" = "$(certs "$T/c/results.csv")" ] && [ ! -e "$T/k/certify.journal.csv" ]' \
     "after SIGKILL, the next pass: the same certificates"
 
+# shards: each certified after the fact, merged: the run with --certify;
+# a merged run has no fingerprint: refused (its shards are certified instead)
+S="--random 2:3 --methods tiller,cobb --tols 1e-2 --backend cpu"
+$OB run $S --certify --out "$T/sc" >/dev/null 2>&1
+$OB run $S --shard 0/2 --out "$T/s0" >/dev/null 2>&1
+$OB run $S --shard 1/2 --out "$T/s1" >/dev/null 2>&1
+$OB certify "$T/s0" >/dev/null 2>&1 && $OB certify "$T/s1" >/dev/null 2>&1 && $OB merge "$T/s0" "$T/s1" --out "$T/sm" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 0 ] && [ "$(certs "$T/sm/results.csv")" = "$(certs "$T/sc/results.csv")" ]' \
+    "shards certified after the fact, merged: the run with --certify: $(cat "$T/e.txt")"
+$OB run $S --shard 0/2 --out "$T/u0" >/dev/null 2>&1
+$OB run $S --shard 1/2 --out "$T/u1" >/dev/null 2>&1
+$OB merge "$T/u0" "$T/u1" --out "$T/um" >/dev/null 2>&1
+$OB certify "$T/um" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "no results.fingerprint" "$T/e.txt"' "a merged run: refused, saying why: $(cat "$T/e.txt")"
+
 # refusals: other data, other build, not a run, malformed, unknown names
 printf 'curve bez1\n  bezier 3\n  point 0 0\n  point 1 1\n  point 2 -1\n  point 3 0\n  offset 0.1 -0.1\nend\n' > "$T/one.curves"
 $OB run --curves "$T/one.curves" --methods tiller --tols 1e-3 --backend cpu --out "$T/d" >/dev/null 2>&1
