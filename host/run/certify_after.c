@@ -679,7 +679,7 @@ int ob_certify_after(ob_run_opts *o, const ob_cert_select *sel)
         st = check_select(&p);
     if (st == 0)
         st = take_journal(&p);
-    size_t *todo = NULL, n = 0, nwant = 0, nskip = 0;
+    size_t *todo = NULL, n = 0, nwant = 0, nskip = 0, nkept = 0;
     if (st == 0 && !(todo = malloc((p.njobs ? p.njobs : 1) * sizeof *todo))) {
         ob_error("out of memory");
         st = 1;
@@ -693,10 +693,15 @@ int ob_certify_after(ob_run_opts *o, const ob_cert_select *sel)
             todo[n++] = i;
         else if (!p.fresh[i])
             nskip++;
+        else
+            nkept++;  /* taken from the journal */
     }
     if (st == 0) {
-        ob_info("certify %s: %zu jobs with an approximation selected: %zu already certified (skipped), %zu to "
-                "certify", p.dir, nwant, nskip, n);
+        char kept[64] = "";
+        if (nkept)
+            snprintf(kept, sizeof kept, ", %zu from the journal", nkept);
+        ob_info("certify %s: %zu jobs with an approximation selected: %zu already certified (skipped)%s, %zu to "
+                "certify", p.dir, nwant, nskip, kept, n);
         if (n)
             st = certify_pass(&p, todo, n);
         else if (p.nfresh)
