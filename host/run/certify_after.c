@@ -47,6 +47,9 @@ typedef struct {
     ob_cl *cl;
     int lock_fd;
     char *fp_now;                /* the run's fingerprint as this binary computes it */
+    char *fp_jr;                 /* the same without --certify: the journal's first line (a
+                                    pass killed after its files were written, before its
+                                    journal went, left it under the uncertified fingerprint) */
     char res_path[PATH_LEN], meta_path[PATH_LEN], fp_path[PATH_LEN], jr_path[PATH_LEN];
     char *text;                  /* results.csv as it is */
     size_t len;
@@ -169,8 +172,11 @@ static int check_identity(pass *p)
     }
     while (wlen > 0 && (was[wlen - 1] == '\n' || was[wlen - 1] == '\r'))
         was[--wlen] = '\0';
+    ob_run_opts oc = *p->o;
+    oc.certify = 0;
     p->fp_now = ob_resume_fingerprint(p->o, &p->rec, p->where);
-    if (!p->fp_now) {
+    p->fp_jr = ob_resume_fingerprint(&oc, &p->rec, p->where);
+    if (!p->fp_now || !p->fp_jr) {
         free(was);
         ob_error("out of memory");
         return 1;
@@ -329,8 +335,8 @@ static int take_journal(pass *p)
         return 0;
     }
     const size_t first = (size_t)(nl - t);
-    if (first < ml || memcmp(t, MAGIC, ml) != 0 || first - ml != strlen(p->fp_now) ||
-        memcmp(t + ml, p->fp_now, first - ml) != 0) {
+    if (first < ml || memcmp(t, MAGIC, ml) != 0 || first - ml != strlen(p->fp_jr) ||
+        memcmp(t + ml, p->fp_jr, first - ml) != 0) {
         free(t);
         ob_error("certify: %s:1: not a journal of this run's certificates (another run or build): remove it",
                  p->jr_path);
@@ -380,7 +386,7 @@ static int start_journal(pass *p)
         ob_error("certify: %s: cannot write: %s", tmp, strerror(errno));
         return 1;
     }
-    fprintf(f, "%s%s\n%s\n", MAGIC, p->fp_now, ob_results_header());
+    fprintf(f, "%s%s\n%s\n", MAGIC, p->fp_jr, ob_results_header());
     for (size_t i = 0; i < p->njobs; i++)
         if (p->fresh[i])
             ob_write_result_row(f, &p->jobs[i]);
@@ -706,10 +712,13 @@ int ob_certify_after(ob_run_opts *o, const ob_cert_select *sel)
             st = certify_pass(&p, todo, n);
         else if (p.nfresh)
             st = write_files(&p, 0.0);
+        else
+            remove(p.jr_path);  /* a journal whose certificates are all in results.csv already */
     }
     free(todo);
     ob_journal_close(&p.jr, 0);
     free(p.fp_now);
+    free(p.fp_jr);
     free(p.text);
     free(p.line_of);
     free(p.fresh);

@@ -28,7 +28,9 @@
  *
  * Resumable: each job certified is appended to DIR/certify.journal.csv as
  * `run --certify` journals it (first line "#offbench-certify-journal 1
- * FINGERPRINT", the header, rows).  A stop (SIGINT, SIGTERM) ends the pass
+ * FINGERPRINT", the run's fingerprint with certify=no whatever the run's,
+ * so that a pass killed between writing its files and removing its journal
+ * leaves one the next pass still reads; the header, rows).  A stop (SIGINT, SIGTERM) ends the pass
  * between jobs and writes what was certified; after a kill, the next pass
  * takes the journal's certificates first.  A job already certified is
  * never certified again.

@@ -49,6 +49,11 @@ cp "$T/p/results.csv" "$T/p1.csv"
 $OB certify "$T/p" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 0 ] && grep -q "$napp already certified (skipped), 0 to certify" "$T/e.txt" && cmp -s "$T/p/results.csv" "$T/p1.csv"' \
     "a second pass: 0 certified, $napp skipped, results.csv unchanged: $(cat "$T/e.txt")"
+# a journal left by a pass killed after it wrote its files: read, and removed
+{ printf '#offbench-certify-journal 1 %s\n' "$(cat "$T/p0/results.fingerprint")"; head -n 3 "$T/c/results.csv"; } > "$T/p/certify.journal.csv"
+$OB certify "$T/p" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 0 ] && [ ! -e "$T/p/certify.journal.csv" ] && cmp -s "$T/p/results.csv" "$T/p1.csv"' \
+    "a stale journal of a certified run: removed, results.csv unchanged: $(cat "$T/e.txt")"
 
 # selection: --methods and --tols first, then the rest; the same in the end
 cp -r "$T/p0" "$T/s"
