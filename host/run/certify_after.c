@@ -649,7 +649,11 @@ static int certify_pass(pass *p, size_t *todo, size_t n)
         yes += ob_job_certified(j);
     }
     p->nfresh += done;
-    const int wrc = write_files(p, seconds);
+    int wrc = 0;
+    if (p->nfresh)
+        wrc = write_files(p, seconds);
+    else  /* stopped before the first certificate: nothing to write */
+        ob_journal_close(&p->jr, 1);
     if (crc > 0) {
         st = ob_stop_exit("%zu jobs certified in this pass %s %s/results.csv; offbench certify %s certifies the "
                           "other %zu", done, wrc == 0 ? "kept in" : "(in the journal; not written to)", p->dir,

@@ -126,6 +126,16 @@ $OB merge "$T/u0" "$T/u1" --out "$T/um" >/dev/null 2>&1
 $OB certify "$T/um" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q "no results.fingerprint" "$T/e.txt"' "a merged run: refused, saying why: $(cat "$T/e.txt")"
 
+# a row its job does not repeat (edited): that job is not certified (exit 1), the others are
+cp -r "$T/p0" "$T/q"
+awk -F, 'BEGIN{OFS=","} NR==2{$10="0.0085"} {print}' "$T/p0/results.csv" > "$T/q/results.csv"
+$OB certify "$T/q" --curves rnd3_000000 --methods tiller >/dev/null 2>"$T/e.txt"
+rc=$?
+row2=$(awkc 'NR==2 {print $c["err_upper"]}' "$T/q/results.csv")
+nq=$(awkc 'NR>2 && $c["err_upper"]!=""' "$T/q/results.csv" | wc -l)
+check '[ $rc -eq 1 ] && grep -q "results.csv:2: .*does not repeat its row" "$T/e.txt" && [ -z "$row2" ] && [ "$nq" -ge 1 ]' \
+    "a row the rerun does not repeat: not certified, exit 1, the others certified ($nq): $(cat "$T/e.txt")"
+
 # refusals: other data, other build, not a run, malformed, unknown names
 printf 'curve bez1\n  bezier 3\n  point 0 0\n  point 1 1\n  point 2 -1\n  point 3 0\n  offset 0.1 -0.1\nend\n' > "$T/one.curves"
 $OB run --curves "$T/one.curves" --methods tiller --tols 1e-3 --backend cpu --out "$T/d" >/dev/null 2>&1
