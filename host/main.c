@@ -30,6 +30,8 @@ static const char usage[] =
     "                    [--job-timeout S] [--reps N] [--shard K/N] [--out DIR | --resume DIR]\n"
     "                    [--export DIR]   (each job's approximation: JSON, .curves, DXF, SVG)\n"
     "  ./offbench merge  DIR... --out DIR   (the shards of one run into its results.csv)\n"
+    "  ./offbench certify RUN_DIR [--methods LIST] [--tols LIST] [--curves ID,...] [--threads N]\n"
+    "                    (a finished run certified after the fact: the columns of run --certify)\n"
     "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
     "  ./offbench summary RUN_DIR [--format md|csv|latex] [--out FILE] [--methods LIST] [--curves ID,...]\n"
@@ -64,6 +66,8 @@ static int dispatch(int argc, char **argv)
         return ob_cmd_atlas(argc - 1, argv + 1);
     if (strcmp(cmd, "summary") == 0)
         return ob_cmd_summary(argc - 1, argv + 1);
+    if (strcmp(cmd, "certify") == 0)
+        return ob_cmd_certify(argc - 1, argv + 1);
     if (strcmp(cmd, "merge") == 0)
         return ob_cmd_merge(argc - 1, argv + 1);
     if (strcmp(cmd, "draw") == 0)

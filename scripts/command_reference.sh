@@ -18,7 +18,7 @@ section() {
     echo '```'
     "$OB" --help 2>&1
     echo '```'
-    for c in run draw trace measure tables compare summary merge atlas bench list; do
+    for c in run draw trace measure tables compare summary merge certify atlas bench list; do
         echo
         echo "#### \`$c\`"
         echo

@@ -35,6 +35,11 @@ int ob_cmd_merge(int argc, char **argv);
  * output not writable). */
 int ob_cmd_summary(int argc, char **argv);
 
+/* certify RUN_DIR [options]: a finished run certified after the fact
+ * (host/run/certify_after.h): 0; 1 a job not certified or a file not
+ * written; 2 bad input or a refused directory; 128 + signal when stopped. */
+int ob_cmd_certify(int argc, char **argv);
+
 /* atlas [--out DIR]: the Offset Atlas against the exact offset degrees. */
 int ob_cmd_atlas(int argc, char **argv);
 

@@ -129,6 +129,12 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
     }
 }
 
+void ob_write_result_field(FILE *f, const ob_job *j, int col)
+{
+    if (col >= 0 && col < OB_NCOLS)
+        put_field(f, j, (ob_col)col);
+}
+
 int ob_write_result_row(FILE *f, const ob_job *j)
 {
     for (int c = 0; c < OB_NCOLS; c++) {
@@ -265,6 +271,30 @@ static void meta_build(FILE *f, const ob_backend_info *b)
     meta_machine(f, b);
 }
 
+void ob_write_meta_certify(FILE *f, int mode, double wall_seconds)
+{
+    if (mode) {
+        ob_cert_opts co;
+        ob_cert_defaults(&co);
+        fprintf(f, "  \"certify\": {\"mode\": \"%s\", \"rtol\": %.17g, \"floor_rel\": %.17g, \"budget\": %ld, "
+                   "\"doc\": \"every job "
+                   "with an approximation (ok, limit): err_lower <= H <= err_upper, H the two-sided Hausdorff distance "
+                   "of its pieces to the exact offsets of their base pieces (untrimmed; each enclosed from the segment "
+                   "as stored, over its exact parameter range), whatever the run's metric; "
+                   "err_upper by interval enclosures of a parameter correspondence, err_lower a distance attained; "
+                   "mode verdict: refined only until err_upper <= tol or err_lower > tol (neither end need be tight; "
+                   "err_upper inf where err_lower > tol was shown first: not sought); "
+                   "mode tight: until err_upper <= err_lower (1 + rtol), and on while tol lies between them; at most budget "
+                   "enclosures per side and piece; inf: a piece unbounded (C' may vanish on it: a cusp, a collapsed leg); "
+                   "certified: yes when err_upper <= tol; cert_ns: thread CPU "
+                   "time of the certificate (docs/certified.md); wall_seconds: the certificate pass, after the jobs ran "
+                   "(not in meta's wall_seconds)\", \"wall_seconds\": %.3f},\n",
+                mode == OB_CERTIFY_TIGHT ? "tight" : "verdict", co.rtol, co.floor_rel, co.budget, wall_seconds);
+    } else {
+        fprintf(f, "  \"certify\": null,\n");
+    }
+}
+
 /* meta.json: the settings that decide results (seed, samples, limits,
  * method parameters and versions). */
 static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *rec)
@@ -300,25 +330,7 @@ static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *re
     }
     fprintf(f, "},\n");
     /* --certify (host/run/certify.h): what the certificate's columns mean */
-    if (o->certify) {
-        ob_cert_opts co;
-        ob_cert_defaults(&co);
-        fprintf(f, "  \"certify\": {\"mode\": \"%s\", \"rtol\": %.17g, \"floor_rel\": %.17g, \"budget\": %ld, "
-                   "\"doc\": \"every job "
-                   "with an approximation (ok, limit): err_lower <= H <= err_upper, H the two-sided Hausdorff distance "
-                   "of its pieces to the exact offsets of their base pieces (untrimmed; each enclosed from the segment "
-                   "as stored, over its exact parameter range), whatever the run's metric; "
-                   "err_upper by interval enclosures of a parameter correspondence, err_lower a distance attained; "
-                   "mode verdict: refined only until err_upper <= tol or err_lower > tol (neither end need be tight); "
-                   "mode tight: until err_upper <= err_lower (1 + rtol), and on while tol lies between them; at most budget "
-                   "enclosures per side and piece; inf: a piece unbounded (C' may vanish on it: a cusp, a collapsed leg); certified: yes when err_upper <= tol; cert_ns: thread CPU "
-                   "time of the certificate (docs/certified.md); wall_seconds: the certificate pass, after the jobs ran "
-                   "(not in meta's wall_seconds)\", \"wall_seconds\": %.3f},\n",
-                o->certify == OB_CERTIFY_TIGHT ? "tight" : "verdict", co.rtol, co.floor_rel, co.budget,
-                rec->cert_seconds);
-    } else {
-        fprintf(f, "  \"certify\": null,\n");
-    }
+    ob_write_meta_certify(f, o->certify, rec->cert_seconds);
     /* --time-fits (host/run/fittime.h): how the method's own time was measured */
     if (o->time_fits)
         fprintf(f, "  \"fit_timing\": {\"rounds\": %d, \"min_time_ms\": %g, \"wall_seconds\": %.3f, \"doc\": "

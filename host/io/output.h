@@ -17,6 +17,11 @@ int ob_write_results(FILE *f, const ob_job *jobs, size_t njobs);
 /* Purpose: write one job's row (no header) to f.  Returns 0 or -1. */
 int ob_write_result_row(FILE *f, const ob_job *j);
 
+/* Purpose: write field col (host/io/columns.h: ob_col) of job j's row, as
+ *          ob_write_result_row writes it (no separator), e.g. the
+ *          certificate's columns that `certify` fills in after the run. */
+void ob_write_result_field(FILE *f, const ob_job *j, int col);
+
 /* The samples.csv header line (no newline). */
 extern const char OB_SAMPLES_HEADER[];
 
@@ -42,6 +47,11 @@ int ob_write_fits(FILE *f, const ob_job *jobs, size_t njobs, int rounds, const d
  * run recorded in rec.  Returns 0 or -1. */
 int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const char *data_source, size_t njobs,
                   double wall_seconds);
+
+/* Purpose: meta.json's "certify" line: the certificate's settings and the
+ *          pass's wall time when certified, else null (run --certify, and
+ *          `certify` after the fact). */
+void ob_write_meta_certify(FILE *f, int mode, double wall_seconds);
 
 /* Writes s as a CSV field (quoted when it holds a comma, quote or newline). */
 void ob_csv_field(FILE *f, const char *s);

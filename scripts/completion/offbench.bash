@@ -64,6 +64,7 @@ _offbench_candidates() {
     case $cmd in
         compare) echo @files ;;
         merge) echo @dirs ;;
+        certify) echo @dirs ;;
     esac
 }
 

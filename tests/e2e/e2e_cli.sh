@@ -212,7 +212,7 @@ for cmd in run draw trace tables; do
 done
 check '$OB trace --help | grep -q -- "--points N"' "trace --help lists --points"
 check '! $OB draw --help | grep -q -- "--points N"' "draw --help does not list trace's --points"
-for cmd in merge atlas bench "list" "list curves" compare; do
+for cmd in merge certify atlas bench "list" "list curves" compare; do
     $OB $cmd --help >"$T/help.out" 2>"$T/help.err"
     check '[ $? -eq 0 ] && grep -q "usage" "$T/help.out" && [ ! -s "$T/help.err" ]' "$cmd --help: exit 0 on stdout"
 done

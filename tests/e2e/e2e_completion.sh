@@ -62,6 +62,8 @@ for s in $shells; do
     expect $s "@dirs" run --out ""
     expect $s "@files" run --curves ""
     expect $s "@files" compare ""
+    expect $s "@dirs" certify ""
+    has $s --threads certify --thr
     expect $s "methods metrics" list m
     expect $s "--random" list curves --r
     expect $s "" run --threads ""
