@@ -32,12 +32,23 @@ bad=$(awkc 'NR>1 && $c["err_upper"]!="" && !($c["err_lower"] + 0 <= $c["err_uppe
 check '[ -z "$bad" ]' "err_lower <= err_upper and the sampled max_err <= err_upper: $bad"
 bad=$(awkc 'NR>1 && $c["certified"]!="" && (($c["certified"]=="yes") != ($c["err_upper"] + 0 <= $c["tol"] + 0))' "$T/c/results.csv")
 check '[ -z "$bad" ]' "certified is yes exactly when err_upper <= tol: $bad"
-tight=$(awkc 'NR>1 && $c["status"]=="ok" && $c["err_lower"] > 0 && $c["err_upper"] <= $c["err_lower"] * 1.01' "$T/c/results.csv" | wc -l)
-nok=$(awkc 'NR>1 && $c["status"]=="ok"' "$T/c/results.csv" | wc -l)
-check '[ "$tight" -ge $((nok * 9 / 10)) ]' "err_upper within 1 % of err_lower on most ok jobs: $tight of $nok"
+# the verdict (the default): every job decided, within tol (err_upper <= tol)
+# or over it (err_lower > tol); --certify=tight: err_upper within 1 % of
+# err_lower on most ok jobs, and the same verdicts
+undecided=$(awkc 'NR>1 && $c["err_upper"]!="" && !($c["err_upper"] + 0 <= $c["tol"] + 0 || $c["err_lower"] + 0 > $c["tol"] + 0)' "$T/c/results.csv")
+check '[ -z "$undecided" ]' "every job decided by the verdict: $undecided"
+$OB run $R --certify=tight --threads 2 --out "$T/ct" >/dev/null 2>"$T/ct.err"
+check '[ $? -eq 0 ]' "run --certify=tight: $(cat "$T/ct.err")"
+tight=$(awkc 'NR>1 && $c["status"]=="ok" && $c["err_lower"] > 0 && $c["err_upper"] <= $c["err_lower"] * 1.01' "$T/ct/results.csv" | wc -l)
+nok=$(awkc 'NR>1 && $c["status"]=="ok"' "$T/ct/results.csv" | wc -l)
+check '[ "$tight" -ge $((nok * 9 / 10)) ]' "tight: err_upper within 1 % of err_lower on most ok jobs: $tight of $nok"
+check '[ "$(rcols "$T/c/results.csv" curve d method tol certified)" = "$(rcols "$T/ct/results.csv" curve d method tol certified)" ]' \
+    "tight and the verdict give the same verdicts"
+loose=$(awkc 'NR>1 && $c["status"]=="ok" && $c["err_lower"] > 0 && $c["err_upper"] <= $c["err_lower"] * 1.01' "$T/c/results.csv" | wc -l)
+check '[ "$loose" -lt "$tight" ]' "the verdict does not refine as far as tight ($loose of $nok within 1 %, tight $tight)"
 yes=$(awkc 'NR>1 && $c["certified"]=="yes"' "$T/c/results.csv" | wc -l)
 check 'grep -q "certified within tol $yes of $nset" "$T/c.err"' "the closing line counts them: $(tail -n 1 "$T/c.err")"
-check 'grep -q "\"certify\": {\"rtol\": 0.001" "$T/c/meta.json" && grep -q "\"certify\": null" "$T/p/meta.json"' \
+check 'grep -q "\"certify\": {\"mode\": \"verdict\", \"rtol\": 0.001" "$T/c/meta.json" && grep -q "\"certify\": {\"mode\": \"tight\"" "$T/ct/meta.json" && grep -q "\"certify\": null" "$T/p/meta.json"' \
     "meta.json says what the certificate is, and null without"
 # ok by its metric, not within tol by the certified distance: tiller on
 # Liu-Wang's Example 1 at d = 1 under the radial metric (max_err 0.90e-3 at

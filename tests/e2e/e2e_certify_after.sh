@@ -29,7 +29,7 @@ check '[ -n "$(certs "$T/p/results.csv")" ] && [ "$(certs "$T/p/results.csv")" =
 check '[ "$(others "$T/p/results.csv")" = "$(others "$T/p0/results.csv")" ]' \
     "every other column byte for byte the run's own (timings included)"
 check '[ "$(wc -l < "$T/p/results.csv")" -eq "$(wc -l < "$T/p0/results.csv")" ]' "no row added or lost"
-check 'grep -q "\"certify\": {\"rtol\": 0.001" "$T/p/meta.json"' "meta.json's certify object: $(grep '"certify"' "$T/p/meta.json" | head -c 200)"
+check 'grep -q "\"certify\": {\"mode\": \"verdict\", \"rtol\": 0.001" "$T/p/meta.json"' "meta.json's certify object: $(grep '"certify"' "$T/p/meta.json" | head -c 200)"
 for k in plan_hash plan_seed data_hash; do
     check '[ "$(grep "\"$k\"" "$T/p/meta.json")" = "$(grep "\"$k\"" "$T/c/meta.json")" ]' \
         "meta.json's $k that of a certified run: $(grep "\"$k\"" "$T/p/meta.json") vs $(grep "\"$k\"" "$T/c/meta.json")"
