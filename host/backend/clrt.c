@@ -475,7 +475,7 @@ static void warm_up(ob_cl *c, ob_metric m, ob_cl_layout l)
     const double line[2][2] = {{0.0, 0.0}, {1.0, 0.0}}, shifted[2][2] = {{0.0, 0.1}, {1.0, 0.1}};
     ob_bez_from_points(&base, 1, line);
     ob_bez_from_points(&approx, 1, shifted);
-    ob_measure_rec r = {&base, &approx, 0.1, m, 0.0};
+    ob_measure_rec r = {&base, &approx, 0.1, m, 0.0, {NULL, 0, 0, 0, 0}};
     ob_errval out;
     const ob_cl_layout keep = c->layout;
     c->layout = l;

@@ -257,7 +257,7 @@ static void make_batch(int n, ob_bez *base, ob_bez *approx, ob_measure_rec *recs
         char msg[64];
         cobb->fit(&base[i], &args, NULL, &fit, msg, sizeof msg);
         approx[i] = fit.seg[0];
-        recs[i] = (ob_measure_rec){&base[i], &approx[i], args.d, metric, 0.0};
+        recs[i] = (ob_measure_rec){&base[i], &approx[i], args.d, metric, 0.0, {NULL, 0, 0, 0, 0}};
     }
 }
 

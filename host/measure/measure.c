@@ -32,7 +32,9 @@ int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric
             return -1;
         }
         ob_errval e;
-        if (ob_measure(m, &base, &p->approx, d, samples, &e) != 0 || isnan(e.err)) {
+        /* the certified metric encloses the segment as stored, over the exact span (cert_curve.h) */
+        const ob_cert_src src = {&c->seg[p->seg], p->a, p->b, p->t0, p->t1};
+        if (ob_measure_src(m, &base, &src, &p->approx, d, samples, 0.0, &e) != 0 || isnan(e.err)) {
             ob_fail(err, "%s:%d: piece %d: metric %s cannot measure it (degree %d)", name, p->line, k,
                     ob_metric_name(m), p->approx.deg);
             return -1;

@@ -153,6 +153,8 @@ typedef struct {
     ob_metric metric;   /* radial, normal or hausdorff (bound is always on the CPU) */
     double stop;        /* > 0: only whether the error exceeds stop matters where
                            it does (ob_measure_until); 0: the full measurement */
+    ob_cert_src src;    /* where base was cut from (src.seg NULL: unknown): what
+                           the certified metric encloses (ob_measure_src) */
 } ob_measure_rec;
 
 /* A backend that measures a whole batch at once (the OpenCL kernel): fills

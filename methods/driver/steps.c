@@ -180,7 +180,9 @@ static void make_records(const void *ctx, long i)
     for (int p = 0; p < c->fits[i].n; p++) {
         const int r = c->B->first[i] + p;
         ob_bez_subsegment(&sub, c->fits[i].t[p], c->fits[i].t[p + 1], &c->B->base[r]);
-        c->B->rec[r] = (ob_measure_rec){&c->B->base[r], &c->fits[i].seg[p], j->d, j->metric, c->stop[i]};
+        c->B->rec[r] = (ob_measure_rec){&c->B->base[r], &c->fits[i].seg[p], j->d, j->metric, c->stop[i],
+                                        {&j->curve->seg[c->its[i].seg], c->its[i].a, c->its[i].b, c->fits[i].t[p],
+                                         c->fits[i].t[p + 1]}};
     }
 }
 
@@ -193,8 +195,9 @@ static void measure_record(const void *ctx, long r)
     if (c->backend_ok && ob_metric_batched(B->rec[r].metric))
         return;
     const double t0 = drv_thread_ns();
-    if (ob_measure_until(B->rec[r].metric, B->rec[r].base, B->rec[r].approx, B->rec[r].d, c->samples,
-                         B->rec[r].stop, &B->out[r]))
+    const ob_measure_rec *m = &B->rec[r];
+    if (ob_measure_src(m->metric, m->base, m->src.seg ? &m->src : NULL, m->approx, m->d, c->samples, m->stop,
+                       &B->out[r]))
         B->out[r].err = NAN;  /* cannot be measured: reported below */
     B->ns[r] = drv_thread_ns() - t0;
 }

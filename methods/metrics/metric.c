@@ -61,9 +61,10 @@ int ob_clamp_samples(int samples)
     return samples < OB_MIN_SAMPLES ? OB_MIN_SAMPLES : samples > OB_MAX_SAMPLES ? OB_MAX_SAMPLES : samples;
 }
 
-/* The one dispatcher: ob_measure is this with no stop. */
-int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
-                     int samples, double stop, ob_errval *out)
+/* The one dispatcher: ob_measure_until is this without a source, ob_measure
+ * without a stop either. */
+int ob_measure_src(ob_metric m, const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d,
+                   int samples, double stop, ob_errval *out)
 {
     out->work = 0.0;
     switch (m) {
@@ -72,12 +73,18 @@ int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, doub
     case OB_METRIC_NORMAL:
     case OB_METRIC_HAUSDORFF:
     case OB_METRIC_PARAM: return ob_metric_sampled(m, base, approx, d, samples, stop, out);
-    case OB_METRIC_CERTIFIED: return ob_metric_certified(base, approx, d, samples, out);
+    case OB_METRIC_CERTIFIED: return ob_metric_certified_src(base, src, approx, d, samples, out);
     default: break;
     }
     out->err = INFINITY;
     out->t = 0.0;
     return -1;
+}
+
+int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
+                     int samples, double stop, ob_errval *out)
+{
+    return ob_measure_src(m, base, NULL, approx, d, samples, stop, out);
 }
 
 int ob_err_can_pass(double err)

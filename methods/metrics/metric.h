@@ -36,6 +36,7 @@
 #define OB_METRIC_H
 
 #include "methods/core/curve.h"
+#include "methods/metrics/cert_curve.h"
 
 /* The sampled metrics' codes are shared with kernels/metric_core.h. */
 typedef enum {
@@ -95,6 +96,14 @@ int ob_measure(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
 int ob_measure_until(ob_metric m, const ob_bez *base, const ob_bez *approx, double d,
                      int samples, double stop, ob_errval *out);
 
+/* Purpose: ob_measure_until of a base piece cut out of a stored segment
+ *          (src, cert_curve.h; NULL: base is the curve as stored): the
+ *          certified metric encloses the stored segment over the exact range
+ *          (the cut only guides it); the others measure the cut `base`.
+ * Returns: as ob_measure_until. */
+int ob_measure_src(ob_metric m, const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d,
+                   int samples, double stop, ob_errval *out);
+
 /* Purpose: whether a measured error may stand in an `ok` result: a finite
  *          number.  +inf (a piece the metric cannot bound, a pole) and NaN
  *          are never ok: the driver splits such a piece like any failing one
@@ -120,6 +129,9 @@ int ob_metric_param(const ob_bez *base, const ob_bez *approx, double d, int S, o
 /* certified: err = the enclosure's upper end (+inf where none exists: a cusp
  * of the base), t and work the sampled hausdorff's at S samples. */
 int ob_metric_certified(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out);
+/* certified, with the base piece's source (ob_measure_src) */
+int ob_metric_certified_src(const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int S,
+                            ob_errval *out);
 /* A sampled metric m (radial, normal, hausdorff, param) under a stop, as
  * ob_measure_until. */
 int ob_metric_sampled(ob_metric m, const ob_bez *base, const ob_bez *approx, double d, int S, double stop,

@@ -6,6 +6,7 @@
 
 #include <math.h>
 
+#include "methods/metrics/cert_job.h"
 #include "methods/metrics/metric_certified.h"
 
 /* Purpose: the certified metric of approx against the exact d-offset of base.
@@ -18,15 +19,21 @@
  *          same grid (metric_certified.h).
  * Returns: 0; -1 where the sampled measurement cannot be made (no memory
  *          for its tables), with err = +inf. */
-int ob_metric_certified(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
+int ob_metric_certified_src(const ob_bez *base, const ob_cert_src *src, const ob_bez *approx, double d, int S,
+                            ob_errval *out)
 {
     if (ob_metric_hausdorff(base, approx, d, S, out) != 0)
         return -1;
     ob_certified c;
-    if (ob_certify_hausdorff(base, approx, d, S, &c) != 0 || !(c.upper >= 0.0)) {
+    if (ob_certify_piece(base, src, approx, d, S, NULL, 0.0, &c) != 0 || !(c.upper >= 0.0)) {
         out->err = INFINITY;
         return 0;
     }
     out->err = c.upper;
     return 0;
+}
+
+int ob_metric_certified(const ob_bez *base, const ob_bez *approx, double d, int S, ob_errval *out)
+{
+    return ob_metric_certified_src(base, NULL, approx, d, S, out);
 }
