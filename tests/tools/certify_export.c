@@ -178,13 +178,16 @@ static int certify_job(const char *dir, const char *name, uint64_t seed_default,
     j->pieces = a.n;
     ob_bez *base = malloc((size_t)(a.n + 1) * sizeof *base), *apx = malloc((size_t)(a.n + 1) * sizeof *apx);
     double *hint = malloc((size_t)(a.n + 1) * sizeof *hint);
+    ob_cert_src *src = malloc((size_t)(a.n + 1) * sizeof *src);
     for (int k = 0; k < a.n; k++) {
-        if (ob_apiece_base(&c, &a.v[k], &base[k]) != 0) {
+        const ob_apiece *p = &a.v[k];
+        if (ob_apiece_base(&c, p, &base[k]) != 0) {
             fprintf(stderr, "%s: piece %d has no base\n", path, k);
-            free(base), free(apx), free(hint), ob_curve_free(&c), ob_approx_free(&a);
+            free(base), free(apx), free(hint), free(src), ob_curve_free(&c), ob_approx_free(&a);
             return -1;
         }
-        apx[k] = a.v[k].approx;
+        src[k] = (ob_cert_src){&c.seg[p->seg], p->a, p->b, p->t0, p->t1};  /* enclosed as stored */
+        apx[k] = p->approx;
     }
     /* the sampled metric, as the run measures each piece: its time, and the
      * order the certificate takes the pieces in */
@@ -198,12 +201,12 @@ static int certify_job(const char *dir, const char *name, uint64_t seed_default,
     ob_cert_job cj;
     ob_certified *piece = calloc((size_t)(a.n + 1), sizeof *piece);
     if (job_level)
-        j->rc = ob_certify_job(a.n, base, apx, a.job_d, S, o, hint, &cj, piece);
+        j->rc = ob_certify_job_src(a.n, base, src, apx, a.job_d, S, o, hint, &cj, piece);
     else {  /* every piece to rtol of its own distance */
-        cj = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0};
+        cj = (ob_cert_job){0.0, 0.0, 1, 0, -1, 0, 0, 0};
         for (int k = 0; k < a.n; k++) {
             ob_certified r;
-            j->rc |= ob_certify_hausdorff_opts(&base[k], &apx[k], a.job_d, S, o, &r);
+            j->rc |= ob_certify_piece(&base[k], &src[k], &apx[k], a.job_d, S, o, 0.0, &r);
             piece[k] = r;
             cj.lower = fmax(cj.lower, r.lower), cj.upper = fmax(cj.upper, r.upper);
             cj.met &= r.met, cj.leaves += r.leaves;
@@ -213,6 +216,7 @@ static int certify_job(const char *dir, const char *name, uint64_t seed_default,
     if (verbose)
         print_pieces(name, a.n, base, apx, hint, piece);
     free(piece);
+    free(src);
     j->ns_samp = t1 - t0, j->ns_cert = t2 - t1;
     j->sampled = 0.0;
     for (int k = 0; k < a.n; k++)
