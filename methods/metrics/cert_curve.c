@@ -69,10 +69,33 @@ static int hodograph(const ob_bez *b, int k, int c, ob_iv *D)
     return n - k;
 }
 
+/* Hodograph k of coordinate c into D: from the cache hd where there is one
+ * (ob_cv_hodo_attach), else computed; its degree, or -1. */
+static int hodo_get(const ob_bez *b, const ob_cv_hodo *hd, int k, int c, ob_iv *D)
+{
+    if (!hd || k > OB_CV_MAXK)
+        return hodograph(b, k, c, D);
+    const int m = hd->deg[k];
+    for (int i = 0; i <= m; i++)
+        D[i] = hd->D[k][c][i];
+    return m;
+}
+
+void ob_cv_hodo_attach(ob_cv *c, ob_cv_hodo *h)
+{
+    const ob_bez *b = c->src ? c->src : c->b;
+    for (int k = 0; k <= OB_CV_MAXK; k++) {
+        h->deg[k] = k > b->deg ? -1 : b->deg - k;
+        for (int i = 0; i < 3 && h->deg[k] >= 0; i++)
+            hodograph(b, k, i, h->D[k][i]);
+    }
+    c->hodo = h;
+}
+
 /* Homogeneous derivatives k0..K at the parameter T (a point, or the few
  * ulps a mapped parameter is known to): de Casteljau on each hodograph; the
  * others are left 0. */
-static void hjet_point(const ob_bez *b, ob_iv T, int k0, int K, hpt *H)
+static void hjet_point(const ob_bez *b, const ob_cv_hodo *hd, ob_iv T, int k0, int K, hpt *H)
 {
     const int nc = ncoords(b);
     const ob_iv omt = ob_iv_sub(ob_iv_pt(1.0), T);
@@ -80,7 +103,7 @@ static void hjet_point(const ob_bez *b, ob_iv T, int k0, int K, hpt *H)
         for (int c = 0; c < 3; c++) {
             H[k][c] = ob_iv_pt(0.0);
             ob_iv D[OB_MAX_DEG + 1];
-            const int m = k >= k0 && c < nc ? hodograph(b, k, c, D) : -1;
+            const int m = k >= k0 && c < nc ? hodo_get(b, hd, k, c, D) : -1;
             if (m < 0)
                 continue;
             for (int r = 1; r <= m; r++)
@@ -94,7 +117,7 @@ static void hjet_point(const ob_bez *b, ob_iv T, int k0, int K, hpt *H)
  * hodograph cut to [t0, t1] (at t1, then at t0 / t1, a ratio carried as an
  * interval, so the cut is of the exact [t0, t1]) and the hull of its
  * coefficients (the Bernstein convex-hull property); the others are 0. */
-static void hjet_range(const ob_bez *b, double t0, double t1, int k0, int K, hpt *H)
+static void hjet_range(const ob_bez *b, const ob_cv_hodo *hd, double t0, double t1, int k0, int K, hpt *H)
 {
     const int nc = ncoords(b);
     const ob_iv ratio = ob_iv_div(ob_iv_pt(t0), ob_iv_pt(t1));
@@ -102,7 +125,7 @@ static void hjet_range(const ob_bez *b, double t0, double t1, int k0, int K, hpt
         for (int c = 0; c < 3; c++) {
             H[k][c] = ob_iv_pt(0.0);
             ob_iv D[OB_MAX_DEG + 1];
-            const int m = k >= k0 && c < nc ? hodograph(b, k, c, D) : -1;
+            const int m = k >= k0 && c < nc ? hodo_get(b, hd, k, c, D) : -1;
             if (m < 0)
                 continue;
             if (t1 < 1.0)
@@ -215,9 +238,9 @@ static void hjet(const ob_cv *c, double t0, double t1, int k0, int K, hpt *H)
     const ob_bez *b = stored(c);
     const ob_iv U = src_range(c, t0, t1);
     if (t0 == t1)
-        hjet_point(b, U, k0, K, H);
+        hjet_point(b, c->hodo, U, k0, K, H);
     else
-        hjet_range(b, U.lo, U.hi, k0, K, H);
+        hjet_range(b, c->hodo, U.lo, U.hi, k0, K, H);
     ob_iv f = ob_iv_pt(1.0);
     for (int k = 1; k <= K && c->src; k++) {
         f = ob_iv_mul(f, c->du);
@@ -228,7 +251,7 @@ static void hjet(const ob_cv *c, double t0, double t1, int k0, int K, hpt *H)
 
 int ob_cv_from_src(ob_cv *c, const ob_bez *piece, const ob_cert_src *src, double d, int offset)
 {
-    *c = (ob_cv){piece, d, offset, NULL, {0, 0}, {0, 0}};
+    *c = (ob_cv){piece, d, offset, NULL, {0, 0}, {0, 0}, NULL};
     if (!src)
         return 0;
     if (!src->seg || !(0.0 <= src->a && src->a < src->b && src->b <= 1.0 && 0.0 <= src->t0 && src->t0 < src->t1 &&

