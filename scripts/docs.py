@@ -474,6 +474,18 @@ def gen_nightly_power(ctx):
     return text
 
 
+CERT_COST = "results/certify/cert_cost.md"
+
+
+def gen_cert_cost(ctx):
+    """what run --certify costs against the same run without it, and how
+    tight --certify=tight is: the tables scripts/cert_cost.sh printed,
+    committed under results/certify/ with the conditions it ran in"""
+    text = ctx.text(CERT_COST).strip()
+    need("| run | without --certify |" in text, f"{CERT_COST}: no table of scripts/cert_cost.sh")
+    return text
+
+
 # ------------------------------------------------------- transcripts
 
 def run_ok(ctx, script, what):
@@ -570,6 +582,7 @@ GENERATORS = {
     "occt-table": gen_occt_table,
     "occt-summary": gen_occt_summary,
     "nightly-power": gen_nightly_power,
+    "cert-cost": gen_cert_cost,
 }
 
 
