@@ -33,10 +33,15 @@ expected only up to that (a job where err_lower > B is measured again with
 10 x the samples before it is flagged).
 
 Evaluation: C, C' (hodograph) and C'' in float64 from the segment's own
-Bernstein form; where |C'| < 1e-6 of the control polygon's size, or the
-Bernstein sum of C' loses more than 6 digits to cancellation, or the piece is
-shorter than 1e-9 in u, the offset is evaluated in mpmath at 50 digits
-instead (an exact zero of C' at an end: the limit from inside).
+Bernstein form; where the Bernstein sum of C' loses more than 6 digits to
+cancellation (the sum of its terms' magnitudes over |C'| above 1e6: near a
+cusp), or C' is exactly 0 (a collapsed end leg: the limit from inside), or
+the piece is shorter than 1e-9 in u, the offset is evaluated in mpmath at 50
+digits instead.  A |C'| that is merely small (a leg of 1e-8 without
+cancellation) is evaluated to ~1 ulp in float64 (checked against mpmath: the
+offsets agree to 2e-16 down to |C'| = 7e-8 at a 1.5e-8 end leg);
+--mp-tiny-cprime also sends every sample with |C'| < 1e-6 of the control
+polygon's size to mpmath (some 1000 x slower there).
 
 Flags per job: upper_violation (B > err_upper (1 + 1e-9) + 1e-15: the
 certificate is wrong), lower_violation (err_lower > B (1 + 1e-6) + 1e-15
@@ -64,6 +69,7 @@ MP_DPS = 50
 REL_CPRIME = 1e-6      # |C'| below this x polygon size: mpmath
 COND_MAX = 1e6         # cancellation in C' beyond this: mpmath
 SHORT_U = 1e-9         # a piece shorter than this in u: mpmath throughout
+MP_TINY_CPRIME = False  # --mp-tiny-cprime: also wherever |C'| < REL_CPRIME x size
 
 
 # ---------------------------------------------------------------- curves
@@ -207,7 +213,13 @@ class Offset:
         if self.all_mp:
             need = np.ones(len(s), bool)
         else:
-            need = (sp < REL_CPRIME * self.bez.size) | ~(cond < COND_MAX) | ~np.isfinite(O).all(1)
+            need = ~(cond < COND_MAX) | ~np.isfinite(O).all(1)
+            # the ends from the exact ua, ub: where the normal turns fast
+            # (|dO/du| ~ |d| / leg), rounding u to a double moves O(u) along
+            # the curve by |dO/du| ulp(u), which at an end changes the extent
+            need |= (s == 0.0) | (s == 1.0)
+            if MP_TINY_CPRIME:
+                need |= sp < REL_CPRIME * self.bez.size
         if need.any():
             for i in np.nonzero(need)[0]:
                 o, o1, _ = self._mp_point(s[i])
@@ -554,7 +566,12 @@ def main(argv=None):
     ap.add_argument("--curves", type=lambda s: s.split(","), help="only these curve ids")
     ap.add_argument("--limit", type=int, default=0, help="only the first N jobs")
     ap.add_argument("--verbose", action="store_true", help="print every flagged job")
+    ap.add_argument("--progress", type=int, default=0, metavar="N", help="a line on stderr every N jobs")
+    ap.add_argument("--mp-tiny-cprime", action="store_true",
+                    help="also evaluate in mpmath wherever |C'| < 1e-6 of the control polygon's size")
     args = ap.parse_args(argv)
+    global MP_TINY_CPRIME
+    MP_TINY_CPRIME = args.mp_tiny_cprime
     if args.samples < 2:
         ap.error("--samples must be at least 2")
     try:
@@ -571,13 +588,19 @@ def main(argv=None):
             sizes[t["json"]] = 0
     order = sorted(range(len(tasks)), key=lambda i: -sizes[tasks[i]["json"]])
     results = [None] * len(tasks)
+    def progress(done):
+        if args.progress and (done % args.progress == 0 or done == len(tasks)):
+            print("cert_brute: %d/%d jobs" % (done, len(tasks)), file=sys.stderr, flush=True)
+
     if args.procs > 1 and len(tasks) > 1:
         with multiprocessing.Pool(args.procs) as pool:
-            for i, res in zip(order, pool.imap(judge, [tasks[i] for i in order], chunksize=1)):
+            for done, (i, res) in enumerate(zip(order, pool.imap(judge, [tasks[i] for i in order], chunksize=1))):
                 results[i] = res
+                progress(done + 1)
     else:
-        for i in order:
+        for done, i in enumerate(order):
             results[i] = judge(tasks[i])
+            progress(done + 1)
     out = args.out or os.path.join(args.run, "cert_brute.csv")
     kinds = ["upper_violation", "lower_violation", "verdict_violation"]
     count = {k: 0 for k in kinds}
