@@ -8,14 +8,19 @@
  *    "same_param": true when the pieces share the base's parameter,
  *    "pieces": [{"seg", "span": [a, b], "t": [t0, t1], "base_t": [ta, tb],
  *                "degree", "rational", "knots", "points": [[x, y], ...],
- *                "weights", "homogeneous": [[w x, w y, w], ...]}, ...]}
+ *                "weights", "homogeneous": [[w x, w y, w], ...],
+ *                "base_homogeneous": [[w x, w y, w], ...]}, ...]}
  *
  * Each piece is one Bézier segment over [0, 1] (its knots: degree + 1 zeros
  * and degree + 1 ones, so it is also a clamped B-spline).  "homogeneous" is
  * what offbench computed, exactly; "points" and "weights" are the Euclidean
  * reading (x = w x / w rounds once).  The piece approximates base segment
  * "seg" over base parameters "base_t", which is the span [a, b] the driver
- * accepted, cut to [t0, t1] of its fit (approx.h).
+ * accepted, cut to [t0, t1] of its fit (approx.h).  "base_homogeneous" is
+ * that base segment "seg" as the run holds it (binary64, after a B-spline's
+ * conversion; a random curve as generated), so that a checker outside
+ * offbench (scripts/cert_brute.py) has the exact base without regenerating
+ * it.
  */
 #include "host/io/export.h"
 
@@ -47,7 +52,19 @@ static void pair(FILE *f, double a, double b)
     fputc(']', f);
 }
 
-static void piece(FILE *f, const ob_apiece *p)
+static void hpoints(FILE *f, const ob_bez *b)
+{
+    for (int i = 0; i <= b->deg; i++) {
+        fputs(i ? ", [" : "[", f);
+        for (int c = 0; c < 3; c++) {
+            fputs(c ? ", " : "", f);
+            ob_export_num(f, b->h[i][c], 1);
+        }
+        fputc(']', f);
+    }
+}
+
+static void piece(FILE *f, const ob_apiece *p, const ob_curve *c)
 {
     const ob_bez *b = &p->approx;
     fprintf(f, "    {\"seg\": %d, \"span\": ", p->seg);
@@ -72,15 +89,14 @@ static void piece(FILE *f, const ob_apiece *p)
         ob_export_num(f, b->h[i][2], 1);
     }
     fputs("],\n     \"homogeneous\": [", f);
-    for (int i = 0; i <= b->deg; i++) {
-        fputs(i ? ", [" : "[", f);
-        for (int c = 0; c < 3; c++) {
-            fputs(c ? ", " : "", f);
-            ob_export_num(f, b->h[i][c], 1);
-        }
+    hpoints(f, b);
+    fputc(']', f);
+    if (c && p->seg >= 0 && p->seg < c->nseg) {
+        fputs(",\n     \"base_homogeneous\": [", f);
+        hpoints(f, &c->seg[p->seg]);
         fputc(']', f);
     }
-    fputs("]}", f);
+    fputc('}', f);
 }
 
 int ob_export_write_json(FILE *f, const ob_job *j, int samples, const ob_approx *a)
@@ -100,7 +116,7 @@ int ob_export_write_json(FILE *f, const ob_job *j, int samples, const ob_approx 
             j->ctrl_points, j->segments, j->out_degree, a->same_param ? "true" : "false");
     fputs("  \"pieces\": [\n", f);
     for (int i = 0; i < a->n; i++) {
-        piece(f, &a->v[i]);
+        piece(f, &a->v[i], j->curve);
         fputs(i + 1 < a->n ? ",\n" : "\n", f);
     }
     fputs("  ]\n}\n", f);
