@@ -49,6 +49,10 @@ cp "$T/p/results.csv" "$T/p1.csv"
 $OB certify "$T/p" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 0 ] && grep -q "$napp already certified (skipped), 0 to certify" "$T/e.txt" && cmp -s "$T/p/results.csv" "$T/p1.csv"' \
     "a second pass: 0 certified, $napp skipped, results.csv unchanged: $(cat "$T/e.txt")"
+# the other mode is refused, not mixed in: the run is certified by the verdict
+$OB certify "$T/p" --tight >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "certified in mode verdict" "$T/e.txt" && cmp -s "$T/p/results.csv" "$T/p1.csv"' \
+    "certify --tight of a run certified by the verdict: refused, nothing written: $(cat "$T/e.txt")"
 # a journal left by a pass killed after it wrote its files: read, and removed
 { printf '#offbench-certify-journal 1 %s\n' "$(cat "$T/p0/results.fingerprint")"; head -n 3 "$T/c/results.csv"; } > "$T/p/certify.journal.csv"
 $OB certify "$T/p" >/dev/null 2>"$T/e.txt"
