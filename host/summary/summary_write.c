@@ -691,6 +691,19 @@ static void csv_clear(csv_line *l, const ob_summary *s)
     }
 }
 
+/* A cleared line of section `what` keyed by cell (p, m, k): curve, d,
+ * method and tol. */
+static void csv_cell(csv_line *l, const ob_summary *s, const char *what, int p, int m, int k)
+{
+    csv_clear(l, s);
+    l->text[CV_SECTION] = what;
+    l->text[CV_FAMILY] = s->pairs[p].family;
+    l->text[CV_CURVE] = s->pairs[p].curve;
+    l->text[CV_D] = s->pairs[p].d_text;
+    l->text[CV_METHOD] = s->methods[m];
+    l->text[CV_TOL] = s->tol_text[k];
+}
+
 static void csv_num(csv_line *l, int c, double v)
 {
     if (isfinite(v))
@@ -755,13 +768,7 @@ static void csv_curves(FILE *f, const ob_summary *s)
                 const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
                 if (!r)
                     continue;
-                csv_clear(&l, s);
-                l.text[CV_SECTION] = "curve";
-                l.text[CV_FAMILY] = s->pairs[p].family;
-                l.text[CV_CURVE] = s->pairs[p].curve;
-                l.text[CV_D] = s->pairs[p].d_text;
-                l.text[CV_METHOD] = s->methods[m];
-                l.text[CV_TOL] = s->tol_text[k];
+                csv_cell(&l, s, "curve", p, m, k);
                 l.text[CV_STATUS] = r->status;
                 if (is_ok(r))
                     csv_int(&l, CV_VALUE, r->ctrl_points);
@@ -853,13 +860,7 @@ static void csv_cert_tables(FILE *f, const ob_summary *s)
                 const char *why = not_certified(r);
                 if (!why)
                     continue;
-                csv_clear(&l, s);
-                l.text[CV_SECTION] = "not_certified";
-                l.text[CV_FAMILY] = s->pairs[p].family;
-                l.text[CV_CURVE] = s->pairs[p].curve;
-                l.text[CV_D] = s->pairs[p].d_text;
-                l.text[CV_METHOD] = s->methods[m];
-                l.text[CV_TOL] = s->tol_text[k];
+                csv_cell(&l, s, "not_certified", p, m, k);
                 l.text[CV_STATUS] = why;
                 csv_int(&l, CV_VALUE, r->ctrl_points);
                 csv_job_cert(&l, r);
