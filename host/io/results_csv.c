@@ -295,7 +295,7 @@ static const char *read_row(char **f, const int *at, int has_joints, ob_res_row 
 
 /* The certificate's columns of a row (at[18..21]): all empty, or all set
  * and consistent (err_lower <= err_upper, certified = yes exactly when
- * err_upper <= tol), or only cert_ns set: a certificate stopped by
+ * err_upper <= tol, status ok or limit: a job with an approximation), or only cert_ns set: a certificate stopped by
  * --job-timeout (cert_done OB_CERT_TIMEOUT, no verdict).  Returns NULL, or
  * what is wrong. */
 static const char *read_cert(char **f, const int *at, ob_res_row *row)
@@ -315,6 +315,12 @@ static const char *read_cert(char **f, const int *at, ob_res_row *row)
     if (nset != 4)
         return "err_upper, err_lower, certified and cert_ns are all empty or all set (or cert_ns alone: a "
                "certificate stopped by --job-timeout)";
+    if (strcmp(row->status, "ok") && strcmp(row->status, "limit")) {  /* fail, skip, timeout */
+        static _Thread_local char msg[160];
+        snprintf(msg, sizeof msg, "status %s has no approximation to certify: err_upper, err_lower, certified and "
+                 "cert_ns must be empty", row->status);
+        return msg;
+    }
     if (parse_err(up, &row->err_upper) || isnan(row->err_upper))
         return "err_upper is not a number >= 0 (inf: unbounded)";
     if (ob_parse_double(lo, &row->err_lower) || row->err_lower < 0 || row->err_lower > row->err_upper)

@@ -91,7 +91,8 @@ typedef struct {
  *          fail / skip / timeout, the certificate's columns
  *          not all present or a row's not all set or empty, inconsistent
  *          (err_lower > err_upper, certified not yes exactly when
- *          err_upper <= tol), a duplicate key (naming both lines), no memory.  *t is
+ *          err_upper <= tol, a certificate on a fail / skip / timeout
+ *          row), a duplicate key (naming both lines), no memory.  *t is
  *          always left safe for ob_res_free() (empty after an error). */
 int ob_res_parse(const char *text, size_t len, const char *name, ob_res_table *t, ob_err *err);
 /* As ob_res_parse, for text that starts on line first_line of the file name

@@ -621,6 +621,12 @@ static void test_certified(void)
         {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.0009,yes,\n", "all empty or all set"},
         {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,0.0009,maybe,1\n", "certified is not"},
         {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,nan,0.0009,no,1\n", "err_upper is not"},
+        /* issue 48: err_lower nan is not below err_upper; a row without an approximation has no certificate */
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0009,nan,yes,1\n", "err_lower is not a finite"},
+        {"c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,inf,nan,no,1\n", "err_lower is not a finite"},
+        {"c1,1,m1,hausdorff,mid,0.001,0,0,0,,skip,0,0,,f,0.0009,0.0009,yes,1\n", "status skip has no approximation"},
+        {"c1,1,m1,hausdorff,mid,0.001,0,0,0,,fail,0,0,,f,0.0011,0.0009,no,1\n", "status fail has no approximation"},
+        {"c1,1,m1,hausdorff,mid,0.001,0,0,0,,timeout,0,0,,f,0.0009,0.0009,yes,1\n", "status timeout has no approx"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char text[1024];
@@ -628,6 +634,19 @@ static void test_certified(void)
         const int rc = ob_res_parse(text, strlen(text), "c.csv", &t, &err);
         CHECK(rc == -1 && strstr(err.msg, "c.csv:2:") && strstr(err.msg, bad[i][1]), "bad certificate %zu: %s", i,
               rc ? err.msg : "accepted");
+        ob_res_free(&t);
+    }
+    /* still read: verdict mode (err_upper inf, err_lower over tol); a sampled max_err over err_upper */
+    static const char *const good[] = {
+        "c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,limit,10,0,,f,inf,0.002,no,1\n",
+        "c1,1,m1,hausdorff,mid,0.001,7,2,3,0.0009,ok,10,0,,f,0.0008,0.0007,yes,1\n",
+        "c1,1,m1,hausdorff,mid,0.001,0,0,0,,skip,0,0,,f,,,,\n",
+    };
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "%s%s", HDRC, good[i]);
+        const int rc = ob_res_parse(text, strlen(text), "c.csv", &t, &err);
+        CHECK(rc == 0, "good certificate %zu: %s", i, rc ? err.msg : "read");
         ob_res_free(&t);
     }
     static const char three[] = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,"
