@@ -12,6 +12,7 @@
 #include "host/compare/hlshift.h"
 #include "host/compare/ranktest.h"
 #include "host/io/strmap.h"
+#include "methods/driver/driver.h"
 
 /* ---- join and verdicts ---- */
 
@@ -427,6 +428,36 @@ static int joints_note(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair 
                            first->b->tol_text, first->b->continuity, first->n->continuity);
 }
 
+/* Certificates (run --certify) are judged only where both rows of a pair
+ * have one (judge_quality): a note says when one run is certified and the
+ * other not, or how many joined rows with an approximation on both sides
+ * have a certificate on one side only (e.g. stopped by --job-timeout).
+ * Informational: the exit status is unchanged.  0, or -1 without memory. */
+static int cert_note(const ob_cmp_side *bs, const ob_cmp_side *ns, const pair *pr, int np, ob_cmp_result *r)
+{
+    int cb = 0, cn = 0, one = 0;
+    for (int i = 0; i < bs->res.n && !cb; i++)
+        cb = bs->res.v[i].cert_done != 0;
+    for (int i = 0; i < ns->res.n && !cn; i++)
+        cn = ns->res.v[i].cert_done != 0;
+    if (cb != cn)
+        return ob_strlist_addf(&r->notes, "%s is certified (run --certify), %s is not: the certificates were not "
+                               "compared", cb ? bs->label : ns->label, cb ? ns->label : bs->label);
+    const pair *first = NULL;
+    for (int i = 0; cb && i < np; i++) {
+        const ob_res_row *b = pr[i].b, *n = pr[i].n;
+        const int appr = (is_ok(b->status) || strcmp(b->status, "limit") == 0) &&
+                         (is_ok(n->status) || strcmp(n->status, "limit") == 0);
+        if (appr && (b->cert_done == OB_CERT_DONE) != (n->cert_done == OB_CERT_DONE) && !one++)
+            first = &pr[i];
+    }
+    if (!one)
+        return 0;
+    return ob_strlist_addf(&r->notes, "%d joined row(s) have a certificate on one side only (none, or stopped by "
+                           "--job-timeout): their certificates were not compared, e.g. %s d=%s %s tol=%s", one,
+                           first->b->curve, first->b->d_text, first->b->method, first->b->tol_text);
+}
+
 /* --strict-timing: what could not be judged, into r->strict (exit 3). */
 static int strict_reasons(const ob_cmp_opts *o, ob_cmp_result *r)
 {
@@ -610,7 +641,7 @@ int ob_cmp_rows(const ob_cmp_side *bs, const ob_cmp_side *ns, const ob_cmp_opts 
     method_means(pr, order, start, r);
     judge_methods(bs, ns, pr, order, start, o, r, xb, xn);
     judge_harness(bs, ns, pr, np, o, r, xb, xn);
-    rc = joints_note(bs, ns, pr, np, r) || strict_reasons(o, r) ? -1 : 0;
+    rc = joints_note(bs, ns, pr, np, r) || cert_note(bs, ns, pr, np, r) || strict_reasons(o, r) ? -1 : 0;
 done:
     ob_strmap_free(&mt.ix);
     free(order);

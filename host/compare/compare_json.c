@@ -62,7 +62,8 @@ static void jside(FILE *f, const char *key, const ob_cmp_side *s)
     fprintf(f, ", \"repetitions\": %d},\n", s->has_samples ? s->res.maxrep : 0);
 }
 
-/* A change's value of its field: a string (status), a number, or null. */
+/* A change's value of its field: a string (status), a number (certified:
+ * err_upper), or null. */
 static void jvalue(FILE *f, const ob_res_row *row, const char *field)
 {
     if (!row)
@@ -73,6 +74,8 @@ static void jvalue(FILE *f, const ob_res_row *row, const char *field)
         fprintf(f, "%ld", row->ctrl_points);
     else if (strcmp(field, "max_err") == 0)
         jnum(f, row->max_err);
+    else if (strcmp(field, "certified") == 0)
+        jnum(f, row->err_upper);  /* the certificate, not the job's time */
     else
         jnum(f, row->fit_ns + row->eval_ns);
 }

@@ -11,7 +11,8 @@
 #include "host/io/numfmt.h"
 #include "host/io/output.h"
 
-/* A field of a change as text: value of `row` for `field`; md: time in ms. */
+/* A field of a change as text: value of `row` for `field`; md: time in ms;
+ * certified: its err_upper (md: "yes (err_upper X)"). */
 
 const char *ob_method_verdict(const ob_method_sum *m)
 {
@@ -29,7 +30,14 @@ static void value_text(char *buf, size_t len, const ob_res_row *row, const char 
         snprintf(buf, len, "%ld", row->ctrl_points);
     else if (strcmp(field, "max_err") == 0)
         snprintf(buf, len, "%s", *row->max_err_text ? row->max_err_text : "nan");
-    else if (md)
+    else if (strcmp(field, "certified") == 0) {  /* the certificate, not the job's time */
+        char up[40];
+        ob_fmt_double(up, sizeof up, row->err_upper);
+        if (md)
+            snprintf(buf, len, "%s (err_upper %s)", *row->certified ? row->certified : "-", up);
+        else
+            snprintf(buf, len, "%s", up);
+    } else if (md)
         snprintf(buf, len, "%.4g ms", (row->fit_ns + row->eval_ns) * 1e-6);
     else
         snprintf(buf, len, "%.0f", row->fit_ns + row->eval_ns);
