@@ -15,7 +15,11 @@
  * whose key (curve, d, method, metric, split, tol) is not that of the job
  * shard.csv gives it (shard.csv holds each job's index and key hash: the
  * reason names results.csv and the line); rows whose keys, in job order, do
- * not hash to the run's plan_hash (from meta.json's plan_seed).  Rows
+ * not hash to the run's plan_hash (from meta.json's plan_seed); a shard of
+ * run --certify with an uncertified one, or another --certify mode (the
+ * reason names --certify, meta.json's certify.mode); a shard of run
+ * --certify with a job with an approximation (ok, limit) but no
+ * certificate (naming results.csv and the line).  Rows
  * are copied as text, so the merged file is byte for byte what the shards
  * wrote, in job order.  Like run, merge takes --out's lock (DIR/.lock,
  * ob_take_run_dir): exit 2 while another process holds it.  Exit 1: the
@@ -184,6 +188,19 @@ static int shard_results(shard_in *s, const char *dir)
         return -1;
     }
     const int nrows = t.n;
+    /* a shard of run --certify: every job with an approximation has its
+     * certificate (or cert_ns alone: stopped by --job-timeout) */
+    const ob_json_entry *cm = ob_json_get(&s->meta, "certify.mode");
+    for (int i = 0; cm && i < t.n; i++) {
+        const ob_res_row *r = &t.v[i];
+        if ((strcmp(r->status, "ok") == 0 || strcmp(r->status, "limit") == 0) && !r->cert_done) {
+            ob_error("merge: %s:%d: status %s with no certificate (err_upper, err_lower, certified and cert_ns "
+                     "empty) in a shard of run --certify (meta.json certify.mode %s)", path, r->line, r->status,
+                     cm->value);
+            ob_res_free(&t);
+            return -1;
+        }
+    }
     ob_res_free(&t);
     if (ob_slurp(path, &s->res_text, &s->res_len, &err) != 0) {
         ob_error("merge: %s", err.msg);
@@ -286,6 +303,18 @@ static int load_shard(shard_in *s, const char *dir)
 static int check_same(const shard_in *a, const shard_in *b)
 {
     static const char *const keys[] = {"data_hash", "kernel_fnv1a", "plan_hash", "plan_seed", "jobs_total", "git_commit", "compiler", "cflags", "reps"};
+    /* --certify is part of the plan (plan_hash): say so rather than only that the hashes differ */
+    const ob_json_entry *ca = ob_json_get(&a->meta, "certify.mode"), *cb = ob_json_get(&b->meta, "certify.mode");
+    if (!ob_json_same(ca, cb)) {
+        if (ca && cb)
+            ob_error("merge: %s and %s are not shards of one run: %s ran with --certify=%s, %s with --certify=%s "
+                     "(meta.json certify.mode)", a->dir, b->dir, a->dir, ca->value, b->dir, cb->value);
+        else
+            ob_error("merge: %s and %s are not shards of one run: %s ran with --certify (mode %s), %s without it "
+                     "(meta.json certify.mode)", a->dir, b->dir, ca ? a->dir : b->dir, (ca ? ca : cb)->value,
+                     ca ? b->dir : a->dir);
+        return -1;
+    }
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
         if (!ob_json_same(ob_json_get(&a->meta, keys[k]), ob_json_get(&b->meta, keys[k]))) {
             ob_error("merge: %s and %s are not shards of one run: %s %s vs %s", a->dir, b->dir, keys[k],
