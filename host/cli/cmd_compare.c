@@ -64,7 +64,13 @@
  *   4. same ctrl_points: max_err > base*(1+rtol)+atol is a regression,
  *      base > new*(1+rtol)+atol an improvement (--err-rtol, --err-atol;
  *      a max_err that becomes nan is a regression, one that stops being nan
- *      an improvement).
+ *      an improvement);
+ *   5. same max_err, both rows certified (run --certify): err_upper <= tol
+ *      no longer is a regression, now an improvement (field certified:
+ *      base and new each side's err_upper, in Markdown "yes (err_upper X)";
+ *      ratio new/base of err_upper).  A certified run against an
+ *      uncertified one, or joined rows with a certificate on one side only,
+ *      are not compared: a note says so (the exit status is unchanged).
  *
  * Timing of a joined row: when both runs timed their fits (run --time-fits),
  * t = method_ns, the method's own time (its rounds in fits.csv), judged
@@ -153,7 +159,8 @@
  * ci_hi,note; ci_lo, ci_hi the interval of a time ratio, "0" and "inf" when
  * unbounded, empty without; note as below):
  *   regression|improvement  a row's change: field status, ctrl_points,
- *                           max_err or time (t in ns); base and new values;
+ *                           max_err, certified (err_upper) or time (t in
+ *                           ns); base and new values;
  *                           ratio new/base (not for status; for a time with
  *                           repetitions the HL estimate); p_value when the
  *                           rank test was run.  A method's timing verdict:
