@@ -197,8 +197,13 @@ $(MAN): $(BIN) scripts/manpage.sh
 # built in), the manual page and the shell completions; and the library
 # (make lib): liboffbench.so.VERSION with its SONAME and .so links, its
 # header, and the sisl method's server in LIBDIR/offbench/, where the
-# library looks for it (host/lib/sisl_exe.h).  make uninstall removes
-# exactly those files (directories are left).  The loader finds the library
+# library looks for it (host/lib/sisl_exe.h).  scripts/install.sh does the
+# work, every path quoted (a PREFIX may hold spaces or glob characters; the
+# paths reach it through the environment, never through a command line):
+# install writes each file's path to the manifest
+# PREFIX/share/offbench/install-manifest.txt, and make uninstall removes
+# exactly the files it lists, then the manifest (directories are left;
+# without a manifest it removes nothing).  The loader finds the library
 # by name in a PREFIX outside its default directories only after ldconfig
 # (or with LD_LIBRARY_PATH; python: OFFBENCH_LIB), docs/python.md.
 PREFIX      ?= /usr/local
@@ -209,25 +214,28 @@ ZSHCOMPDIR  := $(PREFIX)/share/zsh/site-functions
 LIBDIR      := $(PREFIX)/lib
 INCLUDEDIR  := $(PREFIX)/include
 LIBEXECDIR  := $(LIBDIR)/offbench
-INSTALLED   := $(BINDIR)/offbench $(MAN1DIR)/offbench.1 $(BASHCOMPDIR)/offbench $(ZSHCOMPDIR)/_offbench \
-               $(LIBDIR)/$(notdir $(OBX_SO)) $(LIBDIR)/$(OBX_SONAME) $(LIBDIR)/liboffbench.so \
-               $(INCLUDEDIR)/offbench.h $(LIBEXECDIR)/offbench-sisl-server
+MANIFEST    := $(PREFIX)/share/offbench/install-manifest.txt
+
+install uninstall: export OB_DESTDIR = $(DESTDIR)
+install uninstall: export OB_MANIFEST = $(MANIFEST)
+install: export OB_BINDIR = $(BINDIR)
+install: export OB_MAN1DIR = $(MAN1DIR)
+install: export OB_BASHCOMPDIR = $(BASHCOMPDIR)
+install: export OB_ZSHCOMPDIR = $(ZSHCOMPDIR)
+install: export OB_LIBDIR = $(LIBDIR)
+install: export OB_INCLUDEDIR = $(INCLUDEDIR)
+install: export OB_LIBEXECDIR = $(LIBEXECDIR)
+install: export OB_BIN = $(BIN)
+install: export OB_MAN = $(MAN)
+install: export OB_SO = $(OBX_SO)
+install: export OB_SONAME = $(OBX_SONAME)
+install: export OB_SISL_SERVER = $(BUILD)/offbench-sisl-server
 
 install: $(BIN) $(MAN) lib
-	install -d "$(DESTDIR)$(BINDIR)" "$(DESTDIR)$(MAN1DIR)" "$(DESTDIR)$(BASHCOMPDIR)" "$(DESTDIR)$(ZSHCOMPDIR)" \
-	    "$(DESTDIR)$(LIBDIR)" "$(DESTDIR)$(INCLUDEDIR)" "$(DESTDIR)$(LIBEXECDIR)"
-	install -m 755 $(BIN) "$(DESTDIR)$(BINDIR)/offbench"
-	install -m 644 $(MAN) "$(DESTDIR)$(MAN1DIR)/offbench.1"
-	install -m 644 scripts/completion/offbench.bash "$(DESTDIR)$(BASHCOMPDIR)/offbench"
-	install -m 644 scripts/completion/_offbench "$(DESTDIR)$(ZSHCOMPDIR)/_offbench"
-	install -m 755 $(OBX_SO) "$(DESTDIR)$(LIBDIR)/$(notdir $(OBX_SO))"
-	ln -sf $(notdir $(OBX_SO)) "$(DESTDIR)$(LIBDIR)/$(OBX_SONAME)"
-	ln -sf $(OBX_SONAME) "$(DESTDIR)$(LIBDIR)/liboffbench.so"
-	install -m 644 include/offbench.h "$(DESTDIR)$(INCLUDEDIR)/offbench.h"
-	install -m 755 $(BUILD)/offbench-sisl-server "$(DESTDIR)$(LIBEXECDIR)/offbench-sisl-server"
+	sh scripts/install.sh install
 
 uninstall:
-	rm -f $(foreach f,$(INSTALLED),"$(DESTDIR)$(f)")
+	sh scripts/install.sh uninstall
 
 # Scaling checks that compare times (not in `make test`: the machines are
 # shared): each reader is linear in its input (tests/perf/perf_linear.c).

@@ -20,12 +20,15 @@
 # directory name instead.  For a word --OPT=VALUE the completions are of
 # VALUE alone.
 _offbench_candidates() {
-    local prog cmd cur prev opt value n
+    local prog cmd cur prev opt value n w
     prog=$1
     shift
     [ $# -ge 1 ] || return 0
     n=$#
-    eval "cur=\${$n}"
+    cur= prev=
+    for w in "$@"; do
+        prev=$cur cur=$w
+    done
     if [ "$n" -eq 1 ]; then
         case $cur in
             -*) printf '%s\n' --help --version | _offbench_narrow "$cur" ;;
@@ -40,7 +43,6 @@ _offbench_candidates() {
         [ "$n" -eq 2 ] && _offbench_subjects "$prog" | _offbench_narrow "$cur"
         return 0
     fi
-    eval "prev=\${$((n - 1))}"
     case $cur in
         --*=*)
             opt=${cur%%=*}
@@ -99,8 +101,22 @@ _offbench_help() {
 
 # What option $3 of command $2 takes, as its --help shows it ("FILE",
 # "LIST|all", ...); nothing when it takes no value.
+# $3 is a word as typed: compared as a string, never put into a sed or awk
+# program or a pattern (completion evaluates nothing typed).
 _offbench_takes() {
-    _offbench_help "$1" "$2" | sed -n "s/^  $3 \([^ ][^ ]*\).*/\1/p" | head -n 1
+    _offbench_help "$1" "$2" | {
+        local line rest
+        while IFS= read -r line; do
+            case $line in
+                "  $3 "[!\ ]*)
+                    rest=${line#"  $3 "}
+                    printf '%s\n' "${rest%% *}"
+                    break
+                    ;;
+            esac
+        done
+        cat >/dev/null
+    }
 }
 
 # Completions of the value $4 of option $3 of command $2 (the command
@@ -111,9 +127,9 @@ _offbench_value() {
     shift 4
     kind=$(_offbench_takes "$prog" "$cmd" "$opt")
     case $opt in
-        --methods) _offbench_list "$cur" all $(_offbench_methods "$prog") ;;
+        --methods) { echo all; _offbench_methods "$prog"; } | _offbench_list "$cur" ;;
         --method) _offbench_methods "$prog" | _offbench_narrow "$cur" ;;
-        --curve) _offbench_list "$cur" $(_offbench_curves "$prog" "$@") ;;
+        --curve) _offbench_curves "$prog" "$@" | _offbench_list "$cur" ;;
         --metric)
             { "$prog" list metrics 2>/dev/null | sed 's/ .*//'
               case $kind in *'|all'*) echo all ;; esac; } | _offbench_narrow "$cur" ;;
@@ -139,8 +155,11 @@ _offbench_methods() {
 }
 
 # The curve ids a run of these words would load (their --curves and --random).
+# Fast whatever is typed: a --curves that is no regular file, or is over
+# 16 MiB, is left out, and so is a --random that is not N or N:SEED in
+# digits; a --random N over 1000 gives the ids of its first 1000 curves.
 _offbench_curves() {
-    local prog file random w prev
+    local prog file random w prev n
     prog=$1
     shift
     file= random= prev=
@@ -149,6 +168,19 @@ _offbench_curves() {
         case $w in --curves=*) file=${w#*=} ;; --random=*) random=${w#*=} ;; esac
         prev=$w
     done
+    if [ -n "$file" ]; then
+        if [ ! -f "$file" ] || [ ! -r "$file" ] || [ "$(wc -c <"$file" | tr -d ' ')" -gt 16777216 ]; then
+            file=
+        fi
+    fi
+    case $random in
+        '' | :* | *:*:* | *[!0-9:]* | *:) random= ;;
+        *)
+            n=${random%%:*}
+            while case $n in 0?*) true ;; *) false ;; esac; do n=${n#0}; done
+            if [ "${#n}" -gt 4 ] || [ "$n" -gt 1000 ]; then random=1000${random#"$n"}; fi
+            ;;
+    esac
     {
         if [ -n "$file" ] && [ -n "$random" ]; then
             "$prog" list curves --curves "$file" --random "$random"
@@ -162,17 +194,16 @@ _offbench_curves() {
     } 2>/dev/null | awk '!/^#/ && $1 != "id" { print $1 }'
 }
 
-# A comma list: $1 is what is typed ("a,b,c"), the other arguments the
-# names; completes its last item, leaving out the names already listed.
+# A comma list: $1 is what is typed ("a,b,c"), stdin the names, one a
+# line; completes its last item, leaving out the names already listed.
 _offbench_list() {
     local cur head tail name
     cur=$1
-    shift
     case $cur in
         *,*) head=${cur%,*}, tail=${cur##*,} ;;
         *) head= tail=$cur ;;
     esac
-    for name in "$@"; do
+    while IFS= read -r name; do
         case ",$head" in *",$name,"*) continue ;; esac
         case $name in "$tail"*) printf '%s%s\n' "$head" "$name" ;; esac
     done

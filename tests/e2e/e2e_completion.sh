@@ -79,6 +79,11 @@ reply() { # reply WORD...: COMPREPLY after "offbench WORD..." (the last word und
     bash --norc --noprofile -c '. "$1"; shift; COMP_WORDS=("$@"); COMP_CWORD=$(($# - 1)); _offbench; printf "%s\n" "${COMPREPLY[@]}"' \
         _ "$B" "$OB" "$@" 2>"$T/rerr" | sort | tr '\n' ' ' | sed 's/ $//'
 }
+# zsh's completion function, compadd and its kin stubbed to print what they are given
+zreply() {
+    zsh -f -c '. "$1"; shift; compadd() { print -rl -- "$@"; }; compset() { :; }; _files() { echo @files; }; words=("$@"); CURRENT=$#; _offbench' \
+        _ "$Z" "$OB" "$@" 2>"$T/zerr"
+}
 got=$(reply run --methods ti); check '[ "$got" = tiller ] && [ ! -s "$T/rerr" ]' "_offbench: run --methods ti: '$got' $(cat "$T/rerr")"
 got=$(reply run --methods = zh); check '[ "$got" = "zhao zhao-rational" ]' "_offbench: --methods=zh split at '=': '$got'"
 got=$(reply run --split =); check '[ "$got" = "=greedy =maxerr =mid =optimal" ]' "_offbench: --split= (the cursor after '='): '$got'"
@@ -89,6 +94,61 @@ got=$(reply run --curves "$T/fi"); check '[ "$got" = "$T/file.curves" ]' "_offbe
 got=$(reply run --threads ""); check '[ -z "$got" ]' "_offbench: nothing for --threads N: '$got'"
 check 'bash --norc --noprofile -c ". \"$B\"; complete -p offbench ./offbench" | grep -c "_offbench" | grep -qx 2' \
     "bash: offbench and ./offbench are completed by _offbench"
+
+# completion never evaluates what is typed: words that would run a command
+# if expanded, eval'd or fed to sed's `e` (in any position: the word under
+# the cursor, the one before it, an option's value, --opt=value, the command)
+# are only ever passed on as quoted arguments
+pwn=$T/pwn
+payloads() { # one a line: each touches $pwn.N when evaluated
+    printf '%s\n' "\$(touch $pwn.1)" "\`touch $pwn.2\`" "';touch $pwn.3;'" "\";touch $pwn.4;\"" \
+        "--a//;1e touch $pwn.5;#" "--a/\\1/e;s/x/touch $pwn.6/e;#" "--\$(touch $pwn.7)" "--\`touch $pwn.8\`" \
+        "*(e:'touch $pwn.9':)" "\${IFS}\$(touch\${IFS}$pwn.10)"
+}
+tried=0
+while IFS= read -r p; do
+    for s in $shells; do
+        for words in "run|$p" "run|$p|" "run|--methods|$p" "run|--methods=$p" "run|--curve|$p" "run|$p|--curve|" \
+            "run|--random|$p|--curve|" "run|--random=$p|--curve|r" "run|--curves|$p|--curve|" "$p|--help" \
+            "list|curves|$p|" "run|--param|$p" "compare|--format|$p"; do
+            old_ifs=$IFS; IFS='|'; set -f; set -- $words; set +f; IFS=$old_ifs
+            [ "${words%|}" != "$words" ] && set -- "$@" ""
+            cands "$s" "$@" >/dev/null
+            [ "$s" = bash ] && reply "$@" >/dev/null
+            [ "$s" = zsh ] && zreply "$@" >/dev/null
+            tried=$((tried + 1))
+        done
+    done
+done <<EOP
+$(payloads)
+EOP
+check '[ "$tried" -gt 100 ] && [ -z "$(ls "$T" | grep "^pwn")" ]' "completion ran a command typed on the line: $(ls "$T" | grep "^pwn" | tr '\n' ' ') ($tried tries)"
+# zsh's completion function on its own word: a glob qualifier in the program's name runs nothing
+if command -v zsh >/dev/null 2>&1; then
+    zsh -f -c '. "$1"; compadd() { :; }; compset() { :; }; _files() { :; }; words=("$2" run --m); CURRENT=3; _offbench' \
+        _ "$Z" "$(dirname "$OB")/*(e:'touch $pwn.z':)" >/dev/null 2>&1
+    check '[ ! -e "$pwn.z" ]' "zsh: _offbench glob-expanded the program's name and ran its qualifier"
+fi
+
+# completion stays fast whatever is typed: a huge --random, a --curves that
+# is no regular file; finishes well within a generous bound
+for s in $shells; do
+    for words in "run --random 10000000 --curve rnd1_00000" "run --random=10000000:3 --curve rnd3_00000" \
+        "run --random 99999999999999999999999999 --curve rnd" "run --random 1e9 --curve rnd" \
+        "list curves --random 10000000 --curves /dev/zero --r" "run --curves /dev/zero --curve liu2002_ex"; do
+        set -f; set -- $words; set +f
+        case $s in
+            bash) timeout 10 bash --norc --noprofile -c '. "$1"; shift; _offbench_candidates "$@"' _ "$B" "$OB" "$@" ;;
+            zsh) timeout 10 zsh -f -c '. "$1"; shift; _offbench_candidates "$@"' _ "$Z" "$OB" "$@" ;;
+        esac >"$T/fast.out" 2>/dev/null
+        rc=$?
+        last=$(eval "printf '%s' \"\${$#}\"")
+        check '[ "$rc" -eq 0 ] && ! grep -qv "^$last" "$T/fast.out"' \
+            "$s: completion after offbench $words: status $rc (124: took over 10 s), $(wc -l <"$T/fast.out") lines: $(head -n 3 "$T/fast.out" | tr '\n' ' ')"
+    done
+    got=$(cands "$s" run --random 10000000 --curve rnd1_00000 | cut -d ' ' -f 1-2)
+    check '[ "$got" = "rnd1_000000 rnd1_000001" ]' "$s: a huge --random still completes its first ids: '$got'"
+done
 
 # the two scripts share one core, word for word
 core() { sed -n '/^# ---- begin shared core/,/^# ---- end shared core/p' "$1"; }

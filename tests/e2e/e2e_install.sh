@@ -119,6 +119,50 @@ check '[ $? -eq 0 ] && [ -z "$(find "$D" ! -type d)" ]' "make uninstall leaves n
 mk uninstall DESTDIR="$D" PREFIX="$P" >"$T/un2.out" 2>&1
 check '[ $? -eq 0 ]' "make uninstall twice: still exit 0"
 
+# a manifest: install writes PREFIX/share/offbench/install-manifest.txt (the
+# paths it wrote, one a line), uninstall removes exactly those and the
+# manifest, nothing else, whatever the PREFIX holds (spaces, a glob char);
+# the files a PREFIX split at its space or globbed would name are decoys
+installed="bin/offbench share/man/man1/offbench.1 share/bash-completion/completions/offbench share/zsh/site-functions/_offbench
+lib/liboffbench.so.$VER lib/liboffbench.so.0 lib/liboffbench.so include/offbench.h lib/offbench/offbench-sisl-server"
+for P in "$T/my prefix" "$T/st*r dir"; do
+    mkdir -p "$P/bin" "$T/star dir/bin"
+    echo decoy >"$P/bin/other"; echo decoy >"${P%% *}"; echo decoy >"$T/star dir/bin/offbench"
+    mk install PREFIX="$P" >"$T/sp.out" 2>&1
+    check '[ $? -eq 0 ]' "make install PREFIX='$P': $(tail -n 3 "$T/sp.out")"
+    for f in $installed; do
+        check '[ -f "$P/$f" ]' "installed into '$P': $f"
+    done
+    man=$P/share/offbench/install-manifest.txt
+    check '[ -f "$man" ] && [ "$(sort "$man")" = "$(for f in $installed; do printf "%s\n" "$P/$f"; done | sort)" ]' \
+        "the manifest lists exactly the installed files: $(head -n 3 "$man" 2>&1)"
+    mk uninstall PREFIX="$P" >"$T/spu.out" 2>&1
+    check '[ $? -eq 0 ]' "make uninstall PREFIX='$P': $(tail -n 3 "$T/spu.out")"
+    check '[ "$(cd "$P" && find . ! -type d)" = ./bin/other ]' "uninstall removed exactly the installed files and the manifest from '$P': $(cd "$P" && find . ! -type d | head -n 12 | tr '\n' ' ')"
+    check '[ "$(cat "$P/bin/other" "${P%% *}" "$T/star dir/bin/offbench" 2>&1)" = "decoy
+decoy
+decoy" ]' "uninstall left the files it never installed (beside them, named like the prefix's first word, matched by its glob)"
+    rm -f "${P%% *}"
+done
+# with DESTDIR (a space in it too): the manifest holds the paths under PREFIX
+D2="$T/de st" P2="/opt/off bench"
+mk install DESTDIR="$D2" PREFIX="$P2" >"$T/sd.out" 2>&1
+check '[ $? -eq 0 ] && grep -qx "$P2/bin/offbench" "$D2$P2/share/offbench/install-manifest.txt"' \
+    "install DESTDIR PREFIX: the manifest names the files as PREFIX will hold them: $(tail -n 3 "$T/sd.out")"
+mk uninstall DESTDIR="$D2" PREFIX="$P2" >/dev/null 2>&1
+check '[ -z "$(find "$D2" ! -type d)" ]' "uninstall DESTDIR PREFIX with spaces: $(find "$D2" ! -type d | head -n 3)"
+# no manifest: uninstall says so and removes nothing
+P3="$T/no manifest"
+mkdir -p "$P3/bin" && echo theirs >"$P3/bin/offbench"
+mk uninstall PREFIX="$P3" >"$T/nm.out" 2>&1
+check '[ "$(cat "$P3/bin/offbench")" = theirs ] && grep -q "manifest" "$T/nm.out"' \
+    "uninstall without a manifest removes nothing and says so: $(cat "$T/nm.out")"
+# a manifest line that is not a plain absolute path is refused, not followed
+mkdir -p "$P3/share/offbench" "$T/outside" && echo keep >"$T/outside/f"
+printf '%s\n' "$P3/bin/../../outside/f" "$T/outside/./f" >"$P3/share/offbench/install-manifest.txt"
+mk uninstall PREFIX="$P3" >"$T/bm.out" 2>&1
+check '[ -f "$T/outside/f" ] && [ "$(cat "$P3/bin/offbench")" = theirs ]' "a manifest line with a . or .. component is not followed: $(cat "$T/bm.out")"
+
 # PREFIX alone
 mk install PREFIX="$T/pfx" >"$T/inst2.out" 2>&1
 check '[ $? -eq 0 ] && [ -x "$T/pfx/bin/offbench" ] && "$T/pfx/bin/offbench" --version >/dev/null' "make install PREFIX=DIR"
