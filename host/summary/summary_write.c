@@ -89,6 +89,22 @@ static const char *not_certified(const ob_res_row *r)
     return isinf(r->err_upper) ? "unbounded" : "over tol";
 }
 
+/* The ok jobs whose certificate does not hold them within tol, one at a
+ * time in the curves table's order: from cell *at on, the next such job's
+ * row, its cell (*p, *m, *k) and why (not_certified); NULL past the last. */
+static const ob_res_row *next_cert_miss(const ob_summary *s, long *at, int *p, int *m, int *k, const char **why)
+{
+    for (const long n = (long)s->np * s->nm * s->nt; *at < n; ++*at) {
+        *p = (int)(*at / ((long)s->nm * s->nt)), *m = (int)(*at / s->nt % s->nm), *k = (int)(*at % s->nt);
+        const ob_res_row *r = s->run.cell[ob_sum_at(s, *p, *m, *k)];
+        if ((*why = not_certified(r)) != NULL) {
+            ++*at;
+            return r;
+        }
+    }
+    return NULL;
+}
+
 static void cell_job_ratio(char *buf, size_t len, const ob_res_row *a, const ob_res_row *b)
 {
     if (is_ok(a) && is_ok(b))
@@ -391,33 +407,29 @@ static void grid_cert_misses(grid *g, const ob_summary *s)
     for (size_t c = 0; c < sizeof label / sizeof label[0]; c++)
         grid_col(g, label[c], NULL, c == 0 || c == 2 || c == 8 ? 'l' : 'r');
     char buf[64];
-    int any = 0;
-    for (int p = 0; p < s->np; p++)
-        for (int m = 0; m < s->nm; m++)
-            for (int k = 0; k < s->nt; k++) {
-                const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
-                const char *why = not_certified(r);
-                if (!why)
-                    continue;
-                const int row = grid_row(g, 0);
-                any = 1;
-                grid_set(g, row, 0, s->pairs[p].curve);
-                snprintf(buf, sizeof buf, "%.6g", s->pairs[p].d);
-                grid_set(g, row, 1, buf);
-                grid_set(g, row, 2, s->methods[m]);
-                grid_set(g, row, 3, s->tol_text[k]);
-                snprintf(buf, sizeof buf, "%ld", r->ctrl_points);
-                grid_set(g, row, 4, buf);
-                snprintf(buf, sizeof buf, "%.3g", r->max_err);
-                grid_set(g, row, 5, buf);
-                if (r->cert_done == 1) {
-                    ob_fmt_bound(buf, sizeof buf, r->err_upper, 1);
-                    grid_set(g, row, 6, buf);
-                    ob_fmt_bound(buf, sizeof buf, r->err_lower, -1);
-                    grid_set(g, row, 7, buf);
-                }
-                grid_set(g, row, 8, why);
-            }
+    int any = 0, p, m, k;
+    const char *why;
+    const ob_res_row *r;
+    for (long at = 0; (r = next_cert_miss(s, &at, &p, &m, &k, &why)) != NULL;) {
+        const int row = grid_row(g, 0);
+        any = 1;
+        grid_set(g, row, 0, s->pairs[p].curve);
+        snprintf(buf, sizeof buf, "%.6g", s->pairs[p].d);
+        grid_set(g, row, 1, buf);
+        grid_set(g, row, 2, s->methods[m]);
+        grid_set(g, row, 3, s->tol_text[k]);
+        snprintf(buf, sizeof buf, "%ld", r->ctrl_points);
+        grid_set(g, row, 4, buf);
+        snprintf(buf, sizeof buf, "%.3g", r->max_err);
+        grid_set(g, row, 5, buf);
+        if (r->cert_done == 1) {
+            ob_fmt_bound(buf, sizeof buf, r->err_upper, 1);
+            grid_set(g, row, 6, buf);
+            ob_fmt_bound(buf, sizeof buf, r->err_lower, -1);
+            grid_set(g, row, 7, buf);
+        }
+        grid_set(g, row, 8, why);
+    }
     if (!any)
         grid_set(g, grid_row(g, 0), 0, "(none)");
 }
@@ -853,19 +865,16 @@ static void csv_cert_tables(FILE *f, const ob_summary *s)
             csv_int(&l, CV_N, n);
             csv_put(f, &l);
         }
-    for (int p = 0; p < s->np; p++)
-        for (int m = 0; m < s->nm; m++)
-            for (int k = 0; k < s->nt; k++) {
-                const ob_res_row *r = s->run.cell[ob_sum_at(s, p, m, k)];
-                const char *why = not_certified(r);
-                if (!why)
-                    continue;
-                csv_cell(&l, s, "not_certified", p, m, k);
-                l.text[CV_STATUS] = why;
-                csv_int(&l, CV_VALUE, r->ctrl_points);
-                csv_job_cert(&l, r);
-                csv_put(f, &l);
-            }
+    int p, m, k;
+    const char *why;
+    const ob_res_row *r;
+    for (long at = 0; (r = next_cert_miss(s, &at, &p, &m, &k, &why)) != NULL;) {
+        csv_cell(&l, s, "not_certified", p, m, k);
+        l.text[CV_STATUS] = why;
+        csv_int(&l, CV_VALUE, r->ctrl_points);
+        csv_job_cert(&l, r);
+        csv_put(f, &l);
+    }
 }
 
 static void csv_methods(FILE *f, const ob_summary *s)
