@@ -1,0 +1,51 @@
+#!/bin/sh
+# End-to-end differential test of measure's SVG reader against its
+# documented reference, scripts/svg2curves.py (docs/export-measure.md,
+# "Reading SVG"): every tests/data/svg/xml_*.svg (an attribute's name in
+# another's value, '>' in a value before a transform, units, display:none,
+# visibility, a nested <svg>'s viewport, comments, CDATA and entities,
+# transforms of every form, near-straight and rotated arcs) read by both,
+# the same pieces in the same order, control points equal to 1e-12 of the
+# file's largest coordinate (tests/e2e/svgdiff.py).  The C side is
+# test_svg_read --dump, built beside the program (make builds it with the
+# tests).  Also: what measure says of what it leaves out.
+# Uses $OFFBENCH (set by make) or ./offbench.
+. "$(dirname "$0")/lib_e2e.sh"
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+BUILD=$(dirname "$OB")
+[ "$(basename "$OB")" = offbench ] && [ -d "$BUILD/build" ] && [ "$BUILD" = "$ROOT" ] && BUILD=$ROOT/build
+DUMP=$BUILD/tests/unit/test_svg_read
+
+# --- measure notes what is not drawn ---------------------------------------------
+"$OB" measure --curve line --d 0.3 --approx "$ROOT/tests/data/svg/xml_display_none.svg" >"$T/m.csv" 2>"$T/m.err"
+check 'grep -q "display:none <path> (at line 6)" "$T/m.err" && grep -q "display:none <g> (at line 7)" "$T/m.err"' \
+    "display:none: noted with the element and its line: $(head -c 400 "$T/m.err")"
+printf '<svg>\n<path d="M0 0 L1 0" transform="translate(1)"/>\n<path d="M0 0 L1 0"' > "$T/bad.svg"
+"$OB" measure --curve line --d 0.3 --approx "$T/bad.svg" >"$T/m.csv" 2>"$T/m.err"
+check '[ $? -eq 2 ] && grep -q "bad.svg:3: not well-formed XML" "$T/m.err"' "XML cut short: exit 2, FILE:LINE: $(cat "$T/m.err")"
+printf '<svg>\n<rect width="1em" height="2"/></svg>' > "$T/em.svg"
+"$OB" measure --curve line --d 0.3 --approx "$T/em.svg" >"$T/m.csv" 2>"$T/m.err"
+check '[ $? -eq 2 ] && grep -q "em.svg:2: <rect>: width: .*unit" "$T/m.err"' "a unit not read (em): exit 2, FILE:LINE and the attribute: $(cat "$T/m.err")"
+
+# --- the C reader and svg2curves.py: the same pieces -------------------------------
+if ! /usr/bin/python3 -c 'import svgelements' >/dev/null 2>&1; then
+    echo "e2e_svg_xml: /usr/bin/python3 has no svgelements: the comparison with svg2curves.py skipped"
+    skipped=$((skipped + 1))
+elif [ ! -x "$DUMP" ]; then
+    echo "e2e_svg_xml: no $DUMP (make builds it with the tests): the comparison skipped"
+    skipped=$((skipped + 1))
+else
+    for f in "$ROOT"/tests/data/svg/xml_*.svg; do
+        s=$(basename "$f" .svg)
+        "$DUMP" --dump "$f" >"$T/$s.dump" 2>"$T/$s.derr"
+        rc=$?
+        /usr/bin/python3 "$ROOT/scripts/svg2curves.py" "$f" --d 0.1 --out "$T/$s.curves" 2>"$T/$s.cerr"
+        pc=$?
+        : >"$T/$s.diff"
+        [ $rc -eq 0 ] && [ $pc -eq 0 ] && /usr/bin/python3 "$ROOT/tests/e2e/svgdiff.py" "$T/$s.dump" "$T/$s.curves" >"$T/$s.diff" 2>&1
+        check '[ $? -eq 0 ] && [ $rc -eq 0 ] && [ $pc -eq 0 ]' \
+            "$s.svg: the C reader (rc $rc: $(head -c 200 "$T/$s.derr")) and svg2curves.py (rc $pc: $(tail -n 1 "$T/$s.cerr")) differ: $(head -c 1500 "$T/$s.diff")"
+    done
+fi
+
+e2e_done
