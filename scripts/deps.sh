@@ -8,6 +8,8 @@
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
 #   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
+#   expat (host/io/approx_read_svg.c): libexpat1-dev (required: measure's
+#                          SVG reader parses the XML with it; the build links -lexpat)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 #   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
@@ -44,6 +46,7 @@ rm -f /tmp/ob_omp_probe.$$
 have_header CL/cl.h || missing="$missing opencl-headers"
 have_header sisl.h || missing="$missing libsisl-dev"
 have_header flint/fmpz_poly.h || missing="$missing libflint-dev"
+have_header expat.h || missing="$missing libexpat1-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
@@ -132,12 +135,13 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
                       "the CPU path builds without them" >&2
               have_header sisl.h || { echo "deps: libsisl-dev is required (the build links -lsisl)" >&2; exit 1; }
               have_header flint/fmpz_poly.h || { echo "deps: libflint-dev is required (the build links -lflint)" >&2; exit 1; }
+              have_header expat.h || { echo "deps: libexpat1-dev is required (the build links -lexpat)" >&2; exit 1; }
               exit 0; }
     fi
     echo "deps: installed:$missing"
 else
-    case "$missing" in *libsisl-dev*|*libflint-dev*)
-        echo "deps: missing:$missing (libsisl-dev and libflint-dev are required: the build links -lsisl -lflint)" >&2
+    case "$missing" in *libsisl-dev*|*libflint-dev*|*libexpat1-dev*)
+        echo "deps: missing:$missing (libsisl-dev, libflint-dev and libexpat1-dev are required: the build links -lsisl -lflint -lexpat)" >&2
         echo "deps: install them with: sudo apt-get install$missing" >&2
         exit 1 ;;
     esac
