@@ -161,7 +161,7 @@ static void arc_point(const arc_frame *f, const double u[2], double q[2])
  * rational quadratic pieces of at most 90 degrees, computed in the frame
  * where the ellipse is the unit circle and the chord's midpoint the origin:
  * the half chord (ux, uy) of length s = sin a, a half the small arc's angle,
- * and the centre at distance c = cos a = sqrt((1 - s)(1 + s)) across it.
+ * and the centre at distance c = cos a = sqrt(1 - ux^2 - uy^2) across it.
  * An arc of one piece (a <= 45 degrees) is built from the chord alone, its
  * middle control point s^2 / c off the midpoint (no far-away centre whose
  * round-off would swamp a near-straight arc); when that offset is below
@@ -186,7 +186,9 @@ static int add_arc(const ob_svgr_emit *e, const double p0[2], double rx, double 
     if (s >= 1.0) {
         f.rx *= s, f.ry *= s, ux /= s, uy /= s, s = 1.0;
     }
-    const double c = sqrt((1.0 - s) * (1.0 + s)), sgn = large != sweep ? 1.0 : -1.0;
+    /* c^2 = 1 - s^2 from the half chord's parts: exactly 1/2 for a quarter
+     * of a circle, so its weight is cos(pi/4) rounded once */
+    const double c = s == 1.0 ? 0.0 : sqrt(fmax(0.0, 1.0 - ux * ux - uy * uy)), sgn = large != sweep ? 1.0 : -1.0;
     const double theta = large ? 2.0 * OB_PI - 2.0 * atan2(s, c) : 2.0 * atan2(s, c);
     const int n = (int)fmax(1.0, ceil(theta / (0.5 * OB_PI) - 1e-9));
     if (n == 1) {
