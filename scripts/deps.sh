@@ -12,7 +12,8 @@
 #                          SVG reader parses the XML with it; the build links -lexpat)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
-#   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
+#   svg2curves.py check (tests/e2e/svgcheck.py): python3-svgelements, an independent
+#                          SVG parser (optional: never fails the build)
 #   DXF read-back test (tests/e2e/e2e_export.sh) and results/export's figure:
 #                          python3-ezdxf (optional: the test is skipped without it)
 #   zsh completion test (tests/e2e/e2e_completion.sh): zsh (optional: the
@@ -59,7 +60,8 @@ fi
 
 # Optional: Python modules of the scripts, run as /usr/bin/python3:
 # python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py),
-# python3-svgelements for scripts/svg2curves.py (SVG paths to .curves),
+# python3-svgelements for tests/e2e/svgcheck.py (an independent check of
+# scripts/svg2curves.py, which itself needs only the standard library),
 # python3-ezdxf for the DXF read-back of `run --export` (tests/e2e/e2e_export.sh)
 # and results/export/*.png (scripts/dxf_png.py), python3-yaml for the lint of
 # the CI recipes in scripts/ci/ (tests/e2e/e2e_ci_recipes.sh).
@@ -88,7 +90,7 @@ optional_py() { # MODULE PACKAGE WHAT
     optional_apt "$2" "$3"
 }
 optional_py matplotlib python3-matplotlib "the plots"
-optional_py svgelements python3-svgelements "scripts/svg2curves.py"
+optional_py svgelements python3-svgelements "the svg2curves.py check"
 optional_py ezdxf python3-ezdxf "the DXF read-back test"
 # Optional: zsh, to test the zsh completion (scripts/completion/_offbench).
 command -v zsh >/dev/null 2>&1 || optional_apt zsh "the zsh completion test"
