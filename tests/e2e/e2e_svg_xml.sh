@@ -6,7 +6,8 @@
 # visibility, a nested <svg>'s viewport, comments, CDATA and entities,
 # transforms of every form, near-straight and rotated arcs) read by both,
 # the same pieces in the same order, control points equal to 1e-12 of the
-# file's largest coordinate (tests/e2e/svgdiff.py).  The C side is
+# file's largest coordinate (tests/e2e/svgdiff.py); and hand.svg, a drawing
+# program's sketch.  The C side is
 # test_svg_read --dump, built beside the program (make builds it with the
 # tests).  Also: what measure says of what it leaves out.
 # Uses $OFFBENCH (set by make) or ./offbench.
@@ -35,7 +36,7 @@ elif [ ! -x "$DUMP" ]; then
     echo "e2e_svg_xml: no $DUMP (make builds it with the tests): the comparison skipped"
     skipped=$((skipped + 1))
 else
-    for f in "$ROOT"/tests/data/svg/xml_*.svg; do
+    for f in "$ROOT"/tests/data/svg/xml_*.svg "$ROOT/tests/data/svg/hand.svg"; do
         s=$(basename "$f" .svg)
         "$DUMP" --dump "$f" >"$T/$s.dump" 2>"$T/$s.derr"
         rc=$?
