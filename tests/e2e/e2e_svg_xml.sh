@@ -9,7 +9,8 @@
 # file's largest coordinate (tests/e2e/svgdiff.py); and hand.svg, a drawing
 # program's sketch.  The C side is
 # test_svg_read --dump, built beside the program (make builds it with the
-# tests).  Also: what measure says of what it leaves out.
+# tests).  Also: what measure says of what it leaves out, and svg2curves.py's
+# arcs (radius 0.5 to 1e300 and 1e-300, every flag) on the analytic circle.
 # Uses $OFFBENCH (set by make) or ./offbench.
 . "$(dirname "$0")/lib_e2e.sh"
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
@@ -27,6 +28,44 @@ check '[ $? -eq 2 ] && grep -q "bad.svg:3: not well-formed XML" "$T/m.err"' "XML
 printf '<svg>\n<rect width="1em" height="2"/></svg>' > "$T/em.svg"
 "$OB" measure --curve line --d 0.3 --approx "$T/em.svg" >"$T/m.csv" 2>"$T/m.err"
 check '[ $? -eq 2 ] && grep -q "em.svg:2: <rect>: width: .*unit" "$T/m.err"' "a unit not read (em): exit 2, FILE:LINE and the attribute: $(cat "$T/m.err")"
+
+# --- svg2curves.py's arcs (scripts/svgpath.py) on the analytic circle --------------
+# from (0,0) to (1,0), radius R, every flag: sampled points of every piece
+# within 1e-14 of the arc's size of the circle (distance written without the
+# far centre), as tests/unit/test_svg_read.c checks the C reader's
+/usr/bin/python3 - "$ROOT/scripts" >"$T/arcs.out" 2>&1 <<'PY'
+import sys
+from fractions import Fraction as F
+from math import comb
+sys.path.insert(0, sys.argv[1])
+import svgpath
+bad = 0
+for R in (0.5, 0.7, 1e3, 1e8, 1e12, 1e16, 1e20, 1e300, 1e-3, 1e-300):
+    for large in (False, True):
+        for sweep in (False, True):
+            pieces = svgpath.arc((0.0, 0.0), R, R, 0.0, large, sweep, (1.0, 0.0))
+            Re = max(R, 0.5)
+            sgn = 0 if R < 0.5 else (1 if large != sweep else -1)
+            hr = (1 - (F(1, 2) / F(Re)) ** 2)  # (h / R)^2, exact
+            worst = 0.0
+            for _, p in pieces:
+                for i in range(17):
+                    t = F(i, 16)
+                    n = len(p) - 1
+                    b = [comb(n, k) * t ** k * (1 - t) ** (n - k) for k in range(n + 1)]
+                    W = sum(bk * F(q[2]) for bk, q in zip(b, p))
+                    x = sum(bk * F(q[2]) * F(q[0]) for bk, q in zip(b, p)) / W - F(1, 2)
+                    y = sum(bk * F(q[2]) * F(q[1]) for bk, q in zip(b, p)) / W
+                    # (|P - C|^2 - R^2) / 2R, C = (1/2, sgn h), h / R = sqrt(hr)
+                    d = float((x * x + y * y - F(1, 4)) / (2 * F(Re))) - sgn * (float(hr) ** 0.5) * float(y)
+                    worst = max(worst, abs(d))
+            size = Re if (large or R < 0.5) else 1.0
+            if not worst <= 1e-14 * size or pieces[0][1][0][:2] != (0.0, 0.0) or pieces[-1][1][-1][:2] != (1.0, 0.0):
+                bad += 1
+                print(f"R {R} large {large} sweep {sweep}: {len(pieces)} pieces, {worst:.3g} from the circle")
+print(f"{bad} bad")
+PY
+check 'grep -q "^0 bad$" "$T/arcs.out"' "svgpath.arc on the analytic circle: $(head -c 600 "$T/arcs.out")"
 
 # --- the C reader and svg2curves.py: the same pieces -------------------------------
 if ! /usr/bin/python3 -c 'import svgelements' >/dev/null 2>&1; then
