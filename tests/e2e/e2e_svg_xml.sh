@@ -68,8 +68,8 @@ PY
 check 'grep -q "^0 bad$" "$T/arcs.out"' "svgpath.arc on the analytic circle: $(head -c 600 "$T/arcs.out")"
 
 # --- the C reader and svg2curves.py: the same pieces -------------------------------
-if ! /usr/bin/python3 -c 'import svgelements' >/dev/null 2>&1; then
-    echo "e2e_svg_xml: /usr/bin/python3 has no svgelements: the comparison with svg2curves.py skipped"
+if [ ! -x /usr/bin/python3 ]; then
+    echo "e2e_svg_xml: no /usr/bin/python3: the comparison with svg2curves.py skipped"
     skipped=$((skipped + 1))
 elif [ ! -x "$DUMP" ]; then
     echo "e2e_svg_xml: no $DUMP (make builds it with the tests): the comparison skipped"
