@@ -23,8 +23,8 @@ exits 0; 2 with a message when a step fails.  Defaults: --tol 1e-2,
 arcs of a drawing, which some methods skip: ahn does), every curve,
 ./offbench of this checkout.  --keep DIR keeps the .curves file, the run
 and the export there.
-Needs /usr/bin/python3 with matplotlib and numpy, and svgelements for
-svg2curves.py (Debian: python3-matplotlib, python3-svgelements).
+Needs /usr/bin/python3 with matplotlib and numpy (Debian:
+python3-matplotlib); svg2curves.py needs only the standard library.
 """
 import argparse
 import csv

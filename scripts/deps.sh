@@ -8,9 +8,12 @@
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
 #   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
+#   expat (host/io/approx_read_svg.c): libexpat1-dev (required: measure's
+#                          SVG reader parses the XML with it; the build links -lexpat)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
-#   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
+#   svg2curves.py check (tests/e2e/svgcheck.py): python3-svgelements, an independent
+#                          SVG parser (optional: never fails the build)
 #   DXF read-back test (tests/e2e/e2e_export.sh) and results/export's figure:
 #                          python3-ezdxf (optional: the test is skipped without it)
 #   zsh completion test (tests/e2e/e2e_completion.sh): zsh (optional: the
@@ -44,6 +47,7 @@ rm -f /tmp/ob_omp_probe.$$
 have_header CL/cl.h || missing="$missing opencl-headers"
 have_header sisl.h || missing="$missing libsisl-dev"
 have_header flint/fmpz_poly.h || missing="$missing libflint-dev"
+have_header expat.h || missing="$missing libexpat1-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
@@ -56,7 +60,8 @@ fi
 
 # Optional: Python modules of the scripts, run as /usr/bin/python3:
 # python3-matplotlib for the plots (scripts/plot.py, scripts/plot_tables.py),
-# python3-svgelements for scripts/svg2curves.py (SVG paths to .curves),
+# python3-svgelements for tests/e2e/svgcheck.py (an independent check of
+# scripts/svg2curves.py, which itself needs only the standard library),
 # python3-ezdxf for the DXF read-back of `run --export` (tests/e2e/e2e_export.sh)
 # and results/export/*.png (scripts/dxf_png.py), python3-yaml for the lint of
 # the CI recipes in scripts/ci/ (tests/e2e/e2e_ci_recipes.sh).
@@ -85,7 +90,7 @@ optional_py() { # MODULE PACKAGE WHAT
     optional_apt "$2" "$3"
 }
 optional_py matplotlib python3-matplotlib "the plots"
-optional_py svgelements python3-svgelements "scripts/svg2curves.py"
+optional_py svgelements python3-svgelements "the svg2curves.py check"
 optional_py ezdxf python3-ezdxf "the DXF read-back test"
 # Optional: zsh, to test the zsh completion (scripts/completion/_offbench).
 command -v zsh >/dev/null 2>&1 || optional_apt zsh "the zsh completion test"
@@ -132,12 +137,13 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
                       "the CPU path builds without them" >&2
               have_header sisl.h || { echo "deps: libsisl-dev is required (the build links -lsisl)" >&2; exit 1; }
               have_header flint/fmpz_poly.h || { echo "deps: libflint-dev is required (the build links -lflint)" >&2; exit 1; }
+              have_header expat.h || { echo "deps: libexpat1-dev is required (the build links -lexpat)" >&2; exit 1; }
               exit 0; }
     fi
     echo "deps: installed:$missing"
 else
-    case "$missing" in *libsisl-dev*|*libflint-dev*)
-        echo "deps: missing:$missing (libsisl-dev and libflint-dev are required: the build links -lsisl -lflint)" >&2
+    case "$missing" in *libsisl-dev*|*libflint-dev*|*libexpat1-dev*)
+        echo "deps: missing:$missing (libsisl-dev, libflint-dev and libexpat1-dev are required: the build links -lsisl -lflint -lexpat)" >&2
         echo "deps: install them with: sudo apt-get install$missing" >&2
         exit 1 ;;
     esac

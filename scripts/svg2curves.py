@@ -5,9 +5,15 @@ Usage: scripts/svg2curves.py FILE.svg --d D[,D...] [--out FILE.curves]
                              [--y up|down] [--units user|px] [--closed open|skip]
                              [--prefix P] [--strict]
 
-The SVG is parsed by svgelements (Debian: python3-svgelements).  Every
-<path>, <line>, <polyline>, <polygon>, <rect>, <circle> and <ellipse> is read
-with the transforms of the element and of its groups applied; each subpath
+The SVG is parsed by Python's xml.etree (expat) and its geometry read by
+scripts/svgpath.py, by the rules and the arithmetic of measure's SVG reader
+(docs/export-measure.md, "Reading SVG"; tests/e2e/e2e_svg_xml.sh checks
+that both make the same pieces): every <path>, <line>, <polyline>,
+<polygon>, <rect>, <circle> and <ellipse> outside defs, symbol, clipPath,
+mask, marker and pattern, not under display:none and not invisible, with
+the transforms of the element and its groups and each nested <svg>'s
+viewport applied, lengths in px, in, cm, mm, pt, pc or %; <use>, <text> and
+<image> are left out and named.  Each subpath
 becomes one curve (family `svg`), its id the element's id made safe for the
 .curves reader (a suffix .N for subpath N when the element has several).
 Segments: a line is a degree-1 Bezier segment, a quadratic or cubic Bezier
@@ -32,6 +38,7 @@ import re
 import sys
 import xml.etree.ElementTree as ET
 
+import svgpath
 import svgsyntax
 
 PROG = "svg2curves"
@@ -44,8 +51,8 @@ MAX_OFFSETS = 1000
 ARC_PIECE = math.pi / 2  # largest arc piece, radians
 SVG_NS = "http://www.w3.org/2000/svg"
 SHAPE_TAGS = ("path", "line", "polyline", "polygon", "rect", "circle", "ellipse")
-# elements that draw nothing themselves, or whose content svgelements expands
-# (use) or leaves unrendered (defs, symbol, clipPath, ...): never reported
+# elements that draw nothing themselves, or whose content is not drawn
+# (defs, symbol, clipPath, ...): never reported as unknown
 QUIET_TAGS = ("svg", "g", "defs", "title", "desc", "metadata", "style", "symbol",
               "use", "clipPath", "mask", "marker", "pattern", "linearGradient",
               "radialGradient", "stop", "filter", "script", "switch", "a")
@@ -70,10 +77,6 @@ def fmt(x):
 
 # ---- 2x3 affine maps (a, b, c, d, e, f): x' = a x + c y + e, y' = b x + d y + f
 
-def mat_of(m):
-    return (float(m.a), float(m.b), float(m.c), float(m.d), float(m.e), float(m.f))
-
-
 def mat_apply(m, x, y):
     a, b, c, d, e, f = m
     return (a * x + c * y + e, b * x + d * y + f)
@@ -87,104 +90,8 @@ def mat_then(m, n):
             A * e + C * f + E, B * e + D * f + F)
 
 
-def mat_inverse(m):
-    a, b, c, d, e, f = m
-    det = a * d - b * c
-    if det == 0 or not math.isfinite(det):
-        return None
-    ia, ib, ic, id_ = d / det, -b / det, -c / det, a / det
-    return (ia, ib, ic, id_, -(ia * e + ic * f), -(ib * e + id_ * f))
-
-
 # ---- segments: (letter, [(x, y, w), ...]) rational Bezier control points
-
-def arc_center(seg, u, v):
-    """The centre of the ellipse of axes u, v (orthogonal) through the arc's
-    two ends, the one nearer svgelements' centre.  svgelements computes it
-    with sqrt(1 - lambda), which after its scaling of too-small radii (SVG
-    1.1, Appendix F.6.6) is the square root of round-off: centres 1e-8 of
-    the radius off the chord's midpoint.  Here, in the frame where the
-    ellipse is the unit circle, lambda within 1e-12 of 1 is that case and
-    puts the centre on the midpoint."""
-    rx, ry = math.hypot(*u), math.hypot(*v)
-    eu, ev = (u[0] / rx, u[1] / rx), (v[0] / ry, v[1] / ry)
-    mx, my = (seg.start.x + seg.end.x) / 2, (seg.start.y + seg.end.y) / 2
-    hx, hy = (seg.start.x - seg.end.x) / 2, (seg.start.y - seg.end.y) / 2
-    dx, dy = (hx * eu[0] + hy * eu[1]) / rx, (hx * ev[0] + hy * ev[1]) / ry  # unit-circle frame
-    lam = dx * dx + dy * dy
-    k = math.sqrt((1 - lam) / lam) if 0 < lam < 1 - 1e-12 else 0.0
-    best = None
-    for sgn in (1.0, -1.0):  # centre m + k perp(d), back from the unit-circle frame
-        px, py = -sgn * k * dy * rx, sgn * k * dx * ry
-        c = (mx + px * eu[0] + py * ev[0], my + px * eu[1] + py * ev[1])
-        dist = math.hypot(c[0] - seg.center.x, c[1] - seg.center.y)
-        if best is None or dist < best[0]:
-            best = (dist, c)
-    return best[1]
-
-
-def arc_pieces(seg):
-    """An svgelements Arc (local coordinates) as rational quadratics of at
-    most 90 degrees each, or [] when it has no extent.  The ellipse is
-    E(t) = c + u cos t + v sin t, u = prx - c, v = pry - c (svgelements'
-    axes, orthogonal in the path's own coordinates; c from arc_center); a piece [a, b] of half-angle h = (b - a)/2 has the end points
-    E(a), E(b) and the middle point c + (u cos m + v sin m)/cos h with weight
-    cos h, m = (a + b)/2: the standard circle-arc form (Piegl & Tiller, The
-    NURBS Book, 1997, Section 7.5) mapped by the affine map of the unit circle
-    onto the ellipse."""
-    c = (seg.center.x, seg.center.y)
-    u = (seg.prx.x - c[0], seg.prx.y - c[1])
-    v = (seg.pry.x - c[0], seg.pry.y - c[1])
-    det = u[0] * v[1] - u[1] * v[0]
-    sweep = float(seg.sweep or 0.0)
-    if det == 0 or sweep == 0 or not math.isfinite(sweep):
-        return []
-    c = arc_center(seg, u, v)
-    sx, sy = seg.start.x - c[0], seg.start.y - c[1]
-    cos0 = (sx * v[1] - sy * v[0]) / det  # solve (sx, sy) = u cos t0 + v sin t0
-    sin0 = (u[0] * sy - u[1] * sx) / det
-    t0 = math.atan2(sin0, cos0)
-    n = max(1, math.ceil(abs(sweep) / ARC_PIECE - 1e-9))
-    step = sweep / n
-    E = lambda t: (c[0] + u[0] * math.cos(t) + v[0] * math.sin(t),
-                   c[1] + u[1] * math.cos(t) + v[1] * math.sin(t))
-    out = []
-    for k in range(n):
-        a, b = t0 + k * step, t0 + (k + 1) * step
-        h, m = (b - a) / 2, (a + b) / 2
-        p0 = (seg.start.x, seg.start.y) if k == 0 else E(a)
-        p2 = (seg.end.x, seg.end.y) if k == n - 1 else E(b)
-        ch = math.cos(h)
-        p1 = (c[0] + (u[0] * math.cos(m) + v[0] * math.sin(m)) / ch,
-              c[1] + (u[1] * math.cos(m) + v[1] * math.sin(m)) / ch)
-        out.append([(p0[0], p0[1], 1.0), (p1[0], p1[1], ch), (p2[0], p2[1], 1.0)])
-    return out
-
-
-def pt(p):
-    return (float(p.x), float(p.y), 1.0)
-
-
-def local_segments(seg, se):
-    """One svgelements segment as a list of (letter, control points) in local
-    coordinates; [] when it has zero length."""
-    if isinstance(seg, se.Arc):
-        pieces = arc_pieces(seg)
-        if pieces:
-            return [("A", p) for p in pieces]
-        if seg.start != seg.end:  # rx or ry 0: a line (SVG 1.1, Appendix F.6.2)
-            return [("L", [pt(seg.start), pt(seg.end)])]
-        return []
-    if isinstance(seg, se.CubicBezier):
-        cps, letter = [seg.start, seg.control1, seg.control2, seg.end], "C"
-    elif isinstance(seg, se.QuadraticBezier):
-        cps, letter = [seg.start, seg.control, seg.end], "Q"
-    else:  # Line, Close
-        cps, letter = [seg.start, seg.end], "Z" if isinstance(seg, se.Close) else "L"
-    pts = [pt(p) for p in cps]
-    if all(p[:2] == pts[0][:2] for p in pts):
-        return []
-    return [(letter, pts)]
+KIND_NAMES = {"L": "Line", "Q": "QuadraticBezier", "C": "CubicBezier", "A": "Arc", "Z": "Close"}
 
 
 def elevate(pts, deg):
@@ -208,39 +115,6 @@ def element_name(e, tag, index):
     return f'<{tag} id="{e.id}">' if e.id else f"<{tag}> (shape {index} of the document)"
 
 
-def tag_of(e, se):
-    for cls, tag in ((se.Path, "path"), (se.SimpleLine, "line"), (se.Polygon, "polygon"),
-                     (se.Polyline, "polyline"), (se.Rect, "rect"), (se.Circle, "circle"),
-                     (se.Ellipse, "ellipse")):
-        if isinstance(e, cls):
-            return tag
-    return type(e).__name__.lower()
-
-
-def subpaths(e, se):
-    """The element's subpaths: lists of (svg segment number, segment) and a
-    closed flag; segments in local (untransformed) coordinates."""
-    segs = e.segments(transformed=False) if not isinstance(e, se.Path) else list(e)
-    out, cur, closed, num = [], None, False, 0
-    for s in segs:
-        if isinstance(s, se.Move):
-            if cur:
-                out.append((cur, closed))
-            cur, closed = [], False
-            continue
-        num += 1
-        if cur is None or closed:  # a command after Z starts a new subpath
-            if cur:
-                out.append((cur, closed))
-            cur, closed = [], False
-        cur.append((num, s))
-        if isinstance(s, se.Close):
-            closed = True
-    if cur:
-        out.append((cur, closed))
-    return out
-
-
 def safe_id(s):
     return re.sub(r"[^A-Za-z0-9_./-]", "_", s)
 
@@ -251,18 +125,16 @@ def safe_text(s):
 
 
 class Converter:
-    def __init__(self, args, se, note):
-        self.a, self.se, self.note = args, se, note
+    def __init__(self, args, note):
+        self.a, self.note = args, note
         self.curves, self.ids, self.left_out = [], set(), 0
 
     def skip(self, msg):
         self.left_out += 1
         self.note(msg)
 
-    def output_map(self, e, root_inv):
-        m = mat_of(e.transform)
-        if root_inv is not None:
-            m = mat_then(m, root_inv)
+    def output_map(self, e):
+        m = e.ctm
         if self.a.y == "up":
             m = mat_then(m, (1.0, 0.0, 0.0, -1.0, 0.0, 0.0))
         return m
@@ -278,11 +150,11 @@ class Converter:
         self.ids.add(cid)
         return cid
 
-    def element(self, e, index, root_inv):
-        tag = tag_of(e, self.se)
+    def element(self, e, index):
+        tag = e.tag
         name = element_name(e, tag, index)
-        m = self.output_map(e, root_inv)
-        subs = subpaths(e, self.se)
+        m = self.output_map(e)
+        subs = e.subs
         base = self.a.prefix + (safe_id(e.id) if e.id else f"{tag}{index}")
         if e.id and base != e.id:
             self.note(f"{name}: id has characters the .curves reader refuses; written as '{base}'")
@@ -312,12 +184,11 @@ class Converter:
         zero length, or shorter than 1e-12 times the largest coordinate (the
         round-off of the arcs before it), is left out silently."""
         out = []
-        for num, s in segs:
-            got = [(num, letter, [mat_apply(m, x, y) + (w,) for x, y, w in p])
-                   for letter, p in local_segments(s, self.se)]
+        for num, kind, local in segs:
+            got = [(num, letter, [mat_apply(m, x, y) + (w,) for x, y, w in p]) for letter, p in local]
             got = [g for g in got if any(q[:2] != g[2][0][:2] for q in g[2])]
-            if not got and not isinstance(s, self.se.Close):
-                self.skip(f"{where}: segment {num} ({type(s).__name__}) has zero length; left out")
+            if not got and kind != "Z":
+                self.skip(f"{where}: segment {num} ({KIND_NAMES[kind]}) has zero length; left out")
             out += got
         if out and out[-1][1] == "Z":
             M = max(abs(v) for _, _, p in out for q in p for v in q[:2])
@@ -382,8 +253,8 @@ def check_curve(pts, segs, offsets):
 
 def read_xml(path):
     """The document's root element, or raises BadInput saying why it is not
-    an SVG document whose geometry attributes are well formed (svgelements
-    would drop what follows an error unreported: svgsyntax.py)."""
+    an SVG document whose geometry attributes are well formed (svgsyntax.py
+    names the place of an error)."""
     try:
         with open(path, "rb") as f:
             data = f.read()
@@ -405,26 +276,21 @@ def read_xml(path):
     return root
 
 
-def xml_report(root, seen_ids, note):
-    """Elements svgelements does not turn into geometry: unsupported or
-    unknown SVG elements, and shapes it drops unreported (zero size)."""
+def xml_report(root, note):
+    """SVG elements that svgpath.shapes neither reads nor names: foreignObject
+    (unsupported) and unknown ones."""
     def walk(el, hidden):
-        if not isinstance(el.tag, str) or not el.tag.startswith("{" + SVG_NS + "}"):
-            return  # comments, other namespaces (inkscape:, sodipodi:)
-        tag = el.tag[len(SVG_NS) + 2:]
-        style = (el.get("style") or "").replace(" ", "")
-        if el.get("display") == "none" or "display:none" in style:
-            return
+        tag = svgpath.local(el.tag)
+        if tag is None or not el.tag.startswith("{" + SVG_NS + "}") or svgpath.prop(el, "display") == "none":
+            return  # comments, no namespace, other namespaces (inkscape:, sodipodi:), not drawn
         eid = el.get("id")
         name = f'<{tag} id="{eid}">' if eid else f"<{tag}>"
-        if tag in SHAPE_TAGS:
-            if not hidden and eid is not None and eid not in seen_ids:
-                note(f"{name}: the SVG parser dropped it (zero size or invalid); left out")
-        elif tag in ("text", "image", "foreignObject", "tspan", "textPath"):
-            if tag not in ("tspan", "textPath"):
-                note(f"{name}: unsupported element ({tag}); left out")
+        if tag in svgpath.UNREAD + ("tspan", "textPath"):
             return
-        elif tag not in QUIET_TAGS:
+        if tag == "foreignObject":
+            note(f"{name}: unsupported element ({tag}); left out")
+            return
+        if tag not in QUIET_TAGS and tag not in SHAPE_TAGS and not hidden:
             note(f"{name}: unknown element; left out")
         for ch in el:
             walk(ch, hidden or tag in HIDDEN_TAGS)
@@ -477,24 +343,18 @@ def main(argv):
     # file names are bytes: one that is not UTF-8 is printed as it was given
     sys.stderr.reconfigure(errors="surrogateescape")
     a = parse_args(argv)
-    try:
-        import svgelements as se
-    except ImportError:
-        print(f"{PROG}: cannot import svgelements: install python3-svgelements "
-              f"(apt-get install python3-svgelements)", file=sys.stderr)
-        return 2
     if a.prefix and (safe_id(a.prefix) != a.prefix or len(a.prefix) > 40):
         print(f"{PROG}: --prefix '{a.prefix[:50]}': at most 40 of letters, digits, '_', '-', '.', '/'",
               file=sys.stderr)
         return 2
     try:
-        return convert(a, se)
+        return convert(a)
     except Exception as ex:  # a case the checks miss: still "FILE: what", exit 2, no traceback
         print(f"{PROG}: {a.svg}: cannot convert ({type(ex).__name__}: {str(ex)[:200]})", file=sys.stderr)
         return 2
 
 
-def convert(a, se):
+def convert(a):
     """Converts a.svg to a.out; the exit status."""
     def note(msg):
         print(f"{PROG}: {a.svg}: {msg}", file=sys.stderr)
@@ -507,25 +367,15 @@ def convert(a, se):
     except BadInput as ex:
         print(f"{PROG}: {a.svg}: {ex}", file=sys.stderr)
         return 2
+    conv = Converter(a, note)
     try:
-        doc = se.SVG.parse(a.svg, reify=False)
-    except Exception as ex:  # svgelements raises many kinds on bad XML
-        print(f"{PROG}: {a.svg}: cannot parse the SVG: {ex}", file=sys.stderr)
+        shapes = svgpath.shapes(root, a.units, conv.skip)
+    except svgpath.Bad as ex:
+        print(f"{PROG}: {a.svg}: {ex}", file=sys.stderr)
         return 2
-    if not isinstance(doc, se.SVG):
-        print(f"{PROG}: {a.svg}: no <svg> root element", file=sys.stderr)
-        return 2
-    root_inv = None
-    if a.units == "user" and doc.viewbox_transform:
-        root_inv = mat_inverse(mat_of(se.Matrix(doc.viewbox_transform)))
-    conv = Converter(a, se, note)
-    shapes = [e for e in doc.elements() if isinstance(e, se.Shape) and not isinstance(e, se.Image)]
     for i, e in enumerate(shapes, 1):
-        try:
-            conv.element(e, i, root_inv)
-        except Exception as ex:  # whatever svgelements hands over: named, never a crash
-            conv.skip(f"{element_name(e, tag_of(e, se), i)}: cannot convert ({ex}); left out")
-    xml_report(root, {e.id for e in shapes if e.id}, conv.skip)
+        conv.element(e, i)
+    xml_report(root, conv.skip)
     if not conv.curves:
         print(f"{PROG}: {a.svg}: no curve to write", file=sys.stderr)
         return 2

@@ -1,11 +1,12 @@
 """The syntax of the SVG attributes that carry geometry, checked before
-svgelements reads them (used by scripts/svg2curves.py).
+scripts/svgpath.py reads them (used by scripts/svg2curves.py): every error
+of the document at once, named with the element.
 
-Why: on an error in path data an SVG renderer, svgelements included, draws
-the path up to the error and drops the rest without a word (SVG 1.1,
-Appendix F.2), and it drops a malformed transform, points list or viewBox
-the same way; the converted curves would then silently lack part of the
-drawing, or be placed wrongly.  So every such attribute is parsed here
+Why: on an error in path data an SVG renderer draws the path up to the
+error and drops the rest without a word (SVG 1.1, Appendix F.2), and it
+drops a malformed transform, points list or viewBox the same way; the
+converted curves would then silently lack part of the drawing, or be
+placed wrongly.  So every such attribute is parsed here
 against the grammar (SVG 1.1 8.3.9 paths, 7.6 transforms, 9.7 points,
 7.7 viewBox) and an error is named with where it is.
 
