@@ -4,6 +4,7 @@
  */
 #include "host/io/approx_dxf.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -261,28 +262,70 @@ static int ellipse_pieces(const ob_dxf_ent *e, double sx, const char *name, ob_a
     return conic_pieces(&f, a0, sweep, e->line, name, out, err);
 }
 
-/* One polyline segment from vertex p to q with p's bulge. */
+/* An arc of at most 90 degrees from P to Q of bulge b (object
+ * coordinates; x times sx) as one rational quadratic, built from the chord
+ * alone: no centre, whose distance grows as 1/b and whose use cancels when
+ * b is small.  The middle control point is where the end tangents meet:
+ * the chord's middle moved right of P->Q (left when b < 0) by half the
+ * chord times tan(theta/2) = 2b / (1 - b^2), that is by (dy, -dx) b /
+ * (1 - b^2); its weight cos(theta/2) = (1 - b^2) / (1 + b^2) (theta = 4
+ * atan b).  As b goes to 0 this goes continuously to the chord. */
+static int chord_arc(const double P[2], const double Q[2], double b, double sx, int line, const char *name,
+                     ob_approx *out, ob_err *err)
+{
+    const double dx = Q[0] - P[0], dy = Q[1] - P[1], bb = b * b, s = b / (1.0 - bb);
+    ob_bez z = {0};
+    z.deg = 2;
+    ob_bez_set(&z, 0, sx * P[0], P[1], 1.0);
+    ob_bez_set(&z, 1, sx * (0.5 * (P[0] + Q[0]) + dy * s), 0.5 * (P[1] + Q[1]) - dx * s, (1.0 - bb) / (1.0 + bb));
+    ob_bez_set(&z, 2, sx * Q[0], Q[1], 1.0);
+    return add_piece(out, &z, line, name, err);
+}
+
+/* The chord P->Q as one piece of degree 1 (x times sx). */
+static int chord_line(const double P[2], const double Q[2], double sx, int line, const char *name, ob_approx *out,
+                      ob_err *err)
+{
+    const double xy[2][2] = {{sx * P[0], P[1]}, {sx * Q[0], Q[1]}};
+    ob_bez s;
+    ob_bez_from_points(&s, 1, xy);
+    return add_piece(out, &s, line, name, err);
+}
+
+/* One polyline segment from vertex p to q with p's bulge b.  An arc of
+ * more than 90 degrees is cut in n <= 4 equal ones; their joints, at
+ * angle a from P of the arc's theta, are P + sin(a/2) / sin(theta/2) times
+ * the chord turned by (a - theta)/2, sin(theta/2) = 2 / (b + 1/b): no
+ * centre either, and the angles are large there, so nothing cancels. */
 static int bulge_piece(const ob_dxf_vertex *p, const ob_dxf_vertex *q, double sx, const char *name, ob_approx *out,
                        ob_err *err)
 {
-    const double dx = q->x - p->x, dy = q->y - p->y, L = hypot(dx, dy), b = p->bulge;
-    if (L == 0.0) {
+    const double P[2] = {p->x, p->y}, Q[2] = {q->x, q->y}, dx = Q[0] - P[0], dy = Q[1] - P[1], b = p->bulge;
+    if (dx == 0.0 && dy == 0.0) {
         ob_approx_note_skip(out, "polyline segment of length 0", p->line);
         return 0;
     }
-    const double P[2] = {p->x, p->y}, Q[2] = {q->x, q->y};
-    if (b == 0.0) {
-        const double xy[2][2] = {{sx * P[0], P[1]}, {sx * Q[0], Q[1]}};
-        ob_bez s;
-        ob_bez_from_points(&s, 1, xy);
-        return add_piece(out, &s, p->line, name, err);
+    /* a sagitta (|b| L / 2) under the round-off of the vertices: the arc
+     * and its chord are the same doubles */
+    const double scale = fmax(fmax(fabs(P[0]), fabs(P[1])), fmax(fabs(Q[0]), fabs(Q[1])));
+    if (fabs(b) * hypot(dx, dy) <= DBL_EPSILON * scale || b == 0.0)
+        return chord_line(P, Q, sx, p->line, name, out, err);
+    const double theta = 4.0 * atan(b);
+    const int n = (int)fmax(1.0, ceil(fabs(theta) / (0.5 * OB_PI) - 1e-9));
+    if (n == 1)
+        return chord_arc(P, Q, b, sx, p->line, name, out, err);
+    const double bs = tan(theta / (4.0 * n)), sh = 2.0 / (b + 1.0 / b);
+    double K0[2] = {P[0], P[1]};
+    for (int k = 1; k <= n; k++) {
+        const double a = theta * k / n, f = sin(0.5 * a) / sh, c = cos(0.5 * (a - theta)), s = sin(0.5 * (a - theta));
+        double K1[2] = {Q[0], Q[1]};
+        if (k < n)
+            K1[0] = P[0] + f * (c * dx - s * dy), K1[1] = P[1] + f * (s * dx + c * dy);
+        if (chord_arc(K0, K1, bs, sx, p->line, name, out, err) != 0)
+            return -1;
+        K0[0] = K1[0], K0[1] = K1[1];
     }
-    /* the centre lies off the chord's middle, on its left for b > 0, by
-     * L/2 cot(theta/2) = L/2 (1 - b^2) / (2 b); theta = 4 atan b */
-    const double h = 0.5 * (1.0 - b * b) / (2.0 * b), r = L * (1.0 + b * b) / (4.0 * fabs(b));
-    const double c[2] = {0.5 * (P[0] + Q[0]) - h * dy, 0.5 * (P[1] + Q[1]) + h * dx};
-    const conic f = {{c[0], c[1]}, {r, 0.0}, {0.0, r}, sx};
-    return arc_pieces(&f, atan2(P[1] - c[1], P[0] - c[0]), 4.0 * atan(b), P, Q, p->line, name, out, err);
+    return 0;
 }
 
 /* Leaves out a POLYLINE's vertices of flag 16 (a spline frame's control
