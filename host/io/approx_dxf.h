@@ -26,7 +26,11 @@
  * whose extrusion (210, 220, 230) is (0, 0, -1) is mirrored (x to -x), as
  * the arbitrary axis algorithm gives; any other extrusion than (0, 0, +-1)
  * puts the entity out of the XY plane, and it is skipped (named).  Z
- * values are ignored, as for SPLINE.  Joints between the pieces of one
+ * values are the reader's (approx_read_dxf.c: one z is flattened with a
+ * warning, z that differ skip the entity).  A bulge arc is built from its
+ * chord and bulge, without its centre (approx_dxf_curves.c, bulge_piece).
+ * Values are decimal numbers (ob_dxf_number); a group the entity takes
+ * once, given twice, is an error.  Joints between the pieces of one
  * entity are exact: neighbours share their end point bit for bit (a
  * polyline's vertices are taken as they are written).
  */

@@ -11,9 +11,13 @@
  * approximation (ob_approx_note_skip: type, count, first line), which
  * measure names on stderr.  A 999 comment "offbench piece K base
  * segment S ..." right before a SPLINE of one Bézier segment is its base
- * link (export_dxf.c).  Only the ENTITIES section is read (a file of bare
- * entities, without sections, too): splines of block definitions are not
- * the drawing's curves.
+ * link (export_dxf.c); a 999 comment anywhere else is a comment too, and
+ * never ends the entity it stands in.  Only the ENTITIES section is read
+ * (a file of bare entities, without sections, too): splines of block
+ * definitions are not the drawing's curves.  What the reader would have
+ * to guess at is refused at FILE:LINE: a line over DXF's longest string
+ * (2049 characters), a NUL byte, a value that is not a decimal number, a
+ * group given twice where one is taken.  An entity's z: see zinfo.
  */
 #include "host/io/approx_read.h"
 
@@ -85,6 +89,20 @@ static int num(dxfrd *r, double *x, ob_err *err)
     return ob_dxf_number(r->val, r->code, r->line, r->name, x, err);
 }
 
+/* A SPLINE's flags, degree or counts (70 to 74): a whole number, given
+ * once (a second would leave the reader to pick one); 0, or -1 with err. */
+static int header_group(const dxfrd *r, spline *sp, double x, ob_err *err)
+{
+    if (!(x >= 0 && x <= DXF_MAX_CTRL && x == (int)x))
+        return ob_fail(err, "%s:%d: group %d: '%.40s' is not a whole number from 0 to %d", r->name, r->line, r->code,
+                       r->val, DXF_MAX_CTRL);
+    if (sp->at[r->code - 70])
+        return ob_fail(err, "%s:%d: group %d given twice in one SPLINE (first at line %d)", r->name, r->line, r->code,
+                       sp->at[r->code - 70]);
+    sp->at[r->code - 70] = r->line;
+    return 0;
+}
+
 /* One group of a SPLINE into sp. */
 static int spline_group(dxfrd *r, spline *sp, ob_err *err)
 {
@@ -94,17 +112,8 @@ static int spline_group(dxfrd *r, spline *sp, ob_err *err)
         if (num(r, &x, err))
             return -1;
     const int cap = sp->nc > 0 ? sp->nc : 0, kcap = sp->nk > 0 ? sp->nk : 0;
-    if (r->code >= 70 && r->code <= 74 && !(x >= 0 && x <= DXF_MAX_CTRL && x == (int)x)) {
-        ob_fail(err, "%s:%d: group %d: '%.40s' is not a whole number from 0 to %d", r->name, r->line,
-                r->code, r->val, DXF_MAX_CTRL);
+    if (r->code >= 70 && r->code <= 74 && header_group(r, sp, x, err))
         return -1;
-    }
-    if (r->code >= 70 && r->code <= 74) {
-        if (sp->at[r->code - 70])
-            return ob_fail(err, "%s:%d: group %d given twice in one SPLINE (first at line %d)", r->name, r->line,
-                           r->code, sp->at[r->code - 70]);
-        sp->at[r->code - 70] = r->line;
-    }
     switch (r->code) {
     case 70: sp->flags = (int)x; break;
     case 71: sp->deg = (int)x; break;
