@@ -20,7 +20,7 @@ ob_error_handler ob_set_error_handler(ob_error_handler h)
 
 void ob_error(const char *fmt, ...)
 {
-    char buf[1024];
+    char buf[8192]; /* an ob_err's msg whole (err.h): a list of skipped entities runs past 1024 */
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(buf, sizeof buf, fmt, ap);

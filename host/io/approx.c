@@ -53,6 +53,17 @@ int ob_approx_file_pieces(const ob_approx *a)
 
 void ob_approx_note_skip(ob_approx *a, const char *type, int line)
 {
+    ob_approx_note_skip_why(a, type, NULL, line);
+}
+
+void ob_approx_note_skip_why(ob_approx *a, const char *type, const char *why, int line)
+{
+    if (a->nskipped < OB_APPROX_NOTES) {
+        ob_anote *o = &a->notes[a->nskipped];
+        snprintf(o->type, sizeof o->type, "%s", type);
+        snprintf(o->why, sizeof o->why, "%s", why ? why : "not a curve measure reads");
+        o->line = line;
+    }
     a->nskipped++;
     for (int i = 0; i < a->nskipped_types; i++)
         if (strncmp(a->skipped[i].type, type, sizeof a->skipped[i].type - 1) == 0) {

@@ -45,6 +45,14 @@ typedef struct {
     int count, line;
 } ob_askip;
 
+/* The first skipped entities one by one (type, why, line): what a file
+ * that yields no pieces is made of, for its error (approx_read.c). */
+enum { OB_APPROX_NOTES = 10 };
+typedef struct {
+    char type[24], why[72];
+    int line;
+} ob_anote;
+
 typedef struct {
     ob_apiece *v;
     int n, cap;
@@ -57,6 +65,7 @@ typedef struct {
     ob_askip skipped[OB_APPROX_SKIP_TYPES]; /* the first types skipped, in file order */
     int nskipped_types;                     /* of them used */
     int nskipped;                           /* entities skipped, of any type */
+    ob_anote notes[OB_APPROX_NOTES];        /* the first nskipped of them */
 } ob_approx;
 
 /* Always safe to call (also on a zeroed approximation). */
@@ -70,6 +79,11 @@ ob_apiece *ob_approx_add(ob_approx *a);
  *          type in a->skipped (the first OB_APPROX_SKIP_TYPES types; those
  *          of further types only in nskipped).  Never fails. */
 void ob_approx_note_skip(ob_approx *a, const char *type, int line);
+
+/* Purpose: as ob_approx_note_skip, with why it was skipped (cut to 71
+ *          characters; NULL: "not a curve measure reads"), which the error
+ *          of a file with no pieces lists (approx_read.c). */
+void ob_approx_note_skip_why(ob_approx *a, const char *type, const char *why, int line);
 
 /* Purpose: the file's number of piece k of a (0-based, in file order): k
  *          less the further parts of pieces cut at base joints before it.

@@ -26,7 +26,11 @@
  * whose extrusion (210, 220, 230) is (0, 0, -1) is mirrored (x to -x), as
  * the arbitrary axis algorithm gives; any other extrusion than (0, 0, +-1)
  * puts the entity out of the XY plane, and it is skipped (named).  Z
- * values are ignored, as for SPLINE.  Joints between the pieces of one
+ * values are the reader's (approx_read_dxf.c: one z is flattened with a
+ * warning, z that differ skip the entity).  A bulge arc is built from its
+ * chord and bulge, without its centre (approx_dxf_curves.c, bulge_piece).
+ * Values are decimal numbers (ob_dxf_number); a group the entity takes
+ * once, given twice, is an error.  Joints between the pieces of one
  * entity are exact: neighbours share their end point bit for bit (a
  * polyline's vertices are taken as they are written).
  */
@@ -45,6 +49,7 @@ typedef enum {
 typedef struct {
     double x, y, bulge;
     int line, flags;
+    int at[4];                /* lines of its 10, 20, 42, 70 (0: not yet) */
 } ob_dxf_vertex;
 
 /* One entity being read. */
@@ -53,10 +58,20 @@ typedef struct {
     int line;                 /* of its name */
     int have;                 /* bit per group seen: see approx_dxf_curves.c */
     double g[16];             /* the single-valued groups */
+    int gline[16];            /* the line of each */
     ob_dxf_vertex *v;         /* LWPOLYLINE and POLYLINE vertices */
     int nv, cap, announced;   /* vertices read, room, group 90 (-1 none) */
     int in_vertex;            /* POLYLINE: 1 once its first VERTEX began */
 } ob_dxf_ent;
+
+/* Purpose: the number DXF value `val` of group `code` (at `line`) holds.
+ * Errors:  returns 0; -1 with "NAME:LINE: group CODE: 'VAL' is not a
+ *          number" (or "not a decimal number": a hex float, inf or nan,
+ *          which DXF does not write; or "out of range"). */
+int ob_dxf_number(const char *val, int code, int line, const char *name, double *x, ob_err *err);
+
+/* The entity name of kind (LINE, ARC, ...). */
+const char *ob_dxf_kind_name(ob_dxf_kind kind);
 
 /* The kind of the entity named `name`, or -1 when it is not one of these. */
 int ob_dxf_kind_of(const char *name);
@@ -71,7 +86,8 @@ int ob_dxf_ent_vertex(ob_dxf_ent *e, int line, const char *name, ob_err *err);
 
 /* Purpose: one group (code, value text) of the entity, at `line`.
  * Errors:  returns 0; -1 with "NAME:LINE: reason" in err (a number that is
- *          not one, out of memory). */
+ *          not a decimal one, a group given twice where the entity or its
+ *          vertex takes one, naming both lines; out of memory). */
 int ob_dxf_ent_group(ob_dxf_ent *e, int code, const char *val, int line, const char *name, ob_err *err);
 
 /* Purpose: the finished entity's pieces, appended to out (unlinked, at the

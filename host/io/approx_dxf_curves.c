@@ -4,6 +4,7 @@
  */
 #include "host/io/approx_dxf.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +18,41 @@ enum { X0, Y0, X1, Y1, G40, G41, G42, G50, G51, G70, G90, NX, NY, NZ, NCODES };
 _Static_assert(sizeof codes / sizeof *codes == NCODES, "one slot per group code");
 
 static const char *const kind_names[] = {"LINE", "ARC", "CIRCLE", "ELLIPSE", "LWPOLYLINE", "POLYLINE"};
+
+const char *ob_dxf_kind_name(ob_dxf_kind kind) { return kind_names[kind]; }
+
+/* A decimal number as DXF writes them: a sign, digits with at most one
+ * point, an exponent; not C's hex floats, inf or nan, which strtod takes. */
+static int decimal(const char *s)
+{
+    s += *s == '+' || *s == '-';
+    const size_t i = strspn(s, "0123456789"), f = s[i] == '.' ? strspn(s + i + 1, "0123456789") : 0;
+    if (i + f == 0)
+        return 0;
+    s += i + (s[i] == '.') + f;
+    if (*s == 'e' || *s == 'E') {
+        s += 1 + (s[1] == '+' || s[1] == '-');
+        const size_t e = strspn(s, "0123456789");
+        if (e == 0)
+            return 0;
+        s += e;
+    }
+    return *s == '\0';
+}
+
+int ob_dxf_number(const char *val, int code, int line, const char *name, double *x, ob_err *err)
+{
+    char *end;
+    *x = strtod(val, &end);
+    if (!val[0] || *end)
+        return ob_fail(err, "%s:%d: group %d: '%.40s' is not a number", name, line, code, val);
+    if (!decimal(val))
+        return ob_fail(err, "%s:%d: group %d: '%.40s' is not a decimal number (DXF writes no others)", name, line,
+                       code, val);
+    if (!isfinite(*x))
+        return ob_fail(err, "%s:%d: group %d: '%.40s' is out of range", name, line, code, val);
+    return 0;
+}
 
 int ob_dxf_kind_of(const char *name)
 {
@@ -59,7 +95,25 @@ static int add_vertex(ob_dxf_ent *e, double x, int line, const char *name, ob_er
         e->v = v;
         e->cap = cap;
     }
-    e->v[e->nv++] = (ob_dxf_vertex){x, 0.0, 0.0, line, 0};
+    e->v[e->nv++] = (ob_dxf_vertex){x, 0.0, 0.0, line, 0, {0}};
+    return 0;
+}
+
+/* Group code of vertex slot k (ob_dxf_vertex.at). */
+static const int vertex_codes[] = {10, 20, 42, 70};
+
+/* Records that the last vertex has group `code` at line: an error when it
+ * had it already (a value lost, or a vertex without its 10). */
+static int vertex_once(ob_dxf_ent *e, int code, int line, const char *name, ob_err *err)
+{
+    ob_dxf_vertex *v = &e->v[e->nv - 1];
+    for (int k = 0; k < 4; k++)
+        if (vertex_codes[k] == code) {
+            if (v->at[k])
+                return ob_fail(err, "%s:%d: group %d given twice for one vertex (first at line %d)", name, line, code,
+                               v->at[k]);
+            v->at[k] = line;
+        }
     return 0;
 }
 
@@ -67,9 +121,11 @@ static int add_vertex(ob_dxf_ent *e, double x, int line, const char *name, ob_er
 static int vertex_group(ob_dxf_ent *e, int code, double x, int line, const char *name, ob_err *err)
 {
     if (code == 10)
-        return add_vertex(e, x, line, name, err);
+        return add_vertex(e, x, line, name, err) || vertex_once(e, code, line, name, err) ? -1 : 0;
     if (e->nv == 0)
         return ob_fail(err, "%s:%d: LWPOLYLINE: group %d before the first vertex (group 10)", name, line, code);
+    if (vertex_once(e, code, line, name, err))
+        return -1;
     if (code == 20)
         e->v[e->nv - 1].y = x;
     else
@@ -85,9 +141,11 @@ int ob_dxf_ent_vertex(ob_dxf_ent *e, int line, const char *name, ob_err *err)
 
 /* A group of a POLYLINE's VERTEX: 10, 20, 42 its point and bulge, 70 its
  * flags; the others (widths, z) are not the curve. */
-static void polyvertex_group(ob_dxf_ent *e, int code, double x)
+static int polyvertex_group(ob_dxf_ent *e, int code, double x, int line, const char *name, ob_err *err)
 {
     ob_dxf_vertex *v = &e->v[e->nv - 1];
+    if (vertex_once(e, code, line, name, err))
+        return -1;
     switch (code) {
     case 10: v->x = x; break;
     case 20: v->y = x; break;
@@ -95,26 +153,28 @@ static void polyvertex_group(ob_dxf_ent *e, int code, double x)
     case 70: v->flags = (int)x; break;
     default: break;
     }
+    return 0;
 }
 
 int ob_dxf_ent_group(ob_dxf_ent *e, int code, const char *val, int line, const char *name, ob_err *err)
 {
     const int k = slot_of(code);
-    if (k < 0)
-        return 0; /* layer, colour, thickness, widths, ...: not the curve */
-    char *end;
-    const double x = strtod(val, &end);
-    if (!val[0] || *end || !isfinite(x))
-        return ob_fail(err, "%s:%d: group %d: '%.40s' is not a number", name, line, code, val);
+    if (k < 0 || (e->kind == OB_DXF_LWPOLYLINE && (code == 40 || code == 41)))
+        return 0; /* layer, colour, thickness, widths (per vertex), ...: not the curve */
+    double x;
+    if (ob_dxf_number(val, code, line, name, &x, err))
+        return -1;
     if (e->kind == OB_DXF_LWPOLYLINE && (code == 10 || code == 20 || code == 42))
         return vertex_group(e, code, x, line, name, err);
-    if (e->kind == OB_DXF_POLYLINE && e->in_vertex) {
-        polyvertex_group(e, code, x);
-        return 0;
-    }
+    if (e->kind == OB_DXF_POLYLINE && e->in_vertex)
+        return polyvertex_group(e, code, x, line, name, err);
     if (e->kind == OB_DXF_POLYLINE && (code == 10 || code == 20 || code == 42))
         return 0; /* the header's point is the elevation, no vertex */
+    if (e->have & 1 << k) /* the entity takes one: which value would be meant? */
+        return ob_fail(err, "%s:%d: group %d given twice in one %s (first at line %d)", name, line, code,
+                       kind_names[e->kind], e->gline[k]);
     e->g[k] = x;
+    e->gline[k] = line;
     e->have |= 1 << k;
     return 0;
 }
@@ -216,7 +276,7 @@ static int line_pieces(const ob_dxf_ent *e, const char *name, ob_approx *out, ob
     if (need(e, 1 << X0 | 1 << Y0 | 1 << X1 | 1 << Y1, name, err))
         return -1;
     if (e->g[X0] == e->g[X1] && e->g[Y0] == e->g[Y1]) {
-        ob_approx_note_skip(out, "LINE of length 0", e->line);
+        ob_approx_note_skip_why(out, "LINE of length 0", "its two points are one", e->line);
         return 0;
     }
     const double xy[2][2] = {{e->g[X0], e->g[Y0]}, {e->g[X1], e->g[Y1]}};
@@ -261,28 +321,70 @@ static int ellipse_pieces(const ob_dxf_ent *e, double sx, const char *name, ob_a
     return conic_pieces(&f, a0, sweep, e->line, name, out, err);
 }
 
-/* One polyline segment from vertex p to q with p's bulge. */
+/* An arc of at most 90 degrees from P to Q of bulge b (object
+ * coordinates; x times sx) as one rational quadratic, built from the chord
+ * alone: no centre, whose distance grows as 1/b and whose use cancels when
+ * b is small.  The middle control point is where the end tangents meet:
+ * the chord's middle moved right of P->Q (left when b < 0) by half the
+ * chord times tan(theta/2) = 2b / (1 - b^2), that is by (dy, -dx) b /
+ * (1 - b^2); its weight cos(theta/2) = (1 - b^2) / (1 + b^2) (theta = 4
+ * atan b).  As b goes to 0 this goes continuously to the chord. */
+static int chord_arc(const double P[2], const double Q[2], double b, double sx, int line, const char *name,
+                     ob_approx *out, ob_err *err)
+{
+    const double dx = Q[0] - P[0], dy = Q[1] - P[1], bb = b * b, s = b / (1.0 - bb);
+    ob_bez z = {0};
+    z.deg = 2;
+    ob_bez_set(&z, 0, sx * P[0], P[1], 1.0);
+    ob_bez_set(&z, 1, sx * (0.5 * (P[0] + Q[0]) + dy * s), 0.5 * (P[1] + Q[1]) - dx * s, (1.0 - bb) / (1.0 + bb));
+    ob_bez_set(&z, 2, sx * Q[0], Q[1], 1.0);
+    return add_piece(out, &z, line, name, err);
+}
+
+/* The chord P->Q as one piece of degree 1 (x times sx). */
+static int chord_line(const double P[2], const double Q[2], double sx, int line, const char *name, ob_approx *out,
+                      ob_err *err)
+{
+    const double xy[2][2] = {{sx * P[0], P[1]}, {sx * Q[0], Q[1]}};
+    ob_bez s;
+    ob_bez_from_points(&s, 1, xy);
+    return add_piece(out, &s, line, name, err);
+}
+
+/* One polyline segment from vertex p to q with p's bulge b.  An arc of
+ * more than 90 degrees is cut in n <= 4 equal ones; their joints, at
+ * angle a from P of the arc's theta, are P + sin(a/2) / sin(theta/2) times
+ * the chord turned by (a - theta)/2, sin(theta/2) = 2 / (b + 1/b): no
+ * centre either, and the angles are large there, so nothing cancels. */
 static int bulge_piece(const ob_dxf_vertex *p, const ob_dxf_vertex *q, double sx, const char *name, ob_approx *out,
                        ob_err *err)
 {
-    const double dx = q->x - p->x, dy = q->y - p->y, L = hypot(dx, dy), b = p->bulge;
-    if (L == 0.0) {
-        ob_approx_note_skip(out, "polyline segment of length 0", p->line);
+    const double P[2] = {p->x, p->y}, Q[2] = {q->x, q->y}, dx = Q[0] - P[0], dy = Q[1] - P[1], b = p->bulge;
+    if (dx == 0.0 && dy == 0.0) {
+        ob_approx_note_skip_why(out, "polyline segment of length 0", "its two vertices are one", p->line);
         return 0;
     }
-    const double P[2] = {p->x, p->y}, Q[2] = {q->x, q->y};
-    if (b == 0.0) {
-        const double xy[2][2] = {{sx * P[0], P[1]}, {sx * Q[0], Q[1]}};
-        ob_bez s;
-        ob_bez_from_points(&s, 1, xy);
-        return add_piece(out, &s, p->line, name, err);
+    /* a sagitta (|b| L / 2) under the round-off of the vertices: the arc
+     * and its chord are the same doubles */
+    const double scale = fmax(fmax(fabs(P[0]), fabs(P[1])), fmax(fabs(Q[0]), fabs(Q[1])));
+    if (fabs(b) * hypot(dx, dy) <= DBL_EPSILON * scale || b == 0.0)
+        return chord_line(P, Q, sx, p->line, name, out, err);
+    const double theta = 4.0 * atan(b);
+    const int n = (int)fmax(1.0, ceil(fabs(theta) / (0.5 * OB_PI) - 1e-9));
+    if (n == 1)
+        return chord_arc(P, Q, b, sx, p->line, name, out, err);
+    const double bs = tan(theta / (4.0 * n)), sh = 2.0 / (b + 1.0 / b);
+    double K0[2] = {P[0], P[1]};
+    for (int k = 1; k <= n; k++) {
+        const double a = theta * k / n, f = sin(0.5 * a) / sh, c = cos(0.5 * (a - theta)), s = sin(0.5 * (a - theta));
+        double K1[2] = {Q[0], Q[1]};
+        if (k < n)
+            K1[0] = P[0] + f * (c * dx - s * dy), K1[1] = P[1] + f * (s * dx + c * dy);
+        if (chord_arc(K0, K1, bs, sx, p->line, name, out, err) != 0)
+            return -1;
+        K0[0] = K1[0], K0[1] = K1[1];
     }
-    /* the centre lies off the chord's middle, on its left for b > 0, by
-     * L/2 cot(theta/2) = L/2 (1 - b^2) / (2 b); theta = 4 atan b */
-    const double h = 0.5 * (1.0 - b * b) / (2.0 * b), r = L * (1.0 + b * b) / (4.0 * fabs(b));
-    const double c[2] = {0.5 * (P[0] + Q[0]) - h * dy, 0.5 * (P[1] + Q[1]) + h * dx};
-    const conic f = {{c[0], c[1]}, {r, 0.0}, {0.0, r}, sx};
-    return arc_pieces(&f, atan2(P[1] - c[1], P[0] - c[0]), 4.0 * atan(b), P, Q, p->line, name, out, err);
+    return 0;
 }
 
 /* Leaves out a POLYLINE's vertices of flag 16 (a spline frame's control
@@ -301,7 +403,8 @@ static int polyline_pieces(ob_dxf_ent *e, double sx, const char *name, ob_approx
     const long flags = e->have & 1 << G70 ? (long)e->g[G70] : 0;
     if (e->kind == OB_DXF_POLYLINE) {
         if (flags & (8 | 16 | 64)) {
-            ob_approx_note_skip(out, "POLYLINE 3D or mesh", e->line);
+            ob_approx_note_skip_why(out, "POLYLINE 3D or mesh", "flag 8, 16 or 64 of group 70: no planar curve",
+                                    e->line);
             return 0;
         }
         drop_frame_vertices(e);
@@ -329,9 +432,11 @@ int ob_dxf_ent_pieces(ob_dxf_ent *e, const char *name, ob_approx *out, ob_err *e
         return line_pieces(e, name, out, err);
     const double sx = mirror_of(e);
     if (sx == 0.0) {
-        char what[24];
+        char what[24], why[96];
         snprintf(what, sizeof what, "%s off the XY plane", kind_names[e->kind]);
-        ob_approx_note_skip(out, what, e->line);
+        snprintf(why, sizeof why, "extrusion %.6g, %.6g, %.6g: another plane", e->g[NX], e->g[NY],
+                 e->have & 1 << NZ ? e->g[NZ] : 1.0);
+        ob_approx_note_skip_why(out, what, why, e->line);
         return 0;
     }
     switch (e->kind) {

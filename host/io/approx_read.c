@@ -166,6 +166,26 @@ int ob_approx_read_curves(const char *text, size_t len, const char *name, ob_app
     return rc;
 }
 
+/* The error of file `name` that gave no pieces: says so, then lists the
+ * first OB_APPROX_NOTES entities the reader skipped (NAME:LINE: TYPE
+ * (WHY)) and how many more, since they are why (an INSERT whose block
+ * holds the curves, a tilted ARC, an SVG <use>).  Returns -1. */
+static int no_pieces(const ob_approx *a, const char *name, ob_err *err)
+{
+    char list[4096] = "";
+    size_t n = 0;
+    const int shown = a->nskipped < OB_APPROX_NOTES ? a->nskipped : OB_APPROX_NOTES;
+    for (int i = 0; i < shown && n < sizeof list; i++)
+        n += (size_t)snprintf(list + n, sizeof list - n, "; %s:%d: %s (%s)", name, a->notes[i].line,
+                              a->notes[i].type, a->notes[i].why);
+    if (a->nskipped > shown && n < sizeof list)
+        snprintf(list + n, sizeof list - n, "; and %d more", a->nskipped - shown);
+    if (a->nskipped == 0)
+        return ob_fail(err, "%s: no pieces (no Bézier segments, DXF curves or SVG paths) in the file", name);
+    return ob_fail(err, "%s: no pieces (no Bézier segments, DXF curves or SVG paths) in the file; it skipped "
+                   "%d entit%s: %s", name, a->nskipped, a->nskipped == 1 ? "y" : "ies", list + 2);
+}
+
 int ob_approx_read(const char *path, ob_approx *out, ob_err *err)
 {
     char *text = NULL;
@@ -180,9 +200,7 @@ int ob_approx_read(const char *path, ob_approx *out, ob_err *err)
     default: rc = ob_approx_read_curves(text, len, path, out, err); break;
     }
     free(text);
-    if (rc == 0 && out->n == 0) {
-        ob_fail(err, "%s: no pieces (no Bézier segments, DXF curves or SVG paths) in the file", path);
-        rc = -1;
-    }
+    if (rc == 0 && out->n == 0)  /* the skip notes say why: an INSERT, a tilted ARC, a <use> */
+        rc = no_pieces(out, path, err);
     return rc;
 }
