@@ -8,6 +8,8 @@
 #   OpenCL (kernels/):     opencl-headers, ocl-icd-opencl-dev, pocl-opencl-icd
 #   SISL (methods/sisl.c): libsisl-dev (required: the build links -lsisl)
 #   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
+#   Nettle (host/backend/clcache.c): nettle-dev (required: SHA-256 of the
+#                          OpenCL binary cache's names and files)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 #   scripts/svg2curves.py: python3-svgelements (optional: never fails the build)
@@ -44,6 +46,7 @@ rm -f /tmp/ob_omp_probe.$$
 have_header CL/cl.h || missing="$missing opencl-headers"
 have_header sisl.h || missing="$missing libsisl-dev"
 have_header flint/fmpz_poly.h || missing="$missing libflint-dev"
+have_header nettle/sha2.h || missing="$missing nettle-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"

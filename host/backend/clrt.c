@@ -10,7 +10,6 @@
 #include "host/backend/clrt.h"
 #include "host/backend/clcache.h"
 #include "host/backend/kernsrc.h"
-#include "host/run/shard.h"
 
 #include <dlfcn.h>
 #include <math.h>
@@ -63,13 +62,14 @@ char *ob_cl_program_key(const char *platform, const char *device, const char *dr
                         const char *options, const char *src)
 {
     const size_t n = strlen(src);
+    char hex[OB_SHA256_HEX];
     const size_t len = strlen(platform) + strlen(device) + strlen(driver) + strlen(device_version) +
                        strlen(options) + 256;
     char *key = malloc(len);
     if (key)
         snprintf(key, len, "offbench OpenCL program\nplatform=%s\ndevice=%s\ndriver=%s\ndevice_version=%s\n"
-                 "options=%s\nsource_bytes=%zu\nsource_fnv1a=%016llx\n", platform, device, driver, device_version,
-                 options, n, (unsigned long long)ob_fnv1a(OB_FNV_BASIS, src, n));
+                 "options=%s\nsource_bytes=%zu\nsource_sha256=%s\n", platform, device, driver, device_version,
+                 options, n, (ob_sha256_hex(src, n, hex), hex));
     return key;
 }
 
@@ -276,6 +276,8 @@ struct ob_cl {
     char platform[256], device[256], driver[128], source[512], version[256];
     uint64_t kernel_hash; /* of the text built (kernsrc.h) */
     char cache[2048];    /* what the binary cache did, every program (ob_cl_cache_status) */
+    char warned[600];    /* the last cache warning: the programs sharing a refused
+                            directory say it once */
     int gpu;             /* CL_DEVICE_TYPE_GPU or _ACCELERATOR */
     cl_program peak;     /* ob_cl_fma_peak's program, when asked for */
     clslot slot[OB_CL_SLOTS];
@@ -350,23 +352,46 @@ static int has_fp64(cl_device_id dev)
     return fp != 0;
 }
 
+/* A warning about the binary cache (why, then what the run does instead),
+ * unless it is the one this backend gave last. */
+static void cache_warn(ob_cl *c, const char *why, const char *then)
+{
+    char msg[sizeof c->warned];
+    snprintf(msg, sizeof msg, "OpenCL binary cache: %.400s: %s", why, then);
+    if (strcmp(msg, c->warned) == 0)
+        return;
+    snprintf(c->warned, sizeof c->warned, "%s", msg);
+    ob_warn("%s", msg);
+}
+
 /* The program from a cached binary, when the cache holds one for key that
- * the driver takes and builds.  1 then, else 0 (cache says why). */
+ * the driver takes and builds: 1.  Else 0 (build it and store it), or -1
+ * (build it, store nothing: the directory is not the user's own); cache
+ * says why, and a file or directory refused is warned about. */
 static int program_from_cache(ob_cl *c, const char *key, const char *path, const char *options, cl_program *prog,
                               char *cache, size_t clen)
 {
     size_t n = 0;
-    char why[300];
-    unsigned char *bin = ob_clcache_read(path, key, &n, why, sizeof why);
-    if (!bin) {
-        snprintf(cache, clen, "miss: %s", why);
+    unsigned char *bin = NULL;
+    char why[3300];
+    const ob_clcache_status st = ob_clcache_read(path, key, &bin, &n, why, sizeof why);
+    if (st == OB_CLCACHE_UNSAFE) {
+        cache_warn(c, why, "not used, the programs are built from source (the cache is off; make the directory "
+                           "the user's own, chmod go-w, or set OFFBENCH_CL_CACHE)");
+        snprintf(cache, clen, "off (%.580s)", why);
+        return -1;
+    }
+    if (st != OB_CLCACHE_HIT) {
+        if (st == OB_CLCACHE_BAD)
+            cache_warn(c, why, "not loaded, the program is built from source and the file replaced");
+        snprintf(cache, clen, "miss: %.580s", why);
         return 0;
     }
-    cl_int e, st = CL_SUCCESS;
+    cl_int e, st_bin = CL_SUCCESS;
     const unsigned char *bins[1] = {bin};
-    *prog = cl.clCreateProgramWithBinary(c->ctx, 1, &c->dev, &n, bins, &st, &e);
+    *prog = cl.clCreateProgramWithBinary(c->ctx, 1, &c->dev, &n, bins, &st_bin, &e);
     free(bin);
-    if (e == CL_SUCCESS && st == CL_SUCCESS &&
+    if (e == CL_SUCCESS && st_bin == CL_SUCCESS &&
         cl.clBuildProgram(*prog, 1, &c->dev, options, NULL, NULL) == CL_SUCCESS) {
         snprintf(cache, clen, "hit: %.580s", path);
         return 1;
@@ -374,7 +399,8 @@ static int program_from_cache(ob_cl *c, const char *key, const char *path, const
     if (*prog)
         cl.clReleaseProgram(*prog);
     *prog = NULL;
-    snprintf(cache, clen, "miss: the driver refused the cached binary (%s)", cl_errname(e != CL_SUCCESS ? e : st));
+    snprintf(cache, clen, "miss: the driver refused the cached binary (%s)",
+             cl_errname(e != CL_SUCCESS ? e : st_bin));
     return 0;
 }
 
@@ -410,16 +436,18 @@ static int build_program(ob_cl *c, const char *src, const char *options, cl_prog
 {
     char path[4200], why[300];
     char *key = ob_cl_program_key(c->platform, c->device, c->driver, c->version, options, src);
-    const int cached = key && ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0;
+    int cached = key && ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0;
     *prog = NULL;
     if (!key)
         snprintf(cache, clen, "off (out of memory)");
     else if (!cached)
         snprintf(cache, clen, "%s", why);
-    if (cached && program_from_cache(c, key, path, options, prog, cache, clen)) {
+    const int from = cached ? program_from_cache(c, key, path, options, prog, cache, clen) : 0;
+    if (from == 1) {
         free(key);
         return 0;
     }
+    cached = cached && from == 0;
     cl_int e;
     const char *srcs[1] = {src};
     *prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
