@@ -135,12 +135,13 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
                       "the CPU path builds without them" >&2
               have_header sisl.h || { echo "deps: libsisl-dev is required (the build links -lsisl)" >&2; exit 1; }
               have_header flint/fmpz_poly.h || { echo "deps: libflint-dev is required (the build links -lflint)" >&2; exit 1; }
+              have_header nettle/sha2.h || { echo "deps: nettle-dev is required (the build links -lnettle)" >&2; exit 1; }
               exit 0; }
     fi
     echo "deps: installed:$missing"
 else
-    case "$missing" in *libsisl-dev*|*libflint-dev*)
-        echo "deps: missing:$missing (libsisl-dev and libflint-dev are required: the build links -lsisl -lflint)" >&2
+    case "$missing" in *libsisl-dev*|*libflint-dev*|*nettle-dev*)
+        echo "deps: missing:$missing (libsisl-dev, libflint-dev and nettle-dev are required: the build links -lsisl -lflint -lnettle)" >&2
         echo "deps: install them with: sudo apt-get install$missing" >&2
         exit 1 ;;
     esac
