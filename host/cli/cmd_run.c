@@ -153,7 +153,7 @@ static void remove_stale(const char *dir)
 {
     static const char *const names[] = {"results.csv", "meta.json", "samples.csv", "fits.csv", "shard.csv",
                                         "results.fingerprint", "results.journal.csv",
-                                        "certify.journal.csv"};
+                                        "certify.journal.csv", "results.backends"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char p[4200];
         snprintf(p, sizeof p, "%s/%s", dir, names[i]);
