@@ -133,14 +133,21 @@ static void write_shards(FILE *f, const ob_shard_in *sh, const int *ix, const en
     fputs("],\n", f);
 }
 
+/* Shard es's value of key when it is an array ("[...]" on its line), else NULL. */
+static const entry *array_of(const entries *es, const char *key)
+{
+    const entry *e = find(es, key);
+    return e && e->vlen >= 2 && e->val[0] == '[' && e->val[e->vlen - 1] == ']' ? e : NULL;
+}
+
 /* Every shard's warnings, in K order, as one array. */
 static void write_warnings(FILE *f, const entries *es, int nsh)
 {
     int any = 0;
     fputc('[', f);
     for (int k = 0; k < nsh; k++) {
-        const entry *e = find(&es[k], "warnings");
-        if (!e || e->vlen < 2 || e->val[0] != '[' || e->val[e->vlen - 1] != ']')
+        const entry *e = array_of(&es[k], "warnings");
+        if (!e)
             continue;
         const char *a = e->val + 1, *b = e->val + e->vlen - 1;
         while (a < b && *a == ' ')
@@ -204,8 +211,8 @@ static void write_backends(FILE *f, const entries *es, int nsh)
     int ns = 0;
     fputc('[', f);
     for (int k = 0; k < nsh; k++) {
-        const entry *e = find(&es[k], "backends");
-        if (!e || e->vlen < 2 || e->val[0] != '[' || e->val[e->vlen - 1] != ']')
+        const entry *e = array_of(&es[k], "backends");
+        if (!e)
             continue;
         for (const char *p = e->val + 1, *end = e->val + e->vlen - 1, *q; p < end; p = q) {
             while (p < end && (*p == ' ' || *p == ','))

@@ -12,19 +12,15 @@
 # Also: names are SHA-256 (64 hex digits), files 0600, the directory 0700.
 # Skipped without an OpenCL device.
 . "$(dirname "$0")/lib_e2e.sh"
-C="--curve liu2002_ex1 --methods tiller --tols 1e-2 --backend opencl --metric radial"
+. "$(dirname "$0")/lib_cl.sh"
+C=$CL_PROBE
 unset OFFBENCH_CL_LAYOUT
 # what the run's meta.json says the cache did, its first word
 word() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["opencl"]["binary_cache"].split(":")[0].split(" ")[0])' "$1" 2>&1; }
 
 export OFFBENCH_CL_CACHE="$T/good"
-if ! $OB run $C --out "$T/r0" >/dev/null 2>"$T/r0.err"; then
-    echo "no OpenCL device: $(tail -n 1 "$T/r0.err")"
-    skipped=$((skipped + 30))
-    e2e_done
-    exit $?
-fi
-body "$T/r0/results.csv" > "$T/ref.txt"
+cl_device_or_skip 31
+body "$T/cl_probe/results.csv" > "$T/ref.txt"
 bin=$(ls "$T/good"/*.bin 2>/dev/null | head -n 1)
 name=$(basename "$bin")
 check 'echo "$name" | grep -Eq "^cl-[0-9a-f]{64}\.bin$"' "the cache file is named by a SHA-256 of its key: $name"

@@ -11,14 +11,10 @@
 # side: no ICD at all, or an ICD naming a library that is not there, is
 # still a setup error, exit 2, said as such.  Skipped without a device.
 . "$(dirname "$0")/lib_e2e.sh"
-C="--curve liu2002_ex1 --methods tiller --tols 1e-2 --backend opencl --metric radial"
+. "$(dirname "$0")/lib_cl.sh"
+C=$CL_PROBE
 export OFFBENCH_CL_CACHE="$T/cache"
-if ! $OB run $C --out "$T/r0" >/dev/null 2>"$T/r0.err"; then
-    echo "no OpenCL device: $(tail -n 1 "$T/r0.err")"
-    skipped=$((skipped + 4))
-    e2e_done
-    exit $?
-fi
+cl_device_or_skip 4
 
 # no ICD: an empty vendors directory
 mkdir -p "$T/none"

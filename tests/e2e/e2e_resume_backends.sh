@@ -10,6 +10,7 @@
 # "backend" and "opencl" keep what they said: the last backend.
 # The OpenCL cases are skipped without an OpenCL device.
 . "$(dirname "$0")/lib_e2e.sh"
+. "$(dirname "$0")/lib_cl.sh"
 R="--random 12:5 --methods tiller,cobb,ahn,zhao,interp --threads 2"
 export OFFBENCH_CL_CACHE="$T/cache"
 # the backends of a meta.json, "backend:device" joined by spaces
@@ -32,19 +33,8 @@ check '[ $? -eq 1 ] && [ -s "$T/c/results.journal.csv" ]' "the hook stops the ru
 $OB run $R --backend cpu --resume "$T/c" >/dev/null 2>&1
 check '[ "$(bk "$T/c/meta.json")" = "cpu:" ]' "cpu, resumed on cpu: one entry: $(bk "$T/c/meta.json")"
 
-if ! $OB run --curve liu2002_ex1 --methods tiller --tols 1e-2 --backend opencl --out "$T/probe" >/dev/null 2>"$T/probe.err"; then
-    echo "no OpenCL device: $(tail -n 1 "$T/probe.err")"
-    skipped=$((skipped + 6))
-    # merged shards, one on each backend: the merged run lists both
-$OB run $R --backend cpu --shard 0/2 --out "$T/s0" >/dev/null 2>&1
-$OB run $R --backend opencl --shard 1/2 --out "$T/s1" >/dev/null 2>&1
-$OB merge "$T/s0" "$T/s1" --out "$T/sm" >/dev/null 2>"$T/sm.err"
-check '[ "$(bk "$T/sm/meta.json")" = "cpu: opencl:$dev" ]' \
-    "merge of a cpu and an opencl shard: both: $(bk "$T/sm/meta.json"); $(tail -n 1 "$T/sm.err")"
-e2e_done
-    exit $?
-fi
-dev=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["opencl"]["device"])' "$T/probe/meta.json")
+cl_device_or_skip 6
+dev=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["opencl"]["device"])' "$T/cl_probe/meta.json")
 $OB run $R --backend opencl --resume "$T/c" >/dev/null 2>&1
 check '[ $? -eq 0 ] && [ "$(bk "$T/c/meta.json")" = "cpu:" ]' \
     "a resume that computes no row adds nothing: $(bk "$T/c/meta.json")"
