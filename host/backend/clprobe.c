@@ -5,6 +5,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -123,10 +124,15 @@ int ob_cl_no_platform_why(char *msg, size_t len)
     return s.oom || (s.loads && limited);
 }
 
-/* The child: fn's message down the pipe, its status (0, 1, 2) as exit. */
+/* The child: fn's message down the pipe, its status (0, 1, 2) as exit.
+ * Its stderr goes nowhere: what it would warn the run warns itself when it
+ * does the same, and what made it fail comes back through the pipe. */
 static void child(int (*fn)(void *, ob_err *), void *ctx, int fd)
 {
     ob_err e = {""};
+    const int null = open("/dev/null", O_WRONLY);
+    if (null >= 0)
+        dup2(null, 2);
     const int rc = fn(ctx, &e);
     if (rc != 0 && write(fd, e.msg, strlen(e.msg)) < 0)
         _exit(3);

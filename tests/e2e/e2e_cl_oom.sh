@@ -28,7 +28,15 @@ OCL_ICD_VENDORS="$T/bad" $OB run $C --out "$T/b" >/dev/null 2>"$T/b.err"
 check '[ $? -eq 2 ] && grep -q "nothere.icd" "$T/b.err" && grep -q "libnothere.so" "$T/b.err"' \
     "an ICD naming a missing library: exit 2, both named: $(cat "$T/b.err")"
 
-# the scan: each limit (KiB) a run that works or says out of memory
+# the scan: each limit (KiB) a run that works or says out of memory; a
+# build that cannot start under the smallest at all (a sanitizer's shadow
+# memory needs terabytes of address space) is skipped
+if ! (ulimit -v 160000; $OB --version) >/dev/null 2>&1; then
+    echo "skipped: this build does not start under ulimit -v 160000 (a sanitizer build?): the scan is left out"
+    skipped=$((skipped + 2))
+    e2e_done
+    exit $?
+fi
 said=0 wrong=""
 for v in $(seq 160000 10000 420000); do
     (ulimit -v "$v"; timeout -s KILL 120 $OB run $C --out "$T/m$v" >/dev/null 2>"$T/m$v.err")
