@@ -294,7 +294,7 @@ struct ob_cl {
     char platform[256], device[256], driver[128], source[512], version[256];
     uint64_t kernel_hash; /* of the text built (kernsrc.h) */
     char cache[2048];    /* what the binary cache did, every program (ob_cl_cache_status) */
-    char warned[600];    /* the last cache warning: the programs sharing a refused
+    char warned[4400];   /* the last cache warning: the programs sharing a refused
                             directory say it once */
     int gpu;             /* CL_DEVICE_TYPE_GPU or _ACCELERATOR */
     cl_program peak;     /* ob_cl_fma_peak's program, when asked for */
@@ -375,7 +375,7 @@ static int has_fp64(cl_device_id dev)
 static void cache_warn(ob_cl *c, const char *why, const char *then)
 {
     char msg[sizeof c->warned];
-    snprintf(msg, sizeof msg, "OpenCL binary cache: %.400s: %s", why, then);
+    snprintf(msg, sizeof msg, "OpenCL binary cache: %.3400s: %s", why, then);
     if (strcmp(msg, c->warned) == 0)
         return;
     snprintf(c->warned, sizeof c->warned, "%s", msg);
