@@ -19,7 +19,7 @@ unset OFFBENCH_CL_LAYOUT
 word() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["opencl"]["binary_cache"].split(":")[0].split(" ")[0])' "$1" 2>&1; }
 
 export OFFBENCH_CL_CACHE="$T/good"
-cl_device_or_skip 31
+cl_device_or_skip 34
 body "$T/cl_probe/results.csv" > "$T/ref.txt"
 bin=$(ls "$T/good"/*.bin 2>/dev/null | head -n 1)
 name=$(basename "$bin")
@@ -58,6 +58,8 @@ plant "$T/fw"; chmod 666 "$T/fw/$name"
 refused "$T/fw" "writable by others"
 plant "$T/fifo"; rm "$T/fifo/$name"; mkfifo "$T/fifo/$name"
 refused "$T/fifo" "not a regular file"
+mkfifo "$T/dfifo"
+refused "$T/dfifo" "Not a directory"
 plant "$T/sum"; printf 'X' | dd of="$T/sum/$name" bs=1 seek=$(($(stat -c %s "$bin") - 10)) conv=notrunc 2>/dev/null
 refused "$T/sum" "checksum"
 if [ "$(id -u)" = 0 ]; then
