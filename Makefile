@@ -59,7 +59,7 @@ else
 endif
 CFLAGS  += $(CFLAGS_COMMON) $(OPT) $(SANFLAGS)
 LDFLAGS += -fopenmp $(SANFLAGS)
-LDLIBS  += -lsisl -lflint -lgmp -lexpat -lm -ldl
+LDLIBS  += -lsisl -lflint -lgmp -lexpat -lnettle -lm -ldl
 
 LIB_SRC  := $(sort $(wildcard methods/*.c methods/*/*.c) $(filter-out host/main.c host/lib/sisl_server_main.c,$(wildcard host/*.c host/*/*.c)))
 LIB_OBJ  := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC)) $(BUILD)/embedded_data.o $(BUILD)/embedded_kernels.o \

@@ -10,6 +10,8 @@
 #   FLINT (methods/core/offdeg.c): libflint-dev (required: exact offset degrees)
 #   expat (host/io/approx_read_svg.c): libexpat1-dev (required: measure's
 #                          SVG reader parses the XML with it; the build links -lexpat)
+#   Nettle (host/backend/clcache.c): nettle-dev (required: SHA-256 of the
+#                          OpenCL binary cache's names and files)
 #   MPI (make MPI=1):      libopenmpi-dev, openmpi-bin (only when MPI=1)
 #   plots (scripts/*.py):  python3-matplotlib (optional: never fails the build)
 #   svg2curves.py check (tests/e2e/svgcheck.py): python3-svgelements, an independent
@@ -48,6 +50,7 @@ have_header CL/cl.h || missing="$missing opencl-headers"
 have_header sisl.h || missing="$missing libsisl-dev"
 have_header flint/fmpz_poly.h || missing="$missing libflint-dev"
 have_header expat.h || missing="$missing libexpat1-dev"
+have_header nettle/sha2.h || missing="$missing nettle-dev"
 if command -v dpkg-query >/dev/null 2>&1; then
     have_pkg ocl-icd-opencl-dev || missing="$missing ocl-icd-opencl-dev"
     have_pkg pocl-opencl-icd || missing="$missing pocl-opencl-icd"
@@ -138,12 +141,15 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
               have_header sisl.h || { echo "deps: libsisl-dev is required (the build links -lsisl)" >&2; exit 1; }
               have_header flint/fmpz_poly.h || { echo "deps: libflint-dev is required (the build links -lflint)" >&2; exit 1; }
               have_header expat.h || { echo "deps: libexpat1-dev is required (the build links -lexpat)" >&2; exit 1; }
+              have_header nettle/sha2.h || { echo "deps: nettle-dev is required (the build links -lnettle)" >&2; exit 1; }
               exit 0; }
     fi
     echo "deps: installed:$missing"
 else
     case "$missing" in *libsisl-dev*|*libflint-dev*|*libexpat1-dev*)
         echo "deps: missing:$missing (libsisl-dev, libflint-dev and libexpat1-dev are required: the build links -lsisl -lflint -lexpat)" >&2
+    case "$missing" in *libsisl-dev*|*libflint-dev*|*nettle-dev*)
+        echo "deps: missing:$missing (libsisl-dev, libflint-dev and nettle-dev are required: the build links -lsisl -lflint -lnettle)" >&2
         echo "deps: install them with: sudo apt-get install$missing" >&2
         exit 1 ;;
     esac

@@ -9,8 +9,8 @@
 #include "host/diag.h"
 #include "host/backend/clrt.h"
 #include "host/backend/clcache.h"
+#include "host/backend/clprobe.h"
 #include "host/backend/kernsrc.h"
-#include "host/run/shard.h"
 
 #include <dlfcn.h>
 #include <math.h>
@@ -63,13 +63,14 @@ char *ob_cl_program_key(const char *platform, const char *device, const char *dr
                         const char *options, const char *src)
 {
     const size_t n = strlen(src);
+    char hex[OB_SHA256_HEX];
     const size_t len = strlen(platform) + strlen(device) + strlen(driver) + strlen(device_version) +
                        strlen(options) + 256;
     char *key = malloc(len);
     if (key)
         snprintf(key, len, "offbench OpenCL program\nplatform=%s\ndevice=%s\ndriver=%s\ndevice_version=%s\n"
-                 "options=%s\nsource_bytes=%zu\nsource_fnv1a=%016llx\n", platform, device, driver, device_version,
-                 options, n, (unsigned long long)ob_fnv1a(OB_FNV_BASIS, src, n));
+                 "options=%s\nsource_bytes=%zu\nsource_sha256=%s\n", platform, device, driver, device_version,
+                 options, n, (ob_sha256_hex(src, n, hex), hex));
     return key;
 }
 
@@ -164,6 +165,14 @@ int ob_cl_fma_peak(ob_cl *c, double target_s, double *flops, double *seconds, ob
 #define CL_TARGET_OPENCL_VERSION 120
 #include <CL/cl.h>
 
+/* Whether the last failing call said memory: ob_cl_open and ob_cl_prepare
+ * then return -2 (the run exits 1, out of memory, not 2, a setup error). */
+static int cl_last_oom;
+static int cl_oom(cl_int e)
+{
+    return e == CL_OUT_OF_HOST_MEMORY || e == CL_OUT_OF_RESOURCES || e == CL_MEM_OBJECT_ALLOCATION_FAILURE;
+}
+
 /* ---- the loader ------------------------------------------------------ */
 
 #define CL_FUNCS(X)                                                                            \
@@ -190,6 +199,13 @@ static int load_cl(ob_err *err)
     if (!lib)
         lib = dlopen("libOpenCL.so", RTLD_NOW | RTLD_LOCAL);
     if (!lib) {
+        const char *e = dlerror();
+        char lim[100];
+        ob_as_limit(lim, sizeof lim);
+        if (ob_dl_oom(e)) { /* not remembered: with memory freed it may load */
+            cl_last_oom = 1;
+            return ob_fail(err, "out of memory loading the OpenCL loader libOpenCL.so.1: %.300s%s", e, lim);
+        }
         cl_loaded = -1;
         ob_fail(err, "no OpenCL loader (libOpenCL.so.1): install ocl-icd-libopencl1 and an ICD such as pocl-opencl-icd");
         return -1;
@@ -218,6 +234,7 @@ static const char *cl_errname(cl_int e)
     E(CL_INVALID_ARG_SIZE) E(CL_INVALID_KERNEL_ARGS) E(CL_INVALID_WORK_DIMENSION)
     E(CL_INVALID_WORK_GROUP_SIZE) E(CL_INVALID_GLOBAL_WORK_SIZE) E(CL_INVALID_BUFFER_SIZE)
 #undef E
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR"; /* the ICD loader's: no platform it could start */
     default: return "unknown error";
     }
 }
@@ -227,6 +244,7 @@ static const char *cl_errname(cl_int e)
     do {                                                                                    \
         cl_int cl_e_ = (call);                                                              \
         if (cl_e_ != CL_SUCCESS) {                                                          \
+            cl_last_oom = cl_oom(cl_e_);                                                    \
             ob_fail(err, "%s failed: %s (%d)", #call, cl_errname(cl_e_), (int)cl_e_); \
             goto fail;                                                                      \
         }                                                                                   \
@@ -276,6 +294,8 @@ struct ob_cl {
     char platform[256], device[256], driver[128], source[512], version[256];
     uint64_t kernel_hash; /* of the text built (kernsrc.h) */
     char cache[2048];    /* what the binary cache did, every program (ob_cl_cache_status) */
+    char warned[4400];   /* the last cache warning: the programs sharing a refused
+                            directory say it once */
     int gpu;             /* CL_DEVICE_TYPE_GPU or _ACCELERATOR */
     cl_program peak;     /* ob_cl_fma_peak's program, when asked for */
     clslot slot[OB_CL_SLOTS];
@@ -350,23 +370,46 @@ static int has_fp64(cl_device_id dev)
     return fp != 0;
 }
 
+/* A warning about the binary cache (why, then what the run does instead),
+ * unless it is the one this backend gave last. */
+static void cache_warn(ob_cl *c, const char *why, const char *then)
+{
+    char msg[sizeof c->warned];
+    snprintf(msg, sizeof msg, "OpenCL binary cache: %.3400s: %s", why, then);
+    if (strcmp(msg, c->warned) == 0)
+        return;
+    snprintf(c->warned, sizeof c->warned, "%s", msg);
+    ob_warn("%s", msg);
+}
+
 /* The program from a cached binary, when the cache holds one for key that
- * the driver takes and builds.  1 then, else 0 (cache says why). */
+ * the driver takes and builds: 1.  Else 0 (build it and store it), or -1
+ * (build it, store nothing: the directory is not the user's own); cache
+ * says why, and a file or directory refused is warned about. */
 static int program_from_cache(ob_cl *c, const char *key, const char *path, const char *options, cl_program *prog,
                               char *cache, size_t clen)
 {
     size_t n = 0;
-    char why[300];
-    unsigned char *bin = ob_clcache_read(path, key, &n, why, sizeof why);
-    if (!bin) {
-        snprintf(cache, clen, "miss: %s", why);
+    unsigned char *bin = NULL;
+    char why[3300];
+    const ob_clcache_status st = ob_clcache_read(path, key, &bin, &n, why, sizeof why);
+    if (st == OB_CLCACHE_UNSAFE) {
+        cache_warn(c, why, "not used, the programs are built from source (the cache is off; make the directory "
+                           "the user's own, chmod go-w, or set OFFBENCH_CL_CACHE)");
+        snprintf(cache, clen, "off (%.580s)", why);
+        return -1;
+    }
+    if (st != OB_CLCACHE_HIT) {
+        if (st == OB_CLCACHE_BAD)
+            cache_warn(c, why, "not loaded, the program is built from source and the file replaced");
+        snprintf(cache, clen, "miss: %.580s", why);
         return 0;
     }
-    cl_int e, st = CL_SUCCESS;
+    cl_int e, st_bin = CL_SUCCESS;
     const unsigned char *bins[1] = {bin};
-    *prog = cl.clCreateProgramWithBinary(c->ctx, 1, &c->dev, &n, bins, &st, &e);
+    *prog = cl.clCreateProgramWithBinary(c->ctx, 1, &c->dev, &n, bins, &st_bin, &e);
     free(bin);
-    if (e == CL_SUCCESS && st == CL_SUCCESS &&
+    if (e == CL_SUCCESS && st_bin == CL_SUCCESS &&
         cl.clBuildProgram(*prog, 1, &c->dev, options, NULL, NULL) == CL_SUCCESS) {
         snprintf(cache, clen, "hit: %.580s", path);
         return 1;
@@ -374,7 +417,8 @@ static int program_from_cache(ob_cl *c, const char *key, const char *path, const
     if (*prog)
         cl.clReleaseProgram(*prog);
     *prog = NULL;
-    snprintf(cache, clen, "miss: the driver refused the cached binary (%s)", cl_errname(e != CL_SUCCESS ? e : st));
+    snprintf(cache, clen, "miss: the driver refused the cached binary (%s)",
+             cl_errname(e != CL_SUCCESS ? e : st_bin));
     return 0;
 }
 
@@ -410,20 +454,23 @@ static int build_program(ob_cl *c, const char *src, const char *options, cl_prog
 {
     char path[4200], why[300];
     char *key = ob_cl_program_key(c->platform, c->device, c->driver, c->version, options, src);
-    const int cached = key && ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0;
+    int cached = key && ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0;
     *prog = NULL;
     if (!key)
         snprintf(cache, clen, "off (out of memory)");
     else if (!cached)
         snprintf(cache, clen, "%s", why);
-    if (cached && program_from_cache(c, key, path, options, prog, cache, clen)) {
+    const int from = cached ? program_from_cache(c, key, path, options, prog, cache, clen) : 0;
+    if (from == 1) {
         free(key);
         return 0;
     }
+    cached = cached && from == 0;
     cl_int e;
     const char *srcs[1] = {src};
     *prog = cl.clCreateProgramWithSource(c->ctx, 1, srcs, NULL, &e);
     if (e != CL_SUCCESS) {
+        cl_last_oom = cl_oom(e);
         ob_fail(err, "clCreateProgramWithSource failed: %s (%d)", cl_errname(e), (int)e);
         free(key);
         return -1;
@@ -431,6 +478,7 @@ static int build_program(ob_cl *c, const char *src, const char *options, cl_prog
     e = cl.clBuildProgram(*prog, 1, &c->dev, options, NULL, NULL);
     if (e != CL_SUCCESS) {
         char log[8192] = "";
+        cl_last_oom = cl_oom(e);
         cl.clGetProgramBuildInfo(*prog, c->dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
         ob_fail(err, "clBuildProgram failed: %s (%d); build log of %s (%s):\n%s", cl_errname(e), (int)e, c->source,
                 options, log);
@@ -497,6 +545,7 @@ int ob_cl_prepare(ob_cl *c, ob_metric m, ob_cl_layout l, ob_err *err)
         ob_fail(err, "%s", p->fail ? p->fail : "the program did not build");
         return -1;
     }
+    cl_last_oom = 0;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     cl_int e;
@@ -530,39 +579,46 @@ fail:
     p->state = -1;
     free(p->fail);
     p->fail = strdup(err->msg);
-    return -1;
+    return cl_last_oom ? -2 : -1;
 }
 
-int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err)
+/* Why the ICD loader gave no platform (e its error), into err; sets
+ * cl_last_oom when it is memory (clprobe.h tells that from a missing ICD). */
+static void no_platform(cl_int e, ob_err *err)
 {
-    *out = NULL;
-    if (load_cl(err))
-        return -1;
-    ob_cl_layout layout = OB_CL_GROUPS;
-    const int layout_set = ob_cl_layout_env(&layout, err);
-    if (layout_set < 0)
-        return -1;
-    ob_cl *c = calloc(1, sizeof *c);
-    if (!c) {
-        ob_fail(err, "out of memory");
-        return -1;
+    char why[1800], lim[100];
+    if (cl_oom(e)) {
+        ob_as_limit(lim, sizeof lim);
+        cl_last_oom = 1;
+        ob_fail(err, "out of memory starting the OpenCL platform (clGetPlatformIDs: %s)%s", cl_errname(e), lim);
+        return;
     }
+    cl_last_oom = ob_cl_no_platform_why(why, sizeof why);
+    ob_fail(err, "%s (clGetPlatformIDs: %s)", why, cl_errname(e));
+}
+
+/* The first device (see ob_cl_open) with its names in c, or NULL after
+ * err; a device query that fails for memory is said as such. */
+static cl_device_id pick_device(ob_cl *c, const char *device_substr, int gpu_only, ob_err *err)
+{
     cl_uint np = 0;
     cl_platform_id plats[16];
-    cl_int e = cl.clGetPlatformIDs(16, plats, &np);
+    const cl_int e = cl.clGetPlatformIDs(16, plats, &np);
     if (e != CL_SUCCESS || np == 0) {
-        ob_fail(err, "no OpenCL platform (clGetPlatformIDs: %s); install an ICD such as pocl-opencl-icd",
-                cl_errname(e));
-        goto fail;
+        no_platform(e, err);
+        return NULL;
     }
-    cl_device_id dev = NULL;
     int saw_match = 0;
-    for (cl_uint p = 0; p < np && !dev; p++) {
+    cl_int oom = CL_SUCCESS;
+    for (cl_uint p = 0; p < np; p++) {
         cl_uint nd = 0;
         cl_device_id devs[16];
-        if (cl.clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 16, devs, &nd) != CL_SUCCESS)
+        const cl_int de = cl.clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 16, devs, &nd);
+        if (de != CL_SUCCESS) {
+            oom = cl_oom(de) ? de : oom;
             continue;
-        for (cl_uint k = 0; k < nd && !dev; k++) {
+        }
+        for (cl_uint k = 0; k < nd; k++) {
             char pn[256] = "", dn[256] = "", full[520];
             cl.clGetPlatformInfo(plats[p], CL_PLATFORM_NAME, sizeof pn, pn, NULL);
             cl.clGetDeviceInfo(devs[k], CL_DEVICE_NAME, sizeof dn, dn, NULL);
@@ -574,22 +630,30 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
             cl.clGetDeviceInfo(devs[k], CL_DEVICE_TYPE, sizeof ty, &ty, NULL);
             if (!has_fp64(devs[k]) || (gpu_only && !(ty & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR))))
                 continue;
-            dev = devs[k];
             snprintf(c->platform, sizeof c->platform, "%s", pn);
             snprintf(c->device, sizeof c->device, "%s", dn);
-            cl.clGetDeviceInfo(dev, CL_DRIVER_VERSION, sizeof c->driver, c->driver, NULL);
+            cl.clGetDeviceInfo(devs[k], CL_DRIVER_VERSION, sizeof c->driver, c->driver, NULL);
+            return devs[k];
         }
     }
-    if (!dev) {
-        if (device_substr && *device_substr && !saw_match)
-            ob_fail(err, "--device: no OpenCL device matches '%s' (see './offbench list devices')",
-                    device_substr);
-        else if (gpu_only)
-            ob_fail(err, "no OpenCL GPU or accelerator with double precision (cl_khr_fp64)");
-        else
-            ob_fail(err, "no OpenCL device with double precision (cl_khr_fp64)");
-        goto fail;
-    }
+    char lim[100];
+    ob_as_limit(lim, sizeof lim);
+    cl_last_oom = oom != CL_SUCCESS;
+    if (cl_last_oom)
+        ob_fail(err, "out of memory starting the OpenCL platform (clGetDeviceIDs: %s)%s", cl_errname(oom), lim);
+    else if (device_substr && *device_substr && !saw_match)
+        ob_fail(err, "--device: no OpenCL device matches '%s' (see './offbench list devices')", device_substr);
+    else if (gpu_only)
+        ob_fail(err, "no OpenCL GPU or accelerator with double precision (cl_khr_fp64)");
+    else
+        ob_fail(err, "no OpenCL device with double precision (cl_khr_fp64)");
+    return NULL;
+}
+
+/* The device's context, queue, layout and kernel text in c: 0, or -1 after err. */
+static int open_device(ob_cl *c, cl_device_id dev, int layout_set, ob_cl_layout layout, ob_err *err)
+{
+    cl_int e;
     c->dev = dev;
     cl.clGetDeviceInfo(dev, CL_DEVICE_VERSION, sizeof c->version - 1, c->version, NULL);
     /* the layout by the device unless the environment names one: a CPU
@@ -612,11 +676,33 @@ int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err
         goto fail;
     }
     c->kernel_hash = ob_kernel_hash(c->src);
-    *out = c;
     return 0;
 fail:
-    ob_cl_close(c);
     return -1;
+}
+
+int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err)
+{
+    *out = NULL;
+    cl_last_oom = 0;
+    if (load_cl(err))
+        return cl_last_oom ? -2 : -1;
+    ob_cl_layout layout = OB_CL_GROUPS;
+    const int layout_set = ob_cl_layout_env(&layout, err);
+    if (layout_set < 0)
+        return -1;
+    ob_cl *c = calloc(1, sizeof *c);
+    if (!c) {
+        ob_fail(err, "out of memory");
+        return -2;
+    }
+    cl_device_id dev = pick_device(c, device_substr, gpu_only, err);
+    if (!dev || open_device(c, dev, layout_set, layout, err) != 0) {
+        ob_cl_close(c);
+        return cl_last_oom ? -2 : -1;
+    }
+    *out = c;
+    return 0;
 }
 
 static void release_buffers(clslot *sl)

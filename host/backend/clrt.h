@@ -34,7 +34,9 @@ int ob_cl_loader_status(char *msg, size_t len);
  *          used (ob_cl_prepare; a batch prepares its records' metrics).
  * Errors:  returns 0; -1 with the reason in err->msg: no loader, no platform, no
  *          matching device, no fp64, a failing call (named), or kernel
- *          sources that cannot be read. */
+ *          sources that cannot be read; -2 when it is out of memory (an
+ *          installed platform that cannot be loaded or started, a call that
+ *          says so: clprobe.h). */
 int ob_cl_open(const char *device_substr, int gpu_only, ob_cl **out, ob_err *err);
 
 /* Always safe to call (NULL included). */
@@ -109,7 +111,8 @@ char *ob_cl_program_key(const char *platform, const char *device, const char *dr
  *          when it is built already.  A run prepares its metric before any
  *          timed work (select.h); a batch prepares its records' metrics.
  * Returns: 0; -1 with the reason in err->msg (the build log of a failed
- *          build, which is not tried again; m no sampled metric). */
+ *          build, which is not tried again; m no sampled metric); -2 when
+ *          a call failed for want of memory. */
 int ob_cl_prepare(ob_cl *cl, ob_metric m, ob_cl_layout l, ob_err *err);
 
 /* One program's build, for the build report (meta.json, bench). */

@@ -3,9 +3,40 @@
  */
 #include <stdio.h>
 
+#include "host/backend/clprobe.h"
 #include "host/backend/kernsrc.h"
 #include "host/backend/select.h"
 #include "host/diag.h"
+
+/* What opening the backend needs, and what it gives: for open_prepare,
+ * here or in the child process that tries it first (clprobe.h). */
+typedef struct {
+    const char *device;
+    int gpu_only;
+    unsigned metrics;
+    ob_cl *cl;
+} open_args;
+
+/* Open the device and build the programs of the metrics (each launched
+ * once): 0, or ob_cl_open's and ob_cl_prepare's -1 or -2 (a->err). */
+static int open_prepare(void *ctx, ob_err *err)
+{
+    open_args *a = ctx;
+    int rc = ob_cl_open(a->device, a->gpu_only, &a->cl, err);
+    for (int m = 0; rc == 0 && m < OB_METRIC_COUNT; m++)
+        if ((a->metrics & (1u << m)) && ob_metric_batched((ob_metric)m))
+            rc = ob_cl_prepare(a->cl, (ob_metric)m, ob_cl_get_layout(a->cl), err);
+    return rc;
+}
+
+/* The trial process died of signal sig: said as out of memory, -2. */
+static int trial_died(int sig, ob_err *err)
+{
+    char lim[100];
+    ob_as_limit(lim, sizeof lim);
+    ob_fail(err, "out of memory starting the OpenCL platform: it ended a trial process with signal %d%s", sig, lim);
+    return -2;
+}
 
 /* --backend: opencl must work (exit 2 with the reason otherwise) on any
  * device with fp64, PoCL's CPU device included; auto takes the faster path:
@@ -28,16 +59,22 @@ int ob_open_backend(ob_backend kind, const char *device, unsigned metrics, ob_ba
         return -1;
     }
     const int gpu_only = kind == OB_BACKEND_AUTO && !device;
-    int rc = ob_cl_open(device, gpu_only, cl, &err);
-    for (int m = 0; rc == 0 && m < OB_METRIC_COUNT; m++)
-        if ((metrics & (1u << m)) && ob_metric_batched((ob_metric)m))
-            rc = ob_cl_prepare(*cl, (ob_metric)m, ob_cl_get_layout(*cl), &err);
+    /* under ulimit -v PoCL may abort (no error code) starting its threads,
+     * at open or at the first launch: a child process tries first */
+    open_args a = {device, gpu_only, metrics, NULL};
+    int rc = 0;
+    const int sig = ob_cl_try_in_child(open_prepare, &a, &rc, &err);
+    if (sig > 0)
+        rc = trial_died(sig, &err);
+    else if (sig < 0 || rc == 0)  /* not tried, or it worked there: here */
+        rc = open_prepare(&a, &err);
+    *cl = a.cl;
     if (rc != 0) {
         ob_cl_close(*cl);
         *cl = NULL;
         if (kind == OB_BACKEND_OPENCL || device) {
             ob_error("--backend opencl: %s", err.msg);
-            return -1;
+            return rc == -2 ? -2 : -1;
         }
         snprintf(b->why_cpu, sizeof b->why_cpu, "--backend auto: %.400s%s", err.msg,
                  gpu_only ? " (a CPU OpenCL device is used only when asked: --backend opencl)" : "");
@@ -62,6 +99,8 @@ int ob_open_backend(ob_backend kind, const char *device, unsigned metrics, ob_ba
             b->build_seconds, b->cache, b->layout, b->group_size, b->group_size == 1 ? "" : "s");
     return 0;
 }
+
+int ob_backend_exit(int rc) { return rc == -2 ? 1 : 2; }
 
 void ob_backend_hooks(ob_cl *cl, ob_backend_info *b, ob_driver_hooks *h)
 {

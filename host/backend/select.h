@@ -36,9 +36,15 @@ typedef struct {
  * Outputs: *cl, or NULL when the CPU measures; *b: what and why.
  * Returns: 0; -1 after ob_error() when OpenCL was required (kind opencl, or
  *          a device named) and cannot start or build, or $OFFBENCH_CL_LAYOUT
- *          is not a layout (unless kind is cpu).  auto falls back to the CPU
- *          and says why in b->why_cpu. */
+ *          is not a layout (unless kind is cpu); -2 after ob_error() when
+ *          it was required and could not start for want of memory (the
+ *          command exits 1, not 2: ob_backend_exit).  auto falls back to
+ *          the CPU and says why in b->why_cpu. */
 int ob_open_backend(ob_backend kind, const char *device, unsigned metrics, ob_backend_info *b, ob_cl **cl);
+
+/* The exit status of a command whose ob_open_backend returned rc (not 0):
+ * 1 out of memory, 2 otherwise. */
+int ob_backend_exit(int rc);
 
 /* Purpose: plug an opened OpenCL backend into a driver run's hooks (the
  *          batch measurer; batches given back counted in b->fallbacks).

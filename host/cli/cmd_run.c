@@ -153,7 +153,7 @@ static void remove_stale(const char *dir)
 {
     static const char *const names[] = {"results.csv", "meta.json", "samples.csv", "fits.csv", "shard.csv",
                                         "results.fingerprint", "results.journal.csv",
-                                        "certify.journal.csv"};
+                                        "certify.journal.csv", "results.backends"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char p[4200];
         snprintf(p, sizeof p, "%s/%s", dir, names[i]);
@@ -339,8 +339,9 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         ob_error("out of memory");  /* --certify, --time-fits: the same logs */
         st = 1;
     }
-    if (st == GO_ON && ob_open_backend(r.o.backend, r.o.device, 1u << r.o.metric, &r.rec.binfo, &r.cl) != 0)
-        st = 2;
+    int brc = 0;  /* out of memory starting OpenCL: exit 1, not 2 */
+    if (st == GO_ON && (brc = ob_open_backend(r.o.backend, r.o.device, 1u << r.o.metric, &r.rec.binfo, &r.cl)) != 0)
+        st = ob_backend_exit(brc);
     if (st == GO_ON)
         st = take_out_dir(&r);
     if (st == GO_ON)

@@ -477,8 +477,11 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     unsigned metrics = 0;  /* the programs the tables' jobs use */
     for (long i = 0; i < pl.nslots; i++)
         metrics |= 1u << pl.slots[i].job.metric;
-    if (ob_open_backend(o.backend, o.device, metrics, &binfo, &cl) != 0)  /* before --out: a run that cannot start creates nothing */
+    const int brc = ob_open_backend(o.backend, o.device, metrics, &binfo, &cl);
+    if (brc != 0) {  /* before --out: a run that cannot start creates nothing */
+        status = ob_backend_exit(brc);
         goto done;
+    }
     if (ob_mkdir_p(o.out_dir) != 0) {
         ob_error("--out: cannot create '%s': %s", o.out_dir, strerror(errno));
         status = 1;

@@ -101,7 +101,7 @@ static int is_per_shard(const char *key)
 static int is_rewritten(const char *key)
 {
     static const char *const own[] = {"shard", "jobs", "wall_seconds", "rep_mismatches", "warnings",
-                                      "timestamp", "merged_shards", "shards"};
+                                      "timestamp", "merged_shards", "shards", "backends"};
     for (size_t i = 0; i < sizeof own / sizeof own[0]; i++)
         if (strcmp(own[i], key) == 0)
             return 1;
@@ -133,14 +133,21 @@ static void write_shards(FILE *f, const ob_shard_in *sh, const int *ix, const en
     fputs("],\n", f);
 }
 
+/* Shard es's value of key when it is an array ("[...]" on its line), else NULL. */
+static const entry *array_of(const entries *es, const char *key)
+{
+    const entry *e = find(es, key);
+    return e && e->vlen >= 2 && e->val[0] == '[' && e->val[e->vlen - 1] == ']' ? e : NULL;
+}
+
 /* Every shard's warnings, in K order, as one array. */
 static void write_warnings(FILE *f, const entries *es, int nsh)
 {
     int any = 0;
     fputc('[', f);
     for (int k = 0; k < nsh; k++) {
-        const entry *e = find(&es[k], "warnings");
-        if (!e || e->vlen < 2 || e->val[0] != '[' || e->val[e->vlen - 1] != ']')
+        const entry *e = array_of(&es[k], "warnings");
+        if (!e)
             continue;
         const char *a = e->val + 1, *b = e->val + e->vlen - 1;
         while (a < b && *a == ' ')
@@ -192,6 +199,37 @@ static const char *value_end(const char *p, const char *end)
             return p;
     }
     return depth == 0 && !str ? p : NULL;
+}
+
+/* Every shard's "backends" entries (backends.h), in K order, each once, as
+ * one array: the backends that computed rows of the merged run. */
+static void write_backends(FILE *f, const entries *es, int nsh)
+{
+    enum { MAX = 64 };
+    const char *seen[MAX];
+    size_t slen[MAX];
+    int ns = 0;
+    fputc('[', f);
+    for (int k = 0; k < nsh; k++) {
+        const entry *e = array_of(&es[k], "backends");
+        if (!e)
+            continue;
+        for (const char *p = e->val + 1, *end = e->val + e->vlen - 1, *q; p < end; p = q) {
+            while (p < end && (*p == ' ' || *p == ','))
+                p++;
+            if (p >= end || !(q = value_end(p, end)) || q == p)
+                break;
+            int dup = 0;
+            for (int i = 0; i < ns && !dup; i++)
+                dup = slen[i] == (size_t)(q - p) && memcmp(seen[i], p, slen[i]) == 0;
+            if (dup || ns == MAX)
+                continue;
+            fprintf(f, "%s%.*s", ns ? ", " : "", (int)(q - p), p);
+            seen[ns] = p;
+            slen[ns++] = (size_t)(q - p);
+        }
+    }
+    fputc(']', f);
 }
 
 /* The members of the one-line object v[0..n): key i is keys[i] (without
@@ -313,6 +351,8 @@ static void write_line(FILE *f, const entry *e, const char *rest, size_t rlen, c
         fprintf(f, "%ld", sum_of(m->es, m->nsh, e->key));
     } else if (strcmp(e->key, "warnings") == 0) {
         write_warnings(f, m->es, m->nsh);
+    } else if (strcmp(e->key, "backends") == 0) {
+        write_backends(f, m->es, m->nsh);
     } else if (strcmp(e->key, "timestamp") == 0) {
         const entry *t = latest(m->es, m->nsh, e->key);
         fwrite(t->val, 1, t->vlen, f);

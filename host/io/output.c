@@ -226,8 +226,9 @@ static void meta_machine(FILE *f, const ob_backend_info *b)
                "judges timings only between runs with the same id, CPU model, cores, memory and device\"},\n");
 }
 
-/* meta.json: the build and what measured. */
-static void meta_build(FILE *f, const ob_backend_info *b)
+/* meta.json: the build and what measured (l: every backend that computed
+ * rows, across --resume; "backend" and "opencl" say the last). */
+static void meta_build(FILE *f, const ob_backend_info *b, const ob_backend_list *l)
 {
     fprintf(f, "{\n  \"program\": \"offbench\",\n  \"git_commit\": ");
     ob_json_string(f, OB_GIT_COMMIT);
@@ -235,6 +236,8 @@ static void meta_build(FILE *f, const ob_backend_info *b)
     ob_json_string(f, "gcc " __VERSION__);
     fprintf(f, ",\n  \"cflags\": ");
     ob_json_string(f, OB_CFLAGS);
+    fprintf(f, ",\n  \"backends\": ");
+    ob_backends_json(f, l, b);
     fprintf(f, ",\n  \"backend\": \"%s\",\n  \"opencl\": ", b->opencl ? "opencl" : "cpu");
     if (b->opencl) {
         fprintf(f, "{\"platform\": ");
@@ -468,7 +471,7 @@ int ob_write_meta(FILE *f, const ob_run_opts *o, const ob_run_record *rec, const
     struct tm tmv;
     gmtime_r(&now, &tmv);
     strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%SZ", &tmv);
-    meta_build(f, &rec->binfo);
+    meta_build(f, &rec->binfo, &rec->backends);
     meta_settings(f, o, rec);
     meta_definitions(f, o, rec);
     meta_host(f, o, rec);

@@ -154,9 +154,8 @@ static int plan(pass *p)
     p->rec.shard_n = o->shard_n;
     if (o->shard_n > 0 && ob_select_shard(o->shard_k, o->shard_n, &p->jobs, &p->njobs, &p->shard_idx) != 0)
         return 1;
-    if (ob_open_backend(o->backend, o->device, 1u << o->metric, &p->rec.binfo, &p->cl) != 0)
-        return 2;
-    return 0;
+    const int brc = ob_open_backend(o->backend, o->device, 1u << o->metric, &p->rec.binfo, &p->cl);
+    return brc ? ob_backend_exit(brc) : 0;
 }
 
 /* The run's fingerprint and plan hash against this binary's: 0, or 2 after

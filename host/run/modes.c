@@ -118,13 +118,19 @@ typedef struct {
     const ob_job *jobs;
     int failed;
     int certify;  /* --certify: a job with an approximation is journaled once certified (certify.h) */
+    ob_run_record *rec;  /* its backend noted with the first row (backends.h) */
+    const char *dir;
+    int noted;
 } journal_ctx;
 
 static void journal_job_done(void *ctx, size_t i)
 {
     journal_ctx *c = ctx;
+    char why[4400];
     if (c->certify && ob_certify_wants(&c->jobs[i]))
         return;
+    if (!c->noted && (c->noted = 1) && ob_backends_note(c->dir, &c->rec->binfo, &c->rec->backends, why, sizeof why))
+        ob_warn("%s: meta.json's \"backends\" may miss this run's backend", why);
     if (!c->failed && ob_journal_add(c->jr, &c->jobs[i]) != 0) {
         c->failed = 1;
         ob_error("%s: cannot write: rows are no longer saved as jobs finish", c->jr->path);
@@ -152,6 +158,8 @@ int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char
         ob_error("%s", err.msg);
         goto out;
     }
+    if (ob_backends_load(o->out_dir, o->resume_dir != NULL, &c->rec->backends, err.msg, sizeof err.msg) != 0)
+        ob_warn("%s: meta.json's \"backends\" lists only this run's", err.msg);
     size_t np = 0;
     for (size_t i = 0; i < njobs; i++) {
         ob_job *j = &jobs[i];
@@ -178,7 +186,7 @@ int ob_run_journaled(const ob_run_ctx *c, ob_job *jobs, size_t njobs, const char
     if (*restored_n)
         ob_info("resuming %s: %zu of %zu jobs restored, %zu to run", o->out_dir, *restored_n,
                 njobs, np);
-    journal_ctx jc = {jr, pend, 0, o->certify};
+    journal_ctx jc = {jr, pend, 0, o->certify, c->rec, o->out_dir, 0};
     h.job_done = journal_job_done;
     h.job_done_ctx = &jc;
     /* the driver runs pend: its span logs are pend's, put back at the jobs' places after */

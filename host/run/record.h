@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "host/backend/select.h"
+#include "host/run/backends.h"
 #include "host/io/curvefile.h"
 #include "host/run/hostinfo.h"
 #include "methods/driver/driver.h"
@@ -28,6 +29,8 @@ typedef struct {
     long rep_mismatches;         /* job results that differed between
                                     repetitions (nondeterminism) */
     ob_backend_info binfo;
+    ob_backend_list backends;    /* every backend that computed rows of the run,
+                                    across --resume (backends.h); empty: binfo's */
     ob_loadavg load;             /* the load average during the run (hostinfo.h) */
     ob_engine_stats engine;      /* what the driver's engine did (the last run
                                     of a --reps series) */

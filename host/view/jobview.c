@@ -113,8 +113,9 @@ static int refit_span(ob_jobview *v, const ob_span *sp, void *work, int *cap, in
 
 int ob_jobview_run(ob_jobview *v)
 {
-    if (ob_open_backend(v->o.backend, v->o.device, 1u << v->o.metric, &v->binfo, &v->cl) != 0)
-        return 2;
+    const int brc = ob_open_backend(v->o.backend, v->o.device, 1u << v->o.metric, &v->binfo, &v->cl);
+    if (brc != 0)
+        return ob_backend_exit(brc);
     if (v->o.threads > 0)
         omp_set_num_threads(v->o.threads);
     ob_driver_hooks h = {.spans = &v->spans};

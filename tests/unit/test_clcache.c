@@ -2,7 +2,10 @@
  * test_clcache.c - the OpenCL program binary cache (host/backend/clcache.h):
  * a stored binary comes back only for its own key and intact; a corrupt,
  * truncated, foreign or other-format file is ignored, never trusted; a link
- * at the file or its temporary is replaced, never written through.  Then,
+ * at the file or its temporary is replaced, never written through; names
+ * are SHA-256 (FIPS 180-4's vectors); a directory or file that is not the
+ * user's own (a link, group- or world-writable, a FIFO: not waited on) is
+ * refused (issue 48).  Then,
  * on an OpenCL device (PoCL here): the first open builds and stores, the
  * second reads the cache, a cached program measures as the CPU does, a
  * corrupted cache file is rebuilt, a changed kernel source builds anew,
@@ -15,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "host/backend/clcache.h"
@@ -44,6 +48,14 @@ static long file_size(const char *path)
     return n;
 }
 
+/* The binary for key in path on a hit, else NULL (why says why). */
+static unsigned char *rd(const char *path, const char *key, size_t *n, char *why, size_t wlen)
+{
+    unsigned char *bin = NULL;
+    ob_clcache_read(path, key, &bin, n, why, wlen);
+    return bin;
+}
+
 /* Flip one byte of a file at offset off (from the end when negative). */
 static void flip(const char *path, long off)
 {
@@ -70,9 +82,9 @@ static void test_files(void)
     for (int i = 0; i < 1000; i++)
         bin[i] = (unsigned char)(i * 7);
     size_t n = 0;
-    CHECK(ob_clcache_read(path, key, &n, why, sizeof why) == NULL && strstr(why, "no cached"), "absent: %s", why);
+    CHECK(rd(path, key, &n, why, sizeof why) == NULL && strstr(why, "no cached"), "absent: %s", why);
     CHECK(ob_clcache_write(path, key, bin, sizeof bin, why, sizeof why) == 0, "write: %s", why);
-    unsigned char *got = ob_clcache_read(path, key, &n, why, sizeof why);
+    unsigned char *got = rd(path, key, &n, why, sizeof why);
     CHECK(got && n == sizeof bin && memcmp(got, bin, n) == 0, "read back whole");
     free(got);
     /* a link planted at the file or at its temporary (PATH.PID.tmp) is
@@ -87,32 +99,32 @@ static void test_files(void)
         CHECK(symlink(victim, at[i]) == 0, "symlink at %s", at[i]);
         CHECK(ob_clcache_write(path, key, bin, sizeof bin, why, sizeof why) == 0 && file_size(victim) == 8,
               "a link at %s: written (%s), its target kept (%ld bytes)", at[i], why, file_size(victim));
-        got = ob_clcache_read(path, key, &n, why, sizeof why);
+        got = rd(path, key, &n, why, sizeof why);
         CHECK(got && n == sizeof bin && access(tmp, F_OK) != 0, "a link at %s: the cache file replaces it", at[i]);
         free(got);
     }
     /* the same file asked for with another key: foreign */
-    CHECK(ob_clcache_read(path, other, &n, why, sizeof why) == NULL && strstr(why, "another"), "foreign: %s",
+    CHECK(rd(path, other, &n, why, sizeof why) == NULL && strstr(why, "another"), "foreign: %s",
           why);
     /* one byte of the binary changed: the checksum */
     flip(path, -10);
-    CHECK(ob_clcache_read(path, key, &n, why, sizeof why) == NULL && strstr(why, "checksum"), "corrupt: %s", why);
+    CHECK(rd(path, key, &n, why, sizeof why) == NULL && strstr(why, "checksum"), "corrupt: %s", why);
     /* truncated, and one byte too many */
     ob_clcache_write(path, key, bin, sizeof bin, why, sizeof why);
     CHECK(truncate(path, file_size(path) - 1) == 0, "truncate");
-    CHECK(ob_clcache_read(path, key, &n, why, sizeof why) == NULL && strstr(why, "truncated"), "truncated: %s",
+    CHECK(rd(path, key, &n, why, sizeof why) == NULL && strstr(why, "truncated"), "truncated: %s",
           why);
     ob_clcache_write(path, key, bin, sizeof bin, why, sizeof why);
     FILE *f = fopen(path, "ab");
     fputc(0, f);
     fclose(f);
-    CHECK(ob_clcache_read(path, key, &n, why, sizeof why) == NULL, "a byte appended: %s", why);
+    CHECK(rd(path, key, &n, why, sizeof why) == NULL, "a byte appended: %s", why);
     /* another format; a length field gone wild */
     write_bytes(path, "OBCLBIN0 whatever", 17);
-    CHECK(ob_clcache_read(path, key, &n, why, sizeof why) == NULL && strstr(why, "format"), "format: %s", why);
+    CHECK(rd(path, key, &n, why, sizeof why) == NULL && strstr(why, "format"), "format: %s", why);
     ob_clcache_write(path, key, bin, sizeof bin, why, sizeof why);
     flip(path, 8 + 8 + (long)strlen(key) + 7);  /* the binary length's high byte */
-    CHECK(ob_clcache_read(path, key, &n, why, sizeof why) == NULL, "a wild length: %s", why);
+    CHECK(rd(path, key, &n, why, sizeof why) == NULL, "a wild length: %s", why);
     setenv("OFFBENCH_CL_CACHE", "off", 1);
     CHECK(ob_clcache_path(key, path, sizeof path, why, sizeof why) == -1 && strstr(why, "off"), "off: %s", why);
     unsetenv("OFFBENCH_CL_CACHE");
@@ -120,6 +132,96 @@ static void test_files(void)
     CHECK(ob_clcache_path(key, path, sizeof path, why, sizeof why) == 0 && strstr(path, "/offbench/cl-"),
           "XDG_CACHE_HOME/offbench: %s", path);
     unsetenv("XDG_CACHE_HOME");
+}
+
+/* SHA-256 as FIPS 180-4 gives it, and the names made of it. */
+static void test_sha(void)
+{
+    char hex[OB_SHA256_HEX], path[4200], why[300];
+    ob_sha256_hex("abc", 3, hex);
+    CHECK(strcmp(hex, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad") == 0, "SHA-256(abc): %s",
+          hex);
+    const char *two = "abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq";
+    ob_sha256_hex(two, strlen(two), hex);
+    CHECK(strcmp(hex, "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1") == 0, "SHA-256(448 bits): %s",
+          hex);
+    ob_sha256_hex("", 0, hex);
+    CHECK(strcmp(hex, "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855") == 0, "SHA-256(''): %s", hex);
+    setenv("OFFBENCH_CL_CACHE", dir, 1);
+    ob_clcache_path("abc", path, sizeof path, why, sizeof why);
+    const char *base = strrchr(path, '/');
+    CHECK(base && strcmp(base, "/cl-ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad.bin") == 0,
+          "the name is the key's SHA-256: %s", path);
+    unsetenv("OFFBENCH_CL_CACHE");
+}
+
+/* What reading sub/NAME of the test's key says after setup: the status and why. */
+static ob_clcache_status trust_case(const char *sub, const char *setup, char *why, size_t wlen)
+{
+    const char *key = "device=T\n";
+    char d[400], path[4200], cmd[9000];
+    snprintf(d, sizeof d, "%s/trust/%s", dir, sub);
+    setenv("OFFBENCH_CL_CACHE", d, 1);
+    ob_clcache_path(key, path, sizeof path, why, wlen);
+    unsigned char bin[100] = {1, 2, 3};
+    ob_clcache_write(path, key, bin, sizeof bin, why, wlen);
+    snprintf(cmd, sizeof cmd, "D=%s F=%s; %s", d, path, setup);
+    if (system(cmd) != 0)
+        fprintf(stderr, "cannot run: %s\n", cmd);
+    unsigned char *got = NULL;
+    size_t n = 0;
+    alarm(60); /* a FIFO that blocks fails the test instead of hanging it */
+    const ob_clcache_status st = ob_clcache_read(path, key, &got, &n, why, wlen);
+    alarm(0);
+    free(got);
+    unsetenv("OFFBENCH_CL_CACHE");
+    return st;
+}
+
+/* Only the user's own directory and file are read: each refusal says why
+ * and names the path; a refused directory is not written either. */
+static void test_trust(void)
+{
+    char why[600];
+    struct stat st;
+    CHECK(trust_case("own", "true", why, sizeof why) == OB_CLCACHE_HIT, "own: %s", why);
+    CHECK(stat(dir, &st) == 0, "stat");
+    char own[400];
+    snprintf(own, sizeof own, "%s/trust/own", dir);
+    CHECK(stat(own, &st) == 0 && (st.st_mode & 0777) == 0700, "the directory made 0700: %o", st.st_mode & 0777);
+    static const struct {
+        const char *sub, *setup, *want;
+        ob_clcache_status st;
+    } c[] = {
+        {"ww", "chmod 777 $D", "writable by others", OB_CLCACHE_UNSAFE},
+        {"gw", "chmod 770 $D", "writable by others", OB_CLCACHE_UNSAFE},
+        {"ln", "mv $D $D.real && ln -s $D.real $D", "symbolic link", OB_CLCACHE_UNSAFE},
+        {"fw", "chmod 622 $F", "writable by others", OB_CLCACHE_BAD},
+        {"fl", "mv $F $F.real && ln -s $F.real $F", "symbolic link", OB_CLCACHE_BAD},
+        {"ff", "rm $F && mkfifo $F", "not a regular file", OB_CLCACHE_BAD},
+        {"fd", "rm $F && mkdir $F", "not a regular file", OB_CLCACHE_BAD},
+        {"od", "chown nobody $D", "another user", OB_CLCACHE_UNSAFE},
+        {"of", "chown nobody $F", "another user", OB_CLCACHE_BAD},
+    };
+    for (size_t i = 0; i < sizeof c / sizeof *c; i++) {
+        if (c[i].setup[0] == 'c' && c[i].setup[1] == 'h' && c[i].setup[2] == 'o' && geteuid() != 0) {
+            SKIP("another owner: chown to nobody needs root");
+            continue;
+        }
+        const ob_clcache_status got = trust_case(c[i].sub, c[i].setup, why, sizeof why);
+        CHECK(got == c[i].st && strstr(why, c[i].want) && strstr(why, c[i].sub), "%s (%s): %d, %s", c[i].sub,
+              c[i].setup, (int)got, why);
+    }
+    /* a refused directory gets no file */
+    char ww[400], cmd[600];
+    snprintf(ww, sizeof ww, "%s/trust/ww/cl-x.bin", dir);
+    const unsigned char bin[4] = {9};
+    CHECK(ob_clcache_write(ww, "k", bin, sizeof bin, why, sizeof why) == -1 && strstr(why, "writable") &&
+              access(ww, F_OK) != 0,
+          "a world-writable directory is not written: %s", why);
+    snprintf(cmd, sizeof cmd, "rm -rf %s/trust", dir);
+    if (system(cmd) != 0)
+        fprintf(stderr, "cannot run: %s\n", cmd);
 }
 
 /* The programs' build options and cache keys: each metric and layout its
@@ -351,6 +453,8 @@ int main(void)
         return check_done();
     }
     test_files();
+    test_sha();
+    test_trust();
     test_keys();
     test_device();
     test_lazy();
