@@ -146,10 +146,8 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     fi
     echo "deps: installed:$missing"
 else
-    case "$missing" in *libsisl-dev*|*libflint-dev*|*libexpat1-dev*)
-        echo "deps: missing:$missing (libsisl-dev, libflint-dev and libexpat1-dev are required: the build links -lsisl -lflint -lexpat)" >&2
-    case "$missing" in *libsisl-dev*|*libflint-dev*|*nettle-dev*)
-        echo "deps: missing:$missing (libsisl-dev, libflint-dev and nettle-dev are required: the build links -lsisl -lflint -lnettle)" >&2
+    case "$missing" in *libsisl-dev*|*libflint-dev*|*libexpat1-dev*|*nettle-dev*)
+        echo "deps: missing:$missing (libsisl-dev, libflint-dev, libexpat1-dev and nettle-dev are required: the build links -lsisl -lflint -lexpat -lnettle)" >&2
         echo "deps: install them with: sudo apt-get install$missing" >&2
         exit 1 ;;
     esac
