@@ -55,14 +55,16 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 4
+#define OBX_VERSION_MINOR 5
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.4.0"
+#define OBX_VERSION "0.5.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
  *          same MAJOR means compatible; MINOR counts additions: 0.2 added
- *          obx_curves_segment_count, obx_curves_segment, obx_curves_family).
+ *          obx_curves_segment_count, obx_curves_segment, obx_curves_family;
+ *          0.5: obx_measure refuses pieces that do not cover the offset
+ *          once, obx_run_batch_stop).
  *          Thread-safe. */
 const char *obx_version(void);
 
@@ -300,18 +302,25 @@ typedef struct {
  *          (degrees[], xy[], w[] or NULL as in obx_curves_from_arrays),
  *          against the exact d-offset of curve `curve` under `metric`
  *          (NULL: hausdorff; also "hausdorff-whole", the two-sided
- *          distance of the whole approximation, which needs the pieces to
- *          cover the offset once, OBX_E_MEASURE otherwise; since 0.3), as `offbench measure` does for a file without
+ *          distance of the whole approximation; since 0.3), as `offbench
+ *          measure` does for a file without
  *          base links: each piece's base range is found by projecting its
  *          ends on the offset (a piece whose ends lie over different base
  *          segments is cut where it crosses each joint's normal line; piece
  *          stays its index in the arrays), then each piece is measured
- *          against its base piece, 256 samples.  bound and radial read the pieces at the
+ *          against its base piece, 256 samples.  The pieces must cover
+ *          the offset once, whatever the metric (since 0.5: the CLI's check,
+ *          by the same code, host/measure/measure.h): one piece of several,
+ *          copies of a piece, a gap or an overlap are OBX_E_MEASURE; pieces
+ *          out of order or reversed are measured.  bound and radial read the pieces at the
  *          base's parameter and so do not apply (status "n/a"); param needs
  *          read links and does not apply either.
  * Outputs: *m.
  * Errors:  OBX_E_INVALID (arguments as obx_fit, a bad piece), OBX_E_MEASURE
- *          (a piece that cannot be matched: "piece K: reason"), OBX_E_NOMEM.
+ *          (a piece that cannot be matched: "piece K: reason"; pieces that
+ *          do not cover the offset once: "measure: pieces does not cover the
+ *          d = D offset of curve ID once (G gaps, O overlaps, U duplicates);
+ *          the first: piece K: ..."), OBX_E_NOMEM.
  * Threads: safe. */
 int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
                 const double *w, const char *metric, obx_measurement *m, obx_error *err);

@@ -5,7 +5,7 @@
  * take the same checks), a fit is a one-job ob_driver_run with the run
  * command's defaults, its pieces are the accepted spans refitted
  * (ob_approx_from_job, as --export), and a measurement is `measure`'s
- * ob_approx_match + ob_approx_measure.  No state besides the handles
+ * one path (ob_measure_approx: match, cover, measure).  No state besides the handles
  * (and the SISL server's path, set once: host/lib/sisl_exe.c).
  */
 #define _GNU_SOURCE 1 /* open_memstream's prototype with older glibc */
@@ -732,21 +732,29 @@ static int pieces_approx(int npieces, const int *degrees, const double *xy, cons
     return 0;
 }
 
-/* hausdorff-whole (ob_approx_hausdorff_whole): the pieces, matched, must
- * cover the offset once, as measure's CLI checks; *r its result. */
-static int measure_whole(const ob_curve *c, double d, const ob_approx *a, ob_mres *r, obx_error *err)
+/* `measure`'s one path (ob_measure_approx), one row: the pieces are
+ * matched and must cover the offset once, whatever the metric, as the CLI
+ * checks a file; *r that row.  The message names the first problem. */
+static int measure_row(const ob_curve *c, double d, ob_approx *a, ob_metric met, int whole, ob_mres *r,
+                       obx_error *err)
 {
+    ob_measure_ask ask = {{0}, whole, OB_DEFAULT_SAMPLES};
+    ask.want[met] = !whole;
     ob_cover cv;
+    ob_measure_out out;
     ob_err e;
-    int rc = ob_approx_cover(c, d, a, OB_DEFAULT_SAMPLES, "pieces", &cv, &e);
-    if (rc != 0)
-        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
-    else if (ob_cover_fails(&cv))
-        rc = fail(err, OBX_E_MEASURE, "the pieces do not cover the offset once (%d gaps, %d overlaps, %d "
-                  "duplicates): hausdorff-whole measures a whole approximation", cv.count[OB_COVER_GAP],
-                  cv.count[OB_COVER_OVERLAP], cv.count[OB_COVER_DUPLICATE]);
-    else if (ob_approx_hausdorff_whole(c, d, a, &cv, OB_DEFAULT_SAMPLES, r, &e) != 0)
-        rc = fail(err, OBX_E_NOMEM, "%s", e.msg);
+    int rc = ob_measure_approx(c, d, a, &ask, "pieces", &cv, &out, &e);
+    if (rc != 0 && cv.nfail > 0) {  /* the summary's head, then where: the first problem */
+        char first[300];
+        ob_cover_text(&cv.fail[0], a, "pieces", first, sizeof first);
+        const char *head = strstr(e.msg, " once ("), *end = head ? strchr(head, ')') : NULL;
+        const int len = end ? (int)(end + 1 - e.msg) : 200;
+        const char *at = strncmp(first, "pieces:0: ", 10) == 0 ? first + 10 : first;  /* no file, no line */
+        rc = fail(err, OBX_E_MEASURE, "%.*s; the first: %s", len < 200 ? len : 200, e.msg, at);
+    } else if (rc != 0) {
+        rc = fail(err, OBX_E_MEASURE, "%.500s", e.msg);
+    }
+    *r = whole ? out.whole : out.res[met];
     ob_cover_free(&cv);
     return rc;
 }
@@ -761,16 +769,10 @@ int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const
     if (check_curve_d(set, curve, d, err) || (!whole && parse_metric(metric, &met, err)))
         return -1;
     ob_approx a = {0};
-    const ob_curve *c = &set->set.v[curve];
-    ob_err e;
     ob_mres r;
     int rc = pieces_approx(npieces, degrees, xy, w, &a, err);
-    if (rc == 0 && ob_approx_match(c, d, &a, "pieces", &e) != 0)
-        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
-    else if (rc == 0 && whole)
-        rc = measure_whole(c, d, &a, &r, err);
-    else if (rc == 0 && ob_approx_measure(c, d, &a, met, OB_DEFAULT_SAMPLES, "pieces", &r, &e) != 0)
-        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
+    if (rc == 0)
+        rc = measure_row(&set->set.v[curve], d, &a, met, whole, &r, err);
     ob_approx_free(&a);
     if (rc)
         return -1;
