@@ -49,6 +49,15 @@ class UnknownCurveError(InvalidError, KeyError):
         return self.message
 
 
+class InvalidTypeError(InvalidError, TypeError):
+    """An argument or field of the wrong type (a Curve's index that is not
+    a whole number)."""
+
+
+class CurveIndexError(InvalidError, IndexError):
+    """A curve index outside its set."""
+
+
 class ParseError(Error, ValueError):
     """A curve file, results.csv or meta.json that is not valid: the
     message starts with FILE:LINE."""

@@ -99,7 +99,7 @@ def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None, cer
     L = _lib.lib()
     out = _lib.ResultP()
     err = _lib.ObxError()
-    _lib.check(L.obx_fit(c.set._h, c.index, m, dd, tt, _cstr(metric, "metric"), _cstr(split, "split"),
+    _lib.check(L.obx_fit(*c.handle(), m, dd, tt, _cstr(metric, "metric"), _cstr(split, "split"),
                          _params_text(params), ctypes.byref(out), ctypes.byref(err)), err)
     try:
         if mode is not None:
@@ -127,11 +127,11 @@ def measure(curve, d, pieces, metric="hausdorff"):
         pieces = pieces.pieces
     bz = as_beziers(pieces, "pieces")
     dd = number(d, "d")
-    degrees, xy, w = flat_arrays(bz)
+    degrees, xy, w = flat_arrays(bz, "pieces")
     L = _lib.lib()
     m = _lib.Measurement()
     err = _lib.ObxError()
-    _lib.check(L.obx_measure(c.set._h, c.index, dd, len(bz), degrees, dptr(xy), dptr(w), _cstr(metric, "metric"),
+    _lib.check(L.obx_measure(*c.handle(), dd, len(bz), degrees, dptr(xy), dptr(w), _cstr(metric, "metric"),
                              ctypes.byref(m), ctypes.byref(err)), err)
     names = _lib.text(L.obx_results_header()).split(",")
     values = dict.fromkeys(names)
@@ -255,7 +255,7 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
         specs = (_lib.JobSpec * len(idx))()
         for k, i in enumerate(idx):
             c, m, dv, t = jobs[i]
-            specs[k] = _lib.JobSpec(c.index, names[m], dv, t, met, spl, per_method.get(m))
+            specs[k] = _lib.JobSpec(c.handle()[1], names[m], dv, t, met, spl, per_method.get(m))
         out = (_lib.ResultP * len(idx))()
         err = _lib.ObxError()
         rc = L.obx_run_batch(cset._h, specs, len(idx), cb, None, out, ctypes.byref(err))
