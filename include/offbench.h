@@ -77,7 +77,8 @@ typedef enum {
     OBX_E_IO,           /* a file that cannot be read */
     OBX_E_NOMEM,        /* out of memory */
     OBX_E_UNSUPPORTED,  /* valid, but not available here (sisl without its server) */
-    OBX_E_MEASURE       /* an approximation that cannot be measured or matched */
+    OBX_E_MEASURE,      /* an approximation that cannot be measured or matched */
+    OBX_E_STOPPED       /* a batch its progress callback stopped (since 0.5) */
 } obx_code;
 
 /* The one error carrier: filled by the call that fails. */
@@ -274,13 +275,18 @@ typedef struct {
 
 /* Told the jobs finished so far (done of total) as the batch runs. */
 typedef void (*obx_progress_fn)(void *ctx, size_t done, size_t total);
+/* The same; a nonzero return stops the batch (obx_run_batch_stop). */
+typedef int (*obx_progress_stop_fn)(void *ctx, size_t done, size_t total);
 
 /* Purpose: run n jobs together, as one `offbench run` runs its jobs (OpenMP
  *          threads over all of them; jobs that differ only in tol share
  *          pieces): every result is what obx_fit gives for its spec.
- * Inputs:  jobs[n]; progress (NULL: none), called with ctx from one thread
- *          at a time (not necessarily the caller's) after each batch of
- *          work, done rising to total.
+ * Inputs:  jobs[n]; progress (NULL: none), called with ctx by the calling
+ *          thread (since 0.5; before, from a driver thread inside its lock)
+ *          as jobs finish, done rising strictly to total, outside every
+ *          lock of the library: it may call obx_fit, obx_measure or
+ *          obx_run_batch itself.  (With a callback the driver runs on a
+ *          thread of the library's own, kept for the next batch.)
  * Outputs: out[n], one result per job, in the specs' order (free each
  *          with obx_result_free); all NULL after an error.
  * Errors:  as obx_fit, the message prefixed "job I: " for the first bad
@@ -288,6 +294,16 @@ typedef void (*obx_progress_fn)(void *ctx, size_t done, size_t total);
  * Threads: safe, also on one shared set. */
 int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
                   obx_result **out, obx_error *err);
+
+/* Purpose: obx_run_batch whose progress callback can stop the batch (since
+ *          0.5): a nonzero return stops it at its next batch of work
+ *          (the way `offbench run` stops on SIGINT), and progress is not
+ *          called again.  A language binding answers 1 where its callback
+ *          raised (Python's KeyboardInterrupt) and re-raises after.
+ * Errors:  as obx_run_batch; OBX_E_STOPPED when the callback stopped it
+ *          (also when every job had finished: out is all NULL). */
+int obx_run_batch_stop(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_stop_fn progress,
+                       void *ctx, obx_result **out, obx_error *err);
 
 /* ---- measure -------------------------------------------------------------- */
 

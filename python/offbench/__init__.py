@@ -16,7 +16,7 @@ from . import _lib
 from .bezier import Bezier
 from .curves import Curve, CurveSet, curve_from_segments, curves
 from .errors import (CurveIndexError, Error, FileError, InvalidError, InvalidTypeError, LibraryNotFound, MeasureError,
-                     OutOfMemoryError, ParseError, UnknownCurveError, UnsupportedError)
+                     OutOfMemoryError, ParseError, StoppedError, UnknownCurveError, UnsupportedError)
 from .fit import fit, measure, run
 from .methods import Method, Param, methods
 from .result import Result
@@ -37,8 +37,7 @@ def library_path():
 
 __all__ = [
     "Bezier", "Curve", "CurveIndexError", "CurveSet", "Error", "FileError", "InvalidError", "InvalidTypeError",
-    "LibraryNotFound", "MeasureError",
-    "Method", "OutOfMemoryError", "Param", "ParseError", "Result", "UnknownCurveError", "UnsupportedError",
-    "curve_from_segments", "curves", "fit", "library_path", "library_version", "measure", "methods", "read_meta",
-    "read_results", "run",
+    "LibraryNotFound", "MeasureError", "Method", "OutOfMemoryError", "Param", "ParseError", "Result", "StoppedError",
+    "UnknownCurveError", "UnsupportedError", "curve_from_segments", "curves", "fit", "library_path",
+    "library_version", "measure", "methods", "read_meta", "read_results", "run",
 ]

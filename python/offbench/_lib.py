@@ -79,6 +79,7 @@ class _Result(ctypes.Structure):
 CurveSetP = ctypes.POINTER(_CurveSet)
 ResultP = ctypes.POINTER(_Result)
 PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t)
+PROGRESS_STOP = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t)
 
 _int, _long, _dbl, _str, _size = ctypes.c_int, ctypes.c_long, ctypes.c_double, ctypes.c_char_p, ctypes.c_size_t
 _ip, _dp, _ep = ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ObxError)
@@ -122,6 +123,8 @@ SIGNATURES = {
 # (declared where present; the call that needs one says which version has it)
 OPTIONAL = {
     "obx_result_certify": ((0, 4), _int, [ResultP, _str, _dp, _dp, _ep]),
+    "obx_run_batch_stop": ((0, 5), _int, [CurveSetP, ctypes.POINTER(JobSpec), _size, PROGRESS_STOP, ctypes.c_void_p,
+                                          ctypes.POINTER(ResultP), _ep]),
 }
 
 _lock = threading.Lock()

@@ -220,8 +220,10 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
     a name, "a,b" or a list ("all": every method); tols: a number or a list;
     d: a number or a list (None: each curve's own offsets); params:
     {"METHOD.NAME": value}; progress: None or progress(done, total), called
-    as jobs finish (from one thread at a time, not necessarily this one; an
-    exception it raises is raised here after the run).  Returns a list of
+    by this thread as jobs finish, done rising strictly (it may call fit or
+    run itself); an exception it raises, KeyboardInterrupt (Ctrl-C) among
+    them, stops the run at its next batch of work and is raised here (with
+    a library older than 0.5: after the run).  Returns a list of
     Result, one per job in that order, each what fit() gives for it; with
     as_frame=True a pandas DataFrame of their rows (read_results' dtypes)."""
     jobs, per_method = _specs(curves, methods, tols, d, metric, split, params)
@@ -241,14 +243,18 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
     L = _lib.lib()
 
     def tell(_ctx, done, _total):
+        """1 stops the batch.  Called even without progress: running Python
+        here lets a Ctrl-C's KeyboardInterrupt be raised, and stop the run."""
         if failure:
-            return
+            return 1
         try:
-            progress(done_before[0] + done, len(jobs))
-        except BaseException as e:  # raised after the batch: C cannot unwind
+            if progress is not None:
+                progress(done_before[0] + done, len(jobs))
+        except BaseException as e:  # C cannot unwind: the batch stops, e is raised after it
             failure.append(e)
+            return 1
+        return 0
 
-    cb = _lib.PROGRESS(tell) if progress is not None else _lib.PROGRESS()
     names = {m: m.encode() for _, m, _, _ in jobs}  # the specs' char * point into these
     for idx in groups.values():
         cset = jobs[idx[0]][0].set
@@ -258,7 +264,11 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
             specs[k] = _lib.JobSpec(c.handle()[1], names[m], dv, t, met, spl, per_method.get(m))
         out = (_lib.ResultP * len(idx))()
         err = _lib.ObxError()
-        rc = L.obx_run_batch(cset._h, specs, len(idx), cb, None, out, ctypes.byref(err))
+        rc = _run_batch(L, cset, specs, len(idx), tell, progress is not None, out, err)
+        if failure:
+            for k in range(len(idx)):
+                L.obx_result_free(out[k])
+            raise failure[0]
         if rc < 0:
             _lib.check(rc, _renumber(err, idx))
         try:
@@ -274,6 +284,18 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
         from .results import frame
         return frame([r.as_dict() for r in results])
     return results
+
+
+def _run_batch(L, cset, specs, n, tell, told, out, err):
+    """obx_run_batch_stop with tell (1: stop); with a library older than 0.5
+    obx_run_batch, whose callback cannot stop it (tell only where told)."""
+    stop = getattr(L, "obx_run_batch_stop", None)
+    if stop is not None:
+        return stop(cset._h, specs, n, _lib.PROGRESS_STOP(tell), None, out, ctypes.byref(err))
+    def plain(c, done, total):
+        tell(c, done, total)
+    cb = _lib.PROGRESS(plain) if told else _lib.PROGRESS()
+    return L.obx_run_batch(cset._h, specs, n, cb, None, out, ctypes.byref(err))
 
 
 def _renumber(err, idx):
