@@ -41,9 +41,26 @@ static void *loop(void *p)
     return NULL;
 }
 
+/* In the child of a fork only the forking thread lives: the idle workers
+ * are gone (their structs are left, unreachable), and the pool's lock may
+ * have been held by one of them. */
+static void forget_after_fork(void)
+{
+    pthread_mutex_init(&pool_mu, NULL);
+    idle = NULL;
+}
+
+static pthread_once_t at_fork = PTHREAD_ONCE_INIT;
+
+static void register_at_fork(void)
+{
+    pthread_atfork(NULL, NULL, forget_after_fork);
+}
+
 /* An idle worker, or a new one; NULL when none can be started. */
 static worker *take(void)
 {
+    pthread_once(&at_fork, register_at_fork);
     pthread_mutex_lock(&pool_mu);
     worker *w = idle;
     if (w)

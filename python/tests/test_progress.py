@@ -16,7 +16,7 @@ import offbench
 
 from conftest import ROOT
 
-HANG_GUARD_S = 600  # a deadlock fails the test instead of hanging it; never reached when it works
+HANG_GUARD_S = int(os.environ.get("OB_TEST_HANG_GUARD_S", "600"))  # a deadlock fails the test instead of hanging it; never reached when it works
 
 TOLS = [1e-2, 1e-3]
 
@@ -115,6 +115,39 @@ def test_without_progress_the_library_still_calls_back(monkeypatch):
     n = _count_library_calls(monkeypatch)
     rs = offbench.run("liu2002_ex1", "tiller,cobb", TOLS)
     assert len(rs) == 8 and n["batches"] == 1 and n["told"] >= 1, n
+
+
+def _script(tmp_path, script):
+    """Runs python code in a subprocess under the hang guard; its output."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "python"), PYTHONDONTWRITEBYTECODE="1")
+    try:
+        p = subprocess.run([sys.executable, "-c", textwrap.dedent(script)], cwd=str(tmp_path), env=env,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
+                           timeout=HANG_GUARD_S)
+    except subprocess.TimeoutExpired:
+        pytest.fail("hung for %d s (a deadlock)" % HANG_GUARD_S)
+    assert p.returncode == 0, p.stderr[-2000:]
+    return p.stdout
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork")
+def test_a_run_in_a_forked_child(tmp_path):
+    """The library's batch threads do not survive a fork (multiprocessing's
+    default on Linux): the child starts its own instead of waiting on the
+    parent's forever."""
+    out = _script(tmp_path, """
+        import os, signal, offbench
+        tell = lambda done, total: None
+        offbench.run("liu2002_ex1", "tiller", 1e-2, progress=tell)
+        pid = os.fork()
+        if pid == 0:
+            signal.alarm(%d)  # the child's own hang guard: it is not left behind
+            rs = offbench.run("liu2002_ex1", "tiller,cobb", 1e-2, progress=tell)
+            os._exit(0 if [r.status for r in rs] == ["ok"] * 4 else 3)
+        _, status = os.waitpid(pid, 0)
+        print("child", status)
+    """ % max(1, HANG_GUARD_S // 2))
+    assert out.split() == ["child", "0"], out
 
 
 def test_a_callback_that_fits_or_runs_does_not_deadlock(tmp_path):

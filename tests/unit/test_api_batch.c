@@ -3,7 +3,8 @@
  * calling thread, outside the driver's locks, so that it may call obx_fit
  * or obx_run_batch itself (it deadlocked inside the driver's critical
  * section); its counts rise strictly; obx_run_batch_stop's callback stops
- * the run by returning nonzero (OBX_E_STOPPED, no results).  A hang guard
+ * the run by returning nonzero (OBX_E_STOPPED, no results); a forked
+ * child runs batches of its own.  A hang guard
  * (SIGALRM, generous) turns a deadlock into a failure.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -12,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "include/offbench.h"
@@ -122,6 +124,24 @@ static void test_progress(const obx_curveset *s, int c, int reenter)
         obx_result_free(out[i]);
 }
 
+/* After a fork the child's batch gets a thread of its own (the parent's
+ * pooled ones are not in the child): it ends instead of waiting forever. */
+static void test_fork(const obx_curveset *s, int c)
+{
+    const pid_t pid = fork();
+    if (pid == 0) {
+        alarm(HANG_GUARD_S / 2);  /* the child's own guard: it is not left behind */
+        obx_job_spec jobs[N];
+        jobs_of(c, jobs);
+        obx_result *out[N];
+        seen p = {s, c, pthread_self(), 0, 0, 0, 1, 1, 1, 0, 0};
+        _exit(obx_run_batch(s, jobs, N, on_progress, &p, out, NULL) == 0 && p.last == N ? 0 : 3);
+    }
+    int ws = 0;
+    CHECK(pid > 0 && waitpid(pid, &ws, 0) == pid && WIFEXITED(ws) && WEXITSTATUS(ws) == 0,
+          "a batch in a forked child: status %#x", ws);
+}
+
 int main(void)
 {
     signal(SIGALRM, hung);
@@ -137,6 +157,7 @@ int main(void)
     test_progress(s, c, 1);
     test_progress(s, c, 2);
     test_stop(s, c);
+    test_fork(s, c);
     obx_curves_free(s);
     return check_done();
 }
