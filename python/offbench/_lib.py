@@ -26,7 +26,8 @@ from .errors import LibraryNotFound, from_code
 # The library version this package needs: its MAJOR, and at least this MINOR
 # (0.2 added obx_curves_segment*, obx_curves_family; 0.3 obx_measure's
 # hausdorff-whole, which an older library refuses as an unknown metric: not
-# needed to load).
+# needed to load; 0.5 obx_run_batch_stop, without which run cannot be
+# stopped by its callback or Ctrl-C: OPTIONAL).
 NEED_MAJOR = 0
 NEED_MINOR = 2
 SONAME = "liboffbench.so.0"

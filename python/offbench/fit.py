@@ -238,52 +238,61 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
     for i, (c, m, dv, t) in enumerate(jobs):
         groups.setdefault(id(c.set), []).append(i)
     results = [None] * len(jobs)
-    done_before = [0]
-    failure = []
-    L = _lib.lib()
-
-    def tell(_ctx, done, _total):
-        """1 stops the batch.  Called even without progress: running Python
-        here lets a Ctrl-C's KeyboardInterrupt be raised, and stop the run."""
-        if failure:
-            return 1
-        try:
-            if progress is not None:
-                progress(done_before[0] + done, len(jobs))
-        except BaseException as e:  # C cannot unwind: the batch stops, e is raised after it
-            failure.append(e)
-            return 1
-        return 0
-
+    tell = _Tell(progress, len(jobs))
     names = {m: m.encode() for _, m, _, _ in jobs}  # the specs' char * point into these
     for idx in groups.values():
-        cset = jobs[idx[0]][0].set
         specs = (_lib.JobSpec * len(idx))()
         for k, i in enumerate(idx):
             c, m, dv, t = jobs[i]
             specs[k] = _lib.JobSpec(c.handle()[1], names[m], dv, t, met, spl, per_method.get(m))
-        out = (_lib.ResultP * len(idx))()
-        err = _lib.ObxError()
-        rc = _run_batch(L, cset, specs, len(idx), tell, progress is not None, out, err)
-        if failure:
-            for k in range(len(idx)):
-                L.obx_result_free(out[k])
-            raise failure[0]
-        if rc < 0:
-            _lib.check(rc, _renumber(err, idx))
-        try:
-            for k, i in enumerate(idx):
-                results[i] = _result(out[k])
-        finally:
-            for k in range(len(idx)):
-                L.obx_result_free(out[k])
-        done_before[0] += len(idx)
-    if failure:
-        raise failure[0]
+        for i, r in zip(idx, _group(jobs[idx[0]][0].set, specs, idx, tell)):
+            results[i] = r
+        tell.before += len(idx)
+    tell.raise_failure()
     if as_frame:
         from .results import frame
         return frame([r.as_dict() for r in results])
     return results
+
+
+class _Tell:
+    """run's callback to the library: progress with the run's counts; 1
+    stops the batch.  Called even without progress: running Python here
+    lets a Ctrl-C's KeyboardInterrupt be raised, and stop the run."""
+
+    def __init__(self, progress, total):
+        self.progress, self.total, self.before, self.failure = progress, total, 0, []
+
+    def __call__(self, _ctx, done, _total):
+        if self.failure:
+            return 1
+        try:
+            if self.progress is not None:
+                self.progress(self.before + done, self.total)
+        except BaseException as e:  # C cannot unwind: the batch stops, e is raised after it
+            self.failure.append(e)
+            return 1
+        return 0
+
+    def raise_failure(self):
+        if self.failure:
+            raise self.failure[0]
+
+
+def _group(cset, specs, idx, tell):
+    """The Results of one batch (jobs idx of the run, on one curve set)."""
+    L = _lib.lib()
+    out = (_lib.ResultP * len(idx))()
+    err = _lib.ObxError()
+    rc = _run_batch(L, cset, specs, len(idx), tell, tell.progress is not None, out, err)
+    try:
+        tell.raise_failure()
+        if rc < 0:
+            _lib.check(rc, _renumber(err, idx))
+        return [_result(out[k]) for k in range(len(idx))]
+    finally:
+        for k in range(len(idx)):
+            L.obx_result_free(out[k])
 
 
 def _run_batch(L, cset, specs, n, tell, told, out, err):
