@@ -55,14 +55,16 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 4
+#define OBX_VERSION_MINOR 5
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.4.0"
+#define OBX_VERSION "0.5.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
  *          same MAJOR means compatible; MINOR counts additions: 0.2 added
- *          obx_curves_segment_count, obx_curves_segment, obx_curves_family).
+ *          obx_curves_segment_count, obx_curves_segment, obx_curves_family;
+ *          0.5: obx_measure refuses pieces that do not cover the offset
+ *          once, obx_run_batch_stop).
  *          Thread-safe. */
 const char *obx_version(void);
 
@@ -75,7 +77,8 @@ typedef enum {
     OBX_E_IO,           /* a file that cannot be read */
     OBX_E_NOMEM,        /* out of memory */
     OBX_E_UNSUPPORTED,  /* valid, but not available here (sisl without its server) */
-    OBX_E_MEASURE       /* an approximation that cannot be measured or matched */
+    OBX_E_MEASURE,      /* an approximation that cannot be measured or matched */
+    OBX_E_STOPPED       /* a batch its progress callback stopped (since 0.5) */
 } obx_code;
 
 /* The one error carrier: filled by the call that fails. */
@@ -272,13 +275,18 @@ typedef struct {
 
 /* Told the jobs finished so far (done of total) as the batch runs. */
 typedef void (*obx_progress_fn)(void *ctx, size_t done, size_t total);
+/* The same; a nonzero return stops the batch (obx_run_batch_stop). */
+typedef int (*obx_progress_stop_fn)(void *ctx, size_t done, size_t total);
 
 /* Purpose: run n jobs together, as one `offbench run` runs its jobs (OpenMP
  *          threads over all of them; jobs that differ only in tol share
  *          pieces): every result is what obx_fit gives for its spec.
- * Inputs:  jobs[n]; progress (NULL: none), called with ctx from one thread
- *          at a time (not necessarily the caller's) after each batch of
- *          work, done rising to total.
+ * Inputs:  jobs[n]; progress (NULL: none), called with ctx by the calling
+ *          thread (since 0.5; before, from a driver thread inside its lock)
+ *          as jobs finish, done rising strictly to total, outside every
+ *          lock of the library: it may call obx_fit, obx_measure or
+ *          obx_run_batch itself.  (With a callback the driver runs on a
+ *          thread of the library's own, kept for the next batch.)
  * Outputs: out[n], one result per job, in the specs' order (free each
  *          with obx_result_free); all NULL after an error.
  * Errors:  as obx_fit, the message prefixed "job I: " for the first bad
@@ -286,6 +294,16 @@ typedef void (*obx_progress_fn)(void *ctx, size_t done, size_t total);
  * Threads: safe, also on one shared set. */
 int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
                   obx_result **out, obx_error *err);
+
+/* Purpose: obx_run_batch whose progress callback can stop the batch (since
+ *          0.5): a nonzero return stops it at its next batch of work
+ *          (the way `offbench run` stops on SIGINT), and progress is not
+ *          called again.  A language binding answers 1 where its callback
+ *          raised (Python's KeyboardInterrupt) and re-raises after.
+ * Errors:  as obx_run_batch; OBX_E_STOPPED when the callback stopped it
+ *          (also when every job had finished: out is all NULL). */
+int obx_run_batch_stop(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_stop_fn progress,
+                       void *ctx, obx_result **out, obx_error *err);
 
 /* ---- measure -------------------------------------------------------------- */
 
@@ -300,18 +318,25 @@ typedef struct {
  *          (degrees[], xy[], w[] or NULL as in obx_curves_from_arrays),
  *          against the exact d-offset of curve `curve` under `metric`
  *          (NULL: hausdorff; also "hausdorff-whole", the two-sided
- *          distance of the whole approximation, which needs the pieces to
- *          cover the offset once, OBX_E_MEASURE otherwise; since 0.3), as `offbench measure` does for a file without
+ *          distance of the whole approximation; since 0.3), as `offbench
+ *          measure` does for a file without
  *          base links: each piece's base range is found by projecting its
  *          ends on the offset (a piece whose ends lie over different base
  *          segments is cut where it crosses each joint's normal line; piece
  *          stays its index in the arrays), then each piece is measured
- *          against its base piece, 256 samples.  bound and radial read the pieces at the
+ *          against its base piece, 256 samples.  The pieces must cover
+ *          the offset once, whatever the metric (since 0.5: the CLI's check,
+ *          by the same code, host/measure/measure.h): one piece of several,
+ *          copies of a piece, a gap or an overlap are OBX_E_MEASURE; pieces
+ *          out of order or reversed are measured.  bound and radial read the pieces at the
  *          base's parameter and so do not apply (status "n/a"); param needs
  *          read links and does not apply either.
  * Outputs: *m.
  * Errors:  OBX_E_INVALID (arguments as obx_fit, a bad piece), OBX_E_MEASURE
- *          (a piece that cannot be matched: "piece K: reason"), OBX_E_NOMEM.
+ *          (a piece that cannot be matched: "piece K: reason"; pieces that
+ *          do not cover the offset once: "measure: pieces does not cover the
+ *          d = D offset of curve ID once (G gaps, O overlaps, U duplicates);
+ *          the first: piece K: ..."), OBX_E_NOMEM.
  * Threads: safe. */
 int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
                 const double *w, const char *metric, obx_measurement *m, obx_error *err);

@@ -150,7 +150,7 @@ static void put_num(FILE *f, double x)
 
 /* One file's measurement, kept until every file is measured. */
 typedef struct {
-    ob_mres res[OB_METRIC_COUNT], whole;
+    ob_measure_out m;   /* its rows (ob_measure_approx) */
     int pieces, ctrl_points;
 } file_rows;
 
@@ -215,9 +215,9 @@ static void say_issues(void (*report)(const char *, ...), const ob_cover_issue *
         report("%s: and %d more like these", name, total - n);
 }
 
-/* Checks that the pieces cover the offset once, saying what is wrong or
- * noteworthy; 0, or 2 after ob_error() (the file does not cover it). */
-static int check_cover(const ob_curve *c, double d, const ob_approx *ap, const ob_cover *cv, const char *name)
+/* Says what ob_measure_approx found noteworthy or wrong in the cover
+ * (its summary, when it fails, is the error that follows). */
+static void say_cover(const ob_approx *ap, const ob_cover *cv, const char *name)
 {
     const int *k = cv->count;
     const int notes = k[OB_COVER_ORDER] + k[OB_COVER_NEAR_GAP] + k[OB_COVER_NEAR_OVERLAP];
@@ -225,21 +225,7 @@ static int check_cover(const ob_curve *c, double d, const ob_approx *ap, const o
     if (k[OB_COVER_ORDER])
         ob_warn("measure: %s: %d of its %d pieces come after a piece that lies after them on the base: measured in "
                 "the base's order (piece numbers are the file's)", name, k[OB_COVER_ORDER], ap->n);
-    if (ob_cover_fails(cv) == 0)
-        return 0;
-    int matched = 0;
-    for (int i = 0; i < ap->n; i++)
-        matched |= ap->v[i].matched;
     say_issues(ob_error, cv->fail, cv->nfail, ob_cover_fails(cv), ap, name);
-    char ds[40];
-    ob_fmt_double(ds, sizeof ds, d);  /* the shortest form that reads back as d, as results.csv writes it */
-    ob_error("measure: %s does not cover the d = %s offset of curve %s once (%d gaps, %d overlaps, %d "
-             "duplicates): measure takes a whole approximation, each part of the offset covered by one piece%s",
-             name, ds, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE],
-             matched ? " (its pieces were matched to the base by projection, which near an offset's cusps can "
-                       "land on another branch: a file with base links, as --export writes, is matched exactly)"
-                     : "");
-    return 2;
 }
 
 /* The control points of ap as results.csv counts them (docs/output.md,
@@ -267,25 +253,6 @@ static int count_ctrl_points(const ob_curve *c, double d, const ob_approx *ap, c
     return n;
 }
 
-/* Measures every row asked of one file into *fr; 0, or 2 after ob_error(). */
-static int measure_rows(const measure_args *a, const char *name, const ob_curve *c, const ob_approx *ap,
-                        const ob_cover *cv, int samples, file_rows *fr)
-{
-    ob_err err;
-    for (int m = 0; m < OB_METRIC_COUNT; m++)
-        if (a->want[m] && ob_approx_measure(c, a->d, ap, (ob_metric)m, samples, name, &fr->res[m], &err) != 0) {
-            ob_error("%s", err.msg);
-            return 2;
-        }
-    if (a->whole && ob_approx_hausdorff_whole(c, a->d, ap, cv, samples, &fr->whole, &err) != 0) {
-        ob_error("%s", err.msg);
-        return 2;
-    }
-    fr->pieces = ob_approx_file_pieces(ap);
-    fr->ctrl_points = count_ctrl_points(c, a->d, ap, cv);
-    return 0;
-}
-
 /* Pieces matched by projection on an offset with loops can land on the
  * wrong branch (measure.h), and then each is measured against offset it
  * does not approximate.  hausdorff-whole is at most the per-piece
@@ -296,7 +263,7 @@ static int measure_rows(const measure_args *a, const char *name, const ob_curve 
  * come from the match too). */
 static void warn_branches(const char *name, const ob_approx *ap, const file_rows *fr)
 {
-    const ob_mres *h = &fr->res[OB_METRIC_HAUSDORFF], *w = &fr->whole;
+    const ob_mres *h = &fr->m.res[OB_METRIC_HAUSDORFF], *w = &fr->m.whole;
     int matched = 0;
     for (int i = 0; i < ap->n; i++)
         matched |= ap->v[i].matched;
@@ -317,11 +284,11 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
     for (int k = 0; k < a->napprox; k++) {
         for (int m = 0; m < OB_METRIC_COUNT; m++)
             if (a->want[m]) {
-                row(stdout, ob_metric_name((ob_metric)m), &rows[k].res[m]);
+                row(stdout, ob_metric_name((ob_metric)m), &rows[k].m.res[m]);
                 join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
             }
         if (a->whole) {
-            row(stdout, "hausdorff-whole", &rows[k].whole);
+            row(stdout, "hausdorff-whole", &rows[k].m.whole);
             join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
         }
     }
@@ -349,15 +316,18 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
         ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
                 "d = %.17g: its error is not that job's max_err", name, ap.job_curve, ap.job_d, c->id, a->d);
-    if (ob_approx_match(c, a->d, &ap, name, &err) != 0 || ob_approx_cover(c, a->d, &ap, samples, name, &cv, &err) != 0) {
+    ob_measure_ask ask = {{0}, a->whole, samples};
+    memcpy(ask.want, a->want, sizeof ask.want);
+    const int rc = ob_measure_approx(c, a->d, &ap, &ask, name, &cv, &fr->m, &err);
+    say_cover(&ap, &cv, name);
+    if (rc != 0) {
         ob_error("%s", err.msg);
         goto out;
     }
-    if (check_cover(c, a->d, &ap, &cv, name) != 0)
-        goto out;
-    status = measure_rows(a, name, c, &ap, &cv, samples, fr);
-    if (status == 0)
-        warn_branches(name, &ap, fr);
+    fr->pieces = ob_approx_file_pieces(&ap);
+    fr->ctrl_points = count_ctrl_points(c, a->d, &ap, &cv);
+    warn_branches(name, &ap, fr);
+    status = 0;
 out:
     ob_cover_free(&cv);
     ob_approx_free(&ap);

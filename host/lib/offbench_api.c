@@ -5,13 +5,15 @@
  * take the same checks), a fit is a one-job ob_driver_run with the run
  * command's defaults, its pieces are the accepted spans refitted
  * (ob_approx_from_job, as --export), and a measurement is `measure`'s
- * ob_approx_match + ob_approx_measure.  No state besides the handles
+ * one path (ob_measure_approx: match, cover, measure).  No state besides the handles
  * (and the SISL server's path, set once: host/lib/sisl_exe.c).
  */
 #define _GNU_SOURCE 1 /* open_memstream's prototype with older glibc */
 #include "include/offbench.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,6 +24,7 @@
 #include "host/io/curvefile.h"
 #include "host/io/datadir.h"
 #include "host/io/output.h"
+#include "host/lib/lib_thread.h"
 #include "host/lib/sisl_exe.h"
 #include "host/measure/measure.h"
 #include "host/run/clock.h"
@@ -633,15 +636,92 @@ int obx_result_certify(obx_result *r, const char *mode, double *upper, double *l
 
 /* ---- batch ------------------------------------------------------------------ */
 
+/* A batch whose driver runs on a library thread (lib_thread.h) while the
+ * calling thread tells the callback: the driver's hook only records the
+ * count, under mu, so the callback runs outside every lock the driver
+ * holds (it may fit or run a batch itself) and on the caller's thread. */
 typedef struct {
-    obx_progress_fn fn;
-    void *ctx;
-} progress_ctx;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    size_t done, total;             /* the latest count the driver told */
+    int finished, rc;               /* the driver returned rc */
+    volatile sig_atomic_t stop;     /* the callback asked to stop (hooks.stop) */
+    ob_job *jobs;
+    size_t n;
+    ob_driver_hooks *hooks;
+} batch_run;
 
 static void progress_hook(void *ctx, const ob_progress_info *pi)
 {
-    const progress_ctx *p = ctx;
-    p->fn(p->ctx, pi->done, pi->total);
+    batch_run *b = ctx;
+    pthread_mutex_lock(&b->mu);
+    if (pi->done > b->done) {  /* ticks without a new job are not told: counts rise strictly */
+        b->done = pi->done;
+        b->total = pi->total;
+        pthread_cond_signal(&b->cv);
+    }
+    pthread_mutex_unlock(&b->mu);
+}
+
+static void batch_work(void *arg)
+{
+    batch_run *b = arg;
+    ob_driver_opts o;
+    ob_driver_defaults(&o);
+    b->rc = ob_driver_run(b->jobs, b->n, &o, b->hooks);
+}
+
+static void batch_done(void *arg)
+{
+    batch_run *b = arg;
+    pthread_mutex_lock(&b->mu);
+    b->finished = 1;
+    pthread_cond_signal(&b->cv);
+    pthread_mutex_unlock(&b->mu);
+}
+
+/* The calling thread's part: each new count to progress (unlocked) until
+ * the driver returns; a nonzero answer stops it at its next batch, and
+ * nothing more is told.  The driver's return code. */
+static int tell_until_done(batch_run *b, obx_progress_stop_fn progress, void *ctx)
+{
+    size_t told = 0;
+    pthread_mutex_lock(&b->mu);
+    for (;;) {
+        if (b->done > told && !b->stop) {
+            const size_t done = b->done, total = b->total;
+            pthread_mutex_unlock(&b->mu);
+            if (progress(ctx, done, total) != 0)
+                b->stop = 1;
+            told = done;
+            pthread_mutex_lock(&b->mu);
+        } else if (b->finished) {
+            break;
+        } else {
+            pthread_cond_wait(&b->cv, &b->mu);
+        }
+    }
+    pthread_mutex_unlock(&b->mu);
+    return b->rc;
+}
+
+/* ob_driver_run of the jobs, with progress told as above (none: on this
+ * thread, as obx_fit).  0, 1 (stopped), -1 (memory, or no thread). */
+static int drive(ob_job *jobs, size_t n, ob_driver_hooks *hooks, obx_progress_stop_fn progress, void *ctx)
+{
+    if (!progress) {
+        ob_driver_opts o;
+        ob_driver_defaults(&o);
+        return ob_driver_run(jobs, n, &o, hooks);
+    }
+    batch_run b = {PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER, 0, n, 0, 0, 0, jobs, n, hooks};
+    hooks->progress = progress_hook;
+    hooks->progress_ctx = &b;
+    hooks->stop = &b.stop;
+    if (ob_lib_thread_run(batch_work, batch_done, &b) != 0)
+        return -1;
+    const int rc = tell_until_done(&b, progress, ctx);
+    return b.stop ? 1 : rc;  /* asked to stop: stopped, also when the last batch had run */
 }
 
 /* Results for the n specs, their jobs checked; NULL entries on failure
@@ -663,21 +743,19 @@ static int make_results(const obx_curveset *set, const obx_job_spec *jobs, size_
 
 /* The driver over the results' jobs (copied into one array), then each
  * result's pieces and row. */
-static int run_batch(obx_result **res, size_t n, obx_progress_fn progress, void *ctx, obx_error *err)
+static int run_batch(obx_result **res, size_t n, obx_progress_stop_fn progress, void *ctx, obx_error *err)
 {
     ob_job *jobs = malloc(n * sizeof *jobs);
     ob_span_log *logs = calloc(n, sizeof *logs);
     int rc = jobs && logs ? 0 : fail(err, OBX_E_NOMEM, "out of memory");
     for (size_t i = 0; i < n && rc == 0; i++)
         jobs[i] = res[i]->job;
-    progress_ctx pc = {progress, ctx};
     ob_driver_hooks hooks = {0};
     hooks.spans = logs;
-    hooks.progress = progress ? progress_hook : NULL;
-    hooks.progress_ctx = &pc;
-    ob_driver_opts o;
-    ob_driver_defaults(&o);
-    if (rc == 0 && ob_driver_run(jobs, n, &o, &hooks) != 0)
+    const int drc = rc == 0 ? drive(jobs, n, &hooks, progress, ctx) : 0;
+    if (drc == 1)
+        rc = fail(err, OBX_E_STOPPED, "obx_run_batch: stopped by its progress callback");
+    else if (drc != 0)
         rc = fail(err, OBX_E_NOMEM, "out of memory");
     for (size_t i = 0; i < n && rc == 0; i++) {
         res[i]->job = jobs[i];
@@ -691,8 +769,8 @@ static int run_batch(obx_result **res, size_t n, obx_progress_fn progress, void 
     return rc;
 }
 
-int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
-                  obx_result **out, obx_error *err)
+int obx_run_batch_stop(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_stop_fn progress,
+                       void *ctx, obx_result **out, obx_error *err)
 {
     if (!jobs || !out || n == 0)
         return fail(err, OBX_E_INVALID, "obx_run_batch: %s", n == 0 ? "no jobs" : "NULL jobs or out");
@@ -704,6 +782,26 @@ int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, o
         out[i] = NULL;
     }
     return -1;
+}
+
+/* obx_run_batch's callback, told through obx_run_batch_stop's: it never stops. */
+typedef struct {
+    obx_progress_fn fn;
+    void *ctx;
+} plain_progress;
+
+static int plain_told(void *ctx, size_t done, size_t total)
+{
+    const plain_progress *p = ctx;
+    p->fn(p->ctx, done, total);
+    return 0;
+}
+
+int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, obx_progress_fn progress, void *ctx,
+                  obx_result **out, obx_error *err)
+{
+    plain_progress p = {progress, ctx};
+    return obx_run_batch_stop(set, jobs, n, progress ? plain_told : NULL, &p, out, err);
 }
 
 /* ---- measure ------------------------------------------------------------------ */
@@ -732,21 +830,29 @@ static int pieces_approx(int npieces, const int *degrees, const double *xy, cons
     return 0;
 }
 
-/* hausdorff-whole (ob_approx_hausdorff_whole): the pieces, matched, must
- * cover the offset once, as measure's CLI checks; *r its result. */
-static int measure_whole(const ob_curve *c, double d, const ob_approx *a, ob_mres *r, obx_error *err)
+/* `measure`'s one path (ob_measure_approx), one row: the pieces are
+ * matched and must cover the offset once, whatever the metric, as the CLI
+ * checks a file; *r that row.  The message names the first problem. */
+static int measure_row(const ob_curve *c, double d, ob_approx *a, ob_metric met, int whole, ob_mres *r,
+                       obx_error *err)
 {
+    ob_measure_ask ask = {{0}, whole, OB_DEFAULT_SAMPLES};
+    ask.want[met] = !whole;
     ob_cover cv;
+    ob_measure_out out;
     ob_err e;
-    int rc = ob_approx_cover(c, d, a, OB_DEFAULT_SAMPLES, "pieces", &cv, &e);
-    if (rc != 0)
-        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
-    else if (ob_cover_fails(&cv))
-        rc = fail(err, OBX_E_MEASURE, "the pieces do not cover the offset once (%d gaps, %d overlaps, %d "
-                  "duplicates): hausdorff-whole measures a whole approximation", cv.count[OB_COVER_GAP],
-                  cv.count[OB_COVER_OVERLAP], cv.count[OB_COVER_DUPLICATE]);
-    else if (ob_approx_hausdorff_whole(c, d, a, &cv, OB_DEFAULT_SAMPLES, r, &e) != 0)
-        rc = fail(err, OBX_E_NOMEM, "%s", e.msg);
+    int rc = ob_measure_approx(c, d, a, &ask, "pieces", &cv, &out, &e);
+    if (rc != 0 && cv.nfail > 0) {  /* the summary's head, then where: the first problem */
+        char first[300];
+        ob_cover_text(&cv.fail[0], a, "pieces", first, sizeof first);
+        const char *head = strstr(e.msg, " once ("), *end = head ? strchr(head, ')') : NULL;
+        const int len = end ? (int)(end + 1 - e.msg) : 200;
+        const char *at = strncmp(first, "pieces:0: ", 10) == 0 ? first + 10 : first;  /* no file, no line */
+        rc = fail(err, OBX_E_MEASURE, "%.*s; the first: %s", len < 200 ? len : 200, e.msg, at);
+    } else if (rc != 0) {
+        rc = fail(err, OBX_E_MEASURE, "%.500s", e.msg);
+    }
+    *r = whole ? out.whole : out.res[met];
     ob_cover_free(&cv);
     return rc;
 }
@@ -761,16 +867,10 @@ int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const
     if (check_curve_d(set, curve, d, err) || (!whole && parse_metric(metric, &met, err)))
         return -1;
     ob_approx a = {0};
-    const ob_curve *c = &set->set.v[curve];
-    ob_err e;
     ob_mres r;
     int rc = pieces_approx(npieces, degrees, xy, w, &a, err);
-    if (rc == 0 && ob_approx_match(c, d, &a, "pieces", &e) != 0)
-        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
-    else if (rc == 0 && whole)
-        rc = measure_whole(c, d, &a, &r, err);
-    else if (rc == 0 && ob_approx_measure(c, d, &a, met, OB_DEFAULT_SAMPLES, "pieces", &r, &e) != 0)
-        rc = fail(err, OBX_E_MEASURE, "%s", e.msg);
+    if (rc == 0)
+        rc = measure_row(&set->set.v[curve], d, &a, met, whole, &r, err);
     ob_approx_free(&a);
     if (rc)
         return -1;

@@ -185,4 +185,32 @@ int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric
 int ob_approx_hausdorff_whole(const ob_curve *c, double d, const ob_approx *a, const ob_cover *cv, int samples,
                               ob_mres *r, ob_err *err);
 
+/* ---- measure's one path (pipeline.c) --------------------------------------
+ * What `measure` does with one approximation, for the CLI and the C API
+ * (obx_measure) alike, so that what one refuses the other refuses. */
+typedef struct {
+    int want[OB_METRIC_COUNT];  /* the per-piece metrics asked */
+    int whole;                  /* 1: hausdorff-whole too */
+    int samples;                /* per piece (ob_clamp_samples'd) */
+} ob_measure_ask;
+
+typedef struct {
+    ob_mres res[OB_METRIC_COUNT];  /* res[m] where want[m] */
+    ob_mres whole;                 /* where whole */
+} ob_measure_out;
+
+/* Purpose: match the pieces of a without a link (ob_approx_match), check
+ *          that the pieces cover the d-offset of c once (ob_approx_cover),
+ *          then measure every metric asked (ob_approx_measure) and
+ *          hausdorff-whole (ob_approx_hausdorff_whole).
+ * Outputs: *cv (free with ob_cover_free, also after an error): its notes
+ *          and failures, for the caller to show (ob_cover_text); *out.
+ * Errors:  returns 0; -1 with err->msg: a piece that cannot be matched or
+ *          measured ("NAME:LINE: piece K: reason"); pieces that do not
+ *          cover the offset once ("measure: NAME does not cover the d = D
+ *          offset of curve ID once (G gaps, O overlaps, U duplicates): ...",
+ *          cv->fail says where); out of memory. */
+int ob_measure_approx(const ob_curve *c, double d, ob_approx *a, const ob_measure_ask *ask, const char *name,
+                      ob_cover *cv, ob_measure_out *out, ob_err *err);
+
 #endif

@@ -15,8 +15,8 @@ docs/python.md in the offbench repository.
 from . import _lib
 from .bezier import Bezier
 from .curves import Curve, CurveSet, curve_from_segments, curves
-from .errors import (Error, FileError, InvalidError, LibraryNotFound, MeasureError, OutOfMemoryError, ParseError,
-                     UnknownCurveError, UnsupportedError)
+from .errors import (CurveIndexError, Error, FileError, InvalidError, InvalidTypeError, LibraryNotFound, MeasureError,
+                     OutOfMemoryError, ParseError, StoppedError, UnknownCurveError, UnsupportedError)
 from .fit import fit, measure, run
 from .methods import Method, Param, methods
 from .result import Result
@@ -36,8 +36,8 @@ def library_path():
 
 
 __all__ = [
-    "Bezier", "Curve", "CurveSet", "Error", "FileError", "InvalidError", "LibraryNotFound", "MeasureError",
-    "Method", "OutOfMemoryError", "Param", "ParseError", "Result", "UnknownCurveError", "UnsupportedError",
-    "curve_from_segments", "curves", "fit", "library_path", "library_version", "measure", "methods", "read_meta",
-    "read_results", "run",
+    "Bezier", "Curve", "CurveIndexError", "CurveSet", "Error", "FileError", "InvalidError", "InvalidTypeError",
+    "LibraryNotFound", "MeasureError", "Method", "OutOfMemoryError", "Param", "ParseError", "Result", "StoppedError",
+    "UnknownCurveError", "UnsupportedError", "curve_from_segments", "curves", "fit", "library_path",
+    "library_version", "measure", "methods", "read_meta", "read_results", "run",
 ]

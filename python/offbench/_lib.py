@@ -26,7 +26,8 @@ from .errors import LibraryNotFound, from_code
 # The library version this package needs: its MAJOR, and at least this MINOR
 # (0.2 added obx_curves_segment*, obx_curves_family; 0.3 obx_measure's
 # hausdorff-whole, which an older library refuses as an unknown metric: not
-# needed to load).
+# needed to load; 0.5 obx_run_batch_stop, without which run cannot be
+# stopped by its callback or Ctrl-C: OPTIONAL).
 NEED_MAJOR = 0
 NEED_MINOR = 2
 SONAME = "liboffbench.so.0"
@@ -79,6 +80,7 @@ class _Result(ctypes.Structure):
 CurveSetP = ctypes.POINTER(_CurveSet)
 ResultP = ctypes.POINTER(_Result)
 PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t)
+PROGRESS_STOP = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t)
 
 _int, _long, _dbl, _str, _size = ctypes.c_int, ctypes.c_long, ctypes.c_double, ctypes.c_char_p, ctypes.c_size_t
 _ip, _dp, _ep = ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ObxError)
@@ -122,6 +124,8 @@ SIGNATURES = {
 # (declared where present; the call that needs one says which version has it)
 OPTIONAL = {
     "obx_result_certify": ((0, 4), _int, [ResultP, _str, _dp, _dp, _ep]),
+    "obx_run_batch_stop": ((0, 5), _int, [CurveSetP, ctypes.POINTER(JobSpec), _size, PROGRESS_STOP, ctypes.c_void_p,
+                                          ctypes.POINTER(ResultP), _ep]),
 }
 
 _lock = threading.Lock()

@@ -11,40 +11,82 @@ from .errors import InvalidError
 MAX_DEGREE = 20  # the curve files' and the C API's largest degree
 
 
+def _points(points, what):
+    """A read-only (n+1, 2) float array of finite points; InvalidError
+    naming what."""
+    try:
+        p = np.array(points, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InvalidError("%s: points: %s" % (what, e)) from None
+    if p.ndim != 2 or p.shape[1] != 2 or not 2 <= p.shape[0] <= MAX_DEGREE + 1:
+        raise InvalidError("%s: points must be an array of shape (n+1, 2) for a degree n of 1 to %d, not %s"
+                           % (what, MAX_DEGREE, "shape %s" % (p.shape,)))
+    if not np.all(np.isfinite(p)):
+        raise InvalidError("%s: point %d is not finite" % (what, int(np.argmin(np.all(np.isfinite(p), axis=1)))))
+    p.setflags(write=False)
+    return p
+
+
+def _weights(weights, n, what):
+    """None, or a read-only (n,) array of finite weights > 0; InvalidError
+    naming what."""
+    if weights is None:
+        return None
+    try:
+        w = np.array(weights, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InvalidError("%s: weights: %s" % (what, e)) from None
+    if w.shape != (n,):
+        raise InvalidError("%s: weights must be an array of shape (%d,) (one per point), not shape %s"
+                           % (what, n, w.shape))
+    bad = ~(np.isfinite(w) & (w > 0))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise InvalidError("%s: weight %d is %r (must be > 0, finite)" % (what, k, float(w[k])))
+    w.setflags(write=False)
+    return w
+
+
 class Bezier:
     """A Bézier segment of degree n: points, an (n+1, 2) float array of its
     Euclidean control points; weights, an (n+1,) array of positive weights,
-    or None for a polynomial segment (all weights 1)."""
+    or None for a polynomial segment (all weights 1).  Both are checked when
+    set (points of another count than the weights: set weights to None
+    first), and again where they are handed to the library."""
 
-    __slots__ = ("points", "weights")
+    __slots__ = ("_points", "_weights")
 
     def __init__(self, points, weights=None, *, what="segment"):
-        try:
-            p = np.array(points, dtype=float)
-        except (TypeError, ValueError) as e:
-            raise InvalidError("%s: points: %s" % (what, e)) from None
-        if p.ndim != 2 or p.shape[1] != 2 or not 2 <= p.shape[0] <= MAX_DEGREE + 1:
-            raise InvalidError("%s: points must be an array of shape (n+1, 2) for a degree n of 1 to %d, not %s"
-                               % (what, MAX_DEGREE, "shape %s" % (p.shape,)))
-        if not np.all(np.isfinite(p)):
-            raise InvalidError("%s: point %d is not finite" % (what, int(np.argmin(np.all(np.isfinite(p), axis=1)))))
-        w = None
-        if weights is not None:
-            try:
-                w = np.array(weights, dtype=float)
-            except (TypeError, ValueError) as e:
-                raise InvalidError("%s: weights: %s" % (what, e)) from None
-            if w.shape != (p.shape[0],):
-                raise InvalidError("%s: weights must be an array of shape (%d,) (one per point), not shape %s"
-                                   % (what, p.shape[0], w.shape))
-            bad = ~(np.isfinite(w) & (w > 0))
-            if bad.any():
-                k = int(np.argmax(bad))
-                raise InvalidError("%s: weight %d is %r (must be > 0, finite)" % (what, k, float(w[k])))
-            w.setflags(write=False)
-        p.setflags(write=False)
-        self.points = p
-        self.weights = w
+        p = _points(points, what)
+        self._weights = _weights(weights, p.shape[0], what)
+        self._points = p
+
+    @property
+    def points(self):
+        return self._points
+
+    @points.setter
+    def points(self, value):
+        p = _points(value, "Bezier.points")
+        if self._weights is not None and p.shape[0] != self._weights.shape[0]:
+            raise InvalidError("Bezier.points: %d points, but %d weights (set weights to None first)"
+                               % (p.shape[0], self._weights.shape[0]))
+        self._points = p
+
+    @property
+    def weights(self):
+        return self._weights
+
+    @weights.setter
+    def weights(self, value):
+        self._weights = _weights(value, self._points.shape[0], "Bezier.weights")
+
+    def checked(self, what):
+        """self after its arrays are checked again (changed in place, or set
+        under the properties), where it is handed to the library."""
+        p = _points(self._points, what)
+        _weights(self._weights, p.shape[0], what)
+        return self
 
     @property
     def degree(self):
@@ -81,7 +123,7 @@ def from_buffers(degree, xy, w):
         weights = None
     else:
         weights.setflags(write=False)
-    b.points, b.weights = points, weights
+    b._points, b._weights = points, weights
     return b
 
 
@@ -110,8 +152,10 @@ def as_beziers(items, what):
     return out
 
 
-def flat_arrays(beziers):
-    """ctypes arrays (degrees, xy, w or None) of a list of Bezier."""
+def flat_arrays(beziers, what):
+    """ctypes arrays (degrees, xy, w or None) of a list of Bezier, each
+    checked again (InvalidError naming what[k])."""
+    beziers = [b.checked("%s[%d]" % (what, k)) for k, b in enumerate(beziers)]
     degrees = (ctypes.c_int * len(beziers))(*[b.degree for b in beziers])
     xy = np.ascontiguousarray(np.concatenate([b.points.reshape(-1) for b in beziers]), dtype=float)
     w = None

@@ -12,7 +12,15 @@ import numpy as np
 
 from . import _lib
 from .bezier import Bezier, as_beziers, dptr, flat_arrays, from_buffers
-from .errors import InvalidError, UnknownCurveError
+from .errors import CurveIndexError, InvalidError, InvalidTypeError, UnknownCurveError
+
+
+def _read_only(name):
+    """A property's setter that refuses, naming the field."""
+    def refuse(self, value):
+        raise AttributeError("Curve.%s is read-only: a Curve is one curve of its set (set[i] or set[id] gives "
+                             "another)" % name)
+    return refuse
 
 
 class CurveSet:
@@ -60,21 +68,43 @@ class CurveSet:
 class Curve:
     """One curve of a set: .id, .family, .segments (a list of Bezier),
     .offsets (the d values its file lists: a float array, empty for a
-    curve made from arrays), .set (the CurveSet it belongs to)."""
+    curve made from arrays), .set (the CurveSet it belongs to).  Read-only:
+    it names curve .index of .set (set[i] gives another)."""
 
-    __slots__ = ("set", "index", "id", "family", "_segments", "_offsets")
+    __slots__ = ("_set", "_index", "_id", "_family", "_segments", "_offsets")
 
     def __init__(self, cset, index):
+        if not isinstance(cset, CurveSet):
+            raise InvalidTypeError("Curve: set: a CurveSet (offbench.curves()), not %s" % type(cset).__name__)
+        self._set = cset
+        self._index = index
+        h, i = self.handle()
         L = _lib.lib()
-        self.set = cset
-        self.index = index
-        self.id = _lib.text(L.obx_curves_id(cset._h, index))
-        self.family = _lib.text(L.obx_curves_family(cset._h, index))
+        self._id = _lib.text(L.obx_curves_id(h, i))
+        self._family = _lib.text(L.obx_curves_family(h, i))
         self._segments = None
         d = ctypes.POINTER(ctypes.c_double)()
-        n = L.obx_curves_offsets(cset._h, index, ctypes.byref(d))
+        n = L.obx_curves_offsets(h, i, ctypes.byref(d))
         self._offsets = np.array([d[k] for k in range(n)], dtype=float)
         self._offsets.setflags(write=False)
+
+    def handle(self):
+        """(the set's obx_curveset, the index) as the library takes them,
+        checked: TypeError or IndexError naming the index (a value a C int
+        would wrap, or one past the set, never reaches the library)."""
+        i = self._index
+        if isinstance(i, bool) or not isinstance(i, (int, np.integer)):
+            raise InvalidTypeError("Curve.index: a whole number, not %s" % type(i).__name__)
+        n = _lib.lib().obx_curves_count(self._set._h)
+        if not 0 <= i < n:
+            raise CurveIndexError("Curve.index %d out of range: the set has %d curve%s"
+                                  % (i, n, "" if n == 1 else "s"))
+        return self._set._h, int(i)
+
+    set = property(lambda self: self._set, _read_only("set"))
+    index = property(lambda self: self._index, _read_only("index"))
+    id = property(lambda self: self._id, _read_only("id"))
+    family = property(lambda self: self._family, _read_only("family"))
 
     @property
     def offsets(self):
@@ -85,13 +115,13 @@ class Curve:
         if self._segments is None:
             L = _lib.lib()
             err = _lib.ObxError()
+            h, i = self.handle()
             segs = []
-            for k in range(L.obx_curves_segment_count(self.set._h, self.index)):
-                deg = _lib.check(L.obx_curves_segment(self.set._h, self.index, k, None, None, 0, ctypes.byref(err)),
-                                 err)
+            for k in range(L.obx_curves_segment_count(h, i)):
+                deg = _lib.check(L.obx_curves_segment(h, i, k, None, None, 0, ctypes.byref(err)), err)
                 xy = (ctypes.c_double * (2 * deg + 2))()
                 w = (ctypes.c_double * (deg + 1))()
-                _lib.check(L.obx_curves_segment(self.set._h, self.index, k, xy, w, deg + 1, ctypes.byref(err)), err)
+                _lib.check(L.obx_curves_segment(h, i, k, xy, w, deg + 1, ctypes.byref(err)), err)
                 segs.append(from_buffers(deg, xy, w))
             self._segments = segs
         return list(self._segments)
@@ -103,7 +133,7 @@ class Curve:
         return hash((id(self.set), self.index))
 
     def __repr__(self):
-        n = _lib.lib().obx_curves_segment_count(self.set._h, self.index)
+        n = _lib.lib().obx_curves_segment_count(*self.handle())
         offs = "[" + ", ".join("%g" % d for d in self._offsets) + "]"
         return "Curve(%r, %s, %d segment%s, offsets %s)" % (self.id, self.family, n, "" if n == 1 else "s", offs)
 
@@ -161,7 +191,7 @@ def curve_from_segments(id, segments):
     if "\0" in id:
         raise InvalidError("curve id %r: may not hold NUL" % id)
     segs = as_beziers(segments, "segments")
-    degrees, xy, w = flat_arrays(segs)
+    degrees, xy, w = flat_arrays(segs, "segments")
     h = _load("obx_curves_from_arrays", id.encode(), len(segs), degrees, dptr(xy), dptr(w))
     return CurveSet(h, "arrays")[0]
 

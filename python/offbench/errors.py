@@ -15,6 +15,7 @@ OBX_E_IO = 3
 OBX_E_NOMEM = 4
 OBX_E_UNSUPPORTED = 5
 OBX_E_MEASURE = 6
+OBX_E_STOPPED = 7
 
 
 class Error(Exception):
@@ -49,6 +50,15 @@ class UnknownCurveError(InvalidError, KeyError):
         return self.message
 
 
+class InvalidTypeError(InvalidError, TypeError):
+    """An argument or field of the wrong type (a Curve's index that is not
+    a whole number)."""
+
+
+class CurveIndexError(InvalidError, IndexError):
+    """A curve index outside its set."""
+
+
 class ParseError(Error, ValueError):
     """A curve file, results.csv or meta.json that is not valid: the
     message starts with FILE:LINE."""
@@ -80,6 +90,13 @@ class MeasureError(Error):
     code = OBX_E_MEASURE
 
 
+class StoppedError(Error):
+    """A batch its progress callback stopped (run re-raises the callback's
+    own exception instead)."""
+
+    code = OBX_E_STOPPED
+
+
 class LibraryNotFound(Error, ImportError):
     """liboffbench.so.0 could not be found or loaded, or is too old: the
     message lists where it was looked for and what to do."""
@@ -92,6 +109,7 @@ _BY_CODE = {
     OBX_E_NOMEM: OutOfMemoryError,
     OBX_E_UNSUPPORTED: UnsupportedError,
     OBX_E_MEASURE: MeasureError,
+    OBX_E_STOPPED: StoppedError,
 }
 
 

@@ -99,7 +99,7 @@ def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None, cer
     L = _lib.lib()
     out = _lib.ResultP()
     err = _lib.ObxError()
-    _lib.check(L.obx_fit(c.set._h, c.index, m, dd, tt, _cstr(metric, "metric"), _cstr(split, "split"),
+    _lib.check(L.obx_fit(*c.handle(), m, dd, tt, _cstr(metric, "metric"), _cstr(split, "split"),
                          _params_text(params), ctypes.byref(out), ctypes.byref(err)), err)
     try:
         if mode is not None:
@@ -127,11 +127,11 @@ def measure(curve, d, pieces, metric="hausdorff"):
         pieces = pieces.pieces
     bz = as_beziers(pieces, "pieces")
     dd = number(d, "d")
-    degrees, xy, w = flat_arrays(bz)
+    degrees, xy, w = flat_arrays(bz, "pieces")
     L = _lib.lib()
     m = _lib.Measurement()
     err = _lib.ObxError()
-    _lib.check(L.obx_measure(c.set._h, c.index, dd, len(bz), degrees, dptr(xy), dptr(w), _cstr(metric, "metric"),
+    _lib.check(L.obx_measure(*c.handle(), dd, len(bz), degrees, dptr(xy), dptr(w), _cstr(metric, "metric"),
                              ctypes.byref(m), ctypes.byref(err)), err)
     names = _lib.text(L.obx_results_header()).split(",")
     values = dict.fromkeys(names)
@@ -220,8 +220,10 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
     a name, "a,b" or a list ("all": every method); tols: a number or a list;
     d: a number or a list (None: each curve's own offsets); params:
     {"METHOD.NAME": value}; progress: None or progress(done, total), called
-    as jobs finish (from one thread at a time, not necessarily this one; an
-    exception it raises is raised here after the run).  Returns a list of
+    by this thread as jobs finish, done rising strictly (it may call fit or
+    run itself); an exception it raises, KeyboardInterrupt (Ctrl-C) among
+    them, stops the run at its next batch of work and is raised here (with
+    a library older than 0.5: after the run).  Returns a list of
     Result, one per job in that order, each what fit() gives for it; with
     as_frame=True a pandas DataFrame of their rows (read_results' dtypes)."""
     jobs, per_method = _specs(curves, methods, tols, d, metric, split, params)
@@ -236,44 +238,73 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
     for i, (c, m, dv, t) in enumerate(jobs):
         groups.setdefault(id(c.set), []).append(i)
     results = [None] * len(jobs)
-    done_before = [0]
-    failure = []
-    L = _lib.lib()
-
-    def tell(_ctx, done, _total):
-        if failure:
-            return
-        try:
-            progress(done_before[0] + done, len(jobs))
-        except BaseException as e:  # raised after the batch: C cannot unwind
-            failure.append(e)
-
-    cb = _lib.PROGRESS(tell) if progress is not None else _lib.PROGRESS()
+    tell = _Tell(progress, len(jobs))
     names = {m: m.encode() for _, m, _, _ in jobs}  # the specs' char * point into these
     for idx in groups.values():
-        cset = jobs[idx[0]][0].set
         specs = (_lib.JobSpec * len(idx))()
         for k, i in enumerate(idx):
             c, m, dv, t = jobs[i]
-            specs[k] = _lib.JobSpec(c.index, names[m], dv, t, met, spl, per_method.get(m))
-        out = (_lib.ResultP * len(idx))()
-        err = _lib.ObxError()
-        rc = L.obx_run_batch(cset._h, specs, len(idx), cb, None, out, ctypes.byref(err))
-        if rc < 0:
-            _lib.check(rc, _renumber(err, idx))
-        try:
-            for k, i in enumerate(idx):
-                results[i] = _result(out[k])
-        finally:
-            for k in range(len(idx)):
-                L.obx_result_free(out[k])
-        done_before[0] += len(idx)
-    if failure:
-        raise failure[0]
+            specs[k] = _lib.JobSpec(c.handle()[1], names[m], dv, t, met, spl, per_method.get(m))
+        for i, r in zip(idx, _group(jobs[idx[0]][0].set, specs, idx, tell)):
+            results[i] = r
+        tell.before += len(idx)
+    tell.raise_failure()
     if as_frame:
         from .results import frame
         return frame([r.as_dict() for r in results])
     return results
+
+
+class _Tell:
+    """run's callback to the library: progress with the run's counts; 1
+    stops the batch.  Called even without progress: running Python here
+    lets a Ctrl-C's KeyboardInterrupt be raised, and stop the run."""
+
+    def __init__(self, progress, total):
+        self.progress, self.total, self.before, self.failure = progress, total, 0, []
+
+    def __call__(self, _ctx, done, _total):
+        if self.failure:
+            return 1
+        try:
+            if self.progress is not None:
+                self.progress(self.before + done, self.total)
+        except BaseException as e:  # C cannot unwind: the batch stops, e is raised after it
+            self.failure.append(e)
+            return 1
+        return 0
+
+    def raise_failure(self):
+        if self.failure:
+            raise self.failure[0]
+
+
+def _group(cset, specs, idx, tell):
+    """The Results of one batch (jobs idx of the run, on one curve set)."""
+    L = _lib.lib()
+    out = (_lib.ResultP * len(idx))()
+    err = _lib.ObxError()
+    rc = _run_batch(L, cset, specs, len(idx), tell, tell.progress is not None, out, err)
+    try:
+        tell.raise_failure()
+        if rc < 0:
+            _lib.check(rc, _renumber(err, idx))
+        return [_result(out[k]) for k in range(len(idx))]
+    finally:
+        for k in range(len(idx)):
+            L.obx_result_free(out[k])
+
+
+def _run_batch(L, cset, specs, n, tell, told, out, err):
+    """obx_run_batch_stop with tell (1: stop); with a library older than 0.5
+    obx_run_batch, whose callback cannot stop it (tell only where told)."""
+    stop = getattr(L, "obx_run_batch_stop", None)
+    if stop is not None:
+        return stop(cset._h, specs, n, _lib.PROGRESS_STOP(tell), None, out, ctypes.byref(err))
+    def plain(c, done, total):
+        tell(c, done, total)
+    cb = _lib.PROGRESS(plain) if told else _lib.PROGRESS()
+    return L.obx_run_batch(cset._h, specs, n, cb, None, out, ctypes.byref(err))
 
 
 def _renumber(err, idx):

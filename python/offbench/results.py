@@ -6,6 +6,7 @@ its file, line and column."""
 
 import csv
 import json
+import math
 import os
 
 from . import columns
@@ -62,10 +63,41 @@ def _records(p):
                         rec[n] = columns.parse(n, t)
                     except ValueError:
                         raise ParseError("%s:%d: column %s: %r is not %s" % (p, line, n, t, _what(n))) from None
+                bad = _certificate_fault(rec)
+                if bad:
+                    raise ParseError("%s:%d: %s" % (p, line, bad))
                 out.append(rec)
         except (csv.Error, UnicodeDecodeError) as e:
             raise ParseError("%s:%d: %s" % (p, rows.line_num, e)) from None
     return header, out
+
+
+_CERT = ("err_upper", "err_lower", "certified", "cert_ns")
+
+
+def _certificate_fault(rec):
+    """What is wrong with a typed row's certificate columns, or None: the
+    checks of the C reader (host/io/results_csv.c, read_cert), so that a row
+    one refuses the other refuses.  All empty, all set and consistent on a
+    row with an approximation (status ok or limit), or cert_ns alone (a
+    certificate stopped by --job-timeout)."""
+    if not all(c in rec for c in _CERT):
+        return None  # an older file, before run --certify
+    up, lo, cert, ns = (rec[c] for c in _CERT)
+    have = [not math.isnan(up), not math.isnan(lo), cert is not None, ns is not None]
+    if not any(have) or have == [False, False, False, True]:
+        return None
+    if not all(have):
+        return ("err_upper, err_lower, certified and cert_ns are all empty or all set (or cert_ns alone: a "
+                "certificate stopped by --job-timeout)")
+    if rec.get("status") not in ("ok", "limit"):
+        return ("status %s has no approximation to certify: err_upper, err_lower, certified and cert_ns must be "
+                "empty" % rec.get("status"))
+    if not 0 <= lo <= up:
+        return "err_lower is not a finite number from 0 to err_upper"
+    if cert != (up <= rec.get("tol", math.nan)):
+        return "certified must be yes exactly when err_upper <= tol"
+    return None
 
 
 def _what(name):

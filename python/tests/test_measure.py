@@ -60,7 +60,7 @@ def test_hausdorff_whole():
     assert whole.status == "ok" and whole.metric == "hausdorff-whole"
     assert whole.max_err <= offbench.measure("liu2002_ex1", 1, r.pieces).max_err * (1 + 1e-12)
     assert whole.max_err == pytest.approx(r.max_err, rel=1e-6)
-    with pytest.raises(offbench.MeasureError, match="do not cover the offset once"):
+    with pytest.raises(offbench.MeasureError, match="does not cover the d = 1 offset of curve liu2002_ex1 once"):
         offbench.measure("liu2002_ex1", 1, r.pieces[1:], metric="hausdorff-whole")
 
 
@@ -120,3 +120,35 @@ def test_a_curve_of_several_segments():
     assert whole.status == "ok" and whole.max_err < 1e-12 and whole.segments == 1
     off = offbench.measure(two, 0.1, [[[0, 0.1], [1, 0.15], [2, 0.1]]])
     assert off.max_err == pytest.approx(0.025, rel=1e-6)
+
+
+def _cover_cases():
+    """(name, pieces from a fit's N pieces, the count the message gives)."""
+    return [("one piece of N", lambda p: p[:1], "gaps"),
+            ("50 copies of one piece", lambda p: [p[0]] * 50, "49 duplicates"),
+            ("half the pieces", lambda p: p[:len(p) // 2], "1 gaps"),
+            ("all but the first", lambda p: p[1:], "1 gaps")]
+
+
+@pytest.mark.parametrize("metric", ["hausdorff", "normal", "certified", "hausdorff-whole", "bound"])
+@pytest.mark.parametrize("case", _cover_cases(), ids=lambda c: c[0])
+def test_pieces_must_cover_the_offset_once(case, metric):
+    """measure refuses what `offbench measure` refuses (one path): pieces
+    that do not cover the offset once, under every metric."""
+    name, take, count = case
+    r = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3)
+    with pytest.raises(offbench.MeasureError, match=r"does not cover the d = 1 offset of curve liu2002_ex1 once "
+                       r"\(.*%s" % count):
+        offbench.measure("liu2002_ex1", 1, take(r.pieces), metric=metric)
+
+
+def test_pieces_out_of_order_or_reversed_are_measured():
+    """The CLI measures pieces out of order (in the base's order) and
+    reversed pieces (matched the other way): so does measure."""
+    r = offbench.fit("liu2002_ex1", "tiller", 1, 1e-3)
+    ref = offbench.measure("liu2002_ex1", 1, r.pieces).max_err
+    p = r.pieces
+    assert offbench.measure("liu2002_ex1", 1, p[::2] + p[1::2]).max_err == ref
+    assert offbench.measure("liu2002_ex1", 1, p[::-1]).max_err == ref
+    flipped = [q.points[::-1].copy() for q in p]
+    assert offbench.measure("liu2002_ex1", 1, flipped).max_err == pytest.approx(ref, rel=1e-9)

@@ -186,3 +186,49 @@ def test_certificate_timed_out(tmp_path):
     pd = pytest.importorskip("pandas")
     df = offbench.read_results(p)
     assert df["certified"].isna().tolist() == [True, False] and df["cert_ns"].notna().all()
+
+
+def _certify_table(tmp_path):
+    """run --certify's results.csv (rows ok, skip, ok) as a list of rows."""
+    from conftest import offbench_run
+    p = offbench_run(tmp_path, "--curve", "atlas_circle", "--methods", "tiller,kim2018,zhao", "--tols", "1e-2",
+                     "--certify")
+    with open(p, newline="") as f:
+        return p, list(csv.reader(f))
+
+
+def _set(table, line, **cols):
+    """Row `line` of the file (2: the first row) with columns changed."""
+    head = table[0]
+    for c, v in cols.items():
+        table[line - 1][head.index(c)] = v
+
+
+# (what, line, columns changed, words of the error); rows 2 and 4 are ok, row 3 skip
+_BAD_CERTIFICATES = [
+    ("certified=yes on a skip row", 3, dict(err_upper="1e-4", err_lower="1e-5", certified="yes", cert_ns="100"),
+     "status skip has no approximation to certify"),
+    ("err_upper < max_err on a fail row", 2, dict(status="fail", err_upper="1e-9", err_lower="0"),
+     "status fail has no approximation to certify"),
+    ("a certificate on a timeout row", 4, dict(status="timeout"), "status timeout has no approximation to certify"),
+    ("certified=yes over tol", 2, dict(err_upper="1", err_lower="0", certified="yes"),
+     "certified must be yes exactly when err_upper <= tol"),
+    ("err_lower over err_upper", 2, dict(err_upper="1e-4", err_lower="1e-3"), "err_lower is not a finite number"),
+    ("some columns only", 2, dict(err_lower="", certified=""), "all empty or all set"),
+]
+
+
+@pytest.mark.parametrize("what, line, cols, words", _BAD_CERTIFICATES, ids=[c[0] for c in _BAD_CERTIFICATES])
+def test_certificate_columns_checked(tmp_path, what, line, cols, words):
+    """A row whose certificate the C reader (host/io/results_csv.c) refuses is
+    refused here too, naming FILE:LINE: a certificate on a row without an
+    approximation (fail, skip, timeout), a verdict that contradicts its
+    bounds, half a certificate."""
+    p, table = _certify_table(tmp_path)
+    _set(table, line, **cols)
+    with open(p, "w", newline="") as f:
+        csv.writer(f, lineterminator="\n").writerows(table)
+    for as_frame in (False, None):
+        with pytest.raises(offbench.ParseError) as e:
+            offbench.read_results(p, as_frame=as_frame)
+        assert str(e.value).startswith("%s:%d: " % (p, line)) and words in str(e.value), str(e.value)

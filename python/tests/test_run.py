@@ -73,7 +73,7 @@ def test_as_frame_without_pandas(no_pandas):
     assert "pandas" in str(e.value)
 
 
-def test_progress_exception_is_raised_after_the_run():
+def test_progress_exception_is_raised():
     class Stop(Exception):
         pass
 
