@@ -181,53 +181,46 @@ static int selected(const char *only, const char *source, const char *table)
     return 0;
 }
 
-/* Plans one row per (published cell, protocol), then the sweep. */
-static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, const char *only,
-                unsigned protos)
+/* Plans the row of published cell c under protocol p: its run's slot, or
+ * why it has none (r->fixed); 0, or -1 after ob_error(). */
+static int plan_cell(ob_tab_plan *pl, const ob_pub_set *pub, const ob_pub_cell *c, ob_proto p,
+                     const ob_curveset *set)
 {
     ob_err err;
-    pl->rows = calloc((size_t)pub->n * OB_PROTO_COUNT, sizeof *pl->rows);
-    if (!pl->rows) {
+    ob_tab_row *r = &pl->rows[pl->nrows++];
+    r->cell = c;
+    r->proto = p;
+    r->slot = -1;
+    err.msg[0] = '\0'; /* find_curve's NULL without a message: no such curve */
+    if (ob_tab_resolve(c, p, &r->spec, &err)) {
+        ob_error("%s:%d: %s", pub->where, c->line, err.msg);
+        return -1;
+    }
+    if (!r->spec.method) {
+        r->fixed = "no-method";
+        return 0;
+    }
+    const ob_curve *curve = find_curve(pl, set, &r->spec, &err);
+    if (!curve && err.msg[0]) {
+        ob_error("%s:%d: %s", pub->where, c->line, err.msg);
+        return -1;
+    }
+    if (!curve || (isnan(c->d) && curve->nd == 0)) {
+        r->fixed = "no-data";
+        return 0;
+    }
+    r->d_run = r->spec.d_factor * (isnan(c->d) ? curve->d[0] : c->d);
+    if ((r->slot = slot_for(pl, curve, r->d_run, &r->spec)) < 0) {
         ob_error("out of memory planning the tables");
         return -1;
     }
-    for (int i = 0; i < pub->n; i++)
-        for (int p = 0; p < OB_PROTO_COUNT && selected(only, pub->v[i].source, pub->v[i].table); p++) {
-            if (!(protos & (1u << p)))
-                continue;
-            const ob_pub_cell *c = &pub->v[i];
-            ob_tab_row *r = &pl->rows[pl->nrows++];
-            r->cell = c;
-            r->proto = (ob_proto)p;
-            r->slot = -1;
-            err.msg[0] = '\0'; /* find_curve's NULL without a message: no such curve */
-            if (ob_tab_resolve(c, (ob_proto)p, &r->spec, &err)) {
-                ob_error("%s:%d: %s", pub->where, c->line, err.msg);
-                return -1;
-            }
-            if (!r->spec.method) {
-                r->fixed = "no-method";
-                continue;
-            }
-            const ob_curve *curve = find_curve(pl, set, &r->spec, &err);
-            if (!curve && err.msg[0]) {
-                ob_error("%s:%d: %s", pub->where, c->line, err.msg);
-                return -1;
-            }
-            if (!curve || (isnan(c->d) && curve->nd == 0)) {
-                r->fixed = "no-data";
-                continue;
-            }
-            r->d_run = r->spec.d_factor * (isnan(c->d) ? curve->d[0] : c->d);
-            if ((r->slot = slot_for(pl, curve, r->d_run, &r->spec)) < 0) {
-                ob_error("out of memory planning the tables");
-                return -1;
-            }
-        }
-    /* Zhao-Zhou's quintic: its radius is not published, so sweep it; nor
-     * where it was cut into C1 and C2: t = 1/2 (tables.md) and others */
-    if (!selected(only, "zhao2017", "1"))
-        return 0;
+    return 0;
+}
+
+/* The pieces of Zhao-Zhou's quintic the sweep runs: the whole, and C1 and
+ * C2 cut at each of sweep_cut; their names stay valid for the plan. */
+static int sweep_pieces(const char *(*names)[1 + 2 * NCUTS])
+{
     static char pieces[1 + 2 * NCUTS][64]; /* room for any int and %g: no truncation warning */
     int npieces = 0;
     snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C");
@@ -238,6 +231,57 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
             else
                 snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C%d@%g", h, sweep_cut[k]);
         }
+    for (int k = 0; k < npieces; k++)
+        (*names)[k] = pieces[k];
+    return npieces;
+}
+
+/* Plans one point of the sweep: piece at sweep_d[i] by methods[m] in
+ * variant v (below); 0 (planned, or nothing to run), or -1 after
+ * ob_error(). */
+static int plan_sweep_point(ob_tab_plan *pl, const ob_curveset *set, ob_pub_cell *cell, const char *piece,
+                            const char *method, ob_proto p, int v, int i)
+{
+    ob_err err;
+    snprintf(cell->curve, sizeof cell->curve, "%.39s", piece);
+    snprintf(cell->method, sizeof cell->method, "%s", method);
+    ob_tab_spec s;
+    if (ob_tab_resolve(cell, p, &s, &err) || !s.method)
+        return 0;
+    if (v == 1)
+        s.metric = OB_METRIC_NORMAL;
+    if (v == 3 && s.nset < OB_TAB_MAX_SET) {
+        s.set_name[s.nset] = "weighted";
+        s.set_value[s.nset++] = 0.0;
+    }
+    const ob_curve *curve = find_curve(pl, set, &s, &err);
+    if (!curve)
+        return 0;
+    if (pl->nsweep == OB_TAB_MAX_SWEEP) {
+        ob_error("more than %d points in the quintic's sweep", OB_TAB_MAX_SWEEP);
+        return -1;
+    }
+    ob_tab_sweep *w = &pl->sweep[pl->nsweep++];
+    w->piece = piece + strlen("zhao2017_quintic/");
+    w->method = method;
+    w->proto = p;
+    w->metric = s.metric;
+    w->variant = v == 3 ? "zhao-rational.weighted=0" : "";
+    w->d = sweep_d[i];
+    if ((w->slot = slot_for(pl, curve, sweep_d[i], &s)) < 0) {
+        ob_error("out of memory planning the tables");
+        return -1;
+    }
+    return 0;
+}
+
+/* Zhao-Zhou's quintic: its radius is not published, so sweep it; nor
+ * where it was cut into C1 and C2: t = 1/2 (tables.md) and others.  0, or
+ * -1 after ob_error(). */
+static int plan_sweep(ob_tab_plan *pl, const ob_curveset *set, unsigned protos)
+{
+    const char *pieces[1 + 2 * NCUTS];
+    const int npieces = sweep_pieces(&pieces);
     static const char *methods[] = {"lee", "zhao-rational"};
     ob_pub_cell cell;
     memset(&cell, 0, sizeof cell);
@@ -253,37 +297,28 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                     const ob_proto p = v == 2 ? OB_PROTO_RIGOROUS : OB_PROTO_PAPER;
                     if (!(protos & (1u << p)) || (v == 3 && m == 0))
                         continue;
-                    snprintf(cell.curve, sizeof cell.curve, "%.39s", pieces[k]);
-                    snprintf(cell.method, sizeof cell.method, "%s", methods[m]);
-                    ob_tab_spec s;
-                    if (ob_tab_resolve(&cell, p, &s, &err) || !s.method)
-                        continue;
-                    if (v == 1)
-                        s.metric = OB_METRIC_NORMAL;
-                    if (v == 3 && s.nset < OB_TAB_MAX_SET) {
-                        s.set_name[s.nset] = "weighted";
-                        s.set_value[s.nset++] = 0.0;
-                    }
-                    const ob_curve *curve = find_curve(pl, set, &s, &err);
-                    if (!curve)
-                        continue;
-                    if (pl->nsweep == OB_TAB_MAX_SWEEP) {
-                        ob_error("more than %d points in the quintic's sweep", OB_TAB_MAX_SWEEP);
+                    if (plan_sweep_point(pl, set, &cell, pieces[k], methods[m], p, v, i) != 0)
                         return -1;
-                    }
-                    ob_tab_sweep *w = &pl->sweep[pl->nsweep++];
-                    w->piece = pieces[k] + strlen("zhao2017_quintic/");
-                    w->method = methods[m];
-                    w->proto = p;
-                    w->metric = s.metric;
-                    w->variant = v == 3 ? "zhao-rational.weighted=0" : "";
-                    w->d = sweep_d[i];
-                    if ((w->slot = slot_for(pl, curve, sweep_d[i], &s)) < 0) {
-                        ob_error("out of memory planning the tables");
-                        return -1;
-                    }
                 }
     return 0;
+}
+
+/* Plans one row per (published cell, protocol), then the sweep. */
+static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, const char *only,
+                unsigned protos)
+{
+    pl->rows = calloc((size_t)pub->n * OB_PROTO_COUNT, sizeof *pl->rows);
+    if (!pl->rows) {
+        ob_error("out of memory planning the tables");
+        return -1;
+    }
+    for (int i = 0; i < pub->n; i++)
+        for (int p = 0; p < OB_PROTO_COUNT && selected(only, pub->v[i].source, pub->v[i].table); p++)
+            if ((protos & (1u << p)) && plan_cell(pl, pub, &pub->v[i], (ob_proto)p, set) != 0)
+                return -1;
+    if (!selected(only, "zhao2017", "1"))
+        return 0;
+    return plan_sweep(pl, set, protos);
 }
 
 /* Runs every slot, one driver run per group of driver options. */
