@@ -42,6 +42,12 @@ check "[ $rc = 0 ] || [ $rc = 1 ]" "latin1 dir: compare exit $rc: $(tail -n 1 "$
 check "! grep -q 'UTF-8' $T/c.err" "latin1 dir: compare: $(tail -n 1 "$T/c.err")"
 "$OB" run --resume "$D" >/dev/null 2>"$T/r.err"
 check "[ $? = 0 ]" "latin1 dir: --resume failed: $(tail -n 1 "$T/r.err")"
+# merge reads each shard's meta.json
+S="$T/s$(printf '\377')"
+"$OB" $RUN --shard 0/2 --out "${S}0" >/dev/null 2>&1 && "$OB" $RUN --shard 1/2 --out "${S}1" >/dev/null 2>&1
+check "[ $? = 0 ]" "latin1 shards: run failed"
+"$OB" merge "${S}0" "${S}1" --out "${S}m" >/dev/null 2>"$T/m.err"
+check "[ $? = 0 ]" "latin1 shards: merge refused them: $(tail -n 1 "$T/m.err")"
 if command -v python3 >/dev/null 2>&1; then
     check "python3 -c 'import json,sys; json.load(open(sys.argv[1], encoding=\"utf-8\"))' $D/meta.json" \
         "latin1 dir: meta.json is not valid UTF-8 JSON"
