@@ -469,6 +469,49 @@ static int parse_opts(int argc, char **argv, ob_run_opts *o, const char **only, 
     return ob_run_opts_finish(o) ? -1 : 0;
 }
 
+/* Writes tables.csv, tables.md and, with the sweep, zhao_sweep.csv into
+ * dir, each whole; without the sweep an earlier run's is removed.  0, or
+ * -1 when a write failed (said). */
+static int write_tables(ob_tab_out *out, const char *dir)
+{
+    const ob_tab_plan *pl = out->pl;
+    int rc = 0;
+    if (ob_write_atomically(dir, "tables.csv", ob_tab_write_csv, out) != 0 ||
+        ob_write_atomically(dir, "tables.md", ob_tab_write_md, out) != 0 ||
+        (pl->nsweep > 0 && ob_write_atomically(dir, "zhao_sweep.csv", ob_tab_write_sweep, out) != 0))
+        rc = -1;
+    if (pl->nsweep == 0) {  /* --table without Zhao-Zhou's Table 1: no sweep, and none of an earlier run */
+        char sp[4200];
+        snprintf(sp, sizeof sp, "%s/zhao_sweep.csv", dir);
+        remove(sp);
+    }
+    return rc;
+}
+
+/* The closing line: the rows by status and, with --certify, those whose
+ * job's certified error is within tol. */
+static void say_tables(const ob_tab_plan *pl, const ob_pub_set *pub, const ob_run_opts *o, double wall)
+{
+    int cnt[OB_TAB_NSTATUS] = {0};
+    for (int i = 0; i < pl->nrows; i++)
+        cnt[ob_tab_row_status(pl, &pl->rows[i], NULL)]++;
+    char cert[80] = "";
+    if (o->certify) {
+        int yes = 0, done = 0;
+        for (int i = 0; i < pl->nrows; i++)
+            if (pl->rows[i].slot >= 0 && pl->slots[pl->rows[i].slot].job.cert_done) {
+                const ob_job *j = &pl->slots[pl->rows[i].slot].job;
+                done++;
+                yes += ob_job_certified(j);
+            }
+        snprintf(cert, sizeof cert, "; certified within tol %d of %d", yes, done);
+    }
+    ob_info("%d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
+            "differs %d, no-method %d, no-data %d%s; wrote %s/tables.csv and tables.md",
+            pl->nrows, pub->n, (int)OB_PROTO_COUNT, pl->nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4], cert,
+            o->out_dir);
+}
+
 int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
 {
     ob_run_opts o;
@@ -533,34 +576,8 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
     ob_tab_out out = {&pl, &pub, where, &o, wall};
-    status = rrc ? 1 : 0;
-    if (ob_write_atomically(o.out_dir, "tables.csv", ob_tab_write_csv, &out) != 0 ||
-        ob_write_atomically(o.out_dir, "tables.md", ob_tab_write_md, &out) != 0 ||
-        (pl.nsweep > 0 && ob_write_atomically(o.out_dir, "zhao_sweep.csv", ob_tab_write_sweep, &out) != 0))
-        status = 1;
-    if (pl.nsweep == 0) {  /* --table without Zhao-Zhou's Table 1: no sweep, and none of an earlier run */
-        char sp[4200];
-        snprintf(sp, sizeof sp, "%s/zhao_sweep.csv", o.out_dir);
-        remove(sp);
-    }
-    int cnt[OB_TAB_NSTATUS] = {0};
-    for (int i = 0; i < pl.nrows; i++)
-        cnt[ob_tab_row_status(&pl, &pl.rows[i], NULL)]++;
-    char cert[80] = "";
-    if (o.certify) {  /* the rows whose job's certified error is within tol */
-        int yes = 0, done = 0;
-        for (int i = 0; i < pl.nrows; i++)
-            if (pl.rows[i].slot >= 0 && pl.slots[pl.rows[i].slot].job.cert_done) {
-                const ob_job *j = &pl.slots[pl.rows[i].slot].job;
-                done++;
-                yes += ob_job_certified(j);
-            }
-        snprintf(cert, sizeof cert, "; certified within tol %d of %d", yes, done);
-    }
-    ob_info("%d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
-            "differs %d, no-method %d, no-data %d%s; wrote %s/tables.csv and tables.md",
-            pl.nrows, pub.n, (int)OB_PROTO_COUNT, pl.nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4], cert,
-            o.out_dir);
+    status = write_tables(&out, o.out_dir) != 0 ? 1 : rrc ? 1 : 0;
+    say_tables(&pl, &pub, &o, wall);
 done:
     ob_cl_close(cl);
     plan_free(&pl);
