@@ -984,6 +984,93 @@ OBC_FN double obc_near_hint(const OBC_G double *hc, int nc, double dc, const dou
     return e;
 }
 
+/* obc_side_dist's query point Q: sample k of the query table when k >= 0,
+ * else the query curve at u (the approximation for OBC_K_H_APPROX, the
+ * offset for OBC_K_H_OFFSET). */
+OBC_FN void obc_query_point(int kind, const OBC_G double *hb, int nb, const OBC_G double *ha, int na, double d,
+                           const OBC_G double *qry, double u, int k, double Q[2], long *ops)
+{
+    double dQ[2], K[2];
+    if (k >= 0) {
+        Q[0] = qry[OBC_REC * k];
+        Q[1] = qry[OBC_REC * k + 1];
+    } else if (kind == OBC_K_H_APPROX) {
+        obc_pc_eval(ha, na, 0.0, u, Q, dQ, K, ops);
+    } else {
+        obc_pc_eval(hb, nb, d, u, Q, dQ, K, ops);
+    }
+}
+
+/* obc_side_dist's step (1): the nearest sample of the target table T to Q
+ * into *db (squared) and *jb (-1: none finite; both as the caller set them
+ * otherwise): the block whose circle comes nearest, then any other block
+ * that can hold a nearer one.  lbc gets the bounds of the first
+ * OBC_LB_CACHE blocks, which step (3) asks again. */
+OBC_FN void obc_nearest_sample(const double Q[2], const OBC_G double *T, int S, double *lbc, double *db, int *jb,
+                               long *ops)
+{
+    const int nblk = OBC_NBLK(S);
+    int b0 = 0;
+    double lb0 = OBC_INF;
+    const int ncache = nblk < OBC_LB_CACHE ? nblk : OBC_LB_CACHE;
+    const OBC_G double *circ = T + OBC_REC * S;
+    *ops += OBC_OPS_BLOCK * ncache;
+    OBC_SIMD /* obc_block_lb of the cached blocks, all at once */
+    for (int bk = 0; bk < ncache; bk++) {
+        const double x = Q[0] - circ[4 * bk], y = Q[1] - circ[4 * bk + 1];
+        lbc[bk] = sqrt(x * x + y * y) - circ[4 * bk + 2];
+    }
+    for (int bk = 0; bk < nblk; bk++) {
+        const double lb = bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, T, S, bk, ops);
+        if (lb < lb0) {
+            lb0 = lb;
+            b0 = bk;
+        }
+    }
+    obc_block_nearest(Q, T, S, b0, db, jb, ops);
+    double rdb = sqrt(*db); /* kept while *db is */
+    for (int bk = 0; bk < nblk; bk++)
+        if (bk != b0 && (bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, T, S, bk, ops)) < rdb) {
+            obc_block_nearest(Q, T, S, bk, db, jb, ops);
+            rdb = sqrt(*db);
+        }
+}
+
+/* obc_side_dist's step (3): the feet on spans other than [ja, jz) of the
+ * target (curve hc, nc, dc; table T) that may be nearer to Q than best, at
+ * most OBC_MAX_CAND of them, each refined by Newton; lbc as step (1) left
+ * it.  Returns the least distance, its foot in *tb (kept when none is
+ * nearer). */
+OBC_FN double obc_far_spans(const OBC_G double *hc, int nc, double dc, const double Q[2], const OBC_G double *T,
+                            int S, const double *lbc, int ja, int jz, double cut, double best, double *tb,
+                            long *ops)
+{
+    const int nblk = OBC_NBLK(S);
+    int ncand = 0;
+    for (int bk = 0; bk < nblk && !(best <= cut) && ncand < OBC_MAX_CAND; bk++) {
+        if (!((bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, T, S, bk, ops)) < best))
+            continue;
+        const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
+        for (int j = j0; j < j1 && !(best <= cut) && ncand < OBC_MAX_CAND; j++) {
+            if (j >= ja && j < jz)
+                continue;
+            const double reach = best + T[OBC_REC * j + OBC_MARGIN];
+            if (!(obc_chord_dist2(Q, T, j, ops) < reach * reach))
+                continue;
+            const int js = obc_sample_dist2(Q, T, j + 1) < obc_sample_dist2(Q, T, j) ? j + 1 : j;
+            ncand++;
+            double tp;
+            const double e = obc_project(hc, nc, dc, Q, obc_sample_t(js, S), obc_sample_t(j, S),
+                                         obc_sample_t(j + 1, S), T + OBC_REC * js, 0, cut, &tp, ops);
+            if (e < best) {
+                best = e;
+                *tb = tp;
+            }
+        }
+    }
+    return best;
+}
+
 /* Hausdorff, one side: distance from the query curve's point at u to the
  * target curve, whose sample table is tgt.  kind OBC_K_H_APPROX: query A,
  * target O; OBC_K_H_OFFSET: query O, target A.  k >= 0: u is sample k and the
@@ -1012,15 +1099,8 @@ OBC_CALL_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut
     const OBC_G double *hc = to_offset ? hb : ha;
     const int nc = to_offset ? nb : na;
     const double dc = to_offset ? d : 0.0;
-    double Q[2], dQ[2], K[2];
-    if (k >= 0) {
-        Q[0] = qry[OBC_REC * k];
-        Q[1] = qry[OBC_REC * k + 1];
-    } else if (to_offset) {
-        obc_pc_eval(ha, na, 0.0, u, Q, dQ, K, ops);
-    } else {
-        obc_pc_eval(hb, nb, d, u, Q, dQ, K, ops);
-    }
+    double Q[2];
+    obc_query_point(kind, hb, nb, ha, na, d, qry, u, k, Q, ops);
     const double cut2 = cut >= 0.0 ? cut * cut : -1.0;
     int jb = -1;
     double db = OBC_INF;
@@ -1045,34 +1125,8 @@ OBC_CALL_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut
         db = OBC_INF;
         jb = -1;
     }
-    /* (1) the nearest sample point: the nearest block, then any other block
-     * that can hold a nearer one */
-    const int nblk = OBC_NBLK(S);
-    int b0 = 0;
-    double lb0 = OBC_INF;
-    double lbc[OBC_LB_CACHE]; /* the bounds of the first blocks, asked again below */
-    const int ncache = nblk < OBC_LB_CACHE ? nblk : OBC_LB_CACHE;
-    const OBC_G double *circ = tgt + OBC_REC * S;
-    *ops += OBC_OPS_BLOCK * ncache;
-    OBC_SIMD /* obc_block_lb of the cached blocks, all at once */
-    for (int bk = 0; bk < ncache; bk++) {
-        const double x = Q[0] - circ[4 * bk], y = Q[1] - circ[4 * bk + 1];
-        lbc[bk] = sqrt(x * x + y * y) - circ[4 * bk + 2];
-    }
-    for (int bk = 0; bk < nblk; bk++) {
-        const double lb = bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops);
-        if (lb < lb0) {
-            lb0 = lb;
-            b0 = bk;
-        }
-    }
-    obc_block_nearest(Q, tgt, S, b0, &db, &jb, ops);
-    double rdb = sqrt(db); /* kept while db is */
-    for (int bk = 0; bk < nblk; bk++)
-        if (bk != b0 && (bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops)) < rdb) {
-            obc_block_nearest(Q, tgt, S, bk, &db, &jb, ops);
-            rdb = sqrt(db);
-        }
+    double lbc[OBC_LB_CACHE]; /* the bounds of the first blocks, asked again in (3) */
+    obc_nearest_sample(Q, tgt, S, lbc, &db, &jb, ops);
     if (jb < 0) { /* no finite sample */
         *tfoot = 0.0;
         return OBC_INF;
@@ -1085,33 +1139,11 @@ OBC_CALL_FN double obc_side_dist(int kind, OBC_ARGS, double u, int k, double cut
     /* (2) the foot near the nearest sample */
     const int ja = jb > 0 ? jb - 1 : 0, jz = jb < S - 1 ? jb + 1 : S - 1;
     double tb;
-    double best = obc_project(hc, nc, dc, Q, obc_sample_t(jb, S), obc_sample_t(ja, S), obc_sample_t(jz, S),
-                              tgt + OBC_REC * jb, jb == jh ? first : 0, cut, &tb, ops);
-    /* (3) feet on other spans that may be nearer, at most OBC_MAX_CAND */
-    int ncand = 0;
-    for (int bk = 0; bk < nblk && !(best <= cut) && ncand < OBC_MAX_CAND; bk++) {
-        if (!((bk < OBC_LB_CACHE ? lbc[bk] : obc_block_lb(Q, tgt, S, bk, ops)) < best))
-            continue;
-        const int j0 = OBC_BLK * bk, j1 = j0 + OBC_BLK < S - 1 ? j0 + OBC_BLK : S - 1;
-        for (int j = j0; j < j1 && !(best <= cut) && ncand < OBC_MAX_CAND; j++) {
-            if (j >= ja && j < jz)
-                continue;
-            const double reach = best + tgt[OBC_REC * j + OBC_MARGIN];
-            if (!(obc_chord_dist2(Q, tgt, j, ops) < reach * reach))
-                continue;
-            const int js = obc_sample_dist2(Q, tgt, j + 1) < obc_sample_dist2(Q, tgt, j) ? j + 1 : j;
-            ncand++;
-            double tp;
-            const double e = obc_project(hc, nc, dc, Q, obc_sample_t(js, S), obc_sample_t(j, S),
-                                         obc_sample_t(j + 1, S), tgt + OBC_REC * js, 0, cut, &tp, ops);
-            if (e < best) {
-                best = e;
-                tb = tp;
-            }
-        }
-    }
+    const double best = obc_project(hc, nc, dc, Q, obc_sample_t(jb, S), obc_sample_t(ja, S), obc_sample_t(jz, S),
+                                    tgt + OBC_REC * jb, jb == jh ? first : 0, cut, &tb, ops);
+    /* (3) feet on other spans that may be nearer */
     *tfoot = tb;
-    return best;
+    return obc_far_spans(hc, nc, dc, Q, tgt, S, lbc, ja, jz, cut, best, tfoot, ops);
 }
 
 /* The error at t; k >= 0 when t is sample k (Hausdorff reuses its tables);

@@ -534,6 +534,120 @@ static int cl_timed(ob_cl *cl, const ob_measure_rec *recs, int R, int S, ob_errv
     return 0;
 }
 
+/* One metric's batch in bench_metrics and what its CPU pass measured: the
+ * OpenCL layouts and the summary lines read them. */
+typedef struct {
+    const ob_measure_rec *recs;
+    int R, R1, S, N;
+    ob_errval *o1, *o2;        /* the CPU's errors, an OpenCL layout's */
+    const char *mn;            /* the metric's name */
+    char what[64], gw[64];     /* the rows "samples/<metric>", "gflops/<metric>" */
+    double cN, flops;          /* N threads' seconds, the work counted */
+    size_t to, back;           /* bytes to the device and back, all records */
+} metric_bench;
+
+/* The CPU figures of one metric's batch: 1 thread on the first R1 records,
+ * N threads on all; the work counts into mb. */
+static void bench_metric_cpu(bench_out *b, metric_bench *mb)
+{
+    const int R = mb->R, R1 = mb->R1, S = mb->S, N = mb->N;
+    cpu_batch(mb->recs, 8, S, mb->o1, 1);  /* warm-up */
+    double t0 = now_s();
+    cpu_batch(mb->recs, R1, S, mb->o1, 1);
+    const double c1 = now_s() - t0;
+    t0 = now_s();
+    cpu_batch(mb->recs, R, S, mb->o1, N);
+    const double cN = now_s() - t0;
+    double flops = 0.0;  /* as the metric core counts them */
+    size_t to = 0, back = 0;
+    for (int i = 0; i < R; i++) {
+        flops += mb->o1[i].work;
+        size_t t, bk;
+        ob_cl_record_bytes(mb->recs[i].base->deg, mb->recs[i].approx->deg, &t, &bk);
+        to += t;
+        back += bk;
+    }
+    row(b, mb->what, "cpu", 1, (double)R1 * S, c1, "samples/s");
+    row(b, mb->what, "cpu", N, (double)R * S, cN, "samples/s");
+    printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", mb->what, R1 * S / c1, R * S / cN, N,
+           (R1 * S / c1) > 0 ? (R * S / cN) / (R1 * S / c1) : 0.0);
+    snprintf(mb->gw, sizeof mb->gw, "gflops/%s", mb->mn);
+    row(b, mb->gw, "cpu", N, flops, cN, "flop/s");
+    mb->cN = cN;
+    mb->flops = flops;
+    mb->to = to;
+    mb->back = back;
+}
+
+/* One OpenCL layout l of one metric's batch (rows "opencl-groups",
+ * "opencl-items", and as "opencl" the layout runs use); its share of the
+ * device's peak into share.  Returns its wall seconds, -1 when the batch
+ * failed. */
+static double bench_metric_cl(bench_out *b, ob_cl *cl, const metric_bench *mb, ob_cl_layout l,
+                              ob_cl_layout runs_use, double clpeak, char *share, size_t slen)
+{
+    const int R = mb->R, S = mb->S;
+    const double flops = mb->flops;
+    char bk[32], wk[64];
+    snprintf(bk, sizeof bk, "opencl-%s", ob_cl_layout_name(l));
+    ob_cl_set_layout(cl, l);
+    double g, kern;
+    if (cl_timed(cl, mb->recs, R, S, mb->o2, &g, &kern) != 0)
+        return -1.0;
+    snprintf(wk, sizeof wk, "cl_peak_fraction/%s", mb->mn);
+    for (int as_run = 0; as_run < (l == runs_use ? 2 : 1); as_run++) {
+        row(b, mb->what, as_run ? "opencl" : bk, 0, (double)R * S, g, "samples/s");
+        row(b, mb->gw, as_run ? "opencl" : bk, 0, flops, g, "flop/s");
+        if (clpeak > 0)
+            row_rate(b, wk, as_run ? "opencl" : bk, 0, flops, kern, flops / kern / clpeak, "of_peak");
+    }
+    int same = 0;
+    double lw = 0.0; /* the work this layout did (hausdorff's groups do more) */
+    for (int i = 0; i < R; i++) {
+        same += memcmp(&mb->o1[i].err, &mb->o2[i].err, sizeof(double)) == 0;
+        lw += mb->o2[i].work;
+    }
+    printf("; OpenCL %s%s %9.0f (x%.2f vs CPU on %d threads; %d of %d errors bit for bit", ob_cl_layout_name(l),
+           l == runs_use ? " (runs)" : "", R * S / g, mb->cN / g, mb->N, same, R);
+    if (lw != flops) {
+        snprintf(wk, sizeof wk, "ops_per_sample/%s", mb->mn);
+        row_rate(b, wk, bk, 0, (double)R * S, 0.0, lw / ((double)R * S), "flop/sample");
+        printf("; its own work %.0f flops a sample, x%.2f the serial scan's", lw / ((double)R * S), lw / flops);
+    }
+    printf(")");
+    if (clpeak > 0)
+        snprintf(share, slen, "%s %.3g GFLOP/s in the kernel's own time, %.2f%%", ob_cl_layout_name(l),
+                 flops / kern / 1e9, 100.0 * flops / kern / clpeak);
+    return g;
+}
+
+/* The closing lines of one metric: the best rate against the CPU's peaks
+ * and the device's, and the work counts. */
+static void bench_metric_summary(bench_out *b, const metric_bench *mb, double gbest, const double peak[2],
+                                 double vpeak, char share[2][96])
+{
+    const int R = mb->R, S = mb->S;
+    const double flops = mb->flops;
+    char wk[64];
+    printf("\n%-18s >= %.2f GFLOP/s at best (as the metric core counts them), %.1f%% of the scalar peak%s", "",
+           gbest / 1e9, 100.0 * gbest / peak[1], vpeak > 0 ? "" : "\n");
+    if (vpeak > 0)
+        printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
+    if (share[0][0] || share[1][0])
+        printf("%-18s of the device's fp64 peak: %s%s%s\n", "", share[0], share[0][0] && share[1][0] ? "; " : "",
+               share[1]);
+    snprintf(wk, sizeof wk, "samples_per_record/%s", mb->mn);
+    row_rate(b, wk, "any", 0, R, 0.0, S, "samples/record");
+    snprintf(wk, sizeof wk, "ops_per_sample/%s", mb->mn);
+    row_rate(b, wk, "any", 0, (double)R * S, 0.0, flops / ((double)R * S), "flop/sample");
+    snprintf(wk, sizeof wk, "bytes_per_record/%s", mb->mn);
+    row_rate(b, wk, "opencl", 0, R, 0.0, (double)mb->to / R, "bytes/record");
+    snprintf(wk, sizeof wk, "bytes_back_per_record/%s", mb->mn);
+    row_rate(b, wk, "opencl", 0, R, 0.0, (double)mb->back / R, "bytes/record");
+    printf("%-18s work: %d samples a record, %.0f flops a sample (counted), %.0f bytes a record to the device, "
+           "%.0f back\n", "", S, flops / ((double)R * S), (double)mb->to / R, (double)mb->back / R);
+}
+
 /* The sampling engine, per metric: R records of S samples on the CPU (1
  * thread on the first R1 of them, N threads on all) and with OpenCL (cl, or
  * NULL; clpeak its fp64 peak, 0 unknown), and the work counts; 0, or -1
@@ -554,93 +668,22 @@ static int bench_metrics(bench_out *b, ob_cl *cl, int R, int R1, int S, int N, c
         printf("OpenCL batches: %d records of %d samples, %.3g samples a launch%s\n", R, S, (double)R * S,
                ob_cl_is_gpu(cl) ? " (a GPU: at least 1e7)" : "");
     for (int mi = 0; mi < 4 && !ob_stop_signal(); mi++) {
-        const ob_metric m = bench_mets[mi];
-        const char *mn = ob_metric_name(m);
-        char what[64];
-        snprintf(what, sizeof what, "samples/%s", mn);
-        make_batch(R, base, approx, recs, m);
-        cpu_batch(recs, 8, S, o1, 1);  /* warm-up */
-        double t0 = now_s();
-        cpu_batch(recs, R1, S, o1, 1);
-        double c1 = now_s() - t0;
-        t0 = now_s();
-        cpu_batch(recs, R, S, o1, N);
-        double cN = now_s() - t0;
-        double flops = 0.0;  /* as the metric core counts them */
-        size_t to = 0, back = 0;
-        for (int i = 0; i < R; i++) {
-            flops += o1[i].work;
-            size_t t, bk;
-            ob_cl_record_bytes(recs[i].base->deg, recs[i].approx->deg, &t, &bk);
-            to += t;
-            back += bk;
-        }
-        row(b, what, "cpu", 1, (double)R1 * S, c1, "samples/s");
-        row(b, what, "cpu", N, (double)R * S, cN, "samples/s");
-        printf("%-18s CPU: %9.0f samples/s on 1 thread, %9.0f on %d (x%.2f)", what, R1 * S / c1, R * S / cN, N,
-               (R1 * S / c1) > 0 ? (R * S / cN) / (R1 * S / c1) : 0.0);
-        char gw[64], wk[64];
-        snprintf(gw, sizeof gw, "gflops/%s", mn);
-        row(b, gw, "cpu", N, flops, cN, "flop/s");
-        double gbest = flops / cN;
-        /* both layouts of the kernel (rows "opencl-groups", "opencl-items"),
-         * and as "opencl" the one runs use on this device */
+        metric_bench mb = {.recs = recs, .R = R, .R1 = R1, .S = S, .N = N, .o1 = o1, .o2 = o2};
+        mb.mn = ob_metric_name(bench_mets[mi]);
+        snprintf(mb.what, sizeof mb.what, "samples/%s", mb.mn);
+        make_batch(R, base, approx, recs, bench_mets[mi]);
+        bench_metric_cpu(b, &mb);
+        double gbest = mb.flops / mb.cN;
         const ob_cl_layout runs_use = ob_cl_get_layout(cl);
         char share[2][96] = {"", ""};
         for (int lay = 0; cl && lay < 2 && !ob_stop_signal(); lay++) {
-            const ob_cl_layout l = lay ? OB_CL_ITEMS : OB_CL_GROUPS;
-            char bk[32];
-            snprintf(bk, sizeof bk, "opencl-%s", ob_cl_layout_name(l));
-            ob_cl_set_layout(cl, l);
-            double g, kern;
-            if (cl_timed(cl, recs, R, S, o2, &g, &kern) == 0) {
-                snprintf(wk, sizeof wk, "cl_peak_fraction/%s", mn);
-                for (int as_run = 0; as_run < (l == runs_use ? 2 : 1); as_run++) {
-                    row(b, what, as_run ? "opencl" : bk, 0, (double)R * S, g, "samples/s");
-                    row(b, gw, as_run ? "opencl" : bk, 0, flops, g, "flop/s");
-                    if (clpeak > 0)
-                        row_rate(b, wk, as_run ? "opencl" : bk, 0, flops, kern, flops / kern / clpeak, "of_peak");
-                }
-                int same = 0;
-                double lw = 0.0; /* the work this layout did (hausdorff's groups do more) */
-                for (int i = 0; i < R; i++) {
-                    same += memcmp(&o1[i].err, &o2[i].err, sizeof(double)) == 0;
-                    lw += o2[i].work;
-                }
-                printf("; OpenCL %s%s %9.0f (x%.2f vs CPU on %d threads; %d of %d errors bit for bit",
-                       ob_cl_layout_name(l), l == runs_use ? " (runs)" : "", R * S / g, cN / g, N, same, R);
-                if (lw != flops) {
-                    snprintf(wk, sizeof wk, "ops_per_sample/%s", mn);
-                    row_rate(b, wk, bk, 0, (double)R * S, 0.0, lw / ((double)R * S), "flop/sample");
-                    printf("; its own work %.0f flops a sample, x%.2f the serial scan's", lw / ((double)R * S),
-                           lw / flops);
-                }
-                printf(")");
-                gbest = fmax(gbest, flops / g);
-                if (clpeak > 0)
-                    snprintf(share[lay], sizeof share[lay], "%s %.3g GFLOP/s in the kernel's own time, %.2f%%",
-                             ob_cl_layout_name(l), flops / kern / 1e9, 100.0 * flops / kern / clpeak);
-            }
+            const double g = bench_metric_cl(b, cl, &mb, lay ? OB_CL_ITEMS : OB_CL_GROUPS, runs_use, clpeak,
+                                             share[lay], sizeof share[lay]);
+            if (g >= 0)
+                gbest = fmax(gbest, mb.flops / g);
         }
         ob_cl_set_layout(cl, runs_use);
-        printf("\n%-18s >= %.2f GFLOP/s at best (as the metric core counts them), %.1f%% of the scalar peak%s",
-               "", gbest / 1e9, 100.0 * gbest / peak[1], vpeak > 0 ? "" : "\n");
-        if (vpeak > 0)
-            printf(", %.1f%% of the vector peak\n", 100.0 * gbest / vpeak);
-        if (share[0][0] || share[1][0])
-            printf("%-18s of the device's fp64 peak: %s%s%s\n", "", share[0], share[0][0] && share[1][0] ? "; " : "",
-                   share[1]);
-        /* the work counts */
-        snprintf(wk, sizeof wk, "samples_per_record/%s", mn);
-        row_rate(b, wk, "any", 0, R, 0.0, S, "samples/record");
-        snprintf(wk, sizeof wk, "ops_per_sample/%s", mn);
-        row_rate(b, wk, "any", 0, (double)R * S, 0.0, flops / ((double)R * S), "flop/sample");
-        snprintf(wk, sizeof wk, "bytes_per_record/%s", mn);
-        row_rate(b, wk, "opencl", 0, R, 0.0, (double)to / R, "bytes/record");
-        snprintf(wk, sizeof wk, "bytes_back_per_record/%s", mn);
-        row_rate(b, wk, "opencl", 0, R, 0.0, (double)back / R, "bytes/record");
-        printf("%-18s work: %d samples a record, %.0f flops a sample (counted), %.0f bytes a record to the device, "
-               "%.0f back\n", "", S, flops / ((double)R * S), (double)to / R, (double)back / R);
+        bench_metric_summary(b, &mb, gbest, peak, vpeak, share);
     }
 
 out:

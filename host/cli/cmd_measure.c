@@ -32,6 +32,7 @@
 #include "host/io/numfmt.h"
 #include "host/io/output.h"
 #include "host/measure/measure.h"
+#include "host/run/signals.h"
 #include "methods/driver/joints.h"
 
 typedef struct {
@@ -321,7 +322,8 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     const int rc = ob_measure_approx(c, a->d, &ap, &ask, name, &cv, &fr->m, &err);
     say_cover(&ap, &cv, name);
     if (rc != 0) {
-        ob_error("%s", err.msg);
+        if (!ob_stop_signal()) /* stopped: measure() says so */
+            ob_error("%s", err.msg);
         goto out;
     }
     fr->pieces = ob_approx_file_pieces(&ap);
@@ -353,7 +355,13 @@ static int measure(const measure_args *a, ob_run_opts *o)
         goto out;  /* status 2: a d the curve's file would refuse (curvefile.h) */
     const int samples = ob_clamp_samples(o->driver.samples);
     for (int k = 0; k < a->napprox; k++) {
-        if (measure_file(a, a->approx[k], c, samples, &rows[k]) != 0) {
+        if (ob_stop_signal() || measure_file(a, a->approx[k], c, samples, &rows[k]) != 0) {
+            if (ob_stop_signal()) { /* the loop polls the stop (signals.h); the CSV is written whole or not */
+                status = ob_stop_exit("measure: %d of %d file%s measured, no CSV written (it is written once every "
+                                      "file is measured): rerun the command", k, a->napprox,
+                                      a->napprox == 1 ? "" : "s");
+                goto out;
+            }
             if (a->napprox > 1)
                 ob_error("measure: %s failed: none of the %d files is measured (no CSV written)", a->approx[k],
                          a->napprox);
@@ -365,6 +373,9 @@ static int measure(const measure_args *a, ob_run_opts *o)
                 rows[k].pieces == 1 ? "" : "s", a->approx[k], c->id, where, ds, samples);
     }
     status = write_csv(a, c, rows);
+    if (status == 0) /* a signal from now on finds the work done (signals.h) */
+        ob_stop_done("measure: the CSV on standard output is complete: every file was measured before the signal "
+                     "was seen");
 out:
     free(rows);
     ob_curveset_free(&set);

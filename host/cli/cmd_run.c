@@ -329,7 +329,8 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         if (oom && *oom)
             r.o.driver.test_oom_after = strtol(oom, NULL, 10);
         /* --resume DIR: the run's own options, for those not given (resume_opts.h) */
-        st = r.o.resume_dir && ob_resume_take_options(&r.o) ? 2 : test_slow_hook(&r.o.driver) ? 2 : setup_ranks(&r);
+        st = r.o.resume_dir && ob_resume_take_options(&r.o) ? 2 : test_slow_hook(&r.o.driver) ? 2
+             : ob_machine_env_check() ? 2 : setup_ranks(&r);  /* meta.json's machine name (hostinfo.h) */
     }
     if (st == GO_ON)
         st = plan_run(&r);

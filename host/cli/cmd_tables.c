@@ -181,53 +181,46 @@ static int selected(const char *only, const char *source, const char *table)
     return 0;
 }
 
-/* Plans one row per (published cell, protocol), then the sweep. */
-static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, const char *only,
-                unsigned protos)
+/* Plans the row of published cell c under protocol p: its run's slot, or
+ * why it has none (r->fixed); 0, or -1 after ob_error(). */
+static int plan_cell(ob_tab_plan *pl, const ob_pub_set *pub, const ob_pub_cell *c, ob_proto p,
+                     const ob_curveset *set)
 {
     ob_err err;
-    pl->rows = calloc((size_t)pub->n * OB_PROTO_COUNT, sizeof *pl->rows);
-    if (!pl->rows) {
+    ob_tab_row *r = &pl->rows[pl->nrows++];
+    r->cell = c;
+    r->proto = p;
+    r->slot = -1;
+    err.msg[0] = '\0'; /* find_curve's NULL without a message: no such curve */
+    if (ob_tab_resolve(c, p, &r->spec, &err)) {
+        ob_error("%s:%d: %s", pub->where, c->line, err.msg);
+        return -1;
+    }
+    if (!r->spec.method) {
+        r->fixed = "no-method";
+        return 0;
+    }
+    const ob_curve *curve = find_curve(pl, set, &r->spec, &err);
+    if (!curve && err.msg[0]) {
+        ob_error("%s:%d: %s", pub->where, c->line, err.msg);
+        return -1;
+    }
+    if (!curve || (isnan(c->d) && curve->nd == 0)) {
+        r->fixed = "no-data";
+        return 0;
+    }
+    r->d_run = r->spec.d_factor * (isnan(c->d) ? curve->d[0] : c->d);
+    if ((r->slot = slot_for(pl, curve, r->d_run, &r->spec)) < 0) {
         ob_error("out of memory planning the tables");
         return -1;
     }
-    for (int i = 0; i < pub->n; i++)
-        for (int p = 0; p < OB_PROTO_COUNT && selected(only, pub->v[i].source, pub->v[i].table); p++) {
-            if (!(protos & (1u << p)))
-                continue;
-            const ob_pub_cell *c = &pub->v[i];
-            ob_tab_row *r = &pl->rows[pl->nrows++];
-            r->cell = c;
-            r->proto = (ob_proto)p;
-            r->slot = -1;
-            err.msg[0] = '\0'; /* find_curve's NULL without a message: no such curve */
-            if (ob_tab_resolve(c, (ob_proto)p, &r->spec, &err)) {
-                ob_error("%s:%d: %s", pub->where, c->line, err.msg);
-                return -1;
-            }
-            if (!r->spec.method) {
-                r->fixed = "no-method";
-                continue;
-            }
-            const ob_curve *curve = find_curve(pl, set, &r->spec, &err);
-            if (!curve && err.msg[0]) {
-                ob_error("%s:%d: %s", pub->where, c->line, err.msg);
-                return -1;
-            }
-            if (!curve || (isnan(c->d) && curve->nd == 0)) {
-                r->fixed = "no-data";
-                continue;
-            }
-            r->d_run = r->spec.d_factor * (isnan(c->d) ? curve->d[0] : c->d);
-            if ((r->slot = slot_for(pl, curve, r->d_run, &r->spec)) < 0) {
-                ob_error("out of memory planning the tables");
-                return -1;
-            }
-        }
-    /* Zhao-Zhou's quintic: its radius is not published, so sweep it; nor
-     * where it was cut into C1 and C2: t = 1/2 (tables.md) and others */
-    if (!selected(only, "zhao2017", "1"))
-        return 0;
+    return 0;
+}
+
+/* The pieces of Zhao-Zhou's quintic the sweep runs: the whole, and C1 and
+ * C2 cut at each of sweep_cut; their names stay valid for the plan. */
+static int sweep_pieces(const char *(*names)[1 + 2 * NCUTS])
+{
     static char pieces[1 + 2 * NCUTS][64]; /* room for any int and %g: no truncation warning */
     int npieces = 0;
     snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C");
@@ -238,6 +231,57 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
             else
                 snprintf(pieces[npieces++], sizeof pieces[0], "zhao2017_quintic/C%d@%g", h, sweep_cut[k]);
         }
+    for (int k = 0; k < npieces; k++)
+        (*names)[k] = pieces[k];
+    return npieces;
+}
+
+/* Plans one point of the sweep: piece at sweep_d[i] by methods[m] in
+ * variant v (below); 0 (planned, or nothing to run), or -1 after
+ * ob_error(). */
+static int plan_sweep_point(ob_tab_plan *pl, const ob_curveset *set, ob_pub_cell *cell, const char *piece,
+                            const char *method, ob_proto p, int v, int i)
+{
+    ob_err err;
+    snprintf(cell->curve, sizeof cell->curve, "%.39s", piece);
+    snprintf(cell->method, sizeof cell->method, "%s", method);
+    ob_tab_spec s;
+    if (ob_tab_resolve(cell, p, &s, &err) || !s.method)
+        return 0;
+    if (v == 1)
+        s.metric = OB_METRIC_NORMAL;
+    if (v == 3 && s.nset < OB_TAB_MAX_SET) {
+        s.set_name[s.nset] = "weighted";
+        s.set_value[s.nset++] = 0.0;
+    }
+    const ob_curve *curve = find_curve(pl, set, &s, &err);
+    if (!curve)
+        return 0;
+    if (pl->nsweep == OB_TAB_MAX_SWEEP) {
+        ob_error("more than %d points in the quintic's sweep", OB_TAB_MAX_SWEEP);
+        return -1;
+    }
+    ob_tab_sweep *w = &pl->sweep[pl->nsweep++];
+    w->piece = piece + strlen("zhao2017_quintic/");
+    w->method = method;
+    w->proto = p;
+    w->metric = s.metric;
+    w->variant = v == 3 ? "zhao-rational.weighted=0" : "";
+    w->d = sweep_d[i];
+    if ((w->slot = slot_for(pl, curve, sweep_d[i], &s)) < 0) {
+        ob_error("out of memory planning the tables");
+        return -1;
+    }
+    return 0;
+}
+
+/* Zhao-Zhou's quintic: its radius is not published, so sweep it; nor
+ * where it was cut into C1 and C2: t = 1/2 (tables.md) and others.  0, or
+ * -1 after ob_error(). */
+static int plan_sweep(ob_tab_plan *pl, const ob_curveset *set, unsigned protos)
+{
+    const char *pieces[1 + 2 * NCUTS];
+    const int npieces = sweep_pieces(&pieces);
     static const char *methods[] = {"lee", "zhao-rational"};
     ob_pub_cell cell;
     memset(&cell, 0, sizeof cell);
@@ -253,37 +297,28 @@ static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, 
                     const ob_proto p = v == 2 ? OB_PROTO_RIGOROUS : OB_PROTO_PAPER;
                     if (!(protos & (1u << p)) || (v == 3 && m == 0))
                         continue;
-                    snprintf(cell.curve, sizeof cell.curve, "%.39s", pieces[k]);
-                    snprintf(cell.method, sizeof cell.method, "%s", methods[m]);
-                    ob_tab_spec s;
-                    if (ob_tab_resolve(&cell, p, &s, &err) || !s.method)
-                        continue;
-                    if (v == 1)
-                        s.metric = OB_METRIC_NORMAL;
-                    if (v == 3 && s.nset < OB_TAB_MAX_SET) {
-                        s.set_name[s.nset] = "weighted";
-                        s.set_value[s.nset++] = 0.0;
-                    }
-                    const ob_curve *curve = find_curve(pl, set, &s, &err);
-                    if (!curve)
-                        continue;
-                    if (pl->nsweep == OB_TAB_MAX_SWEEP) {
-                        ob_error("more than %d points in the quintic's sweep", OB_TAB_MAX_SWEEP);
+                    if (plan_sweep_point(pl, set, &cell, pieces[k], methods[m], p, v, i) != 0)
                         return -1;
-                    }
-                    ob_tab_sweep *w = &pl->sweep[pl->nsweep++];
-                    w->piece = pieces[k] + strlen("zhao2017_quintic/");
-                    w->method = methods[m];
-                    w->proto = p;
-                    w->metric = s.metric;
-                    w->variant = v == 3 ? "zhao-rational.weighted=0" : "";
-                    w->d = sweep_d[i];
-                    if ((w->slot = slot_for(pl, curve, sweep_d[i], &s)) < 0) {
-                        ob_error("out of memory planning the tables");
-                        return -1;
-                    }
                 }
     return 0;
+}
+
+/* Plans one row per (published cell, protocol), then the sweep. */
+static int plan(ob_tab_plan *pl, const ob_pub_set *pub, const ob_curveset *set, const char *only,
+                unsigned protos)
+{
+    pl->rows = calloc((size_t)pub->n * OB_PROTO_COUNT, sizeof *pl->rows);
+    if (!pl->rows) {
+        ob_error("out of memory planning the tables");
+        return -1;
+    }
+    for (int i = 0; i < pub->n; i++)
+        for (int p = 0; p < OB_PROTO_COUNT && selected(only, pub->v[i].source, pub->v[i].table); p++)
+            if ((protos & (1u << p)) && plan_cell(pl, pub, &pub->v[i], (ob_proto)p, set) != 0)
+                return -1;
+    if (!selected(only, "zhao2017", "1"))
+        return 0;
+    return plan_sweep(pl, set, protos);
 }
 
 /* Runs every slot, one driver run per group of driver options. */
@@ -434,6 +469,49 @@ static int parse_opts(int argc, char **argv, ob_run_opts *o, const char **only, 
     return ob_run_opts_finish(o) ? -1 : 0;
 }
 
+/* Writes tables.csv, tables.md and, with the sweep, zhao_sweep.csv into
+ * dir, each whole; without the sweep an earlier run's is removed.  0, or
+ * -1 when a write failed (said). */
+static int write_tables(ob_tab_out *out, const char *dir)
+{
+    const ob_tab_plan *pl = out->pl;
+    int rc = 0;
+    if (ob_write_atomically(dir, "tables.csv", ob_tab_write_csv, out) != 0 ||
+        ob_write_atomically(dir, "tables.md", ob_tab_write_md, out) != 0 ||
+        (pl->nsweep > 0 && ob_write_atomically(dir, "zhao_sweep.csv", ob_tab_write_sweep, out) != 0))
+        rc = -1;
+    if (pl->nsweep == 0) {  /* --table without Zhao-Zhou's Table 1: no sweep, and none of an earlier run */
+        char sp[4200];
+        snprintf(sp, sizeof sp, "%s/zhao_sweep.csv", dir);
+        remove(sp);
+    }
+    return rc;
+}
+
+/* The closing line: the rows by status and, with --certify, those whose
+ * job's certified error is within tol. */
+static void say_tables(const ob_tab_plan *pl, const ob_pub_set *pub, const ob_run_opts *o, double wall)
+{
+    int cnt[OB_TAB_NSTATUS] = {0};
+    for (int i = 0; i < pl->nrows; i++)
+        cnt[ob_tab_row_status(pl, &pl->rows[i], NULL)]++;
+    char cert[80] = "";
+    if (o->certify) {
+        int yes = 0, done = 0;
+        for (int i = 0; i < pl->nrows; i++)
+            if (pl->rows[i].slot >= 0 && pl->slots[pl->rows[i].slot].job.cert_done) {
+                const ob_job *j = &pl->slots[pl->rows[i].slot].job;
+                done++;
+                yes += ob_job_certified(j);
+            }
+        snprintf(cert, sizeof cert, "; certified within tol %d of %d", yes, done);
+    }
+    ob_info("%d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
+            "differs %d, no-method %d, no-data %d%s; wrote %s/tables.csv and tables.md",
+            pl->nrows, pub->n, (int)OB_PROTO_COUNT, pl->nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4], cert,
+            o->out_dir);
+}
+
 int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
 {
     ob_run_opts o;
@@ -501,34 +579,8 @@ int ob_cmd_tables(int argc, char **argv, int full_argc, char **full_argv)
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double wall = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
     ob_tab_out out = {&pl, &pub, where, &o, wall};
-    status = rrc ? 1 : 0;
-    if (ob_write_atomically(o.out_dir, "tables.csv", ob_tab_write_csv, &out) != 0 ||
-        ob_write_atomically(o.out_dir, "tables.md", ob_tab_write_md, &out) != 0 ||
-        (pl.nsweep > 0 && ob_write_atomically(o.out_dir, "zhao_sweep.csv", ob_tab_write_sweep, &out) != 0))
-        status = 1;
-    if (pl.nsweep == 0) {  /* --table without Zhao-Zhou's Table 1: no sweep, and none of an earlier run */
-        char sp[4200];
-        snprintf(sp, sizeof sp, "%s/zhao_sweep.csv", o.out_dir);
-        remove(sp);
-    }
-    int cnt[OB_TAB_NSTATUS] = {0};
-    for (int i = 0; i < pl.nrows; i++)
-        cnt[ob_tab_row_status(&pl, &pl.rows[i], NULL)]++;
-    char cert[80] = "";
-    if (o.certify) {  /* the rows whose job's certified error is within tol */
-        int yes = 0, done = 0;
-        for (int i = 0; i < pl.nrows; i++)
-            if (pl.rows[i].slot >= 0 && pl.slots[pl.rows[i].slot].job.cert_done) {
-                const ob_job *j = &pl.slots[pl.rows[i].slot].job;
-                done++;
-                yes += ob_job_certified(j);
-            }
-        snprintf(cert, sizeof cert, "; certified within tol %d of %d", yes, done);
-    }
-    ob_info("%d rows (of %d published cells x %d protocols; %ld jobs, %.1f s): match %d, close %d, "
-            "differs %d, no-method %d, no-data %d%s; wrote %s/tables.csv and tables.md",
-            pl.nrows, pub.n, (int)OB_PROTO_COUNT, pl.nslots, wall, cnt[0], cnt[1], cnt[2], cnt[3], cnt[4], cert,
-            o.out_dir);
+    status = write_tables(&out, o.out_dir) != 0 ? 1 : rrc ? 1 : 0;
+    say_tables(&pl, &pub, &o, wall);
 done:
     ob_cl_close(cl);
     plan_free(&pl);

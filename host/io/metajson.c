@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "host/io/slurp.h"
+#include "host/io/utf8.h"
 
 enum { PATH_MAX_LEN = 512 };
 
@@ -110,32 +111,6 @@ static int read_hex4(parser *p, unsigned *cp)
     return 0;
 }
 
-/* Length of the valid UTF-8 sequence at s (1..4), or 0. */
-static int utf8_len(const unsigned char *s, const unsigned char *end)
-{
-    int n;
-    unsigned min;
-    if (*s < 0x80)
-        return 1;
-    if (*s >= 0xc2 && *s <= 0xdf)
-        n = 2, min = 0x80;
-    else if (*s >= 0xe0 && *s <= 0xef)
-        n = 3, min = 0x800;
-    else if (*s >= 0xf0 && *s <= 0xf4)
-        n = 4, min = 0x10000;
-    else
-        return 0;
-    if (end - s < n)
-        return 0;
-    unsigned cp = *s & (0x7f >> n);
-    for (int i = 1; i < n; i++) {
-        if ((s[i] & 0xc0) != 0x80)
-            return 0;
-        cp = cp << 6 | (s[i] & 0x3f);
-    }
-    return cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff) ? 0 : n;
-}
-
 static size_t put_utf8(char *o, unsigned cp)
 {
     if (cp < 0x80) {
@@ -198,7 +173,7 @@ static int parse_string(parser *p, char **out, size_t *outlen)
             return fail(p, "control character (byte 0x%02x) in a string", c);
         }
         if (c != '\\') {
-            int n = utf8_len((const unsigned char *)p->s, (const unsigned char *)p->end);
+            int n = ob_utf8_len((const unsigned char *)p->s, (const unsigned char *)p->end);
             if (!n) {
                 free(buf);
                 return fail(p, "invalid UTF-8 in a string");

@@ -16,6 +16,7 @@
 #include "host/io/columns.h"
 #include "host/io/meta_selection.h"
 #include "host/io/numfmt.h"
+#include "host/io/utf8.h"
 #include "host/run/hostinfo.h"
 #include "methods/metrics/metric_certified.h"
 
@@ -193,14 +194,23 @@ int ob_write_fits(FILE *f, const ob_job *jobs, size_t njobs, int rounds, const d
 
 void ob_json_string(FILE *f, const char *s)
 {
+    /* the strings come from the environment, the host and argv too (a host
+     * name, a path with a Latin-1 byte): what is no UTF-8 becomes U+FFFD,
+     * so that offbench's own reader (metajson.c, the same check) and every
+     * other JSON reader take the file */
+    const unsigned char *p = (const unsigned char *)s, *end = p + strlen(s);
     fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
+    while (p < end) {
+        const int n = ob_utf8_len(p, end);
+        if (n == 0)
+            fputs("\\ufffd", f);
+        else if (*p == '"' || *p == '\\')
             fprintf(f, "\\%c", *p);
-        else if (*p < 0x20)
+        else if (*p < 0x20 || *p == 0x7f)
             fprintf(f, "\\u%04x", *p);
         else
-            fputc(*p, f);
+            fwrite(p, 1, (size_t)n, f);
+        p += n ? n : 1;
     }
     fputc('"', f);
 }

@@ -55,7 +55,8 @@ void ob_write_meta_certify(FILE *f, int mode, double wall_seconds);
 
 /* Writes s as a CSV field (quoted when it holds a comma, quote or newline). */
 void ob_csv_field(FILE *f, const char *s);
-/* Writes s as a JSON string literal. */
+/* Writes s as a JSON string literal, always valid UTF-8 JSON: a byte that
+ * is no UTF-8 (utf8.h) as U+FFFD, control characters and DEL escaped. */
 void ob_json_string(FILE *f, const char *s);
 
 #endif

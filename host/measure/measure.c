@@ -2,6 +2,7 @@
  * measure.c - an approximation's error with the run's engine (measure.h).
  */
 #include "host/measure/measure.h"
+#include "host/run/signals.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,6 +24,8 @@ int ob_approx_measure(const ob_curve *c, double d, const ob_approx *a, ob_metric
             return 0;
         }
     for (int k = 0; k < a->n; k++) {
+        if (ob_stop_signal()) /* a long loop polls the stop (signals.h) */
+            return ob_fail(err, "%s: stopped by signal %d after %d of %d pieces", name, ob_stop_signal(), k, a->n);
         const ob_apiece *p = &a->v[k];
         ob_bez base;
         if (ob_apiece_base(c, p, &base) != 0) {

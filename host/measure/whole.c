@@ -21,6 +21,7 @@
  * and its largest sample refined by golden section, as the metric does.
  */
 #include "host/measure/measure.h"
+#include "host/run/signals.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -432,6 +433,10 @@ int ob_approx_hausdorff_whole(const ob_curve *c, double d, const ob_approx *a, c
     int sbest = SIDE_A, kbest = 0;
     for (int s = 0; s < 2; s++)
         for (int k = 0; k < w.n; k++) {
+            if (ob_stop_signal()) { /* a long loop polls the stop (signals.h) */
+                whole_free(&w);
+                return ob_fail(err, "hausdorff-whole: stopped by signal %d", ob_stop_signal());
+            }
             double u;
             const double e = piece_max(&w, s, k, &u);
             if (!(e <= best))

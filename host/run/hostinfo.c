@@ -3,6 +3,8 @@
  */
 #include "host/run/hostinfo.h"
 
+#include "host/diag.h"
+#include "host/io/utf8.h"
 #include "host/run/shard.h"
 
 #include <math.h>
@@ -134,6 +136,37 @@ static void hash_id(char out[17], const char *a, const char *b)
     h = ob_fnv1a(h, a, strlen(a) + 1);
     h = ob_fnv1a(h, b, strlen(b) + 1);
     snprintf(out, 17, "%016llx", (unsigned long long)h);
+}
+
+int ob_machine_env_check(void)
+{
+    const char *env = getenv("OFFBENCH_MACHINE");
+    if (!env || !*env)
+        return 0;
+    const size_t len = strlen(env), most = sizeof ((ob_machine *)0)->name - 1;
+    const unsigned char *s = (const unsigned char *)env, *end = s + len;
+    const char *why = NULL;
+    size_t at = 0;
+    while (at < len) {
+        const int n = ob_utf8_len(s + at, end);
+        if (!n || s[at] < 0x20 || s[at] == 0x7f) {
+            why = n ? "is a control character" : "is not UTF-8";
+            break;
+        }
+        at += (size_t)n;
+    }
+    if (why) {
+        ob_error("OFFBENCH_MACHINE: byte %zu (0x%02x) %s: the variable names this machine in meta.json, where "
+                 "compare and nightly.sh read it back; set it to UTF-8 text without control characters",
+                 at + 1, s[at], why);
+        return -1;
+    }
+    if (len > most) {
+        ob_error("OFFBENCH_MACHINE: %zu bytes, more than the %zu a machine name may have (a name cut short would "
+                 "give two machines one identity); set it to a shorter name", len, most);
+        return -1;
+    }
+    return 0;
 }
 
 void ob_machine_identify(ob_machine *m)

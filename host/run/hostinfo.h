@@ -71,8 +71,17 @@ typedef struct {
     long memory_mib;    /* MemTotal of /proc/meminfo in MiB, 0 unknown */
 } ob_machine;
 
+/* Purpose: refuse a $OFFBENCH_MACHINE that cannot be the machine's name:
+ *          bytes that are no UTF-8, a control character, or more than
+ *          sizeof m->name - 1 bytes (cut short, two names could become one
+ *          identity).  The user gave it: it is refused, not mended.  Called
+ *          before a run starts, not when its meta.json is written.
+ * Errors:  0, or -1 after ob_error() naming the variable (exit 2). */
+int ob_machine_env_check(void);
+
 /* Purpose: fill m with this machine's identity (above).  $OFFBENCH_MACHINE
- *          longer than m->name is cut; unreadable files fall back as said.
+ *          longer than m->name is cut (ob_machine_env_check refuses it
+ *          first); unreadable files fall back as said.
  * Errors:  none (what cannot be read is "unknown" or 0). */
 void ob_machine_identify(ob_machine *m);
 

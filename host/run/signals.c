@@ -13,6 +13,8 @@
 static volatile sig_atomic_t stop_signal = 0;
 /* set once a line said what the stop left behind: main adds none */
 static int stop_said = 0;
+/* what ob_stop_status says once the command's output is complete (ob_stop_done) */
+static const char *done_note = NULL;
 
 /* when the first stop came, in CLOCK_MONOTONIC milliseconds */
 static volatile long long stop_at_ms = 0;
@@ -118,11 +120,15 @@ int ob_stop_exit(const char *fmt, ...)
     return 128 + stop_signal;
 }
 
+void ob_stop_done(const char *what) { done_note = what; }
+
 int ob_stop_status(int rc)
 {
     if (!stop_signal)
         return rc;
-    if (!stop_said)
+    if (!stop_said && done_note)
+        ob_stop_exit("%s", done_note);
+    else if (!stop_said)
         ob_stop_exit("every file written was complete when it was renamed into place; rerun the command to "
                      "finish");
     return 128 + stop_signal;

@@ -32,6 +32,13 @@ void ob_note_stop(int sig);
  * Returns: 128 + the signal. */
 int ob_stop_exit(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
+/* Purpose: the command's output is complete (what = what it left, e.g.
+ *          "the CSV is complete"): a signal seen from now on ends it with
+ *          128 + the signal and that line, not "rerun the command to
+ *          finish", which would send the user to redo finished work.
+ *          what must outlive the command (a literal). */
+void ob_stop_done(const char *what);
+
 /* Purpose: for main, after the command: a command that was stopped but
  *          returned another status (it had no long loop left to poll, or
  *          stopped in a way that said nothing) still ends with 128 + the

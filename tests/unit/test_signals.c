@@ -15,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "host/diag.h"
 #include "host/run/signals.h"
 #include "tests/check.h"
 
@@ -69,6 +70,29 @@ static int twice(int sig, double gap, int foreign)
     return st;
 }
 
+static char said[1024];
+static void keep_said(const char *msg) { snprintf(said, sizeof said, "%s", msg); }
+
+/* Child: a stop by SIGTERM seen when the command returns rc 0, its output
+ * complete (ob_stop_done) or not; exit 0 when the status is 143 and the
+ * line says what is true (complete: never "rerun"), else 1. */
+static int stop_after_output(int done)
+{
+    pid_t pid = fork();
+    if (pid == 0) {
+        ob_set_error_handler(keep_said);
+        if (done)
+            ob_stop_done("the CSV is complete");
+        ob_note_stop(SIGTERM);
+        const int rc = ob_stop_status(0);
+        const int rerun = strstr(said, "rerun the command") != NULL;
+        _exit(rc == 128 + SIGTERM && (done ? strstr(said, "the CSV is complete") && !rerun : rerun) ? 0 : 1);
+    }
+    int st = 0;
+    waitpid(pid, &st, 0);
+    return st;
+}
+
 #define SAID(st) (WIFEXITED(st) ? "exit" : "killed by"), (WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st))
 
 int main(void)
@@ -84,6 +108,13 @@ int main(void)
         int st = twice(sigs[i], 1.3, 0);
         CHECK(WIFSIGNALED(st) && WTERMSIG(st) == sigs[i], "signal %d again after 1.3 s kills (%s %d)", sigs[i],
               SAID(st));
+    }
+    /* measure (issue 48 item 10): a signal after the CSV is written whole
+     * says the CSV is complete, not "rerun the command to finish" */
+    for (int done = 0; done < 2; done++) {
+        const int st = stop_after_output(done);
+        CHECK(WIFEXITED(st) && WEXITSTATUS(st) == 0, "a stop seen %s: exit 143 and a true line (%s %d)",
+              done ? "after ob_stop_done" : "with no ob_stop_done", SAID(st));
     }
     return check_done();
 }
