@@ -1,4 +1,4 @@
-"""The sisl method's server processes seen from Python (methods/sisl_client.c,
+"""The sisl method's server processes seen from Python (methods/sisl/client.c,
 docs/reliability.md "The SISL server"): an inherited $OFFBENCH_SISL_SERVER
 does nothing, and children forked by multiprocessing after a sisl fit get
 servers of their own (the parent's results, not another process's replies)."""

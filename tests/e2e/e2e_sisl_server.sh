@@ -1,6 +1,6 @@
 #!/bin/sh
 # The sisl method's server processes seen from the command line
-# (methods/sisl_client.c, docs/reliability.md "The SISL server"):
+# (methods/sisl/client.c, docs/reliability.md "The SISL server"):
 # - an inherited OFFBENCH_SISL_SERVER does nothing: the program runs as
 #   usual whatever it holds and whatever its descriptors are (it used to
 #   exit 126 silently, or serve on stdin/stdout when those were pipes);

@@ -1,5 +1,5 @@
 /*
- * test_sisl_procs.c - the sisl method's server processes (methods/sisl_client.c)
+ * test_sisl_procs.c - the sisl method's server processes (methods/sisl/client.c)
  * seen from the fitting process: who owns a server, and what is left behind.
  *
  * What is checked (each check can fail, none depends on timing):
