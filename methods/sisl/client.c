@@ -141,37 +141,6 @@ static sisl_server *my_server(void)
     return s;
 }
 
-double ob_sisl_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-int ob_sisl_read_deadline(int fd, void *buf, size_t n, double deadline)
-{
-    char *p = buf;
-    while (n > 0) {
-        const double left = deadline - ob_sisl_now();
-        if (left <= 0)
-            return 1;
-        struct pollfd pf = {fd, POLLIN, 0};
-        int pr = poll(&pf, 1, left > 86400 ? 86400000 : (int)(left * 1000) + 1);
-        if (pr < 0 && errno == EINTR)
-            continue;
-        if (pr == 0)
-            continue;  /* the deadline is checked above */
-        ssize_t r = pr < 0 ? -1 : read(fd, p, n);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            return -1;
-        p += r;
-        n -= (size_t)r;
-    }
-    return 0;
-}
-
 /* The program the server is executed from (sisl_server.h). */
 static const char *server_exe = "/proc/self/exe";
 
@@ -319,22 +288,6 @@ static int server_start(sisl_server *s, double wall, char *msg, size_t msglen)
     return handshake(s, exe, secret, wall, msg, msglen);
 }
 
-/* Writes the request; -1 when the server is gone (no SIGPIPE). */
-static int send_all(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        ssize_t k = send(fd, p, n, MSG_NOSIGNAL);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k <= 0)
-            return -1;
-        p += k;
-        n -= (size_t)k;
-    }
-    return 0;
-}
-
 /* The reply's arrays, after its header h (checked: a broken reply must not
  * make a huge allocation): 0, 1 timed out, -1 EOF, -2 malformed or no memory. */
 static int read_curve(int fd, const sisl_reply_hdr *h, sisl_result *r, double deadline)
@@ -358,7 +311,7 @@ static int read_curve(int fd, const sisl_reply_hdr *h, sisl_result *r, double de
  * ended), -2 malformed, -3 the request could not be sent. */
 static int round_trip(sisl_server *s, const sisl_request *q, double deadline, sisl_result *r)
 {
-    if (send_all(s->fd, q, sizeof *q) != 0)
+    if (ob_sisl_send_all(s->fd, q, sizeof *q) != 0)
         return -3;
     sisl_reply_hdr h;
     double spent = 0.0;

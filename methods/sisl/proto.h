@@ -88,8 +88,11 @@ ob_sisl_outcome ob_sisl_call(const sisl_request *q, double wall, sisl_result *r,
  * ("status unknown" for -1). */
 void ob_sisl_describe_wait(int ws, char *buf, size_t len);
 
+/* Writes exactly n bytes to the socket fd: 0, or -1 when the peer is gone
+ * (no SIGPIPE) or on an error (io.c). */
+int ob_sisl_send_all(int fd, const void *buf, size_t n);
 /* Reads n bytes from fd before the monotonic deadline (s): 0, 1 timed out,
- * -1 EOF or an error (client.c). */
+ * -1 EOF or an error (io.c). */
 int ob_sisl_read_deadline(int fd, void *buf, size_t n, double deadline);
 double ob_sisl_now(void);
 

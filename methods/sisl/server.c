@@ -45,22 +45,6 @@
  * started afresh (sisl_reply_hdr.restart). */
 #define SERVER_RESTART_BYTES (256UL << 20)
 
-/* Writes exactly n bytes; -1 on an error (the client gone). */
-static int write_all(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        ssize_t k = send(fd, p, n, MSG_NOSIGNAL);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k <= 0)
-            return -1;
-        p += k;
-        n -= (size_t)k;
-    }
-    return 0;
-}
-
 /* The data the server holds now (VmData: what RLIMIT_DATA counts), bytes;
  * 0 when /proc cannot tell. */
 static unsigned long data_bytes(void)
@@ -244,10 +228,10 @@ int ob_sisl_serve(const void *req, size_t len, int fd, unsigned long data0)
         run_s1360(&q, &h, &rc, &spent);
     }
     h.restart = data_bytes() > data0 + SERVER_RESTART_BYTES;
-    int ok = write_all(fd, &h, sizeof h) == 0 && write_all(fd, &spent, sizeof spent) == 0;
+    int ok = ob_sisl_send_all(fd, &h, sizeof h) == 0 && ob_sisl_send_all(fd, &spent, sizeof spent) == 0;
     if (ok && h.ik)
-        ok = write_all(fd, rc->et, (size_t)(rc->in + rc->ik) * sizeof(double)) == 0 &&
-             write_all(fd, rc->ecoef, (size_t)rc->in * (size_t)rc->idim * sizeof(double)) == 0;
+        ok = ob_sisl_send_all(fd, rc->et, (size_t)(rc->in + rc->ik) * sizeof(double)) == 0 &&
+             ob_sisl_send_all(fd, rc->ecoef, (size_t)rc->in * (size_t)rc->idim * sizeof(double)) == 0;
     if (rc)
         freeCurve(rc);
     return ok ? 0 : -1;
@@ -301,7 +285,7 @@ __attribute__((constructor)) static void serve_if_server(int argc, char **argv, 
         memcpy(hello, OB_SISL_HELLO, 4);
         memcpy(hello + 4, secret, OB_SISL_SECRET);
         unsetenv(OB_SISL_ENV);
-        ok = write_all(OB_SISL_FD, hello, sizeof hello) == 0;
+        ok = ob_sisl_send_all(OB_SISL_FD, hello, sizeof hello) == 0;
     }
     if (!ok) {
         fputs(OB_SISL_ARGV0 ": started by the sisl method's fits (a socket and a secret from its parent), "
