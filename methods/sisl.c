@@ -71,7 +71,9 @@
  *
  * Timing: the server measures its CPU time in newCurve and s1360 and sends
  * it with the reply; the fit adds it to the calling thread's foreign time
- * (ob_fit_foreign_add), which `run --time-fits` counts as the method's own.
+ * (ob_fit_foreign_add), which the job's fit_ns (and so --job-timeout) and
+ * `run --time-fits` count as the method's own.  A server that ends without
+ * answering has what it spent unreported counted when it is reaped.
  *
  * Isolation: s1360 does not always return.  On some inputs (found with
  * --random 500:7: a degenerate cubic cut down to a piece 7e-7 long) it

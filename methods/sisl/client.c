@@ -37,6 +37,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/random.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -48,6 +49,7 @@
 typedef struct sisl_server {
     pid_t pid, owner;           /* the server, the process that started it */
     int fd;                     /* our end of its socket; -1: none */
+    double reported_ns;         /* the CPU time its replies reported */
     struct sisl_server *prev, *next;
 } sisl_server;
 
@@ -72,23 +74,32 @@ static void fork_child(void)
 }
 
 /* Our end closed and, when this process started it, the server reaped
- * (killed first with sig unless 0); never a server of another process. */
-static void server_drop(sisl_server *s, int sig, int *wstatus)
+ * (killed first with sig unless 0); never a server of another process.
+ * unreported: NULL, or 1 to count as the fit's what the server spent that
+ * its replies did not report (a call it did not answer). */
+static void server_drop(sisl_server *s, int sig, int *wstatus, int unreported)
 {
     pthread_mutex_lock(&reg_lock);
     const pid_t pid = s->owner == getpid() ? s->pid : 0;
+    const double reported = s->reported_ns;
     if (s->fd >= 0)
         close(s->fd);
     s->fd = -1;
     s->pid = 0;
     pthread_mutex_unlock(&reg_lock);
     int ws = -1;
+    struct rusage ru;
+    memset(&ru, 0, sizeof ru);
     if (pid > 0) {
         if (sig)
             kill(pid, sig);
-        while (waitpid(pid, &ws, 0) < 0 && errno == EINTR)
+        while (wait4(pid, &ws, 0, &ru) < 0 && errno == EINTR)
             ;
     }
+    const double cpu = 1e9 * (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                       1e3 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    if (unreported && cpu > reported)
+        ob_fit_foreign_add(cpu - reported);  /* the job's time counts it (--job-timeout) */
     if (wstatus)
         *wstatus = ws;
 }
@@ -97,7 +108,7 @@ static void server_drop(sisl_server *s, int sig, int *wstatus)
 static void thread_gone(void *p)
 {
     sisl_server *s = p;
-    server_drop(s, SIGKILL, NULL);
+    server_drop(s, SIGKILL, NULL, 0);
     pthread_mutex_lock(&reg_lock);
     if (s->prev)
         s->prev->next = s->next;
@@ -137,7 +148,7 @@ static sisl_server *my_server(void)
         pthread_mutex_unlock(&reg_lock);
     }
     if (s->pid > 0 && s->owner != getpid())
-        server_drop(s, 0, NULL);
+        server_drop(s, 0, NULL, 0);
     return s;
 }
 
@@ -228,7 +239,7 @@ static int handshake(sisl_server *s, const char *exe, const char *secret, double
     const int rc = ob_sisl_read_deadline(s->fd, got, 4 + sizeof e, ob_sisl_now() + wall);
     if (rc == 0 && memcmp(got, OB_SISL_EXECFAIL, 4) == 0) {
         memcpy(&e, got + 4, sizeof e);
-        server_drop(s, SIGKILL, NULL);
+        server_drop(s, SIGKILL, NULL, 0);
         ob_method_msg(msg, msglen, "cannot start the SISL process: exec %s: %s", exe, strerror(e));
         return -1;
     }
@@ -237,7 +248,7 @@ static int handshake(sisl_server *s, const char *exe, const char *secret, double
         memcmp(got + 4, secret, OB_SISL_SECRET) == 0)
         return 0;
     int ws = -1;
-    server_drop(s, rc == 1 ? SIGKILL : 0, &ws);
+    server_drop(s, rc == 1 ? SIGKILL : 0, &ws, 0);
     char how[80] = "no handshake within the wall-clock cap";
     if (rc != 1)
         ob_sisl_describe_wait(ws, how, sizeof how);
@@ -283,7 +294,7 @@ static int server_start(sisl_server *s, double wall, char *msg, size_t msglen)
         return -1;
     }
     pthread_mutex_lock(&reg_lock);
-    s->pid = pid, s->owner = getpid(), s->fd = sv[0];
+    s->pid = pid, s->owner = getpid(), s->fd = sv[0], s->reported_ns = 0.0;
     pthread_mutex_unlock(&reg_lock);
     return handshake(s, exe, secret, wall, msg, msglen);
 }
@@ -322,10 +333,11 @@ static int round_trip(sisl_server *s, const sisl_request *q, double deadline, si
         rc = -2;
     if (rc == 0) {
         ob_fit_foreign_add(spent);  /* the fit's time in the server: the method's own (method.h) */
+        s->reported_ns += spent;
         rc = read_curve(s->fd, &h, r, deadline);
     }
     if (rc == 0 && h.restart)
-        server_drop(s, SIGKILL, NULL);  /* grown large: started afresh next time */
+        server_drop(s, SIGKILL, NULL, 0);  /* grown large: started afresh next time */
     return rc;
 }
 
@@ -347,13 +359,13 @@ ob_sisl_outcome ob_sisl_call(const sisl_request *q, double wall, sisl_result *r,
             return OB_SISL_ERROR;
         rc = round_trip(s, q, deadline, r);
         if (rc == -3)
-            server_drop(s, 0, wstatus);
+            server_drop(s, 0, wstatus, 0);
     }
     if (rc == 0)
         return OB_SISL_OK;
     free(r->et), free(r->ecoef);
     r->et = r->ecoef = NULL;
-    server_drop(s, rc == -1 || rc == -3 ? 0 : SIGKILL, wstatus);  /* ended by itself: how, not our kill */
+    server_drop(s, rc == -1 || rc == -3 ? 0 : SIGKILL, wstatus, 1);  /* ended by itself: how, not our kill */
     if (rc == -2)
         ob_method_msg(msg, msglen, "SISL's server sent a malformed reply (stopped)");
     return rc == 1 ? OB_SISL_WALL : rc == -2 ? OB_SISL_ERROR : OB_SISL_DIED;
