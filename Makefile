@@ -152,7 +152,8 @@ $(BUILD)/liboffbench.so: $(OBX_SO)
 	ln -sf $(notdir $(OBX_SO)) $(BUILD)/$(OBX_SONAME)
 	ln -sf $(OBX_SONAME) $@
 
-$(BUILD)/offbench-sisl-server: $(BUILD)/host/lib/sisl_server_main.o $(BUILD)/methods/sisl.o $(BUILD)/libob.a
+# the server (its constructor serves: methods/sisl/server.c) and SISL
+$(BUILD)/offbench-sisl-server: $(BUILD)/host/lib/sisl_server_main.o $(BUILD)/methods/sisl/server.o $(BUILD)/libob.a
 	$(CC) $(LDFLAGS) -o $@ $(filter %.o %.a,$^) $(LDLIBS)
 
 # test_api links the shared library, as a user would

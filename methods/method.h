@@ -167,6 +167,13 @@ typedef struct ob_method {
 void ob_fit_foreign_add(double ns);
 double ob_fit_foreign_ns(void);
 
+/* The CPU time the job of the calling thread's next fit has left under
+ * --job-timeout (0: no limit), set by the driver before each fit: a method
+ * whose fit runs its work elsewhere (sisl) stops that work past it and
+ * returns OB_FIT_TIMEOUT, as the driver would end the job. */
+void ob_fit_budget_set(double ns);
+double ob_fit_budget_ns(void);
+
 /* ---- registry (methods/registry.c) ------------------------------------ */
 
 extern const ob_method *const ob_methods[];   /* NULL-terminated */

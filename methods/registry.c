@@ -158,3 +158,10 @@ static _Thread_local double foreign_ns;
 void ob_fit_foreign_add(double ns) { foreign_ns += ns; }
 
 double ob_fit_foreign_ns(void) { return foreign_ns; }
+
+/* The job's --job-timeout budget for the calling thread's fits (method.h). */
+static _Thread_local double budget_ns;
+
+void ob_fit_budget_set(double ns) { budget_ns = ns; }
+
+double ob_fit_budget_ns(void) { return budget_ns; }

@@ -1,7 +1,7 @@
 /*
  * sisl_server.h - where the sisl method's server process comes from.
  *
- * The sisl method fits in a server process (methods/sisl.c): by default
+ * The sisl method fits in a server process (methods/sisl/client.c): by default
  * this program executed afresh (/proc/self/exe), whose constructor serves.
  * A process that does not link the method itself (python with
  * liboffbench.so loaded: its /proc/self/exe is python) names a program that

@@ -96,7 +96,8 @@ typedef struct {
     int out_degree;      /* largest degree among the output segments */
     double max_err;      /* largest measured error over the accepted segments */
     double fit_ns;       /* CPU time of the calling thread in the method's fit
-                            calls (CLOCK_THREAD_CPUTIME_ID), summed */
+                            calls (CLOCK_THREAD_CPUTIME_ID) and what they had
+                            spent in other processes (sisl's server), summed */
     double eval_ns;      /* measuring: on the CPU, the thread CPU time of each
                             measurement, summed; with a batch backend (one
                             launch measures many records), the launch's wall

@@ -197,8 +197,9 @@ double drv_item_stop(const ob_job *j, const item *it, int full_probes);
 /* steps.c */
 double drv_wall_ns(void);
 double drv_thread_ns(void);
-double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit, itemres *r);
-double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, void *work, ob_fit *fit, itemres *r);
+double drv_fit_item(const ob_job *jobs, const item *it, double budget_ns, void *work, ob_fit *fit, itemres *r);
+double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, double budget_ns, void *work,
+                             ob_fit *fit, itemres *r);
 int drv_batch_alloc(batch *b, int chunk);
 void drv_batch_free(batch *b);
 void drv_for(drv_how how, long n, long min_par, int grain, void (*fn)(const void *ctx, long i), const void *ctx);

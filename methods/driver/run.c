@@ -247,8 +247,12 @@ static void fit_one(const void *ctx, long i)
         S->fit_ns[i] = 0.0;
         return;
     }
-    S->fit_ns[i] = drv_fit_item(R->jobs, it, w, &S->fits[i], &S->res[i]);
-    S->fit_ns[i] += drv_probe_retry_chain(R->jobs, it, R->o.max_depth, w, &S->fits[i], &S->res[i]);
+    /* what the job has left of --job-timeout (ob_fit_args.budget_ns; 0: none) */
+    const ob_job *j = &R->jobs[it->job];
+    const double budget = R->o.job_timeout_ns > 0 ? fmax(1.0, R->o.job_timeout_ns - j->fit_ns - j->eval_ns) : 0.0;
+    S->fit_ns[i] = drv_fit_item(R->jobs, it, budget, w, &S->fits[i], &S->res[i]);
+    S->fit_ns[i] += drv_probe_retry_chain(R->jobs, it, R->o.max_depth, budget > 0 ? fmax(1.0, budget - S->fit_ns[i]) : 0.0,
+                                          w, &S->fits[i], &S->res[i]);
 }
 
 /* The level engine's trace of one chunk: its fits, then its measurements on

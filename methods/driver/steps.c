@@ -26,8 +26,10 @@ double drv_wall_ns(void) { return clock_ns(CLOCK_MONOTONIC); }
 
 /* CPU time of the calling thread: what one fit or one CPU measurement cost,
  * whatever else the machine was doing meanwhile (other threads, other
- * processes, a thread descheduled mid-call). */
-double drv_thread_ns(void) { return clock_ns(CLOCK_THREAD_CPUTIME_ID); }
+ * processes, a thread descheduled mid-call); with the CPU time its fits had
+ * spent for it in other processes (ob_fit_foreign_add: sisl's server), so
+ * that a job's fit_ns and --job-timeout count what the method cost. */
+double drv_thread_ns(void) { return clock_ns(CLOCK_THREAD_CPUTIME_ID) + ob_fit_foreign_ns(); }
 
 int ob_test_fit_times(const ob_job *j, int seg, double a, double b)
 {
@@ -43,7 +45,7 @@ int ob_test_fit_times(const ob_job *j, int seg, double a, double b)
 }
 
 /* Fit one item; returns the thread time spent in the method. */
-double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit, itemres *r)
+double drv_fit_item(const ob_job *jobs, const item *it, double budget_ns, void *work, ob_fit *fit, itemres *r)
 {
     const ob_job *j = &jobs[it->job];
     ob_bez sub;
@@ -61,11 +63,13 @@ double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit,
     }
     double t0 = drv_thread_ns();
     const ob_fit_args args = {j->d, j->tol, par};
+    ob_fit_budget_set(budget_ns);
     r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
     const int times = j->test_fit_repeat > 1 ? ob_test_fit_times(j, it->seg, it->a, it->b) : 1;
     for (int k = 1; k < times; k++)  /* test hook (driver.h): the same fit again */
         r->st = j->method->fit(&sub, &args, work, fit, r->msg, sizeof r->msg);
     double t1 = drv_thread_ns();
+    ob_fit_budget_set(0.0);  /* a fit called outside the driver has no budget */
     r->n = r->st == OB_FIT_OK ? fit->n : 0;
     if (r->st == OB_FIT_RETRY_SMALLER)
         r->err = INFINITY;
@@ -93,8 +97,8 @@ double drv_fit_item(const ob_job *jobs, const item *it, void *work, ob_fit *fit,
  * not fitted, the rest of the subtree, could change the outcome only by a
  * terminal event of its own above that depth (a fit error, a limit).
  * Returns the thread time spent.  fit: scratch, overwritten. */
-double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, void *work, ob_fit *fit,
-                                itemres *r)
+double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, double budget_ns, void *work,
+                             ob_fit *fit, itemres *r)
 {
     const ob_job *j = &jobs[it->job];
     if (r->st != OB_FIT_RETRY_SMALLER || (j->split != OB_SPLIT_MID && j->split != OB_SPLIT_MAXERR) || it->chain_to > 0)
@@ -105,7 +109,7 @@ double drv_probe_retry_chain(const ob_job *jobs, const item *it, int max_depth, 
     while (c.depth < RETRY_LEVELS && c.depth < max_depth) {
         c.b = 0.5 * (c.a + c.b);
         c.depth++;
-        ns += drv_fit_item(jobs, &c, work, fit, &cr);
+        ns += drv_fit_item(jobs, &c, budget_ns > 0 ? fmax(1.0, budget_ns - ns) : 0.0, work, fit, &cr);
         if (cr.st != OB_FIT_RETRY_SMALLER)
             return ns;
     }

@@ -739,7 +739,7 @@ static void test_load_and_history(void)
  * lock left one server waiting in malloc forever, and its fit failed after
  * the deadline: one row of 324 differed, once in ~30 sanitizer runs).  Its
  * command line is the server's own, and it holds no descriptor but its
- * two pipe ends and the standard three. */
+ * socket (methods/sisl/proto.h) and the standard three. */
 static void server_cmdline(pid_t pid, char *buf, size_t len)
 {
     char path[64];
@@ -798,7 +798,7 @@ static void test_fresh_server(void)
         server_cmdline(pid, cmd, sizeof cmd);
         found++;
         CHECK(strcmp(cmd, "offbench-sisl-server") == 0, "the server %d runs its own image: cmdline '%s'", pid, cmd);
-        CHECK(count_fds(pid) == 5, "the server %d holds 5 descriptors (0, 1, 2, its two pipe ends): %d", pid,
+        CHECK(count_fds(pid) == 4, "the server %d holds 4 descriptors (0, 1, 2, its socket): %d", pid,
               count_fds(pid));
     }
     if (d)
