@@ -461,15 +461,15 @@ static int finish_result(obx_result *r, const ob_span_log *log, obx_error *err)
     return 0;
 }
 
-/* Runs r's job and keeps its pieces. */
+static int drive(ob_job *jobs, size_t n, ob_driver_hooks *hooks, obx_progress_stop_fn progress, void *ctx);
+
+/* Runs r's job (on a library thread: drive) and keeps its pieces. */
 static int run_job(obx_result *r, obx_error *err)
 {
     ob_span_log log = {0};
     ob_driver_hooks hooks = {0};
     hooks.spans = &log;
-    ob_driver_opts o;
-    ob_driver_defaults(&o);
-    int rc = ob_driver_run(&r->job, 1, &o, &hooks) == 0 ? finish_result(r, &log, err)
+    int rc = drive(&r->job, 1, &hooks, NULL, NULL) == 0 ? finish_result(r, &log, err)
                                                          : fail(err, OBX_E_NOMEM, "out of memory");
     free(log.v);
     return rc;
@@ -688,7 +688,7 @@ static int tell_until_done(batch_run *b, obx_progress_stop_fn progress, void *ct
     size_t told = 0;
     pthread_mutex_lock(&b->mu);
     for (;;) {
-        if (b->done > told && !b->stop) {
+        if (progress && b->done > told && !b->stop) {
             const size_t done = b->done, total = b->total;
             pthread_mutex_unlock(&b->mu);
             if (progress(ctx, done, total) != 0)
@@ -705,19 +705,21 @@ static int tell_until_done(batch_run *b, obx_progress_stop_fn progress, void *ct
     return b->rc;
 }
 
-/* ob_driver_run of the jobs, with progress told as above (none: on this
- * thread, as obx_fit).  0, 1 (stopped), -1 (memory, or no thread). */
+/* ob_driver_run of the jobs on a library thread, with progress (if any)
+ * told as above.  Always on a library thread, also without progress: the
+ * driver's OpenMP regions then never run on the caller's thread, whose
+ * libgomp thread pool a forked child (Python's multiprocessing) would
+ * inherit without its threads and wait on for ever; a child's library
+ * thread is new (lib_thread.c forgets the parent's at the fork) and starts
+ * a pool of its own.  0, 1 (stopped), -1 (memory, or no thread). */
 static int drive(ob_job *jobs, size_t n, ob_driver_hooks *hooks, obx_progress_stop_fn progress, void *ctx)
 {
-    if (!progress) {
-        ob_driver_opts o;
-        ob_driver_defaults(&o);
-        return ob_driver_run(jobs, n, &o, hooks);
-    }
     batch_run b = {PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER, 0, n, 0, 0, 0, jobs, n, hooks};
-    hooks->progress = progress_hook;
-    hooks->progress_ctx = &b;
-    hooks->stop = &b.stop;
+    if (progress) {
+        hooks->progress = progress_hook;
+        hooks->progress_ctx = &b;
+        hooks->stop = &b.stop;
+    }
     if (ob_lib_thread_run(batch_work, batch_done, &b) != 0)
         return -1;
     const int rc = tell_until_done(&b, progress, ctx);

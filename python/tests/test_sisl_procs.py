@@ -22,9 +22,10 @@ def rows(jobs):
     return [(r.status, r.ctrl_points, r.segments, r.max_err) for r in (offbench.fit(*j) for j in jobs)]
 if __name__ == "__main__":
     want = rows(JOBS)
+    offbench.run(curves=["liu2002_ex1"], methods=["tiller", "sisl"], tols=[1e-2, 1e-3])  # OpenMP regions, 2+ threads
     with multiprocessing.get_context("fork").Pool(4) as pool:
         # the timeout only guards against a hang
-        got = pool.map_async(rows, [JOBS] * 8).get(timeout=600)
+        got = pool.map_async(rows, [JOBS] * 8).get(timeout=300)
     bad = [g for g in got if g != want]
     print("same" if not bad and rows(JOBS) == want else "differ: %r vs %r" % (bad[:1], want))
 """
@@ -34,8 +35,9 @@ def test_forked_children_own_their_servers():
     """Children forked after the parent's sisl fits, fitting at the same time
     as each other: every row equals the parent's (they used to read each
     other's replies from the parent's server: 67 control points instead of
-    16, bogus failures).  In a fresh interpreter with one OpenMP thread:
-    libgomp's thread pool does not survive a fork (a child of a process that
-    ran a parallel region waits for it for ever), another matter."""
-    rc, out = child(FORKED, OMP_NUM_THREADS="1")
+    16, bogus failures).  The parent has run OpenMP regions on several
+    threads first: libgomp's thread pool does not survive a fork, so the
+    library runs its regions on threads of its own, never the caller's
+    (a child used to wait on its parent's pool for ever)."""
+    rc, out = child(FORKED, OMP_NUM_THREADS="2")
     assert rc == 0 and out.strip().endswith("same"), out[-2000:]
