@@ -3,10 +3,13 @@ what measure is given), and the conversion of a list of them to the flat
 arrays the C API takes (degrees[], xy[], w[] or NULL)."""
 
 import ctypes
+from typing import Any, Tuple
 
 import numpy as np
 
 from .errors import InvalidError
+
+ArrayLike = Any  # a float, a sequence or an array of them (numpy.typing's name; that module is numpy 1.21+)
 
 MAX_DEGREE = 20  # the curve files' and the C API's largest degree
 
@@ -45,6 +48,31 @@ def _weights(weights, n, what):
         raise InvalidError("%s: weight %d is %r (must be > 0, finite)" % (what, k, float(w[k])))
     w.setflags(write=False)
     return w
+
+
+def _params(t: "ArrayLike") -> np.ndarray:
+    """t as a float array, every value in [0, 1]; InvalidError (a
+    ValueError) naming the first that is not (NaN included)."""
+    try:
+        ts = np.asarray(t, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InvalidError("Bezier.eval: t: %s" % e) from None
+    bad = ~((ts >= 0.0) & (ts <= 1.0))
+    if bad.any():
+        raise InvalidError("Bezier.eval: t = %r is outside [0, 1]" % float(ts[bad].flat[0]))
+    return ts
+
+
+def _casteljau(h: np.ndarray, ts: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """De Casteljau's steps on homogeneous points h, (n+1, 3), at each t of
+    ts, (m,), stopped one step short: the two (m, 3) points whose segment
+    holds the curve's point at t and whose difference, times n, is its
+    derivative."""
+    u = ts[:, None, None]
+    q = np.broadcast_to(h, (ts.shape[0],) + h.shape)
+    while q.shape[1] > 2:
+        q = (1.0 - u) * q[:, :-1] + u * q[:, 1:]
+    return q[:, 0], q[:, 1]
 
 
 class Bezier:
@@ -96,7 +124,41 @@ class Bezier:
     def rational(self):
         return self.weights is not None
 
-    def __eq__(self, other):
+    def eval(self, t: "ArrayLike", derivative: int = 0) -> np.ndarray:
+        """The point (derivative=0) or first derivative (1) at parameter t:
+        a float gives a (2,) array, an array of shape S one of shape S + (2,).
+        t must lie in [0, 1] (InvalidError, a ValueError, otherwise: a piece
+        is only a piece of its curve there).  De Casteljau's algorithm in
+        homogeneous coordinates (w x, w y, w), so a rational segment is
+        exact where the weights say, and stable up to degree 20."""
+        if isinstance(derivative, bool) or derivative not in (0, 1):
+            raise InvalidError("Bezier.eval: derivative 0 or 1, not %r" % (derivative,))
+        ts = _params(t)
+        q0, q1 = _casteljau(self._homogeneous(), ts.reshape(-1))
+        n = self.degree
+        h = (1.0 - ts.reshape(-1, 1)) * q0 + ts.reshape(-1, 1) * q1  # the curve, homogeneous
+        if derivative == 0:
+            out = h[:, :2] / h[:, 2:]
+        else:  # the quotient rule on H' = n (q1 - q0)
+            dh = n * (q1 - q0)
+            out = (dh[:, :2] * h[:, 2:] - h[:, :2] * dh[:, 2:]) / (h[:, 2:] ** 2)
+        return out.reshape(ts.shape + (2,))
+
+    __call__ = eval
+
+    def sample(self, n: int) -> np.ndarray:
+        """n points at evenly spaced parameters from 0 to 1, ends included:
+        an (n, 2) array (n >= 2, a whole number)."""
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+            raise InvalidError("Bezier.sample: n, a whole number >= 2, not %r" % (n,))
+        return self.eval(np.linspace(0.0, 1.0, int(n)))
+
+    def _homogeneous(self) -> np.ndarray:
+        """The (n+1, 3) control points (w x, w y, w)."""
+        w = np.ones(self.degree + 1) if self._weights is None else self._weights
+        return np.column_stack([self._points * w[:, None], w])
+
+    def __eq__(self, other: object) -> bool:
         if not isinstance(other, Bezier):
             return NotImplemented
         wa = self.weights if self.weights is not None else np.ones(self.degree + 1)
