@@ -25,7 +25,8 @@ def _pandas():
 def require_pandas(what):
     pd = _pandas()
     if pd is None:
-        raise ImportError("%s needs pandas (Debian: apt-get install python3-pandas; pip: pip install pandas)" % what)
+        raise ImportError("%s needs pandas (Debian: apt-get install python3-pandas; pip: pip install "
+                          "'offbench[pandas]' (the package's extra), or pip install pandas)" % what)
     return pd
 
 
