@@ -3,13 +3,12 @@ what measure is given), and the conversion of a list of them to the flat
 arrays the C API takes (degrees[], xy[], w[] or NULL)."""
 
 import ctypes
-from typing import Any, Tuple
+from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
+from ._typing import ArrayLike
 from .errors import InvalidError
-
-ArrayLike = Any  # a float, a sequence or an array of them (numpy.typing's name; that module is numpy 1.21+)
 
 MAX_DEGREE = 20  # the curve files' and the C API's largest degree
 
@@ -50,7 +49,7 @@ def _weights(weights, n, what):
     return w
 
 
-def _params(t: "ArrayLike") -> np.ndarray:
+def _params(t: ArrayLike) -> np.ndarray:
     """t as a float array, every value in [0, 1]; InvalidError (a
     ValueError) naming the first that is not (NaN included)."""
     try:
@@ -84,17 +83,17 @@ class Bezier:
 
     __slots__ = ("_points", "_weights")
 
-    def __init__(self, points, weights=None, *, what="segment"):
+    def __init__(self, points: ArrayLike, weights: Optional[ArrayLike] = None, *, what: str = "segment") -> None:
         p = _points(points, what)
         self._weights = _weights(weights, p.shape[0], what)
         self._points = p
 
     @property
-    def points(self):
+    def points(self) -> np.ndarray:
         return self._points
 
     @points.setter
-    def points(self, value):
+    def points(self, value: ArrayLike) -> None:
         p = _points(value, "Bezier.points")
         if self._weights is not None and p.shape[0] != self._weights.shape[0]:
             raise InvalidError("Bezier.points: %d points, but %d weights (set weights to None first)"
@@ -102,14 +101,14 @@ class Bezier:
         self._points = p
 
     @property
-    def weights(self):
+    def weights(self) -> Optional[np.ndarray]:
         return self._weights
 
     @weights.setter
-    def weights(self, value):
+    def weights(self, value: Optional[ArrayLike]) -> None:
         self._weights = _weights(value, self._points.shape[0], "Bezier.weights")
 
-    def checked(self, what):
+    def checked(self, what: str) -> "Bezier":
         """self after its arrays are checked again (changed in place, or set
         under the properties), where it is handed to the library."""
         p = _points(self._points, what)
@@ -117,14 +116,14 @@ class Bezier:
         return self
 
     @property
-    def degree(self):
+    def degree(self) -> int:
         return self.points.shape[0] - 1
 
     @property
-    def rational(self):
+    def rational(self) -> bool:
         return self.weights is not None
 
-    def eval(self, t: "ArrayLike", derivative: int = 0) -> np.ndarray:
+    def eval(self, t: ArrayLike, derivative: int = 0) -> np.ndarray:
         """The point (derivative=0) or first derivative (1) at parameter t:
         a float gives a (2,) array, an array of shape S one of shape S + (2,).
         t must lie in [0, 1] (InvalidError, a ValueError, otherwise: a piece
@@ -166,9 +165,9 @@ class Bezier:
         return self.points.shape == other.points.shape and np.array_equal(self.points, other.points) and \
             np.array_equal(wa, wb)
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # mutable: not hashable
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         pts = ", ".join("(%.6g, %.6g)" % (x, y) for x, y in self.points)
         w = "" if self.weights is None else ", weights=[%s]" % ", ".join("%.6g" % v for v in self.weights)
         return "Bezier(degree %d: %s%s)" % (self.degree, pts, w)
@@ -189,7 +188,7 @@ def from_buffers(degree, xy, w):
     return b
 
 
-def as_beziers(items, what):
+def as_beziers(items: Any, what: str) -> List[Bezier]:
     """A list of Bezier from a list of Bezier, (n+1, 2) arrays or
     (points, weights) pairs; `what` names the argument in messages."""
     if isinstance(items, (Bezier, np.ndarray)):
