@@ -101,41 +101,31 @@ class Curve:
                                   % (i, n, "" if n == 1 else "s"))
         return self._set._h, int(i)
 
-    # read-only fields: setters that refuse, so a Curve always names curve
-    # .index of .set (written out: a type checker reads only this form)
     @property
     def set(self) -> CurveSet:
         """The CurveSet this curve is one of."""
         return self._set
-
-    @set.setter
-    def set(self, value: object) -> None:
-        raise _read_only("set")
 
     @property
     def index(self) -> int:
         """The curve's position in its set."""
         return self._index
 
-    @index.setter
-    def index(self, value: object) -> None:
-        raise _read_only("index")
-
     @property
     def id(self) -> str:
         return self._id
-
-    @id.setter
-    def id(self, value: object) -> None:
-        raise _read_only("id")
 
     @property
     def family(self) -> str:
         return self._family
 
-    @family.setter
-    def family(self, value: object) -> None:
-        raise _read_only("family")
+    def __setattr__(self, name: str, value: object) -> None:
+        """Refuses every public field (set, index, id, family, ...), so a
+        Curve always names curve .index of .set; a type checker reads the
+        properties above, which have no setter, as read-only too."""
+        if not name.startswith("_"):
+            raise _read_only(name)
+        object.__setattr__(self, name, value)
 
     @property
     def offsets(self) -> np.ndarray:

@@ -106,5 +106,5 @@ def test_mypy_reads_the_hints(tmp_path):
     user = subprocess.run(cmd + ["--cache-dir", str(tmp_path / "cache"), str(tmp_path / "user.py")],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, env=env)
     # the one wrong call is found, and nothing else is
-    assert user.returncode == 1 and user.stdout.count("error:") == 1 and \
-        'user.py:7: error: Argument 3 to "fit" has incompatible type "str"; expected "float"' in user.stdout, user.stdout
+    want = 'user.py:7: error: Argument 3 to "fit" has incompatible type "str"; expected "float"'
+    assert user.returncode == 1 and user.stdout.count("error:") == 1 and want in user.stdout, user.stdout
