@@ -4,8 +4,9 @@
 # (--system-site-packages: Debian's numpy), then, from another directory,
 # `python -c "import offbench; print(offbench.fit(...))"`; the installed
 # copy is the one imported, it ships py.typed, and without OFFBENCH_LIB it
-# finds the library whose path pip's build recorded (the checkout's build/);
-# with that gone it says where it looked.  An editable install (pip install
+# finds the library whose path pip's build recorded (the checkout's build/,
+# or $OFFBENCH_LIB's during pip install); with that gone it says where it
+# looked.  An editable install (pip install
 # -e) finds the checkout's build/ by itself.  When the python3 on PATH is
 # not Debian's (pyenv, conda: no numpy), the online install with it:
 # `python3 -m venv` + `pip install './python[pandas]'` fetches numpy and
@@ -20,7 +21,7 @@
 . "$(dirname "$0")/lib_e2e.sh"
 cd "$(dirname "$0")/../.." || exit 2
 ROOT=$(pwd)
-NCHECKS=13
+NCHECKS=14
 NOTHER=3  # the checks of the online install with PATH's python3
 
 case $OB in
@@ -56,7 +57,7 @@ V=$T/venv
 check '[ $? -eq 0 ] && [ -x "$V/bin/pip" ]' "python3 -m venv --system-site-packages makes an environment with pip: $(tail -n 3 "$T/venv.out")"
 
 # offline: the system's setuptools builds it, numpy is the system's
-"$V/bin/pip" install --no-build-isolation --no-deps --no-index "$T/co/python" >"$T/pip.out" 2>&1
+env -u OFFBENCH_LIB "$V/bin/pip" install --no-build-isolation --no-deps --no-index "$T/co/python" >"$T/pip.out" 2>&1
 check '[ $? -eq 0 ] && grep -q "Successfully installed offbench" "$T/pip.out"' \
     "pip install --no-build-isolation --no-deps ./python: $(tail -n 3 "$T/pip.out")"
 
@@ -95,6 +96,14 @@ mv "$T/co/build.away" "$T/co/build"
 check 'grep -q "^found " "$T/none.out" || { grep -q "looked in:" "$T/none.out" && grep -qF "the path recorded at install: $T/co/build/liboffbench.so.0" "$T/none.out" && grep -q "OFFBENCH_LIB" "$T/none.out" && ! grep -q "checkout.s build" "$T/none.out"; }' \
     "without the recorded library: a system copy, or where it looked: $(cat "$T/none.out")"
 
+# OFFBENCH_LIB set during pip install is the path recorded (a library
+# installed elsewhere): reinstalled so, the package loads that one
+mkdir "$T/lib2" && ln -s "$LIB" "$T/lib2/liboffbench.so.0"
+env OFFBENCH_LIB="$T/lib2/liboffbench.so.0" "$V/bin/pip" install --no-build-isolation --no-deps --no-index \
+    --force-reinstall "$T/co/python" >"$T/pip3.out" 2>&1
+got=$(vpy env -u OFFBENCH_LIB "$V/bin/python" -c 'import offbench; print(offbench.library_path())' 2>&1)
+check '[ "$got" = "$T/lib2/liboffbench.so.0" ]' "OFFBENCH_LIB during pip install is recorded: $got ($(tail -n 1 "$T/pip3.out"))"
+
 "$V/bin/pip" uninstall -y offbench >"$T/un.out" 2>&1
 check '[ $? -eq 0 ] && ! vpy "$V/bin/python" -c "import offbench" 2>/dev/null' "pip uninstall offbench: $(tail -n 2 "$T/un.out")"
 
@@ -116,7 +125,7 @@ other_python() {
 }
 if why=$(other_python); then
     V2=$T/venv-other
-    python3 -m venv "$V2" >"$T/venv2.out" 2>&1 && "$V2/bin/pip" install --disable-pip-version-check --timeout 20 \
+    python3 -m venv "$V2" >"$T/venv2.out" 2>&1 && env -u OFFBENCH_LIB "$V2/bin/pip" install --disable-pip-version-check --timeout 20 \
         "$T/co/python[pandas]" >"$T/pip2.out" 2>&1
     rc=$?
     if [ $rc -ne 0 ] && grep -qiE "NewConnectionError|Failed to establish|Temporary failure in name resolution|Network is unreachable|No matching distribution found for (setuptools|numpy|pandas)|Could not find a version that satisfies the requirement (setuptools|numpy|pandas)" "$T/pip2.out"; then
