@@ -25,12 +25,12 @@ from .results import read_meta, read_results
 __version__ = "0.3.0"
 
 
-def library_version():
+def library_version() -> str:
     """The loaded liboffbench's version, "MAJOR.MINOR.PATCH" (loads it)."""
     return _lib.text(_lib.lib().obx_version())
 
 
-def library_path():
+def library_path() -> str:
     """Where the loaded liboffbench came from (loads it)."""
     return _lib.path()
 

@@ -11,15 +11,24 @@ this order:
   2. the checkout's build/liboffbench.so.0, when this package is imported
      from the source tree (python/offbench/ beside python/pyproject.toml:
      `pip install -e ./python`, or python/ on sys.path);
-  3. the system loader's liboffbench.so.0 (LD_LIBRARY_PATH, ldconfig's
+  3. the path recorded at install (offbench/_installed.py, which
+     python/setup.py writes: the checkout's build/ library, or
+     $OFFBENCH_LIB's, as they were when pip built the package);
+  4. the package's own directory (a library copied beside it);
+  5. the system loader's liboffbench.so.0 (LD_LIBRARY_PATH, ldconfig's
      cache: `make install` into /usr/lib or a PREFIX made known to ldconfig);
-  4. /usr/local/lib/liboffbench.so.0 (`make install`'s default PREFIX,
+  6. sys.prefix/lib (`make install PREFIX=$VIRTUAL_ENV`, or a conda
+     environment's prefix);
+  7. /usr/local/lib/liboffbench.so.0 (`make install`'s default PREFIX,
      which the loader reads only after ldconfig).
 """
 
 import ctypes
+import importlib
 import os
+import sys
 import threading
+from typing import List, Optional, Tuple
 
 from .errors import LibraryNotFound, from_code
 
@@ -132,7 +141,16 @@ _lock = threading.Lock()
 _loaded = None  # (CDLL, path)
 
 
-def candidates():
+def _recorded() -> Optional[str]:
+    """The library path setup.py recorded when pip built this copy, or None
+    (a copy imported from the source tree, or built with no library)."""
+    try:
+        return importlib.import_module("._installed", __package__).LIBRARY or None
+    except ImportError:
+        return None
+
+
+def candidates() -> List[Tuple[str, str]]:
     """[(where, path)] in the order tried (see the module's text)."""
     env = os.environ.get("OFFBENCH_LIB")
     if env:
@@ -142,8 +160,16 @@ def candidates():
     src = os.path.dirname(pkg)
     if os.path.isfile(os.path.join(src, "pyproject.toml")):
         out.append(("the checkout's build/", os.path.join(os.path.dirname(src), "build", SONAME)))
+    rec = _recorded()
+    if rec:
+        out.append(("the path recorded at install", rec))
+    out.append(("the package's directory", os.path.join(pkg, SONAME)))
     out.append(("the system loader", SONAME))
-    out.append(("make install's default PREFIX", os.path.join("/usr/local/lib", SONAME)))
+    default = os.path.join("/usr/local/lib", SONAME)
+    env_prefix = os.path.join(sys.prefix, "lib", SONAME)
+    if env_prefix != default:
+        out.append(("the environment's PREFIX", env_prefix))
+    out.append(("make install's default PREFIX", default))
     return out
 
 
@@ -192,8 +218,9 @@ def _open():
         return dll, path
     raise LibraryNotFound(
         "liboffbench.so.0 not found; looked in:\n  " + "\n  ".join(tried) +
-        "\nBuild it with `make lib` in the offbench checkout and set OFFBENCH_LIB=/path/to/checkout/build/"
-        "liboffbench.so.0 (or `make install` it: docs/python.md)")
+        "\nBuild it with `make lib` in the offbench checkout, then reinstall this package from there "
+        "(pip records build/'s library) or set OFFBENCH_LIB=/path/to/checkout/build/liboffbench.so.0 "
+        "(or `make install` it: docs/python.md)")
 
 
 def lib():

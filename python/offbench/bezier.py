@@ -3,9 +3,11 @@ what measure is given), and the conversion of a list of them to the flat
 arrays the C API takes (degrees[], xy[], w[] or NULL)."""
 
 import ctypes
+from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
+from ._typing import ArrayLike
 from .errors import InvalidError
 
 MAX_DEGREE = 20  # the curve files' and the C API's largest degree
@@ -47,6 +49,31 @@ def _weights(weights, n, what):
     return w
 
 
+def _params(t: ArrayLike) -> np.ndarray:
+    """t as a float array, every value in [0, 1]; InvalidError (a
+    ValueError) naming the first that is not (NaN included)."""
+    try:
+        ts = np.asarray(t, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InvalidError("Bezier.eval: t: %s" % e) from None
+    bad = ~((ts >= 0.0) & (ts <= 1.0))
+    if bad.any():
+        raise InvalidError("Bezier.eval: t = %r is outside [0, 1]" % float(ts[bad].flat[0]))
+    return ts
+
+
+def _casteljau(h: np.ndarray, ts: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """De Casteljau's steps on homogeneous points h, (n+1, 3), at each t of
+    ts, (m,), stopped one step short: the two (m, 3) points whose segment
+    holds the curve's point at t and whose difference, times n, is its
+    derivative."""
+    u = ts[:, None, None]
+    q = np.broadcast_to(h, (ts.shape[0],) + h.shape)
+    while q.shape[1] > 2:
+        q = (1.0 - u) * q[:, :-1] + u * q[:, 1:]
+    return q[:, 0], q[:, 1]
+
+
 class Bezier:
     """A Bézier segment of degree n: points, an (n+1, 2) float array of its
     Euclidean control points; weights, an (n+1,) array of positive weights,
@@ -56,17 +83,17 @@ class Bezier:
 
     __slots__ = ("_points", "_weights")
 
-    def __init__(self, points, weights=None, *, what="segment"):
+    def __init__(self, points: ArrayLike, weights: Optional[ArrayLike] = None, *, what: str = "segment") -> None:
         p = _points(points, what)
         self._weights = _weights(weights, p.shape[0], what)
         self._points = p
 
     @property
-    def points(self):
+    def points(self) -> np.ndarray:
         return self._points
 
     @points.setter
-    def points(self, value):
+    def points(self, value: ArrayLike) -> None:
         p = _points(value, "Bezier.points")
         if self._weights is not None and p.shape[0] != self._weights.shape[0]:
             raise InvalidError("Bezier.points: %d points, but %d weights (set weights to None first)"
@@ -74,14 +101,14 @@ class Bezier:
         self._points = p
 
     @property
-    def weights(self):
+    def weights(self) -> Optional[np.ndarray]:
         return self._weights
 
     @weights.setter
-    def weights(self, value):
+    def weights(self, value: Optional[ArrayLike]) -> None:
         self._weights = _weights(value, self._points.shape[0], "Bezier.weights")
 
-    def checked(self, what):
+    def checked(self, what: str) -> "Bezier":
         """self after its arrays are checked again (changed in place, or set
         under the properties), where it is handed to the library."""
         p = _points(self._points, what)
@@ -89,14 +116,48 @@ class Bezier:
         return self
 
     @property
-    def degree(self):
+    def degree(self) -> int:
         return self.points.shape[0] - 1
 
     @property
-    def rational(self):
+    def rational(self) -> bool:
         return self.weights is not None
 
-    def __eq__(self, other):
+    def eval(self, t: ArrayLike, derivative: int = 0) -> np.ndarray:
+        """The point (derivative=0) or first derivative (1) at parameter t:
+        a float gives a (2,) array, an array of shape S one of shape S + (2,).
+        t must lie in [0, 1] (InvalidError, a ValueError, otherwise: a piece
+        is only a piece of its curve there).  De Casteljau's algorithm in
+        homogeneous coordinates (w x, w y, w), so a rational segment is
+        exact where the weights say, and stable up to degree 20."""
+        if isinstance(derivative, bool) or derivative not in (0, 1):
+            raise InvalidError("Bezier.eval: derivative 0 or 1, not %r" % (derivative,))
+        ts = _params(t)
+        q0, q1 = _casteljau(self._homogeneous(), ts.reshape(-1))
+        n = self.degree
+        h = (1.0 - ts.reshape(-1, 1)) * q0 + ts.reshape(-1, 1) * q1  # the curve, homogeneous
+        if derivative == 0:
+            out = h[:, :2] / h[:, 2:]
+        else:  # the quotient rule on H' = n (q1 - q0)
+            dh = n * (q1 - q0)
+            out = (dh[:, :2] * h[:, 2:] - h[:, :2] * dh[:, 2:]) / (h[:, 2:] ** 2)
+        return out.reshape(ts.shape + (2,))
+
+    __call__ = eval
+
+    def sample(self, n: int) -> np.ndarray:
+        """n points at evenly spaced parameters from 0 to 1, ends included:
+        an (n, 2) array (n >= 2, a whole number)."""
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+            raise InvalidError("Bezier.sample: n, a whole number >= 2, not %r" % (n,))
+        return self.eval(np.linspace(0.0, 1.0, int(n)))
+
+    def _homogeneous(self) -> np.ndarray:
+        """The (n+1, 3) control points (w x, w y, w)."""
+        w = np.ones(self.degree + 1) if self._weights is None else self._weights
+        return np.column_stack([self._points * w[:, None], w])
+
+    def __eq__(self, other: object) -> bool:
         if not isinstance(other, Bezier):
             return NotImplemented
         wa = self.weights if self.weights is not None else np.ones(self.degree + 1)
@@ -104,9 +165,9 @@ class Bezier:
         return self.points.shape == other.points.shape and np.array_equal(self.points, other.points) and \
             np.array_equal(wa, wb)
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # mutable: not hashable
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         pts = ", ".join("(%.6g, %.6g)" % (x, y) for x, y in self.points)
         w = "" if self.weights is None else ", weights=[%s]" % ", ".join("%.6g" % v for v in self.weights)
         return "Bezier(degree %d: %s%s)" % (self.degree, pts, w)
@@ -127,7 +188,7 @@ def from_buffers(degree, xy, w):
     return b
 
 
-def as_beziers(items, what):
+def as_beziers(items: Any, what: str) -> List[Bezier]:
     """A list of Bezier from a list of Bezier, (n+1, 2) arrays or
     (points, weights) pairs; `what` names the argument in messages."""
     if isinstance(items, (Bezier, np.ndarray)):

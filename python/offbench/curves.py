@@ -7,20 +7,20 @@ import difflib
 import os
 import threading
 import weakref
+from typing import Any, Iterator, List, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _lib
+from ._typing import ArrayLike
 from .bezier import Bezier, as_beziers, dptr, flat_arrays, from_buffers
 from .errors import CurveIndexError, InvalidError, InvalidTypeError, UnknownCurveError
 
 
-def _read_only(name):
-    """A property's setter that refuses, naming the field."""
-    def refuse(self, value):
-        raise AttributeError("Curve.%s is read-only: a Curve is one curve of its set (set[i] or set[id] gives "
-                             "another)" % name)
-    return refuse
+def _read_only(name: str) -> AttributeError:
+    """What setting a Curve's field raises, naming the field."""
+    return AttributeError("Curve.%s is read-only: a Curve is one curve of its set (set[i] or set[id] gives "
+                          "another)" % name)
 
 
 class CurveSet:
@@ -28,7 +28,7 @@ class CurveSet:
     file's order), set[id] or set[i], `id in set`, .ids.  Any number of
     threads may use it at once."""
 
-    def __init__(self, handle, source):
+    def __init__(self, handle: Any, source: str) -> None:
         self._h = handle
         self.source = source  # the file, "built-in" or "arrays"
         self._fin = weakref.finalize(self, _lib.lib().obx_curves_free, handle)
@@ -37,19 +37,19 @@ class CurveSet:
         self._index = {c.id: c for c in self._curves}
 
     @property
-    def ids(self):
+    def ids(self) -> List[str]:
         return [c.id for c in self._curves]
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self._curves)
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator["Curve"]:
         return iter(self._curves)
 
-    def __contains__(self, key):
+    def __contains__(self, key: object) -> bool:
         return key in self._index if isinstance(key, str) else key in self._curves
 
-    def __getitem__(self, key):
+    def __getitem__(self, key: Union[str, int]) -> "Curve":
         if isinstance(key, str):
             c = self._index.get(key)
             if c is None:
@@ -60,7 +60,7 @@ class CurveSet:
         raise InvalidError("a curve set is indexed by curve id (str) or position (int), not %s"
                            % type(key).__name__)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         head = ", ".join(self.ids[:4]) + (", ..." if len(self) > 4 else "")
         return "CurveSet(%s: %d curves: %s)" % (self.source, len(self), head)
 
@@ -73,7 +73,7 @@ class Curve:
 
     __slots__ = ("_set", "_index", "_id", "_family", "_segments", "_offsets")
 
-    def __init__(self, cset, index):
+    def __init__(self, cset: CurveSet, index: int) -> None:
         if not isinstance(cset, CurveSet):
             raise InvalidTypeError("Curve: set: a CurveSet (offbench.curves()), not %s" % type(cset).__name__)
         self._set = cset
@@ -82,13 +82,13 @@ class Curve:
         L = _lib.lib()
         self._id = _lib.text(L.obx_curves_id(h, i))
         self._family = _lib.text(L.obx_curves_family(h, i))
-        self._segments = None
+        self._segments: Optional[List[Bezier]] = None
         d = ctypes.POINTER(ctypes.c_double)()
         n = L.obx_curves_offsets(h, i, ctypes.byref(d))
         self._offsets = np.array([d[k] for k in range(n)], dtype=float)
         self._offsets.setflags(write=False)
 
-    def handle(self):
+    def handle(self) -> Any:
         """(the set's obx_curveset, the index) as the library takes them,
         checked: TypeError or IndexError naming the index (a value a C int
         would wrap, or one past the set, never reaches the library)."""
@@ -101,17 +101,38 @@ class Curve:
                                   % (i, n, "" if n == 1 else "s"))
         return self._set._h, int(i)
 
-    set = property(lambda self: self._set, _read_only("set"))
-    index = property(lambda self: self._index, _read_only("index"))
-    id = property(lambda self: self._id, _read_only("id"))
-    family = property(lambda self: self._family, _read_only("family"))
+    @property
+    def set(self) -> CurveSet:
+        """The CurveSet this curve is one of."""
+        return self._set
 
     @property
-    def offsets(self):
+    def index(self) -> int:
+        """The curve's position in its set."""
+        return self._index
+
+    @property
+    def id(self) -> str:
+        return self._id
+
+    @property
+    def family(self) -> str:
+        return self._family
+
+    def __setattr__(self, name: str, value: object) -> None:
+        """Refuses every public field (set, index, id, family, ...), so a
+        Curve always names curve .index of .set; a type checker reads the
+        properties above, which have no setter, as read-only too."""
+        if not name.startswith("_"):
+            raise _read_only(name)
+        object.__setattr__(self, name, value)
+
+    @property
+    def offsets(self) -> np.ndarray:
         return self._offsets
 
     @property
-    def segments(self):
+    def segments(self) -> List[Bezier]:
         if self._segments is None:
             L = _lib.lib()
             err = _lib.ObxError()
@@ -126,19 +147,19 @@ class Curve:
             self._segments = segs
         return list(self._segments)
 
-    def __eq__(self, other):
+    def __eq__(self, other: object) -> bool:
         return isinstance(other, Curve) and other.set is self.set and other.index == self.index
 
-    def __hash__(self):
+    def __hash__(self) -> int:
         return hash((id(self.set), self.index))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         n = _lib.lib().obx_curves_segment_count(*self.handle())
         offs = "[" + ", ".join("%g" % d for d in self._offsets) + "]"
         return "Curve(%r, %s, %d segment%s, offsets %s)" % (self.id, self.family, n, "" if n == 1 else "s", offs)
 
 
-def unknown_curve(key, cset):
+def unknown_curve(key: str, cset: CurveSet) -> UnknownCurveError:
     close = difflib.get_close_matches(key, cset.ids, n=1)
     hint = " (did you mean %r?)" % close[0] if close else ""
     where = "the built-in curves (offbench.curves())" if cset.source == "built-in" else cset.source
@@ -157,7 +178,7 @@ _default = None
 _default_lock = threading.Lock()
 
 
-def curves(path=None):
+def curves(path: Optional[Union[str, os.PathLike]] = None) -> CurveSet:
     """The curves of a `.curves` file, or with no path the built-in set
     `offbench run` uses by default ($OFFBENCH_DATA when set, else the
     datasets compiled into the library).  ParseError ("FILE:LINE: reason")
@@ -170,7 +191,7 @@ def curves(path=None):
     return CurveSet(_load("obx_curves_load_file", p.encode()), p)
 
 
-def default_set():
+def default_set() -> CurveSet:
     """The built-in set, loaded once and shared (a curve id given as a str
     is looked up here)."""
     global _default
@@ -181,7 +202,7 @@ def default_set():
     return _default
 
 
-def curve_from_segments(id, segments):
+def curve_from_segments(id: str, segments: Sequence[Union[Bezier, ArrayLike]]) -> Curve:
     """A Curve of its own (in a set of one) from Bézier segments joined end
     to end: a list of Bezier, of (n+1, 2) point arrays, or of (points,
     weights) pairs.  The curve has no offsets of its own: fit and measure
@@ -196,7 +217,7 @@ def curve_from_segments(id, segments):
     return CurveSet(h, "arrays")[0]
 
 
-def resolve(curve, what="curve"):
+def resolve(curve: Union[Curve, str], what: str = "curve") -> Curve:
     """A Curve from a Curve or a curve id of the built-in set."""
     if isinstance(curve, Curve):
         return curve

@@ -7,6 +7,8 @@ cannot be read, ...), so `except ValueError` works as well as
 file and line, or the option, that was wrong.
 """
 
+from typing import Optional
+
 # obx_code values of include/offbench.h
 OBX_OK = 0
 OBX_E_INVALID = 1
@@ -24,13 +26,13 @@ class Error(Exception):
 
     code = 0
 
-    def __init__(self, message, code=None):
+    def __init__(self, message: str, code: Optional[int] = None) -> None:
         super().__init__(message)
         self.message = message
         if code is not None:
             self.code = code
 
-    def __str__(self):
+    def __str__(self) -> str:
         return self.message
 
 
@@ -46,7 +48,7 @@ class UnknownCurveError(InvalidError, KeyError):
     """A curve id that is not in the set (also a KeyError, as a mapping's
     missing key is)."""
 
-    def __str__(self):  # KeyError would print the message's repr
+    def __str__(self) -> str:  # KeyError would print the message's repr
         return self.message
 
 
@@ -113,6 +115,6 @@ _BY_CODE = {
 }
 
 
-def from_code(code, message):
+def from_code(code: int, message: str) -> Error:
     """The exception for an obx_error the library filled."""
     return _BY_CODE.get(code, Error)(message, code)

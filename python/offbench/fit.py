@@ -5,11 +5,14 @@ call but the curve sets."""
 
 import ctypes
 import numbers
+from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
 from . import _lib
-from .bezier import as_beziers, dptr, flat_arrays, from_buffers, number
-from .curves import resolve
+from ._typing import DataFrame, Numbers, Params
+from .bezier import Bezier, as_beziers, dptr, flat_arrays, from_buffers, number
+from .curves import Curve, CurveSet, resolve
 from .errors import InvalidError
+from .methods import Method
 from .result import Result, parse_row
 
 
@@ -76,7 +79,8 @@ def _certify_mode(certify):
     raise InvalidError("certify: True, False, 'verdict' or 'tight', not %r" % (certify,))
 
 
-def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None, certify=False):
+def fit(curve: Union[Curve, str], method: Union[str, Method], d: float, tol: float, metric: str = "hausdorff",
+        split: str = "mid", params: Params = None, certify: Union[bool, str] = False) -> Result:
     """One job, exactly as one row of `offbench run`: method on curve at
     offset d and tolerance tol, measured under metric, split by split.
 
@@ -109,7 +113,8 @@ def fit(curve, method, d, tol, metric="hausdorff", split="mid", params=None, cer
         L.obx_result_free(out)
 
 
-def measure(curve, d, pieces, metric="hausdorff"):
+def measure(curve: Union[Curve, str], d: float, pieces: Union[Result, Sequence[Union[Bezier, Any]]],
+            metric: str = "hausdorff") -> Result:
     """The error of an approximation, Bézier pieces in curve order, against
     curve's exact d-offset under metric, as `offbench measure` measures a
     file without base links.  pieces: a list of Bezier (a Result's .pieces),
@@ -210,8 +215,11 @@ def _specs(curves, methods, tols, d, metric, split, params):
     return jobs, _method_params(params, ms)
 
 
-def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=None, progress=None,
-        as_frame=False):
+def run(curves: Union[CurveSet, Curve, str, Sequence[Union[Curve, str]]],
+        methods: Union[str, Method, Sequence[Union[str, Method]]], tols: Numbers, d: Optional[Numbers] = None,
+        metric: str = "hausdorff", split: str = "mid", params: Params = None,
+        progress: Optional[Callable[[int, int], Any]] = None,
+        as_frame: bool = False) -> Union[List[Result], DataFrame]:
     """Many jobs at once, as `offbench run` runs them (OpenMP threads over
     all of them; jobs that differ only in tol share pieces): every curve x
     d x method x tol, in that nesting.
@@ -234,10 +242,10 @@ def run(curves, methods, tols, d=None, metric="hausdorff", split="mid", params=N
         require_pandas("run(as_frame=True)")
     met, spl = _cstr(metric, "metric"), _cstr(split, "split")
     # one batch per curve set (obx_run_batch takes one), in job order
-    groups = {}
+    groups: Dict[int, List[int]] = {}
     for i, (c, m, dv, t) in enumerate(jobs):
         groups.setdefault(id(c.set), []).append(i)
-    results = [None] * len(jobs)
+    results: List[Any] = [None] * len(jobs)
     tell = _Tell(progress, len(jobs))
     names = {m: m.encode() for _, m, _, _ in jobs}  # the specs' char * point into these
     for idx in groups.values():

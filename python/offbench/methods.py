@@ -2,23 +2,36 @@
 `offbench list methods` lists them (constant: read once)."""
 
 import ctypes
-from collections import namedtuple
+from typing import List, NamedTuple, Optional
 
 from . import _lib
 
-Param = namedtuple("Param", "name default min max integer meaning")
-Param.__doc__ = """One parameter of a method, a choice its paper leaves open: the
-paper's reading (default), the accepted values min..max (both included),
-integer (whole numbers only) and what the values mean."""
 
-Method = namedtuple("Method", "name citation params")
-Method.__doc__ = """A method: its name (as fit and run take it), a short reference and
-its parameters (a list of Param)."""
+class Param(NamedTuple):
+    """One parameter of a method, a choice its paper leaves open: the
+    paper's reading (default), the accepted values min..max (both included),
+    integer (whole numbers only) and what the values mean."""
 
-_methods = None
+    name: str
+    default: float
+    min: float
+    max: float
+    integer: bool
+    meaning: str
 
 
-def _read():
+class Method(NamedTuple):
+    """A method: its name (as fit and run take it), a short reference and
+    its parameters (a list of Param)."""
+
+    name: str
+    citation: str
+    params: List[Param]
+
+_methods: Optional[List[Method]] = None
+
+
+def _read() -> List[Method]:
     L = _lib.lib()
     out = []
     for i in range(L.obx_method_count()):
@@ -32,7 +45,7 @@ def _read():
     return out
 
 
-def methods():
+def methods() -> List[Method]:
     """Every registered method, in `offbench list methods` order: a list of
     Method(name, citation, params=[Param(name, default, min, max, integer,
     meaning), ...])."""

@@ -3,6 +3,9 @@ one measurement, the same kind of object with the columns that apply."""
 
 import csv
 import math
+from typing import TYPE_CHECKING, Any, Dict, Iterable, List, Mapping, Optional
+
+from .bezier import Bezier
 
 from . import columns
 
@@ -21,23 +24,27 @@ class Result:
     and fail), segments and out_degree (of the pieces measured) and piece
     (where the error is largest); its other columns are None."""
 
-    def __init__(self, kind, values, pieces, row=None):
+    def __init__(self, kind: str, values: Mapping[str, Any], pieces: Iterable[Bezier],
+                 row: Optional[str] = None) -> None:
         self.kind = kind
         self._columns = list(values)
         self.__dict__.update(values)
         self.pieces = list(pieces)
         self.row = row
 
+    if TYPE_CHECKING:  # every column is an attribute, set from the row: any name for a type checker
+        def __getattr__(self, name: str) -> Any: ...
+
     @property
-    def columns(self):
+    def columns(self) -> List[str]:
         """The column names, in results.csv's order."""
         return list(self._columns)
 
-    def as_dict(self):
+    def as_dict(self) -> Dict[str, Any]:
         """The columns as a dict (results.csv's order)."""
         return {k: getattr(self, k) for k in self._columns}
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         parts = []
         for k in _SHOWN:
             v = self.__dict__.get(k)
@@ -50,7 +57,7 @@ class Result:
         return "Result(%s%s)" % ("measure: " if self.kind == "measure" else "", ", ".join(parts))
 
 
-def parse_row(header, row):
+def parse_row(header: str, row: str) -> Dict[str, Any]:
     """The typed columns of one results.csv row, as a dict in order; ValueError
     naming the column when a field does not read as its type."""
     names = next(csv.reader([header]))

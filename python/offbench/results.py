@@ -8,8 +8,10 @@ import csv
 import json
 import math
 import os
+from typing import Any, Dict, List, Optional, Union
 
 from . import columns
+from ._typing import DataFrame
 from .errors import FileError, InvalidError, ParseError
 
 
@@ -22,10 +24,12 @@ def _pandas():
     return pandas
 
 
-def require_pandas(what):
+def require_pandas(what: str) -> Any:
+    """pandas, or ImportError saying how to install it (the [pandas] extra)."""
     pd = _pandas()
     if pd is None:
-        raise ImportError("%s needs pandas (Debian: apt-get install python3-pandas; pip: pip install pandas)" % what)
+        raise ImportError("%s needs pandas (Debian: apt-get install python3-pandas; pip: pip install "
+                          "'offbench[pandas]' (the package's extra), or pip install pandas)" % what)
     return pd
 
 
@@ -105,7 +109,7 @@ def _what(name):
             "yesno": "yes, no or empty"}.get(columns.kind(name), "text")
 
 
-def frame(records, header=None):
+def frame(records: List[Dict[str, Any]], header: Optional[List[str]] = None) -> DataFrame:
     """A pandas DataFrame of typed records, with the columns' dtypes."""
     pd = require_pandas("a DataFrame")
     names = header if header is not None else (list(records[0]) if records else list(columns.KINDS))
@@ -119,7 +123,8 @@ def frame(records, header=None):
     return pd.DataFrame(data, columns=names)
 
 
-def read_results(path, as_frame=None):
+def read_results(path: Union[str, os.PathLike],
+                 as_frame: Optional[bool] = None) -> Union[List[Dict[str, Any]], DataFrame]:
     """A run's results.csv (path: the run directory or the file itself).
     With pandas (as_frame None or True): a DataFrame with the documented
     dtypes (docs/python.md); without it, or as_frame=False: a list of dicts,
@@ -134,7 +139,7 @@ def read_results(path, as_frame=None):
     return frame(recs, header)
 
 
-def read_meta(path):
+def read_meta(path: Union[str, os.PathLike]) -> Dict[str, Any]:
     """A run's meta.json as a dict (path: the run directory or the file)."""
     p = _path(path, "meta.json")
     with _open(p) as f:

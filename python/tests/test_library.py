@@ -4,6 +4,7 @@ processes: a process loads the library once)."""
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -81,7 +82,66 @@ def test_checkout_build_is_found_without_offbench_lib():
 
 def test_candidates_order(monkeypatch):
     monkeypatch.delenv("OFFBENCH_LIB", raising=False)
-    where = [w for w, _ in _lib.candidates()]
-    assert where == ["the checkout's build/", "the system loader", "make install's default PREFIX"]
+    monkeypatch.setattr(_lib, "_recorded", lambda: "/rec/liboffbench.so.0")
+    monkeypatch.setattr(_lib.sys, "prefix", "/venv")
+    got = _lib.candidates()
+    assert [w for w, _ in got] == ["the checkout's build/", "the path recorded at install", "the package's directory",
+                                   "the system loader", "the environment's PREFIX", "make install's default PREFIX"]
+    assert got[1][1] == "/rec/liboffbench.so.0" and got[4][1] == "/venv/lib/liboffbench.so.0"
+    # nothing recorded, the environment /usr/local itself: neither is listed (nor twice)
+    monkeypatch.setattr(_lib, "_recorded", lambda: None)
+    monkeypatch.setattr(_lib.sys, "prefix", "/usr/local")
+    assert "the path recorded at install" not in dict(_lib.candidates())
+    assert [p for _, p in _lib.candidates()].count("/usr/local/lib/liboffbench.so.0") == 1
     monkeypatch.setenv("OFFBENCH_LIB", "/x/liboffbench.so.0")
     assert _lib.candidates() == [("$OFFBENCH_LIB", "/x/liboffbench.so.0")]
+
+
+def _installed_copy(tmp_path, recorded=None, beside=None):
+    """A copy of the package outside the checkout, as pip installs it
+    (python/offbench/ alone, so no checkout's build/ to find), with the
+    path pip's build records (_installed.py) and a library beside it when
+    given; the directory to put on PYTHONPATH."""
+    site = tmp_path / "site"
+    shutil.copytree(str(ROOT / "python" / "offbench"), str(site / "offbench"),
+                    ignore=shutil.ignore_patterns("__pycache__", "_installed.py"))
+    if recorded is not None:
+        (site / "offbench" / "_installed.py").write_text("LIBRARY = %r\n" % str(recorded))
+    if beside is not None:
+        os.symlink(str(beside), str(site / "offbench" / "liboffbench.so.0"))
+    return str(site)
+
+
+WHERE = "import offbench; print(offbench.__file__); print(offbench.library_path())"
+
+def _in_copy(site, out):
+    """The output's first line: the package imported is the copy."""
+    return out.splitlines()[0].startswith(site)
+
+
+def test_installed_copy_finds_the_library_recorded_at_install(tmp_path):
+    lib = _lib.path()  # this run's library, wherever it is
+    site = _installed_copy(tmp_path, recorded=lib)
+    rc, out = child(WHERE, OFFBENCH_LIB=None, PYTHONPATH=site)
+    assert rc == 0 and _in_copy(site, out) and out.splitlines()[1] == lib, out
+
+
+def test_installed_copy_finds_a_library_beside_it(tmp_path):
+    site = _installed_copy(tmp_path, beside=_lib.path())
+    rc, out = child(WHERE, OFFBENCH_LIB=None, PYTHONPATH=site)
+    assert rc == 0 and out.splitlines()[1] == os.path.join(site, "offbench", "liboffbench.so.0"), out
+
+
+def test_installed_copy_without_a_library_says_every_place(tmp_path):
+    gone = tmp_path / "gone" / "liboffbench.so.0"
+    site = _installed_copy(tmp_path, recorded=gone)
+    rc, out = child("import offbench, sys\ntry:\n    print('found', offbench.library_path())\n"
+                    "except offbench.LibraryNotFound as e:\n    print(e)\n",
+                    OFFBENCH_LIB=None, LD_LIBRARY_PATH=None, PYTHONPATH=site)
+    assert rc == 0, out
+    if out.startswith("found "):  # a system copy (make install + ldconfig): then nothing more to say
+        return
+    assert "the path recorded at install: %s" % gone in out, out
+    assert "the package's directory: %s" % os.path.join(site, "offbench", "liboffbench.so.0") in out, out
+    assert "make install's default PREFIX: /usr/local/lib/liboffbench.so.0" in out, out
+    assert "OFFBENCH_LIB" in out and "checkout's build" not in out, out
