@@ -9,7 +9,9 @@
  * methods, in this order), --curves LIST, --family LIST, --metric M, --split
  * S (needed when the run holds several), --sections LIST (curves, families,
  * methods; all by default), --baseline RUN_DIR2 (a second run's values
- * beside each cell, with new/base).
+ * beside each cell, with new/base), --archive ARCHIVE (repeatable: archived
+ * runs' other methods beside the run's, summary_archive.h; not with
+ * --baseline).
  *
  * Exit status: 0; 2 bad input (an unreadable or malformed results.csv,
  * named FILE:LINE; an unknown option, method, curve, family, metric or
@@ -41,7 +43,7 @@ static const ob_flag summary_flags[] = {
     {"split", "RULE", "only the rows of this split rule (needed when the run has several)", SO_SPLIT, OB_FLAG_ONCE},
     {"sections", "LIST", "curves, families, methods (default: all three)", SO_SECTIONS, OB_FLAG_LIST},
     {"baseline", "RUN_DIR", "a second run: its value beside each cell, with new/base", SO_BASELINE, OB_FLAG_ONCE},
-    {"archive", "ARCHIVE", "archived runs (a run, a results.csv, a directory of runs; repeatable): their other methods "
+    {"archive", "ARCHIVE", "archived runs (a run, a results.csv or a directory of runs): their other methods "
      "beside the run's on its jobs", SO_ARCHIVE, OB_FLAG_REPEAT},
 };
 
