@@ -128,7 +128,7 @@ static int join_one(ob_summary *s, const char *path, ob_sum_archives *a)
     v[a->n++] = side;
     const int shared = ob_summary_archive_shared(s, &side->res);
     if (!shared)
-        return ob_summary_archive_note(s, "Not joined: %s: no job in common with RUN (%d rows).",
+        return ob_strlist_addf(&s->alines, "Not joined: %s: no job in common with RUN (%d rows).",
                                        side->results_path, side->res.n) ? 2 : 0;
     if (check_comparable(side, &a->run))
         return 2;

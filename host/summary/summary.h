@@ -34,6 +34,7 @@
 
 #include <stdio.h>
 
+#include "host/compare/compare.h"  /* ob_strlist */
 #include "host/io/results_csv.h"
 #include "methods/core/err.h"
 
@@ -142,7 +143,7 @@ typedef struct {
     const char **msrc;            /* [method]: the archive's results.csv of the column; NULL: the run's */
     char **mlabel;                /* [method]: "m (archive)", owned; NULL: the run's method */
     char *arch_hit;               /* [pair * nt + tol]: an archive has a row of that job */
-    ob_sum_list alines;           /* the "Archive:" and "Not joined:" lines, owned */
+    ob_strlist alines;            /* the "Archive:" and "Not joined:" lines, owned */
 } ob_summary;
 
 /* The index of cell (pair p, method m, tolerance k) in the side arrays. */
@@ -186,9 +187,6 @@ int ob_summary_archive(ob_summary *s, const ob_res_table *a, const char *name, o
 /* Purpose: the rows of a on some (curve, d, tol) of the run, whatever their
  *          method, metric or split: 0 means a shares no job with the run. */
 int ob_summary_archive_shared(const ob_summary *s, const ob_res_table *a);
-
-/* Purpose: a line for s->alines (printf-like); 0, -1 when out of memory. */
-int ob_summary_archive_note(ob_summary *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Purpose: after the last archive: the run's rows no archive has a job of,
  *          counted into s->alines.  Returns 0, -1 when out of memory. */

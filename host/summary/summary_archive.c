@@ -5,29 +5,11 @@
  * column is only as good as the join: every row that could not join is
  * counted by reason, for the report to say (s->alines).
  */
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "host/summary/summary_impl.h"
-
-int ob_summary_archive_note(ob_summary *s, const char *fmt, ...)
-{
-    char buf[2048];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    char **v = realloc(s->alines.v, (size_t)(s->alines.n + 1) * sizeof *v);
-    if (!v)
-        return -1;
-    s->alines.v = v;
-    if (!(v[s->alines.n] = strdup(buf)))
-        return -1;
-    s->alines.n++;
-    return 0;
-}
 
 const char *ob_sum_label(const ob_summary *s, int m)
 {
@@ -41,7 +23,7 @@ void ob_sum_archive_free(ob_summary *s)
     free(s->mlabel);
     free(s->msrc);
     free(s->arch_hit);
-    ob_sum_list_free(&s->alines);
+    ob_strlist_free(&s->alines);
 }
 
 /* The map (curve, d) -> pair index of s, for the archive's lookups. */
@@ -225,20 +207,20 @@ static int join_row(ob_summary *s, ob_strmap *map, const ob_res_row *r, join_cou
 /* The report's lines for one archive. */
 static int archive_lines(ob_summary *s, const char *name, int added, const join_counts *c)
 {
-    int rc = ob_summary_archive_note(s, "Archive: %s (metric %s, split %s): %d methods beside the run's, %d rows "
+    int rc = ob_strlist_addf(&s->alines, "Archive: %s (metric %s, split %s): %d methods beside the run's, %d rows "
                                      "joined.", name, s->run.metric, s->run.split, added, c->joined);
     if (c->not_run)
-        rc |= ob_summary_archive_note(s, "Not joined: %d archive rows are on jobs RUN did not run (curve, d, tol) "
+        rc |= ob_strlist_addf(&s->alines, "Not joined: %d archive rows are on jobs RUN did not run (curve, d, tol) "
                                       "in %s.", c->not_run, name);
     if (c->own)
-        rc |= ob_summary_archive_note(s, "Not joined: %d archive rows are of methods RUN ran itself (%s): RUN's "
+        rc |= ob_strlist_addf(&s->alines, "Not joined: %d archive rows are of methods RUN ran itself (%s): RUN's "
                                       "values shown (%s).", c->own, c->own_names, name);
     if (c->other_measure)
-        rc |= ob_summary_archive_note(s, "Not joined: %d archive rows are of another metric or split than RUN's "
+        rc |= ob_strlist_addf(&s->alines, "Not joined: %d archive rows are of another metric or split than RUN's "
                                       "(%s, %s): not comparable (%s).", c->other_measure, s->run.metric,
                                       s->run.split, name);
     if (c->dup)
-        rc |= ob_summary_archive_note(s, "Not joined: %d archive rows repeat a job an earlier archive gave: the "
+        rc |= ob_strlist_addf(&s->alines, "Not joined: %d archive rows repeat a job an earlier archive gave: the "
                                       "first kept (%s).", c->dup, name);
     return rc;
 }
@@ -271,7 +253,7 @@ int ob_summary_archive_done(ob_summary *s)
     if (!s->has_archive)
         return 0;  /* no archive shared a job: each is named already */
     /* the control points are the same numbers anywhere; a time is its machine's */
-    if (ob_summary_archive_note(s, "The archived methods' time/job is the archive's own (its machine and backend, "
+    if (ob_strlist_addf(&s->alines, "The archived methods' time/job is the archive's own (its machine and backend, "
                                 "in its meta.json): ./offbench compare says whether times compare."))
         return -1;
     for (int k = 0; k < s->nt; k++) {
@@ -286,6 +268,6 @@ int ob_summary_archive_done(ob_summary *s)
     }
     if (!n)
         return 0;
-    return ob_summary_archive_note(s, "Not joined: %d RUN rows have no archived job (curve, d, tol); at tolerances "
+    return ob_strlist_addf(&s->alines, "Not joined: %d RUN rows have no archived job (curve, d, tol); at tolerances "
                                    "%s.", n, tols);
 }
