@@ -511,7 +511,7 @@ static void put_scope(FILE *f, const ob_summary *s, const char *prefix)
 {
     fprintf(f, "%s%d jobs on %d (curve, d) pair%s of %d curve%s in %d famil%s; methods ", prefix, s->run.njobs, s->np,
             s->np == 1 ? "" : "s", s->ncurves, s->ncurves == 1 ? "" : "s", s->nf, s->nf == 1 ? "y" : "ies");
-    put_names(f, s->methods, s->nm);
+    put_names(f, s->methods, s->has_archive ? s->nm_run : s->nm);  /* the run's: the archive's have their lines */
     fputs("; tolerances ", f);
     put_names(f, s->tol_text, s->nt);
     fprintf(f, "; metric %s, split %s.\n", s->run.metric, s->run.split);

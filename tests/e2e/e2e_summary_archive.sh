@@ -52,6 +52,9 @@ check 'grep -q "^Not joined: $(ref arc_unjoined) archive rows are on jobs RUN di
 check 'grep -q "^Not joined: $(ref arc_same) archive rows are of methods RUN ran itself (tiller): RUN.s values shown" "$T/s.md"' \
     "the archive rows of RUN's own method: RUN's values"
 check 'grep -q "^| cobb (archive) | " "$T/s.md"' "the method table marks the archived methods"
+njobs=$(($(wc -l <"$T/r/results.csv") - 1))
+check 'grep -q "^$njobs jobs on .*; methods tiller; tolerances" "$T/s.md"' \
+    "the scope line counts and names the run's own: $(grep ' jobs on ' "$T/s.md")"
 
 # --- CSV: a source column; the archived ok cells as Python counts them ---
 $OB summary "$T/r" --archive "$A" --format csv >"$T/s.csv" 2>/dev/null
