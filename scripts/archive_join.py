@@ -11,7 +11,9 @@ counted by reason, in the summary's own words.  An archive that shares jobs
 with the run but none of its metric and split is refused (exit 2, naming
 both files): its numbers would not mean the same.  The full comparability
 checks (samples per segment, seed, method versions, kernel text: compare's)
-are the summary's; this module says so rather than repeat them.
+are not repeated here: the program's own summary makes them
+(offbench_checks: $OFFBENCH, else ./offbench at the repository's root), and
+without a program a note says only metric and split were checked.
 
 Usage: archive_join.py RUN ARCHIVE...   prints the joined archive rows as
 CSV (curve,d,tol,method,source,status,ctrl_points) and the report's lines on
@@ -19,6 +21,7 @@ standard error: the data plot.py --archive draws, for checking.
 """
 import csv
 import os
+import subprocess
 import sys
 
 import csvrows  # scripts/csvrows.py, beside this file
@@ -137,6 +140,23 @@ def report(c, metric, split):
     return out
 
 
+def offbench_checks(run_path, archive_args, note):
+    """compare's comparability checks, by `offbench summary --archive`
+    itself: exits 2 with its message where it refuses."""
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    exe = os.environ.get("OFFBENCH") or os.path.join(root, "offbench")
+    if not os.access(exe, os.X_OK):
+        note(f"--archive: no offbench program ({exe}): only the metric and split were checked, "
+             "not compare's other checks")
+        return
+    cmd = [exe, "summary", run_path, "--sections", "methods", "--format", "csv"]
+    for a in archive_args:
+        cmd += ["--archive", a]
+    p = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        die(p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"{exe} summary exited {p.returncode}")
+
+
 def read_rows(path):
     """The columns the join needs (plot.py passes its own reader: all it draws)."""
     return csvrows.read_csv(path, COLUMNS, ("d", "tol", "ctrl_points"), integer=("ctrl_points",), die=die)
@@ -146,9 +166,10 @@ def join(run_rows, run_path, archive_args, read=read_rows):
     """The archived rows to draw beside run_rows (method "m (archive)",
     source: its results.csv) and the report's lines."""
     j = Join(run_rows, run_path)
-    for arg in archive_args:
-        for path in expand(arg):
-            j.archive(path, read)
+    paths = [path for arg in archive_args for path in expand(arg)]
+    offbench_checks(run_path, archive_args, lambda m: print(f"archive_join: {m}", file=sys.stderr))
+    for path in paths:
+        j.archive(path, read)
     j.done()
     return j.rows, j.lines
 

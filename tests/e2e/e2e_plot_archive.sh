@@ -19,7 +19,7 @@ $OB run --random 3:2026 --methods tiller --tols 1e-1,1e-2,1e-6 --metric hausdorf
 check '[ $? -eq 0 ] && [ -s "$T/r/results.csv" ]' "offbench run --random 3:2026 --methods tiller"
 
 # --- the joined data against a direct join here ---
-"$PY" "$JOIN" "$T/r/results.csv" "$A" >"$T/j.csv" 2>"$T/j.err"
+OFFBENCH=$OB "$PY" "$JOIN" "$T/r/results.csv" "$A" >"$T/j.csv" 2>"$T/j.err"
 check '[ $? -eq 0 ]' "archive_join.py RUN ARCHIVE exits 0: $(head -c 300 "$T/j.err")"
 "$PY" - "$T/r/results.csv" "$A/random/results.csv" "$T/j.csv" <<'PYEOF' >"$T/ref.txt" 2>&1
 import csv, sys
@@ -44,6 +44,12 @@ sed 's/,hausdorff,mid,/,normal,mid,/' "$A/random/results.csv" >"$T/m/results.csv
 "$PY" "$JOIN" "$T/r/results.csv" "$T/m" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q "not comparable" "$T/e.txt" && grep -qF "$T/m/results.csv" "$T/e.txt" && grep -qF "$T/r/results.csv" "$T/e.txt"' \
     "another metric: refused naming both files: $(cat "$T/e.txt")"
+mkdir -p "$T/s"
+cp "$A/random/results.csv" "$T/s/"
+sed 's/"samples_per_segment": 256/"samples_per_segment": 128/' "$A/random/meta.json" >"$T/s/meta.json"
+OFFBENCH=$OB "$PY" "$JOIN" "$T/r/results.csv" "$T/s" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "samples_per_segment 128 vs 256" "$T/e.txt" && grep -qF "$T/s/results.csv" "$T/e.txt"' \
+    "compare's other checks, by the program itself: refused: $(cat "$T/e.txt")"
 "$PY" "$JOIN" "$T/r/results.csv" "$T/nosuch" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--archive: .*nosuch" "$T/e.txt"' "a missing archive: exit 2, named: $(cat "$T/e.txt")"
 
@@ -54,7 +60,7 @@ if ! "$PY" -c 'import matplotlib' >/dev/null 2>&1; then
     e2e_done
     exit $?
 fi
-"$PY" "$PLOT" "$T/r/results.csv" --archive "$A" --out "$T/p" >"$T/p.out" 2>"$T/p.err"
+OFFBENCH=$OB "$PY" "$PLOT" "$T/r/results.csv" --archive "$A" --out "$T/p" >"$T/p.out" 2>"$T/p.err"
 check '[ $? -eq 0 ] && grep -q "summary_families.svg" "$T/p.out"' "plot.py --archive exits 0: $(head -c 300 "$T/p.err")"
 check 'grep -q ">cobb (archive)<" "$T/p/summary_families.svg" && grep -q ">tiller<" "$T/p/summary_families.svg"' \
     "the archived methods are in the legend beside the run's"

@@ -80,6 +80,12 @@ sed 's/"metrics": \["hausdorff"\]/"metrics": ["normal"]/' "$A/meta.json" >"$T/m/
 $OB summary "$T/r" --archive "$T/m" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q "not comparable" "$T/e.txt" && grep -q "metric" "$T/e.txt" && grep -qF "$T/m/results.csv" "$T/e.txt" && grep -qF "$T/r/results.csv" "$T/e.txt"' \
     "another metric: refused naming both files: $(head -c 400 "$T/e.txt")"
+mkdir -p "$T/s"
+cp "$A/results.csv" "$T/s/"
+sed 's/"samples_per_segment": 256/"samples_per_segment": 128/' "$A/meta.json" >"$T/s/meta.json"
+$OB summary "$T/r" --archive "$T/s" >/dev/null 2>"$T/e.txt"
+check '[ $? -eq 2 ] && grep -q "samples_per_segment 128 vs 256" "$T/e.txt"' \
+    "another sample count: refused by compare's checks: $(head -c 400 "$T/e.txt")"
 $OB summary "$T/r" --archive "$T/nosuch" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q -- "--archive: .*nosuch" "$T/e.txt"' "a missing archive: exit 2, named: $(cat "$T/e.txt")"
 mkdir -p "$T/bad"
