@@ -35,7 +35,7 @@ static const char usage[] =
     "  ./offbench compare BASE NEW [--format md|csv] [--out FILE] [--err-rtol R] [--time-threshold F]\n"
     "                    (files or run directories; exit 0 same, 1 regression, 2 error, 3 not comparable)\n"
     "  ./offbench summary RUN_DIR [--format md|csv|latex] [--out FILE] [--methods LIST] [--curves ID,...]\n"
-    "                    [--family F] [--metric M] [--baseline RUN_DIR2]   (the paper table of a run)\n"
+    "                    [--family F] [--metric M] [--baseline RUN_DIR2 | --archive A]   (the paper table)\n"
     "  ./offbench draw   --curve ID --method M --tol T [--d D] [run options] --out FILE.svg\n"
     "  ./offbench trace  --curve ID --method M --tol T [--d D] [run options] [--out FILE.csv]\n"
     "  ./offbench measure --curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all]\n"

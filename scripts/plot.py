@@ -2,7 +2,7 @@
 """Plot the results of `./offbench run` (results.csv) or `./offbench trace`.
 
 Usage: scripts/plot.py RESULTS.csv [--out DIR] [--methods LIST] [--highlight M]
-                       [--curve ID,...] [--per-curve] [--max-curves N]
+                       [--curve ID,...] [--per-curve] [--max-curves N] [--archive A]
                        [--format svg|pdf|png[,...]]
        scripts/plot.py --trace TRACE.csv [--out DIR] [--format ...]
 
@@ -22,7 +22,12 @@ output, text kept as text; pdf embeds TrueType fonts; png for screens):
   time_per_job           per method, the distribution of fit_ns + eval_ns per
                          job (box plot, log axis), methods sorted by median.
 --methods a,b plots only those methods (in that order); --highlight M draws M
-in colour over the others in grey, in every plot.
+in colour over the others in grey, in every plot.  --archive A (repeatable: a
+run, a results.csv or a directory of runs, e.g. results/baseline-small) draws
+the archived methods the run lacks, dashed and marked "(archive)", on the
+run's jobs (curve, d, tol) under its metric and split; the rows that could
+not join are counted on standard error, as `offbench summary --archive`
+says them (scripts/archive_join.py).
 From TRACE.csv (columns curve,d,method,metric,split,tol,seg,piece,t,u,err,x,y;
 default DIR: the directory of TRACE.csv + /plots):
   trace_<curve>_<method> the error against the curve parameter u, with the
@@ -42,6 +47,7 @@ import re
 import sys
 import textwrap
 
+import archive_join  # scripts/archive_join.py: --archive, the summary's join
 import csvrows  # scripts/csvrows.py, beside this file
 
 DEBIAN_PYTHON = "/usr/bin/python3"
@@ -174,6 +180,26 @@ def method_styles(methods, highlight=None):
         else:
             out[m] = Style(GREY, marker, "-", width=1.0, msize=4.5, z=1)
     return out
+
+
+def archive_styles(style):
+    """Archived methods (--archive) dashed, thinner and underneath: beside
+    the run's, not confused with them."""
+    for m, st in style.items():
+        if m.endswith(archive_join.TAG):
+            st.dash, st.width, st.msize, st.z = (0, (3, 2)), min(st.width, 1.0), min(st.msize, 5), 1
+    return style
+
+
+def with_archive(path, rows, order, archives):
+    """rows and the method order with the archived methods' rows after the
+    run's; what could not join said on standard error."""
+    if not archives:
+        return rows, order
+    extra, lines = archive_join.join(rows, path, archives, read=read_results)
+    for line in lines:
+        note(line)
+    return rows + extra, order + unique(r["method"] for r in extra)
 
 
 def legend_handles(keys, method_of, style, highlight, handle):
@@ -642,9 +668,10 @@ def select_methods(path, rows, methods, highlight):
 
 
 def plot_results(path, outdir, formats, wanted, max_curves, methods=None, highlight=None,
-                 per_curve=False):
+                 per_curve=False, archives=None):
     rows = read_results(path)
     rows, order = select_methods(path, rows, methods, highlight)
+    rows, order = with_archive(path, rows, order, archives)
     writer = Writer(outdir, formats)
     plottable = [r for r in rows if r["status"] in PLOTTED
                  and r["ctrl_points"] and r["ctrl_points"] > 0]
@@ -652,7 +679,7 @@ def plot_results(path, outdir, formats, wanted, max_curves, methods=None, highli
         note(f"{path}: no plottable rows (status ok or limit with control points): "
              "nothing written")
         return writer
-    style = method_styles(order, highlight)
+    style = archive_styles(method_styles(order, highlight))
     keyof = series_key(rows)
     for curve in choose_curves(path, rows, wanted, max_curves, per_curve):
         crows = [r for r in rows if r["curve"] == curve]
@@ -698,6 +725,9 @@ def main(argv):
                     help="plot random curves one by one too (default: their family summary only)")
     ap.add_argument("--max-curves", metavar="N", type=int, default=12,
                     help="at most N curves not of family 'published' (default 12)")
+    ap.add_argument("--archive", metavar="ARCHIVE", action="append",
+                    help="archived runs (a run, results.csv or directory of runs; repeatable): their "
+                    "other methods drawn dashed beside the run's on its jobs")
     ap.add_argument("--format", "--formats", dest="formats", metavar="LIST", default="svg",
                     help="comma-separated file formats: svg (default), pdf, png, ...")
     a = ap.parse_args(argv[1:])
@@ -716,6 +746,7 @@ def main(argv):
     outdir = a.out or os.path.join(os.path.dirname(os.path.abspath(src)), "plots")
     if a.trace is not None:
         for opt, given in (("--curve", a.curve is not None), ("--methods", a.methods is not None),
+                           ("--archive", a.archive is not None),
                            ("--highlight", a.highlight is not None), ("--per-curve", a.per_curve)):
             if given:
                 ap.error(f"{opt} applies to RESULTS.csv, not to --trace")
@@ -724,7 +755,7 @@ def main(argv):
         wanted = comma_list(ap, "--curve", a.curve)
         methods = comma_list(ap, "--methods", a.methods)
         writer = plot_results(a.results, outdir, formats, wanted, a.max_curves, methods,
-                              a.highlight, a.per_curve)
+                              a.highlight, a.per_curve, a.archive)
     for p in writer.written:
         print(p)
 

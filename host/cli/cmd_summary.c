@@ -9,7 +9,9 @@
  * methods, in this order), --curves LIST, --family LIST, --metric M, --split
  * S (needed when the run holds several), --sections LIST (curves, families,
  * methods; all by default), --baseline RUN_DIR2 (a second run's values
- * beside each cell, with new/base).
+ * beside each cell, with new/base), --archive ARCHIVE (repeatable: archived
+ * runs' other methods beside the run's, summary_archive.h; not with
+ * --baseline).
  *
  * Exit status: 0; 2 bad input (an unreadable or malformed results.csv,
  * named FILE:LINE; an unknown option, method, curve, family, metric or
@@ -17,6 +19,7 @@
  * be written.
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -25,9 +28,10 @@
 #include "host/diag.h"
 #include "host/io/fsutil.h"
 #include "host/io/results_csv.h"
+#include "host/cli/summary_archive.h"
 #include "host/summary/summary.h"
 
-enum { SO_FORMAT, SO_OUT, SO_METHODS, SO_CURVES, SO_FAMILY, SO_METRIC, SO_SPLIT, SO_SECTIONS, SO_BASELINE };
+enum { SO_FORMAT, SO_OUT, SO_METHODS, SO_CURVES, SO_FAMILY, SO_METRIC, SO_SPLIT, SO_SECTIONS, SO_BASELINE, SO_ARCHIVE };
 
 static const ob_flag summary_flags[] = {
     {"format", "md|csv|latex", "the tables' format (default md; latex: booktabs)", SO_FORMAT, OB_FLAG_ONCE},
@@ -39,6 +43,8 @@ static const ob_flag summary_flags[] = {
     {"split", "RULE", "only the rows of this split rule (needed when the run has several)", SO_SPLIT, OB_FLAG_ONCE},
     {"sections", "LIST", "curves, families, methods (default: all three)", SO_SECTIONS, OB_FLAG_LIST},
     {"baseline", "RUN_DIR", "a second run: its value beside each cell, with new/base", SO_BASELINE, OB_FLAG_ONCE},
+    {"archive", "ARCHIVE", "archived runs (a run, a results.csv or a directory of runs): their other methods "
+     "beside the run's on its jobs", SO_ARCHIVE, OB_FLAG_REPEAT},
 };
 
 typedef struct {
@@ -46,8 +52,24 @@ typedef struct {
     int format;   /* 0 md, 1 csv, 2 latex */
     int sections;
     ob_sum_list methods, curves, families;
+    ob_sum_list archives;         /* --archive, each as given (a path may hold a comma) */
     const char *metric, *split;
 } cmd_opts;
+
+/* Appends one --archive; 0, or -1 after ob_error(). */
+static int archive_opt(cmd_opts *o, const char *v)
+{
+    char **a = *v ? realloc(o->archives.v, (size_t)(o->archives.n + 1) * sizeof *a) : NULL;
+    if (a)
+        o->archives.v = a;
+    if (!a || !(a[o->archives.n] = strdup(v))) {
+        ob_error(*v ? "--archive: out of memory" : "--archive: expected a run directory, results.csv or a directory "
+                 "of runs");
+        return -1;
+    }
+    o->archives.n++;
+    return 0;
+}
 
 /* An option's comma list into l; 0, or -1 after ob_error(). */
 static int list_opt(const char *opt, const char *v, ob_sum_list *l)
@@ -94,6 +116,7 @@ static int apply_summary_flag(void *ctx, int id, const char *opt, const char *v)
             return -1;
         }
         return 0;
+    case SO_ARCHIVE: return archive_opt(o, v);
     default: return name_opt(opt, v, "a run directory or results.csv", &o->baseline);
     }
 }
@@ -115,6 +138,11 @@ static int parse_opts(int argc, char **argv, cmd_opts *o)
         return -1;
     }
     o->run = pos[0];
+    if (o->baseline && o->archives.n) {
+        ob_error("summary: --archive and --baseline: one at a time (--baseline puts a run's own methods beside "
+                 "themselves, --archive other methods beside them)");
+        return -1;
+    }
     return 0;
 }
 
@@ -197,6 +225,8 @@ int ob_cmd_summary(int argc, char **argv)
     int status = 2;
     ob_res_table t, b;
     ob_summary s;
+    ob_sum_archives arch;
+    memset(&arch, 0, sizeof arch);
     memset(&t, 0, sizeof t);
     memset(&b, 0, sizeof b);
     memset(&s, 0, sizeof s);
@@ -207,8 +237,11 @@ int ob_cmd_summary(int argc, char **argv)
     }
     const ob_sum_filter f = {&o.methods, &o.curves, &o.families, o.metric, o.split};
     char path[2][4200] = {"", ""};
-    if ((status = load(&o, &f, path, &t, &b, &s)) != 0)
+    if ((status = load(&o, &f, path, &t, &b, &s)) != 0 ||
+        (o.archives.n && (status = ob_sum_archives_join(&s, o.run, &o.archives, &arch)) != 0))
         goto done;
+    for (int i = 0; o.format == 1 && i < s.alines.n; i++)  /* CSV has no prose: what did not join, said here */
+        ob_info("summary: %s", s.alines.v[i]);
     const char *const inputs[] = {path[0], o.baseline ? path[1] : NULL};
     if (o.out && ob_check_out_not_input("summary", o.out, 0, inputs, 2) != 0) {
         status = 2;
@@ -220,6 +253,8 @@ done:
     ob_summary_free(&s);
     ob_res_free(&t);
     ob_res_free(&b);
+    ob_sum_archives_free(&arch);
+    ob_sum_list_free(&o.archives);
     ob_sum_list_free(&o.methods);
     ob_sum_list_free(&o.curves);
     ob_sum_list_free(&o.families);

@@ -2,6 +2,7 @@
  * summary.c - the pivot behind `./offbench summary`: see summary.h.
  */
 #include "host/summary/summary.h"
+#include "host/summary/summary_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -275,7 +276,7 @@ static int keep_row(const ob_res_row *r, const ob_sum_filter *f, const char *met
 
 /* ---------------------------------------------------------------- the axes */
 
-static int find_tol(const ob_summary *s, double tol)
+int ob_sum_find_tol(const ob_summary *s, double tol)
 {
     for (int k = 0; k < s->nt; k++)
         if (s->tols[k] == tol)
@@ -283,7 +284,7 @@ static int find_tol(const ob_summary *s, double tol)
     return -1;
 }
 
-static int find_name(const char **v, int n, const char *name)
+int ob_sum_find_name(const char **v, int n, const char *name)
 {
     for (int i = 0; i < n; i++)
         if (strcmp(v[i], name) == 0)
@@ -310,7 +311,7 @@ static char *pair_key(const char *curve, double d, char *buf, size_t len, size_t
 
 /* The pair map's value of row r (put: add it as pair `val` when new; see
  * ob_strmap_putn), or -2 when out of memory. */
-static long pair_lookup(ob_strmap *pairs, const ob_res_row *r, long put_val)
+long ob_sum_pair_lookup(ob_strmap *pairs, const ob_res_row *r, long put_val)
 {
     char buf[512];
     size_t klen;
@@ -352,11 +353,11 @@ static int collect_axes(ob_summary *s, const ob_res_table *t, const char *kept, 
         const ob_res_row *r = &t->v[i];
         if (!kept[i])
             continue;
-        if (find_name(s->methods, s->nm, r->method) < 0)
+        if (ob_sum_find_name(s->methods, s->nm, r->method) < 0)
             s->methods[s->nm++] = r->method;
-        if (find_tol(s, r->tol) < 0)
+        if (ob_sum_find_tol(s, r->tol) < 0)
             s->tols[s->nt++] = r->tol;
-        const long got = pair_lookup(pairs, r, s->np);
+        const long got = ob_sum_pair_lookup(pairs, r, s->np);
         const long gotc = ob_strmap_put(&curves, r->curve, s->ncurves);
         if (got == -2 || gotc == -2) {
             rc = -1;
@@ -366,7 +367,7 @@ static int collect_axes(ob_summary *s, const ob_res_table *t, const char *kept, 
         if (got != -1)
             continue;
         const char *fam = ob_sum_family(r);
-        int fi = find_name(s->families, s->nf, fam);
+        int fi = ob_sum_find_name(s->families, s->nf, fam);
         if (fi < 0)
             s->families[fi = s->nf++] = fam;
         s->fam_pairs[fi]++;
@@ -444,7 +445,7 @@ static void method_stats(const ob_summary *s, ob_sum_side *side, double *tmp)
 }
 
 /* Allocates side's arrays for s's shape. */
-static int side_alloc(const ob_summary *s, ob_sum_side *side)
+int ob_sum_side_alloc(const ob_summary *s, ob_sum_side *side)
 {
     const size_t ncell = (size_t)s->np * (size_t)s->nm * (size_t)s->nt;
     side->cell = calloc(ncell ? ncell : 1, sizeof *side->cell);
@@ -454,7 +455,7 @@ static int side_alloc(const ob_summary *s, ob_sum_side *side)
 }
 
 /* The statistics of a side whose cells are filled. */
-static int side_stats(const ob_summary *s, ob_sum_side *side)
+int ob_sum_side_stats(const ob_summary *s, ob_sum_side *side)
 {
     const size_t n = (size_t)s->np * (size_t)s->nt + 1;
     double *tmp = malloc(n * sizeof *tmp);
@@ -466,7 +467,7 @@ static int side_stats(const ob_summary *s, ob_sum_side *side)
     return 0;
 }
 
-static void side_free(ob_sum_side *side)
+void ob_sum_side_free(ob_sum_side *side)
 {
     free(side->cell);
     free(side->fam);
@@ -483,10 +484,10 @@ static int fill_cells(ob_summary *s, const ob_res_table *t, const char *kept, ob
         if (!kept[i])
             continue;
         const ob_res_row *r = &t->v[i];
-        const int p = (int)pair_lookup(pairs, r, -1);
+        const int p = (int)ob_sum_pair_lookup(pairs, r, -1);
         if (p < 0)
             return -1;
-        const int m = find_name(s->methods, s->nm, r->method), k = find_tol(s, r->tol);
+        const int m = ob_sum_find_name(s->methods, s->nm, r->method), k = ob_sum_find_tol(s, r->tol);
         s->run.cell[ob_sum_at(s, p, m, k)] = r;
         s->run.njobs++;
     }
@@ -549,8 +550,8 @@ int ob_summary_build(const ob_res_table *t, const char *name, const ob_sum_filte
     s->run.name = name;
     s->run.metric = metric;
     s->run.split = split;
-    if (rc == 0 && side_alloc(s, &s->run) == 0) {
-        rc = fill_cells(s, t, kept, &pairs) || side_stats(s, &s->run) ? -1 : 0;
+    if (rc == 0 && ob_sum_side_alloc(s, &s->run) == 0) {
+        rc = fill_cells(s, t, kept, &pairs) || ob_sum_side_stats(s, &s->run) ? -1 : 0;
         for (int m = 0; rc == 0 && m < s->nm; m++)
             s->has_cert |= s->run.meth[m].cert_yes + s->run.meth[m].cert_no > 0;
     } else {
@@ -571,10 +572,10 @@ int ob_summary_join(ob_summary *s, const ob_res_table *b, const char *name, cons
     if (pick_one(b, name, field_metric, "--metric", "metric", f->metric, &metric, err) ||
         pick_one(b, name, field_split, "--split", "split", f->split, &split, err))
         return -1;
-    side_free(&s->base);
+    ob_sum_side_free(&s->base);
     s->has_base = 0;
-    if (side_alloc(s, &s->base)) {
-        side_free(&s->base);
+    if (ob_sum_side_alloc(s, &s->base)) {
+        ob_sum_side_free(&s->base);
         return ob_fail(err, "%s: out of memory", name);
     }
     for (int p = 0; p < s->np; p++)
@@ -590,8 +591,8 @@ int ob_summary_join(ob_summary *s, const ob_res_table *b, const char *name, cons
                 s->base.cell[ob_sum_at(s, p, m, k)] = br;
                 s->base.njobs += br != NULL;
             }
-    if (side_stats(s, &s->base)) {
-        side_free(&s->base);
+    if (ob_sum_side_stats(s, &s->base)) {
+        ob_sum_side_free(&s->base);
         return ob_fail(err, "%s: out of memory", name);
     }
     s->base.name = name;
@@ -611,7 +612,8 @@ void ob_summary_free(ob_summary *s)
     free(s->pairs);
     free(s->families);
     free(s->fam_pairs);
-    side_free(&s->run);
-    side_free(&s->base);
+    ob_sum_side_free(&s->run);
+    ob_sum_side_free(&s->base);
+    ob_sum_archive_free(s);
     memset(s, 0, sizeof *s);
 }

@@ -34,6 +34,7 @@
 
 #include <stdio.h>
 
+#include "host/compare/compare.h"  /* ob_strlist */
 #include "host/io/results_csv.h"
 #include "methods/core/err.h"
 
@@ -136,6 +137,13 @@ typedef struct {
     ob_sum_side run, base;
     int has_base;
     int has_cert;                 /* some job of the run has a certificate (run --certify) */
+    /* --archive (summary_archive.c); all zero without one */
+    int has_archive;
+    int nm_run;                   /* the run's own methods: columns 0 .. nm_run-1 */
+    const char **msrc;            /* [method]: the archive's results.csv of the column; NULL: the run's */
+    char **mlabel;                /* [method]: "m (archive)", owned; NULL: the run's method */
+    char *arch_hit;               /* [pair * nt + tol]: an archive has a row of that job */
+    ob_strlist alines;            /* the "Archive:" and "Not joined:" lines, owned */
 } ob_summary;
 
 /* The index of cell (pair p, method m, tolerance k) in the side arrays. */
@@ -163,6 +171,29 @@ int ob_summary_build(const ob_res_table *t, const char *name, const ob_sum_filte
  * Errors:  returns 0; -1 with a message in err: b has no row of that metric
  *          or split, or several and no option to choose, no memory. */
 int ob_summary_join(ob_summary *s, const ob_res_table *b, const char *name, const ob_sum_filter *f, ob_err *err);
+
+/* Purpose: put the methods of an archived run a (read from `name`; its
+ *          comparability checked by the caller: host/cli/summary_archive.c)
+ *          beside the run's, on the run's jobs: a rows of the run's metric
+ *          and split and of a method the run lacks fill a new column, marked
+ *          "m (archive)", when the run has that (curve, d, tol).  The rows
+ *          that cannot join are counted into s->alines by reason (another
+ *          metric or split, a job the run did not run, a method the run ran
+ *          itself: its values are shown, a job an earlier archive gave).
+ *          Call ob_summary_archive_done after the last archive.
+ * Errors:  returns 0; -1 with a message in err (no memory, over 64 columns). */
+int ob_summary_archive(ob_summary *s, const ob_res_table *a, const char *name, ob_err *err);
+
+/* Purpose: the rows of a on some (curve, d, tol) of the run, whatever their
+ *          method, metric or split: 0 means a shares no job with the run. */
+int ob_summary_archive_shared(const ob_summary *s, const ob_res_table *a);
+
+/* Purpose: after the last archive: the run's rows no archive has a job of,
+ *          counted into s->alines.  Returns 0, -1 when out of memory. */
+int ob_summary_archive_done(ob_summary *s);
+
+/* A method column's label: "m (archive)" for an archived one, else m. */
+const char *ob_sum_label(const ob_summary *s, int m);
 
 /* Always safe (also twice, or on a zeroed summary). */
 void ob_summary_free(ob_summary *s);

@@ -175,7 +175,7 @@ static void grid_method_cols(grid *g, const ob_summary *s)
 {
     for (int m = 0; m < s->nm; m++) {
         if (!s->has_base) {
-            grid_col(g, s->methods[m], NULL, 'r');
+            grid_col(g, ob_sum_label(s, m), NULL, 'r');
             continue;
         }
         if (g->ncols + 3 > MAXCOL) {
@@ -332,7 +332,7 @@ static void grid_methods(grid *g, const ob_summary *s)
         const ob_sum_mstat *ms = &s->run.meth[m];
         const int row = grid_row(g, 0);
         int col = 0;
-        grid_set(g, row, col++, s->methods[m]);
+        grid_set(g, row, col++, ob_sum_label(s, m));
         snprintf(buf, sizeof buf, "%d", ms->jobs);
         grid_set(g, row, col++, buf);
         for (int st = 0; st < OB_SUM_NSTATUS; st++) {
@@ -385,7 +385,7 @@ static void grid_cert_tols(grid *g, const ob_summary *s)
     char buf[64];
     for (int m = 0; m < s->nm; m++) {
         const int row = grid_row(g, 0);
-        grid_set(g, row, 0, s->methods[m]);
+        grid_set(g, row, 0, ob_sum_label(s, m));
         for (int k = 0; k < s->nt; k++) {
             int yes, n;
             cert_count(s, m, k, &yes, &n);
@@ -416,7 +416,7 @@ static void grid_cert_misses(grid *g, const ob_summary *s)
         grid_set(g, row, 0, s->pairs[p].curve);
         snprintf(buf, sizeof buf, "%.6g", s->pairs[p].d);
         grid_set(g, row, 1, buf);
-        grid_set(g, row, 2, s->methods[m]);
+        grid_set(g, row, 2, ob_sum_label(s, m));
         grid_set(g, row, 3, s->tol_text[k]);
         snprintf(buf, sizeof buf, "%ld", r->ctrl_points);
         grid_set(g, row, 4, buf);
@@ -511,13 +511,15 @@ static void put_scope(FILE *f, const ob_summary *s, const char *prefix)
 {
     fprintf(f, "%s%d jobs on %d (curve, d) pair%s of %d curve%s in %d famil%s; methods ", prefix, s->run.njobs, s->np,
             s->np == 1 ? "" : "s", s->ncurves, s->ncurves == 1 ? "" : "s", s->nf, s->nf == 1 ? "y" : "ies");
-    put_names(f, s->methods, s->nm);
+    put_names(f, s->methods, s->has_archive ? s->nm_run : s->nm);  /* the run's: the archive's have their lines */
     fputs("; tolerances ", f);
     put_names(f, s->tol_text, s->nt);
     fprintf(f, "; metric %s, split %s.\n", s->run.metric, s->run.split);
     if (s->has_base)
         fprintf(f, "%sBaseline: %s (metric %s, split %s): %d of %d jobs joined.\n", prefix, s->base.name, s->base.metric,
                 s->base.split, s->base.njobs, s->run.njobs);
+    for (int i = 0; i < s->alines.n; i++)
+        fprintf(f, "%s%s\n", prefix, s->alines.v[i]);
 }
 
 /* ---------------------------------------------------------------- Markdown */
@@ -690,6 +692,7 @@ typedef struct {
     char f[CV_NCOL][64];
     const char *text[CV_NCOL]; /* long text fields (names), else f[] */
     int ncol;                  /* the fields written: CV_NCOL with certificates, else up to ratio */
+    const ob_summary *s;       /* with an archive, csv_put adds the method's source */
 } csv_line;
 
 static int csv_ncol(const ob_summary *s) { return s->has_cert ? CV_NCOL : CV_RATIO + 1; }
@@ -697,6 +700,7 @@ static int csv_ncol(const ob_summary *s) { return s->has_cert ? CV_NCOL : CV_RAT
 static void csv_clear(csv_line *l, const ob_summary *s)
 {
     l->ncol = csv_ncol(s);
+    l->s = s;
     for (int c = 0; c < CV_NCOL; c++) {
         l->f[c][0] = '\0';
         l->text[c] = NULL;
@@ -739,12 +743,25 @@ static void csv_field(FILE *f, const char *t)
     fputc('"', f);
 }
 
+/* The source column (--archive): the results.csv a method's rows come from. */
+static const char *csv_source(const ob_summary *s, const char *method)
+{
+    for (int m = method ? 0 : s->nm; m < s->nm; m++)
+        if (strcmp(s->methods[m], method) == 0)
+            return s->msrc[m] ? s->msrc[m] : s->run.name;
+    return "";
+}
+
 static void csv_put(FILE *f, const csv_line *l)
 {
     for (int c = 0; c < l->ncol; c++) {
         if (c)
             fputc(',', f);
         csv_field(f, l->text[c] ? l->text[c] : l->f[c]);
+    }
+    if (l->s->has_archive) {
+        fputc(',', f);
+        csv_field(f, csv_source(l->s, l->text[CV_METHOD]));
     }
     fputc('\n', f);
 }
@@ -911,7 +928,8 @@ static void csv_methods(FILE *f, const ob_summary *s)
 
 int ob_summary_write_csv(FILE *f, const ob_summary *s, int bits)
 {
-    fprintf(f, "%s%s\n", csv_header, s->has_cert ? ",err_upper,err_lower,certified" : "");
+    fprintf(f, "%s%s%s\n", csv_header, s->has_cert ? ",err_upper,err_lower,certified" : "",
+            s->has_archive ? ",source" : "");
     if (bits & OB_SUM_CURVES)
         csv_curves(f, s);
     if (bits & OB_SUM_FAMILIES)
