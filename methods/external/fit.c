@@ -223,7 +223,7 @@ static ob_fit_status ended(const ob_ext *e, ob_ext_proc *w, int by_budget, char 
     return OB_FIT_FAIL;
 }
 
-/* A fresh worker, its hello line read within `wall` seconds and the same
+/* A fresh worker, its hello line read within `wall` seconds (30 at least) and the same
  * as at registration (another program behind the command would give
  * other rows under the run's fingerprint): 0, or -1 with why. */
 static int start(const ob_ext *e, ob_ext_proc *w, double mem, double wall, char *why, size_t wl)
@@ -232,13 +232,15 @@ static int start(const ob_ext *e, ob_ext_proc *w, double mem, double wall, char 
         return -1;
     char *line, how[80];
     size_t len;
-    const int rc = ob_ext_proc_line(w, ob_sisl_now() + wall, &line, &len);
+    /* a start may take long on a loaded machine (an interpreter's imports):
+     * at least the 30 s that registration allows */
+    const int rc = ob_ext_proc_line(w, ob_sisl_now() + (wall > 30.0 ? wall : 30.0), &line, &len);
     if (rc == 0 && ob_ext_fnv(OB_EXT_FNV0, line, len) == e->hello)
         return 0;
     int ws = -1;
     ob_ext_proc_stop(w, SIGKILL, &ws);
     ob_sisl_describe_wait(ws, how, sizeof how);
-    snprintf(why, wl, "%s", rc == 0 ? "a restarted worker's hello differs" : rc == 1 ? "no hello in wall_timeout" : how);
+    snprintf(why, wl, "%s", rc == 0 ? "a restarted worker's hello differs" : rc == 1 ? "no hello line in 30 s" : how);
     return -1;
 }
 

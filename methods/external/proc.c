@@ -37,6 +37,7 @@ static void exec_worker(const char *command, int fd, int maxfd, double mem_mb, c
         const struct rlimit rl = {b, b};
         setrlimit(RLIMIT_AS, &rl);
     }
+    setpgid(0, 0);  /* its own group: a kill reaches what the command started */
     char *const argv[] = {"sh", "-c", (char *)command, NULL};
     execve("/bin/sh", argv, envp);
     _exit(127);
@@ -52,9 +53,21 @@ int ob_ext_proc_start(ob_ext_proc *w, const char *command, double mem_mb, char *
     }
     const long om = sysconf(_SC_OPEN_MAX);
     const int maxfd = om > 0 && om < 65536 ? (int)om : 1024;
+    /* a simple command replaces the shell (dash forks for `sh -c CMD`), so
+     * that the worker is the process whose CPU time is read and capped */
+    char *cmd = malloc(strlen(command) + 6);
+    if (!cmd) {
+        close(sv[0]), close(sv[1]);
+        ob_method_msg(msg, msglen, "cannot start the worker: out of memory");
+        return -1;
+    }
+    sprintf(cmd, "%s%s", strpbrk(command, ";&|<>()`$\n") ? "" : "exec ", command);
     const pid_t pid = fork();
     if (pid == 0)
-        exec_worker(command, sv[1], maxfd, mem_mb, environ);
+        exec_worker(cmd, sv[1], maxfd, mem_mb, environ);
+    free(cmd);
+    if (pid > 0)
+        setpgid(pid, pid);  /* as the child does: no kill of the group can come before it */
     const int e = errno;
     close(sv[1]);
     if (pid < 0) {
@@ -134,7 +147,7 @@ void ob_ext_proc_stop(ob_ext_proc *w, int sig, int *wstatus)
         close(w->fd);
     if (w->pid > 0 && w->owner == getpid()) {
         if (sig)
-            kill(w->pid, sig);
+            kill(-w->pid, sig), kill(w->pid, sig);  /* the group (exec_worker): a shell's children too */
         while (waitpid(w->pid, &ws, 0) < 0 && errno == EINTR)
             ;
     }
