@@ -88,32 +88,32 @@ static int put_u(parser *p, char *o, size_t *k)
 /* A string after its opening quote, decoded into a fresh buffer. */
 static char *string(parser *p)
 {
+    static const char esc[] = "\"\"\\\\//b\bf\fn\nr\rt\t";  /* pairs: the escape, its byte */
     char *o = malloc((size_t)(p->end - p->s) + 1);
     size_t k = 0;
-    while (o && p->s < p->end && *p->s != '"') {
+    int bad = !o;
+    while (!bad && p->s < p->end && *p->s != '"') {
         const unsigned char c = (unsigned char)*p->s++;
-        if (c < 0x20)
-            break;
-        if (c != '\\') {
+        if (c < 0x20) {
+            bad = 1;
+        } else if (c != '\\') {
             o[k++] = (char)c;
-            continue;
-        }
-        if (p->s >= p->end)
-            break;
-        const char e = *p->s++;
-        const char *map = strchr("\"\"\\\\//b\bf\fn\nr\rt\t", e);
-        if (e == 'u') {
-            if (put_u(p, o, &k) != 0)
-                break;
-        } else if (map && (map - "\"\"\\\\//b\bf\fn\nr\rt\t") % 2 == 0) {
-            o[k++] = map[1];
+        } else if (p->s >= p->end) {
+            bad = 1;
         } else {
-            break;
+            const char e = *p->s++;
+            const char *map = e ? strchr(esc, e) : NULL;
+            if (e == 'u')
+                bad = put_u(p, o, &k) != 0;
+            else if (map && (map - esc) % 2 == 0)
+                o[k++] = map[1];
+            else
+                bad = 1;
         }
     }
-    if (!o || p->s >= p->end || *p->s != '"') {
-        free(o);
+    if (bad || p->s >= p->end || *p->s != '"') {
         fail(p, o ? "a malformed string" : "out of memory");
+        free(o);
         return NULL;
     }
     p->s++;
