@@ -51,7 +51,7 @@ def leg_directions(P):
     return u
 
 
-def fit(piece, d, tol):
+def fit(piece, d, tol, **params):
     P, n = piece.points, piece.degree
     u = leg_directions(P)
     nrm = [(-a[1], a[0]) for a in u]

@@ -59,10 +59,13 @@ static int param_of(const obj_node *v, ob_param *p, int i, char *msg, size_t msg
 {
     const obj_node *nm = obj_get(v, "name"), *def = obj_get(v, "default"), *lo = obj_get(v, "min"),
                    *hi = obj_get(v, "max"), *in = obj_get(v, "integer"), *doc = obj_get(v, "doc");
-    if (!nm || nm->type != OBJ_STR || !nm->str[0] || strchr(nm->str, '.') || strchr(nm->str, '=') || !def ||
+    static const char word[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_";
+    /* a name of letters, digits and '_': --param NAME.X=V splits at '.' and '=', and the
+     * request writes it into JSON unescaped */
+    if (!nm || nm->type != OBJ_STR || !nm->str[0] || nm->str[strspn(nm->str, word)] || strlen(nm->str) > 40 || !def ||
         def->type != OBJ_NUM || !lo || lo->type != OBJ_NUM || !hi || hi->type != OBJ_NUM || lo->num > def->num ||
         def->num > hi->num || (in && in->type != OBJ_BOOL)) {
-        ob_method_msg(msg, msglen, "\"params\"[%d] needs a \"name\" (no '.' or '=') and numbers \"min\" <= "
+        ob_method_msg(msg, msglen, "\"params\"[%d] needs a \"name\" (letters, digits, '_') and numbers \"min\" <= "
                       "\"default\" <= \"max\" (\"integer\": true/false, \"doc\": a string)", i);
         return -1;
     }

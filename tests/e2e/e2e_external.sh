@@ -74,6 +74,7 @@ bad_case baddeg fail "^bad sent .*: \"degree\" is not 3; restarted"
 bad_case badweight fail "^bad sent .*: \"weights\" is not 4 numbers > 0; restarted"
 bad_case error fail "^no offset for d = -1 here at t in"
 bad_case skip skip "^d = -1 does not apply at t in"
+bad_case params fail '^params {"scale": 2} at t in' --param bad.scale=2
 # the job's --job-timeout budget caps the worker's CPU time: a timeout row
 B="$B --job-timeout 1"
 bad_case spin timeout "^job timeout (the worker of external method bad reached"

@@ -2,7 +2,7 @@
 """external_bad.py MODE - an external method (docs/external-methods.md) that
 is examples/external/tiller.py except for d = -1, where it misbehaves in one
 way, MODE (tests/e2e/e2e_external.sh): crash, hang, spin, mem, garbage,
-nan, inf, wrongid, huge, baddeg, badweight, error, skip."""
+nan, inf, wrongid, huge, baddeg, badweight, error, params, skip."""
 import importlib.util
 import json
 import os
@@ -47,6 +47,8 @@ def bad(req):
         return json.dumps({"id": i, "pieces": [{"degree": n, "points": pts, "weights": [-1.0] * (n + 1)}]})
     if MODE == "error":
         return json.dumps({"id": i, "error": "no offset for d = -1 here"})
+    if MODE == "params":
+        return json.dumps({"id": i, "error": "params %s" % json.dumps(req["params"], sort_keys=True)})
     if MODE == "skip":
         return json.dumps({"id": i, "error": "d = -1 does not apply", "status": "skip"})
     raise SystemExit("external_bad.py: unknown mode " + MODE)
@@ -54,11 +56,12 @@ def bad(req):
 
 def main():
     print(json.dumps({"protocol": 1, "citation": "a broken worker (" + MODE + ")", "degree": "same",
-                      "continuity": "G0", "caps": ["poly_out", "rational_in"]}), flush=True)
+                      "continuity": "G0", "caps": ["poly_out", "rational_in"],
+                      "params": [{"name": "scale", "default": 1, "min": 0, "max": 10, "doc": "unused"}]}), flush=True)
     for line in sys.stdin:
         req = json.loads(line)
         out = bad(req) if req["d"] == -1 else None
-        print(out if out is not None else worker._answer(tiller.fit, req), flush=True)
+        print(out if out is not None else worker._answer(lambda b, d, tol, scale: tiller.fit(b, d, tol), req), flush=True)
 
 
 main()
