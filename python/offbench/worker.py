@@ -9,7 +9,14 @@ method in Python is one function (docs/external-methods.md):
 
     serve(fit, citation="...", degree="same", continuity="G0")
 
-and `./offbench run --external NAME="python3 FILE.py"`.  Standard library
+and `./offbench run --external NAME="python3 FILE.py"`.  Or, without the
+call to serve, run this file on yours:
+
+    ./offbench run --external NAME="python3 python/offbench/worker.py FILE.py[:FUNCTION]"
+
+which calls FUNCTION (default fit) with FILE's METHOD dict as serve's
+keyword arguments (citation, degree, continuity, caps, params, ...).
+Standard library
 only: a worker needs neither numpy nor liboffbench.  Numbers go out as
 Python's repr (the shortest text that reads back to the same double), so
 nothing is lost on the way.
@@ -88,3 +95,29 @@ def serve(fit, citation, degree, continuity, caps=(), params=(), uses_tol=False,
     for line in stdin:
         stdout.write(_answer(fit, json.loads(line)) + "\n")
         stdout.flush()
+
+
+def _load(spec):
+    """FILE.py[:FUNCTION] -> (function, the file's METHOD dict)."""
+    import importlib.util
+    import os
+    path, _, name = spec.partition(":")
+    mspec = importlib.util.spec_from_file_location("offbench_user_method", os.path.abspath(path))
+    if mspec is None:
+        raise SystemExit("offbench/worker.py: %s is not a Python file" % path)
+    mod = importlib.util.module_from_spec(mspec)
+    mspec.loader.exec_module(mod)
+    fn = getattr(mod, name or "fit", None)
+    if not callable(fn):
+        raise SystemExit("offbench/worker.py: %s has no function %s" % (path, name or "fit"))
+    return fn, dict(getattr(mod, "METHOD", {}))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        raise SystemExit("usage: python3 offbench/worker.py FILE.py[:FUNCTION]  (docs/external-methods.md)")
+    _fn, _meta = _load(sys.argv[1])
+    _meta.setdefault("citation", "(no citation given)")
+    _meta.setdefault("degree", "same")
+    _meta.setdefault("continuity", "none")
+    serve(_fn, **_meta)

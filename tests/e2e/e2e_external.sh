@@ -79,6 +79,20 @@ bad_case params fail '^params {"scale": 2} at t in' --param bad.scale=2
 B="$B --job-timeout 1"
 bad_case spin timeout "^job timeout (the worker of external method bad reached"
 
+# a plain Python function, no protocol code: offbench/worker.py FILE:FUNCTION
+cat >"$T/mine.py" <<'PY'
+METHOD = {"citation": "a polygon moved up by d", "degree": "same", "continuity": "G0", "caps": ["poly_out"]}
+
+
+def shift(piece, d, tol):
+    return [[(x, y + d) for x, y in piece.points]]
+PY
+"$OB" --external "mine=python3 $ROOT/python/offbench/worker.py $T/mine.py:shift" list methods >"$T/mine.list" 2>&1
+check 'grep -q "^mine .*G0 .*a polygon moved up by d" "$T/mine.list"' "worker.py FILE:FUNCTION lists the METHOD dict: $(grep mine "$T/mine.list")"
+"$OB" run --external "mine=python3 $ROOT/python/offbench/worker.py $T/mine.py:shift" --methods mine --curve liu2002_ex1 --tols 1e-2 --backend cpu --out "$T/mine" >/dev/null 2>"$T/mine.err"
+check '[ $? -eq 0 ] && [ "$(rcols "$T/mine/results.csv" method status | sort -u)" = "mine:limit" ]' \
+    "worker.py FILE:FUNCTION runs (a poor method: limit rows): $(rcols "$T/mine/results.csv" method status message) $(tail -n 2 "$T/mine.err")"
+
 # a command that does not start, a malformed option
 "$OB" run --external "nope=$T/no-such-program" --out "$T/n" >/dev/null 2>"$T/n.err"
 check '[ $? -eq 2 ] && grep -q "^offbench: --external nope=.*no-such-program: no hello line from .* (exit status 127)" "$T/n.err"' \
