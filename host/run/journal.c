@@ -245,6 +245,8 @@ static void key_label(const char *key, size_t klen, char *out, size_t len)
         }
     if (klen > 8 && memcmp(key, "version.", 8) == 0)
         snprintf(out, len, "the build (method %.*s's version)", (int)(klen - 8), key + 8);
+    else if (klen > 9 && memcmp(key, "external.", 9) == 0)
+        snprintf(out, len, "--external %.*s (the program: its command or hello line)", (int)(klen - 9), key + 9);
     else
         snprintf(out, len, "--param %.*s", (int)klen, key);
 }

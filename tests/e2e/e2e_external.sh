@@ -39,7 +39,7 @@ out=$(python3 "$ROOT/scripts/same_rows.py" "$T/p1/results.csv" "$T/p2/results.cs
 check '[ $? -eq 0 ]' "--threads 1 and 2 give the same rows: $out"
 check 'grep -q "external.tiller_py=[0-9a-f]\{16\}" "$T/p1/results.fingerprint"' "the fingerprint names the external method's hash"
 "$OB" run --external "tiller_py=$BAD crash" --resume "$T/p1" >/dev/null 2>"$T/r1.err"
-check '[ $? -ne 0 ] && grep -q "external.tiller_py differs" "$T/r1.err"' "--resume refuses another program under the name: $(cat "$T/r1.err")"
+check '[ $? -ne 0 ] && grep -q -- "--external tiller_py (the program: its command or hello line) differs" "$T/r1.err"' "--resume refuses another program under the name: $(cat "$T/r1.err")"
 "$OB" run --external "tiller_py=$PORT" --resume "$T/p1" >/dev/null 2>"$T/r2.err"
 check '[ $? -eq 0 ] && grep -q "0 to run" "$T/r2.err"' "--resume with the same program: $(cat "$T/r2.err")"
 
