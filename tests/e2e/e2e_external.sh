@@ -6,7 +6,8 @@
 #   its command and the supervisor's parameters;
 # - the Python port examples/external/tiller.py gives the built-in
 #   tiller's rows exactly (every column but the timings), with 1 and 2
-#   threads;
+#   threads, every engine and the OpenCL backend where there is a device;
+# - a resume with another program under the name is refused;
 # - a worker that crashes, hangs, spins, runs out of memory, prints
 #   garbage, a NaN, an infinity, another id, too many pieces, a wrong
 #   degree or weight: a `fail` row naming the method and quoting what it
@@ -26,7 +27,8 @@ check '[ $? -eq 0 ] && grep -q "^tiller_py .* n .*G0 .*Tiller & Hanson 1984, IEE
     "list methods shows the external method, its degree, continuity, citation and command: $(grep tiller_py "$T/list" | head -n 2) $(cat "$T/list.err")"
 
 # the port's rows are the built-in's (method renamed for the comparison)
-R="--curve liu2002_ex1,liu2002_ex2,atlas_circle,atlas_folium,zhao2017_quintic,ph_cubic --backend cpu"
+C="--curve liu2002_ex1,liu2002_ex2,atlas_circle,atlas_folium,zhao2017_quintic,ph_cubic"
+R="$C --backend cpu"
 for th in 1 2; do
     "$OB" run $R --external "tiller_py=$PORT" --methods tiller,tiller_py --threads $th --out "$T/p$th" >/dev/null 2>"$T/p$th.err"
     check '[ $? -eq 0 ]' "run with the port, --threads $th: $(tail -n 2 "$T/p$th.err")"
@@ -37,6 +39,19 @@ for th in 1 2; do
 done
 out=$(python3 "$ROOT/scripts/same_rows.py" "$T/p1/results.csv" "$T/p2/results.csv")
 check '[ $? -eq 0 ]' "--threads 1 and 2 give the same rows: $out"
+# every engine, and the OpenCL backend where there is a device: the same rows
+for e in group level; do
+    "$OB" run $R --external "tiller_py=$PORT" --methods tiller,tiller_py --engine $e --out "$T/g$e" >/dev/null 2>&1
+    out=$(python3 "$ROOT/scripts/same_rows.py" "$T/p2/results.csv" "$T/g$e/results.csv")
+    check '[ $? -eq 0 ]' "--engine $e gives the same rows: $out"
+done
+if "$OB" run $C --external "tiller_py=$PORT" --methods tiller,tiller_py --backend opencl --engine device --out "$T/cl" >/dev/null 2>"$T/cl.err"; then
+    out=$(python3 "$ROOT/scripts/same_rows.py" "$T/p2/results.csv" "$T/cl/results.csv")
+    check '[ $? -eq 0 ]' "--backend opencl --engine device gives the same rows: $out"
+else
+    echo "no OpenCL device: $(tail -n 1 "$T/cl.err")"
+    skipped=$((skipped + 1))
+fi
 check 'grep -q "external.tiller_py=[0-9a-f]\{16\}" "$T/p1/results.fingerprint"' "the fingerprint names the external method's hash"
 "$OB" run --external "tiller_py=$BAD crash" --resume "$T/p1" >/dev/null 2>"$T/r1.err"
 check '[ $? -ne 0 ] && grep -q -- "--external tiller_py (the program: its command or hello line) differs" "$T/r1.err"' "--resume refuses another program under the name: $(cat "$T/r1.err")"
