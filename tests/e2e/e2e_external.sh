@@ -16,7 +16,9 @@
 #   message; the job's --job-timeout budget caps the worker's CPU time;
 # - a command that does not start: exit 2, the option named;
 # - the run's fingerprint holds the external command's hash.
-# No timing assertion: every cap here is far from what the test waits.
+# No timing assertion: every cap here is far from what the test waits
+# (a spinning worker gets a wall-clock cap of 600 s: only its CPU cap may
+# end it, however loaded the machine; a hanging one 5 s, answers take ms).
 . "$(dirname "$0")/lib_e2e.sh"
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 PORT="python3 $ROOT/examples/external/tiller.py"
@@ -76,8 +78,8 @@ bad_case() {  # MODE STATUS PATTERN [OPTIONS...]: the d=-1 row has STATUS, PATTE
         "$mode: exit $rc (want 0), statuses '$st' (want 1:ok -1:$want 0.2:ok), message '$msg' (want /$pat/) $(tail -n 2 "$T/$mode.err")"
 }
 bad_case crash fail "^bad died (exit status 1) after sending ''; restarted"
-bad_case hang fail "^bad hung (no answer in bad.wall_timeout 1 s), sent ''" --param bad.wall_timeout=1
-bad_case spin fail "^bad died (killed by signal 24" --param bad.cpu_timeout=1
+bad_case hang fail "^bad hung (no answer in bad.wall_timeout 5 s), sent ''" --param bad.wall_timeout=5
+bad_case spin fail "^bad died (killed by signal 24" --param bad.cpu_timeout=1 --param bad.wall_timeout=600
 bad_case mem fail "^bad died (exit status 1)" --param bad.mem_mb=300
 check 'grep -q MemoryError "$T/mem.err"' "the memory cap: python's MemoryError on stderr: $(tail -n 3 "$T/mem.err")"
 bad_case garbage fail "^bad sent 'hello, this is not JSON': not a JSON value at byte 0; restarted"
@@ -92,7 +94,7 @@ bad_case skip skip "^d = -1 does not apply at t in"
 bad_case params fail '^params {"scale": 2} at t in' --param bad.scale=2
 # the job's --job-timeout budget caps the worker's CPU time: a timeout row
 B="$B --job-timeout 1"
-bad_case spin timeout "^job timeout (the worker of external method bad reached"
+bad_case spin timeout "^job timeout (the worker of external method bad reached" --param bad.wall_timeout=600
 
 # a plain Python function, no protocol code: offbench/worker.py FILE:FUNCTION
 cat >"$T/mine.py" <<'PY'
