@@ -8,6 +8,7 @@
 #include "host/backend/clrt.h"
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
+#include "host/cli/external_opt.h"
 #include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
@@ -45,6 +46,7 @@ static const char usage[] =
     "  ./offbench list   methods|curves|columns|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
     "  ./offbench --version   (the build: version, git commit, flags, OpenCL loader)\n"
+    "Every command takes --external NAME=COMMAND: a method in any language (docs/external-methods.md).\n"
     "Every command takes --help (its options, exit 0) and --name=value.  See README.md.\n";
 
 static int dispatch(int argc, char **argv)
@@ -118,6 +120,11 @@ int main(int argc, char **argv)
     if (ob_mpi_init(&argc, &argv) != 0) {
         ob_error("MPI could not start");
         return 1;
+    }
+    /* external methods first: every command then sees them as methods */
+    if (ob_external_args(&argc, argv) != 0) {
+        ob_mpi_finalize();
+        return 2;
     }
     const int rc = ob_stop_status(dispatch(argc, argv));
     ob_mpi_finalize();

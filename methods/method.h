@@ -176,7 +176,14 @@ double ob_fit_budget_ns(void);
 
 /* ---- registry (methods/registry.c) ------------------------------------ */
 
-extern const ob_method *const ob_methods[];   /* NULL-terminated */
+/* NULL-terminated: the built-ins of registry.def, then those registered at
+ * run time.  Written only by ob_method_register, before any run starts. */
+extern const ob_method *ob_methods[];
+/* The most methods registered at run time (external methods). */
+enum { OB_MAX_EXTERNAL = 8 };
+/* Purpose: append m to ob_methods (m must outlive every use).  Returns 0,
+ *          or -1 when the name is taken or the table is full. */
+int ob_method_register(const ob_method *m);
 const ob_method *ob_method_find(const char *name);
 int ob_method_count(void);
 /* Position of m in ob_methods, or -1. */

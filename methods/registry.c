@@ -14,12 +14,32 @@
 #include "methods/registry.def"
 #undef OB_METHOD
 
-const ob_method *const ob_methods[] = {
+/* Room after the built-ins for the methods registered at run time
+ * (ob_method_register: external methods, docs/external-methods.md); they
+ * come after every built-in, so no built-in's position (the order of jobs
+ * and rows) moves. */
+enum {
+    OB_NBUILTIN = 0
+#define OB_METHOD(id) + 1
+#include "methods/registry.def"
+#undef OB_METHOD
+};
+const ob_method *ob_methods[OB_NBUILTIN + OB_MAX_EXTERNAL + 1] = {
 #define OB_METHOD(id) &ob_method_##id,
 #include "methods/registry.def"
 #undef OB_METHOD
     NULL,
 };
+
+int ob_method_register(const ob_method *m)
+{
+    const int n = ob_method_count();
+    if (n >= OB_NBUILTIN + OB_MAX_EXTERNAL || ob_method_find(m->name))
+        return -1;
+    ob_methods[n] = m;
+    ob_methods[n + 1] = NULL;
+    return 0;
+}
 
 const ob_method *ob_method_find(const char *name)
 {

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "methods/external/ext.h"
 #include "methods/method.h"
 #include "methods/metrics/metric.h"
 #include "host/backend/clrt.h"
@@ -46,6 +47,9 @@ static int list_methods(void)
         printf("%-12s %-10s %-8s %-9s %-8s %s%s\n", m->name, out, deg,
                (m->caps & OB_CAP_RATIONAL_IN) ? "input ok" : "no",
                m->continuity, m->citation, (m->caps & OB_CAP_CONVEX) ? " [convex pieces]" : "");
+        const ob_ext *e = ob_ext_of(m);
+        if (e)  /* registered with --external: say which program answers */
+            printf("%-12s   external method: %s\n", "", e->command);
         for (int k = 0; k < m->nparams; k++) {
             char num[40], lo[40], hi[40];
             const ob_param *p = &m->params[k];

@@ -20,6 +20,7 @@
 #include "host/io/outfile.h"
 #include "host/io/output.h"
 #include "host/io/slurp.h"
+#include "methods/external/ext.h"
 
 static const char MAGIC[] = "#offbench-journal 1 ";
 
@@ -46,6 +47,13 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where, uint64_t data_
      * with and without certificates have other plan hashes (merge refuses) */
     if (o->certify)  /* the two modes give other columns: other plans */
         n += (size_t)snprintf(s + n, cap - n, " certify=%s", o->certify == OB_CERTIFY_TIGHT ? "tight" : "verdict");
+    /* an external method: its command and hello line (register.c), so that a
+     * resume or merge refuses another program under the same name */
+    for (int i = 0; i < o->nmethods; i++) {
+        const ob_ext *e = ob_ext_of(o->methods[i]);
+        if (e && n + 128 < cap)
+            n += (size_t)snprintf(s + n, cap - n, " external.%s=%s", e->name, e->fp);
+    }
     for (int m = 0; ob_methods[m]; m++)
         for (int k = 0; k < ob_methods[m]->nparams; k++) {
             char num[40];
@@ -186,6 +194,11 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, cons
         char key[96];
         snprintf(key, sizeof key, "version.%s", o->methods[i]->name);
         fp_num(&b, key, o->methods[i]->version);
+        const ob_ext *e = ob_ext_of(o->methods[i]);
+        if (e) {  /* the program behind an external method (as in ob_run_fingerprint) */
+            snprintf(key, sizeof key, "external.%s", e->name);
+            fp_tok(&b, key, e->fp);
+        }
     }
     for (int m = 0; ob_methods[m]; m++)
         for (int k = 0; k < ob_methods[m]->nparams; k++) {
@@ -232,6 +245,8 @@ static void key_label(const char *key, size_t klen, char *out, size_t len)
         }
     if (klen > 8 && memcmp(key, "version.", 8) == 0)
         snprintf(out, len, "the build (method %.*s's version)", (int)(klen - 8), key + 8);
+    else if (klen > 9 && memcmp(key, "external.", 9) == 0)
+        snprintf(out, len, "--external %.*s (the program: its command or hello line)", (int)(klen - 9), key + 9);
     else
         snprintf(out, len, "--param %.*s", (int)klen, key);
 }
