@@ -75,3 +75,11 @@ def test_a_builtins_name_is_refused():
             offbench.run("liu2002_ex1", methods=[clash], tols=1e-3, d=1.0)
     finally:
         del broken.offbench_method
+
+
+def test_the_walk_through_shows_its_file():
+    """docs/python.md "Your method in Python" shows the file its doctest
+    imports (test_docs.py runs that doctest): the text may not drift."""
+    text = (ROOT / "docs" / "python.md").read_text(encoding="utf-8")
+    code = (ROOT / "examples" / "python" / "naive_offset.py").read_text(encoding="utf-8")
+    assert "```python\n" + code + "```" in text
