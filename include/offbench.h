@@ -32,7 +32,8 @@
  *   - Thread safety: a curve set is read-only once made: any number of
  *     threads may read it, fit on it and measure against it at once.
  *     Results are owned by their caller (one thread at a time, or read-only
- *     sharing).  The method list is constant.  obx_fit and obx_measure may
+ *     sharing).  The method list is constant but for
+ *     obx_external_register, which appends to it.  obx_fit and obx_measure may
  *     run on several threads at once; each obx_fit uses OpenMP threads of
  *     its own (OMP_NUM_THREADS).
  *   - The method `sisl` runs its fits in a server process (SINTEF's SISL
@@ -55,9 +56,9 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 5
+#define OBX_VERSION_MINOR 6
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.5.0"
+#define OBX_VERSION "0.6.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
@@ -157,7 +158,7 @@ const char *obx_curves_family(const obx_curveset *set, int i);
 
 /* ---- methods ------------------------------------------------------------ */
 
-/* The number of registered methods (constant). */
+/* The number of registered methods (grows only by obx_external_register). */
 int obx_method_count(void);
 
 /* Method i's name (as `offbench list methods`), or NULL when out of range. */
@@ -174,6 +175,27 @@ typedef struct {
     int integer;        /* 1: whole numbers only */
     const char *doc;    /* what the values mean */
 } obx_param_info;
+
+/* Purpose: register an external method, exactly as `offbench run
+ *          --external NAME=COMMAND` does (docs/external-methods.md): start
+ *          COMMAND once (`/bin/sh -c`), read its hello line (the method's
+ *          metadata), and list the method last, as NAME.  Its fits run in
+ *          worker processes started from COMMAND, one per fitting thread.
+ * Inputs:  name: 1 to 63 characters, no ',', '.', '=' or space; command:
+ *          a shell command line.
+ * Outputs: none; the same name with the same command again does nothing
+ *          and returns 0 (a caller may register before every run).
+ * Errors:  OBX_E_INVALID: NULL name or command, a name taken by a built-in
+ *          method ("the name 'NAME' is a built-in method") or by another
+ *          command ("... registered with another command `COMMAND`"), a bad
+ *          name, more external methods than the registry holds (8), or a
+ *          COMMAND that does not start or whose hello line is wrong (the
+ *          reason, as --external says it, e.g. "no hello line from
+ *          `COMMAND` (...)"); every message begins "obx_external_register
+ *          NAME: ".
+ * Threads: not while a fit or batch runs (the method list is read without
+ *          a lock): between runs.  Since 0.6. */
+int obx_external_register(const char *name, const char *command, obx_error *err);
 
 /* The number of parameters of method i (0 when out of range). */
 int obx_method_param_count(int i);

@@ -69,6 +69,9 @@ def fit(piece, d, tol, **params):
     return [{"points": Q, "weights": piece.weights}]
 
 
+# serve's metadata; also what `offbench/worker.py tiller.py:fit` reads
+METHOD = dict(citation="Tiller & Hanson 1984, IEEE CG&A 4(9):36-46 (Python port)", degree="same",
+              continuity="G0", caps=["poly_out", "rational_in", "same_param", "interp_ends"])
+
 if __name__ == "__main__":
-    serve(fit, citation="Tiller & Hanson 1984, IEEE CG&A 4(9):36-46 (Python port)", degree="same",
-          continuity="G0", caps=["poly_out", "rational_in", "same_param", "interp_ends"])
+    serve(fit, **METHOD)

@@ -30,6 +30,7 @@
 #include "host/run/clock.h"
 #include "methods/core/offdeg.h"
 #include "methods/driver/driver.h"
+#include "methods/external/ext.h"
 #include "methods/metrics/cert_job.h"
 
 struct obx_curveset {
@@ -328,6 +329,25 @@ const char *obx_method_citation(int i)
 {
     const ob_method *m = method_at(i);
     return m ? m->citation : NULL;
+}
+
+int obx_external_register(const char *name, const char *command, obx_error *err)
+{
+    if (!name || !command)
+        return fail(err, OBX_E_INVALID, "obx_external_register: NULL %s", name ? "command" : "name");
+    const ob_method *m = ob_method_find(name);
+    const ob_ext *e = m ? ob_ext_of(m) : NULL;
+    if (e && strcmp(e->command, command) == 0)
+        return 0;  /* the same method again: Python registers its function before every run */
+    if (m && !e)
+        return fail(err, OBX_E_INVALID, "obx_external_register %s: the name '%s' is a built-in method", name, name);
+    if (e)
+        return fail(err, OBX_E_INVALID, "obx_external_register %s: registered with another command `%s`", name,
+                    e->command);
+    char msg[400];
+    if (ob_ext_register(name, command, msg, sizeof msg) != 0)
+        return fail(err, OBX_E_INVALID, "obx_external_register %s: %s", name, msg);
+    return 0;
 }
 
 int obx_method_param_count(int i)

@@ -6,7 +6,8 @@ library liboffbench.so.0, with numpy arrays in and out.
     r = offbench.fit("liu2002_ex1", "tiller", d=1, tol=1e-3)
     r.max_err, r.ctrl_points, r.status, r.pieces[0].points
 
-Functions: curves, curve_from_segments, methods, fit, measure, run,
+Functions: curves, curve_from_segments, methods, fit, measure, run (a
+Python function may be a method: the method decorator names it),
 read_results, read_meta; library_version and library_path say which
 library is loaded.  Errors are offbench.Error (subclasses per kind).  See
 docs/python.md in the offbench repository.
@@ -19,6 +20,7 @@ from .errors import (CurveIndexError, Error, FileError, InvalidError, InvalidTyp
                      OutOfMemoryError, ParseError, StoppedError, UnknownCurveError, UnsupportedError)
 from .fit import fit, measure, run
 from .methods import Method, Param, methods
+from .pymethod import method
 from .result import Result
 from .results import read_meta, read_results
 
@@ -39,5 +41,5 @@ __all__ = [
     "Bezier", "Curve", "CurveIndexError", "CurveSet", "Error", "FileError", "InvalidError", "InvalidTypeError",
     "LibraryNotFound", "MeasureError", "Method", "OutOfMemoryError", "Param", "ParseError", "Result", "StoppedError",
     "UnknownCurveError", "UnsupportedError", "curve_from_segments", "curves", "fit", "library_path",
-    "library_version", "measure", "methods", "read_meta", "read_results", "run",
+    "library_version", "measure", "method", "methods", "read_meta", "read_results", "run",
 ]

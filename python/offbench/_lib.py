@@ -36,7 +36,8 @@ from .errors import LibraryNotFound, from_code
 # (0.2 added obx_curves_segment*, obx_curves_family; 0.3 obx_measure's
 # hausdorff-whole, which an older library refuses as an unknown metric: not
 # needed to load; 0.5 obx_run_batch_stop, without which run cannot be
-# stopped by its callback or Ctrl-C: OPTIONAL).
+# stopped by its callback or Ctrl-C: OPTIONAL; 0.6 obx_external_register,
+# without which a Python function cannot be a method: OPTIONAL).
 NEED_MAJOR = 0
 NEED_MINOR = 2
 SONAME = "liboffbench.so.0"
@@ -135,6 +136,7 @@ OPTIONAL = {
     "obx_result_certify": ((0, 4), _int, [ResultP, _str, _dp, _dp, _ep]),
     "obx_run_batch_stop": ((0, 5), _int, [CurveSetP, ctypes.POINTER(JobSpec), _size, PROGRESS_STOP, ctypes.c_void_p,
                                           ctypes.POINTER(ResultP), _ep]),
+    "obx_external_register": ((0, 6), _int, [_str, _str, _ep]),
 }
 
 _lock = threading.Lock()

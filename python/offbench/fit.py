@@ -85,7 +85,8 @@ def fit(curve: Union[Curve, str], method: Union[str, Method], d: float, tol: flo
     offset d and tolerance tol, measured under metric, split by split.
 
     curve: a Curve, or the id of a built-in curve; method: a name of
-    methods(); params: the method's parameters, {name: value} or
+    methods(), or a Python function fit(piece, d, tol, **params) returning
+    Bézier pieces (docs/python.md "Your method in Python"); params: the method's parameters, {name: value} or
     "NAME=VALUE,..." (None: the paper's defaults); certify: True (or
     "verdict") to certify the job's error as `offbench run --certify` does
     (docs/certified.md), "tight" as `--certify=tight`: the Result's
@@ -98,7 +99,7 @@ def fit(curve: Union[Curve, str], method: Union[str, Method], d: float, tol: flo
     for a bad argument (the message names it)."""
     mode = _certify_mode(certify)
     c = resolve(curve)
-    m = _cstr(method, "method", allow_none=False)
+    m = _cstr(_method_name(method), "method", allow_none=False)
     dd, tt = number(d, "d"), number(tol, "tol")
     L = _lib.lib()
     out = _lib.ResultP()
@@ -165,13 +166,22 @@ def _curve_list(curves):
     return [resolve(c, "curves") for c in _as_list(curves, "curves")]
 
 
+def _method_name(m):
+    """A method as its name: a Python function is registered first
+    (offbench/pymethod.py); a str or Method is left to _cstr."""
+    if callable(m) and not isinstance(m, (str, tuple)):  # a Method is a NamedTuple
+        from .pymethod import register
+        return register(m)
+    return m
+
+
 def _method_list(methods):
     out = []
     for m in _as_list(methods, "methods"):
         if isinstance(m, str):
             out.extend(x for x in m.split(",") if x)  # "tiller,cobb" as run's --methods
         else:
-            out.append(m)
+            out.append(_method_name(m))
     if out == ["all"]:
         from .methods import methods as all_methods
         return [x.name for x in all_methods()]
@@ -225,7 +235,8 @@ def run(curves: Union[CurveSet, Curve, str, Sequence[Union[Curve, str]]],
     d x method x tol, in that nesting.
 
     curves: a CurveSet, a Curve, a built-in id, or a list of those; methods:
-    a name, "a,b" or a list ("all": every method); tols: a number or a list;
+    a name, "a,b" or a list ("all": every method), a Python function among
+    them (as fit's method; its worker processes use every core); tols: a number or a list;
     d: a number or a list (None: each curve's own offsets); params:
     {"METHOD.NAME": value}; progress: None or progress(done, total), called
     by this thread as jobs finish, done rising strictly (it may call fit or

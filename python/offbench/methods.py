@@ -53,3 +53,9 @@ def methods() -> List[Method]:
     if _methods is None:
         _methods = _read()
     return list(_methods)
+
+
+def forget() -> None:
+    """Read the list again at the next methods(): it grew (offbench/pymethod.py)."""
+    global _methods
+    _methods = None

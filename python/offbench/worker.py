@@ -98,26 +98,42 @@ def serve(fit, citation, degree, continuity, caps=(), params=(), uses_tol=False,
 
 
 def _load(spec):
-    """FILE.py[:FUNCTION] -> (function, the file's METHOD dict)."""
+    """FILE.py[:FUNCTION] -> (function, the file's METHOD dict).  FUNCTION
+    may be a qualified name (Class.method); FILE's directory goes first on
+    sys.path, as `python3 FILE.py` would put it, for FILE's own imports."""
     import importlib.util
     import os
     path, _, name = spec.partition(":")
-    mspec = importlib.util.spec_from_file_location("offbench_user_method", os.path.abspath(path))
+    path = os.path.abspath(path)
+    mspec = importlib.util.spec_from_file_location("offbench_user_method", path)
     if mspec is None:
         raise SystemExit("offbench/worker.py: %s is not a Python file" % path)
+    sys.path.insert(0, os.path.dirname(path))
     mod = importlib.util.module_from_spec(mspec)
     mspec.loader.exec_module(mod)
-    fn = getattr(mod, name or "fit", None)
+    fn = mod
+    for part in (name or "fit").split("."):
+        fn = getattr(fn, part, None)
     if not callable(fn):
         raise SystemExit("offbench/worker.py: %s has no function %s" % (path, name or "fit"))
     return fn, dict(getattr(mod, "METHOD", {}))
 
 
+def _main(argv):
+    """worker.py FILE.py[:FUNCTION] [--meta JSON]: serve FUNCTION with
+    FILE's METHOD dict, updated by JSON (offbench.method()'s metadata, which
+    offbench/pymethod.py passes: the decorator ran in the caller's process)."""
+    if len(argv) not in (2, 4) or (len(argv) == 4 and argv[2] != "--meta"):
+        raise SystemExit("usage: python3 offbench/worker.py FILE.py[:FUNCTION] [--meta JSON]  "
+                         "(docs/external-methods.md)")
+    fn, meta = _load(argv[1])
+    if len(argv) == 4:
+        meta.update(json.loads(argv[3]))
+    meta.setdefault("citation", "(no citation given)")
+    meta.setdefault("degree", "same")
+    meta.setdefault("continuity", "none")
+    serve(fn, **meta)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        raise SystemExit("usage: python3 offbench/worker.py FILE.py[:FUNCTION]  (docs/external-methods.md)")
-    _fn, _meta = _load(sys.argv[1])
-    _meta.setdefault("citation", "(no citation given)")
-    _meta.setdefault("degree", "same")
-    _meta.setdefault("continuity", "none")
-    serve(_fn, **_meta)
+    _main(sys.argv)

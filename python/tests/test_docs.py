@@ -6,7 +6,8 @@ import doctest
 from conftest import ROOT
 
 
-def test_docs_examples():
+def test_docs_examples(monkeypatch):
+    monkeypatch.chdir(ROOT)  # the page's paths (examples/python) are the repository's, as a reader's shell has them
     res = doctest.testfile(str(ROOT / "docs" / "python.md"), module_relative=False, report=True,
                            optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert res.attempted > 20 and res.failed == 0, res

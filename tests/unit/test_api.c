@@ -375,6 +375,46 @@ static void test_certify(const obx_curveset *s, int c)
           e.message);
 }
 
+/* obx_external_register: an external method in the library's registry, as
+ * --external registers it; the same name and command again is fine (Python
+ * registers its function on every run), a clash is an error naming it. */
+static void test_external(void)
+{
+    const char *port = "python3 examples/external/tiller.py";
+    obx_error e = {0, ""};
+    const int before = obx_method_count();
+    CHECK(obx_external_register("tiller_api", port, &e) == 0, "register: %s", e.message);
+    CHECK(obx_method_count() == before + 1 && strcmp(obx_method_name(before), "tiller_api") == 0,
+          "the method is listed last");
+    CHECK(obx_external_register("tiller_api", port, &e) == 0 && obx_method_count() == before + 1,
+          "the same again: ok, not listed twice: %s", e.message);
+    CHECK(obx_external_register("tiller_api", "python3 tests/e2e/external_bad.py error", &e) == -1 &&
+              e.code == OBX_E_INVALID && strstr(e.message, "tiller_api") && strstr(e.message, "another command"),
+          "the name with another command: %s", e.message);
+    CHECK(obx_external_register("tiller", port, &e) == -1 && e.code == OBX_E_INVALID &&
+              strstr(e.message, "'tiller'") && strstr(e.message, "built-in"),
+          "a built-in's name: %s", e.message);
+    CHECK(obx_external_register("nohello", "true", &e) == -1 && e.code == OBX_E_INVALID &&
+              strstr(e.message, "nohello") && strstr(e.message, "no hello line"),
+          "a command that says nothing: %s", e.message);
+    CHECK(obx_external_register(NULL, port, &e) == -1 && e.code == OBX_E_INVALID, "NULL name");
+    obx_curveset *s = NULL;
+    obx_result *a = NULL, *b = NULL;
+    if (obx_curves_load_file(PUBLISHED, &s, &e) != 0)
+        return;
+    const int c = obx_curves_find(s, "liu2002_ex1");
+    CHECK(obx_fit(s, c, "tiller", 1.0, 1e-3, NULL, NULL, NULL, &a, &e) == 0 &&
+              obx_fit(s, c, "tiller_api", 1.0, 1e-3, NULL, NULL, NULL, &b, &e) == 0,
+          "fit: %s", e.message);
+    if (a && b)
+        CHECK(obx_result_max_err(a) == obx_result_max_err(b) && obx_result_ctrl_points(a) == obx_result_ctrl_points(b) &&
+                  strcmp(obx_result_status(a), obx_result_status(b)) == 0,
+              "the port's job is the built-in's: %s vs %s", obx_result_row(a), obx_result_row(b));
+    obx_result_free(a);
+    obx_result_free(b);
+    obx_curves_free(s);
+}
+
 int main(void)
 {
     test_version();
@@ -395,5 +435,6 @@ int main(void)
     obx_curves_free(s);
     test_arrays();
     test_methods();
+    test_external();
     return check_done();
 }
