@@ -1,6 +1,7 @@
 #!/bin/sh
 # e2e_signals.sh - SIGTERM and SIGINT end every long phase at its next step
-# (a hang guard, not a timing: well under the 60 s kill), with exit status 128 + the signal, a line on stderr saying
+# (a hang guard, not a timing: well under the 60 s kill), with exit status
+# 128 + the signal, a line on stderr saying
 # what was left behind, and no *.tmp file (issue 36, class 7).
 . "$(dirname "$0")/lib_e2e.sh"
 
