@@ -6,12 +6,15 @@
 
 #include <Geom2d_Curve.hxx>
 #include <Geom2d_OffsetCurve.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace occt_common {
 
@@ -42,6 +45,25 @@ inline Handle(Geom2d_OffsetCurve) offset_of(const Handle(Geom2d_Curve) &basis, d
 {
     return new Geom2d_OffsetCurve(basis, -d);
 }
+
+// Control points (Euclidean) and weights as OCCT's 1-based arrays, for a
+// Geom2d_BezierCurve or Geom2d_BSplineCurve of the same curve, parameter
+// for parameter; rational when a weight is not 1 (OCCT's polynomial
+// constructors then, so a polynomial curve stays one).
+struct Poles {
+    TColgp_Array1OfPnt2d points;
+    TColStd_Array1OfReal weights;
+    bool rational = false;
+    Poles(const std::vector<double> &x, const std::vector<double> &y, const std::vector<double> &w)
+        : points(1, (int)x.size()), weights(1, (int)x.size())
+    {
+        for (size_t i = 0; i < x.size(); i++) {
+            points((int)i + 1) = gp_Pnt2d(x[i], y[i]);
+            weights((int)i + 1) = w[i];
+            rational |= w[i] != 1.0;
+        }
+    }
+};
 
 }  // namespace occt_common
 

@@ -147,15 +147,7 @@ std::vector<double> domain_knots(const Curve &c)
 // knots, so the same curve, parameter for parameter.
 Handle(Geom2d_BSplineCurve) base_curve(const Curve &c)
 {
-    const int n = (int)c.x.size();
-    TColgp_Array1OfPnt2d poles(1, n);
-    TColStd_Array1OfReal w(1, n);
-    bool rational = false;
-    for (int i = 0; i < n; i++) {
-        poles(i + 1) = gp_Pnt2d(c.x[i], c.y[i]);
-        w(i + 1) = c.w[i];
-        rational |= c.w[i] != 1.0;
-    }
+    const occt_common::Poles p(c.x, c.y, c.w);
     std::vector<double> k;
     std::vector<int> m;
     if (!c.bspline) {
@@ -173,9 +165,9 @@ Handle(Geom2d_BSplineCurve) base_curve(const Curve &c)
     TColStd_Array1OfInteger M(1, (int)k.size());
     for (size_t i = 0; i < k.size(); i++)
         K((int)i + 1) = k[i], M((int)i + 1) = m[i];
-    if (rational)
-        return new Geom2d_BSplineCurve(poles, w, K, M, c.deg);
-    return new Geom2d_BSplineCurve(poles, K, M, c.deg);
+    if (p.rational)
+        return new Geom2d_BSplineCurve(p.points, p.weights, K, M, c.deg);
+    return new Geom2d_BSplineCurve(p.points, K, M, c.deg);
 }
 
 // Where the base is only C0 (an interior knot of multiplicity >= degree:

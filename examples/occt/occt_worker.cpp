@@ -256,18 +256,10 @@ struct Opts {
 // weights over [0, 1], so the same curve, parameter for parameter.
 Handle(Geom2d_BezierCurve) base_of(const Request &r)
 {
-    const int n = r.degree + 1;
-    TColgp_Array1OfPnt2d poles(1, n);
-    TColStd_Array1OfReal w(1, n);
-    bool rational = false;
-    for (int i = 0; i < n; i++) {
-        poles(i + 1) = gp_Pnt2d(r.x[i], r.y[i]);
-        w(i + 1) = r.w[i];
-        rational |= r.w[i] != 1.0;
-    }
-    if (rational)
-        return new Geom2d_BezierCurve(poles, w);
-    return new Geom2d_BezierCurve(poles);
+    const occt_common::Poles p(r.x, r.y, r.w);
+    if (p.rational)
+        return new Geom2d_BezierCurve(p.points, p.weights);
+    return new Geom2d_BezierCurve(p.points);
 }
 
 // One answered piece: its poles (weights only when rational: OCCT's

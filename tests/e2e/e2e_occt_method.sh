@@ -19,18 +19,9 @@ cd "$(dirname "$0")/../.." || exit 2
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory "$@"; }
 
 # --- the make target without OpenCASCADE's headers ---
-mk OCCT_INC="$T/no-occt" OCCT_WORKER="$T/nobin" occt-worker >"$T/nohdr.out" 2>&1
-check '[ $? -ne 0 ] && grep -q "libocct-foundation-dev libocct-modeling-data-dev g++" "$T/nohdr.out" && [ ! -e "$T/nobin" ]' \
-    "make occt-worker without the headers: fails naming the Debian packages: $(cat "$T/nohdr.out" | tr '\n' ' ')"
+occt_nohdr occt-worker OCCT_WORKER
 
-NOCCT=13
-if [ -n "${E2E_OCCT_ABSENT:-}" ] || [ ! -f /usr/include/opencascade/Geom2d_OffsetCurve.hxx ] || ! command -v g++ >/dev/null 2>&1; then
-    echo "e2e_occt_method: no OpenCASCADE headers (/usr/include/opencascade) or no g++, so no occt method" \
-         "(apt-get install libocct-foundation-dev libocct-modeling-data-dev g++, or OB_DEPS_OCCT=1 make deps): $NOCCT checks skipped"
-    skipped=$((skipped + NOCCT))
-    e2e_done
-    exit $?
-fi
+occt_require e2e_occt_method 13
 
 W=$T/occt_worker
 mk OCCT_WORKER="$W" occt-worker >"$T/build.out" 2>&1
