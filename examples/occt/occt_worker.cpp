@@ -203,9 +203,9 @@ double number_of(const Value &v, const char *what)
     return v.num;
 }
 
-// The request's shape, exactly (docs/external-methods.md "Request"):
-// its id first, so that an error about the rest can name it.
-Request request_of(const Value &v, Request &r)
+// The request's shape, exactly (docs/external-methods.md "Request"), into
+// r: its id first, so that an error about the rest can name it.
+void request_of(const Value &v, Request &r)
 {
     if (v.kind != Value::OBJ)
         throw BadRequest{"not a JSON object"};
@@ -242,7 +242,6 @@ Request request_of(const Value &v, Request &r)
     const Value &pa = field(v, "params");
     if (pa.kind != Value::OBJ || !pa.obj.empty())   // the hello declares no parameters
         throw BadRequest{"\"params\" is not {} (this method has no parameters)"};
-    return r;
 }
 
 // ------------------------------------------------------------ the fit
