@@ -28,6 +28,8 @@
 #   make occt-example  OpenCASCADE's offsets beside offbench's methods, one table
 #                   (docs/cad-example.md; Debian's libocct-foundation-dev,
 #                   libocct-modeling-data-dev and g++), into out/occt
+#   make occt-worker   build/occt_worker: OpenCASCADE as an external method
+#                   (--external occt=build/occt_worker; the same packages)
 
 CC      ?= gcc
 SAN     ?= 0
@@ -72,7 +74,7 @@ KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
 .PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline nightly-wall report \
-        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-example FORCE
+        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-worker occt-example FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -279,15 +281,27 @@ bench: $(BIN)
 OCCT_INC  ?= /usr/include/opencascade
 OCCT_BIN  ?= $(BUILD)/occt_offset
 OCCT_LIBS := -lTKernel -lTKMath -lTKG2d -lTKGeomBase
-occt-bin: $(OCCT_BIN)
-
-$(OCCT_BIN): examples/occt/occt_offset.cpp
+# The external-method worker (examples/occt/occt_worker.cpp,
+# docs/external-methods.md): the same headers and libraries; OCCT_WORKER
+# moves it (tests/e2e/e2e_occt_method.sh builds into its scratch)
+OCCT_WORKER ?= $(BUILD)/occt_worker
+# both programs: stop naming the packages when the headers are missing
+define occt_cxx
 	@test -f '$(OCCT_INC)/Geom2d_OffsetCurve.hxx' || { \
-	    echo "occt_offset: OpenCASCADE's headers are not in $(OCCT_INC):" \
+	    echo "$(notdir $@): OpenCASCADE's headers are not in $(OCCT_INC):" \
 	         "install Debian's libocct-foundation-dev and libocct-modeling-data-dev" \
 	         "(sudo apt-get install libocct-foundation-dev libocct-modeling-data-dev g++)" >&2; exit 1; }
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 -O2 -Wall -Wextra -isystem '$(OCCT_INC)' -o $@ $< $(OCCT_LIBS)
+endef
+occt-bin: $(OCCT_BIN)
+occt-worker: $(OCCT_WORKER)
+
+$(OCCT_BIN): examples/occt/occt_offset.cpp examples/occt/occt_common.hpp
+	$(occt_cxx)
+
+$(OCCT_WORKER): examples/occt/occt_worker.cpp examples/occt/occt_common.hpp
+	$(occt_cxx)
 
 occt-example: $(OCCT_BIN) $(BIN)
 	/usr/bin/python3 scripts/occt_table.py --offbench ./$(BIN) --occt $(OCCT_BIN) --out out/occt

@@ -458,6 +458,30 @@ def gen_occt_table(ctx):
     return m.markdown(rows)
 
 
+OCCT_METHOD = "results/docs/occt_method/results.csv"
+OCCT_METHOD_METHODS = ["occt", "tiller", "ahn", "cubic-opt", "sisl"]
+
+
+def gen_occt_method_table(ctx):
+    """OCCT as an external method (examples/occt/occt_worker.cpp) beside
+    offbench's methods, the published jobs under the default (rigorous)
+    protocol, from the committed run: OCCT is not needed to render it"""
+    import occt_table as m
+    rows = ctx.rows(OCCT_METHOD)
+    jobs = sorted({(r["curve"], r["d"], r["tol"]) for r in rows},
+                  key=lambda j: (j[0], -float(j[1]), -float(j[2])))
+    at = {(r["curve"], r["d"], r["tol"], r["method"]): r for r in rows}
+    out = ["| curve, d | tol | " + " | ".join(f"`{x}`" for x in OCCT_METHOD_METHODS) + " |",
+           "|---|---" + "|---" * len(OCCT_METHOD_METHODS) + "|"]
+    for c, d, t in jobs:
+        missing = [x for x in OCCT_METHOD_METHODS if (c, d, t, x) not in at]
+        if missing:
+            raise DocsError(f"{OCCT_METHOD}: no row of {', '.join(missing)} for {c} d = {d} tol = {t}")
+        cells = [m.cell(at[(c, d, t, x)]) for x in OCCT_METHOD_METHODS]
+        out.append(f"| {c}, {m.d_text(d)} | {m.tol_text(t)} | " + " | ".join(cells) + " |")
+    return "\n".join(out)
+
+
 def gen_occt_summary(ctx):
     m, rows, occt = occt_results(ctx)
     return m.summary(rows, occt)
@@ -581,6 +605,7 @@ GENERATORS = {
     "measure-example": gen_measure_example,
     "occt-table": gen_occt_table,
     "occt-summary": gen_occt_summary,
+    "occt-method-table": gen_occt_method_table,
     "nightly-power": gen_nightly_power,
     "cert-cost": gen_cert_cost,
 }

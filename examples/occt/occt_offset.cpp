@@ -10,15 +10,14 @@
 // says of it (IsDone, HasResult, MaxError) goes to a CSV, one row per job,
 // a failure as a row with its message, never a crash.
 //
-// Sign: offbench's normal is the left one, N = (-y', x') / |C'|, d > 0 on
-// the left of the direction of travel; OCCT's offset direction is T ^ Z =
-// (y', -x'), the right one (Geom2d_OffsetCurve.hxx: the tangent rotated
-// "in the anti-trigonometric sense").  So OCCT is given -d.  The e2e test
-// (tests/e2e/e2e_occt.sh) checks it on a straight line, whose offset OCCT
-// reproduces to rounding: the wrong sign would be off by 2|d|.
+// Sign: OCCT is given -d (occt_common.hpp: its normal is the right one,
+// offbench's the left).  The same construction, one Bezier piece at a time,
+// is an external method: occt_worker.cpp.
 //
 // Build: make occt-example (Debian: libocct-foundation-dev,
 // libocct-modeling-data-dev, g++).  Usage: occt_offset --help.
+#include "occt_common.hpp"
+
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_OffsetCurve.hxx>
 #include <Geom2dConvert_ApproxCurve.hxx>
@@ -40,21 +39,7 @@
 
 namespace {
 
-// A number as offbench writes it (host/io/numfmt.c): the shortest %g text
-// that reads back as the same double, without an exponent from 1e-4 to
-// 1e16 ("0.0001", "1e-05"), so that the stems, d and tol are results.csv's.
-std::string num(double x)
-{
-    char buf[64];
-    const bool plain = std::fabs(x) >= 1e-4 && std::fabs(x) < 1e16;
-    for (int p = 1; p <= 17; p++) {
-        std::snprintf(buf, sizeof buf, "%.*g", p, x);
-        if (std::strtod(buf, nullptr) == x && !(plain && std::strchr(buf, 'e')))
-            return buf;
-    }
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return buf;
-}
+using occt_common::num;
 
 // ------------------------------------------------------------ .curves input
 
@@ -162,15 +147,7 @@ std::vector<double> domain_knots(const Curve &c)
 // knots, so the same curve, parameter for parameter.
 Handle(Geom2d_BSplineCurve) base_curve(const Curve &c)
 {
-    const int n = (int)c.x.size();
-    TColgp_Array1OfPnt2d poles(1, n);
-    TColStd_Array1OfReal w(1, n);
-    bool rational = false;
-    for (int i = 0; i < n; i++) {
-        poles(i + 1) = gp_Pnt2d(c.x[i], c.y[i]);
-        w(i + 1) = c.w[i];
-        rational |= c.w[i] != 1.0;
-    }
+    const occt_common::Poles p(c.x, c.y, c.w);
     std::vector<double> k;
     std::vector<int> m;
     if (!c.bspline) {
@@ -188,9 +165,9 @@ Handle(Geom2d_BSplineCurve) base_curve(const Curve &c)
     TColStd_Array1OfInteger M(1, (int)k.size());
     for (size_t i = 0; i < k.size(); i++)
         K((int)i + 1) = k[i], M((int)i + 1) = m[i];
-    if (rational)
-        return new Geom2d_BSplineCurve(poles, w, K, M, c.deg);
-    return new Geom2d_BSplineCurve(poles, K, M, c.deg);
+    if (p.rational)
+        return new Geom2d_BSplineCurve(p.points, p.weights, K, M, c.deg);
+    return new Geom2d_BSplineCurve(p.points, K, M, c.deg);
 }
 
 // Where the base is only C0 (an interior knot of multiplicity >= degree:
@@ -302,7 +279,7 @@ Row job(const Opts &o, const Curve &c, double d, double tol)
         for (size_t i = 0; i + 1 < brk.size(); i++) {
             Handle(Geom2d_BSplineCurve) run = Handle(Geom2d_BSplineCurve)::DownCast(base->Copy());
             run->Segment(brk[i], brk[i + 1]);
-            Handle(Geom2d_OffsetCurve) off = new Geom2d_OffsetCurve(run, -d);   // OCCT's normal: the right one
+            Handle(Geom2d_OffsetCurve) off = occt_common::offset_of(run, d);
             Geom2dConvert_ApproxCurve ap(off, tol, o.order, o.max_segments, o.max_degree);
             r.runs++;
             r.done &= ap.IsDone() != 0;

@@ -102,19 +102,10 @@ check '[ $? -eq 0 ] && [ "$(awkc "FNR>1 {print \$c[\"claim_holds\"]}" "$T/w/tabl
     "a claim short of the measured error by half a millionth of the tolerance still holds"
 
 # --- the make target without OpenCASCADE's headers ---
-mk OCCT_INC="$T/no-occt" OCCT_BIN="$T/nobin" occt-bin >"$T/nohdr.out" 2>&1
-check '[ $? -ne 0 ] && grep -q "libocct-foundation-dev" "$T/nohdr.out" && grep -q "libocct-modeling-data-dev" "$T/nohdr.out" && [ ! -e "$T/nobin" ]' \
-    "make occt-bin without the headers: fails naming the Debian packages: $(cat "$T/nohdr.out" | tr '\n' ' ')"
+occt_nohdr occt-bin OCCT_BIN
 
 # --- with OpenCASCADE ---
-NOCCT=21
-if [ -n "${E2E_OCCT_ABSENT:-}" ] || [ ! -f /usr/include/opencascade/Geom2d_OffsetCurve.hxx ] || ! command -v g++ >/dev/null 2>&1; then
-    echo "e2e_occt: no OpenCASCADE headers (/usr/include/opencascade) or no g++" \
-         "(apt-get install libocct-foundation-dev libocct-modeling-data-dev g++, or OB_DEPS_OCCT=1 make deps): $NOCCT checks skipped"
-    skipped=$((skipped + NOCCT))
-    e2e_done
-    exit $?
-fi
+occt_require e2e_occt 21
 X=$T/occt_offset
 mk OCCT_BIN="$X" occt-bin >"$T/build.out" 2>&1
 check '[ $? -eq 0 ] && [ -x "$X" ]' "make occt-bin builds occt_offset: $(tail -n 5 "$T/build.out" | tr '\n' ' ')"

@@ -101,3 +101,25 @@ e2e_liboffbench() {
     fi
     echo "$_b/liboffbench.so.0"
 }
+# The OpenCASCADE tests (e2e_occt.sh, e2e_occt_method.sh), run from the
+# repository root.  occt_nohdr TARGET VAR: `make TARGET` with the headers
+# moved away (VAR: the make variable of the program's path) must fail
+# naming the Debian packages and build nothing.
+occt_nohdr() {
+    env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory OCCT_INC="$T/no-occt" "$2=$T/nobin" "$1" \
+        >"$T/nohdr.out" 2>&1
+    check '[ $? -ne 0 ] && grep -q "libocct-foundation-dev libocct-modeling-data-dev g++" "$T/nohdr.out" && [ ! -e "$T/nobin" ]' \
+        "make $1 without the headers: fails naming the Debian packages: $(tr '\n' ' ' <"$T/nohdr.out")"
+}
+# occt_require SCRIPT N: when OpenCASCADE's headers or g++ are missing
+# (E2E_OCCT_ABSENT=1: as if they were), says why and the install line,
+# counts the script's N remaining checks as skipped and ends the script.
+occt_require() {
+    [ -z "${E2E_OCCT_ABSENT:-}" ] && [ -f /usr/include/opencascade/Geom2d_OffsetCurve.hxx ] &&
+        command -v g++ >/dev/null 2>&1 && return 0
+    echo "$1: no OpenCASCADE headers (/usr/include/opencascade) or no g++" \
+         "(apt-get install libocct-foundation-dev libocct-modeling-data-dev g++, or OB_DEPS_OCCT=1 make deps): $2 checks skipped"
+    skipped=$((skipped + $2))
+    e2e_done
+    exit $?
+}
