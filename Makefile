@@ -300,7 +300,7 @@ occt-worker: $(OCCT_WORKER)
 $(OCCT_BIN): examples/occt/occt_offset.cpp examples/occt/occt_common.hpp
 	$(occt_cxx)
 
-$(OCCT_WORKER): examples/occt/occt_worker.cpp examples/occt/occt_common.hpp
+$(OCCT_WORKER): examples/occt/occt_worker.cpp examples/occt/occt_common.hpp examples/workers/protocol.hpp
 	$(occt_cxx)
 
 occt-example: $(OCCT_BIN) $(BIN)
