@@ -121,7 +121,9 @@ std::string answer(const Opts &o, const std::string &line)
 {
     Request r;
     try {
-        request_of(Reader(line).whole(), r);
+        request_of(Reader(line).whole(), r, 25);   // Geom2d_BezierCurve's MaxDegree
+        if (!r.params.obj.empty())                 // the hello declares no parameters
+            throw BadRequest{"\"params\" is not {} (this method has no parameters)"};
         return fit(o, r);
     } catch (const BadRequest &e) {
         return error_json(r.id, "bad request: " + e.why);

@@ -156,6 +156,7 @@ struct Request {
     int degree = 0;
     std::vector<double> x, y, w;
     double d = 0, tol = 0;
+    Value params;          // an object; the worker checks it against its hello
 };
 
 inline const Value &field(const Value &o, const char *k)
@@ -174,8 +175,9 @@ inline double number_of(const Value &v, const char *what)
 }
 
 // The request's shape, exactly (docs/external-methods.md "Request"), into
-// r: its id first, so that an error about the rest can name it.
-inline void request_of(const Value &v, Request &r)
+// r: its id first, so that an error about the rest can name it; a degree
+// from 1 to max_degree (what the worker's library takes).
+inline void request_of(const Value &v, Request &r, int max_degree)
 {
     if (v.kind != Value::OBJ)
         throw BadRequest{"not a JSON object"};
@@ -188,8 +190,8 @@ inline void request_of(const Value &v, Request &r)
             kv.first != "d" && kv.first != "tol" && kv.first != "params")
             throw BadRequest{"unknown key \"" + kv.first + "\""};
     const double deg = number_of(field(v, "degree"), "degree");
-    if (deg != std::floor(deg) || deg < 1 || deg > 25)   // Geom2d_BezierCurve's MaxDegree
-        throw BadRequest{"\"degree\" is not a whole number from 1 to 25"};
+    if (deg != std::floor(deg) || deg < 1 || deg > max_degree)
+        throw BadRequest{"\"degree\" is not a whole number from 1 to " + std::to_string(max_degree)};
     r.degree = (int)deg;
     const Value &p = field(v, "points"), &w = field(v, "weights");
     if (p.kind != Value::ARR || (int)p.arr.size() != r.degree + 1)
@@ -209,9 +211,9 @@ inline void request_of(const Value &v, Request &r)
     r.tol = number_of(field(v, "tol"), "tol");
     if (!(r.tol > 0))
         throw BadRequest{"\"tol\" is not > 0"};
-    const Value &pa = field(v, "params");
-    if (pa.kind != Value::OBJ || !pa.obj.empty())   // the hello declares no parameters
-        throw BadRequest{"\"params\" is not {} (this method has no parameters)"};
+    r.params = field(v, "params");
+    if (r.params.kind != Value::OBJ)
+        throw BadRequest{"\"params\" is not an object"};
 }
 
 // Quotes an error message as a JSON string (OCCT's messages are ASCII;
