@@ -30,6 +30,8 @@
 #                   libocct-modeling-data-dev and g++), into out/occt
 #   make occt-worker   build/occt_worker: OpenCASCADE as an external method
 #                   (--external occt=build/occt_worker; the same packages)
+#   make lib2geom-worker  build/lib2geom_worker: lib2geom's offset as an
+#                   external method (Debian's lib2geom-dev and g++)
 
 CC      ?= gcc
 SAN     ?= 0
@@ -74,7 +76,7 @@ KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
 .PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline nightly-wall report \
-        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-worker occt-example FORCE
+        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-worker occt-example lib2geom-worker FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -302,6 +304,20 @@ $(OCCT_BIN): examples/occt/occt_offset.cpp examples/occt/occt_common.hpp
 
 $(OCCT_WORKER): examples/occt/occt_worker.cpp examples/occt/occt_common.hpp examples/workers/protocol.hpp
 	$(occt_cxx)
+
+# The graphics library's offset as an external method
+# (examples/lib2geom/lib2geom_worker.cpp, docs/cad-example.md): Debian's
+# lib2geom-dev (found by pkg-config) and g++; LIB2GEOM_WORKER moves it.
+LIB2GEOM_WORKER ?= $(BUILD)/lib2geom_worker
+lib2geom-worker: $(LIB2GEOM_WORKER)
+
+$(LIB2GEOM_WORKER): examples/lib2geom/lib2geom_worker.cpp examples/workers/protocol.hpp
+	@pkg-config --exists 2geom 2>/dev/null || { \
+	    echo "$(notdir $@): lib2geom is not installed (pkg-config finds no 2geom):" \
+	         "install Debian's lib2geom-dev (sudo apt-get install lib2geom-dev g++)" >&2; exit 1; }
+	@mkdir -p $(dir $@)
+	$(CXX) -std=c++17 -O2 -Wall -Wextra $$(pkg-config --cflags 2geom | sed 's/-I/-isystem /g') \
+	    -DLIB2GEOM_VERSION='"'"$$(pkg-config --modversion 2geom)"'"' -o $@ $< $$(pkg-config --libs 2geom)
 
 occt-example: $(OCCT_BIN) $(BIN)
 	/usr/bin/python3 scripts/occt_table.py --offbench ./$(BIN) --occt $(OCCT_BIN) --out out/occt

@@ -35,6 +35,10 @@
 #                          and g++, only with OB_DEPS_OCCT=1 (optional: never
 #                          fails the build; the OCCT checks are skipped
 #                          without them)
+#   lib2geom's offset as a method (make lib2geom-worker,
+#   tests/e2e/e2e_lib2geom_method.sh): lib2geom-dev and g++, only with
+#                          OB_DEPS_LIB2GEOM=1 (optional: the checks are
+#                          skipped without them)
 set -u
 
 missing=""
@@ -127,6 +131,18 @@ optional_occt() {
     done
 }
 optional_occt
+
+# Optional, asked for with OB_DEPS_LIB2GEOM=1 (CI asks: .ci/run): lib2geom
+# (Inkscape's geometry library) and a C++ compiler, for the graphics
+# library's offset as an external method (make lib2geom-worker,
+# tests/e2e/e2e_lib2geom_method.sh).
+optional_lib2geom() {
+    [ "${OB_DEPS_LIB2GEOM:-0}" = 1 ] || return 0
+    for p in lib2geom-dev g++; do
+        have_pkg "$p" || optional_apt "$p" "the lib2geom method (make lib2geom-worker)"
+    done
+}
+optional_lib2geom
 
 [ -z "$missing" ] && exit 0
 
