@@ -45,6 +45,7 @@ static const char usage[] =
     "  ./offbench tables [--out DIR] [--table SOURCE:TABLE,...] [--protocols LIST] [run options]\n"
     "  ./offbench list   methods|curves|columns|devices\n"
     "  ./offbench bench  [--out DIR] [--quick]\n"
+    "  ./offbench worker METHOD   (a built-in method as an external worker: docs/external-methods.md)\n"
     "  ./offbench --version   (the build: version, git commit, flags, OpenCL loader)\n"
     "Every command takes --external NAME=COMMAND: a method in any language (docs/external-methods.md).\n"
     "Every command takes --help (its options, exit 0) and --name=value.  See README.md.\n";
@@ -80,6 +81,8 @@ static int dispatch(int argc, char **argv)
         return ob_cmd_measure(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return ob_cmd_bench(argc - 1, argv + 1);
+    if (strcmp(cmd, "worker") == 0)
+        return ob_cmd_worker(argc - 1, argv + 1);
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
         const int prc = ob_cli_no_options("  (the build: version, git commit, flags, OpenCL loader)", argc - 1, argv + 1);
         if (prc != OB_CLI_OK)

@@ -15,6 +15,9 @@
 int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv);
 int ob_cmd_list(int argc, char **argv);
 int ob_cmd_bench(int argc, char **argv);
+/* `worker METHOD`: a built-in method served over the external-method
+ * protocol on stdin/stdout (cmd_worker.c). */
+int ob_cmd_worker(int argc, char **argv);
 
 /* compare BASE NEW: 0 no regression, 1 regression, 2 error, 3 not comparable. */
 int ob_cmd_compare(int argc, char **argv);

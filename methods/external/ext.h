@@ -53,6 +53,17 @@ ob_fit_status ob_ext_fit(const ob_ext *e, const ob_bez *base, const ob_fit_args 
 struct obj_node;
 int ob_ext_hello(ob_ext *e, const struct obj_node *h, char *msg, size_t msglen);
 
+/* Purpose: one piece of the protocol (an answer's piece, or a request: its
+ *          "degree", "points" and "weights" are a piece's keys) into *seg:
+ *          "degree" must be want, "points" want + 1 finite [x, y], "weights"
+ *          (optional: all 1) want + 1 numbers > 0.
+ * Returns: 0, or -1 with what is wrong in why (fit.c). */
+int ob_ext_piece(const struct obj_node *p, int want, ob_bez *seg, char *why, size_t wl);
+
+/* The protocol's name of capability bit cap (one OB_CAP_* flag), or NULL
+ * (hello.c). */
+const char *ob_ext_cap_name(unsigned cap);
+
 /* A worker's line quoted for a message: at most 40 bytes (a row's message keeps
  * 100 bytes of the fit's), control bytes
  * and bytes past ASCII as '?' (the message column stays UTF-8), "..." when cut. */

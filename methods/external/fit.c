@@ -107,8 +107,7 @@ static int numbers(const obj_node *v, int n, int positive)
     return 1;
 }
 
-/* One answered piece into *seg: 0, or -1 with what is wrong in why. */
-static int piece(const obj_node *p, int want, ob_bez *seg, char *why, size_t wl)
+int ob_ext_piece(const obj_node *p, int want, ob_bez *seg, char *why, size_t wl)
 {
     const obj_node *dg = obj_get(p, "degree"), *pts = obj_get(p, "points"), *w = obj_get(p, "weights");
     if (!dg || dg->type != OBJ_NUM || dg->num != want) {
@@ -159,7 +158,7 @@ static int pieces(const obj_node *r, int want, ob_fit *out, char *why, size_t wl
     }
     out->n = ps->n;
     for (int i = 0; i < ps->n; i++)
-        if (piece(ps->kids[i], want, &out->seg[i], why, wl) != 0)
+        if (ob_ext_piece(ps->kids[i], want, &out->seg[i], why, wl) != 0)
             return -1;
     if (cp && (cp->type != OBJ_NUM || cp->num < 0 || cp->num != floor(cp->num) || cp->num > 1e9)) {
         snprintf(why, wl, "\"ctrl_points\" is not a whole number >= 0");

@@ -32,6 +32,14 @@ static const struct {
     {"interp_ends", OB_CAP_INTERP_ENDS},   {"nonmonotone", OB_CAP_NONMONOTONE},
 };
 
+const char *ob_ext_cap_name(unsigned cap)
+{
+    for (size_t k = 0; k < sizeof cap_names / sizeof cap_names[0]; k++)
+        if (cap_names[k].cap == cap)
+            return cap_names[k].name;
+    return NULL;
+}
+
 static char *dup_str(const obj_node *v, const char *def)
 {
     return strdup(v && v->type == OBJ_STR ? v->str : def);
