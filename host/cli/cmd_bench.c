@@ -1,5 +1,5 @@
 /*
- * cmd_bench.c - `./offbench bench [--out DIR] [--quick] [--kernels] [--device NAME]`: the sampling engine
+ * cmd_bench.c - `./offbench bench [--out DIR] [--quick] [--kernels] [--device NAME] [--protocol]`: the sampling engine
  * and whole runs, every figure measured in this one run and reported as
  * ratios (OpenCL vs CPU, 1 vs N threads), never compared with numbers from
  * elsewhere.  Writes DIR/bench.csv: what,backend,threads,items,seconds,rate,unit.
@@ -76,6 +76,14 @@
  *                    each engine's wall and its records per launch (the device
  *                    engine: the device's busy time and the share of it hidden
  *                    behind fits)
+ *   protocol/...     the external-method protocol (last: it registers
+ *                    external methods; --protocol: this section alone):
+ *                    per fit call of tiller in process, through `offbench
+ *                    worker tiller` and through examples/external/tiller.py
+ *                    (median of interleaved rounds, us; fit_call_iqr their
+ *                    IQR; overhead the difference to the built-in), and
+ *                    the Python method and the built-in on --random 100:7
+ *                    with 1 and all threads (bench_protocol.c)
  */
 #include <errno.h>
 #include <math.h>
@@ -95,6 +103,7 @@
 #include "host/io/curvefile.h"
 #include "host/io/datadir.h"
 #include "host/cli/bench_engines.h"
+#include "host/cli/bench_protocol.h"
 #include "host/cli/cliopts.h"
 #include "host/diag.h"
 #include "host/run/signals.h"
@@ -412,7 +421,7 @@ static double whole_run(int threads, const ob_curveset *set, const ob_driver_opt
 
 typedef struct {
     const char *out, *device;
-    int quick, kernels;
+    int quick, kernels, protocol;
 } bench_args;
 
 static const ob_flag bench_flags[] = {
@@ -422,6 +431,8 @@ static const ob_flag bench_flags[] = {
      OB_FLAG_ONCE},
     {"device", "NAME", "the OpenCL device whose name contains NAME (default: the first with fp64)", 3,
      OB_FLAG_ONCE},
+    {"protocol", NULL, "only the external-method protocol's figures (per fit call, and a Python method's "
+     "scaling)", 4, OB_FLAG_ONCE},
 };
 
 static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
@@ -433,6 +444,10 @@ static int apply_bench_flag(void *ctx, int id, const char *opt, const char *v)
     }
     if (id == 3) {
         a->device = v;
+        return 0;
+    }
+    if (id == 4) {
+        a->protocol = 1;
         return 0;
     }
     return ob_cli_apply_dir(&a->out, id, opt, v);
@@ -870,14 +885,36 @@ static void bench_random(bench_out *b, ob_cl *cl, int N, int quick)
         bench_engines(b, cl, N, quick);
 }
 
+/* bench --protocol: that section alone, its file committed as a whole
+ * bench's is; the exit status. */
+static int bench_protocol_only(bench_out *b, ob_outfile *of, const char *out, const char *path, int N, int quick)
+{
+    ob_err err;
+    ob_bench_protocol(b->csv, N, quick);
+    if (ob_stop_signal()) {
+        ob_outfile_discard(of);
+        return ob_stop_exit("bench: nothing written to %s (a bench.csv there is an earlier run's); run it again", out);
+    }
+    if (ob_outfile_commit(of, 0, &err) != 0) {
+        ob_error("%s", err.msg);
+        return 1;
+    }
+    printf("wrote %s\n", path);
+    return 0;
+}
+
 int ob_cmd_bench(int argc, char **argv)
 {
-    bench_args a = {"out/bench", NULL, 0, 0};
-    const ob_flagset flags = {bench_flags, 4, NULL, NULL, "options", apply_bench_flag, &a};
-    const int prc = ob_cli_parse("[--out DIR] [--quick] [--kernels] [--device NAME]", &flags, 1, argc, argv, 0, NULL,
-                                 NULL);
+    bench_args a = {"out/bench", NULL, 0, 0, 0};
+    const ob_flagset flags = {bench_flags, 5, NULL, NULL, "options", apply_bench_flag, &a};
+    const int prc = ob_cli_parse("[--out DIR] [--quick] [--kernels] [--device NAME] [--protocol]", &flags, 1, argc,
+                                 argv, 0, NULL, NULL);
     if (prc != OB_CLI_OK)
         return prc == OB_CLI_HELP ? 0 : 2;
+    if (a.protocol && a.kernels) {
+        ob_error("bench: --protocol and --kernels each ask for one section only: give one");
+        return 2;
+    }
     if (ob_mkdir_p(a.out) != 0) {
         ob_error("--out: cannot create '%s': %s", a.out, strerror(errno));
         return 1;
@@ -893,6 +930,8 @@ int ob_cmd_bench(int argc, char **argv)
     bench_out b = {of.f};
     fprintf(b.csv, "what,backend,threads,items,seconds,rate,unit\n");
     const int N = omp_get_num_procs();
+    if (a.protocol)
+        return bench_protocol_only(&b, &of, a.out, path, N, a.quick);
     double peak[2], vpeak;
     bench_peaks(&b, N, peak, &vpeak);
     ob_cl *cl = ob_stop_signal() ? NULL : bench_open_cl(&b, a.device);
@@ -911,6 +950,8 @@ int ob_cmd_bench(int argc, char **argv)
         bench_whole_runs(&b, cl, N);
     if (rc == 0 && !a.kernels && !ob_stop_signal())
         bench_random(&b, cl, N, a.quick);
+    if (rc == 0 && !a.kernels && !ob_stop_signal()) /* last: it registers external methods */
+        ob_bench_protocol(b.csv, N, a.quick);
     ob_cl_close(cl);
     if (ob_stop_signal()) {  /* a section cut short has no figures: none are written */
         ob_outfile_discard(&of);

@@ -41,7 +41,8 @@ int ob_ext_proc_send(ob_ext_proc *w, const char *buf, size_t n);
  *          *wstatus (may be NULL): its wait status, -1 unknown. */
 void ob_ext_proc_stop(ob_ext_proc *w, int sig, int *wstatus);
 
-/* The worker's CPU time so far (ns, /proc/PID/stat), -1 when unknown. */
+/* The worker's CPU time so far (ns: its process CPU-time clock, else
+ * /proc/PID/stat in clock ticks), -1 when unknown. */
 double ob_ext_proc_cpu_ns(const ob_ext_proc *w);
 
 /* Purpose: let the worker run at most `seconds` more CPU time (RLIMIT_CPU,
