@@ -9,6 +9,7 @@
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
 #include "host/cli/external_opt.h"
+#include "host/cli/methods_file.h"
 #include "host/cli/suggest.h"
 #include "host/diag.h"
 #include "host/run/mpirun.h"
@@ -47,7 +48,8 @@ static const char usage[] =
     "  ./offbench bench  [--out DIR] [--quick]\n"
     "  ./offbench worker METHOD   (a built-in method as an external worker: docs/external-methods.md)\n"
     "  ./offbench --version   (the build: version, git commit, flags, OpenCL loader)\n"
-    "Every command takes --external NAME=COMMAND: a method in any language (docs/external-methods.md).\n"
+    "Every command takes --external NAME=COMMAND: a method in any language (docs/external-methods.md),\n"
+    "and --methods-file FILE: such methods named in a file (methods/cad.methods: OpenCASCADE, lib2geom).\n"
     "Every command takes --help (its options, exit 0) and --name=value.  See README.md.\n";
 
 static int dispatch(int argc, char **argv)
@@ -125,7 +127,7 @@ int main(int argc, char **argv)
         return 1;
     }
     /* external methods first: every command then sees them as methods */
-    if (ob_external_args(&argc, argv) != 0) {
+    if (ob_external_args(&argc, argv) != 0 || ob_methods_file_args(&argc, argv) != 0) {
         ob_mpi_finalize();
         return 2;
     }

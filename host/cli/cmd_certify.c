@@ -57,7 +57,7 @@ static int apply_certify_flag(void *ctx, int id, const char *opt, const char *v)
     if (id == CO_METHODS) {
         for (int k = 0; k < l->n; k++)
             if (!ob_method_find(l->v[k])) {
-                char note[96];
+                char note[1024];
                 ob_error("%s: unknown method '%s'%s", opt, l->v[k],
                          ob_suggest_method_note(l->v[k], note, sizeof note));
                 return -1;

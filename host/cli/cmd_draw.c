@@ -92,7 +92,7 @@ static int apply_draw_flag(void *ctx, int id, const char *opt, const char *val)
     switch (id) {
     case DO_METHOD:
         if (!ob_method_find(val)) {
-            char note[128];
+            char note[1024];
             ob_error("--method: unknown method '%s' (see './offbench list methods')%s", val,
                      ob_suggest_method_note(val, note, sizeof note));
             return -1;

@@ -11,6 +11,7 @@
 #include "methods/metrics/metric.h"
 #include "host/backend/clrt.h"
 #include "host/cli/commands.h"
+#include "host/cli/methods_file.h"
 #include "host/io/curvefile.h"
 #include "host/io/datadir.h"
 #include "host/cli/cliopts.h"
@@ -59,6 +60,14 @@ static int list_methods(void)
             printf("%-12s   --param %s.%s=%s (default; %s %s..%s): %s\n", "", m->name, p->name, num,
                    p->integer ? "whole numbers" : "range", lo, hi, p->doc);
         }
+    }
+    for (int k = 0; ob_methods_file_unavailable(k); k++) {  /* named by --methods-file, not there */
+        const ob_unavailable *u = ob_methods_file_unavailable(k);
+        printf("%-12s %-10s %-8s %-9s %-8s unavailable: %s (%s)\n", u->name, "-", "-", "-", "-", u->why, u->file);
+        if (u->build[0])
+            printf("%-12s   build it: %s\n", "", u->build);
+        if (u->needs[0])
+            printf("%-12s   which needs: %s\n", "", u->needs);
     }
     return 0;
 }

@@ -2,6 +2,7 @@
  * suggest.c - "did you mean".  See suggest.h.
  */
 #include "host/cli/suggest.h"
+#include "host/cli/methods_file.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -102,6 +103,8 @@ const char *ob_suggest_note(const char *word, const char *const *names, int n, c
 
 const char *ob_suggest_method_note(const char *name, char *buf, size_t len)
 {
+    if (ob_methods_file_note(name, buf, len))  /* named by a methods file, its program missing */
+        return buf;
     const char *names[SUGGEST_MAX_METHODS];
     int n = 0;
     for (int i = 0; ob_methods[i] && n < (int)(sizeof names / sizeof names[0]); i++)

@@ -89,7 +89,7 @@ static int parse_methods(const char *s, ob_run_opts *o)
     for (int i = 0; i < n && rc == 0; i++) {
         const ob_method *m = ob_method_find(names[i]);
         if (!m) {
-            char note[128];
+            char note[1024];
             ob_error("--methods: unknown method '%s' (see './offbench list methods')%s", names[i],
                      ob_suggest_method_note(names[i], note, sizeof note));
             rc = -1;
@@ -161,7 +161,7 @@ static int parse_param(const char *s, ob_run_opts *o)
     *dot = *eq = '\0';
     const ob_method *m = ob_method_find(buf);
     if (!m) {
-        char note[160];
+        char note[1024];
         ob_error("--param: unknown method '%.100s'%s", buf, ob_suggest_method_note(buf, note, sizeof note));
         goto out;
     }
