@@ -459,7 +459,7 @@ def gen_occt_table(ctx):
 
 
 OCCT_METHOD = "results/docs/occt_method/results.csv"
-OCCT_METHOD_METHODS = ["occt", "tiller", "ahn", "cubic-opt", "sisl"]
+OCCT_METHOD_METHODS = ["occt", "lib2geom", "tiller", "ahn", "cubic-opt", "sisl"]
 
 
 def gen_occt_method_table(ctx):
