@@ -108,7 +108,11 @@
 # subset, above), OFFBENCH_THREADS
 # the thread count (default: OpenMP's), NIGHTLY_BACKEND the backend (default
 # opencl: the kernel through PoCL on a machine without a GPU),
-# NIGHTLY_METHODS the methods (default all), NIGHTLY_FIT_REPS the rounds of
+# NIGHTLY_METHODS the methods (default all), NIGHTLY_METHODS_FILE a methods
+# file whose external methods the two runs add (e.g. methods/cad.methods:
+# OpenCASCADE and lib2geom where built; their rows are "new" against a
+# baseline without them, and accepting them into the committed baseline
+# makes them "missing" on machines without them), NIGHTLY_FIT_REPS the rounds of
 # --time-fits (default 10), NIGHTLY_BASE_REF the baseline commit for
 # interleaved timing (above; NIGHTLY_BASE_BIN: its build made elsewhere, no
 # build step), NIGHTLY_CURVES the published
@@ -386,7 +390,7 @@ run() {  # DIR METHODS [run options]: one run into $out/DIR, its log in $out/DIR
     stage_begin "run $name"
     mkdir -p "$(dirname "$out/$name")"
     # shellcheck disable=SC2086
-    bg "$bin" run --methods "$m" --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
+    bg "$bin" $mfile_opt run --methods "$m" --tols 1e-1,1e-2,1e-3,1e-4,1e-5 --metric hausdorff --split mid \
         $threads --backend "$backend" "$@" --out "$out/$name" 2>"$out/$name.log"
     rc=$?
     stage_end
@@ -433,9 +437,14 @@ timing_pair() {
         sh scripts/join_rounds.sh "$out/$1/new" "$out/$1/new1" "$out/$1/new2" ||
         { echo "nightly: joining the rounds of $1 failed" >&2; finish 2 "timing $1"; }
 }
+# NIGHTLY_METHODS_FILE: the external methods it names (their rows are new
+# against a baseline without them) in the two runs, not in the timing pairs
+# (a baseline build may not know --methods-file)
+mfile_opt=${NIGHTLY_METHODS_FILE:+--methods-file $NIGHTLY_METHODS_FILE}
 # shellcheck disable=SC2086
 run published "$methods" --reps 5 --time-fits --fit-reps "$fit_reps" $curves
 run random "$methods" --random "$random"
+mfile_opt=
 
 status=0
 worst() {  # keeps the most severe status: 2 > 3 > 1 > 0
