@@ -19,6 +19,8 @@
 #   make fuzz       libFuzzer on the curve-file, compare and resume readers (clang; FUZZ_SECONDS each)
 #   make deps       check for (and, as root with apt-get, install) what the build needs
 #   make check-method M=NAME  the method contract (methods/CONTRACT.md) on one method
+#                   (an external one with EXTERNAL='NAME=COMMAND' or
+#                   METHODS_FILE=methods/cad.methods)
 #   make lib        build/liboffbench.so (the C API, include/offbench.h) and
 #                   build/offbench-sisl-server (the sisl method's server for it)
 #   make man        the manual page, build/offbench.1, from the commands' --help
@@ -189,7 +191,8 @@ $(BUILD)/tests/methods/test_methods: tests/methods/contract_fixtures.h
 check-method: $(BUILD)/tests/methods/test_methods
 	@if [ -z "$(M)" ]; then \
 	    echo "usage: make check-method M=NAME (a name from ./offbench list methods, or template)" >&2; exit 2; fi
-	@$(BUILD)/tests/methods/test_methods --method '$(M)'
+	@$(BUILD)/tests/methods/test_methods $(if $(EXTERNAL),--external '$(EXTERNAL)') \
+	    $(if $(METHODS_FILE),--methods-file '$(METHODS_FILE)') --method '$(M)'
 
 # The manual page, generated from the program's own --help (scripts/manpage.sh).
 MAN := $(BUILD)/offbench.1

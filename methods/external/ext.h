@@ -11,6 +11,9 @@
 #include "methods/method.h"
 
 enum { OB_EXT_PROTOCOL = 1 };
+/* An external method's cost per job in --shard's model (method.h cost_ms):
+ * unknown until measured, so the model's default for any method, 2 ms. */
+#define OB_EXT_COST_MS 2.0
 /* The supervisor's own parameters, after the worker's: the wall-clock and
  * CPU seconds one fit may take and the worker's address space (MiB). */
 enum { OB_EXT_OWN_PARAMS = 3, OB_EXT_USER_PARAMS = OB_MAX_PARAMS - OB_EXT_OWN_PARAMS };

@@ -107,9 +107,12 @@ int ob_ext_register(const char *name, const char *command, char *msg, size_t msg
         ob_method_msg(msg, msglen, "more than %d external methods", OB_MAX_EXTERNAL);
         return -1;
     }
-    if (ob_method_find(name) || !name[0] || strlen(name) >= 64 || strpbrk(name, ",.= ")) {
-        ob_method_msg(msg, msglen, ob_method_find(name) ? "the name '%s' is taken"
-                      : "'%s' is no method name (1 to 63 characters, no ',', '.', '=' or space)", name);
+    /* the method contract's rule (methods/CONTRACT.md, `name`): the name goes
+     * unquoted into results.csv and meta.json */
+    const size_t len = strlen(name);
+    if (ob_method_find(name) || len < 1 || len > 31 || strspn(name, "abcdefghijklmnopqrstuvwxyz0123456789_-") != len) {
+        ob_method_msg(msg, msglen, ob_method_find(name) ? "the name '%.64s' is taken"
+                      : "'%.64s' is no method name (1 to 31 lower-case letters, digits, '_' and '-')", name);
         return -1;
     }
     uint64_t hash = 0;
@@ -128,6 +131,7 @@ int ob_ext_register(const char *name, const char *command, char *msg, size_t msg
     e->hello = hello;
     e->index = k;
     e->m.name = e->name;
+    e->m.cost_ms = OB_EXT_COST_MS;
     e->m.fit = fits[k];
     e->m.out_degree = degrees[k];
     table[k] = e;

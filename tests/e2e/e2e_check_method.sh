@@ -40,6 +40,17 @@ check '[ $? -ne 0 ] && grep -q "unknown method '"'"'tiler'"'"' (did you mean '"'
 cm M=
 check '[ $? -ne 0 ] && grep -q "usage: make check-method M=NAME" "$T/out"' "no name: the usage"
 
+# an external method: the contract on a program (make check-method
+# EXTERNAL='NAME=COMMAND', or METHODS_FILE=FILE), here the built-in tiller
+# served over the protocol; and a method file's method whose program is
+# missing: the contract says it is unavailable and how to get it
+cm M=tiller_w EXTERNAL="tiller_w=$OB worker tiller"
+check '[ $? -eq 0 ] && grep -q "^contract tiller_w: every rule held" "$T/out"' \
+    "check-method on an external method (offbench worker tiller): every rule held: $(tail -n 2 "$T/out" | tr '\n' ' ')"
+printf '[ghost]\ncommand = %s/no-such-worker\nbuild = make ghost\n' "$T" >"$T/g.methods"
+cm M=ghost METHODS_FILE="$T/g.methods"
+check '[ $? -ne 0 ] && grep -q "ghost.*unavailable.*make ghost" "$T/out"' "check-method on an unavailable method says how to get it: $(head -n 2 "$T/out" | tr '\n' ' ')"
+
 # registration: one line per method in registry.def, and exactly the methods defined
 defined=$(grep -ho '^const ob_method ob_method_[a-z0-9_]*' methods/*.c | grep -v 'ob_method_template$' | sed 's/.*ob_method_//' | sort)
 listed=$(sed -n 's/^OB_METHOD(\([a-z0-9_]*\))$/\1/p' methods/registry.def | sort)

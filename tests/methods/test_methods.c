@@ -29,6 +29,8 @@
 #include <string.h>
 
 #include "tests/check.h"
+#include "host/cli/external_opt.h"
+#include "host/cli/methods_file.h"
 #include "host/cli/suggest.h"
 #include "methods/core/curve.h"
 #include "methods/method.h"
@@ -61,7 +63,7 @@ typedef struct {
 static const rule_doc RULES[R_COUNT] = {
     [R_FIELDS] = {"fields", ".name, .fit and .out_degree are set",
                   "fill them in (methods/TEMPLATE.c comments every field)"},
-    [R_NAME] = {"name", "the name is 1 to 31 lower-case letters, digits and '-', and names this method alone",
+    [R_NAME] = {"name", "the name is 1 to 31 lower-case letters, digits, '_' and '-', and names this method alone",
                 "rename it: the name goes unquoted into results.csv and into --methods A,B and --param METHOD.NAME"},
     [R_VERSION] = {"version", ".version >= 1", "set .version = 1 (and add 1 whenever the output changes on purpose)"},
     [R_COST] = {"cost", "0 < .cost_ms < 1e4 (the --shard cost model)",
@@ -497,12 +499,12 @@ static void test_generic(const ob_method *m, const char *cn, const ob_bez *C, do
     check_reversal(m, cn, C, d, whole);
 }
 
-/* Whether s is 1 to 31 lower-case letters, digits and '-'. */
+/* Whether s is 1 to 31 lower-case letters, digits, '_' and '-'. */
 static int plain_name(const char *s)
 {
     size_t n = 0;
     for (; s[n]; n++)
-        if (!((s[n] >= 'a' && s[n] <= 'z') || (s[n] >= '0' && s[n] <= '9') || s[n] == '-'))
+        if (!((s[n] >= 'a' && s[n] <= 'z') || (s[n] >= '0' && s[n] <= '9') || s[n] == '-' || s[n] == '_'))
             return 0;
     return n >= 1 && n <= 31;
 }
@@ -926,7 +928,11 @@ static int unknown_method(const char *name)
     names[n++] = ob_method_template.name;
     for (int k = 0; k < NFIXTURES && n < 128; k++)
         names[n++] = fixture_methods[k].name;
-    char note[128];
+    char note[1024];
+    if (ob_methods_file_note(name, note, sizeof note)) {  /* a methods file's, its program missing */
+        fprintf(stderr, "test_methods: method '%s'%s\n", name, note);
+        return 2;
+    }
     fprintf(stderr, "test_methods: unknown method '%s'%s: one of './offbench list methods', template (methods/TEMPLATE.c)"
             " or a fixture of tests/methods/contract_fixtures.h\n", name, ob_suggest_note(name, names, n, note, sizeof note));
     return 2;
@@ -948,13 +954,17 @@ static int check_one(const char *name)
 int main(int argc, char **argv)
 {
     const char *only = NULL;
+    /* external methods first (--external NAME=COMMAND, --methods-file FILE),
+     * as every command of offbench takes them: the contract on a program */
+    if (ob_external_args(&argc, argv) != 0 || ob_methods_file_args(&argc, argv) != 0)
+        return 2;
     if (argc == 3 && strcmp(argv[1], "--method") == 0)
         only = argv[2];
     else if (argc == 2 && strncmp(argv[1], "--method=", 9) == 0)
         only = argv[1] + 9;
     else if (argc != 1) {
-        fprintf(stderr, "usage: test_methods [--method NAME]   (no option: every method, the self-test and the "
-                        "papers' properties)\n");
+        fprintf(stderr, "usage: test_methods [--external NAME=COMMAND | --methods-file FILE]... [--method NAME]   "
+                        "(no option: every method, the self-test and the papers' properties)\n");
         return 2;
     }
     make_curves();
