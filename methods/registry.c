@@ -36,8 +36,11 @@ int ob_method_register(const ob_method *m)
     const int n = ob_method_count();
     if (n >= OB_NBUILTIN + OB_MAX_EXTERNAL || ob_method_find(m->name))
         return -1;
-    ob_methods[n] = m;
+    /* the terminator first, then the entry, published with release order: a
+     * thread walking the list meanwhile (a run of the library) sees the old
+     * list or the new one, never a half-written entry */
     ob_methods[n + 1] = NULL;
+    __atomic_store_n(&ob_methods[n], m, __ATOMIC_RELEASE);
     return 0;
 }
 

@@ -335,19 +335,20 @@ int obx_external_register(const char *name, const char *command, obx_error *err)
 {
     if (!name || !command)
         return fail(err, OBX_E_INVALID, "obx_external_register: NULL %s", name ? "command" : "name");
+    char msg[400];
+    /* the same method again is 0 (Python registers its function before
+     * every run); the check and the registration are one step, under the
+     * registry's lock, so that threads registering at once cannot race */
+    if (ob_ext_register_once(name, command, msg, sizeof msg) == 0)
+        return 0;
     const ob_method *m = ob_method_find(name);
     const ob_ext *e = m ? ob_ext_of(m) : NULL;
-    if (e && strcmp(e->command, command) == 0)
-        return 0;  /* the same method again: Python registers its function before every run */
     if (m && !e)
         return fail(err, OBX_E_INVALID, "obx_external_register %s: the name '%s' is a built-in method", name, name);
     if (e)
         return fail(err, OBX_E_INVALID, "obx_external_register %s: registered with another command `%s`", name,
                     e->command);
-    char msg[400];
-    if (ob_ext_register(name, command, msg, sizeof msg) != 0)
-        return fail(err, OBX_E_INVALID, "obx_external_register %s: %s", name, msg);
-    return 0;
+    return fail(err, OBX_E_INVALID, "obx_external_register %s: %s", name, msg);
 }
 
 int obx_method_param_count(int i)

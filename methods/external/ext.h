@@ -36,6 +36,11 @@ typedef struct {
  *          in msg (the caller names the option or manifest). */
 int ob_ext_register(const char *name, const char *command, char *msg, size_t msglen);
 
+/* Purpose: as ob_ext_register, but 0 at once when NAME is already this
+ *          command's (the library's callers register a function before
+ *          every run, from any thread).  Registrations are serialized. */
+int ob_ext_register_once(const char *name, const char *command, char *msg, size_t msglen);
+
 /* FNV-1a 64 of s[0..n), continuing from h (start: OB_EXT_FNV0). */
 #define OB_EXT_FNV0 0xcbf29ce484222325ull
 unsigned long long ob_ext_fnv(unsigned long long h, const char *s, size_t n);

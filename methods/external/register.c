@@ -6,6 +6,7 @@
  */
 #include "methods/external/ext.h"
 
+#include <pthread.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -98,7 +99,31 @@ static obj_node *read_hello(const char *command, uint64_t *hash, unsigned long l
     return h;
 }
 
+/* Registrations one at a time: the library's callers (Python threads) may
+ * register at once, and two must not take one slot of the table. */
+static pthread_mutex_t register_mu = PTHREAD_MUTEX_INITIALIZER;
+
+static int register_locked(const char *name, const char *command, char *msg, size_t msglen);
+
 int ob_ext_register(const char *name, const char *command, char *msg, size_t msglen)
+{
+    pthread_mutex_lock(&register_mu);
+    const int rc = register_locked(name, command, msg, msglen);
+    pthread_mutex_unlock(&register_mu);
+    return rc;
+}
+
+int ob_ext_register_once(const char *name, const char *command, char *msg, size_t msglen)
+{
+    pthread_mutex_lock(&register_mu);
+    const ob_method *m = ob_method_find(name);
+    const ob_ext *e = m ? ob_ext_of(m) : NULL;
+    const int rc = e && strcmp(e->command, command) == 0 ? 0 : register_locked(name, command, msg, msglen);
+    pthread_mutex_unlock(&register_mu);
+    return rc;
+}
+
+static int register_locked(const char *name, const char *command, char *msg, size_t msglen)
 {
     int k = 0;
     while (k < OB_MAX_EXTERNAL && table[k])

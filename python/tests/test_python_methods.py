@@ -83,3 +83,41 @@ def test_the_walk_through_shows_its_file():
     text = (ROOT / "docs" / "python.md").read_text(encoding="utf-8")
     code = (ROOT / "examples" / "python" / "naive_offset.py").read_text(encoding="utf-8")
     assert "```python\n" + code + "```" in text
+
+
+def racer_a(piece, d, tol, **params):
+    """One of two functions that threads register at once."""
+    return tiller_port.fit(piece, d, tol, **params)
+
+
+def racer_b(piece, d, tol, **params):
+    """The other."""
+    return tiller_port.fit(piece, d, tol, **params)
+
+
+def test_threads_register_at_once():
+    """Eight threads register two functions at the same moment: each is
+    registered once, and no thread sees "the name is taken" (the check and
+    the registration were two steps, and two threads could both find the
+    name free)."""
+    import threading
+    from offbench import pymethod
+    barrier = threading.Barrier(8)
+    errors, names = [], []
+
+    def go(fn):
+        barrier.wait()
+        try:
+            names.append(pymethod.register(fn))
+        except Exception as e:  # noqa: BLE001 - the test reports any
+            errors.append(repr(e))
+
+    threads = [threading.Thread(target=go, args=(racer_a if i % 2 else racer_b,)) for i in range(8)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    assert sorted(set(names)) == ["racer_a", "racer_b"]
+    listed = [m.name for m in offbench.methods()]
+    assert listed.count("racer_a") == 1 and listed.count("racer_b") == 1, listed
