@@ -11,7 +11,17 @@
 #include "host/io/numfmt.h"
 #include "host/view/svg.h"
 
-enum { BASE_PTS = 200, OFFSET_PTS = 800, PIECE_PTS = 64, LEGEND_STEPS = 6 };
+enum { BASE_PTS = 200, OFFSET_PTS = 800, PIECE_PTS = 64, LEGEND_STEPS = 6, PICTURE_W = 800 };
+
+/* World (x, y) to the picture: k (x - x0, y0 - y), y up; k makes the
+ * drawing PICTURE_W units wide, as draw's figures (renderers draw text
+ * badly at font sizes far below 1, which the curve's own units would need). */
+typedef struct {
+    double k, x0, y0;
+} frame;
+
+static double fx(const frame *w, double x) { return w->k * (x - w->x0); }
+static double fy(const frame *w, double y) { return w->k * (w->y0 - y); }
 
 static const char CSS[] =
     "text{font-family:sans-serif;fill:#222}\n"
@@ -46,8 +56,9 @@ static void colour(double e, double lo, double hi, char out[8])
     snprintf(out, 8, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
 }
 
-/* The scale's ends: the smallest and largest finite positive errors (lo at
- * most hi / 10, so that one error, or equal ones, still have a scale). */
+/* The scale's ends: the smallest and largest finite positive errors (lo =
+ * hi / 10 when they are equal, so that one error still has a scale): the
+ * colours spread over the errors there are, the legend says how far. */
 static void scale(const ob_draw_approx *v, double *lo, double *hi)
 {
     *lo = INFINITY;
@@ -60,7 +71,7 @@ static void scale(const ob_draw_approx *v, double *lo, double *hi)
         }
     if (!(*hi > 0.0))
         *hi = 1e-15;
-    if (!(*lo <= *hi / 10.0))
+    if (!(*lo < *hi))
         *lo = *hi / 10.0;
 }
 
@@ -85,12 +96,12 @@ static ob_bbox extent(const ob_draw_approx *v)
             }
     if (b.empty)
         ob_bbox_add(&b, 0.0, 0.0);
-    ob_bbox_aspect(&b, 0.5, 0.0, 1.0);
+    ob_bbox_aspect(&b, 0.5, 0.5, 1.0);
     return b;
 }
 
 /* One curve as a polyline of n + 1 points, y flipped (offset: its d-offset). */
-static int curve_line(FILE *f, const char *cls, const ob_bez *b, int offset, double d, int n)
+static int curve_line(FILE *f, const frame *w, const char *cls, const ob_bez *b, int offset, double d, int n)
 {
     double(*xy)[2] = malloc((size_t)(n + 1) * sizeof *xy);
     if (!xy)
@@ -100,7 +111,8 @@ static int curve_line(FILE *f, const char *cls, const ob_bez *b, int offset, dou
             ob_bez_offset_point(b, (double)k / n, d, xy[k]);
         else
             ob_bez_point(b, (double)k / n, xy[k]);
-        xy[k][1] = -xy[k][1];
+        xy[k][0] = fx(w, xy[k][0]);
+        xy[k][1] = fy(w, xy[k][1]);
     }
     ob_svg_polyline(f, cls, (const double(*)[2])xy, n + 1);
     free(xy);
@@ -108,7 +120,7 @@ static int curve_line(FILE *f, const char *cls, const ob_bez *b, int offset, dou
 }
 
 /* One file piece (all its parts) as a <path>, in its error's colour. */
-static void piece_path(FILE *f, int file, const ob_approx *a, const ob_pp_row *r, double lo, double hi)
+static void piece_path(FILE *f, const frame *w, int file, const ob_approx *a, const ob_pp_row *r, double lo, double hi)
 {
     char col[8], es[40];
     colour(r->err, lo, hi, col);
@@ -119,15 +131,16 @@ static void piece_path(FILE *f, int file, const ob_approx *a, const ob_pp_row *r
         for (int j = 0; j <= PIECE_PTS; j++) {
             double p[2];
             ob_bez_point(&a->v[k].approx, (double)j / PIECE_PTS, p);
-            fprintf(f, "%s%.9g %.9g", j == 0 ? (k == r->first ? "M" : " M") : " L", p[0], -p[1]);
+            fprintf(f, "%s%.7g %.7g", j == 0 ? (k == r->first ? "M" : " M") : " L", fx(w, p[0]), fy(w, p[1]));
         }
     fputs("\"/>\n", f);
 }
 
 /* The worst piece of file i: a ring, the gap to the offset, a label. */
-static void worst_mark(FILE *f, int i, const ob_pp_file *pf, double size)
+static void worst_mark(FILE *f, const frame *fr, int i, const ob_pp_file *pf)
 {
     const ob_pp_row *w = NULL;
+    const double size = PICTURE_W;
     for (int k = 0; k < pf->pp->n; k++)
         if (!w || !(pf->pp->v[k].err <= w->err))
             w = &pf->pp->v[k];
@@ -136,17 +149,18 @@ static void worst_mark(FILE *f, int i, const ob_pp_file *pf, double size)
     char es[40], label[160];
     ob_fmt_double(es, sizeof es, w->err);
     fprintf(f, "<g class=\"worst\" data-file=\"%d\" data-piece=\"%d\" data-err=\"%s\">\n", i, w->piece, es);
-    ob_svg_line(f, "gap", w->x, -w->y, w->xo, -w->yo);
-    ob_svg_circle(f, "ring", w->x, -w->y, 0.02 * size);
+    const double x = fx(fr, w->x), y = fy(fr, w->y);
+    ob_svg_line(f, "gap", x, y, fx(fr, w->xo), fy(fr, w->yo));
+    ob_svg_circle(f, "ring", x, y, 0.015 * size);
     snprintf(label, sizeof label, "piece %d: %.3g", w->piece, w->err);
-    ob_svg_text(f, "label", w->x + 0.025 * size, -w->y - 0.025 * size, 0.03 * size, "start", label);
+    ob_svg_text(f, "label", x + 0.02 * size, y - 0.02 * size, 0.02 * size, "start", label);
     ob_svg_group_end(f);
 }
 
 /* The legend at (x, y) (top left, picture coordinates): value -> colour. */
-static void legend(FILE *f, double x, double y, double size, double lo, double hi)
+static void legend(FILE *f, double x, double y, double lo, double hi)
 {
-    const double fs = 0.03 * size, h = 0.05 * size;
+    const double fs = 14.0, h = 24.0;
     ob_svg_group(f, "legend", NULL);
     ob_svg_text(f, "caption", x, y, fs, "start", "piece error (hausdorff), log scale");
     for (int k = 0; k < LEGEND_STEPS; k++) {
@@ -176,29 +190,29 @@ static void title(const ob_draw_approx *v, char *buf, size_t len)
 int ob_draw_approx_svg(FILE *f, const void *ctx)
 {
     const ob_draw_approx *v = ctx;
-    ob_bbox b = extent(v);
-    const double size = ob_bbox_size(&b), m = 0.06 * size, lw = 0.45 * size;
+    const ob_bbox b = extent(v);
+    const frame w = {PICTURE_W / (b.xmax - b.xmin), b.xmin, b.ymax};
+    const double m = 40.0, top = 40.0, lw = 260.0, H = fy(&w, b.ymin);
     double lo, hi;
     scale(v, &lo, &hi);
     char t[2048];
     title(v, t, sizeof t);
-    const double x0 = b.xmin - m, y0 = -b.ymax - m - 0.06 * size;
-    ob_svg_begin(f, x0, y0, b.xmax - b.xmin + 2 * m + lw, b.ymax - b.ymin + 2 * m + 0.06 * size, 900.0, t, CSS);
-    ob_svg_text(f, "title", x0 + m, y0 + 0.04 * size, 0.025 * size, "start", t);
+    ob_svg_begin(f, -m, -m - top, PICTURE_W + 2 * m + lw, H + 2 * m + top, PICTURE_W + 2 * m + lw, t, CSS);
+    ob_svg_text(f, "title", 0, -m - top + 24.0, 14.0, "start", t);
     int rc = 0;
     for (int s = 0; s < v->c->nseg && rc == 0; s++)
-        rc = curve_line(f, "base", &v->c->seg[s], 0, v->d, BASE_PTS) || curve_line(f, "offset", &v->c->seg[s], 1,
-                                                                                   v->d, OFFSET_PTS);
+        rc = curve_line(f, &w, "base", &v->c->seg[s], 0, v->d, BASE_PTS) ||
+             curve_line(f, &w, "offset", &v->c->seg[s], 1, v->d, OFFSET_PTS);
     for (int i = 0; i < v->n; i++)
         for (int k = 0; k < v->files[i].pp->n; k++)
-            piece_path(f, i, v->files[i].ap, &v->files[i].pp->v[k], lo, hi);
+            piece_path(f, &w, i, v->files[i].ap, &v->files[i].pp->v[k], lo, hi);
     for (int i = 0; i < v->n; i++)
         for (int k = 0; k < v->files[i].pp->n; k++)
             if (isfinite(v->files[i].pp->v[k].x))
-                ob_svg_circle(f, "wpt", v->files[i].pp->v[k].x, -v->files[i].pp->v[k].y, 0.004 * size);
+                ob_svg_circle(f, "wpt", fx(&w, v->files[i].pp->v[k].x), fy(&w, v->files[i].pp->v[k].y), 3.0);
     for (int i = 0; i < v->n; i++)
-        worst_mark(f, i, &v->files[i], size);
-    legend(f, b.xmax + m + 0.05 * size, -b.ymax, size, lo, hi);
+        worst_mark(f, &w, i, &v->files[i]);
+    legend(f, PICTURE_W + m, 0.0, lo, hi);
     ob_svg_end(f);
     return rc || ferror(f) ? -1 : 0;
 }
