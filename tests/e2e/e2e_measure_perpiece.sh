@@ -120,6 +120,32 @@ check '[ "$(awkc "NR > 1 && \$c[\"file\"] == f {print \$c[\"id\"]}" f="$T/ids.sv
 check '[ "$(awkc "NR > 1 && \$c[\"file\"] == f {print \$c[\"entity\"]}" f="$T/ids.svg" "$T/two.csv" | sort -u)" = "path" ]' \
     "the SVG rows' entity is the element (path)"
 
+# --- a piece cut at a base joint by the match is one row -------------------------
+# 'two' is the cubic 'one' cut at t = 0.4 (de Casteljau); tiller's export of
+# 'one' without its links (the 999 comments) is matched against 'two'
+awk 'function pt(x, y) { printf "  point %.17g %.17g\n", x, y }
+BEGIN { split("0 1 3 4", X, " "); split("0 2 2 0", Y, " "); t = 0.4
+    for (i = 1; i <= 4; i++) { x[0, i] = X[i]; y[0, i] = Y[i] }
+    for (r = 1; r < 4; r++) for (i = 1; i <= 4 - r; i++) {
+        x[r, i] = x[r-1, i] + (x[r-1, i+1] - x[r-1, i]) * t; y[r, i] = y[r-1, i] + (y[r-1, i+1] - y[r-1, i]) * t }
+    print "curve one\n  bezier 3"; for (i = 1; i <= 4; i++) pt(X[i], Y[i]); print "  offset -0.3\nend"
+    print "curve two\n  bspline 3"
+    for (r = 0; r < 4; r++) pt(x[r, 1], y[r, 1])
+    for (r = 2; r >= 0; r--) pt(x[r, 4 - r], y[r, 4 - r])
+    print "  knots 0 0 0 0 0.4 0.4 0.4 1 1 1 1\n  offset -0.3\nend" }' > "$T/j.curves"
+"$OB" run --curves "$T/j.curves" --curve one --methods tiller --tols 1e-3 --backend cpu --out "$T/r3" --export "$T/x3" 2>/dev/null
+awk 'NR % 2 == 1 { c = $0 + 0; cl = $0; next } c != 999 { print cl; print }' "$T/x3/one__d-0.3__tiller__tol0.001.dxf" > "$T/nolink.dxf"
+$OB measure --curves "$T/j.curves" --curve two --d -0.3 --approx "$T/nolink.dxf" --per-piece "$T/cut.csv" >"$T/cut.out" 2>"$T/cut.err"
+check '[ $? -eq 0 ]' "the export without links against the cut curve: exit 0 ($(head -c 300 "$T/cut.err"))"
+NP=$(awkc '$c["metric"] == "hausdorff" {print $c["pieces"]}' "$T/cut.out")
+check '[ -n "$NP" ] && [ "$(tail -n +2 "$T/cut.csv" | wc -l)" -eq "$NP" ]' "one row per piece of the file ($NP), none per part"
+check '[ "$(awkc "NR > 1 && \$c[\"seg0\"] == 0 && \$c[\"seg1\"] == 1" "$T/cut.csv" | wc -l)" -eq 1 ]' \
+    "one row runs over the joint (seg0 0, seg1 1)"
+check '[ "$(awkc "NR > 1 {print \$c[\"max_err\"]}" "$T/cut.csv" | sort -g -r | head -n 1)" = "$(awkc "\$c[\"metric\"] == \"hausdorff\" {print \$c[\"max_err\"]}" "$T/cut.out")" ]' \
+    "matched and cut: the largest row is the hausdorff row"
+check '[ "$(csvcols "$T/cut.csv" entity | tail -n +2 | sort -u)" = "SPLINE" ] && [ "$(csvcols "$T/cut.csv" handle | tail -n +2 | grep -c .)" -eq "$NP" ]' \
+    "every row, the cut one too, names its SPLINE and handle"
+
 # --- collisions and bad values: exit 2, nothing written -------------------------
 cp "$T/bump.dxf" "$T/keep.dxf"
 $OB $M --approx "$T/bump.dxf" --per-piece "$T/same.out" --draw "$T/same.out" >"$T/c.csv" 2>"$T/c.err"
