@@ -14,6 +14,8 @@
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
+ * --per-piece FILE.csv and --draw FILE.svg: where the error is, piece by
+ * piece (host/measure/perpiece.h, host/view/draw_approx.h, where_out.h).
  * Exit status: 0; 2 bad input (an option, a file, an unknown curve, pieces
  * that do not cover the offset once), with a message naming the option or
  * FILE:LINE; then nothing is written (no partial CSV: the other files'
@@ -323,7 +325,8 @@ static int keep_where(const ob_curve *c, double d, const char *name, int samples
 {
     ob_err err;
     if (ob_approx_per_piece(c, d, ap, samples, name, &fr->pp, &err) != 0) {
-        ob_error("%s", err.msg);
+        if (!ob_stop_signal()) /* stopped: measure() says so */
+            ob_error("%s", err.msg);
         return 2;
     }
     fr->ap = *ap;
@@ -360,9 +363,7 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     fr->pieces = ob_approx_file_pieces(&ap);
     fr->ctrl_points = count_ctrl_points(c, a->d, &ap, &cv);
     warn_branches(name, &ap, fr);
-    status = 0;
-    if ((a->where.per_piece || a->where.draw) && (status = keep_where(c, a->d, name, samples, &ap, fr)) != 0)
-        goto out;
+    status = a->where.per_piece || a->where.draw ? keep_where(c, a->d, name, samples, &ap, fr) : 0;
 out:
     ob_cover_free(&cv);
     ob_approx_free(&ap);

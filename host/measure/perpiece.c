@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "host/run/signals.h"
 #include "methods/metrics/metric.h"
 
 void ob_perpiece_free(ob_perpiece *pp)
@@ -93,6 +94,10 @@ int ob_approx_per_piece(const ob_curve *c, double d, const ob_approx *a, int sam
     if (n > 0 && !(pp->v = calloc((size_t)n, sizeof *pp->v)))
         return ob_fail(err, "%s: out of memory", name);
     for (int k = 0; k < a->n; k++) {
+        if (ob_stop_signal()) { /* a long loop polls the stop (signals.h) */
+            ob_perpiece_free(pp);
+            return ob_fail(err, "%s: stopped by signal %d after %d of %d pieces", name, ob_stop_signal(), k, a->n);
+        }
         const int fp = ob_approx_file_piece(a, k);
         ob_pp_row *r = &pp->v[fp];
         if (k == 0 || fp != ob_approx_file_piece(a, k - 1))
