@@ -146,6 +146,18 @@ check '[ "$(awkc "NR > 1 {print \$c[\"max_err\"]}" "$T/cut.csv" | sort -g -r | h
 check '[ "$(csvcols "$T/cut.csv" entity | tail -n +2 | sort -u)" = "SPLINE" ] && [ "$(csvcols "$T/cut.csv" handle | tail -n +2 | grep -c .)" -eq "$NP" ]' \
     "every row, the cut one too, names its SPLINE and handle"
 
+# --- a polyline's pieces name its handle, not its VERTEX's ----------------------
+# two bulge arcs on the circle of radius 1.5 (the d = -0.5 offset of
+# arc_quarter) as an old-style POLYLINE with handles on every entity
+dxf() { printf '0\nSECTION\n2\nENTITIES\n'; cat; printf '0\nENDSEC\n0\nEOF\n'; }
+b=$(awk 'BEGIN{printf "%.17g", sin(atan2(1, 1) / 4) / cos(atan2(1, 1) / 4)}')
+r=$(awk 'BEGIN{printf "%.17g", 1.5 * sqrt(0.5)}')
+printf '0\nPOLYLINE\n5\n2A\n8\n0\n66\n1\n10\n0\n20\n0\n30\n0\n70\n0\n0\nVERTEX\n5\n2B\n8\n0\n10\n1.5\n20\n0\n42\n%s\n0\nVERTEX\n5\n2C\n10\n%s\n20\n%s\n42\n%s\n0\nVERTEX\n5\n2D\n10\n0\n20\n1.5\n0\nSEQEND\n5\n2E\n' \
+    "$b" "$r" "$r" "$b" | dxf > "$T/poly.dxf"
+$OB $M --approx "$T/poly.dxf" --per-piece "$T/poly.csv" >/dev/null 2>"$T/poly.err"
+check '[ $? -eq 0 ] && [ "$(csvcols "$T/poly.csv" entity handle line | tail -n +2 | tr "\n" " ")" = "POLYLINE,2A,22 POLYLINE,2A,34 " ]' \
+    "a POLYLINE's two arcs: its type and handle, each at its first VERTEX's line ($(csvcols "$T/poly.csv" entity handle line | tail -n +2 | tr "\n" " "); $(head -c 200 "$T/poly.err"))"
+
 # --- collisions and bad values: exit 2, nothing written -------------------------
 cp "$T/bump.dxf" "$T/keep.dxf"
 $OB $M --approx "$T/bump.dxf" --per-piece "$T/same.out" --draw "$T/same.out" >"$T/c.csv" 2>"$T/c.err"
