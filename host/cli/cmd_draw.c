@@ -152,7 +152,9 @@ static int parse_args(const char *cmd, int trace, int argc, char **argv, cmd_arg
         {ob_run_flags, ob_run_nflags, NULL, RUN_SKIP, "run options (as for run)", ob_run_flag_apply, o},
     };
     const int rc = ob_cli_parse(trace ? "--curve ID --method M --tol T [--d D] [--points N] [--out FILE.csv] [run options]"
-                                      : "--curve ID --method M --tol T [--d D] --out FILE.svg [run options]",
+                                      : "--curve ID --method M --tol T [--d D] --out FILE.svg [run options]\n"
+                                        "   or: ./offbench draw --approx FILE --curve ID --d D --out FILE.svg (a file's "
+                                        "pieces coloured by their error: draw --approx x --help)",
                                 sets, 2, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
@@ -621,6 +623,18 @@ static int run_cmd(int trace, int argc, char **argv)
     return status;
 }
 
-int ob_cmd_draw(int argc, char **argv) { return run_cmd(0, argc, argv); }
+/* Does the command line ask for a file's approximation (--approx)? */
+static int wants_approx(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--approx") == 0 || strncmp(argv[i], "--approx=", 9) == 0)
+            return 1;
+    return 0;
+}
+
+int ob_cmd_draw(int argc, char **argv)
+{
+    return wants_approx(argc, argv) ? ob_cmd_draw_approx(argc, argv) : run_cmd(0, argc, argv);
+}
 
 int ob_cmd_trace(int argc, char **argv) { return run_cmd(1, argc, argv); }

@@ -14,6 +14,8 @@
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
+ * --per-piece FILE.csv and --draw FILE.svg: where the error is, piece by
+ * piece (host/measure/perpiece.h, host/view/draw_approx.h, where_out.h).
  * Exit status: 0; 2 bad input (an option, a file, an unknown curve, pieces
  * that do not cover the offset once), with a message naming the option or
  * FILE:LINE; then nothing is written (no partial CSV: the other files'
@@ -26,6 +28,7 @@
 
 #include "host/cli/cliopts.h"
 #include "host/cli/commands.h"
+#include "host/cli/where_out.h"
 #include "host/run/plan.h"
 #include "host/diag.h"
 #include "host/io/approx_read.h"
@@ -42,6 +45,7 @@ typedef struct {
     double d;
     int want[OB_METRIC_COUNT]; /* the per-piece metrics asked */
     int whole;                 /* the hausdorff-whole row asked */
+    ob_where_out where;        /* --per-piece, --draw (where_out.h) */
 } measure_args;
 
 /* The rows --metric V asks for: all (the default: every metric but
@@ -59,7 +63,7 @@ static int set_metrics(measure_args *a, const char *v)
     return 0;
 }
 
-enum { MO_APPROX, MO_D, MO_METRIC };
+enum { MO_APPROX, MO_D, MO_METRIC, MO_PER_PIECE, MO_DRAW };
 
 static const ob_flag measure_flags[] = {
     {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
@@ -68,6 +72,10 @@ static const ob_flag measure_flags[] = {
     {"d", "D", "the signed offset distance it approximates", MO_D, OB_FLAG_ONCE},
     {"metric", "M|all", "bound, radial, normal, hausdorff (with hausdorff-whole), param, certified, hausdorff-whole or all "
      "(default: every one but certified)", MO_METRIC, OB_FLAG_ONCE},
+    {"per-piece", "FILE.csv", "also write one row per piece of each file: its entity, handle, line, base range, "
+     "hausdorff error and worst point (x, y; x_off, y_off on the exact offset)", MO_PER_PIECE, OB_FLAG_ONCE},
+    {"draw", "FILE.svg", "also draw the base, the exact offset and the pieces coloured by their error, the worst "
+     "point marked (base coordinates)", MO_DRAW, OB_FLAG_ONCE},
 };
 
 static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
@@ -91,6 +99,14 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         }
         a->approx[a->napprox++] = v;
         return 0;
+    case MO_PER_PIECE:
+    case MO_DRAW:
+        if (!*v) {
+            ob_error("%s: empty file name", opt);
+            return -1;
+        }
+        *(id == MO_DRAW ? &a->where.draw : &a->where.per_piece) = v;
+        return 0;
     case MO_D:
         if (ob_parse_double(v, &a->d) || a->d == 0.0) {
             ob_error("%s: '%s' is not an offset distance (a nonzero finite number)", opt, v);
@@ -113,6 +129,7 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
 {
     memset(a, 0, sizeof *a);
     set_metrics(a, "all");
+    a->where.draw_opt = "--draw";
     if (ob_run_opts_init(o, argc, argv)) {
         ob_error("measure: out of memory");
         return 2;
@@ -124,7 +141,7 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
          ob_run_flag_apply, o},
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
-                                "[--samples S]",
+                                "[--samples S] [--per-piece FILE.csv] [--draw FILE.svg]",
                                 sets, 2, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
@@ -153,6 +170,8 @@ static void put_num(FILE *f, double x)
 typedef struct {
     ob_measure_out m;   /* its rows (ob_measure_approx) */
     int pieces, ctrl_points;
+    ob_approx ap;       /* with --per-piece or --draw: its pieces, */
+    ob_perpiece pp;     /* and where each is off (perpiece.h) */
 } file_rows;
 
 /* The columns after the message: file,curve,d,pieces,ctrl_points. */
@@ -300,6 +319,21 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
     return 0;
 }
 
+/* With --per-piece or --draw: each piece's own error into fr->pp, and the
+ * pieces moved into fr->ap; 0, or 2 after ob_error(). */
+static int keep_where(const ob_curve *c, double d, const char *name, int samples, ob_approx *ap, file_rows *fr)
+{
+    ob_err err;
+    if (ob_approx_per_piece(c, d, ap, samples, name, &fr->pp, &err) != 0) {
+        if (!ob_stop_signal()) /* stopped: measure() says so */
+            ob_error("%s", err.msg);
+        return 2;
+    }
+    fr->ap = *ap;
+    memset(ap, 0, sizeof *ap);
+    return 0;
+}
+
 /* Reads file name, matches and checks its cover, and measures it into *fr;
  * 0, or 2 after ob_error(). */
 static int measure_file(const measure_args *a, const char *name, const ob_curve *c, int samples, file_rows *fr)
@@ -329,11 +363,44 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     fr->pieces = ob_approx_file_pieces(&ap);
     fr->ctrl_points = count_ctrl_points(c, a->d, &ap, &cv);
     warn_branches(name, &ap, fr);
-    status = 0;
+    status = a->where.per_piece || a->where.draw ? keep_where(c, a->d, name, samples, &ap, fr) : 0;
 out:
     ob_cover_free(&cv);
     ob_approx_free(&ap);
     return status;
+}
+
+/* --per-piece and --draw: neither an input, nor one file; 0, or 2 after
+ * ob_error(). */
+static int where_check(const measure_args *a, const ob_run_opts *o)
+{
+    const char **in = malloc((size_t)(a->napprox + 1) * sizeof *in);
+    if (!in) {
+        ob_error("measure: out of memory");
+        return 2;
+    }
+    memcpy(in, a->approx, (size_t)a->napprox * sizeof *in);
+    in[a->napprox] = o->curves_file;
+    const int rc = ob_where_check("measure", &a->where, in, a->napprox + 1);
+    free(in);
+    return rc;
+}
+
+/* The --per-piece and --draw files, before the CSV: 0, or 1 after ob_error(). */
+static int write_where(const measure_args *a, const ob_curve *c, const file_rows *rows)
+{
+    if (!a->where.per_piece && !a->where.draw)
+        return 0;
+    ob_pp_file *files = malloc((size_t)a->napprox * sizeof *files);
+    if (!files) {
+        ob_error("measure: out of memory");
+        return 1;
+    }
+    for (int k = 0; k < a->napprox; k++)
+        files[k] = (ob_pp_file){a->approx[k], &rows[k].ap, &rows[k].pp};
+    const int rc = ob_where_write(&a->where, c, a->d, files, a->napprox);
+    free(files);
+    return rc;
 }
 
 /* Loads the curve, measures every file (stopping at the first that fails)
@@ -351,8 +418,8 @@ static int measure(const measure_args *a, ob_run_opts *o)
     if (ob_load_run_curves(o, &set, where, sizeof where) != 0)
         goto out;
     const ob_curve *c = &set.v[ob_curveset_find(&set, o->curve_ids[0])];
-    if (ob_check_option_d("measure", c, a->d) != 0)
-        goto out;  /* status 2: a d the curve's file would refuse (curvefile.h) */
+    if (ob_check_option_d("measure", c, a->d) != 0 || where_check(a, o) != 0)
+        goto out;  /* status 2: a d the curve's file would refuse (curvefile.h), outputs that collide */
     const int samples = ob_clamp_samples(o->driver.samples);
     for (int k = 0; k < a->napprox; k++) {
         if (ob_stop_signal() || measure_file(a, a->approx[k], c, samples, &rows[k]) != 0) {
@@ -372,11 +439,17 @@ static int measure(const measure_args *a, ob_run_opts *o)
         ob_info("measure: %d piece%s of %s against %s (%s), d = %s, %d samples", rows[k].pieces,
                 rows[k].pieces == 1 ? "" : "s", a->approx[k], c->id, where, ds, samples);
     }
-    status = write_csv(a, c, rows);
+    status = write_where(a, c, rows);
+    if (status == 0)
+        status = write_csv(a, c, rows);
     if (status == 0) /* a signal from now on finds the work done (signals.h) */
         ob_stop_done("measure: the CSV on standard output is complete: every file was measured before the signal "
                      "was seen");
 out:
+    for (int k = 0; k < a->napprox; k++) {
+        ob_approx_free(&rows[k].ap);
+        ob_perpiece_free(&rows[k].pp);
+    }
     free(rows);
     ob_curveset_free(&set);
     return status;

@@ -25,6 +25,10 @@ int ob_cmd_compare(int argc, char **argv);
  * parameter as CSV.  0, 1 (output not writable) or 2 (bad input). */
 int ob_cmd_draw(int argc, char **argv);
 int ob_cmd_trace(int argc, char **argv);
+/* draw --approx FILE --curve ID --d D --out FILE.svg: a file's pieces
+ * coloured by their error (cmd_draw_approx.c; ob_cmd_draw hands it a
+ * command line with --approx).  0, 1 or 2 as draw. */
+int ob_cmd_draw_approx(int argc, char **argv);
 
 /* measure --curve ID --d D --approx FILE...: an approximation's error (0; 2
  * bad input; 1 output not writable). */

@@ -123,7 +123,8 @@ static int refit_span(const ob_job *j, const ob_span *sp, void *work, ob_approx 
             ob_fail(err, "out of memory");
             return -1;
         }
-        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k], 0, 0};
+        *p = (ob_apiece){1, sp->seg, sp->a, sp->b, fit.t[k], fit.t[k + 1], k == 0, 0, fit.seg[k], 0, 0,
+                         "", "", ""};
     }
     *segs += fit.n;
     return 0;
@@ -150,4 +151,11 @@ int ob_approx_from_job(const ob_job *j, const ob_span_log *log, ob_approx *out, 
         rc = -1;
     }
     return rc;
+}
+
+void ob_apiece_names(ob_apiece *dst, const ob_apiece *src)
+{
+    memcpy(dst->entity, src->entity, sizeof dst->entity);
+    memcpy(dst->handle, src->handle, sizeof dst->handle);
+    memcpy(dst->id, src->id, sizeof dst->id);
 }

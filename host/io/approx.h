@@ -35,6 +35,10 @@ typedef struct {
                            one that ob_approx_match cut where the base's
                            segments join (an exact subdivision: the file's
                            piece counts once, ob_approx_file_piece) */
+    char entity[16];    /* what the file calls it: a DXF entity type (SPLINE,
+                           LINE, ...), an SVG element (path, ...); "" else */
+    char handle[24];    /* its DXF handle (group 5), "" when none */
+    char id[64];        /* its SVG element's id, "" when none */
 } ob_apiece;
 
 /* Entities of a file that the reader did not take as pieces (a DXF's TEXT,
@@ -93,6 +97,9 @@ int ob_approx_file_piece(const ob_approx *a, int k);
 /* Purpose: the number of pieces as the file gives them (a->n less the
  *          further parts of pieces cut at base joints). */
 int ob_approx_file_pieces(const ob_approx *a);
+
+/* Copies src's entity, handle and id into dst (a part of a cut piece). */
+void ob_apiece_names(ob_apiece *dst, const ob_apiece *src);
 
 /* Purpose: the base parameter of piece p at its own parameter s in [0, 1]:
  *          span [a, b] at fit parameter t0 + (t1 - t0) s, exactly a at the

@@ -296,7 +296,17 @@ typedef struct {
     int link_sp, next_sp; /* their "same_param 1" */
     int in, all_sp;
     int sect;  /* 0 none seen (bare entities), 1 SECTION opened, 2 ENTITIES, 3 another, 4 after ENDSEC */
+    char handle[24]; /* the handle (group 5) of the entity being read, "" none yet */
 } dxfst;
+
+/* The pieces out->v[n0 ..] of one entity: its type and handle (approx.h). */
+static void name_pieces(ob_approx *out, int n0, const char *kind, const char *handle)
+{
+    for (int i = n0; i < out->n; i++) {
+        snprintf(out->v[i].entity, sizeof out->v[i].entity, "%s", kind);
+        snprintf(out->v[i].handle, sizeof out->v[i].handle, "%s", handle);
+    }
+}
 
 /* The entity being read is complete: its pieces, unless its z say it is
  * no planar curve parallel to XY. */
@@ -317,6 +327,9 @@ static int entity_end(dxfst *st, ob_err *err)
         rc = ob_dxf_ent_pieces(&st->ent, st->r.name, st->out, err);
         st->all_sp = 0;
     }
+    if (rc == 0)
+        name_pieces(st->out, n0, kind, st->handle);
+    st->handle[0] = '\0';
     if (rc == 0 && st->out->n > n0 && st->z.z != 0.0)
         ob_warn("%s:%d: %s at z = %.17g: flattened onto the XY plane (the same curve)", st->r.name, line, kind,
                 st->z.z);
@@ -377,6 +390,8 @@ static int pair(dxfst *st, ob_err *err)
             entity_start(st);
         memset(&st->next, 0, sizeof st->next); /* a link belongs to the SPLINE right after it */
         st->next_sp = 0;
+    } else if (st->in && r->code == 5 && !st->handle[0] && !(st->in == IN_CURVE && st->ent.in_vertex)) {
+        snprintf(st->handle, sizeof st->handle, "%s", r->val); /* the entity's own, not a VERTEX's */
     } else if (st->in && z_group(r, st->in, &st->ent, &st->z, err)) {
         return -1;
     } else if (st->in == IN_SPLINE) {

@@ -154,7 +154,7 @@ static int read_piece(const char *elem, size_t len, int line, int k, const char 
                         "[a, b] and \"t\" [t0, t1] together", name, line, k);
                 rc = -1;
             } else {
-                *p = (ob_apiece){1, (int)seg, ab[0], ab[1], tt[0], tt[1], 1, line, p->approx, 0, 0};
+                *p = (ob_apiece){1, (int)seg, ab[0], ab[1], tt[0], tt[1], 1, line, p->approx, 0, 0, "", "", ""};
             }
         }
     }

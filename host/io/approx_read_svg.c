@@ -289,6 +289,15 @@ static const char *svg_tag(const char *name)
     return (size_t)(bar - name) == strlen(SVG_NS) && !strncmp(name, SVG_NS, strlen(SVG_NS)) ? bar + 1 : NULL;
 }
 
+/* The pieces out->v[n0 ..] of one element: its tag and id (approx.h). */
+static void name_pieces(ob_approx *out, int n0, const char *tag, const char *id)
+{
+    for (int i = n0; i < out->n; i++) {
+        snprintf(out->v[i].entity, sizeof out->v[i].entity, "%s", tag);
+        snprintf(out->v[i].id, sizeof out->v[i].id, "%s", id ? id : "");
+    }
+}
+
 static void XMLCALL on_start(void *ud, const char *name, const char **atts)
 {
     svg_walk *w = ud;
@@ -317,7 +326,9 @@ static void XMLCALL on_start(void *ud, const char *name, const char **atts)
             snprintf(what, sizeof what, "invisible <%.10s>", tag);
             ob_approx_note_skip(w->out, what, line);
         } else {
+            const int n0 = w->out->n;
             rc = shape(w, tag, atts, &s, line);
+            name_pieces(w->out, n0, tag, att(atts, "id"));
         }
     }
     if (rc)

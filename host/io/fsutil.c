@@ -206,6 +206,11 @@ int ob_check_dir_not_input(const char *cmd, const char *opt, const char *dir, co
     return check_not_input(cmd, opt, dir, 1, in, nin);
 }
 
+int ob_check_file_not_input(const char *cmd, const char *opt, const char *out, const char *const *in, size_t nin)
+{
+    return check_not_input(cmd, opt, out, 0, in, nin);
+}
+
 static int check_not_input(const char *cmd, const char *opt, const char *out, int out_is_dir, const char *const *in,
                            size_t nin)
 {

@@ -49,6 +49,12 @@ int ob_check_out_not_input(const char *cmd, const char *out, int out_is_dir, con
  * Returns: 0, or -1 after ob_error(). */
 int ob_check_dir_not_input(const char *cmd, const char *opt, const char *dir, const char *const *in, size_t nin);
 
+/* Purpose: as ob_check_out_not_input for a file given by option opt
+ *          (e.g. "--per-piece"): refuses a file that is an input, however
+ *          spelled; the message names opt.
+ * Returns: 0, or -1 after ob_error(). */
+int ob_check_file_not_input(const char *cmd, const char *opt, const char *out, const char *const *in, size_t nin);
+
 /* Purpose: path made absolute (the current directory before a relative
  *          one; nothing resolved), for records such as meta.json.
  * Returns: 0 with buf filled; -1 when it does not fit or the current

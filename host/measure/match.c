@@ -177,6 +177,7 @@ static int cut_at_joints(const ob_curve *c, double d, ob_approx *a, int k, nearp
                          const char *name, ob_err *err)
 {
     const int line = a->v[k].line;
+    const ob_apiece named = a->v[k]; /* its entity, handle and id, for every part */
     ob_bez rest = a->v[k].approx;
     for (int i = 1; i < parts; i++)
         if (!ob_approx_add(a))
@@ -185,7 +186,9 @@ static int cut_at_joints(const ob_curve *c, double d, ob_approx *a, int k, nearp
     for (int i = 0; i < parts; i++) {
         const int s = (n0.seg + i) % c->nseg, s2 = (s + 1) % c->nseg;
         ob_apiece *p = &a->v[k + i];
-        *p = (ob_apiece){1, s, i == 0 ? n0.t : 0.0, i == parts - 1 ? n1.t : 1.0, 0.0, 1.0, 0, line, rest, 1, i};
+        *p = (ob_apiece){1, s, i == 0 ? n0.t : 0.0, i == parts - 1 ? n1.t : 1.0, 0.0, 1.0, 0, line, rest, 1, i,
+                         "", "", ""};
+        ob_apiece_names(p, &named);
         if (i == parts - 1)
             break;
         double B[2], n[2];
