@@ -10,7 +10,7 @@
 #include "methods/external/ext.h"
 
 /* One NAME=COMMAND: 0, or -1 after the error. */
-static int take(const char *spec)
+static int take_external(const char *spec)
 {
     const char *eq = strchr(spec, '=');
     if (!eq || eq == spec || !eq[1]) {
@@ -28,27 +28,33 @@ static int take(const char *spec)
     return 0;
 }
 
-int ob_external_args(int *argc, char **argv)
+int ob_take_global_option(int *argc, char **argv, const char *opt, const char *what, int (*take)(const char *))
 {
+    const size_t n = strlen(opt);
     int k = 1;
     for (int i = 1; i < *argc; i++) {
-        const char *spec = NULL;
-        if (strcmp(argv[i], "--external") == 0) {
+        const char *v = NULL;
+        if (strcmp(argv[i], opt) == 0) {
             if (i + 1 >= *argc) {
-                ob_error("--external: expected NAME=COMMAND after it");
+                ob_error("%s: expected %s after it", opt, what);
                 return -1;
             }
-            spec = argv[++i];
-        } else if (strncmp(argv[i], "--external=", 11) == 0) {
-            spec = argv[i] + 11;
+            v = argv[++i];
+        } else if (strncmp(argv[i], opt, n) == 0 && argv[i][n] == '=') {
+            v = argv[i] + n + 1;
         } else {
             argv[k++] = argv[i];
             continue;
         }
-        if (take(spec) != 0)
+        if (take(v) != 0)
             return -1;
     }
     argv[k] = NULL;
     *argc = k;
     return 0;
+}
+
+int ob_external_args(int *argc, char **argv)
+{
+    return ob_take_global_option(argc, argv, "--external", "NAME=COMMAND", take_external);
 }

@@ -12,4 +12,10 @@
  * Returns: 0, or -1 after an error naming the option. */
 int ob_external_args(int *argc, char **argv);
 
+/* Purpose: take every OPT VALUE (or OPT=VALUE) of an option every command
+ *          takes out of argv[1 .. *argc), calling take(VALUE) on each in
+ *          order (--external, --methods-file: methods_file.h).
+ * Returns: 0; -1 after take failed or "OPT: expected WHAT after it". */
+int ob_take_global_option(int *argc, char **argv, const char *opt, const char *what, int (*take)(const char *));
+
 #endif

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "host/cli/external_opt.h"
 #include "host/diag.h"
 #include "methods/external/ext.h"
 
@@ -178,25 +179,5 @@ static int read_file(const char *file)
 
 int ob_methods_file_args(int *argc, char **argv)
 {
-    int k = 1;
-    for (int i = 1; i < *argc; i++) {
-        const char *file = NULL;
-        if (strcmp(argv[i], "--methods-file") == 0) {
-            if (i + 1 >= *argc) {
-                ob_error("--methods-file: expected FILE after it");
-                return -1;
-            }
-            file = argv[++i];
-        } else if (strncmp(argv[i], "--methods-file=", 15) == 0) {
-            file = argv[i] + 15;
-        } else {
-            argv[k++] = argv[i];
-            continue;
-        }
-        if (read_file(file) != 0)
-            return -1;
-    }
-    argv[k] = NULL;
-    *argc = k;
-    return 0;
+    return ob_take_global_option(argc, argv, "--methods-file", "FILE", read_file);
 }
