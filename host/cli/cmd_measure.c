@@ -25,12 +25,14 @@
 #include <string.h>
 
 #include "host/cli/cliopts.h"
+#include "host/cli/measure_more.h"
 #include "host/cli/commands.h"
 #include "host/run/plan.h"
 #include "host/diag.h"
 #include "host/io/approx_read.h"
 #include "host/io/numfmt.h"
 #include "host/io/output.h"
+#include "host/measure/diagnose.h"
 #include "host/measure/measure.h"
 #include "host/run/signals.h"
 #include "methods/driver/joints.h"
@@ -42,6 +44,8 @@ typedef struct {
     double d;
     int want[OB_METRIC_COUNT]; /* the per-piece metrics asked */
     int whole;                 /* the hausdorff-whole row asked */
+    const char *metric_named;  /* --metric's value, NULL: not given (n/a rows left out) */
+    ob_measure_more more;      /* frame and verdict options (measure_more.h) */
 } measure_args;
 
 /* The rows --metric V asks for: all (the default: every metric but
@@ -99,6 +103,7 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         a->have_d = 1;
         return 0;
     default:
+        a->metric_named = v;
         if (set_metrics(a, v)) {
             ob_error("%s: unknown metric '%s' (bound, radial, normal, hausdorff, param, certified, hausdorff-whole, all)", opt,
                      v);
@@ -117,15 +122,16 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         ob_error("measure: out of memory");
         return 2;
     }
-    const ob_flagset sets[2] = {
+    const ob_flagset sets[3] = {
         {measure_flags, (int)(sizeof measure_flags / sizeof measure_flags[0]), NULL, NULL, "options",
          apply_measure_flag, a},
         {ob_run_flags, ob_run_nflags, "curves curve random samples ", NULL, "run options (as for run)",
          ob_run_flag_apply, o},
+        ob_measure_more_flags(&a->more),
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
-                                "[--samples S]",
-                                sets, 2, argc, argv, 0, NULL, NULL);
+                                "[--samples S] [--transform a,b,c,d,e,f] [--translate X,Y] [--scale S] [--flip-y] [--tol T]",
+                                sets, 3, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
     if (rc != OB_CLI_OK)
@@ -284,7 +290,7 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
     fputs("metric,status,max_err,piece,seg,t,message,file,curve,d,pieces,ctrl_points\n", stdout);
     for (int k = 0; k < a->napprox; k++) {
         for (int m = 0; m < OB_METRIC_COUNT; m++)
-            if (a->want[m]) {
+            if (a->want[m] && (a->metric_named || rows[k].m.res[m].applies)) { /* default: the rows that apply */
                 row(stdout, ob_metric_name((ob_metric)m), &rows[k].m.res[m]);
                 join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
             }
@@ -298,6 +304,34 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
         return 1;
     }
     return 0;
+}
+
+/* The largest error measured of a file (hausdorff-whole when asked), for
+ * the diagnosis's rule (diagnose.h); NAN when none applies. */
+static double largest_err(const measure_args *a, const file_rows *fr)
+{
+    double e = a->whole ? fr->m.whole.err : NAN;
+    for (int m = 0; m < OB_METRIC_COUNT && !a->whole; m++)
+        if (a->want[m] && fr->m.res[m].applies && !(fr->m.res[m].err <= e))
+            e = fr->m.res[m].err;
+    return e;
+}
+
+/* What a file far from the offset looks like instead (diagnose.h), on
+ * stderr; failed: its measurement failed with msg (the hint about cusps
+ * cut from it when the diagnosis explains the file), which this prints. */
+static void diagnose(const measure_args *a, const ob_curve *c, const ob_approx *ap, const char *name, char *msg)
+{
+    char line[1024];
+    const ob_frame f = ob_measure_more_frame(&a->more);
+    const int found = ob_diagnose(c, a->d, ap, &f, name, line, sizeof line);
+    char *hint = msg && found == 1 ? strstr(msg, OB_MEASURE_CUSP_HINT) : NULL;
+    if (hint)
+        *hint = '\0';
+    if (msg)
+        ob_error("%s", msg);
+    if (found == 1)
+        ob_warn("measure: %s", line);
 }
 
 /* Reads file name, matches and checks its cover, and measures it into *fr;
@@ -317,23 +351,43 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
         ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
                 "d = %.17g: its error is not that job's max_err", name, ap.job_curve, ap.job_d, c->id, a->d);
+    if (a->more.have_frame) {
+        const ob_frame f = ob_measure_more_frame(&a->more);
+        ob_frame_apply(&f, &ap);  /* file -> base coordinates, before matching */
+    }
     ob_measure_ask ask = {{0}, a->whole, samples};
     memcpy(ask.want, a->want, sizeof ask.want);
     const int rc = ob_measure_approx(c, a->d, &ap, &ask, name, &cv, &fr->m, &err);
     say_cover(&ap, &cv, name);
     if (rc != 0) {
         if (!ob_stop_signal()) /* stopped: measure() says so */
-            ob_error("%s", err.msg);
+            diagnose(a, c, &ap, name, err.msg);
         goto out;
     }
     fr->pieces = ob_approx_file_pieces(&ap);
     fr->ctrl_points = count_ctrl_points(c, a->d, &ap, &cv);
     warn_branches(name, &ap, fr);
+    if (ob_diag_far(c, a->d, largest_err(a, fr)))
+        diagnose(a, c, &ap, name, NULL);
     status = 0;
 out:
     ob_cover_free(&cv);
     ob_approx_free(&ap);
     return status;
+}
+
+/* After the CSV: the rows left out (default) and --tol's verdict, on
+ * stderr; 1 when a file is over the tolerance, else 0. */
+static int after_csv(const measure_args *a, const file_rows *rows, int dm)
+{
+    int over = 0;
+    for (int k = 0; k < a->napprox; k++) {
+        if (!a->metric_named)
+            ob_measure_say_hidden(a->want, &rows[k].m, a->approx[k]);
+        if (a->more.have_tol)
+            over |= ob_measure_verdict(&a->more, dm, &rows[k].m, a->approx[k]);
+    }
+    return over;
 }
 
 /* Loads the curve, measures every file (stopping at the first that fails)
@@ -372,10 +426,16 @@ static int measure(const measure_args *a, ob_run_opts *o)
         ob_info("measure: %d piece%s of %s against %s (%s), d = %s, %d samples", rows[k].pieces,
                 rows[k].pieces == 1 ? "" : "s", a->approx[k], c->id, where, ds, samples);
     }
+    const int dm = ob_measure_decider(a->metric_named);
+    for (int k = 0; k < a->napprox; k++)
+        if (ob_measure_verdict_check(&a->more, dm, &rows[k].m, a->approx[k]))
+            goto out;  /* status 2: a verdict from an n/a row */
     status = write_csv(a, c, rows);
-    if (status == 0) /* a signal from now on finds the work done (signals.h) */
+    if (status == 0) { /* a signal from now on finds the work done (signals.h) */
         ob_stop_done("measure: the CSV on standard output is complete: every file was measured before the signal "
                      "was seen");
+        status = after_csv(a, rows, dm);
+    }
 out:
     free(rows);
     ob_curveset_free(&set);
