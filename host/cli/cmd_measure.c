@@ -1,6 +1,7 @@
 /*
  * cmd_measure.c - `offbench measure --curve ID --d D --approx FILE [--approx FILE]...
- * [--curves FILE] [--metric M|all] [--samples S]`: the error of each
+ * [--curves FILE] [--metric M|all] [--samples S] [--transform a,b,c,d,e,f]
+ * [--translate X,Y] [--scale S|SX,SY] [--flip-y] [--tol T]`: the error of each
  * approximation someone else made (a .curves file, the JSON of --export, or
  * DXF entities: SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE;
  * an SVG file's paths) against the exact d-offset of a base curve, under every metric that applies or the one asked, with the run's engine
@@ -10,14 +11,25 @@
  * (the last five join with results.csv: curve and d as it writes them,
  * pieces its segments, ctrl_points counted as the driver counts them).
  * status `ok`, or `n/a` with the reason (bound and radial need pieces in
- * the base's parameter: files exported from methods that keep it).
+ * the base's parameter: files exported from methods that keep it).  Without
+ * --metric the n/a rows are left out and named once per file on stderr;
+ * --metric all writes every row.
+ * The frame options (measure_more.h) map each file's coordinates to the
+ * base's before matching.  A file far from the offset (its cover fails, or
+ * its error is over 1e-2 of the curve's size) gets a diagnosis on stderr
+ * (host/measure/diagnose.h: the wrong sign of d, a similarity away), which
+ * changes no row and no exit status.
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
- * Exit status: 0; 2 bad input (an option, a file, an unknown curve, pieces
- * that do not cover the offset once), with a message naming the option or
- * FILE:LINE; then nothing is written (no partial CSV: the other files'
- * rows are not either); 1 standard output not writable.
+ * Exit status: 0 (with --tol: every file within T); 1 with --tol: a
+ * file's deciding error (hausdorff-whole, or the row --metric names) over
+ * T, after the whole CSV, a line "measure: FILE: within/over tolerance T:
+ * METRIC = E" per file on stderr; 1 also when standard output is not
+ * writable; 2 bad input (an option, a file, an unknown curve, pieces that
+ * do not cover the offset once, a --tol whose deciding row is n/a), with a
+ * message naming the option or FILE:LINE; then nothing is written (no
+ * partial CSV: the other files' rows are not either).
  */
 #include <math.h>
 #include <stdio.h>
@@ -130,7 +142,7 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         ob_measure_more_flags(&a->more),
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
-                                "[--samples S] [--transform a,b,c,d,e,f] [--translate X,Y] [--scale S] [--flip-y] [--tol T]",
+                                "[--samples S] [--transform a,b,c,d,e,f] [--translate X,Y] [--scale S] [--flip-y] [--svg-units user|px] [--tol T]",
                                 sets, 3, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
@@ -342,6 +354,7 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     ob_cover cv = {0};
     ob_err err;
     int status = 2;
+    ap.svg_units_px = a->more.svg_px;
     if (ob_approx_read(name, &ap, &err) != 0) {
         ob_error("%s", err.msg);
         goto out;

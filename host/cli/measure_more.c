@@ -10,7 +10,7 @@
 #include "host/diag.h"
 #include "host/io/numfmt.h"
 
-enum { MM_TRANSFORM, MM_TRANSLATE, MM_SCALE, MM_FLIP_Y, MM_TOL };
+enum { MM_TRANSFORM, MM_TRANSLATE, MM_SCALE, MM_FLIP_Y, MM_SVG_UNITS, MM_TOL };
 
 static const ob_flag more_flags[] = {
     {"transform", "a,b,c,d,e,f", "map the file's coordinates to the base's: x' = a x + c y + e, y' = b x + d y + f "
@@ -18,6 +18,8 @@ static const ob_flag more_flags[] = {
     {"translate", "X,Y", "then move them: x' = x + X, y' = y + Y", MM_TRANSLATE, OB_FLAG_ONCE},
     {"scale", "S|SX,SY", "then scale them: x' = SX x, y' = SY y (S: both)", MM_SCALE, OB_FLAG_ONCE},
     {"flip-y", NULL, "then y' = -y (a CAD or SVG drawing with y the other way)", MM_FLIP_Y, OB_FLAG_ONCE},
+    {"svg-units", "user|px", "an SVG file's coordinates: its root's user units (default) or CSS px, its root viewBox "
+     "mapped onto its width and height (as svg2curves.py --units px)", MM_SVG_UNITS, OB_FLAG_ONCE},
     {"tol", "T", "the verdict: exit 1 when a file's error (hausdorff-whole, or the one --metric names) is over T "
      "(> 0), 0 when every file is within", MM_TOL, OB_FLAG_ONCE},
 };
@@ -53,7 +55,7 @@ static int set_scale(ob_measure_more *x, const char *opt, const char *v)
 static int apply_more(void *ctx, int id, const char *opt, const char *v)
 {
     ob_measure_more *x = ctx;
-    x->have_frame |= id != MM_TOL;
+    x->have_frame |= id != MM_TOL && id != MM_SVG_UNITS;
     switch (id) {
     case MM_TRANSFORM:
         return set_transform(x, opt, v);
@@ -67,6 +69,13 @@ static int apply_more(void *ctx, int id, const char *opt, const char *v)
         return set_scale(x, opt, v);
     case MM_FLIP_Y:
         x->flip_y = 1;
+        return 0;
+    case MM_SVG_UNITS:
+        if (strcmp(v, "user") != 0 && strcmp(v, "px") != 0) {
+            ob_error("%s: '%s' is not user or px", opt, v);
+            return -1;
+        }
+        x->svg_px = !strcmp(v, "px");
         return 0;
     default:
         if (ob_parse_double(v, &x->tol) || !(x->tol > 0.0)) {

@@ -6,6 +6,8 @@
  *   --translate X,Y           x' = x + X, y' = y + Y
  *   --scale S | SX,SY         x' = SX x, y' = SY y
  *   --flip-y                  y' = -y
+ *   --svg-units user|px       an SVG's root user units (default) or CSS px
+ *                             (its viewBox applied, as svg2curves.py)
  *   --tol T                   the verdict: exit 1 when a file's deciding
  *                             error is above T
  * The frame options make one map, applied to each point in this fixed
@@ -25,6 +27,7 @@ typedef struct {
     double scale[2];          /* --scale (1, 1) */
     int flip_y;               /* --flip-y */
     int have_frame;           /* any of them given */
+    int svg_px;               /* --svg-units px: an SVG's root viewBox applied */
     int have_tol;
     double tol;               /* --tol */
 } ob_measure_more;

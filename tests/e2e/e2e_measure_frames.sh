@@ -9,6 +9,8 @@
 # - the plain file measured at d = 1 is diagnosed as the wrong sign of d;
 # - --tol: exit 0 within, 1 over, a verdict line per file on stderr; 2 for
 #   a bad value or a deciding row that is n/a;
+# - --svg-units px applies an SVG's root viewBox (user units stay the
+#   default), and measures with the inverse map as in user units;
 # - without --metric the n/a rows are left out and named on stderr;
 #   --metric all writes every row as before;
 # - bad values of each new option: exit 2 naming the option.
@@ -87,10 +89,31 @@ check '[ $(wc -l <"$T/plain.csv") -eq 7 ] && [ $(grep -c ",n/a," "$T/plain.csv")
 $M --d -1 --approx "$J" >"$T/defj.csv" 2>"$T/defj.err"
 check '[ $(wc -l <"$T/defj.csv") -eq 7 ] && ! grep -q "not shown" "$T/defj.err"' "an export with links: all six rows apply"
 
+# ---- an SVG's root viewBox: --svg-units px ------------------------------------------
+# the export's paths under a root <svg viewBox="-2 -1.5 4 4" width="100mm"
+# height="100mm">: in user units (the default) the base's coordinates; in
+# px X = s x + 2 s, Y' = s y - 1.5 s after the y flip, s = 100 mm / 4 in px
+SV=$T/x/liu2002_ex1__d-1__tiller__tol0.001.svg
+{ echo '<svg xmlns="http://www.w3.org/2000/svg" viewBox="-2 -1.5 4 4" width="100mm" height="100mm">'
+  echo '<g transform="scale(1,-1)">'; grep '<path' "$SV" | sed 's/ data-piece="[0-9]*" data-seg="[0-9]*"//'; echo '</g></svg>'; } >"$T/vb.svg"
+$M --d -1 --approx "$T/vb.svg" >"$T/vb0.csv" 2>"$T/vb0.err"
+check '[ $? -eq 0 ]' "the SVG in user units (default): exit 0 ($(head -c 300 "$T/vb0.err"))"
+a=$(err_of "$T/plain.csv" hausdorff-whole) b=$(err_of "$T/vb0.csv" hausdorff-whole)
+check 'awk -v a="$a" -v b="$b" "BEGIN{exit !(a != \"\" && (a - b) * (a - b) <= 1e-20 * a * a)}"' \
+    "the SVG in user units: hausdorff-whole $b as the DXF's $a (to 1e-10: SVG writes fewer digits)"
+$M --d -1 --approx "$T/vb.svg" --svg-units px >/dev/null 2>"$T/vb1.err"
+check '[ $? -eq 2 ] && grep -q "try --transform" "$T/vb1.err"' "--svg-units px without a frame: the viewBox applied, exit 2, diagnosed"
+PXT=$(awk 'BEGIN{s = 100 * 96 / 25.4 / 4; printf "%.17g,0,0,%.17g,-2,1.5", 1 / s, 1 / s}')
+$M --d -1 --approx "$T/vb.svg" --svg-units px --transform "$PXT" >"$T/vb2.csv" 2>"$T/vb2.err"
+check '[ $? -eq 0 ]' "--svg-units px --transform $PXT: exit 0 ($(head -c 300 "$T/vb2.err"))"
+b2=$(err_of "$T/vb2.csv" hausdorff-whole)
+check 'relsame "$b" "$b2"' "--svg-units px and its inverse map: hausdorff-whole $b2 as in user units $b"
+
 # ---- bad values --------------------------------------------------------------------
 for bad in "--tol 0" "--tol -1" "--tol nan" "--tol inf" "--tol abc" \
            "--transform 1,2,3" "--transform 1,2,2,4,0,0" "--transform 1,0,0,1,nan,0" "--transform 1,0,0,1,0,x" \
-           "--translate 1" "--translate 1,inf" "--scale 0" "--scale 1,0" "--scale nan" "--scale 1,2,3" "--flip-y=yes"; do
+           "--translate 1" "--translate 1,inf" "--scale 0" "--scale 1,0" "--scale nan" "--scale 1,2,3" "--flip-y=yes" \
+           "--svg-units mm" "--svg-units="; do
     opt=${bad%% *}; opt=${opt%%=*}
     $M --d -1 --approx "$T/plain.dxf" $bad >"$T/bad.csv" 2>"$T/bad.err"
     rc=$?
