@@ -1,7 +1,8 @@
 /*
  * cmd_measure.c - `offbench measure --curve ID --d D --approx FILE [--approx FILE]...
  * [--curves FILE] [--metric M|all] [--samples S] [--transform a,b,c,d,e,f]
- * [--translate X,Y] [--scale S|SX,SY] [--flip-y] [--tol T]`: the error of each
+ * [--translate X,Y] [--scale S|SX,SY] [--flip-y] [--svg-units user|px]
+ * [--tol T]`: the error of each
  * approximation someone else made (a .curves file, the JSON of --export, or
  * DXF entities: SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE;
  * an SVG file's paths) against the exact d-offset of a base curve, under every metric that applies or the one asked, with the run's engine
@@ -142,7 +143,8 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         ob_measure_more_flags(&a->more),
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
-                                "[--samples S] [--transform a,b,c,d,e,f] [--translate X,Y] [--scale S] [--flip-y] [--svg-units user|px] [--tol T]",
+                                "[--samples S] [--transform a,b,c,d,e,f] [--translate X,Y] [--scale S] [--flip-y] "
+                                "[--svg-units user|px] [--tol T]",
                                 sets, 3, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
