@@ -1,6 +1,8 @@
 /*
  * cmd_measure.c - `offbench measure --curve ID --d D --approx FILE [--approx FILE]...
- * [--curves FILE] [--metric M|all] [--samples S]`: the error of each
+ * [--curves FILE] [--metric M|all] [--samples S] [--transform a,b,c,d,e,f]
+ * [--translate X,Y] [--scale S|SX,SY] [--flip-y] [--svg-units user|px]
+ * [--tol T]`: the error of each
  * approximation someone else made (a .curves file, the JSON of --export, or
  * DXF entities: SPLINE, LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE;
  * an SVG file's paths) against the exact d-offset of a base curve, under every metric that applies or the one asked, with the run's engine
@@ -10,16 +12,28 @@
  * (the last five join with results.csv: curve and d as it writes them,
  * pieces its segments, ctrl_points counted as the driver counts them).
  * status `ok`, or `n/a` with the reason (bound and radial need pieces in
- * the base's parameter: files exported from methods that keep it).
+ * the base's parameter: files exported from methods that keep it).  Without
+ * --metric the n/a rows are left out and named once per file on stderr;
+ * --metric all writes every row.
+ * The frame options (measure_more.h) map each file's coordinates to the
+ * base's before matching.  A file far from the offset (its cover fails, or
+ * its error is over 1e-2 of the curve's size) gets a diagnosis on stderr
+ * (host/measure/diagnose.h: the wrong sign of d, a similarity away), which
+ * changes no row and no exit status.
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
  * --per-piece FILE.csv and --draw FILE.svg: where the error is, piece by
- * piece (host/measure/perpiece.h, host/view/draw_approx.h, where_out.h).
- * Exit status: 0; 2 bad input (an option, a file, an unknown curve, pieces
- * that do not cover the offset once), with a message naming the option or
- * FILE:LINE; then nothing is written (no partial CSV: the other files'
- * rows are not either); 1 standard output not writable.
+ * piece (host/measure/perpiece.h, host/view/draw_approx.h, where_out.h), in
+ * the base's coordinates (after the frame options).
+ * Exit status: 0 (with --tol: every file within T); 1 with --tol: a
+ * file's deciding error (hausdorff-whole, or the row --metric names) over
+ * T, after the whole CSV, a line "measure: FILE: within/over tolerance T:
+ * METRIC = E" per file on stderr; 1 also when standard output is not
+ * writable; 2 bad input (an option, a file, an unknown curve, pieces that
+ * do not cover the offset once, a --tol whose deciding row is n/a), with a
+ * message naming the option or FILE:LINE; then nothing is written (no
+ * partial CSV: the other files' rows are not either).
  */
 #include <math.h>
 #include <stdio.h>
@@ -27,6 +41,7 @@
 #include <string.h>
 
 #include "host/cli/cliopts.h"
+#include "host/cli/measure_more.h"
 #include "host/cli/commands.h"
 #include "host/cli/where_out.h"
 #include "host/run/plan.h"
@@ -34,6 +49,7 @@
 #include "host/io/approx_read.h"
 #include "host/io/numfmt.h"
 #include "host/io/output.h"
+#include "host/measure/diagnose.h"
 #include "host/measure/measure.h"
 #include "host/run/signals.h"
 #include "methods/driver/joints.h"
@@ -46,6 +62,8 @@ typedef struct {
     int want[OB_METRIC_COUNT]; /* the per-piece metrics asked */
     int whole;                 /* the hausdorff-whole row asked */
     ob_where_out where;        /* --per-piece, --draw (where_out.h) */
+    const char *metric_named;  /* --metric's value, NULL: not given (n/a rows left out) */
+    ob_measure_more more;      /* frame and verdict options (measure_more.h) */
 } measure_args;
 
 /* The rows --metric V asks for: all (the default: every metric but
@@ -115,6 +133,7 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         a->have_d = 1;
         return 0;
     default:
+        a->metric_named = v;
         if (set_metrics(a, v)) {
             ob_error("%s: unknown metric '%s' (bound, radial, normal, hausdorff, param, certified, hausdorff-whole, all)", opt,
                      v);
@@ -134,15 +153,17 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         ob_error("measure: out of memory");
         return 2;
     }
-    const ob_flagset sets[2] = {
+    const ob_flagset sets[3] = {
         {measure_flags, (int)(sizeof measure_flags / sizeof measure_flags[0]), NULL, NULL, "options",
          apply_measure_flag, a},
         {ob_run_flags, ob_run_nflags, "curves curve random samples ", NULL, "run options (as for run)",
          ob_run_flag_apply, o},
+        ob_measure_more_flags(&a->more),
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
-                                "[--samples S] [--per-piece FILE.csv] [--draw FILE.svg]",
-                                sets, 2, argc, argv, 0, NULL, NULL);
+                                "[--samples S] [--per-piece FILE.csv] [--draw FILE.svg] [--transform a,b,c,d,e,f] "
+                                "[--translate X,Y] [--scale S] [--flip-y] [--svg-units user|px] [--tol T]",
+                                sets, 3, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
     if (rc != OB_CLI_OK)
@@ -303,7 +324,7 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
     fputs("metric,status,max_err,piece,seg,t,message,file,curve,d,pieces,ctrl_points\n", stdout);
     for (int k = 0; k < a->napprox; k++) {
         for (int m = 0; m < OB_METRIC_COUNT; m++)
-            if (a->want[m]) {
+            if (a->want[m] && (a->metric_named || rows[k].m.res[m].applies)) { /* default: the rows that apply */
                 row(stdout, ob_metric_name((ob_metric)m), &rows[k].m.res[m]);
                 join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
             }
@@ -334,6 +355,34 @@ static int keep_where(const ob_curve *c, double d, const char *name, int samples
     return 0;
 }
 
+/* The largest error measured of a file (hausdorff-whole when asked), for
+ * the diagnosis's rule (diagnose.h); NAN when none applies. */
+static double largest_err(const measure_args *a, const file_rows *fr)
+{
+    double e = a->whole ? fr->m.whole.err : NAN;
+    for (int m = 0; m < OB_METRIC_COUNT && !a->whole; m++)
+        if (a->want[m] && fr->m.res[m].applies && !(fr->m.res[m].err <= e))
+            e = fr->m.res[m].err;
+    return e;
+}
+
+/* What a file far from the offset looks like instead (diagnose.h), on
+ * stderr; failed: its measurement failed with msg (the hint about cusps
+ * cut from it when the diagnosis explains the file), which this prints. */
+static void diagnose(const measure_args *a, const ob_curve *c, const ob_approx *ap, const char *name, char *msg)
+{
+    char line[1024];
+    const ob_frame f = ob_measure_more_frame(&a->more);
+    const int found = ob_diagnose(c, a->d, ap, &f, name, line, sizeof line);
+    char *hint = msg && found == 1 ? strstr(msg, OB_MEASURE_CUSP_HINT) : NULL;
+    if (hint)
+        *hint = '\0';
+    if (msg)
+        ob_error("%s", msg);
+    if (found == 1)
+        ob_warn("measure: %s", line);
+}
+
 /* Reads file name, matches and checks its cover, and measures it into *fr;
  * 0, or 2 after ob_error(). */
 static int measure_file(const measure_args *a, const char *name, const ob_curve *c, int samples, file_rows *fr)
@@ -342,6 +391,7 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     ob_cover cv = {0};
     ob_err err;
     int status = 2;
+    ap.svg_units_px = a->more.svg_px;
     if (ob_approx_read(name, &ap, &err) != 0) {
         ob_error("%s", err.msg);
         goto out;
@@ -351,18 +401,24 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
         ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
                 "d = %.17g: its error is not that job's max_err", name, ap.job_curve, ap.job_d, c->id, a->d);
+    if (a->more.have_frame) {
+        const ob_frame f = ob_measure_more_frame(&a->more);
+        ob_frame_apply(&f, &ap);  /* file -> base coordinates, before matching */
+    }
     ob_measure_ask ask = {{0}, a->whole, samples};
     memcpy(ask.want, a->want, sizeof ask.want);
     const int rc = ob_measure_approx(c, a->d, &ap, &ask, name, &cv, &fr->m, &err);
     say_cover(&ap, &cv, name);
     if (rc != 0) {
         if (!ob_stop_signal()) /* stopped: measure() says so */
-            ob_error("%s", err.msg);
+            diagnose(a, c, &ap, name, err.msg);
         goto out;
     }
     fr->pieces = ob_approx_file_pieces(&ap);
     fr->ctrl_points = count_ctrl_points(c, a->d, &ap, &cv);
     warn_branches(name, &ap, fr);
+    if (ob_diag_far(c, a->d, largest_err(a, fr)))
+        diagnose(a, c, &ap, name, NULL);
     status = a->where.per_piece || a->where.draw ? keep_where(c, a->d, name, samples, &ap, fr) : 0;
 out:
     ob_cover_free(&cv);
@@ -403,6 +459,20 @@ static int write_where(const measure_args *a, const ob_curve *c, const file_rows
     return rc;
 }
 
+/* After the CSV: the rows left out (default) and --tol's verdict, on
+ * stderr; 1 when a file is over the tolerance, else 0. */
+static int after_csv(const measure_args *a, const file_rows *rows, int dm)
+{
+    int over = 0;
+    for (int k = 0; k < a->napprox; k++) {
+        if (!a->metric_named)
+            ob_measure_say_hidden(a->want, &rows[k].m, a->approx[k]);
+        if (a->more.have_tol)
+            over |= ob_measure_verdict(&a->more, dm, &rows[k].m, a->approx[k]);
+    }
+    return over;
+}
+
 /* Loads the curve, measures every file (stopping at the first that fails)
  * and writes the CSV when all were measured; returns the exit status. */
 static int measure(const measure_args *a, ob_run_opts *o)
@@ -439,12 +509,18 @@ static int measure(const measure_args *a, ob_run_opts *o)
         ob_info("measure: %d piece%s of %s against %s (%s), d = %s, %d samples", rows[k].pieces,
                 rows[k].pieces == 1 ? "" : "s", a->approx[k], c->id, where, ds, samples);
     }
+    const int dm = ob_measure_decider(a->metric_named);
+    for (int k = 0; k < a->napprox; k++)
+        if (ob_measure_verdict_check(&a->more, dm, &rows[k].m, a->approx[k]))
+            goto out;  /* status 2: a verdict from an n/a row */
     status = write_where(a, c, rows);
     if (status == 0)
         status = write_csv(a, c, rows);
-    if (status == 0) /* a signal from now on finds the work done (signals.h) */
+    if (status == 0) { /* a signal from now on finds the work done (signals.h) */
         ob_stop_done("measure: the CSV on standard output is complete: every file was measured before the signal "
                      "was seen");
+        status = after_csv(a, rows, dm);
+    }
 out:
     for (int k = 0; k < a->napprox; k++) {
         ob_approx_free(&rows[k].ap);

@@ -70,6 +70,9 @@ typedef struct {
     int nskipped_types;                     /* of them used */
     int nskipped;                           /* entities skipped, of any type */
     ob_anote notes[OB_APPROX_NOTES];        /* the first nskipped of them */
+    int svg_units_px;   /* a reading option, set before ob_approx_read: 1
+                           applies an SVG's root viewBox (CSS px, as
+                           svg2curves.py --units px); 0 keeps its user units */
 } ob_approx;
 
 /* Always safe to call (also on a zeroed approximation). */

@@ -221,8 +221,32 @@ static int nested_svg(svg_walk *w, const char **atts, svg_state *s, int line)
     return 0;
 }
 
+/* With svg_units_px: the root's viewBox mapped onto its width and height
+ * (absolute: both known and > 0, else nothing), as svgpath.py --units px;
+ * 0 or -1. */
+static int root_px(const char **atts, svg_state *s, ob_svgr_scan *c)
+{
+    static const char *const keys[] = {"width", "height"};
+    static const int axes[] = {0, 1};
+    int have[2];
+    double box[4] = {0, 0, 0, 0}, vp[2];
+    svg_state none = *s;
+    none.vp[0] = none.vp[1] = 0.0;  /* a % size is not known */
+    c->what = "<svg>";
+    if (lengths(atts, keys, axes, 2, &none, c, box + 2, have) || !have[0] || !have[1] || !(box[2] > 0.0) ||
+        !(box[3] > 0.0))
+        return 0;
+    ob_svgr_xform t;
+    c->what = "<svg>: viewBox";
+    if (ob_svgr_viewport(c, box, att(atts, "viewBox"), att(atts, "preserveAspectRatio"), &t, vp))
+        return -1;
+    s->ctm = ob_svgr_mul(&s->ctm, &t);
+    return 0;
+}
+
 /* The root <svg>'s viewport size (for % lengths): its viewBox's, else its
- * width and height in absolute units (0: unknown). */
+ * width and height in absolute units (0: unknown).  Its viewBox is applied
+ * only with the reading option svg_units_px (root_px). */
 static int root_svg(svg_walk *w, const char **atts, svg_state *s, int line)
 {
     char key[32];
@@ -234,7 +258,7 @@ static int root_svg(svg_walk *w, const char **atts, svg_state *s, int line)
         if (ob_svgr_viewbox(&c, v))
             return -1;
         s->vp[0] = v[2], s->vp[1] = v[3];
-        return 0;
+        return w->out->svg_units_px ? root_px(atts, s, &c) : 0;
     }
     static const char *const keys[] = {"width", "height"};
     static const int axes[] = {0, 1};

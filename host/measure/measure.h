@@ -210,6 +210,10 @@ typedef struct {
  *          cover the offset once ("measure: NAME does not cover the d = D
  *          offset of curve ID once (G gaps, O overlaps, U duplicates): ...",
  *          cv->fail says where); out of memory. */
+/* How the cover failure's hint about cusps begins (the CLI cuts it when
+ * its diagnosis explains the file otherwise: host/measure/diagnose.h). */
+#define OB_MEASURE_CUSP_HINT " (its pieces were matched"
+
 int ob_measure_approx(const ob_curve *c, double d, ob_approx *a, const ob_measure_ask *ask, const char *name,
                       ob_cover *cv, ob_measure_out *out, ob_err *err);
 

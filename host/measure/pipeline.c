@@ -23,8 +23,8 @@ static int cover_fail(const ob_curve *c, double d, const ob_approx *a, const ob_
     return ob_fail(err, "measure: %s does not cover the d = %s offset of curve %s once (%d gaps, %d overlaps, %d "
                    "duplicates): measure takes a whole approximation, each part of the offset covered by one piece%s",
                    name, ds, c->id, k[OB_COVER_GAP], k[OB_COVER_OVERLAP], k[OB_COVER_DUPLICATE],
-                   matched ? " (its pieces were matched to the base by projection, which near an offset's cusps "
-                             "can land on another branch: a file with base links, as --export writes, is matched "
+                   matched ? OB_MEASURE_CUSP_HINT " to the base by projection, which near an offset's cusps can "
+                             "land on another branch: a file with base links, as --export writes, is matched "
                              "exactly)"
                            : "");
 }

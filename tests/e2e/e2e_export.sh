@@ -145,7 +145,7 @@ fi
 
 # --- measure on someone else's file: no base link, matched by projection -------
 grep -v '^  source' "$T/x/$stem.curves" > "$T/own.curves"
-"$OB" measure --curve liu2002_ex1 --d 1 --approx "$T/own.curves" > "$T/own.csv" 2>/dev/null
+"$OB" measure --curve liu2002_ex1 --d 1 --approx "$T/own.curves" --metric all > "$T/own.csv" 2>/dev/null
 check '[ $? -eq 0 ] && grep -q "^bound,n/a," "$T/own.csv" && grep -q "^radial,n/a," "$T/own.csv"' \
     "a file without base links: bound and radial do not apply"
 e=$(awkc '$c["method"]=="tiller" && $c["d"]=="1" {print $c["max_err"]}' "$T/x/index.csv")

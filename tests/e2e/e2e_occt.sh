@@ -137,7 +137,7 @@ mkdir "$T/l"
 L=$T/l/liu2002_ex1__d-1__occt__tol0.001.dxf
 check '[ "$(awkc "FNR>1 && \$c[\"curve\"]==\"liu2002_ex1\" {print \$c[\"status\"], \$c[\"is_done\"], \$c[\"has_result\"], \$c[\"runs\"]}" "$T/l/occt.csv")" = "ok 1 1 1" ]' \
     "liu2002_ex1, d = -1, 1e-3: ok, IsDone, HasResult, one run: $(sed -n 2p "$T/l/occt.csv")"
-"$OB" measure --curve liu2002_ex1 --d -1 --approx "$L" >"$T/l.csv" 2>"$T/l.err"
+"$OB" measure --curve liu2002_ex1 --d -1 --approx "$L" --metric all >"$T/l.csv" 2>"$T/l.err"
 check '[ $? -eq 0 ] && [ "$(csvcols "$T/l.csv" metric status | tr "\n" " ")" = "metric,status bound,n/a radial,n/a normal,ok hausdorff,ok param,n/a hausdorff-whole,ok " ]' \
     "measure reads the DXF: matched by projection, the metrics that need the base's parameter n/a ($(csvcols "$T/l.csv" metric status | tr '\n' ' ') $(cat "$T/l.err" | tr '\n' ' '))"
 check '[ "$(awkc "FNR>1 && \$c[\"metric\"]==\"hausdorff\" {print \$c[\"pieces\"]}" "$T/l.csv")" = "$(awkc "FNR>1 && \$c[\"curve\"]==\"liu2002_ex1\" {print \$c[\"spans\"]}" "$T/l/occt.csv")" ]' \
