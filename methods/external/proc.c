@@ -44,14 +44,20 @@ static void exec_worker(const char *command, int fd, int maxfd, double mem_mb, c
     _exit(127);
 }
 
-/* A worker that will start under AddressSanitizer (libasan preloaded, as a
- * sanitized Python test runs its interpreter and so its workers): ASan
- * reserves terabytes of shadow address space at start and cannot start
- * under RLIMIT_AS at all, so such a worker gets no address-space cap. */
+/* A worker that will start under AddressSanitizer: libasan preloaded (as a
+ * sanitized Python test runs its interpreter and so its workers), or this
+ * program built with it (make SAN=1), whose workers are mostly itself
+ * (`offbench worker`).  ASan reserves terabytes of shadow address space at
+ * start and cannot start under RLIMIT_AS at all, so such a worker gets no
+ * address-space cap. */
 static int asan_preloaded(void)
 {
+#if defined(__SANITIZE_ADDRESS__)
+    return 1;
+#else
     const char *p = getenv("LD_PRELOAD");
     return p && strstr(p, "libasan") != NULL;
+#endif
 }
 
 int ob_ext_proc_start(ob_ext_proc *w, const char *command, double mem_mb, char *msg, size_t msglen)
