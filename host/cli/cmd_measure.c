@@ -32,6 +32,7 @@
 #include "host/io/numfmt.h"
 #include "host/io/output.h"
 #include "host/measure/measure.h"
+#include "host/measure/trim.h"
 #include "host/run/signals.h"
 #include "methods/driver/joints.h"
 
@@ -42,6 +43,9 @@ typedef struct {
     double d;
     int want[OB_METRIC_COUNT]; /* the per-piece metrics asked */
     int whole;                 /* the hausdorff-whole row asked */
+    int metric_given;          /* --metric was given */
+    int trimmed;               /* --trimmed: the trimmed-hausdorff row (host/measure/trim.h) */
+    const char *trim_dump;     /* --trim-dump FILE, or NULL */
 } measure_args;
 
 /* The rows --metric V asks for: all (the default: every metric but
@@ -59,7 +63,7 @@ static int set_metrics(measure_args *a, const char *v)
     return 0;
 }
 
-enum { MO_APPROX, MO_D, MO_METRIC };
+enum { MO_APPROX, MO_D, MO_METRIC, MO_TRIMMED, MO_TRIM_DUMP };
 
 static const ob_flag measure_flags[] = {
     {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
@@ -68,6 +72,11 @@ static const ob_flag measure_flags[] = {
     {"d", "D", "the signed offset distance it approximates", MO_D, OB_FLAG_ONCE},
     {"metric", "M|all", "bound, radial, normal, hausdorff (with hausdorff-whole), param, certified, hausdorff-whole or all "
      "(default: every one but certified)", MO_METRIC, OB_FLAG_ONCE},
+    {"trimmed", NULL, "measure against the trimmed offset (its loops and the parts nearer than |d| to the curve cut "
+     "away, as CAD kernels ship it): one row, trimmed-hausdorff, the distance between the two as point sets",
+     MO_TRIMMED, OB_FLAG_ONCE},
+    {"trim-dump", "FILE", "with --trimmed: write the trimmed offset's arcs and split points to FILE as CSV (for checks)",
+     MO_TRIM_DUMP, OB_FLAG_ONCE},
 };
 
 static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
@@ -98,7 +107,18 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         }
         a->have_d = 1;
         return 0;
+    case MO_TRIMMED:
+        a->trimmed = 1;
+        return 0;
+    case MO_TRIM_DUMP:
+        if (!*v) {
+            ob_error("%s: empty file name", opt);
+            return -1;
+        }
+        a->trim_dump = v;
+        return 0;
     default:
+        a->metric_given = 1;
         if (set_metrics(a, v)) {
             ob_error("%s: unknown metric '%s' (bound, radial, normal, hausdorff, param, certified, hausdorff-whole, all)", opt,
                      v);
@@ -106,6 +126,31 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         }
         return 0;
     }
+}
+
+/* --trim-dump needs --trimmed, and --trimmed takes no --metric but
+ * certified (the others need the pieces matched to the untrimmed offset);
+ * 0, or 2 after ob_error(). */
+static int check_trimmed(measure_args *a)
+{
+    if (a->trim_dump && !a->trimmed) {
+        ob_error("--trim-dump: needs --trimmed (it writes the trimmed offset)");
+        return 2;
+    }
+    int other = 0;
+    for (int m = 0; m < OB_METRIC_COUNT; m++)
+        other |= a->want[m] && (ob_metric)m != OB_METRIC_CERTIFIED;
+    if (a->trimmed && a->metric_given && (other || a->whole)) {
+        ob_error("--metric: with --trimmed only certified (a row saying it does not apply): the other metrics "
+                 "measure against the untrimmed offset, matched piece by piece; --trimmed writes trimmed-hausdorff");
+        return 2;
+    }
+    if (!a->trimmed)
+        return 0;
+    for (int m = 0; m < OB_METRIC_COUNT; m++) /* its row alone, or with certified's */
+        a->want[m] = a->metric_given && (ob_metric)m == OB_METRIC_CERTIFIED;
+    a->whole = 0;
+    return 0;
 }
 
 /* Parses into a and o; 0, 2 after ob_error(), or -1 after --help. */
@@ -124,7 +169,7 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
          ob_run_flag_apply, o},
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
-                                "[--samples S]",
+                                "[--samples S] [--trimmed [--trim-dump FILE]]",
                                 sets, 2, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
@@ -139,7 +184,7 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         ob_error("--curve: measure takes exactly one curve id");
         return 2;
     }
-    return 0;
+    return check_trimmed(a);
 }
 
 static void put_num(FILE *f, double x)
@@ -153,6 +198,8 @@ static void put_num(FILE *f, double x)
 typedef struct {
     ob_measure_out m;   /* its rows (ob_measure_approx) */
     int pieces, ctrl_points;
+    ob_mres trimmed;    /* --trimmed: its row, its message in trim_msg */
+    char trim_msg[200];
 } file_rows;
 
 /* The columns after the message: file,curve,d,pieces,ctrl_points. */
@@ -292,11 +339,48 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
             row(stdout, "hausdorff-whole", &rows[k].m.whole);
             join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
         }
+        if (a->trimmed) {
+            row(stdout, "trimmed-hausdorff", &rows[k].trimmed);
+            join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
+        }
     }
     if (fflush(stdout) != 0 || ferror(stdout)) {
         ob_error("measure: writing standard output failed");
         return 1;
     }
+    return 0;
+}
+
+/* --trimmed: file name (read into ap) against the trimmed offset
+ * (host/measure/trim.h): no match, no cover; its pieces and control points
+ * in the file's order.  0, or 2 after ob_error(). */
+static int measure_trimmed(const measure_args *a, const char *name, const ob_curve *c, int samples, ob_approx *ap,
+                           file_rows *fr)
+{
+    static const ob_mres cert_na = {0, "certified does not apply with --trimmed: its interval certificate bounds each "
+                                       "piece against the base piece a parameter match gives, and the distance between "
+                                       "two point sets has none (trimmed-hausdorff is sampled and refined)",
+                                    NAN, -1, -1, NAN, 0, ""};
+    ob_err err;
+    if (ob_measure_trimmed(c, a->d, ap, samples, a->trim_dump, &fr->trimmed, fr->trim_msg, sizeof fr->trim_msg,
+                           &err) != 0) {
+        if (!ob_stop_signal())
+            ob_error("measure: %s: %s", name, err.msg);
+        return 2;
+    }
+    fr->m.res[OB_METRIC_CERTIFIED] = cert_na;
+    int *order = malloc((size_t)(ap->n > 0 ? ap->n : 1) * sizeof *order);
+    if (!order) {
+        ob_error("measure: out of memory");
+        return 2;
+    }
+    for (int i = 0; i < ap->n; i++)
+        order[i] = i;
+    ob_cover cv = {0};
+    cv.order = order;
+    fr->pieces = ob_approx_file_pieces(ap);
+    fr->ctrl_points = count_ctrl_points(c, a->d, ap, &cv);
+    free(order);
     return 0;
 }
 
@@ -317,6 +401,10 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     if (ap.have_job && (strcmp(ap.job_curve, c->id) != 0 || ap.job_d != a->d))
         ob_warn("measure: %s was exported by a job on curve %s at d = %.17g, and is measured against curve %s at "
                 "d = %.17g: its error is not that job's max_err", name, ap.job_curve, ap.job_d, c->id, a->d);
+    if (a->trimmed) {
+        status = measure_trimmed(a, name, c, samples, &ap, fr);
+        goto out;
+    }
     ob_measure_ask ask = {{0}, a->whole, samples};
     memcpy(ask.want, a->want, sizeof ask.want);
     const int rc = ob_measure_approx(c, a->d, &ap, &ask, name, &cv, &fr->m, &err);

@@ -391,3 +391,22 @@ void ob_trim_free(ob_trim *tr)
     free(tr->split);
     memset(tr, 0, sizeof *tr);
 }
+
+static void dump_row(FILE *f, const char *kind, const ob_curve *c, double d, int seg, double t0, double t1)
+{
+    double p[2], q[2];
+    ob_bez_offset_point(&c->seg[seg], t0, d, p);
+    ob_bez_offset_point(&c->seg[seg], t1, d, q);
+    fprintf(f, "%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", kind, seg, t0, t1, p[0], p[1], q[0], q[1]);
+}
+
+int ob_trim_dump(FILE *f, const ob_curve *c, double d, const ob_trim *tr)
+{
+    static const char *const kinds[] = {"cusp", "self", "opposite", "end"};
+    fputs("kind,seg,t0,t1,x0,y0,x1,y1\n", f);
+    for (int k = 0; k < tr->n; k++)
+        dump_row(f, "arc", c, d, tr->arc[k].seg, tr->arc[k].t0, tr->arc[k].t1);
+    for (int k = 0; k < tr->nsplit; k++)
+        dump_row(f, kinds[tr->split[k].kind], c, d, tr->split[k].seg, tr->split[k].t, tr->split[k].t);
+    return fflush(f) != 0 || ferror(f) ? -1 : 0;
+}

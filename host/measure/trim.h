@@ -29,6 +29,8 @@
 #ifndef OB_TRIM_H
 #define OB_TRIM_H
 
+#include <stdio.h>
+
 #include "host/io/approx.h"
 #include "host/measure/measure.h"
 #include "methods/core/curve.h"
@@ -84,5 +86,20 @@ double ob_trim_base_dist(const ob_curve *c, const double p[2]);
  *          piece, out of memory. */
 int ob_trimmed_hausdorff(const ob_curve *c, double d, const ob_trim *tr, const ob_approx *a, int samples,
                          ob_mres *r, char *msg, size_t len, ob_err *err);
+
+/* Purpose: `measure --trimmed`'s path: the trimmed d-offset of c
+ *          (ob_trim_offset), written to dump when not NULL (ob_trim_dump),
+ *          and the pieces of a measured against it (ob_trimmed_hausdorff).
+ * Errors:  returns 0; -1 with a reason in err->msg (an empty trimmed
+ *          offset, a dump that cannot be written, out of memory). */
+int ob_measure_trimmed(const ob_curve *c, double d, const ob_approx *a, int samples, const char *dump, ob_mres *r,
+                       char *msg, size_t len, ob_err *err);
+
+/* Purpose: the trimmed offset as CSV, for checks (`measure --trim-dump`):
+ *          a header, then one row per kept arc (kind arc: seg, t0, t1 and
+ *          the end points x0, y0, x1, y1) and per split point (kind cusp,
+ *          self, opposite or end: seg, t0 = t1 = t, its point twice).
+ * Returns: 0, or -1 when writing fails. */
+int ob_trim_dump(FILE *f, const ob_curve *c, double d, const ob_trim *tr);
 
 #endif

@@ -24,6 +24,7 @@ typedef struct {
     double d;
     double *pts;   /* [n][T][2] */
     double *circ;  /* [n][4]: a circle holding the curve (x, y, r), the longest chord between samples */
+    double *f2;    /* [T]: scratch, squared distances to the samples of one curve */
 } cset;
 
 static void cs_point(const cset *s, int k, double u, double p[2])
@@ -34,6 +35,26 @@ static void cs_point(const cset *s, int k, double u, double p[2])
     }
     const ob_trim_arc *ar = &s->tr->arc[k];
     ob_bez_offset_point(&s->c->seg[ar->seg], ar->t0 + (ar->t1 - ar->t0) * u, s->d, p);
+}
+
+/* The point of curve k at u and its derivative in u. */
+static void cs_point_d(const cset *s, int k, double u, double p[2], double dp[2])
+{
+    double e[3][2];
+    if (s->side == SIDE_FILE) {
+        ob_bez_eval(&s->a->v[k].approx, u, 1, e);
+        p[0] = e[0][0], p[1] = e[0][1], dp[0] = e[1][0], dp[1] = e[1][1];
+        return;
+    }
+    const ob_trim_arc *ar = &s->tr->arc[k];
+    const ob_bez *b = &s->c->seg[ar->seg];
+    const double t = ar->t0 + (ar->t1 - ar->t0) * u;
+    ob_bez_eval(b, t, 2, e);
+    const double L = hypot(e[1][0], e[1][1]);
+    ob_bez_offset_point(b, t, s->d, p);
+    const double f = L > 0.0 ? (1.0 - s->d * (e[1][0] * e[2][1] - e[1][1] * e[2][0]) / (L * L * L)) * (ar->t1 - ar->t0)
+                             : 0.0;
+    dp[0] = e[1][0] * f, dp[1] = e[1][1] * f;
 }
 
 static double sample_u(const cset *s, int i)
@@ -63,7 +84,8 @@ static int cs_init(cset *s, int side, int n, int T)
     s->side = side, s->n = n, s->T = T;
     s->pts = malloc(2 * (size_t)n * (size_t)T * sizeof *s->pts);
     s->circ = malloc(4 * (size_t)n * sizeof *s->circ);
-    if (!s->pts || !s->circ)
+    s->f2 = malloc((size_t)T * sizeof *s->f2);
+    if (!s->pts || !s->circ || !s->f2)
         return -1;
     for (int k = 0; k < n; k++)
         cs_fill(s, k);
@@ -93,28 +115,51 @@ static double golden_min(const cset *s, int k, const double q[2], double lo, dou
     return fmin(f1, f2);
 }
 
+/* The foot of q on curve k from u by Gauss-Newton steps
+ * u -= (P - q).P' / |P'|^2 inside [lo, hi]; 1 with *ub and the distance
+ * when the step fell below 1e-15, 0 when it did not within 12 steps. */
+static int gauss_newton(const cset *s, int k, const double q[2], double u, double lo, double hi, double *ub, double *e)
+{
+    for (int it = 0; it < 12; it++) {
+        double p[2], dp[2];
+        cs_point_d(s, k, u, p, dp);
+        const double n2 = dp[0] * dp[0] + dp[1] * dp[1];
+        if (!(n2 > 0.0))
+            return 0;
+        const double step = ((p[0] - q[0]) * dp[0] + (p[1] - q[1]) * dp[1]) / n2, v = fmin(fmax(u - step, lo), hi);
+        if (fabs(v - u) <= 1e-15 || (v == u)) {
+            *ub = v, *e = dist_at(s, k, v, q);
+            return 1;
+        }
+        u = v;
+    }
+    return 0;
+}
+
 /* The distance from q to curve k: its nearest sample, and every local
- * minimum of the samples within a chord of it, refined. */
+ * minimum of the samples within a chord of it, refined (squared distances
+ * in s->f2). */
 static double curve_dist(const cset *s, int k, const double q[2], double *uf)
 {
     const double *P = s->pts + 2 * (size_t)k * s->T, h = s->circ[4 * (size_t)k + 3];
-    double f0 = INFINITY;
+    double *f2 = s->f2, m2 = INFINITY;
     int i0 = 0;
     for (int i = 0; i < s->T; i++) {
-        const double f = hypot(q[0] - P[2 * i], q[1] - P[2 * i + 1]);
-        if (f < f0)
-            f0 = f, i0 = i;
+        const double dx = q[0] - P[2 * i], dy = q[1] - P[2 * i + 1];
+        f2[i] = dx * dx + dy * dy;
+        if (f2[i] < m2)
+            m2 = f2[i], i0 = i;
     }
-    double best = f0;
+    double best = sqrt(m2);
+    const double lim = (best + h) * (best + h);
     *uf = sample_u(s, i0);
     for (int i = 0; i < s->T; i++) {
-        const double f = hypot(q[0] - P[2 * i], q[1] - P[2 * i + 1]);
-        const double fl = i > 0 ? hypot(q[0] - P[2 * i - 2], q[1] - P[2 * i - 1]) : INFINITY;
-        const double fr = i < s->T - 1 ? hypot(q[0] - P[2 * i + 2], q[1] - P[2 * i + 3]) : INFINITY;
-        if (!(f <= f0 + h && f <= fl && f <= fr))
+        if (!(f2[i] <= lim && (i == 0 || f2[i] <= f2[i - 1]) && (i == s->T - 1 || f2[i] <= f2[i + 1])))
             continue;
-        double u;
-        const double e = golden_min(s, k, q, sample_u(s, i > 0 ? i - 1 : 0), sample_u(s, i < s->T - 1 ? i + 1 : i), &u);
+        double u, e;
+        const double lo = sample_u(s, i > 0 ? i - 1 : 0), hi = sample_u(s, i < s->T - 1 ? i + 1 : i);
+        if (!gauss_newton(s, k, q, sample_u(s, i), lo, hi, &u, &e))
+            e = golden_min(s, k, q, lo, hi, &u);
         if (e < best)
             best = e, *uf = u;
     }
@@ -152,7 +197,7 @@ static double golden_max(const cset *Q, const cset *G, int k, double lo, double 
     const double g = 0.6180339887498949;
     double uf, x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
     double f1 = query_dist(Q, G, k, x1, kf, &uf), f2 = query_dist(Q, G, k, x2, kf, &uf);
-    for (int it = 0; it < 60 && hi - lo > 1e-14; it++) {
+    for (int it = 0; it < 60 && hi - lo > 1e-10; it++) { /* at a maximum: the distance to 1e-20 relative */
         if (f1 > f2)
             hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = query_dist(Q, G, k, x1, kf, &uf);
         else
@@ -192,6 +237,7 @@ static void cs_free(cset *s)
 {
     free(s->pts);
     free(s->circ);
+    free(s->f2);
 }
 
 /* Fills r and msg for the worst place: curve k of side Q at u. */
@@ -252,4 +298,25 @@ int ob_trimmed_hausdorff(const ob_curve *c, double d, const ob_trim *tr, const o
                  "piece?)";
     cs_free(&F), cs_free(&A);
     return 0;
+}
+
+int ob_measure_trimmed(const ob_curve *c, double d, const ob_approx *a, int samples, const char *dump, ob_mres *r,
+                       char *msg, size_t len, ob_err *err)
+{
+    ob_trim tr;
+    if (ob_trim_offset(c, d, &tr, err) != 0) {
+        ob_trim_free(&tr);
+        return -1;
+    }
+    if (dump) {
+        FILE *f = fopen(dump, "w");
+        const int bad = !f || ob_trim_dump(f, c, d, &tr) != 0;
+        if ((f && fclose(f) != 0) || bad) {
+            ob_trim_free(&tr);
+            return ob_fail(err, "--trim-dump: cannot write %s", dump);
+        }
+    }
+    const int rc = ob_trimmed_hausdorff(c, d, &tr, a, samples, r, msg, len, err);
+    ob_trim_free(&tr);
+    return rc;
 }
