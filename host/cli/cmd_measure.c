@@ -14,6 +14,9 @@
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
+ * --trimmed [--trim-dump FILE]: instead, one row trimmed-hausdorff, the
+ * distance between the pieces and the trimmed offset as point sets (no
+ * match, no cover: host/measure/trim.h); --metric certified adds a row n/a.
  * Exit status: 0; 2 bad input (an option, a file, an unknown curve, pieces
  * that do not cover the offset once), with a message naming the option or
  * FILE:LINE; then nothing is written (no partial CSV: the other files'
