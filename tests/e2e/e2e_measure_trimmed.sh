@@ -4,7 +4,9 @@
 #   (tests/e2e/trim_brute.py: 200001 offset points kept by their distance
 #   to the curve's polyline, k-d tree) on the parabola's swallowtail at
 #   d = 1, on liu2002_ex1 at d = 1 (cut by its end circle) and d = -1 (all
-#   kept).
+#   kept), on an S cubic at d = +-0.4 (its offset crosses the opposite
+#   offset), a quintic wave at d = 0.8 and atlas_trifolium (rational) at
+#   d = 0.3.
 # - A trimmed polyline made in Python (the trimmed offset's kept ranges,
 #   ends refined there, points on the exact offset) measures within its
 #   construction error (the chords' largest distance from the offset),
@@ -28,6 +30,26 @@ curve parabola
   point 2 4
   offset 1 -1
 end
+curve scurve
+  source an S: its offsets cross the opposite offsets
+  bezier 3
+  point 0 0
+  point 4 3
+  point -3 3
+  point 1 0
+  offset 0.4 -0.4
+end
+curve wave
+  source two and a half waves: swallowtails cut by the end circles
+  bezier 5
+  point 0 0
+  point 1 2
+  point 2 -2
+  point 3 2
+  point 4 -2
+  point 5 0
+  offset 0.8
+end
 CURVES
 # col FILE METRIC COLUMN: a column of the row of METRIC
 col() { awk -F, -v m="$2" -v c="$3" 'NR == 1 {for (i = 1; i <= NF; i++) k[$i] = i; next} $1 == m {print $k[c]}' "$1"; }
@@ -48,7 +70,7 @@ check '[ $? -eq 2 ] && [ ! -s "$T/o" ] && grep -q "trimmed offset is empty" "$T/
 
 if ! "$PY" -c 'import numpy, scipy.spatial, scipy.optimize' >/dev/null 2>&1; then
     echo "e2e_measure_trimmed: $PY does not import numpy and scipy: skipped"
-    skipped=$((skipped + 8))
+    skipped=$((skipped + 12))
     e2e_done
     exit $?
 fi
@@ -64,6 +86,14 @@ brute "$PUB" liu2002_ex1 1
 check '[ $? -eq 0 ]' "liu2002_ex1 d = 1: $(cat "$T/e" "$T/b.out")"
 brute "$PUB" liu2002_ex1 -1
 check '[ $? -eq 0 ] && grep -q "^arc,0,0,1," "$T/dump.csv"' "liu2002_ex1 d = -1: $(cat "$T/e" "$T/b.out")"
+for d in 0.4 -0.4; do
+    brute "$T/p.curves" scurve $d
+    check '[ $? -eq 0 ] && grep -q "^opposite," "$T/dump.csv"' "scurve d = $d: $(cat "$T/e" "$T/b.out")"
+done
+brute "$T/p.curves" wave 0.8
+check '[ $? -eq 0 ] && grep -q "^end," "$T/dump.csv" && grep -q "^self," "$T/dump.csv"' "wave d = 0.8: $(cat "$T/e" "$T/b.out")"
+brute "$(dirname "$PUB")/atlas.curves" atlas_trifolium 0.3
+check '[ $? -eq 0 ]' "atlas_trifolium d = 0.3: $(cat "$T/e" "$T/b.out")"
 
 # within FILE E: trimmed-hausdorff of FILE's row in (0.9 E, E (1 + 1e-4) + 1e-13] (E is sampled
 # 65 times a chord: a little low)
