@@ -373,7 +373,8 @@ int ob_trim_offset(const ob_curve *c, double d, ob_trim *tr, ob_err *err)
         rc = cusps(&w) || crossings(&w) || (!w.closed && (end_circle(&w, s) || end_circle(&w, e))) ? -1 : 0;
     }
     if (rc == 0) {
-        qsort(w.sp, (size_t)w.nsp, sizeof *w.sp, cmp_split);
+        if (w.nsp > 0) /* qsort takes no NULL, even for none */
+            qsort(w.sp, (size_t)w.nsp, sizeof *w.sp, cmp_split);
         dedupe(&w);
         rc = decide(&w, tr);
     }
