@@ -7,6 +7,9 @@
  *   - a quarter circle (atlas_circle) offset inward by more than its
  *     radius: nothing kept; by less: all kept;
  *   - a whole circle of four rational quarters: the same, over its wrap;
+ *   - an ellipse of four quarters offset inwards past its least radius of
+ *     curvature: swallowtails at the major axis' ends, one over the wrap,
+ *     their self-intersections on the axis;
  *   - liu2002_ex1 at d = 1: some of it removed (all but [0, 0.092]: its
  *     end circle cuts it); every kept arc's points at distance |d| from
  *     the curve, every removed one's nearer; at d = -1 all kept;
@@ -143,6 +146,50 @@ static void test_circle(void)
     ob_trim_free(&tr);
 }
 
+/* The ellipse x^2/4 + y^2 = 1 (the circle's quarters, x doubled) offset
+ * inwards by 0.8 > its least radius of curvature 1/2: a swallowtail about
+ * each end of the major axis, the one at x = 2 across the closed curve's
+ * wrap (segment 3 to segment 0).  By symmetry each self-intersection lies
+ * on the x axis; the kept arcs' points are 0.8 from the ellipse, the
+ * removed parts' nearer. */
+static void test_ellipse_wrap(void)
+{
+    ob_bez q[4];
+    circle4(q);
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i <= 2; i++)
+            q[k].h[i][0] *= 2.0;
+    ob_curve c = curve_of(q, 4, "ellipse4");
+    ob_trim tr = {0};
+    ob_err err = {""};
+    const double d = 0.8;
+    CHECK(ob_trim_offset(&c, d, &tr, &err) == 0, "%s", err.msg);
+    CHECK(count_kind(&tr, OB_SPLIT_SELF) == 4 && count_kind(&tr, OB_SPLIT_CUSP) == 4,
+          "4 self-intersection parameters and 4 cusps, %d and %d", count_kind(&tr, OB_SPLIT_SELF),
+          count_kind(&tr, OB_SPLIT_CUSP));
+    int wrap = 0;
+    for (int i = 0; i < tr.nsplit; i++)
+        if (tr.split[i].kind == OB_SPLIT_SELF) {
+            double p[2];
+            ob_bez_offset_point(&q[tr.split[i].seg], tr.split[i].t, d, p);
+            CHECK_NEAR(p[1], 0.0, 1e-13, "self-intersection on the x axis");
+            wrap += p[0] > 0.0 && (tr.split[i].seg == 0 || tr.split[i].seg == 3);
+        }
+    CHECK(wrap == 2, "the swallowtail at x = 2 across the wrap: %d of its splits on segments 3 and 0", wrap);
+    int far = 0, near = 0;
+    for (int k = 0; k < tr.n; k++)
+        for (int j = 0; j <= 8; j++) {
+            double p[2];
+            ob_bez_offset_point(&q[tr.arc[k].seg], tr.arc[k].t0 + (tr.arc[k].t1 - tr.arc[k].t0) * j / 8.0, d, p);
+            far += ob_trim_base_dist(&c, p) < d - 1e-9;
+        }
+    double p[2];
+    ob_bez_offset_point(&q[0], 0.0, d, p); /* the tip of the swallowtail at x = 2: removed */
+    near += ob_trim_base_dist(&c, p) < d - 1e-6;
+    CHECK(far == 0 && near == 1 && tr.n == 4, "%d arcs, %d kept points nearer than d, tip removed %d", tr.n, far, near);
+    ob_trim_free(&tr);
+}
+
 static void test_liu(const ob_curveset *set)
 {
     const int i = ob_curveset_find(set, "liu2002_ex1");
@@ -222,6 +269,7 @@ int main(void)
     test_parabola();
     test_quarter(&atlas);
     test_circle();
+    test_ellipse_wrap();
     test_liu(&pub);
     test_measure(&atlas);
     ob_curveset_free(&atlas);
