@@ -12,7 +12,7 @@
 
 #include "host/run/signals.h"
 
-enum { SIDE_FILE = 0, SIDE_TRIM = 1, ARC_SAMPLES_MIN = 1024 };
+enum { SIDE_FILE = 0, SIDE_TRIM = 1, ARC_SAMPLES_MIN = 1024, BLK = 32 };
 
 /* One side: the file's pieces or the trimmed offset's arcs, each sampled
  * at T parameters u_i = i / (T - 1). */
@@ -25,7 +25,13 @@ typedef struct {
     double *pts;   /* [n][T][2] */
     double *circ;  /* [n][4]: a circle holding the curve (x, y, r), the longest chord between samples */
     double *f2;    /* [T]: scratch, squared distances to the samples of one curve */
+    int nb;        /* blocks of BLK samples a curve (the last shares its first sample with the one before) */
+    double *blk;   /* [n][nb][3]: a circle holding each block's samples (x, y, r) */
+    char *seen;    /* [nb]: scratch, the blocks of one curve scanned */
+    double *bd;    /* [nb]: scratch, the distances to their centres */
 } cset;
+
+#define NBLK(T) (((T) - 1 + BLK - 1) / BLK)
 
 static void cs_point(const cset *s, int k, double u, double p[2])
 {
@@ -77,15 +83,29 @@ static void cs_fill(cset *s, int k)
     for (int i = 0; i < s->T; i++)
         r = fmax(r, hypot(P[2 * i] - o[0], P[2 * i + 1] - o[1]));
     o[2] = isfinite(r + h) ? r + h : INFINITY, o[3] = h;
+    for (int b = 0; b < s->nb; b++) { /* samples b BLK ... (b + 1) BLK */
+        const int i0 = b * BLK, i1 = (b + 1) * BLK < s->T - 1 ? (b + 1) * BLK : s->T - 1;
+        double *c = s->blk + 3 * ((size_t)k * s->nb + b), bx0 = INFINITY, by0 = INFINITY, bx1 = -INFINITY, by1 = -INFINITY;
+        for (int i = i0; i <= i1; i++)
+            bx0 = fmin(bx0, P[2 * i]), bx1 = fmax(bx1, P[2 * i]), by0 = fmin(by0, P[2 * i + 1]), by1 = fmax(by1, P[2 * i + 1]);
+        c[0] = 0.5 * (bx0 + bx1), c[1] = 0.5 * (by0 + by1), c[2] = 0.0;
+        for (int i = i0; i <= i1; i++)
+            c[2] = fmax(c[2], hypot(P[2 * i] - c[0], P[2 * i + 1] - c[1]));
+        if (!isfinite(c[2]))
+            c[2] = INFINITY;
+    }
 }
 
 static int cs_init(cset *s, int side, int n, int T)
 {
-    s->side = side, s->n = n, s->T = T;
+    s->side = side, s->n = n, s->T = T, s->nb = NBLK(T);
+    s->blk = malloc(3 * (size_t)n * (size_t)s->nb * sizeof *s->blk);
+    s->seen = malloc((size_t)s->nb);
+    s->bd = malloc((size_t)s->nb * sizeof *s->bd);
     s->pts = malloc(2 * (size_t)n * (size_t)T * sizeof *s->pts);
     s->circ = malloc(4 * (size_t)n * sizeof *s->circ);
     s->f2 = malloc((size_t)T * sizeof *s->f2);
-    if (!s->pts || !s->circ || !s->f2)
+    if (!s->pts || !s->circ || !s->f2 || !s->blk || !s->seen || !s->bd)
         return -1;
     for (int k = 0; k < n; k++)
         cs_fill(s, k);
@@ -136,32 +156,72 @@ static int gauss_newton(const cset *s, int k, const double q[2], double u, doubl
     return 0;
 }
 
-/* The distance from q to curve k: its nearest sample, and every local
- * minimum of the samples within a chord of it, refined (squared distances
- * in s->f2). */
-static double curve_dist(const cset *s, int k, const double q[2], double *uf)
+/* The squared distances from q to the samples of the blocks of curve k
+ * that can hold a sample within h of the nearest (into s->f2, the blocks
+ * marked in s->seen); the nearest sample's index and squared distance. */
+static int scan_blocks(const cset *s, int k, const double q[2], double h, double *m2)
 {
-    const double *P = s->pts + 2 * (size_t)k * s->T, h = s->circ[4 * (size_t)k + 3];
-    double *f2 = s->f2, m2 = INFINITY;
+    const double *P = s->pts + 2 * (size_t)k * s->T, *B = s->blk + 3 * (size_t)k * s->nb;
+    double U = INFINITY;
     int i0 = 0;
-    for (int i = 0; i < s->T; i++) {
-        const double dx = q[0] - P[2 * i], dy = q[1] - P[2 * i + 1];
-        f2[i] = dx * dx + dy * dy;
-        if (f2[i] < m2)
-            m2 = f2[i], i0 = i;
+    *m2 = INFINITY;
+    for (int b = 0; b < s->nb; b++) { /* the nearest sample is at most U away */
+        const double dx = q[0] - B[3 * b], dy = q[1] - B[3 * b + 1];
+        s->bd[b] = sqrt(dx * dx + dy * dy); /* no hypot: a hot loop, coordinates far from overflow */
+        U = fmin(U, s->bd[b] + B[3 * b + 2]);
     }
-    double best = sqrt(m2);
-    const double lim = (best + h) * (best + h);
-    *uf = sample_u(s, i0);
-    for (int i = 0; i < s->T; i++) {
-        if (!(f2[i] <= lim && (i == 0 || f2[i] <= f2[i - 1]) && (i == s->T - 1 || f2[i] <= f2[i + 1])))
+    for (int b = 0; b < s->nb; b++) {
+        s->seen[b] = s->bd[b] - B[3 * b + 2] <= U + h;
+        if (!s->seen[b])
             continue;
-        double u, e;
-        const double lo = sample_u(s, i > 0 ? i - 1 : 0), hi = sample_u(s, i < s->T - 1 ? i + 1 : i);
-        if (!gauss_newton(s, k, q, sample_u(s, i), lo, hi, &u, &e))
-            e = golden_min(s, k, q, lo, hi, &u);
-        if (e < best)
-            best = e, *uf = u;
+        const int i1 = (b + 1) * BLK < s->T - 1 ? (b + 1) * BLK : s->T - 1;
+        for (int i = b * BLK; i <= i1; i++) {
+            const double dx = q[0] - P[2 * i], dy = q[1] - P[2 * i + 1];
+            s->f2[i] = dx * dx + dy * dy;
+            if (s->f2[i] < *m2)
+                *m2 = s->f2[i], i0 = i;
+        }
+    }
+    return i0;
+}
+
+/* The squared distance of sample i as scanned, or infinity. */
+static double f2_at(const cset *s, int i)
+{
+    if (i < 0 || i >= s->T)
+        return INFINITY;
+    const int b = i / BLK, b1 = i == 0 ? 0 : (i - 1) / BLK; /* a block's last sample is the next one's first */
+    return s->seen[b < s->nb ? b : s->nb - 1] || s->seen[b1] ? s->f2[i] : INFINITY;
+}
+
+/* The distance from q to curve k: its nearest sample, and every local
+ * minimum of the samples within a chord of it, refined; a value > cut
+ * when it is (then not refined). */
+static double curve_dist(const cset *s, int k, const double q[2], double cut, double *uf)
+{
+    const double h = s->circ[4 * (size_t)k + 3];
+    double m2;
+    const int i0 = scan_blocks(s, k, q, h, &m2);
+    double best = sqrt(m2);
+    *uf = sample_u(s, i0);
+    if (best - h > cut)
+        return best;
+    const double lim = (fmin(best, cut) + h) * (fmin(best, cut) + h);
+    for (int b = 0; b < s->nb; b++) {
+        if (!s->seen[b])
+            continue;
+        const int i1 = (b + 1) * BLK < s->T - 1 ? (b + 1) * BLK : s->T - 1;
+        for (int i = b * BLK; i <= i1; i++) {
+            const double f = s->f2[i];
+            if (!(f <= lim && f <= f2_at(s, i - 1) && f <= f2_at(s, i + 1)))
+                continue;
+            double u, e;
+            const double lo = sample_u(s, i > 0 ? i - 1 : 0), hi = sample_u(s, i < s->T - 1 ? i + 1 : i);
+            if (!gauss_newton(s, k, q, sample_u(s, i), lo, hi, &u, &e))
+                e = golden_min(s, k, q, lo, hi, &u);
+            if (e < best)
+                best = e, *uf = u;
+        }
     }
     return best;
 }
@@ -170,13 +230,14 @@ static double curve_dist(const cset *s, int k, const double q[2], double *uf)
  * a nearer point, the one of *kf (the last query's) first. */
 static double set_dist(const cset *s, const double q[2], int *kf, double *uf)
 {
-    double u, best = curve_dist(s, *kf, q, uf);
+    double u, best = curve_dist(s, *kf, q, INFINITY, uf);
     const int k0 = *kf;
     for (int k = 0; k < s->n; k++) {
         const double *o = s->circ + 4 * (size_t)k;
-        if (k == k0 || !(hypot(q[0] - o[0], q[1] - o[1]) - o[2] < best))
+        const double dx = q[0] - o[0], dy = q[1] - o[1];
+        if (k == k0 || !(sqrt(dx * dx + dy * dy) - o[2] < best))
             continue;
-        const double e = curve_dist(s, k, q, &u);
+        const double e = curve_dist(s, k, q, best, &u);
         if (e < best)
             best = e, *kf = k, *uf = u;
     }
@@ -238,6 +299,9 @@ static void cs_free(cset *s)
     free(s->pts);
     free(s->circ);
     free(s->f2);
+    free(s->blk);
+    free(s->seen);
+    free(s->bd);
 }
 
 /* Fills r and msg for the worst place: curve k of side Q at u. */
