@@ -23,6 +23,10 @@
  * A file that names the job that exported it (approx.h: have_job) and is
  * measured against another curve or d gets a warning on stderr: its error
  * is then not that job's max_err.
+ * --trimmed [--trim-dump FILE]: instead, one row trimmed-hausdorff, the
+ * distance between the pieces and the trimmed offset as point sets (no
+ * match, no cover: host/measure/trim.h); --metric certified adds a row n/a; --tol decides on
+ * trimmed-hausdorff; not with --per-piece or --draw.
  * --per-piece FILE.csv and --draw FILE.svg: where the error is, piece by
  * piece (host/measure/perpiece.h, host/view/draw_approx.h, where_out.h), in
  * the base's coordinates (after the frame options).
@@ -51,6 +55,7 @@
 #include "host/io/output.h"
 #include "host/measure/diagnose.h"
 #include "host/measure/measure.h"
+#include "host/measure/trim.h"
 #include "host/run/signals.h"
 #include "methods/driver/joints.h"
 
@@ -64,6 +69,8 @@ typedef struct {
     ob_where_out where;        /* --per-piece, --draw (where_out.h) */
     const char *metric_named;  /* --metric's value, NULL: not given (n/a rows left out) */
     ob_measure_more more;      /* frame and verdict options (measure_more.h) */
+    int trimmed;               /* --trimmed: the trimmed-hausdorff row (host/measure/trim.h) */
+    const char *trim_dump;     /* --trim-dump FILE, or NULL */
 } measure_args;
 
 /* The rows --metric V asks for: all (the default: every metric but
@@ -81,7 +88,7 @@ static int set_metrics(measure_args *a, const char *v)
     return 0;
 }
 
-enum { MO_APPROX, MO_D, MO_METRIC, MO_PER_PIECE, MO_DRAW };
+enum { MO_APPROX, MO_D, MO_METRIC, MO_PER_PIECE, MO_DRAW, MO_TRIMMED, MO_TRIM_DUMP };
 
 static const ob_flag measure_flags[] = {
     {"approx", "FILE", "the approximation, covering the offset once: a .curves file, --export's JSON, or DXF "
@@ -94,6 +101,11 @@ static const ob_flag measure_flags[] = {
      "hausdorff error and worst point (x, y; x_off, y_off on the exact offset)", MO_PER_PIECE, OB_FLAG_ONCE},
     {"draw", "FILE.svg", "also draw the base, the exact offset and the pieces coloured by their error, the worst "
      "point marked (base coordinates)", MO_DRAW, OB_FLAG_ONCE},
+    {"trimmed", NULL, "measure against the trimmed offset (its loops and the parts nearer than |d| to the curve cut "
+     "away, as CAD kernels ship it): one row, trimmed-hausdorff, the distance between the two as point sets",
+     MO_TRIMMED, OB_FLAG_ONCE},
+    {"trim-dump", "FILE", "with --trimmed: write the trimmed offset's arcs and split points to FILE as CSV (for checks)",
+     MO_TRIM_DUMP, OB_FLAG_ONCE},
 };
 
 static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
@@ -132,6 +144,16 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         }
         a->have_d = 1;
         return 0;
+    case MO_TRIMMED:
+        a->trimmed = 1;
+        return 0;
+    case MO_TRIM_DUMP:
+        if (!*v) {
+            ob_error("%s: empty file name", opt);
+            return -1;
+        }
+        a->trim_dump = v;
+        return 0;
     default:
         a->metric_named = v;
         if (set_metrics(a, v)) {
@@ -141,6 +163,36 @@ static int apply_measure_flag(void *ctx, int id, const char *opt, const char *v)
         }
         return 0;
     }
+}
+
+/* --trim-dump needs --trimmed, and --trimmed takes no --metric but
+ * certified (the others need the pieces matched to the untrimmed offset);
+ * 0, or 2 after ob_error(). */
+static int check_trimmed(measure_args *a)
+{
+    if (a->trim_dump && !a->trimmed) {
+        ob_error("--trim-dump: needs --trimmed (it writes the trimmed offset)");
+        return 2;
+    }
+    if (a->trimmed && (a->where.per_piece || a->where.draw)) {
+        ob_error("%s: not with --trimmed (it locates the error piece by piece against the untrimmed offset, "
+                 "matched; --trimmed measures two point sets, with no match)", a->where.per_piece ? "--per-piece" : "--draw");
+        return 2;
+    }
+    int other = 0;
+    for (int m = 0; m < OB_METRIC_COUNT; m++)
+        other |= a->want[m] && (ob_metric)m != OB_METRIC_CERTIFIED;
+    if (a->trimmed && (a->metric_named != NULL) && (other || a->whole)) {
+        ob_error("--metric: with --trimmed only certified (a row saying it does not apply): the other metrics "
+                 "measure against the untrimmed offset, matched piece by piece; --trimmed writes trimmed-hausdorff");
+        return 2;
+    }
+    if (!a->trimmed)
+        return 0;
+    for (int m = 0; m < OB_METRIC_COUNT; m++) /* its row alone, or with certified's */
+        a->want[m] = (a->metric_named != NULL) && (ob_metric)m == OB_METRIC_CERTIFIED;
+    a->whole = 0;
+    return 0;
 }
 
 /* Parses into a and o; 0, 2 after ob_error(), or -1 after --help. */
@@ -162,7 +214,8 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
     };
     const int rc = ob_cli_parse("--curve ID --d D --approx FILE [--approx FILE]... [--curves FILE] [--metric M|all] "
                                 "[--samples S] [--per-piece FILE.csv] [--draw FILE.svg] [--transform a,b,c,d,e,f] "
-                                "[--translate X,Y] [--scale S] [--flip-y] [--svg-units user|px] [--tol T]",
+                                "[--translate X,Y] [--scale S] [--flip-y] [--svg-units user|px] [--tol T] "
+                                "[--trimmed [--trim-dump FILE]]",
                                 sets, 3, argc, argv, 0, NULL, NULL);
     if (rc == OB_CLI_HELP)
         return -1;
@@ -177,7 +230,7 @@ static int parse(int argc, char **argv, measure_args *a, ob_run_opts *o)
         ob_error("--curve: measure takes exactly one curve id");
         return 2;
     }
-    return 0;
+    return check_trimmed(a);
 }
 
 static void put_num(FILE *f, double x)
@@ -193,6 +246,8 @@ typedef struct {
     int pieces, ctrl_points;
     ob_approx ap;       /* with --per-piece or --draw: its pieces, */
     ob_perpiece pp;     /* and where each is off (perpiece.h) */
+    ob_mres trimmed;    /* --trimmed: its row, its message in trim_msg */
+    char trim_msg[200];
 } file_rows;
 
 /* The columns after the message: file,curve,d,pieces,ctrl_points. */
@@ -332,6 +387,10 @@ static int write_csv(const measure_args *a, const ob_curve *c, const file_rows *
             row(stdout, "hausdorff-whole", &rows[k].m.whole);
             join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
         }
+        if (a->trimmed) {
+            row(stdout, "trimmed-hausdorff", &rows[k].trimmed);
+            join_cols(stdout, a->approx[k], c, a->d, &rows[k]);
+        }
     }
     if (fflush(stdout) != 0 || ferror(stdout)) {
         ob_error("measure: writing standard output failed");
@@ -383,6 +442,39 @@ static void diagnose(const measure_args *a, const ob_curve *c, const ob_approx *
         ob_warn("measure: %s", line);
 }
 
+/* --trimmed: file name (read into ap) against the trimmed offset
+ * (host/measure/trim.h): no match, no cover; its pieces and control points
+ * in the file's order.  0, or 2 after ob_error(). */
+static int measure_trimmed(const measure_args *a, const char *name, const ob_curve *c, int samples, ob_approx *ap,
+                           file_rows *fr)
+{
+    static const ob_mres cert_na = {0, "certified does not apply with --trimmed: its interval certificate bounds each "
+                                       "piece against the base piece a parameter match gives, and the distance between "
+                                       "two point sets has none (trimmed-hausdorff is sampled and refined)",
+                                    NAN, -1, -1, NAN, 0, ""};
+    ob_err err;
+    if (ob_measure_trimmed(c, a->d, ap, samples, a->trim_dump, &fr->trimmed, fr->trim_msg, sizeof fr->trim_msg,
+                           &err) != 0) {
+        if (!ob_stop_signal())
+            ob_error("measure: %s: %s", name, err.msg);
+        return 2;
+    }
+    fr->m.res[OB_METRIC_CERTIFIED] = cert_na;
+    int *order = malloc((size_t)(ap->n > 0 ? ap->n : 1) * sizeof *order);
+    if (!order) {
+        ob_error("measure: out of memory");
+        return 2;
+    }
+    for (int i = 0; i < ap->n; i++)
+        order[i] = i;
+    ob_cover cv = {0};
+    cv.order = order;
+    fr->pieces = ob_approx_file_pieces(ap);
+    fr->ctrl_points = count_ctrl_points(c, a->d, ap, &cv);
+    free(order);
+    return 0;
+}
+
 /* Reads file name, matches and checks its cover, and measures it into *fr;
  * 0, or 2 after ob_error(). */
 static int measure_file(const measure_args *a, const char *name, const ob_curve *c, int samples, file_rows *fr)
@@ -404,6 +496,10 @@ static int measure_file(const measure_args *a, const char *name, const ob_curve 
     if (a->more.have_frame) {
         const ob_frame f = ob_measure_more_frame(&a->more);
         ob_frame_apply(&f, &ap);  /* file -> base coordinates, before matching */
+    }
+    if (a->trimmed) {
+        status = measure_trimmed(a, name, c, samples, &ap, fr);
+        goto out;
     }
     ob_measure_ask ask = {{0}, a->whole, samples};
     memcpy(ask.want, a->want, sizeof ask.want);
@@ -465,9 +561,11 @@ static int after_csv(const measure_args *a, const file_rows *rows, int dm)
 {
     int over = 0;
     for (int k = 0; k < a->napprox; k++) {
-        if (!a->metric_named)
+        if (!a->metric_named && !a->trimmed)
             ob_measure_say_hidden(a->want, &rows[k].m, a->approx[k]);
-        if (a->more.have_tol)
+        if (a->more.have_tol && a->trimmed) /* its one row decides */
+            over |= ob_measure_verdict_row(&a->more, &rows[k].trimmed, "trimmed-hausdorff", a->approx[k]);
+        else if (a->more.have_tol)
             over |= ob_measure_verdict(&a->more, dm, &rows[k].m, a->approx[k]);
     }
     return over;
@@ -510,7 +608,7 @@ static int measure(const measure_args *a, ob_run_opts *o)
                 rows[k].pieces == 1 ? "" : "s", a->approx[k], c->id, where, ds, samples);
     }
     const int dm = ob_measure_decider(a->metric_named);
-    for (int k = 0; k < a->napprox; k++)
+    for (int k = 0; k < a->napprox && !a->trimmed; k++)
         if (ob_measure_verdict_check(&a->more, dm, &rows[k].m, a->approx[k]))
             goto out;  /* status 2: a verdict from an n/a row */
     status = write_where(a, c, rows);

@@ -134,6 +134,11 @@ int ob_measure_verdict(const ob_measure_more *x, int dm, const ob_measure_out *o
 {
     const char *metric;
     const ob_mres *r = ob_measure_decided(out, dm, &metric);
+    return ob_measure_verdict_row(x, r, metric, name);
+}
+
+int ob_measure_verdict_row(const ob_measure_more *x, const ob_mres *r, const char *metric, const char *name)
+{
     const int over = !(r->err <= x->tol);
     char ts[40], es[40];
     ob_fmt_double(ts, sizeof ts, x->tol);

@@ -55,6 +55,8 @@ int ob_measure_verdict_check(const ob_measure_more *x, int dm, const ob_measure_
  *          METRIC = E"; 1 when over (an error that is not finite too),
  *          else 0. */
 int ob_measure_verdict(const ob_measure_more *x, int dm, const ob_measure_out *out, const char *name);
+/* The same for the row r named metric (--trimmed's trimmed-hausdorff). */
+int ob_measure_verdict_row(const ob_measure_more *x, const ob_mres *r, const char *metric, const char *name);
 
 /* Purpose: the rows of out that are n/a, left out of the default CSV,
  *          named once on stderr with why (want[]/whole: the rows asked). */

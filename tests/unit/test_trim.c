@@ -1,0 +1,278 @@
+/*
+ * test_trim.c - the trimmed offset (host/measure/trim.c, issue 50):
+ *   - the parabola (t, t^2), t in [-2, 2], at d = 1 (its concave side, a
+ *     swallowtail): the self-intersection at t = +-sqrt(4d^2 - 1)/2 on
+ *     x = 0, y = t^2 + 1/2, the cusps where 1 - d kappa = 0, both to
+ *     1e-13; the kept arcs exactly the outside parts; at d = -1 all kept;
+ *   - a quarter circle (atlas_circle) offset inward by more than its
+ *     radius: nothing kept; by less: all kept;
+ *   - a whole circle of four rational quarters: the same, over its wrap;
+ *   - an ellipse of four quarters offset inwards past its least radius of
+ *     curvature: swallowtails at the major axis' ends, one over the wrap,
+ *     their self-intersections on the axis;
+ *   - liu2002_ex1 at d = 1: some of it removed (all but [0, 0.092]: its
+ *     end circle cuts it); every kept arc's points at distance |d| from
+ *     the curve, every removed one's nearer; at d = -1 all kept;
+ *   - trimmed-hausdorff: the exact offset of a quarter circle as a
+ *     rational quadratic measures at round-off; half of it missing: the
+ *     missing end's distance.
+ */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "tests/check.h"
+#include "host/io/curvefile.h"
+#include "host/measure/trim.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static ob_curve curve_of(ob_bez *seg, int n, const char *id)
+{
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "%s", id);
+    c.nseg = n;
+    c.seg = seg;
+    return c;
+}
+
+/* The parabola (t, t^2) for t in [-a, a] as one quadratic: u = (t + a) / 2a. */
+static void parabola(ob_bez *b, double a)
+{
+    const double p[3][2] = {{-a, a * a}, {0, -a * a}, {a, a * a}};
+    ob_bez_from_points(b, 2, p);
+}
+
+static int count_kind(const ob_trim *tr, ob_split_kind k)
+{
+    int n = 0;
+    for (int i = 0; i < tr->nsplit; i++)
+        n += tr->split[i].kind == k;
+    return n;
+}
+
+/* The split of kind k nearest u, or NAN. */
+static double split_near(const ob_trim *tr, ob_split_kind k, double u)
+{
+    double best = NAN;
+    for (int i = 0; i < tr->nsplit; i++)
+        if (tr->split[i].kind == k && !(fabs(tr->split[i].t - u) >= fabs(best - u)))
+            best = tr->split[i].t;
+    return best;
+}
+
+static void test_parabola(void)
+{
+    const double a = 2.0, d = 1.0, ts = sqrt(4 * d * d - 1) / 2, tc = sqrt((pow(2 * d, 2.0 / 3) - 1) / 4);
+    ob_bez b;
+    parabola(&b, a);
+    ob_curve c = curve_of(&b, 1, "parabola");
+    ob_trim tr = {0};
+    ob_err err = {""};
+    CHECK(ob_trim_offset(&c, d, &tr, &err) == 0, "%s", err.msg);
+    CHECK(count_kind(&tr, OB_SPLIT_CUSP) == 2, "2 cusps, %d", count_kind(&tr, OB_SPLIT_CUSP));
+    CHECK(count_kind(&tr, OB_SPLIT_SELF) == 2, "2 self-intersection parameters, %d", count_kind(&tr, OB_SPLIT_SELF));
+    for (int s = -1; s <= 1; s += 2) {
+        const double us = (s * ts + a) / (2 * a), uc = (s * tc + a) / (2 * a);
+        const double u = split_near(&tr, OB_SPLIT_SELF, us);
+        CHECK_NEAR(u, us, 1e-13, "self-intersection parameter");
+        double p[2];
+        ob_bez_offset_point(&b, u, d, p);
+        CHECK_NEAR(p[0], 0.0, 1e-13, "self-intersection x");
+        CHECK_NEAR(p[1], ts * ts + 0.5, 1e-13, "self-intersection y");
+        CHECK_NEAR(split_near(&tr, OB_SPLIT_CUSP, uc), uc, 1e-13, "cusp parameter");
+    }
+    CHECK(tr.n == 2, "2 kept arcs, %d", tr.n);
+    if (tr.n == 2) {
+        CHECK(tr.arc[0].seg == 0 && tr.arc[0].t0 == 0.0 && tr.arc[1].t1 == 1.0, "the outside parts to the ends");
+        CHECK_NEAR(tr.arc[0].t1, (a - ts) / (2 * a), 1e-13, "first arc's end");
+        CHECK_NEAR(tr.arc[1].t0, (a + ts) / (2 * a), 1e-13, "second arc's start");
+    }
+    ob_trim_free(&tr);
+    CHECK(ob_trim_offset(&c, -d, &tr, &err) == 0 && tr.n == 1 && tr.arc[0].t0 == 0.0 && tr.arc[0].t1 == 1.0,
+          "convex side: all kept (%d arcs, %d splits)", tr.n, tr.nsplit);
+    ob_trim_free(&tr);
+}
+
+static void test_quarter(const ob_curveset *set)
+{
+    const int i = ob_curveset_find(set, "atlas_circle");
+    CHECK(i >= 0, "atlas_circle");
+    if (i < 0)
+        return;
+    ob_trim tr = {0};
+    ob_err err = {""};
+    CHECK(ob_trim_offset(&set->v[i], 1.5, &tr, &err) == 0 && tr.n == 0, "inward past the center: %d arcs", tr.n);
+    ob_trim_free(&tr);
+    CHECK(ob_trim_offset(&set->v[i], 0.5, &tr, &err) == 0 && tr.n == 1 && tr.arc[0].t0 == 0.0 && tr.arc[0].t1 == 1.0,
+          "inward by less than the radius: all kept (%d arcs)", tr.n);
+    ob_trim_free(&tr);
+}
+
+/* A unit circle of four rational quadratic quarters, counter-clockwise. */
+static void circle4(ob_bez *q)
+{
+    const double w = sqrt(0.5);
+    for (int k = 0; k < 4; k++) {
+        const double c0 = cos(k * M_PI / 2), s0 = sin(k * M_PI / 2), c1 = cos((k + 1) * M_PI / 2),
+                     s1 = sin((k + 1) * M_PI / 2);
+        memset(&q[k], 0, sizeof q[k]);
+        q[k].deg = 2;
+        ob_bez_set(&q[k], 0, c0, s0, 1.0);
+        ob_bez_set(&q[k], 1, c0 + c1, s0 + s1, w);
+        ob_bez_set(&q[k], 2, c1, s1, 1.0);
+    }
+    ob_bez_set(&q[3], 2, 1.0, 0.0, 1.0); /* closed bit for bit */
+}
+
+static void test_circle(void)
+{
+    ob_bez q[4];
+    circle4(q);
+    ob_curve c = curve_of(q, 4, "circle4");
+    ob_trim tr = {0};
+    ob_err err = {""};
+    CHECK(ob_trim_offset(&c, 1.5, &tr, &err) == 0 && tr.n == 0, "closed circle inward past the center: %d arcs", tr.n);
+    ob_trim_free(&tr);
+    CHECK(ob_trim_offset(&c, -0.5, &tr, &err) == 0 && tr.n == 4, "outward: 4 whole arcs, %d", tr.n);
+    for (int k = 0; k < tr.n; k++)
+        CHECK(tr.arc[k].seg == k && tr.arc[k].t0 == 0.0 && tr.arc[k].t1 == 1.0, "arc %d whole", k);
+    ob_trim_free(&tr);
+}
+
+/* The ellipse x^2/4 + y^2 = 1 (the circle's quarters, x doubled) offset
+ * inwards by 0.8 > its least radius of curvature 1/2: a swallowtail about
+ * each end of the major axis, the one at x = 2 across the closed curve's
+ * wrap (segment 3 to segment 0).  By symmetry each self-intersection lies
+ * on the x axis; the kept arcs' points are 0.8 from the ellipse, the
+ * removed parts' nearer. */
+static void test_ellipse_wrap(void)
+{
+    ob_bez q[4];
+    circle4(q);
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i <= 2; i++)
+            q[k].h[i][0] *= 2.0;
+    ob_curve c = curve_of(q, 4, "ellipse4");
+    ob_trim tr = {0};
+    ob_err err = {""};
+    const double d = 0.8;
+    CHECK(ob_trim_offset(&c, d, &tr, &err) == 0, "%s", err.msg);
+    CHECK(count_kind(&tr, OB_SPLIT_SELF) == 4 && count_kind(&tr, OB_SPLIT_CUSP) == 4,
+          "4 self-intersection parameters and 4 cusps, %d and %d", count_kind(&tr, OB_SPLIT_SELF),
+          count_kind(&tr, OB_SPLIT_CUSP));
+    int wrap = 0;
+    for (int i = 0; i < tr.nsplit; i++)
+        if (tr.split[i].kind == OB_SPLIT_SELF) {
+            double p[2];
+            ob_bez_offset_point(&q[tr.split[i].seg], tr.split[i].t, d, p);
+            CHECK_NEAR(p[1], 0.0, 1e-13, "self-intersection on the x axis");
+            wrap += p[0] > 0.0 && (tr.split[i].seg == 0 || tr.split[i].seg == 3);
+        }
+    CHECK(wrap == 2, "the swallowtail at x = 2 across the wrap: %d of its splits on segments 3 and 0", wrap);
+    int far = 0, near = 0;
+    for (int k = 0; k < tr.n; k++)
+        for (int j = 0; j <= 8; j++) {
+            double p[2];
+            ob_bez_offset_point(&q[tr.arc[k].seg], tr.arc[k].t0 + (tr.arc[k].t1 - tr.arc[k].t0) * j / 8.0, d, p);
+            far += ob_trim_base_dist(&c, p) < d - 1e-9;
+        }
+    double p[2];
+    ob_bez_offset_point(&q[0], 0.0, d, p); /* the tip of the swallowtail at x = 2: removed */
+    near += ob_trim_base_dist(&c, p) < d - 1e-6;
+    CHECK(far == 0 && near == 1 && tr.n == 4, "%d arcs, %d kept points nearer than d, tip removed %d", tr.n, far, near);
+    ob_trim_free(&tr);
+}
+
+static void test_liu(const ob_curveset *set)
+{
+    const int i = ob_curveset_find(set, "liu2002_ex1");
+    CHECK(i >= 0, "liu2002_ex1");
+    if (i < 0)
+        return;
+    const ob_curve *c = &set->v[i];
+    ob_trim tr = {0};
+    ob_err err = {""};
+    CHECK(ob_trim_offset(c, 1.0, &tr, &err) == 0 && tr.n >= 1, "liu2002_ex1 at d = 1: %d arcs", tr.n);
+    double kept = 0.0;
+    int far = 0, near = 0;
+    for (int k = 0; k <= tr.n; k++) {
+        const double g0 = k ? tr.arc[k - 1].t1 : 0.0, g1 = k < tr.n ? tr.arc[k].t0 : 1.0; /* the part removed before */
+        double p[2];
+        if (g1 > g0) {
+            ob_bez_offset_point(&c->seg[0], 0.5 * (g0 + g1), 1.0, p);
+            near += ob_trim_base_dist(c, p) < 1.0 - 1e-6;
+        }
+        if (k == tr.n)
+            break;
+        kept += tr.arc[k].t1 - tr.arc[k].t0;
+        for (int j = 0; j <= 16; j++) {
+            ob_bez_offset_point(&c->seg[0], tr.arc[k].t0 + (tr.arc[k].t1 - tr.arc[k].t0) * j / 16.0, 1.0, p);
+            far += ob_trim_base_dist(c, p) < 1.0 - 1e-9;
+        }
+    }
+    CHECK(kept < 0.95, "some of it removed: %g of [0, 1] kept", kept);
+    CHECK(far == 0, "%d kept points nearer than |d|", far);
+    CHECK(near >= 1, "the removed parts nearer than |d| (%d)", near);
+    ob_trim_free(&tr);
+    CHECK(ob_trim_offset(c, -1.0, &tr, &err) == 0 && tr.n == 1 && tr.arc[0].t1 - tr.arc[0].t0 == 1.0,
+          "d = -1: all kept (%d arcs)", tr.n);
+    ob_trim_free(&tr);
+}
+
+/* The exact 0.5-offset of the quarter circle (radius 0.5) as one piece. */
+static void test_measure(const ob_curveset *set)
+{
+    const int i = ob_curveset_find(set, "atlas_circle");
+    if (i < 0)
+        return;
+    const ob_curve *c = &set->v[i];
+    ob_trim tr = {0};
+    ob_err err = {""};
+    ob_approx a = {0};
+    ob_apiece *p = ob_approx_add(&a);
+    const double w = sqrt(0.5);
+    p->approx.deg = 2;
+    ob_bez_set(&p->approx, 0, 0.5, 0.0, 1.0);
+    ob_bez_set(&p->approx, 1, 0.5, 0.5, w);
+    ob_bez_set(&p->approx, 2, 0.0, 0.5, 1.0);
+    ob_mres r;
+    char msg[200];
+    CHECK(ob_trim_offset(c, 0.5, &tr, &err) == 0 && ob_trimmed_hausdorff(c, 0.5, &tr, &a, 256, &r, msg, sizeof msg, &err) == 0,
+          "%s", err.msg);
+    CHECK(r.ok && r.err < 1e-14, "exact arc: %g (%s)", r.err, msg);
+    const ob_bez whole = p->approx;
+    ob_bez_subsegment(&whole, 0.0, 0.5, &p->approx); /* half of it, to 45 degrees */
+    CHECK(ob_trimmed_hausdorff(c, 0.5, &tr, &a, 256, &r, msg, sizeof msg, &err) == 0, "%s", err.msg);
+    CHECK_NEAR(r.err, 2 * 0.5 * sin(M_PI / 8), 1e-12, "half missing: the chord to 90 degrees");
+    CHECK(strstr(msg, "trimmed offset") != NULL, "says the side: %s", msg);
+    ob_trim_free(&tr);
+    CHECK(ob_trim_offset(c, 1.5, &tr, &err) == 0 && ob_trimmed_hausdorff(c, 1.5, &tr, &a, 256, &r, msg, sizeof msg, &err) != 0 &&
+              strstr(err.msg, "empty") != NULL,
+          "nothing kept: an error (%s)", err.msg);
+    ob_trim_free(&tr);
+    ob_approx_free(&a);
+}
+
+int main(void)
+{
+    ob_curveset atlas = {0}, pub = {0};
+    ob_err err = {""};
+    CHECK(ob_curves_load_file("datasets/atlas.curves", &atlas, &err) == 0, "atlas.curves: %s", err.msg);
+    CHECK(ob_curves_load_file("datasets/published.curves", &pub, &err) == 0, "published.curves: %s", err.msg);
+    test_parabola();
+    test_quarter(&atlas);
+    test_circle();
+    test_ellipse_wrap();
+    test_liu(&pub);
+    test_measure(&atlas);
+    ob_curveset_free(&atlas);
+    ob_curveset_free(&pub);
+    return check_done();
+}
