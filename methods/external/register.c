@@ -123,6 +123,22 @@ int ob_ext_register_once(const char *name, const char *command, char *msg, size_
     return rc;
 }
 
+/* A method whose hello was refused, and what its reading allocated
+ * (hello.c: the strings; the worker's parameters' names and docs, NULL
+ * past the one refused). */
+static void ext_free(ob_ext *e)
+{
+    if (!e)
+        return;
+    free(e->citation);
+    free(e->continuity);
+    for (int i = 0; i < e->nuser; i++) {
+        free((char *)e->params[i].name);
+        free((char *)e->params[i].doc);
+    }
+    free(e);
+}
+
 static int register_locked(const char *name, const char *command, char *msg, size_t msglen)
 {
     int k = 0;
@@ -146,7 +162,7 @@ static int register_locked(const char *name, const char *command, char *msg, siz
     ob_ext *e = h ? calloc(1, sizeof *e) : NULL;
     if (!e || ob_ext_hello(e, h, msg, msglen) != 0) {
         obj_free(h);
-        free(e);  /* a failed registration ends the program: its strings are not worth freeing one by one */
+        ext_free(e);  /* the library goes on after a failed registration (Python): nothing kept */
         return -1;
     }
     obj_free(h);
@@ -162,6 +178,8 @@ static int register_locked(const char *name, const char *command, char *msg, siz
     table[k] = e;
     if (ob_method_register(&e->m) != 0) {
         table[k] = NULL;
+        free(e->command);
+        ext_free(e);
         ob_method_msg(msg, msglen, "the method table is full");
         return -1;
     }
