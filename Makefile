@@ -78,7 +78,7 @@ KERNELS  := kernels/metric_core.h kernels/measure.cl
 PUBLISHED := results/published/published_tables.csv results/published/offset_atlas.csv
 
 .PHONY: all test perf soak run deps clean bench tables docs nightly accept-baseline accept-committed-baseline nightly-wall report \
-        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-worker occt-example lib2geom-worker FORCE
+        report-screenshot fuzz fuzz-run check-method man lib install uninstall occt-bin occt-worker occt-trimmed occt-example lib2geom-worker FORCE
 all: $(BIN)
 
 $(BUILD)/.deps-ok: scripts/deps.sh
@@ -301,6 +301,20 @@ define occt_cxx
 endef
 occt-bin: $(OCCT_BIN)
 occt-worker: $(OCCT_WORKER)
+# OCCT's trimmed offset (examples/occt/occt_trimmed.cpp, for measure
+# --trimmed): BRepOffsetAPI_MakeOffset, in Debian's
+# libocct-modeling-algorithms-dev besides the packages above
+OCCT_TRIMMED ?= $(BUILD)/occt_trimmed
+occt-trimmed: $(OCCT_TRIMMED)
+
+$(OCCT_TRIMMED): examples/occt/occt_trimmed.cpp
+	@test -f '$(OCCT_INC)/BRepOffsetAPI_MakeOffset.hxx' || { \
+	    echo "$(notdir $@): OpenCASCADE's offset algorithms are not in $(OCCT_INC):" \
+	         "install Debian's libocct-modeling-algorithms-dev" \
+	         "(sudo apt-get install libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev g++)" >&2; exit 1; }
+	@mkdir -p $(dir $@)
+	$(CXX) -std=c++17 -O2 -Wall -Wextra -isystem '$(OCCT_INC)' -o $@ $< $(OCCT_LIBS) -lTKG3d -lTKBRep -lTKTopAlgo \
+	    -lTKGeomAlgo -lTKOffset
 
 $(OCCT_BIN): examples/occt/occt_offset.cpp examples/occt/occt_common.hpp
 	$(occt_cxx)

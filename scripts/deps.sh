@@ -31,7 +31,8 @@
 #                          (optional: never fails the build; the browser
 #                          checks are skipped without it)
 #   the CAD-kernel example (make occt-example, tests/e2e/e2e_occt.sh,
-#   docs/cad-example.md):  libocct-foundation-dev, libocct-modeling-data-dev
+#   docs/cad-example.md, make occt-trimmed):  libocct-foundation-dev,
+#                          libocct-modeling-data-dev, libocct-modeling-algorithms-dev
 #                          and g++, only with OB_DEPS_OCCT=1 (optional: never
 #                          fails the build; the OCCT checks are skipped
 #                          without them)
@@ -126,8 +127,8 @@ optional_browser
 # 100 MB that nothing but the example needs.
 optional_occt() {
     [ "${OB_DEPS_OCCT:-0}" = 1 ] || return 0
-    for p in libocct-foundation-dev libocct-modeling-data-dev g++; do
-        have_pkg "$p" || optional_apt "$p" "the CAD-kernel example (make occt-example)"
+    for p in libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev g++; do
+        have_pkg "$p" || optional_apt "$p" "the CAD-kernel example (make occt-example, occt-trimmed)"
     done
 }
 optional_occt
