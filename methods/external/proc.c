@@ -18,6 +18,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -44,26 +45,49 @@ static void exec_worker(const char *command, int fd, int maxfd, double mem_mb, c
     _exit(127);
 }
 
-/* A worker that will start under AddressSanitizer: libasan preloaded (as a
- * sanitized Python test runs its interpreter and so its workers), or this
- * program built with it (make SAN=1), whose workers are mostly itself
- * (`offbench worker`).  ASan reserves terabytes of shadow address space at
- * start and cannot start under RLIMIT_AS at all, so such a worker gets no
- * address-space cap. */
-static int asan_preloaded(void)
-{
 #if defined(__SANITIZE_ADDRESS__)
-    return 1;
-#else
+/* 1 when command's program (its first word, a path) is this program's
+ * file (`offbench worker ...` started by offbench itself). */
+static int runs_self(const char *command)
+{
+    char prog[4096];
+    const size_t n = strcspn(command, " \t");
+    struct stat a, b;
+    if (n == 0 || n >= sizeof prog)
+        return 0;
+    memcpy(prog, command, n);
+    prog[n] = '\0';
+    if (prog[0] == '\'' && n > 1 && prog[n - 1] == '\'') { /* quoted for sh: bench's own worker */
+        memmove(prog, prog + 1, n - 2);
+        prog[n - 2] = '\0';
+    }
+    return stat(prog, &a) == 0 && stat("/proc/self/exe", &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+#endif
+
+/* A worker that will start under AddressSanitizer: libasan preloaded (as a
+ * sanitized Python test runs its interpreter and so its workers), or, in a
+ * build with it (make SAN=1), this program itself as a worker (`offbench
+ * worker`).  ASan reserves terabytes of shadow address space at start and
+ * cannot start under RLIMIT_AS at all, so such a worker gets no
+ * address-space cap; any other worker keeps it. */
+static int asan_worker(const char *command)
+{
     const char *p = getenv("LD_PRELOAD");
-    return p && strstr(p, "libasan") != NULL;
+    if (p && strstr(p, "libasan") != NULL)
+        return 1;
+#if defined(__SANITIZE_ADDRESS__)
+    return runs_self(command);
+#else
+    (void)command;
+    return 0;
 #endif
 }
 
 int ob_ext_proc_start(ob_ext_proc *w, const char *command, double mem_mb, char *msg, size_t msglen)
 {
     extern char **environ;
-    if (asan_preloaded())
+    if (asan_worker(command))
         mem_mb = 0;
     int sv[2];
     if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
