@@ -15,14 +15,7 @@ const ob_frame OB_FRAME_IDENTITY = {{1, 0, 0, 1, 0, 0}};
 
 ob_frame ob_frame_mul(const ob_frame *a, const ob_frame *b)
 {
-    ob_frame r;
-    r.m[0] = a->m[0] * b->m[0] + a->m[2] * b->m[1];
-    r.m[1] = a->m[1] * b->m[0] + a->m[3] * b->m[1];
-    r.m[2] = a->m[0] * b->m[2] + a->m[2] * b->m[3];
-    r.m[3] = a->m[1] * b->m[2] + a->m[3] * b->m[3];
-    r.m[4] = a->m[0] * b->m[4] + a->m[2] * b->m[5] + a->m[4];
-    r.m[5] = a->m[1] * b->m[4] + a->m[3] * b->m[5] + a->m[5];
-    return r;
+    return ob_svgr_mul(a, b);
 }
 
 void ob_frame_point(const ob_frame *f, const double p[2], double q[2])

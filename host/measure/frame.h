@@ -16,10 +16,11 @@
 #include <stddef.h>
 
 #include "host/io/approx.h"
+#include "host/io/svg_read.h"
 
-typedef struct {
-    double m[6];  /* a, b, c, d, e, f */
-} ob_frame;
+/* The SVG reader's affine map (svg_read.h), a, b, c, d, e, f: one type and
+ * one product for both. */
+typedef ob_svgr_xform ob_frame;
 
 extern const ob_frame OB_FRAME_IDENTITY;
 
