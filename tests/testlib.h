@@ -199,6 +199,17 @@ static inline ob_bez reversed(const ob_bez *b)
     return r;
 }
 
+/* A curve of n segments seg (not copied, not owned) called id. */
+static inline ob_curve curve_of(ob_bez *seg, int n, const char *id)
+{
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "%s", id);
+    c.nseg = n;
+    c.seg = seg;
+    return c;
+}
+
 static inline double dist2d(const double a[2], const double b[2]) { return hypot(a[0] - b[0], a[1] - b[1]); }
 
 /* ---- crash containment --------------------------------------------------------- */

@@ -21,21 +21,12 @@
 #include <string.h>
 
 #include "tests/check.h"
+#include "tests/testlib.h"
 #include "host/measure/measure.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
-
-static ob_curve curve_of(ob_bez *seg, int n, const char *id)
-{
-    ob_curve c;
-    memset(&c, 0, sizeof c);
-    snprintf(c.id, sizeof c.id, "%s", id);
-    c.nseg = n;
-    c.seg = seg;
-    return c;
-}
 
 static double hausdorff(const ob_curve *c, double d, const ob_approx *a, ob_mres *r)
 {

@@ -25,22 +25,13 @@
 #include <string.h>
 
 #include "tests/check.h"
+#include "tests/testlib.h"
 #include "host/io/curvefile.h"
 #include "host/measure/trim.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
-
-static ob_curve curve_of(ob_bez *seg, int n, const char *id)
-{
-    ob_curve c;
-    memset(&c, 0, sizeof c);
-    snprintf(c.id, sizeof c.id, "%s", id);
-    c.nseg = n;
-    c.seg = seg;
-    return c;
-}
 
 /* The parabola (t, t^2) for t in [-a, a] as one quadratic: u = (t + a) / 2a. */
 static void parabola(ob_bez *b, double a)
