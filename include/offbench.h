@@ -14,7 +14,9 @@
  *             (its results.csv row) and its pieces;
  *   batch     many jobs at once, with a progress callback;
  *   measure   any approximation (pieces given as arrays) against a curve's
- *             exact offset under any metric, as `offbench measure` does.
+ *             exact offset under any metric, as `offbench measure` does,
+ *             or against its trimmed offset (--trimmed), and each piece's
+ *             own error and worst point (--per-piece).
  *
  * Conventions:
  *   - Every type is opaque or declared here; no internal offbench type
@@ -56,16 +58,17 @@ extern "C" {
 /* ---- version ------------------------------------------------------------ */
 
 #define OBX_VERSION_MAJOR 0
-#define OBX_VERSION_MINOR 6
+#define OBX_VERSION_MINOR 7
 #define OBX_VERSION_PATCH 0
-#define OBX_VERSION "0.6.0"
+#define OBX_VERSION "0.7.0"
 
 /* Purpose: the library's version as "MAJOR.MINOR.PATCH" (the library that
  *          is loaded, which may be newer than the header compiled against:
  *          same MAJOR means compatible; MINOR counts additions: 0.2 added
  *          obx_curves_segment_count, obx_curves_segment, obx_curves_family;
  *          0.5: obx_measure refuses pieces that do not cover the offset
- *          once, obx_run_batch_stop).
+ *          once, obx_run_batch_stop; 0.6: obx_external_register; 0.7:
+ *          obx_measure's trimmed-hausdorff, obx_measure_pieces).
  *          Thread-safe. */
 const char *obx_version(void);
 
@@ -353,15 +356,67 @@ typedef struct {
  *          out of order or reversed are measured.  bound and radial read the pieces at the
  *          base's parameter and so do not apply (status "n/a"); param needs
  *          read links and does not apply either.
+ *          "trimmed-hausdorff" (since 0.7) is `offbench measure --trimmed`'s
+ *          row, by its code (host/measure/trim.h, ob_measure_trimmed, 256
+ *          samples): the two-sided distance between the pieces as a point
+ *          set and the trimmed offset (the points at distance |d| from the
+ *          base: the untrimmed offset's loops, and its parts nearer than |d|
+ *          to another part of the base, cut away).  No match and no cover
+ *          check: a trimmed approximation does not cover the untrimmed
+ *          offset, and a missing part shows as a large distance; piece is
+ *          the piece at or nearest the worst point.
  * Outputs: *m.
  * Errors:  OBX_E_INVALID (arguments as obx_fit, a bad piece), OBX_E_MEASURE
  *          (a piece that cannot be matched: "piece K: reason"; pieces that
  *          do not cover the offset once: "measure: pieces does not cover the
  *          d = D offset of curve ID once (G gaps, O overlaps, U duplicates);
- *          the first: piece K: ..."), OBX_E_NOMEM.
+ *          the first: piece K: ..."; trimmed-hausdorff: a trimmed offset
+ *          that is empty, every point of it nearer than |d| to the base),
+ *          OBX_E_NOMEM.
  * Threads: safe. */
 int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
                 const double *w, const char *metric, obx_measurement *m, obx_error *err);
+
+/* One piece's own error (obx_measure_pieces), as a row of `offbench
+ * measure --per-piece` (since 0.7). */
+typedef struct {
+    double max_err;         /* its hausdorff error against its base piece (+inf: not finite) */
+    int seg0;               /* its base range: from parameter t0 of base segment seg0 */
+    double t0;
+    int seg1;               /* to t1 of segment seg1 (a piece over a joint of the base spans two) */
+    double t1;
+    int seg;                /* where the error is largest: the base segment and parameter t of */
+    double t;               /* the exact offset point O(t) = C(t) + d N(t) there */
+    double x, y;            /* the point of the piece nearest to O(t) (NAN when max_err is not finite) */
+    double x_off, y_off;    /* O(t) itself: |(x, y) - (x_off, y_off)| is max_err */
+    char status[8];         /* "ok", or "fail" (the error is not finite) */
+    char why[160];          /* for fail: why; else "" */
+} obx_piece_error;
+
+/* Purpose: where an approximation's error is: each piece's own error and
+ *          worst point, as `offbench measure --per-piece` writes them, by
+ *          its code (host/measure/perpiece.h): the pieces (as obx_measure
+ *          takes them) are matched and checked to cover the d-offset of
+ *          curve `curve` once, exactly as obx_measure does, then each is
+ *          measured under hausdorff against its base piece, 256 samples (a
+ *          piece cut at a joint of the base is one row, its largest part's
+ *          error).  The largest max_err over the rows is obx_measure's
+ *          hausdorff max_err, bit for bit, at its piece.
+ * Inputs:  set, curve, d, npieces, degrees[npieces], xy, w (NULL: all
+ *          weights 1): as obx_measure.
+ * Outputs: out[npieces]: row k is piece k of the arrays (pieces out of order
+ *          or reversed are measured; each keeps its index); left as it was
+ *          on an error.
+ * Errors:  OBX_E_INVALID: set NULL, curve out of range, d not finite or 0
+ *          or out of the curve's range, out NULL, npieces < 1, degrees or xy
+ *          NULL, a degree out of range, a point not finite or a weight not
+ *          > 0 ("piece K: point I ..."); OBX_E_MEASURE: a piece that
+ *          cannot be matched or measured ("...piece K: reason"), pieces that
+ *          do not cover the offset once (obx_measure's message);
+ *          OBX_E_NOMEM.
+ * Threads: safe.  Since 0.7. */
+int obx_measure_pieces(const obx_curveset *set, int curve, double d, int npieces, const int *degrees,
+                       const double *xy, const double *w, obx_piece_error *out, obx_error *err);
 
 #ifdef __cplusplus
 }

@@ -5,7 +5,9 @@
  * take the same checks), a fit is a one-job ob_driver_run with the run
  * command's defaults, its pieces are the accepted spans refitted
  * (ob_approx_from_job, as --export), and a measurement is `measure`'s
- * one path (ob_measure_approx: match, cover, measure).  No state besides the handles
+ * one path (ob_measure_approx: match, cover, measure), or --trimmed's
+ * (ob_measure_trimmed), or --per-piece's (ob_approx_per_piece after the
+ * one path).  No state besides the handles
  * (and the SISL server's path, set once: host/lib/sisl_exe.c).
  */
 #define _GNU_SOURCE 1 /* open_memstream's prototype with older glibc */
@@ -27,6 +29,8 @@
 #include "host/lib/lib_thread.h"
 #include "host/lib/sisl_exe.h"
 #include "host/measure/measure.h"
+#include "host/measure/perpiece.h"
+#include "host/measure/trim.h"
 #include "host/run/clock.h"
 #include "methods/core/offdeg.h"
 #include "methods/driver/driver.h"
@@ -421,7 +425,8 @@ static int check_curve_d(const obx_curveset *set, int curve, double d, obx_error
 static int parse_metric(const char *name, ob_metric *m, obx_error *err)
 {
     if (ob_metric_parse(name ? name : "hausdorff", m) != 0)
-        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param, certified; obx_measure: hausdorff-whole too)", name);
+        return fail(err, OBX_E_INVALID, "unknown metric '%s' (bound, radial, normal, hausdorff, param, certified; obx_measure: "
+                    "hausdorff-whole and trimmed-hausdorff too)", name);
     return 0;
 }
 
@@ -829,12 +834,13 @@ int obx_run_batch(const obx_curveset *set, const obx_job_spec *jobs, size_t n, o
 
 /* ---- measure ------------------------------------------------------------------ */
 
-/* The pieces as an approximation without links. */
-static int pieces_approx(int npieces, const int *degrees, const double *xy, const double *w, ob_approx *a,
-                         obx_error *err)
+/* The pieces as an approximation without links; fn names the call in a
+ * message about the arrays themselves. */
+static int pieces_approx(const char *fn, int npieces, const int *degrees, const double *xy, const double *w,
+                         ob_approx *a, obx_error *err)
 {
     if (npieces < 1 || !degrees || !xy)
-        return fail(err, OBX_E_INVALID, "obx_measure: %s", npieces < 1 ? "no pieces" : "NULL degrees or xy");
+        return fail(err, OBX_E_INVALID, "%s: %s", fn, npieces < 1 ? "no pieces" : "NULL degrees or xy");
     size_t k = 0;
     for (int p = 0; p < npieces; p++) {
         if (degrees[p] < 1 || degrees[p] > OB_MAX_DEG)
@@ -853,31 +859,69 @@ static int pieces_approx(int npieces, const int *degrees, const double *xy, cons
     return 0;
 }
 
-/* `measure`'s one path (ob_measure_approx), one row: the pieces are
- * matched and must cover the offset once, whatever the metric, as the CLI
- * checks a file; *r that row.  The message names the first problem. */
-static int measure_row(const ob_curve *c, double d, ob_approx *a, ob_metric met, int whole, ob_mres *r,
-                       obx_error *err)
+/* A reader's message without the "pieces:0: " it puts before a piece
+ * that has no file and no line. */
+static const char *without_file(const char *msg)
 {
-    ob_measure_ask ask = {{0}, whole, OB_DEFAULT_SAMPLES};
-    ask.want[met] = !whole;
+    return strncmp(msg, "pieces:0: ", 10) == 0 ? msg + 10 : msg;
+}
+
+/* `measure`'s one path (ob_measure_approx): the pieces are matched and
+ * must cover the offset once, whatever is asked, as the CLI checks a file;
+ * *out the rows asked.  The message names the first problem. */
+static int measure_path(const ob_curve *c, double d, ob_approx *a, const ob_measure_ask *ask, ob_measure_out *out,
+                        obx_error *err)
+{
     ob_cover cv;
-    ob_measure_out out;
     ob_err e;
-    int rc = ob_measure_approx(c, d, a, &ask, "pieces", &cv, &out, &e);
+    int rc = ob_measure_approx(c, d, a, ask, "pieces", &cv, out, &e);
     if (rc != 0 && cv.nfail > 0) {  /* the summary's head, then where: the first problem */
         char first[300];
         ob_cover_text(&cv.fail[0], a, "pieces", first, sizeof first);
         const char *head = strstr(e.msg, " once ("), *end = head ? strchr(head, ')') : NULL;
         const int len = end ? (int)(end + 1 - e.msg) : 200;
-        const char *at = strncmp(first, "pieces:0: ", 10) == 0 ? first + 10 : first;  /* no file, no line */
-        rc = fail(err, OBX_E_MEASURE, "%.*s; the first: %s", len < 200 ? len : 200, e.msg, at);
+        rc = fail(err, OBX_E_MEASURE, "%.*s; the first: %s", len < 200 ? len : 200, e.msg, without_file(first));
     } else if (rc != 0) {
         rc = fail(err, OBX_E_MEASURE, "%.500s", e.msg);
     }
-    *r = whole ? out.whole : out.res[met];
     ob_cover_free(&cv);
     return rc;
+}
+
+/* One row of the one path: metric met, or hausdorff-whole. */
+static int measure_row(const ob_curve *c, double d, ob_approx *a, ob_metric met, int whole, ob_mres *r,
+                       obx_error *err)
+{
+    ob_measure_ask ask = {{0}, whole, OB_DEFAULT_SAMPLES};
+    ask.want[met] = !whole;
+    ob_measure_out out;
+    const int rc = measure_path(c, d, a, &ask, &out, err);
+    *r = whole ? out.whole : out.res[met];
+    return rc;
+}
+
+/* `measure --trimmed`'s row (ob_measure_trimmed): the pieces as a point set
+ * against the trimmed offset, not matched, so no cover check (a trimmed
+ * file does not cover the untrimmed offset); msg holds r's note. */
+static int trimmed_row(const ob_curve *c, double d, const ob_approx *a, ob_mres *r, char *msg, size_t len,
+                       obx_error *err)
+{
+    ob_err e;
+    if (ob_measure_trimmed(c, d, a, OB_DEFAULT_SAMPLES, NULL, r, msg, len, &e) != 0)
+        return fail(err, strstr(e.msg, "out of memory") ? OBX_E_NOMEM : OBX_E_MEASURE, "%.500s", e.msg);
+    return 0;
+}
+
+/* The extra metrics obx_measure takes beyond ob_metric_parse's names. */
+typedef enum { ROW_METRIC = 0, ROW_WHOLE, ROW_TRIMMED } row_kind;
+
+static row_kind row_of(const char *metric)
+{
+    if (metric && strcmp(metric, "hausdorff-whole") == 0)
+        return ROW_WHOLE;
+    if (metric && strcmp(metric, "trimmed-hausdorff") == 0)
+        return ROW_TRIMMED;
+    return ROW_METRIC;
 }
 
 int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const int *degrees, const double *xy,
@@ -886,14 +930,17 @@ int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const
     ob_metric met = OB_METRIC_HAUSDORFF;
     if (!m)
         return fail(err, OBX_E_INVALID, "obx_measure: NULL out");
-    const int whole = metric && strcmp(metric, "hausdorff-whole") == 0;
-    if (check_curve_d(set, curve, d, err) || (!whole && parse_metric(metric, &met, err)))
+    const row_kind kind = row_of(metric);
+    if (check_curve_d(set, curve, d, err) || (kind == ROW_METRIC && parse_metric(metric, &met, err)))
         return -1;
     ob_approx a = {0};
     ob_mres r;
-    int rc = pieces_approx(npieces, degrees, xy, w, &a, err);
+    char note[200];
+    const ob_curve *c = &set->set.v[curve];
+    int rc = pieces_approx("obx_measure", npieces, degrees, xy, w, &a, err);
     if (rc == 0)
-        rc = measure_row(&set->set.v[curve], d, &a, met, whole, &r, err);
+        rc = kind == ROW_TRIMMED ? trimmed_row(c, d, &a, &r, note, sizeof note, err)
+                                 : measure_row(c, d, &a, met, kind == ROW_WHOLE, &r, err);
     ob_approx_free(&a);
     if (rc)
         return -1;
@@ -903,4 +950,50 @@ int obx_measure(const obx_curveset *set, int curve, double d, int npieces, const
     snprintf(m->status, sizeof m->status, "%s", ob_mres_status(&r));
     snprintf(m->why, sizeof m->why, "%s", r.ok ? "" : r.why ? r.why : "");
     return 0;
+}
+
+/* Row r of the per-piece rows as the API's struct: the numbers
+ * `measure --per-piece` writes (perpiece_csv.c), the base range from the
+ * first part's start to the last part's end. */
+static void piece_error_of(const ob_approx *a, const ob_pp_row *r, obx_piece_error *o)
+{
+    const ob_apiece *p0 = &a->v[r->first], *p1 = &a->v[r->last];
+    memset(o, 0, sizeof *o);
+    o->max_err = r->err;
+    o->seg0 = p0->seg;
+    o->t0 = ob_apiece_base_t(p0, 0.0);
+    o->seg1 = p1->seg;
+    o->t1 = ob_apiece_base_t(p1, 1.0);
+    o->seg = r->seg;
+    o->t = r->t;
+    o->x = r->x, o->y = r->y, o->x_off = r->xo, o->y_off = r->yo;
+    const int ok = ob_err_can_pass(r->err);
+    snprintf(o->status, sizeof o->status, "%s", ok ? "ok" : "fail");
+    snprintf(o->why, sizeof o->why, "%s", ok ? "" : "the error is not finite: a piece that cannot be evaluated (a "
+                                                    "pole or a weight <= 0 of a rational piece?)");
+}
+
+int obx_measure_pieces(const obx_curveset *set, int curve, double d, int npieces, const int *degrees,
+                       const double *xy, const double *w, obx_piece_error *out, obx_error *err)
+{
+    if (!out)
+        return fail(err, OBX_E_INVALID, "obx_measure_pieces: NULL out");
+    if (check_curve_d(set, curve, d, err))
+        return -1;
+    const ob_curve *c = &set->set.v[curve];
+    ob_approx a = {0};
+    ob_measure_ask ask = {{0}, 0, OB_DEFAULT_SAMPLES};  /* no row: the match and the cover check */
+    ob_measure_out rows;
+    ob_perpiece pp = {0};
+    ob_err e;
+    int rc = pieces_approx("obx_measure_pieces", npieces, degrees, xy, w, &a, err);
+    if (rc == 0)
+        rc = measure_path(c, d, &a, &ask, &rows, err);
+    if (rc == 0 && ob_approx_per_piece(c, d, &a, OB_DEFAULT_SAMPLES, "pieces", &pp, &e) != 0)
+        rc = fail(err, strstr(e.msg, "out of memory") ? OBX_E_NOMEM : OBX_E_MEASURE, "%.500s", without_file(e.msg));
+    for (int k = 0; rc == 0 && k < pp.n; k++)
+        piece_error_of(&a, &pp.v[k], &out[k]);
+    ob_perpiece_free(&pp);
+    ob_approx_free(&a);
+    return rc;
 }
