@@ -6,9 +6,9 @@ library liboffbench.so.0, with numpy arrays in and out.
     r = offbench.fit("liu2002_ex1", "tiller", d=1, tol=1e-3)
     r.max_err, r.ctrl_points, r.status, r.pieces[0].points
 
-Functions: curves, curve_from_segments, methods, fit, measure, run (a
-Python function may be a method: the method decorator names it),
-read_results, read_meta; library_version and library_path say which
+Functions: curves, curve_from_segments, methods, fit, measure,
+measure_pieces, run (a Python function may be a method: the method
+decorator names it), read_results, read_meta; library_version and library_path say which
 library is loaded.  Errors are offbench.Error (subclasses per kind).  See
 docs/python.md in the offbench repository.
 """
@@ -18,7 +18,7 @@ from .bezier import Bezier
 from .curves import Curve, CurveSet, curve_from_segments, curves
 from .errors import (CurveIndexError, Error, FileError, InvalidError, InvalidTypeError, LibraryNotFound, MeasureError,
                      OutOfMemoryError, ParseError, StoppedError, UnknownCurveError, UnsupportedError)
-from .fit import fit, measure, run
+from .fit import PieceError, fit, measure, measure_pieces, run
 from .methods import Method, Param, methods
 from .pymethod import method
 from .result import Result
@@ -39,7 +39,7 @@ def library_path() -> str:
 
 __all__ = [
     "Bezier", "Curve", "CurveIndexError", "CurveSet", "Error", "FileError", "InvalidError", "InvalidTypeError",
-    "LibraryNotFound", "MeasureError", "Method", "OutOfMemoryError", "Param", "ParseError", "Result", "StoppedError",
-    "UnknownCurveError", "UnsupportedError", "curve_from_segments", "curves", "fit", "library_path",
-    "library_version", "measure", "method", "methods", "read_meta", "read_results", "run",
+    "LibraryNotFound", "MeasureError", "Method", "OutOfMemoryError", "Param", "ParseError", "PieceError", "Result",
+    "StoppedError", "UnknownCurveError", "UnsupportedError", "curve_from_segments", "curves", "fit", "library_path",
+    "library_version", "measure", "measure_pieces", "method", "methods", "read_meta", "read_results", "run",
 ]

@@ -37,7 +37,10 @@ from .errors import LibraryNotFound, from_code
 # hausdorff-whole, which an older library refuses as an unknown metric: not
 # needed to load; 0.5 obx_run_batch_stop, without which run cannot be
 # stopped by its callback or Ctrl-C: OPTIONAL; 0.6 obx_external_register,
-# without which a Python function cannot be a method: OPTIONAL).
+# without which a Python function cannot be a method: OPTIONAL; 0.7
+# obx_measure's trimmed-hausdorff, refused by an older library as an unknown
+# metric, and obx_measure_pieces, without which measure_pieces cannot be:
+# OPTIONAL).
 NEED_MAJOR = 0
 NEED_MINOR = 2
 SONAME = "liboffbench.so.0"
@@ -74,6 +77,24 @@ class Measurement(ctypes.Structure):
     _fields_ = [
         ("max_err", ctypes.c_double),
         ("piece", ctypes.c_int),
+        ("status", ctypes.c_char * 8),
+        ("why", ctypes.c_char * 160),
+    ]
+
+
+class PieceErrorC(ctypes.Structure):
+    _fields_ = [
+        ("max_err", ctypes.c_double),
+        ("seg0", ctypes.c_int),
+        ("t0", ctypes.c_double),
+        ("seg1", ctypes.c_int),
+        ("t1", ctypes.c_double),
+        ("seg", ctypes.c_int),
+        ("t", ctypes.c_double),
+        ("x", ctypes.c_double),
+        ("y", ctypes.c_double),
+        ("x_off", ctypes.c_double),
+        ("y_off", ctypes.c_double),
         ("status", ctypes.c_char * 8),
         ("why", ctypes.c_char * 160),
     ]
@@ -137,6 +158,8 @@ OPTIONAL = {
     "obx_run_batch_stop": ((0, 5), _int, [CurveSetP, ctypes.POINTER(JobSpec), _size, PROGRESS_STOP, ctypes.c_void_p,
                                           ctypes.POINTER(ResultP), _ep]),
     "obx_external_register": ((0, 6), _int, [_str, _str, _ep]),
+    "obx_measure_pieces": ((0, 7), _int, [CurveSetP, _int, _dbl, _int, _ip, _dp, _dp, ctypes.POINTER(PieceErrorC),
+                                          _ep]),
 }
 
 _lock = threading.Lock()

@@ -1,11 +1,12 @@
-"""fit, measure and run: one job, one measurement, many jobs (obx_fit,
-obx_measure, obx_run_batch).  Each copies what the library returns into
+"""fit, measure, measure_pieces and run: one job, one measurement, each
+piece's error, many jobs (obx_fit, obx_measure, obx_measure_pieces,
+obx_run_batch).  Each copies what the library returns into
 Python objects and frees the library's at once, so nothing here outlives a
 call but the curve sets."""
 
 import ctypes
 import numbers
-from typing import Any, Callable, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Union
 
 from . import _lib
 from ._typing import DataFrame, Numbers, Params
@@ -114,12 +115,27 @@ def fit(curve: Union[Curve, str], method: Union[str, Method], d: float, tol: flo
         L.obx_result_free(out)
 
 
+def _pieces_arrays(pieces, what="pieces"):
+    """The Bezier list and the flat arrays of measure's pieces: a list of
+    pieces or a Result (its pieces)."""
+    if isinstance(pieces, Result):
+        if not pieces.pieces:
+            raise InvalidError("%s: the result (status %s) has no pieces" % (what, pieces.status))
+        pieces = pieces.pieces
+    bz = as_beziers(pieces, what)
+    return (bz,) + flat_arrays(bz, what)
+
+
 def measure(curve: Union[Curve, str], d: float, pieces: Union[Result, Sequence[Union[Bezier, Any]]],
             metric: str = "hausdorff") -> Result:
     """The error of an approximation, Bézier pieces in curve order, against
     curve's exact d-offset under metric, as `offbench measure` measures a
     file without base links.  pieces: a list of Bezier (a Result's .pieces),
     of (n+1, 2) arrays or of (points, weights) pairs, or a Result.
+    metric="trimmed-hausdorff" (library 0.7) measures against the trimmed
+    offset instead, as `offbench measure --trimmed`: the pieces and the
+    points at distance |d| from the curve as point sets, no match and no
+    cover check.
 
     Returns a Result of kind "measure": max_err (NaN where the metric does
     not apply: bound and radial need the base's parameter, param read
@@ -127,13 +143,8 @@ def measure(curve: Union[Curve, str], d: float, pieces: Union[Result, Sequence[U
     error is largest).  MeasureError when a piece cannot be matched on the
     offset."""
     c = resolve(curve)
-    if isinstance(pieces, Result):
-        if not pieces.pieces:
-            raise InvalidError("pieces: the result (status %s) has no pieces" % pieces.status)
-        pieces = pieces.pieces
-    bz = as_beziers(pieces, "pieces")
+    bz, degrees, xy, w = _pieces_arrays(pieces)
     dd = number(d, "d")
-    degrees, xy, w = flat_arrays(bz, "pieces")
     L = _lib.lib()
     m = _lib.Measurement()
     err = _lib.ObxError()
@@ -146,6 +157,51 @@ def measure(curve: Union[Curve, str], d: float, pieces: Union[Result, Sequence[U
                   out_degree=max(b.degree for b in bz), family=c.family)
     values["piece"] = m.piece
     return Result("measure", values, bz)
+
+
+class PieceError(NamedTuple):
+    """One piece's own error (measure_pieces), a row of `offbench measure
+    --per-piece`: piece (its index), max_err (hausdorff, against its base
+    piece), its base range from t0 of base segment seg0 to t1 of seg1,
+    where the error is largest (base segment seg, parameter t of the exact
+    offset point (x_off, y_off) there; (x, y) the piece's point nearest to
+    it), status ("ok", "fail": not finite) and message (why)."""
+
+    piece: int
+    max_err: float
+    seg0: int
+    t0: float
+    seg1: int
+    t1: float
+    seg: int
+    t: float
+    x: float
+    y: float
+    x_off: float
+    y_off: float
+    status: str
+    message: str
+
+
+def measure_pieces(curve: Union[Curve, str], d: float,
+                   pieces: Union[Result, Sequence[Union[Bezier, Any]]]) -> List[PieceError]:
+    """Where an approximation's error is: one PieceError per piece, in the
+    pieces' order, the numbers `offbench measure --per-piece` writes
+    (library 0.7, obx_measure_pieces).  The pieces are taken, matched and
+    checked as measure takes them (they must cover the offset once); the
+    largest max_err is measure's hausdorff max_err, at its piece.
+    InvalidError for a bad argument, MeasureError for pieces that cannot be
+    matched or do not cover the offset once; UnsupportedError with an
+    older library."""
+    c = resolve(curve)
+    bz, degrees, xy, w = _pieces_arrays(pieces)
+    dd = number(d, "d")
+    f = _lib.optional("obx_measure_pieces")
+    out = (_lib.PieceErrorC * len(bz))()
+    err = _lib.ObxError()
+    _lib.check(f(*c.handle(), dd, len(bz), degrees, dptr(xy), dptr(w), out, ctypes.byref(err)), err)
+    return [PieceError(k, o.max_err, o.seg0, o.t0, o.seg1, o.t1, o.seg, o.t, o.x, o.y, o.x_off, o.y_off,
+                       _lib.text(o.status), _lib.text(o.why)) for k, o in enumerate(out)]
 
 
 def _as_list(v, what):
@@ -336,4 +392,4 @@ def _renumber(err, idx):
     return err
 
 
-__all__ = ["fit", "measure", "run"]
+__all__ = ["PieceError", "fit", "measure", "measure_pieces", "run"]
