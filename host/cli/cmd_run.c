@@ -22,6 +22,7 @@
 #include "host/io/fsutil.h"
 #include "host/io/numfmt.h"
 #include "host/run/certify.h"
+#include "host/run/trimmed.h"
 #include "host/run/files.h"
 #include "host/run/fittime.h"
 #include "host/run/journal.h"
@@ -247,7 +248,7 @@ static int run_jobs(run_cmd *r)
     c.hooks.spans = r->spans;
     size_t restored = 0;
     ob_loadavg_sample(&r->rec.load);  /* before the first job (hostinfo.h) */
-    const int journaled = !(o->reps > 0 || r->ranks > 1 || o->time_fits);
+    const int journaled = !(o->reps > 0 || r->ranks > 1 || o->time_fits || o->trimmed);
     int drc = !journaled ? ob_run_plain(&c, r->jobs, r->njobs, o->reps > 0 ? "warm-up run" : NULL, &r->wall)
                          : ob_run_journaled(&c, r->jobs, r->njobs, r->where, &r->journal, &r->wall, &restored);
     c.hooks.spans = NULL;  /* the first run's pieces: --reps repeats it for the timings only */
@@ -257,6 +258,12 @@ static int run_jobs(run_cmd *r)
                                        journaled ? &r->journal : NULL, &r->rec.cert_seconds);
         r->cert_failed = crc < 0;
         drc = crc > 0 ? 1 : 0;
+    }
+    if (drc == 0 && o->trimmed) {  /* the trimmed offset (trimmed.h), outside every timing */
+        const int trc = ob_trimmed_run(o->driver.samples, r->jobs, r->njobs, r->spans, &r->rec.trim_seconds);
+        if (trc < 0)
+            return 1;  /* said: nothing is written (no journal with --trimmed) */
+        drc = trc;
     }
     if (drc == 0 && o->time_fits) {  /* the method's own time (fittime.h), outside every other timing */
         drc = time_fits(r);
@@ -336,7 +343,7 @@ int ob_cmd_run(int argc, char **argv, int full_argc, char **full_argv)
         st = plan_run(&r);
     if (st == GO_ON && (st = ob_export_prepare(&r.o, r.rec.mpi_ranks, r.njobs, &r.spans)) == 0)
         st = GO_ON;  /* --export: a span log per job */
-    if (st == GO_ON && (r.o.certify || r.o.time_fits) && !r.spans && !(r.spans = ob_span_logs_new(r.njobs))) {
+    if (st == GO_ON && (r.o.certify || r.o.time_fits || r.o.trimmed) && !r.spans && !(r.spans = ob_span_logs_new(r.njobs))) {
         ob_error("out of memory");  /* --certify, --time-fits: the same logs */
         st = 1;
     }

@@ -42,6 +42,11 @@ const ob_column ob_columns[OB_NCOLS] = {
                                        "piece, microbenchmarked, median of the rounds (empty without)"},
     [OB_COL_METHOD_IQR_NS] = {"method_iqr_ns", "--time-fits: interquartile range of the rounds' method_ns (empty "
                                                "without, or one round)"},
+    [OB_COL_TRIMMED_ERR] = {"trimmed_err", "--trimmed: the approximation trimmed by its own crossings (as a CAD kernel "
+                                           "trims) against the exact trimmed offset, the two-sided distance of the "
+                                           "two point sets (empty without, or no approximation)"},
+    [OB_COL_TRIMMED_CUT] = {"trimmed_cut", "--trimmed: regions (runs of arcs) of the approximation that trimming removed (0: none; "
+                                           "empty without)"},
 };
 
 static char header[640];

@@ -126,6 +126,15 @@ static void put_field(FILE *f, const ob_job *j, ob_col c)
         if (j->fit_calls > 0)
             put_double(f, j->method_iqr_ns);
         break;
+    /* the trimmed offset's distance (host/run/trimmed.h): empty without --trimmed or an approximation */
+    case OB_COL_TRIMMED_ERR:
+        if (j->trimmed_done)
+            put_double(f, j->trimmed_err);
+        break;
+    case OB_COL_TRIMMED_CUT:
+        if (j->trimmed_done)
+            fprintf(f, "%d", j->trimmed_cut);
+        break;
     case OB_NCOLS: break;
     }
 }
@@ -355,6 +364,17 @@ static void meta_settings(FILE *f, const ob_run_opts *o, const ob_run_record *re
                 o->fit_rounds, o->fit_min_ns * 1e-6, rec->fit_seconds);
     else
         fprintf(f, "  \"fit_timing\": null,\n");
+    /* --trimmed (host/run/trimmed.h): what trimmed_err and trimmed_cut are */
+    if (o->trimmed)
+        fprintf(f, "  \"trimmed\": {\"wall_seconds\": %.3f, \"margin\": \"2 max(tol, max_err)\", \"doc\": "
+                   "\"every job with an approximation (ok, limit): its pieces cut at their crossings with each other, "
+                   "with the exact C - dN and with the end circles, the arcs between cuts nearer than |d| - margin to "
+                   "the curve removed (trimmed_cut of them), the rest measured against the exact trimmed offset (the "
+                   "points at distance |d| from the curve): trimmed_err, the two-sided distance of the two sets "
+                   "(docs/export-measure.md)\"},\n",
+                rec->trim_seconds);
+    else
+        fprintf(f, "  \"trimmed\": null,\n");
     /* the test hook OFFBENCH_TEST_SLOW (driver.h): a run with it is slower on purpose */
     if (o->driver.test_slow_method)
         fprintf(f, "  \"test_slow\": \"%s:%g\",\n", o->driver.test_slow_method->name, o->driver.test_slow_factor);

@@ -186,6 +186,14 @@ void ob_run_summary(const ob_run_files *r, int written)
         snprintf(cert, sizeof cert, "; certified within tol %zu of %zu (%s%.2f s)", yes, done, timed_out,
                  r->rec->cert_seconds);
     }
+    if (r->o->trimmed) {  /* --trimmed: how many jobs were measured against the trimmed offset */
+        size_t done = 0, cut = 0;
+        for (size_t i = 0; i < r->njobs; i++)
+            done += r->jobs[i].trimmed_done != 0, cut += r->jobs[i].trimmed_done && r->jobs[i].trimmed_cut > 0;
+        const size_t len = strlen(cert);
+        snprintf(cert + len, sizeof cert - len, "; trimmed %zu, %zu with arcs cut (%.2f s)", done, cut,
+                 r->rec->trim_seconds);
+    }
     if (r->o->time_fits) {  /* --time-fits: how many jobs' fits were timed */
         size_t timed = 0;
         for (size_t i = 0; i < r->njobs; i++)

@@ -47,6 +47,8 @@ char *ob_run_fingerprint(const ob_run_opts *o, const char *where, uint64_t data_
      * with and without certificates have other plan hashes (merge refuses) */
     if (o->certify)  /* the two modes give other columns: other plans */
         n += (size_t)snprintf(s + n, cap - n, " certify=%s", o->certify == OB_CERTIFY_TIGHT ? "tight" : "verdict");
+    if (o->trimmed)  /* two more columns */
+        n += (size_t)snprintf(s + n, cap - n, " trimmed=yes");
     /* an external method: its command and hello line (register.c), so that a
      * resume or merge refuses another program under the same name */
     for (int i = 0; i < o->nmethods; i++) {
@@ -185,6 +187,8 @@ char *ob_resume_fingerprint(const ob_run_opts *o, const ob_run_record *rec, cons
     fp_tok(&b, "metric", ob_metric_name(o->metric));
     fp_tok(&b, "split", ob_split_name(o->split));
     fp_tok(&b, "certify", o->certify == OB_CERTIFY_TIGHT ? "tight" : o->certify ? "verdict" : "no");
+    if (o->trimmed)  /* only when set: the fingerprints of runs without it are as before */
+        fp_tok(&b, "trimmed", "yes");
     snprintf(v, sizeof v, "%d/%d", o->shard_k, o->shard_n);
     fp_tok(&b, "shard", o->shard_n > 0 ? v : "none");
     fp_tok(&b, "git", OB_GIT_COMMIT);
@@ -233,6 +237,7 @@ static void key_label(const char *key, size_t klen, char *out, size_t len)
         {"metric", "--metric"},
         {"split", "--split"},
         {"certify", "--certify"},
+        {"trimmed", "--trimmed"},
         {"shard", "--shard"},
         {"git", "the build (git commit)"},
         {"dirty", "the build (uncommitted changes: git dirty flag)"},

@@ -200,7 +200,7 @@ enum {
     RO_CURVES, RO_CURVE, RO_RANDOM, RO_METHODS, RO_TOLS, RO_METRIC, RO_SPLIT, RO_BACKEND, RO_DEVICE,
     RO_THREADS, RO_SAMPLES, RO_MAX_DEPTH, RO_MAX_SEGMENTS, RO_INFLECTIONS, RO_PARAM, RO_JOB_TIMEOUT,
     RO_REPS, RO_SHARD, RO_OUT, RO_RESUME, RO_FORCE, RO_EXPORT, RO_ENGINE, RO_CHUNK, RO_CERTIFY,
-    RO_TIME_FITS, RO_FIT_REPS, RO_FIT_MIN_TIME, RO_COUNT
+    RO_TIME_FITS, RO_FIT_REPS, RO_FIT_MIN_TIME, RO_TRIMMED, RO_COUNT
 };
 _Static_assert((int)RO_COUNT <= (int)OB_RUN_MAX_FLAGS, "ob_run_opts.typed holds every run option");
 
@@ -239,6 +239,8 @@ const ob_flag ob_run_flags[] = {
     {"fit-reps", "N", "--time-fits: rounds of measurements per job (default 5)", RO_FIT_REPS, OB_FLAG_ONCE},
     {"fit-min-time", "MS", "--time-fits: each measurement's length in ms of thread CPU time (default 1)",
      RO_FIT_MIN_TIME, OB_FLAG_ONCE},
+    {"trimmed", NULL, "measure each job's approximation, trimmed by its own crossings, against the trimmed offset: "
+     "trimmed_err and trimmed_cut (docs/export-measure.md)", RO_TRIMMED, OB_FLAG_ONCE},
 };
 const int ob_run_nflags = (int)(sizeof ob_run_flags / sizeof ob_run_flags[0]);
 
@@ -349,6 +351,7 @@ static int apply_execution(ob_run_opts *o, int id, const char *opt, const char *
         o->certify = v && strcmp(v, "tight") == 0 ? OB_CERTIFY_TIGHT : OB_CERTIFY_VERDICT;
         return 0;
     case RO_TIME_FITS: o->time_fits = 1; return 0;
+    case RO_TRIMMED: o->trimmed = 1; return 0;
     case RO_FIT_REPS: o->fit_opts_given = 1; return parse_int(opt, v, 1, 1000, &o->fit_rounds);
     case RO_FIT_MIN_TIME:
         o->fit_opts_given = 1;
@@ -458,6 +461,10 @@ int ob_run_opts_finish(ob_run_opts *o)
     }
     if (!o->resume_dir)
         return 0;
+    if (o->trimmed) {
+        ob_error("--resume: not with --trimmed (a run with it keeps no journal: its pass measures the whole run)");
+        return -1;
+    }
     if (o->time_fits) {
         ob_error("--resume: not with --time-fits (the fits are timed in one pass over the whole run)");
         return -1;

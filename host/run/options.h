@@ -41,6 +41,7 @@ typedef struct {
     int certify;                 /* --certify: each job's certified error (host/run/certify.h):
                                     0 off, OB_CERTIFY_VERDICT, OB_CERTIFY_TIGHT */
     int time_fits;               /* --time-fits: each method's own time (host/run/fittime.h) */
+    int trimmed;                 /* --trimmed: each job against the trimmed offset (host/run/trimmed.h) */
     int fit_rounds;              /* --fit-reps N: its rounds (default OB_FITTIME_ROUNDS) */
     double fit_min_ns;           /* --fit-min-time MS: each measurement's length, ns */
     int fit_opts_given;          /* --fit-reps or --fit-min-time given (parsing) */

@@ -36,6 +36,7 @@ typedef struct {
                                     of a --reps series) */
     double cert_seconds;         /* --certify: wall time of the certificate pass */
     double fit_seconds;          /* --time-fits: wall time of the fit timing pass */
+    double trim_seconds;         /* --trimmed: wall time of the trimmed offset pass */
     const ob_curveset *curves;   /* the curves loaded (plan.h), for meta.json's
                                     "selection" (meta_selection.h); NULL: unknown */
 } ob_run_record;

@@ -170,6 +170,16 @@ void ob_bez_offset_point(const ob_bez *b, double t, double d, double p[2])
     p[1] = o[0][1] + d * n[1];
 }
 
+void ob_bez_offset_point_d(const ob_bez *b, double t, double d, double p[2], double dp[2])
+{
+    double e[3][2];
+    ob_bez_offset_point(b, t, d, p);
+    ob_bez_eval(b, t, 2, e);
+    const double L = hypot(e[1][0], e[1][1]);
+    const double f = L > 0.0 ? 1.0 - d * (e[1][0] * e[2][1] - e[1][1] * e[2][0]) / (L * L * L) : 0.0;
+    dp[0] = e[1][0] * f, dp[1] = e[1][1] * f;
+}
+
 /* ---- shape analysis --------------------------------------------------- */
 
 enum { CUSP_SAMPLES = 64 };

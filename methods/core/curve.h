@@ -89,6 +89,11 @@ double ob_bez_curvature(const ob_bez *b, double t);
 /* Exact offset point C(t) + d N(t). */
 void ob_bez_offset_point(const ob_bez *b, double t, double d, double p[2]);
 
+/* Purpose: the exact offset point (ob_bez_offset_point's, bit for bit) and
+ *          its derivative in t, C'(t) (1 - d kappa(t)) (0 where C'
+ *          vanishes), for Newton's method on crossings of offsets. */
+void ob_bez_offset_point_d(const ob_bez *b, double t, double d, double p[2], double dp[2]);
+
 /* ---- subdivision and degree ------------------------------------------- */
 
 /* Purpose: de Casteljau split at t in (0,1) into left [0,t] and right [t,1].

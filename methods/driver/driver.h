@@ -130,6 +130,11 @@ typedef struct {
     double method_ns;    /* the method's own time: thread CPU time of one fit of
                             each accepted piece, median over the rounds */
     double method_iqr_ns;/* the rounds' interquartile range (NAN: one round) */
+    /* set by the run command with --trimmed (host/run/trimmed.h), not the driver: */
+    int trimmed_done;    /* 1: trimmed_err and trimmed_cut were measured; 0: empty columns */
+    double trimmed_err;  /* the approximation, trimmed by its own crossings, against
+                            the exact trimmed offset: two-sided distance of the sets */
+    int trimmed_cut;     /* arcs the trimming removed from the approximation */
 } ob_job;
 
 /* The test hook's count for one fit of base piece (seg, a, b) of job j

@@ -44,6 +44,8 @@ KINDS = {
     "fit_calls": "int?",
     "method_ns": "float",
     "method_iqr_ns": "float",
+    "trimmed_err": "float",
+    "trimmed_cut": "int?",
 }
 
 # the pandas dtype of each kind

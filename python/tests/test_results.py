@@ -16,7 +16,7 @@ DTYPES = {
     "offset_degree": "Int64", "offset_rational": "boolean", "max_gap": "float64", "max_kink": "float64",
     "continuity": "category", "time_iqr_ns": "Int64", "time_cv": "float64", "err_upper": "float64",
     "err_lower": "float64", "certified": "boolean", "cert_ns": "Int64", "fit_calls": "Int64",
-    "method_ns": "float64", "method_iqr_ns": "float64",
+    "method_ns": "float64", "method_iqr_ns": "float64", "trimmed_err": "float64", "trimmed_cut": "Int64",
 }
 
 

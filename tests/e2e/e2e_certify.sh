@@ -14,7 +14,7 @@ check '[ $? -eq 0 ]' "run --certify: $(cat "$T/c.err")"
 $OB run $R --threads 2 --out "$T/p" >/dev/null 2>&1
 check '[ $? -eq 0 ]' "the same run without --certify"
 # (then --time-fits' three: the fields counted from the end below skip them)
-check '[ "$(head -n 1 "$T/c/results.csv" | cut -d, -f23-)" = "err_upper,err_lower,certified,cert_ns,fit_calls,method_ns,method_iqr_ns" ]' \
+check '[ "$(head -n 1 "$T/c/results.csv" | cut -d, -f23-)" = "err_upper,err_lower,certified,cert_ns,fit_calls,method_ns,method_iqr_ns,trimmed_err,trimmed_cut" ]' \
     "the certificate's columns come after the joints and the spread, before the method time's: $(head -n 1 "$T/c/results.csv")"
 # the other columns bit for bit; without --certify the four are empty
 drop4() { dropcols "$1" err_upper err_lower certified cert_ns fit_ns eval_ns; }

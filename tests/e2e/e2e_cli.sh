@@ -26,7 +26,7 @@ check '[ "$got" = "13 19 31 43 61 13 19 31 43 61 " ]' "Ahn Table 1 'Our method':
 
 # --- the CSV contract ---
 hdr=$(head -n 1 "$T/a/results.csv")
-check '[ "$hdr" = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,offset_degree,offset_rational,max_gap,max_kink,continuity,time_iqr_ns,time_cv,err_upper,err_lower,certified,cert_ns,fit_calls,method_ns,method_iqr_ns" ]' "header: $hdr"
+check '[ "$hdr" = "curve,d,method,metric,split,tol,ctrl_points,segments,out_degree,max_err,status,fit_ns,eval_ns,message,family,offset_degree,offset_rational,max_gap,max_kink,continuity,time_iqr_ns,time_cv,err_upper,err_lower,certified,cert_ns,fit_calls,method_ns,method_iqr_ns,trimmed_err,trimmed_cut" ]' "header: $hdr"
 check '[ "$(col "$T/a/results.csv" offset_degree | tr " " "\n" | sort -u)" = "10" ] && [ "$(col "$T/a/results.csv" offset_rational | tr " " "\n" | sort -u)" = "no" ]' \
     "liu2002_ex1 (a generic cubic): offset_degree 10, not rational"
 check '[ "$(col "$T/a/results.csv" tol | cut -d" " -f1-5)" = "0.1 0.01 0.001 0.0001 1e-05" ]' "tolerances printed exactly"
@@ -39,7 +39,7 @@ check 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/a/meta.jso
 # (the header check is by position: the column order is the contract)
 J="--curve liu2002_ex1 --methods ahn,cobb,zhao-rational --tols 1e-3"
 $OB run $J --backend cpu --out "$T/j" 2>/dev/null
-check '[ $? -eq 0 ] && [ "$(head -n 1 "$T/j/results.csv" | cut -d, -f18-)" = "max_gap,max_kink,continuity,time_iqr_ns,time_cv,err_upper,err_lower,certified,cert_ns,fit_calls,method_ns,method_iqr_ns" ]' \
+check '[ $? -eq 0 ] && [ "$(head -n 1 "$T/j/results.csv" | cut -d, -f18-)" = "max_gap,max_kink,continuity,time_iqr_ns,time_cv,err_upper,err_lower,certified,cert_ns,fit_calls,method_ns,method_iqr_ns,trimmed_err,trimmed_cut" ]' \
     "the joint columns, then time_iqr_ns and time_cv, then the certificate's, then the method time's: $(head -n 1 "$T/j/results.csv" | cut -d, -f18-)"
 got=$(rcols "$T/j/results.csv" method continuity | tr '\n' ' ')
 check '[ "$got" = "ahn:G1 cobb:G0 zhao-rational:open ahn:G1 cobb:G0 zhao-rational:open " ]' "measured continuity: '$got'"
