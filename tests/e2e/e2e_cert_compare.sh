@@ -12,9 +12,9 @@ check '[ $? -eq 0 ]' "run --certify: $(cat "$T/c.err")"
 $OB run $R --out "$T/p" >/dev/null 2>&1
 check '[ $? -eq 0 ]' "the same run without --certify"
 # a job certified within tol in BASE, not in NEW (err_upper 2 x tol)
-awk -F, 'BEGIN{OFS=","} NR>1 && !done && $(NF-4)=="yes" {$(NF-6)=$6*2; $(NF-4)="no"; done=1} {print}' "$T/c/results.csv" > "$T/x.csv"
-bu=$(awk -F, 'NR>1 && $(NF-4)=="yes" {print $(NF-6); exit}' "$T/c/results.csv")
-nu=$(awk -F, 'NR>1 && $(NF-4)=="yes" {print $6*2; exit}' "$T/c/results.csv")
+awk -F, 'BEGIN{OFS=","} NR>1 && !done && $(NF-6)=="yes" {$(NF-8)=$6*2; $(NF-6)="no"; done=1} {print}' "$T/c/results.csv" > "$T/x.csv"
+bu=$(awk -F, 'NR>1 && $(NF-6)=="yes" {print $(NF-8); exit}' "$T/c/results.csv")
+nu=$(awk -F, 'NR>1 && $(NF-6)=="yes" {print $6*2; exit}' "$T/c/results.csv")
 $OB compare "$T/c/results.csv" "$T/x.csv" >"$T/cmp.md" 2>&1
 check '[ $? -eq 1 ] && grep -q "| certified | yes (err_upper [0-9.e+-]*) | no (err_upper [0-9.e+-]*) |" "$T/cmp.md"' \
     "md: the certified row shows the certificates: $(grep "| certified |" "$T/cmp.md")"
@@ -56,7 +56,7 @@ check '[ $? -eq 2 ] && [ ! -e "$T/mu/results.csv" ] && grep -q "s1 ran with --ce
 # a certify shard whose ok rows have no certificate: refused
 $OB run $R --certify --shard 1/2 --out "$T/s2" >/dev/null 2>&1
 cp -r "$T/s2" "$T/s2e"
-awk -F, 'BEGIN{OFS=","} NR>1 && ($11=="ok" || $11=="limit") {$(NF-6)="";$(NF-5)="";$(NF-4)="";$(NF-3)=""} {print}' "$T/s2/results.csv" > "$T/s2e/results.csv"
+awk -F, 'BEGIN{OFS=","} NR>1 && ($11=="ok" || $11=="limit") {$(NF-8)="";$(NF-7)="";$(NF-6)="";$(NF-5)=""} {print}' "$T/s2/results.csv" > "$T/s2e/results.csv"
 $OB merge "$T/s1" "$T/s2e" --out "$T/me" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && [ ! -e "$T/me/results.csv" ] && grep -q "s2e/results.csv:[0-9]*: .*no certificate" "$T/e.txt"' \
     "a certify shard with empty certificates: refused: $(cat "$T/e.txt")"

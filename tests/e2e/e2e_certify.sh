@@ -76,7 +76,7 @@ check '[ $? -eq 0 ] && [ "$(dropcols "$T/r/results.csv" time_iqr_ns time_cv | bo
 # between the run and its certificate): the uncertified job runs again
 mkdir -p "$T/j"
 { printf '#offbench-journal 1 %s\n' "$(cat "$T/c/results.fingerprint")"; head -n 6 "$T/c/results.csv"; } > "$T/j/results.journal.csv"
-awk -F, 'BEGIN{OFS=","} NR==7{for(i=NF-6;i<=NF-3;i++) $i=""} NR>=7 && NR<=7' "$T/c/results.csv" >> "$T/j/results.journal.csv"
+awk -F, 'BEGIN{OFS=","} NR==7{for(i=NF-8;i<=NF-5;i++) $i=""} NR>=7 && NR<=7' "$T/c/results.csv" >> "$T/j/results.journal.csv"
 $OB run $R --certify --threads 2 --resume "$T/j" >/dev/null 2>"$T/j.err"
 check '[ $? -eq 0 ] && [ "$(body "$T/j/results.csv")" = "$(body "$T/c/results.csv")" ] && grep -q "5 of [0-9]* jobs restored" "$T/j.err"' \
     "--resume --certify: certified rows restored, the uncertified one rerun: $(cat "$T/j.err" | head -n 2)"
@@ -100,16 +100,16 @@ check '[ $? -ne 0 ] && [ ! -e "$T/mu/results.csv" ]' "a certified shard merged w
 # the reader: compare reads them; a certificate that contradicts itself is refused, naming the line
 $OB compare "$T/c/results.csv" "$T/t/results.csv" >/dev/null 2>&1
 check '[ $? -eq 0 ]' "compare of two certified runs"
-awk -F, 'BEGIN{OFS=","} NR==2{$(NF-4)=($(NF-4)=="yes"?"no":"yes")} {print}' "$T/c/results.csv" > "$T/x.csv"
+awk -F, 'BEGIN{OFS=","} NR==2{$(NF-6)=($(NF-6)=="yes"?"no":"yes")} {print}' "$T/c/results.csv" > "$T/x.csv"
 $OB compare "$T/c/results.csv" "$T/x.csv" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q "x.csv:2: certified must be yes exactly when err_upper <= tol" "$T/e.txt"' \
     "a certified column that contradicts err_upper: $(cat "$T/e.txt")"
-awk -F, 'BEGIN{OFS=","} NR==2{$(NF-3)=""} {print}' "$T/c/results.csv" > "$T/x.csv"
+awk -F, 'BEGIN{OFS=","} NR==2{$(NF-5)=""} {print}' "$T/c/results.csv" > "$T/x.csv"
 $OB compare "$T/c/results.csv" "$T/x.csv" >/dev/null 2>"$T/e.txt"
 check '[ $? -eq 2 ] && grep -q "x.csv:2: err_upper, err_lower, certified and cert_ns are all empty or all set" "$T/e.txt"' \
     "a certificate without its time: $(cat "$T/e.txt")"
 # compare: a job certified within tol in BASE and not in NEW is a regression
-awk -F, 'BEGIN{OFS=","} NR>1 && !done && $(NF-4)=="yes" {$(NF-6)=$6*2; $(NF-4)="no"; done=1} {print}' "$T/c/results.csv" > "$T/x.csv"
+awk -F, 'BEGIN{OFS=","} NR>1 && !done && $(NF-6)=="yes" {$(NF-8)=$6*2; $(NF-6)="no"; done=1} {print}' "$T/c/results.csv" > "$T/x.csv"
 $OB compare "$T/c/results.csv" "$T/x.csv" >"$T/cmp.txt" 2>&1
 check '[ $? -eq 1 ] && grep -q "certified" "$T/cmp.txt"' "compare: certified yes to no is a regression: $(grep -i certified "$T/cmp.txt" | head -n 2)"
 $OB compare "$T/x.csv" "$T/c/results.csv" >"$T/cmp.txt" 2>&1

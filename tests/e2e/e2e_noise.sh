@@ -20,7 +20,7 @@ export OFFBENCH_LOADAVG="$T/idle"
 OFFBENCH_LOADAVG=$T/idle $OB run $RUN --reps 4 --out "$T/r" 2>"$T/r.err"
 check '[ $? -eq 0 ]' "run --reps 4"
 # (by position: that they come after the joints, before the certificate's, is the contract checked)
-check '[ "$(head -n 1 "$T/r/results.csv" | awk -F, "{print \$(NF-8) \",\" \$(NF-7)}")" = "time_iqr_ns,time_cv" ]' \
+check '[ "$(head -n 1 "$T/r/results.csv" | awk -F, "{print \$(NF-10) \",\" \$(NF-9)}")" = "time_iqr_ns,time_cv" ]' \
     "time_iqr_ns and time_cv come before the certificate's four columns: $(head -n 1 "$T/r/results.csv")"
 bad_spread=$(rcols "$T/r/results.csv" time_iqr_ns time_cv | awk -F: '!($1 ~ /^[0-9]+$/ && $2 ~ /^[0-9.e+-]+$/ && $2 >= 0)')
 check '[ -z "$bad_spread" ] && [ "$(rcols "$T/r/results.csv" time_cv | wc -l)" -eq 8 ]' \
