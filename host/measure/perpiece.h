@@ -32,7 +32,8 @@ typedef struct {
     int worst;          /* the part where it is */
     int seg;            /* there: the base segment and its parameter of O(t) */
     double t;
-    double x, y;        /* the point of the piece nearest to O(t) */
+    double x, y;        /* the piece's point at the error: nearest to O(t), or (a bump
+                           of the piece) the one whose foot is O(t) (perpiece.c) */
     double xo, yo;      /* O(t) */
 } ob_pp_row;
 

@@ -155,13 +155,11 @@ static void per_piece(const obx_curveset *s, int c, const ob_curve *cv, pieces *
     const obx_piece_error *w = &out[worst_row(out, p->n)];
     CHECK(worst_row(out, p->n) == k && w->max_err > 5e-3, "planted in piece %d: the worst is piece %d (%g)", k,
           worst_row(out, p->n), w->max_err);
-    /* x, y is the piece's point nearest to O(t) (perpiece.h): at most the
-     * error away, and not always the error, which perpiece.h promises: here
-     * the worst is on the piece's side, the bulge's top, whose nearest
-     * offset point within the base range is the range's end, O(t) the
-     * piece's own end point, and so x, y is O(t), not the bulge's top
-     * (the CLI writes the same: a limit of perpiece.c, reported) */
-    CHECK(hypot(w->x - w->x_off, w->y - w->y_off) <= w->max_err * (1 + 1e-9),
+    /* x, y is max_err from x_off, y_off (perpiece.h), also here, where the
+     * worst is on the piece's side, the bulge's top, whose nearest offset
+     * point within the base range is the range's end: x, y is the top, not
+     * the piece's point nearest to that end */
+    CHECK(fabs(hypot(w->x - w->x_off, w->y - w->y_off) - w->max_err) <= 1e-9 * w->max_err,
           "the worst point's distance %.17g, the error %.17g", hypot(w->x - w->x_off, w->y - w->y_off), w->max_err);
     int others_small = 1;
     for (int i = 0; i < p->n; i++)

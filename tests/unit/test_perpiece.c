@@ -137,9 +137,43 @@ static void test_parts(void)
     ob_approx_free(&a);
 }
 
+/* A wide bump over a straight base: y = 0, x in [0, 1], d = 1, its offset
+ * y = 1; the piece rises to y = 1.6 at x = 0.5 (a cubic through (0, 1) and
+ * (1, 1)).  The error, 0.6, is the bump's top's distance from O(0.5) =
+ * (0.5, 1); the piece's nearest point to O(0.5) is elsewhere (its ends are
+ * 0.5 away): x, y must be the top, at 0.6. */
+static void test_wide_bump(void)
+{
+    const double line[2][2] = {{0, 0}, {1, 0}}, bump[4][2] = {{0, 1}, {0, 1.8}, {1, 1.8}, {1, 1}};
+    ob_bez seg;
+    ob_bez_from_points(&seg, 1, line);
+    ob_curve c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.id, sizeof c.id, "line");
+    c.nseg = 1;
+    c.seg = &seg;
+    ob_approx a = {0};
+    ob_apiece *p = ob_approx_add(&a);
+    ob_bez_from_points(&p->approx, 3, bump);
+    p->has_base = 1, p->seg = 0, p->a = 0.0, p->b = 1.0, p->t0 = 0.0, p->t1 = 1.0;
+    ob_perpiece pp;
+    ob_err err = {""};
+    CHECK(ob_approx_per_piece(&c, 1.0, &a, 256, "bump", &pp, &err) == 0 && pp.n == 1, "%s", err.msg);
+    if (pp.n == 1) {
+        const ob_pp_row *r = &pp.v[0];
+        CHECK_NEAR(r->err, 0.6, 1e-9, "the bump's error");
+        CHECK_NEAR(r->x, 0.5, 1e-6, "x, y is the bump's top: x");
+        CHECK_NEAR(r->y, 1.6, 1e-9, "x, y is the bump's top: y");
+        CHECK_NEAR(hypot(r->x - r->xo, r->y - r->yo), r->err, 1e-9 * r->err, "x, y is max_err from x_off, y_off");
+    }
+    ob_perpiece_free(&pp);
+    ob_approx_free(&a);
+}
+
 int main(void)
 {
     test_rows();
+    test_wide_bump();
     test_parts();
     return check_done();
 }
