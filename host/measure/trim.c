@@ -323,7 +323,7 @@ static int add_arc(ob_trim *tr, int *cap, int seg, double t0, double t1)
             return -1;
         tr->arc = nv, *cap = nc;
     }
-    tr->arc[tr->n++] = (ob_trim_arc){seg, t0, t1};
+    tr->arc[tr->n++] = (ob_trim_arc){.seg = seg, .t0 = t0, .t1 = t1};
     return 0;
 }
 
@@ -391,6 +391,16 @@ void ob_trim_free(ob_trim *tr)
     free(tr->arc);
     free(tr->split);
     memset(tr, 0, sizeof *tr);
+}
+
+void ob_trim_arc_point(const ob_curve *c, double d, const ob_trim_arc *ar, double u, double p[2])
+{
+    const double t = ar->t0 + (ar->t1 - ar->t0) * u;
+    if (ar->corner) {
+        p[0] = ar->ctr[0] + ar->r * cos(t), p[1] = ar->ctr[1] + ar->r * sin(t);
+        return;
+    }
+    ob_bez_offset_point(&c->seg[ar->seg], t, d, p);
 }
 
 static void dump_row(FILE *f, const char *kind, const ob_curve *c, double d, int seg, double t0, double t1)

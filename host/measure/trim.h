@@ -47,10 +47,15 @@ typedef struct {
     ob_split_kind kind;
 } ob_trim_split;
 
-/* A kept arc: O on base segment seg over [t0, t1]. */
+/* A kept arc: O on base segment seg over [t0, t1] (corner 0), or (corner
+ * 1) the arc of the circle about ctr = C(seg, 0) (the corner at the start
+ * of segment seg: for segment 0, the wrap's joint of a closed base) of
+ * radius r = |d| from angle t0 to angle t1 (radians; t1 < t0: clockwise). */
 typedef struct {
     int seg;
     double t0, t1;
+    int corner;
+    double ctr[2], r;
 } ob_trim_arc;
 
 typedef struct {
@@ -67,6 +72,13 @@ typedef struct {
 int ob_trim_offset(const ob_curve *c, double d, ob_trim *tr, ob_err *err);
 
 void ob_trim_free(ob_trim *tr);
+
+/* Purpose: the point of kept arc ar of the trimmed d-offset of c at u in
+ *          [0, 1] (u = 0 its start, 1 its end): O(t0 + (t1 - t0) u) on its
+ *          segment, or for a corner arc ctr + r (cos a, sin a) at the angle
+ *          a = t0 + (t1 - t0) u.
+ * Outputs: p.  Errors: none. */
+void ob_trim_arc_point(const ob_curve *c, double d, const ob_trim_arc *ar, double u, double p[2]);
 
 /* The distance from p to the whole base curve c (every segment over [0, 1],
  * end points included): each segment scanned at 256 parameters, every local
