@@ -38,6 +38,12 @@
 
 enum { OB_TRIM_POLY = 2048 };
 #define OB_TRIM_REL 1e-9
+/* A joint is a corner when its tangent turns by more than this (radians):
+ * far above the round-off of a smooth joint's two unit normals (1e-15 or
+ * so, also after a B-spline's conversion to Bezier segments), and the gap
+ * it leaves between the offsets' ends, |d| times the turn, below 1e-8 |d|
+ * when it is taken as smooth. */
+#define OB_TRIM_CORNER 1e-8
 
 typedef enum { OB_SPLIT_CUSP = 0, OB_SPLIT_SELF, OB_SPLIT_OPPOSITE, OB_SPLIT_END } ob_split_kind;
 

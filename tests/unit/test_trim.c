@@ -464,7 +464,9 @@ static void test_corner_measure(void)
     CHECK(ob_trimmed_hausdorff(&c, d, &tr, &a, 256, &r, msg, sizeof msg, &err) == 0, "%s", err.msg);
     CHECK(r.ok && r.err < 1e-14, "square's exact outside offset: %g (%s)", r.err, msg);
     CHECK(ob_trimmed_hausdorff(&c, d, &tr, &b, 256, &r, msg, sizeof msg, &err) == 0, "%s", err.msg);
-    CHECK_NEAR(r.err, -2 * d * sin(M_PI / 8), 1e-12, "the arc about (1, 1) missing: 2 |d| sin(pi / 8)");
+    /* a kink (the nearest file point switches between the lines' ends):
+     * golden section's 1e-10 in u gives the distance to some 1e-11 */
+    CHECK_NEAR(r.err, -2 * d * sin(M_PI / 8), 1e-10, "the arc about (1, 1) missing: 2 |d| sin(pi / 8)");
     CHECK(strstr(msg, "trimmed offset") != NULL && r.seg == 2 && r.t == 0.0,
           "says the side and the corner (segment 2 at t = 0): seg %d t %g, %s", r.seg, r.t, msg);
     ob_trim_free(&tr);
