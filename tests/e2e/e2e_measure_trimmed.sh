@@ -12,7 +12,8 @@
 #   the brute force's circles about the joints, and their count is the
 #   closed form's: an L (convex side 1, concave 0), the unit square
 #   (outside 4, inside 0), an M whose peaks' arcs cut each other (2), two
-#   cubics meeting at an angle (1 on one side, 0 on the other).
+#   cubics meeting at an angle (1 on one side, 0 on the other), out and
+#   back along a segment (a reversal: 2, half circles round the ends).
 #   Polylines of the brute force's trimmed offset (sides and corner arcs)
 #   measure within their construction error, and so does one of the
 #   square's exact outside offset made here (its sides, each quarter
@@ -92,6 +93,15 @@ curve M
   point 2 0
   offset 0.7
 end
+curve hairpin
+  source out along the x axis and back, closed: the tangent reverses at both joints
+  bspline 1
+  knots 0 0 1 2 2
+  point 0 0
+  point 1 0
+  point 0 0
+  offset 0.2
+end
 curve twocubics
   source two cubics meeting at an angle at (2, 0)
   bspline 3
@@ -125,7 +135,7 @@ check '[ $? -eq 2 ] && [ ! -s "$T/o" ] && grep -q "trimmed offset is empty" "$T/
 
 if ! "$PY" -c 'import numpy, scipy.spatial, scipy.optimize' >/dev/null 2>&1; then
     echo "e2e_measure_trimmed: $PY does not import numpy and scipy: skipped"
-    skipped=$((skipped + 24))
+    skipped=$((skipped + 25))
     e2e_done
     exit $?
 fi
@@ -151,7 +161,8 @@ brute "$(dirname "$PUB")/atlas.curves" atlas_trifolium 0.3
 check '[ $? -eq 0 ]' "atlas_trifolium d = 0.3: $(cat "$T/e" "$T/b.out")"
 
 # corners: the dump's corner arcs against the brute force's circles about the joints
-for cd in "L 0.25 1" "L -0.25 0" "square -0.25 4" "square 0.25 0" "M 0.7 2" "twocubics 0.3 0" "twocubics -0.3 1"; do
+for cd in "L 0.25 1" "L -0.25 0" "square -0.25 4" "square 0.25 0" "M 0.7 2" "twocubics 0.3 0" "twocubics -0.3 1" \
+    "hairpin 0.2 2"; do
     set -- $cd
     brute "$T/p.curves" $1 $2
     rc=$? n=$3

@@ -14,7 +14,9 @@ corner's, on its convex side): every joint's circle is sampled, and its
 points on the d side of the joint (Q with (Q - P).d (N1 + N2) > 0, N1
 and N2 the unit normals on either side of the joint P: the arc about
 the normals' mean direction, not the one of the offset to the other
-side) kept the same way as O's, whatever the joint.
+side; where the curve reverses, N1 + N2 = 0, the half circle ahead of
+the tangent before the joint) kept the same way as O's, whatever the
+joint.
 
   check CURVES ID D DUMP [N]
       samples O at N (default 200001 over the spans, 50001 a span at
@@ -210,7 +212,11 @@ def circle_kept(base, D, d, j, NA):
     P = base.start[j]
     A = -np.pi + 2 * np.pi * np.arange(NA) / NA
     U = np.stack([np.cos(A), np.sin(A)], 1)
-    side = U @ sum(base.joint_normals(j, d)) > 0
+    na, nb = base.joint_normals(j, d)
+    v = na + nb
+    if np.hypot(*v) <= 1e-6 * abs(d):  # a reversal: the half circle round the front, along T before the joint
+        v = np.array([na[1], -na[0]]) * np.sign(d)
+    side = U @ v > 0
     kept = side & (D.poly(P + abs(d) * U) >= abs(d) * (1 - 1e-9))
     if kept.all():
         return A, kept, [(-np.pi, np.pi)]

@@ -23,8 +23,10 @@
  *     square, outside its 4 sides and 4 quarter circles (the wrap's
  *     included, length 4 + 2 pi |d|), inside 4 shorter sides and no arc;
  *     an M whose two peaks' arcs cut each other where the circles about
- *     the peaks cross; the square's exact outside offset (lines and
- *     rational quarter circles) measures at round-off.
+ *     the peaks cross; a reversal (out and back along a segment,
+ *     closed): a stadium, half circles round both ends on either side;
+ *     the square's exact outside offset (lines and rational quarter
+ *     circles) measures at round-off.
  */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
@@ -421,6 +423,31 @@ static void test_corner_cut(void)
     ob_trim_free(&tr);
 }
 
+/* Out along (0, 0) to (1, 0) and back, a closed curve: its tangent turns
+ * by pi at both joints.  On either side the offset is the two sides and
+ * the half circles about (1, 0) and (0, 0) round the ends (a stadium,
+ * 2 + 2 pi |d|). */
+static void test_corner_reversal(void)
+{
+    const double p[3][2] = {{0, 0}, {1, 0}, {0, 0}};
+    ob_bez s[2];
+    polyline(s, p, 3);
+    ob_curve c = curve_of(s, 2, "hairpin");
+    for (int sd = -1; sd <= 1; sd += 2) {
+        const double d = 0.2 * sd;
+        ob_trim tr = {0};
+        ob_err err = {""};
+        int nc;
+        CHECK(ob_trim_offset(&c, d, &tr, &err) == 0, "%s", err.msg);
+        CHECK(tr.n == 4 && tr.arc[1].corner && tr.arc[3].corner, "reversal d = %g: side, half circle, side, half "
+              "circle: %d arcs", d, tr.n);
+        check_ends(&c, d, &tr, 1, 1, d, 1, -d, "reversal: round (1, 0)");
+        check_ends(&c, d, &tr, 3, 0, -d, 0, d, "reversal: round (0, 0), the wrap");
+        CHECK_NEAR(trim_length(&c, d, &tr, &nc), 2 + 2 * M_PI * fabs(d), 1e-12, "reversal: a stadium, 2 + 2 pi |d|");
+        ob_trim_free(&tr);
+    }
+}
+
 /* The square's exact outside offset at radius r: for each side k (from
  * corner V_k to V_k+1, outward normal at angle (k - 1) pi / 2) a line,
  * then the rational quarter circle about V_k+1; the one about V_skip + 1
@@ -489,6 +516,7 @@ int main(void)
     test_corner_l();
     test_corner_square();
     test_corner_cut();
+    test_corner_reversal();
     test_corner_measure();
     ob_curveset_free(&atlas);
     ob_curveset_free(&pub);
