@@ -1,11 +1,16 @@
-// occt_trimmed.cpp - OpenCASCADE's trimmed offset of one Bezier curve, as a
-// DXF for `offbench measure --trimmed` (docs/export-measure.md "The trimmed
-// offset"; tests/e2e/e2e_occt_trimmed.sh):
+// occt_trimmed.cpp - OpenCASCADE's trimmed offset of one Bezier curve or
+// one polyline, as a DXF for `offbench measure --trimmed`
+// (docs/export-measure.md "The trimmed offset";
+// tests/e2e/e2e_occt_trimmed.sh):
 //
 //     occt_trimmed --d D --points "x0,y0 x1,y1 ..." --out FILE.dxf [--chords N]
+//                  [--shape bezier|polyline]
 //
-// The curve is a Geom_BezierCurve in the plane z = 0, its edge one wire,
-// and BRepOffsetAPI_MakeOffset(wire, GeomAbs_Arc, IsOpenResult = true)
+// The curve is a Geom_BezierCurve in the plane z = 0 (--shape bezier, the
+// default), its edge one wire, or (--shape polyline) the wire of line
+// edges through the points (BRepBuilderAPI_MakePolygon: a corner at each
+// inner point, which GeomAbs_Arc fills with a circle arc on its convex
+// side); BRepOffsetAPI_MakeOffset(wire, GeomAbs_Arc, IsOpenResult = true)
 // offsets it to one side: the offset a CAD kernel ships, its loops trimmed
 // (OCCT's sign: occt_common.hpp, so OCCT is given -d).  Each edge of the
 // result is written as it is: a line as one LINE, any other curve as N
@@ -17,6 +22,7 @@
 // 2 bad arguments.  Build: make occt-trimmed.
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepOffsetAPI_MakeOffset.hxx>
 #include <Geom_BezierCurve.hxx>
@@ -41,12 +47,13 @@ struct Args {
     std::vector<gp_Pnt> points;
     std::string out;
     int chords = 2000;
+    bool polyline = false;
 };
 
 [[noreturn]] void usage(const std::string &why)
 {
     std::fprintf(stderr, "occt_trimmed: %s\nusage: occt_trimmed --d D --points \"x0,y0 x1,y1 ...\" --out FILE.dxf "
-                         "[--chords N]\n", why.c_str());
+                         "[--chords N] [--shape bezier|polyline]\n", why.c_str());
     std::exit(2);
 }
 
@@ -91,6 +98,10 @@ Args parse(int argc, char **argv)
             a.chords = std::atoi(v.c_str());
             if (a.chords < 1 || a.chords > 1000000)
                 usage("--chords: 1 to 1000000");
+        } else if (k == "--shape") {
+            if (v != "bezier" && v != "polyline")
+                usage("--shape: bezier or polyline, not '" + v + "'");
+            a.polyline = v == "polyline";
         } else {
             usage("unknown option " + k);
         }
@@ -128,17 +139,31 @@ double write_edge(FILE *f, const BRepAdaptor_Curve &c, int chords)
     return err;
 }
 
+TopoDS_Wire bezier_wire(const std::vector<gp_Pnt> &points)
+{
+    TColgp_Array1OfPnt poles(1, (int)points.size());
+    for (size_t i = 0; i < points.size(); i++)
+        poles((int)i + 1) = points[i];
+    Handle(Geom_BezierCurve) b = new Geom_BezierCurve(poles);
+    return BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(b));
+}
+
+// An open polyline through the points, one line edge each.
+TopoDS_Wire polyline_wire(const std::vector<gp_Pnt> &points)
+{
+    BRepBuilderAPI_MakePolygon poly;
+    for (const gp_Pnt &p : points)
+        poly.Add(p);
+    return poly.Wire();
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
     const Args a = parse(argc, argv);
     try {
-        TColgp_Array1OfPnt poles(1, (int)a.points.size());
-        for (size_t i = 0; i < a.points.size(); i++)
-            poles((int)i + 1) = a.points[i];
-        Handle(Geom_BezierCurve) b = new Geom_BezierCurve(poles);
-        const TopoDS_Wire w = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(b));
+        const TopoDS_Wire w = a.polyline ? polyline_wire(a.points) : bezier_wire(a.points);
         BRepOffsetAPI_MakeOffset mo(w, GeomAbs_Arc, Standard_True);
         mo.Perform(-a.d);  // OCCT's side is offbench's other one (occt_common.hpp)
         if (!mo.IsDone()) {

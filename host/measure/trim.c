@@ -1,7 +1,9 @@
 /*
  * trim.c - the trimmed offset (trim.h): split points of the untrimmed
  * offset located to round-off, then each arc between two of them kept or
- * removed by its midpoint's distance to the base curve.
+ * removed by its midpoint's distance to the base curve; at each corner
+ * (G0 joint) on its convex side the circle arc about the corner, split
+ * and decided the same way.
  */
 #include "host/measure/trim.h"
 
@@ -10,6 +12,15 @@
 #include <string.h>
 
 enum { BLOCK = 32, BASE_SCAN = 256 };
+
+/* A corner: the G0 joint at the start of segment seg (segment 0: the
+ * wrap's joint of a closed base), its point P, the angle a0 of d N at the
+ * end of the segment before and the turn of the tangent there (signed,
+ * the arc's sweep); convex: the arc is on the d side. */
+typedef struct {
+    int seg, convex;
+    double P[2], a0, sweep;
+} corner;
 
 typedef struct {
     const ob_curve *c;
@@ -21,6 +32,11 @@ typedef struct {
     int nblk;          /* blocks per side */
     ob_trim_split *sp;
     int nsp, capsp;
+    corner *cn;        /* the corners, by seg */
+    int ncn;
+    char *g0;          /* [nseg]: 1 when the joint at the start of the segment is a corner */
+    double *ang;       /* scratch: a corner arc's split points, as parameters u in (0, 1) */
+    int nang, capang;
 } trimmer;
 
 /* O(t) = C(t) + dd N(t) on segment b and its derivative C'(1 - dd kappa). */
@@ -99,9 +115,23 @@ static int same_place(const trimmer *w, int a, double t, int b, double u)
     const int n = w->c->nseg;
     if (a == b)
         return fabs(t - u) <= e;
+    /* across a corner O has a gap: a root next to it is a real crossing
+     * (the concave side's, |d| from the corner) */
     if ((a + 1 == b || (w->closed && a == n - 1 && b == 0)) && t >= 1.0 - e && u <= e)
-        return 1;
-    return (b + 1 == a || (w->closed && b == n - 1 && a == 0)) && u >= 1.0 - e && t <= e;
+        return !w->g0[b];
+    return (b + 1 == a || (w->closed && b == n - 1 && a == 0)) && u >= 1.0 - e && t <= e && !w->g0[a];
+}
+
+/* 1 when global chords gi and gj of O_d share a vertex: neighbours on one
+ * segment or across a smooth joint (a corner's two chords do not meet
+ * there: their crossing, on the concave side, is looked for). */
+static int chords_adjacent(const trimmer *w, long gi, long gj)
+{
+    const long last = (long)w->c->nseg * w->M - 1;
+    long lo = gi < gj ? gi : gj, hi = gi < gj ? gj : gi;
+    if (hi - lo == 1)
+        return hi % w->M != 0 || !w->g0[hi / w->M];
+    return w->closed && lo == 0 && hi == last && !w->g0[0];
 }
 
 /* Newton's method on O_d(s) on segment a = O_sd(u) on segment b (sd: d or
@@ -162,8 +192,8 @@ static int cross_blocks(trimmer *w, int ba, int sb, int bb)
     const double sd = sb ? -w->d : w->d;
     for (int i = (ba % bps) * BLOCK; i < (ba % bps + 1) * BLOCK; i++)
         for (int j = (bb % bps) * BLOCK; j < (bb % bps + 1) * BLOCK; j++) {
-            const long gi = (long)ka * w->M + i, gj = (long)kb * w->M + j, last = (long)w->c->nseg * w->M - 1;
-            if (sb == 0 && (labs(gi - gj) <= 1 || (w->closed && ((gi == 0 && gj == last) || (gj == 0 && gi == last)))))
+            const long gi = (long)ka * w->M + i, gj = (long)kb * w->M + j;
+            if (sb == 0 && (gi == gj || chords_adjacent(w, gi, gj)))
                 continue;
             if (sb == 0 && gj < gi)
                 continue; /* each pair once */
@@ -193,40 +223,87 @@ static int crossings(trimmer *w)
     return 0;
 }
 
-static double circ_f(const trimmer *w, int k, double t, const double E[2])
+static double circ_f(const trimmer *w, int k, double t, double dd, const double E[2])
 {
     double p[2];
-    ob_bez_offset_point(&w->c->seg[k], t, w->d, p);
+    ob_bez_offset_point(&w->c->seg[k], t, dd, p);
     return (p[0] - E[0]) * (p[0] - E[0]) + (p[1] - E[1]) * (p[1] - E[1]) - w->d * w->d;
 }
 
-/* The crossings of O_d with the circle of radius |d| about E: sign changes
- * of |O - E|^2 - d^2 between vertices (values within round-off of 0 have
- * no sign), bisected to the last bit. */
-static int end_circle(trimmer *w, const double E[2])
+static int add_ang(trimmer *w, double u)
 {
-    const double zero = 1e-11 * w->size * w->size;
+    if (w->nang == w->capang) {
+        const int cap = w->capang ? 2 * w->capang : 16;
+        double *nv = realloc(w->ang, (size_t)cap * sizeof *nv);
+        if (!nv)
+            return -1;
+        w->ang = nv, w->capang = cap;
+    }
+    w->ang[w->nang++] = u;
+    return 0;
+}
+
+/* The parameter u of point X on the arc of corner k (X - P at angle
+ * a0 + sweep u), when it lies inside the arc (0 < u < 1); else -1. */
+static double arc_param(const corner *k, const double X[2])
+{
+    const double s = k->sweep < 0.0 ? -1.0 : 1.0, twopi = 2.0 * OB_PI;
+    double rel = s * (atan2(X[1] - k->P[1], X[0] - k->P[0]) - k->a0);
+    rel -= twopi * floor(rel / twopi);
+    const double u = rel / fabs(k->sweep);
+    return u > 0.0 && u < 1.0 ? u : -1.0;
+}
+
+/* The crossings of O on side `side` (0: O_d, 1: O_-d) with the circle of
+ * radius |d| about E: sign changes of |O - E|^2 - d^2 between the
+ * polyline's vertices (values within round-off of 0 have no sign),
+ * bisected to the last bit; each added as a split of O_d (cn NULL) or, as
+ * a parameter, of corner cn's arc (outside the arc: dropped). */
+static int circle_cross(trimmer *w, int side, const double E[2], const corner *cn)
+{
+    const double zero = 1e-11 * w->size * w->size, dd = side ? -w->d : w->d;
     for (int k = 0; k < w->c->nseg; k++) {
-        double f0 = circ_f(w, k, 0.0, E);
+        const double *v = vertex(w, side, k, 0);
+        double f0 = (v[0] - E[0]) * (v[0] - E[0]) + (v[1] - E[1]) * (v[1] - E[1]) - w->d * w->d;
         for (int i = 1; i <= w->M; i++) {
-            const double f1 = circ_f(w, k, (double)i / w->M, E);
+            v = vertex(w, side, k, i);
+            const double f1 = (v[0] - E[0]) * (v[0] - E[0]) + (v[1] - E[1]) * (v[1] - E[1]) - w->d * w->d;
             if (fabs(f0) > zero && fabs(f1) > zero && (f0 < 0.0) != (f1 < 0.0)) {
-                double lo = (double)(i - 1) / w->M, hi = (double)i / w->M;
+                double lo = (double)(i - 1) / w->M, hi = (double)i / w->M, X[2];
                 const int neg = f0 < 0.0;
                 for (int it = 0; it < 80 && lo < hi; it++) {
                     const double m = 0.5 * (lo + hi);
                     if (m <= lo || m >= hi)
                         break;
-                    if ((circ_f(w, k, m, E) < 0.0) == neg)
+                    if ((circ_f(w, k, m, dd, E) < 0.0) == neg)
                         lo = m;
                     else
                         hi = m;
                 }
-                if (add_split(w, k, 0.5 * (lo + hi), OB_SPLIT_END))
+                ob_bez_offset_point(&w->c->seg[k], 0.5 * (lo + hi), dd, X);
+                const double u = cn ? arc_param(cn, X) : 0.0;
+                if (cn ? u > 0.0 && add_ang(w, u) : add_split(w, k, 0.5 * (lo + hi), OB_SPLIT_END))
                     return -1;
             }
             f0 = f1;
         }
+    }
+    return 0;
+}
+
+/* The crossings of corner cn's arc with the circle of radius |d| about Q
+ * (another corner, an open base's end point): the two points at |d| from
+ * both, on the perpendicular bisector of P Q. */
+static int circle_circle(trimmer *w, const corner *cn, const double Q[2])
+{
+    const double dx = Q[0] - cn->P[0], dy = Q[1] - cn->P[1], D = hypot(dx, dy), r = fabs(w->d);
+    if (!(D > 0.0 && D < 2.0 * r))
+        return 0;
+    const double h = sqrt(r * r - 0.25 * D * D), mx = cn->P[0] + 0.5 * dx, my = cn->P[1] + 0.5 * dy;
+    for (int s = -1; s <= 1; s += 2) {
+        const double X[2] = {mx - s * h * dy / D, my + s * h * dx / D}, u = arc_param(cn, X);
+        if (u > 0.0 && add_ang(w, u))
+            return -1;
     }
     return 0;
 }
@@ -310,10 +387,11 @@ static int kept_at(const trimmer *w, int k, double t)
     return ob_trim_base_dist(w->c, p) >= fabs(w->d) - OB_TRIM_REL * w->size;
 }
 
-static int add_arc(ob_trim *tr, int *cap, int seg, double t0, double t1)
+static int add_arc(ob_trim *tr, int *cap, ob_trim_arc a)
 {
-    if (tr->n > 0 && tr->arc[tr->n - 1].seg == seg && tr->arc[tr->n - 1].t1 == t0) {
-        tr->arc[tr->n - 1].t1 = t1; /* continues the last */
+    ob_trim_arc *l = tr->n > 0 ? &tr->arc[tr->n - 1] : NULL;
+    if (l && l->corner == a.corner && l->seg == a.seg && l->t1 == a.t0) {
+        l->t1 = a.t1; /* continues the last */
         return 0;
     }
     if (tr->n == *cap) {
@@ -323,22 +401,101 @@ static int add_arc(ob_trim *tr, int *cap, int seg, double t0, double t1)
             return -1;
         tr->arc = nv, *cap = nc;
     }
-    tr->arc[tr->n++] = (ob_trim_arc){seg, t0, t1};
+    tr->arc[tr->n++] = a;
+    return 0;
+}
+
+/* Finds the corners: joints where the unit normals (ob_bez_normal: also
+ * where C' vanishes) of the segment before and after differ by more than
+ * OB_TRIM_CORNER radians. */
+static int find_corners(trimmer *w)
+{
+    const int n = w->c->nseg;
+    for (int k = w->closed ? 0 : 1; k < n; k++) {
+        const ob_bez *a = &w->c->seg[k ? k - 1 : n - 1], *b = &w->c->seg[k];
+        double N1[2], N2[2];
+        if (ob_bez_normal(a, 1.0, N1) || ob_bez_normal(b, 0.0, N2))
+            continue; /* a point-like segment: no direction to turn from */
+        double th = atan2(N1[0] * N2[1] - N1[1] * N2[0], N1[0] * N2[0] + N1[1] * N2[1]);
+        if (!(fabs(th) > OB_TRIM_CORNER))
+            continue;
+        /* the arc's points P + d n(phi), n N1 turned by phi in (0, th),
+         * have (Q - P).T1 = -d sin(phi): where d th > 0 (the concave
+         * side) C before P comes nearer than |d| to each, no point of it
+         * is kept.  A reversal (th = +-pi) is convex on both sides: the
+         * arc round the front, (Q - P).T1 >= 0, turns against d. */
+        if (fabs(th) >= OB_PI - OB_TRIM_CORNER)
+            th = w->d > 0.0 ? -OB_PI : OB_PI;
+        corner *cn = &w->cn[w->ncn++];
+        cn->seg = k, cn->convex = w->d * th < 0.0, cn->sweep = th;
+        cn->a0 = atan2(w->d * N1[1], w->d * N1[0]);
+        ob_bez_point(b, 0.0, cn->P);
+        w->g0[k] = 1;
+    }
+    return 0;
+}
+
+static int cmp_double(const void *x, const void *y)
+{
+    const double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* Corner k's arc (convex ones only): split where the offsets on both
+ * sides, the circles about the other corners and about an open base's
+ * ends cross it, each part kept when its midpoint is |d| from C. */
+static int corner_arcs(trimmer *w, const corner *cn, ob_trim *tr, int *cap)
+{
+    if (!cn->convex)
+        return 0;
+    w->nang = 0;
+    if (circle_cross(w, 0, cn->P, cn) || circle_cross(w, 1, cn->P, cn))
+        return -1;
+    for (int k = 0; k < w->ncn; k++)
+        if (&w->cn[k] != cn && circle_circle(w, cn, w->cn[k].P))
+            return -1;
+    if (!w->closed) {
+        double E[2];
+        ob_bez_point(&w->c->seg[0], 0.0, E);
+        if (circle_circle(w, cn, E))
+            return -1;
+        ob_bez_point(&w->c->seg[w->c->nseg - 1], 1.0, E);
+        if (circle_circle(w, cn, E))
+            return -1;
+    }
+    if (w->nang > 0)
+        qsort(w->ang, (size_t)w->nang, sizeof *w->ang, cmp_double);
+    const double r = fabs(w->d);
+    double a = 0.0;
+    for (int j = 0; j <= w->nang; j++) {
+        const double b = j < w->nang ? w->ang[j] : 1.0;
+        if (!(b > a))
+            continue;
+        const double m = cn->a0 + cn->sweep * 0.5 * (a + b), q[2] = {cn->P[0] + r * cos(m), cn->P[1] + r * sin(m)};
+        const ob_trim_arc arc = {cn->seg, cn->a0 + cn->sweep * a, cn->a0 + cn->sweep * b, 1, {cn->P[0], cn->P[1]}, r};
+        if (ob_trim_base_dist(w->c, q) >= r - OB_TRIM_REL * w->size && add_arc(tr, cap, arc))
+            return -1;
+        a = b;
+    }
     return 0;
 }
 
 /* The arcs between the sorted split points, kept or removed by their
- * midpoints. */
-static int decide(const trimmer *w, ob_trim *tr)
+ * midpoints; each corner's arc before the segment it starts (the wrap's
+ * last). */
+static int decide(trimmer *w, ob_trim *tr)
 {
-    int cap = 0, j = 0;
+    int cap = 0, j = 0, c = w->ncn > 0 && w->cn[0].seg == 0; /* the wrap's corner comes last */
     for (int k = 0; k < w->c->nseg; k++) {
         double a = 0.0;
+        for (; c < w->ncn && w->cn[c].seg == k; c++)
+            if (corner_arcs(w, &w->cn[c], tr, &cap))
+                return -1;
         for (;; j++) {
             const int last = j >= w->nsp || w->sp[j].seg != k;
             const double b = last ? 1.0 : w->sp[j].t;
             if (b > a) {
-                if (kept_at(w, k, 0.5 * (a + b)) && add_arc(tr, &cap, k, a, b))
+                if (kept_at(w, k, 0.5 * (a + b)) && add_arc(tr, &cap, (ob_trim_arc){.seg = k, .t0 = a, .t1 = b}))
                     return -1;
                 a = b;
             }
@@ -346,6 +503,8 @@ static int decide(const trimmer *w, ob_trim *tr)
                 break;
         }
     }
+    if (w->ncn > 0 && w->cn[0].seg == 0 && corner_arcs(w, &w->cn[0], tr, &cap))
+        return -1;
     return 0;
 }
 
@@ -354,12 +513,15 @@ static void trimmer_free(trimmer *w)
     free(w->poly);
     free(w->box);
     free(w->sp);
+    free(w->cn);
+    free(w->g0);
+    free(w->ang);
 }
 
 int ob_trim_offset(const ob_curve *c, double d, ob_trim *tr, ob_err *err)
 {
     memset(tr, 0, sizeof *tr);
-    trimmer w = {c, d, curve_size(c, d), 0, OB_TRIM_POLY, NULL, NULL, 0, NULL, 0, 0};
+    trimmer w = {.c = c, .d = d, .size = curve_size(c, d), .M = OB_TRIM_POLY};
     double s[2], e[2];
     ob_bez_point(&c->seg[0], 0.0, s);
     ob_bez_point(&c->seg[c->nseg - 1], 1.0, e);
@@ -367,10 +529,20 @@ int ob_trim_offset(const ob_curve *c, double d, ob_trim *tr, ob_err *err)
     w.nblk = c->nseg * (w.M / BLOCK);
     w.poly = malloc(2 * (size_t)c->nseg * (size_t)(w.M + 1) * 2 * sizeof *w.poly);
     w.box = malloc(2 * (size_t)w.nblk * 4 * sizeof *w.box);
-    int rc = !w.poly || !w.box ? -1 : 0;
+    w.cn = malloc((size_t)c->nseg * sizeof *w.cn);
+    w.g0 = calloc((size_t)c->nseg, 1);
+    int rc = !w.poly || !w.box || !w.cn || !w.g0 ? -1 : 0;
     if (rc == 0) {
+        find_corners(&w);
         build_poly(&w);
-        rc = cusps(&w) || crossings(&w) || (!w.closed && (end_circle(&w, s) || end_circle(&w, e))) ? -1 : 0;
+        rc = cusps(&w) || crossings(&w) || (!w.closed && (circle_cross(&w, 0, s, NULL) || circle_cross(&w, 0, e, NULL)))
+                 ? -1
+                 : 0;
+        /* the circles about the corners bound the |d|-neighbourhood of C
+         * too (on one side or the other): where O_d crosses one its
+         * distance to C can change */
+        for (int k = 0; k < w.ncn && rc == 0; k++)
+            rc = circle_cross(&w, 0, w.cn[k].P, NULL);
     }
     if (rc == 0) {
         if (w.nsp > 0) /* qsort takes no NULL, even for none */
@@ -393,12 +565,22 @@ void ob_trim_free(ob_trim *tr)
     memset(tr, 0, sizeof *tr);
 }
 
-static void dump_row(FILE *f, const char *kind, const ob_curve *c, double d, int seg, double t0, double t1)
+void ob_trim_arc_point(const ob_curve *c, double d, const ob_trim_arc *ar, double u, double p[2])
+{
+    const double t = ar->t0 + (ar->t1 - ar->t0) * u;
+    if (ar->corner) {
+        p[0] = ar->ctr[0] + ar->r * cos(t), p[1] = ar->ctr[1] + ar->r * sin(t);
+        return;
+    }
+    ob_bez_offset_point(&c->seg[ar->seg], t, d, p);
+}
+
+static void dump_row(FILE *f, const char *kind, const ob_curve *c, double d, const ob_trim_arc *ar)
 {
     double p[2], q[2];
-    ob_bez_offset_point(&c->seg[seg], t0, d, p);
-    ob_bez_offset_point(&c->seg[seg], t1, d, q);
-    fprintf(f, "%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", kind, seg, t0, t1, p[0], p[1], q[0], q[1]);
+    ob_trim_arc_point(c, d, ar, 0.0, p);
+    ob_trim_arc_point(c, d, ar, 1.0, q);
+    fprintf(f, "%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", kind, ar->seg, ar->t0, ar->t1, p[0], p[1], q[0], q[1]);
 }
 
 int ob_trim_dump(FILE *f, const ob_curve *c, double d, const ob_trim *tr)
@@ -406,8 +588,10 @@ int ob_trim_dump(FILE *f, const ob_curve *c, double d, const ob_trim *tr)
     static const char *const kinds[] = {"cusp", "self", "opposite", "end"};
     fputs("kind,seg,t0,t1,x0,y0,x1,y1\n", f);
     for (int k = 0; k < tr->n; k++)
-        dump_row(f, "arc", c, d, tr->arc[k].seg, tr->arc[k].t0, tr->arc[k].t1);
-    for (int k = 0; k < tr->nsplit; k++)
-        dump_row(f, kinds[tr->split[k].kind], c, d, tr->split[k].seg, tr->split[k].t, tr->split[k].t);
+        dump_row(f, tr->arc[k].corner ? "corner" : "arc", c, d, &tr->arc[k]);
+    for (int k = 0; k < tr->nsplit; k++) {
+        const ob_trim_arc at = {.seg = tr->split[k].seg, .t0 = tr->split[k].t, .t1 = tr->split[k].t};
+        dump_row(f, kinds[tr->split[k].kind], c, d, &at);
+    }
     return fflush(f) != 0 || ferror(f) ? -1 : 0;
 }

@@ -22,9 +22,19 @@
  * (ob_trim_base_dist: a scan of every segment refined by golden section),
  * kept when it is |d| to within OB_TRIM_REL of the curve's size.
  *
- * Not covered: a base with a corner (G0 joint): the untrimmed offset has a
- * gap there that a CAD kernel fills with an arc; the trimmed offset here is
- * made of parts of C + dN only.
+ * Corners: a joint (the wrap of a closed base too) where the unit normals
+ * on its two sides differ by more than OB_TRIM_CORNER is a corner P; O
+ * has a gap there, from P + d N1 to P + d N2.  On the convex side (d and
+ * the tangent's turn theta of opposite signs; a reversal, theta = +-pi,
+ * on both) the points at |d| from C there are the arc of the circle of
+ * radius |d| about P from d N1 turning by theta (what a CAD kernel's arc
+ * join fills): a kept arc of kind corner, between the two segments' arcs,
+ * split where O_d, O_-d, the circles about the other corners and the open
+ * ends cross it, each part kept by its midpoint as O's arcs are.  On the
+ * concave side no inner point of that arc is |d| from C (the segment
+ * before comes nearer), and the two offsets' crossing next to P is looked
+ * for like any other (a corner's two chords share no vertex).  O_d is
+ * split at the circles about the corners too.
  */
 #ifndef OB_TRIM_H
 #define OB_TRIM_H
@@ -38,6 +48,12 @@
 
 enum { OB_TRIM_POLY = 2048 };
 #define OB_TRIM_REL 1e-9
+/* A joint is a corner when its tangent turns by more than this (radians):
+ * far above the round-off of a smooth joint's two unit normals (1e-15 or
+ * so, also after a B-spline's conversion to Bezier segments), and the gap
+ * it leaves between the offsets' ends, |d| times the turn, below 1e-8 |d|
+ * when it is taken as smooth. */
+#define OB_TRIM_CORNER 1e-8
 
 typedef enum { OB_SPLIT_CUSP = 0, OB_SPLIT_SELF, OB_SPLIT_OPPOSITE, OB_SPLIT_END } ob_split_kind;
 
@@ -47,16 +63,21 @@ typedef struct {
     ob_split_kind kind;
 } ob_trim_split;
 
-/* A kept arc: O on base segment seg over [t0, t1]. */
+/* A kept arc: O on base segment seg over [t0, t1] (corner 0), or (corner
+ * 1) the arc of the circle about ctr = C(seg, 0) (the corner at the start
+ * of segment seg: for segment 0, the wrap's joint of a closed base) of
+ * radius r = |d| from angle t0 to angle t1 (radians; t1 < t0: clockwise). */
 typedef struct {
     int seg;
     double t0, t1;
+    int corner;
+    double ctr[2], r;
 } ob_trim_arc;
 
 typedef struct {
     ob_trim_arc *arc;      /* in the base's order */
     int n;
-    ob_trim_split *split;  /* every split point found, by segment and t */
+    ob_trim_split *split;  /* every split point of O found, by segment and t (not a corner arc's) */
     int nsplit;
 } ob_trim;
 
@@ -67,6 +88,13 @@ typedef struct {
 int ob_trim_offset(const ob_curve *c, double d, ob_trim *tr, ob_err *err);
 
 void ob_trim_free(ob_trim *tr);
+
+/* Purpose: the point of kept arc ar of the trimmed d-offset of c at u in
+ *          [0, 1] (u = 0 its start, 1 its end): O(t0 + (t1 - t0) u) on its
+ *          segment, or for a corner arc ctr + r (cos a, sin a) at the angle
+ *          a = t0 + (t1 - t0) u.
+ * Outputs: p.  Errors: none. */
+void ob_trim_arc_point(const ob_curve *c, double d, const ob_trim_arc *ar, double u, double p[2]);
 
 /* The distance from p to the whole base curve c (every segment over [0, 1],
  * end points included): each segment scanned at 256 parameters, every local
@@ -81,7 +109,8 @@ double ob_trim_base_dist(const ob_curve *c, const double p[2]);
  *          sample of each piece (arc) refined by golden section.
  * Outputs: *r: err, piece (the file's piece nearest the worst point, or at
  *          it), seg and t (of the trimmed offset's point at it, or nearest
- *          to it), note: msg, which says which side and where (x, y).
+ *          to it; on a corner arc the corner's, seg at t = 0), note: msg,
+ *          which says which side and where (x, y).
  * Errors:  returns 0; -1 with a reason in err->msg: tr has no arc, a has no
  *          piece, out of memory. */
 int ob_trimmed_hausdorff(const ob_curve *c, double d, const ob_trim *tr, const ob_approx *a, int samples,
@@ -97,8 +126,10 @@ int ob_measure_trimmed(const ob_curve *c, double d, const ob_approx *a, int samp
 
 /* Purpose: the trimmed offset as CSV, for checks (`measure --trim-dump`):
  *          a header, then one row per kept arc (kind arc: seg, t0, t1 and
- *          the end points x0, y0, x1, y1) and per split point (kind cusp,
- *          self, opposite or end: seg, t0 = t1 = t, its point twice).
+ *          the end points x0, y0, x1, y1; kind corner: seg, the angles
+ *          t0, t1 and the end points) and per split point of O (kind
+ *          cusp, self, opposite or end: seg, t0 = t1 = t, its point
+ *          twice; a corner arc's split points are not kept).
  * Returns: 0, or -1 when writing fails. */
 int ob_trim_dump(FILE *f, const ob_curve *c, double d, const ob_trim *tr);
 

@@ -39,8 +39,7 @@ static void cs_point(const cset *s, int k, double u, double p[2])
         ob_bez_point(&s->a->v[k].approx, u, p);
         return;
     }
-    const ob_trim_arc *ar = &s->tr->arc[k];
-    ob_bez_offset_point(&s->c->seg[ar->seg], ar->t0 + (ar->t1 - ar->t0) * u, s->d, p);
+    ob_trim_arc_point(s->c, s->d, &s->tr->arc[k], u, p);
 }
 
 /* The point of curve k at u and its derivative in u. */
@@ -53,6 +52,12 @@ static void cs_point_d(const cset *s, int k, double u, double p[2], double dp[2]
         return;
     }
     const ob_trim_arc *ar = &s->tr->arc[k];
+    if (ar->corner) { /* ctr + r (cos a, sin a), a = t0 + (t1 - t0) u */
+        const double a = ar->t0 + (ar->t1 - ar->t0) * u, w = ar->r * (ar->t1 - ar->t0);
+        p[0] = ar->ctr[0] + ar->r * cos(a), p[1] = ar->ctr[1] + ar->r * sin(a);
+        dp[0] = -w * sin(a), dp[1] = w * cos(a);
+        return;
+    }
     const ob_bez *b = &s->c->seg[ar->seg];
     const double t = ar->t0 + (ar->t1 - ar->t0) * u;
     ob_bez_eval(b, t, 2, e);
@@ -318,7 +323,7 @@ static void locate(const cset *Q, const cset *G, int k, double u, double e, ob_m
     r->err = e;
     r->piece = ob_approx_file_piece(Q->a ? Q->a : G->a, Q->side == SIDE_FILE ? k : kf);
     r->seg = ar->seg;
-    r->t = ar->t0 + (ar->t1 - ar->t0) * ua;
+    r->t = ar->corner ? 0.0 : ar->t0 + (ar->t1 - ar->t0) * ua; /* a corner arc's points are the corner's */
     snprintf(msg, len, Q->side == SIDE_FILE ? "the farthest point of the approximation from the trimmed offset, at "
                                               "(%.9g, %.9g)"
                                             : "the farthest point of the trimmed offset from the approximation, at "
