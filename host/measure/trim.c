@@ -13,14 +13,7 @@
 
 enum { BLOCK = 32, BASE_SCAN = 256 };
 
-/* A corner: the G0 joint at the start of segment seg (segment 0: the
- * wrap's joint of a closed base), its point P, the angle a0 of d N at the
- * end of the segment before and the turn of the tangent there (signed,
- * the arc's sweep); convex: the arc is on the d side. */
-typedef struct {
-    int seg, convex;
-    double P[2], a0, sweep;
-} corner;
+typedef ob_trim_corner corner;
 
 typedef struct {
     const ob_curve *c;
@@ -408,30 +401,38 @@ static int add_arc(ob_trim *tr, int *cap, ob_trim_arc a)
 /* Finds the corners: joints where the unit normals (ob_bez_normal: also
  * where C' vanishes) of the segment before and after differ by more than
  * OB_TRIM_CORNER radians. */
+int ob_trim_corner_at(const ob_curve *c, double d, int k, int closed, ob_trim_corner *cn)
+{
+    const int n = c->nseg;
+    if (k < 0 || k >= n || (k == 0 && !closed))
+        return 0;
+    const ob_bez *a = &c->seg[k ? k - 1 : n - 1], *b = &c->seg[k];
+    double N1[2], N2[2];
+    if (ob_bez_normal(a, 1.0, N1) || ob_bez_normal(b, 0.0, N2))
+        return 0; /* a point-like segment: no direction to turn from */
+    double th = atan2(N1[0] * N2[1] - N1[1] * N2[0], N1[0] * N2[0] + N1[1] * N2[1]);
+    if (!(fabs(th) > OB_TRIM_CORNER))
+        return 0;
+    /* the arc's points P + d n(phi), n N1 turned by phi in (0, th),
+     * have (Q - P).T1 = -d sin(phi): where d th > 0 (the concave
+     * side) C before P comes nearer than |d| to each, no point of it
+     * is kept.  A reversal (th = +-pi) is convex on both sides: the
+     * arc round the front, (Q - P).T1 >= 0, turns against d. */
+    if (fabs(th) >= OB_PI - OB_TRIM_CORNER)
+        th = d > 0.0 ? -OB_PI : OB_PI;
+    cn->seg = k, cn->convex = d * th < 0.0, cn->sweep = th;
+    cn->a0 = atan2(d * N1[1], d * N1[0]);
+    ob_bez_point(b, 0.0, cn->P);
+    return 1;
+}
+
 static int find_corners(trimmer *w)
 {
-    const int n = w->c->nseg;
-    for (int k = w->closed ? 0 : 1; k < n; k++) {
-        const ob_bez *a = &w->c->seg[k ? k - 1 : n - 1], *b = &w->c->seg[k];
-        double N1[2], N2[2];
-        if (ob_bez_normal(a, 1.0, N1) || ob_bez_normal(b, 0.0, N2))
-            continue; /* a point-like segment: no direction to turn from */
-        double th = atan2(N1[0] * N2[1] - N1[1] * N2[0], N1[0] * N2[0] + N1[1] * N2[1]);
-        if (!(fabs(th) > OB_TRIM_CORNER))
-            continue;
-        /* the arc's points P + d n(phi), n N1 turned by phi in (0, th),
-         * have (Q - P).T1 = -d sin(phi): where d th > 0 (the concave
-         * side) C before P comes nearer than |d| to each, no point of it
-         * is kept.  A reversal (th = +-pi) is convex on both sides: the
-         * arc round the front, (Q - P).T1 >= 0, turns against d. */
-        if (fabs(th) >= OB_PI - OB_TRIM_CORNER)
-            th = w->d > 0.0 ? -OB_PI : OB_PI;
-        corner *cn = &w->cn[w->ncn++];
-        cn->seg = k, cn->convex = w->d * th < 0.0, cn->sweep = th;
-        cn->a0 = atan2(w->d * N1[1], w->d * N1[0]);
-        ob_bez_point(b, 0.0, cn->P);
-        w->g0[k] = 1;
-    }
+    for (int k = w->closed ? 0 : 1; k < w->c->nseg; k++)
+        if (ob_trim_corner_at(w->c, w->d, k, w->closed, &w->cn[w->ncn])) {
+            w->g0[k] = 1;
+            w->ncn++;
+        }
     return 0;
 }
 

@@ -81,6 +81,21 @@ typedef struct {
     int nsplit;
 } ob_trim;
 
+/* A corner: the G0 joint at the start of segment seg (segment 0: the
+ * wrap's joint of a closed base), its point P, the angle a0 of d N at the
+ * end of the segment before and the turn of the tangent there (signed,
+ * the arc's sweep); convex: the arc is on the d side. */
+typedef struct {
+    int seg, convex;
+    double P[2], a0, sweep;
+} ob_trim_corner;
+
+/* Purpose: whether the joint at the start of segment k of c (k = 0: the
+ *          wrap's, when closed) is a corner (its normals differ by more
+ *          than OB_TRIM_CORNER), and if so *cn for the d side.
+ * Returns: 1 (a corner, *cn filled), else 0. */
+int ob_trim_corner_at(const ob_curve *c, double d, int k, int closed, ob_trim_corner *cn);
+
 /* Purpose: the trimmed d-offset of c (above).
  * Outputs: *tr (free with ob_trim_free, also after an error); no arc at all
  *          when every point of O comes nearer than |d| to C.
