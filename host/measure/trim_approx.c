@@ -5,6 +5,7 @@
 #include "host/measure/trim_approx.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -392,6 +393,53 @@ double ob_trim_curve_size(const ob_curve *c, double d)
     return hypot(b[2] - b[0], b[3] - b[1]) + fabs(d);
 }
 
+static int trim_filled(const ob_curve *c, double d, const ob_approx *a, double size, int closed, double margin,
+                       ob_approx *kept, int *cut, ob_err *err);
+
+/* Appends to out corner cn's arc (|d| about P from angle a0 by sweep) as
+ * rational quadratics of at most a quarter turn each. */
+static int add_corner_arc(const ob_trim_corner *cn, double d, ob_approx *out)
+{
+    const int n = (int)ceil(fabs(cn->sweep) / (0.5 * OB_PI) - 1e-12);
+    const double r = fabs(d), ph = cn->sweep / (n > 0 ? n : 1);
+    for (int i = 0; i < n; i++) {
+        const double a0 = cn->a0 + i * ph, am = a0 + 0.5 * ph, a1 = a0 + ph, w = cos(0.5 * ph);
+        ob_apiece *p = ob_approx_add(out);
+        if (!p)
+            return -1;
+        p->approx.deg = 2;
+        ob_bez_set(&p->approx, 0, cn->P[0] + r * cos(a0), cn->P[1] + r * sin(a0), 1.0);
+        ob_bez_set(&p->approx, 1, cn->P[0] + r / w * cos(am), cn->P[1] + r / w * sin(am), w);
+        ob_bez_set(&p->approx, 2, cn->P[0] + r * cos(a1), cn->P[1] + r * sin(a1), 1.0);
+        snprintf(p->entity, sizeof p->entity, "corner");
+    }
+    return 0;
+}
+
+/* Purpose: a's pieces with the arcs a CAD kernel's arc join adds: at each
+ *          convex corner of c (ob_trim_corner_at) between the last piece
+ *          over the segment before and the first over the segment after
+ *          (pieces with has_base only; the wrap's arc last).
+ * Returns: 0, or -1 out of memory. */
+static int fill_corners(const ob_curve *c, double d, int closed, const ob_approx *a, ob_approx *out)
+{
+    ob_trim_corner cn;
+    for (int k = 0; k < a->n; k++) {
+        const ob_apiece *p = &a->v[k], *q = k + 1 < a->n ? &a->v[k + 1] : NULL;
+        ob_apiece *o = ob_approx_add(out);
+        if (!o)
+            return -1;
+        *o = *p;
+        if (q && p->has_base && q->has_base && q->seg == p->seg + 1 &&
+            ob_trim_corner_at(c, d, q->seg, closed, &cn) && cn.convex && add_corner_arc(&cn, d, out))
+            return -1;
+    }
+    if (closed && a->n > 0 && a->v[0].has_base && a->v[0].seg == 0 && a->v[a->n - 1].seg == c->nseg - 1 &&
+        ob_trim_corner_at(c, d, 0, closed, &cn) && cn.convex && add_corner_arc(&cn, d, out))
+        return -1;
+    return 0;
+}
+
 int ob_trim_approx(const ob_curve *c, double d, const ob_approx *a, double margin, ob_approx *kept, int *cut,
                    ob_err *err)
 {
@@ -399,11 +447,29 @@ int ob_trim_approx(const ob_curve *c, double d, const ob_approx *a, double margi
     *cut = 0;
     if (a->n == 0)
         return 0;
-    atrim w = {c, a, d, ob_trim_curve_size(c, d), 0, a->n, NULL, NULL, NULL, 0, NULL, 0, 0, NULL, NULL, 0.0};
+    double s[2], e[2];
+    const double size = ob_trim_curve_size(c, d);
+    ob_bez_point(&c->seg[0], 0.0, s);
+    ob_bez_point(&c->seg[c->nseg - 1], 1.0, e);
+    const int closed = hypot(e[0] - s[0], e[1] - s[1]) <= 1e-12 * size;
+    ob_approx f = {0};
+    if (fill_corners(c, d, closed, a, &f) != 0) {
+        ob_approx_free(&f);
+        return ob_fail(err, "trimming the approximation: out of memory (%d pieces)", a->n);
+    }
+    const int rc = trim_filled(c, d, &f, size, closed, margin, kept, cut, err);
+    ob_approx_free(&f);
+    return rc;
+}
+
+/* ob_trim_approx on pieces whose corners are filled. */
+static int trim_filled(const ob_curve *c, double d, const ob_approx *a, double size, int closed, double margin,
+                       ob_approx *kept, int *cut, ob_err *err)
+{
+    atrim w = {c, a, d, size, closed, a->n, NULL, NULL, NULL, 0, NULL, 0, 0, NULL, NULL, 0.0};
     double s[2], e[2];
     ob_bez_point(&c->seg[0], 0.0, s);
     ob_bez_point(&c->seg[c->nseg - 1], 1.0, e);
-    w.closed = hypot(e[0] - s[0], e[1] - s[1]) <= 1e-12 * w.size;
     w.pa = malloc(2 * (size_t)w.n * (CH + 1) * sizeof *w.pa);
     w.po = malloc(2 * (size_t)c->nseg * (OCH + 1) * sizeof *w.po);
     w.blk = malloc(((size_t)w.n * (CH / BLK) + (size_t)c->nseg * (OCH / BLK)) * sizeof *w.blk);

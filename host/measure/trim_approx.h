@@ -11,6 +11,11 @@
  * known to round-off; A's are A's own).
  *
  * How (trim_approx.c):
+ *   - at each convex corner of the base (ob_trim_corner_at: a G0 joint,
+ *     the offset's gap on the d side) the arc of radius |d| about it is
+ *     put between the last piece over the segment before and the first
+ *     over the segment after, as rational quadratics (a CAD kernel's arc
+ *     join: the methods fit the segments, not the corners);
  *   - the pieces are taken in the order given (the base's), as one curve
  *     with the parameter tau = k + u (piece k, its own u in [0, 1]);
  *   - each piece is a polyline of OB_TRIMA_CHORDS chords; crossings of two

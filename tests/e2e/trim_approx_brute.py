@@ -16,14 +16,23 @@ with offbench (host/measure/trim_approx.c, host/run/trimmed.c).
       between the kept arcs and the trimmed offset of trim_brute.py (both
       as point sets, spacing 2e-5 of the size) and the number of removed
       regions (runs of removed arcs).
-The base: one Bezier segment (trim_brute.py's reader).
+The base: trim_brute.py's reader (B-splines span by span); its trimmed
+offset: trim_brute.py's (corners included).  The base's corners are not
+filled here: the e2e cases have none.
 """
 import sys
 
 import numpy as np
 from scipy.spatial import cKDTree
 
-from trim_brute import curve, densify, kept_ranges, offset, read_curve, refine, bern
+from math import comb
+
+from trim_brute import Base, densify, offset, part_points, read_curve, trimmed_parts
+
+
+def bern(n, t):
+    t = np.atleast_1d(np.asarray(t, dtype=float))
+    return np.stack([comb(n, i) * t**i * (1 - t) ** (n - i) for i in range(n + 1)], 1)
 
 
 def read_pieces(path):
@@ -99,19 +108,20 @@ def crossings(P, Q, same):
 
 
 def main(path, cid, d, export, max_err):
-    H = read_curve(path, cid)
+    base = Base(read_curve(path, cid))
     pieces = read_pieces(export)
     P = np.vstack([piece_points(h, 4001)[(1 if k else 0):] for k, h in enumerate(pieces)])
-    C, _ = curve(H, np.linspace(0, 1, 20001))
-    size = np.hypot(*np.ptp(H[:, :2] / H[:, 2:3], axis=0)) + abs(d)
+    u = np.linspace(0, 1, 20001)
+    C = np.vstack([sp.eval(u)[0] for sp in base.spans])
+    size = np.hypot(*np.ptp(C, axis=0)) + abs(d)
     margin = 2 * max_err + 1e-9 * size
     # the cuts
     cuts = []
     a, b = crossings(P, P, True)
     cuts += a + b
-    O = offset(H, -d, np.linspace(0, 1, 20001))
+    O = np.vstack([offset(sp, -d, u) for sp in base.spans])
     cuts += crossings(P, O, False)[0]
-    for E in (C[0], C[-1]):
+    for E in (C[0], C[-1]):  # an open base's ends (the e2e cases are open)
         f = np.hypot(*(P - E).T) ** 2 - d * d
         s = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
         cuts += list(s + f[s] / (f[s] - f[s + 1]))
@@ -146,12 +156,10 @@ def main(path, cid, d, export, max_err):
             seg = [at(x0)] + [P[i] for i in range(i0, i1 + 1)] + [at(x1)]
             kept.append(np.array(seg))
     h = 2e-5 * size
-    D, t, _, ranges = kept_ranges(H, d, 20001)
+    _, parts = trimmed_parts(base, d)
     arcs = []
-    for a, b in ranges:
-        t0 = 0.0 if a == 0 else refine(D, H, d, t[a], t[a - 1])
-        t1 = 1.0 if b == len(t) - 1 else refine(D, H, d, t[b], t[b + 1])
-        Q = offset(H, d, np.linspace(t0, t1, 20001))
+    for part in parts:
+        Q = part_points(base, d, part, np.linspace(0, 1, 20001))
         arcs.append(densify(Q[:-1], Q[1:], h))
     T = np.vstack(arcs)
     F = np.vstack([densify(k[:-1], k[1:], h) for k in kept if len(k) > 1])

@@ -166,8 +166,44 @@ static void test_circle(void)
     ob_approx_free(&a);
 }
 
+/* An L, (0, 1) -> (0, 0) -> (1, 0), two lines with a corner (a left
+ * turn), and its offset's two lines as the approximation (exact): at
+ * d = -0.25 (the right, convex side) a CAD kernel fills their gap with the
+ * quarter circle about the corner, and so must the trimming, to measure at
+ * round-off; at d = 0.25 (concave) the lines overlap and are cut where
+ * they cross, (0.25, 0.25), also at round-off. */
+static void test_corner(void)
+{
+    const double l0[2][2] = {{0, 1}, {0, 0}}, l1[2][2] = {{0, 0}, {1, 0}};
+    ob_bez seg[2];
+    ob_bez_from_points(&seg[0], 1, l0);
+    ob_bez_from_points(&seg[1], 1, l1);
+    ob_curve c = curve_of(seg, 2, "L");
+    for (int s = -1; s <= 1; s += 2) {
+        const double d = 0.25 * s;
+        ob_approx a = {0}, kept;
+        for (int k = 0; k < 2; k++) {
+            double p[2][2];
+            ob_bez_offset_point(&seg[k], 0.0, d, p[0]);
+            ob_bez_offset_point(&seg[k], 1.0, d, p[1]);
+            ob_apiece *q = ob_approx_add(&a);
+            ob_bez_from_points(&q->approx, 1, p);
+            q->has_base = 1, q->seg = k, q->a = 0.0, q->b = 1.0, q->t0 = 0.0, q->t1 = 1.0;
+        }
+        ob_err err = {""};
+        int cut = -1;
+        CHECK(ob_trim_approx(&c, d, &a, 1e-9, &kept, &cut, &err) == 0, "%s", err.msg);
+        const double e = set_dist(&c, d, &kept), raw = set_dist(&c, d, &a);
+        CHECK(e < 1e-12, "the L at d = %g: the offset's lines trimmed (and the corner filled) measure %g", d, e);
+        CHECK(raw > 0.05, "the L at d = %g: the lines as they are measure %g", d, raw);
+        ob_approx_free(&kept);
+        ob_approx_free(&a);
+    }
+}
+
 int main(void)
 {
+    test_corner();
     test_parabola();
     test_scurve();
     test_circle();
