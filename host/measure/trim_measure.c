@@ -6,6 +6,7 @@
  */
 #include "host/measure/trim.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -152,7 +153,11 @@ static int gauss_newton(const cset *s, int k, const double q[2], double u, doubl
         if (!(n2 > 0.0))
             return 0;
         const double step = ((p[0] - q[0]) * dp[0] + (p[1] - q[1]) * dp[1]) / n2, v = fmin(fmax(u - step, lo), hi);
-        if (fabs(v - u) <= 1e-15 || (v == u)) {
+        /* settled: a step below 1e-15, or below what the points' round-off
+         * moves u by (a short curve's small |P'| magnifies it: its steps
+         * would wander there and golden section take over) */
+        const double noise = 8.0 * DBL_EPSILON * (fabs(p[0]) + fabs(p[1]) + fabs(q[0]) + fabs(q[1])) / sqrt(n2);
+        if (fabs(v - u) <= fmax(1e-15, noise) || (v == u)) {
             *ub = v, *e = dist_at(s, k, v, q);
             return 1;
         }
