@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "tests/check.h"
+#include "tests/testlib.h"
 #include "host/measure/measure.h"
 #include "host/measure/perpiece.h"
 
@@ -147,11 +148,7 @@ static void test_wide_bump(void)
     const double line[2][2] = {{0, 0}, {1, 0}}, bump[4][2] = {{0, 1}, {0, 1.8}, {1, 1.8}, {1, 1}};
     ob_bez seg;
     ob_bez_from_points(&seg, 1, line);
-    ob_curve c;
-    memset(&c, 0, sizeof c);
-    snprintf(c.id, sizeof c.id, "line");
-    c.nseg = 1;
-    c.seg = &seg;
+    const ob_curve c = curve_of(&seg, 1, "line");
     ob_approx a = {0};
     ob_apiece *p = ob_approx_add(&a);
     ob_bez_from_points(&p->approx, 3, bump);
