@@ -102,10 +102,7 @@ def test_ctrl_c_stops_the_run(monkeypatch):
     def progress(done, total):
         calls.append(done)
         if len(calls) == 1:
-            # to this thread: a SIGINT to the process may be taken by another
-            # thread (a library's), and then reach Python only after this
-            # callback has returned, a race that load decides
-            signal.pthread_kill(threading.get_ident(), signal.SIGINT)
+            os.kill(os.getpid(), signal.SIGINT)
 
     with pytest.raises(KeyboardInterrupt):
         offbench.run(_two_sets(), "tiller,cobb,lee", TOLS, d=1, progress=progress)
