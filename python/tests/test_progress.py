@@ -98,14 +98,24 @@ def test_ctrl_c_stops_the_run(monkeypatch):
     callback (this thread), its KeyboardInterrupt stops the run."""
     calls = []
     n = _count_library_calls(monkeypatch)
+    # a shell's background job without job control (`make test &` in a
+    # script, nohup) starts python with SIGINT ignored, and python keeps it
+    # so: no KeyboardInterrupt would come; the test wants python's handler
+    ignored = signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    if ignored:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
     def progress(done, total):
         calls.append(done)
         if len(calls) == 1:
             os.kill(os.getpid(), signal.SIGINT)
 
-    with pytest.raises(KeyboardInterrupt):
-        offbench.run(_two_sets(), "tiller,cobb,lee", TOLS, d=1, progress=progress)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            offbench.run(_two_sets(), "tiller,cobb,lee", TOLS, d=1, progress=progress)
+    finally:
+        if ignored:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
     assert len(calls) == 1 and n == {"batches": 1, "told": 1}, (calls, n)
 
 
