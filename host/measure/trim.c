@@ -49,7 +49,7 @@ static void opoint(const ob_bez *b, double t, double dd, double p[2], double dp[
 }
 
 /* The size of the curve: the diagonal of its control points' box, plus |d|. */
-static double curve_size(const ob_curve *c, double d)
+double ob_trim_curve_size(const ob_curve *c, double d)
 {
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, p[2];
     for (int k = 0; k < c->nseg; k++)
@@ -522,7 +522,7 @@ static void trimmer_free(trimmer *w)
 int ob_trim_offset(const ob_curve *c, double d, ob_trim *tr, ob_err *err)
 {
     memset(tr, 0, sizeof *tr);
-    trimmer w = {.c = c, .d = d, .size = curve_size(c, d), .M = OB_TRIM_POLY};
+    trimmer w = {.c = c, .d = d, .size = ob_trim_curve_size(c, d), .M = OB_TRIM_POLY};
     double s[2], e[2];
     ob_bez_point(&c->seg[0], 0.0, s);
     ob_bez_point(&c->seg[c->nseg - 1], 1.0, e);

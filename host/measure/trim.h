@@ -96,6 +96,10 @@ typedef struct {
  * Returns: 1 (a corner, *cn filled), else 0. */
 int ob_trim_corner_at(const ob_curve *c, double d, int k, int closed, ob_trim_corner *cn);
 
+/* The scale the trims' round-off allowances are relative to: the diagonal
+ * of the box of c's control points, plus |d|. */
+double ob_trim_curve_size(const ob_curve *c, double d);
+
 /* Purpose: the trimmed d-offset of c (above).
  * Outputs: *tr (free with ob_trim_free, also after an error); no arc at all
  *          when every point of O comes nearer than |d| to C.

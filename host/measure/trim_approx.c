@@ -382,17 +382,6 @@ static int decide(const atrim *w, double margin, ob_approx *kept, int *cut)
     return 0;
 }
 
-double ob_trim_curve_size(const ob_curve *c, double d)
-{
-    double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY}, p[2];
-    for (int k = 0; k < c->nseg; k++)
-        for (int i = 0; i <= c->seg[k].deg; i++) {
-            ob_bez_ctrl(&c->seg[k], i, p);
-            b[0] = fmin(b[0], p[0]), b[1] = fmin(b[1], p[1]), b[2] = fmax(b[2], p[0]), b[3] = fmax(b[3], p[1]);
-        }
-    return hypot(b[2] - b[0], b[3] - b[1]) + fabs(d);
-}
-
 static int trim_filled(const ob_curve *c, double d, const ob_approx *a, double size, int closed, double margin,
                        ob_approx *kept, int *cut, ob_err *err);
 

@@ -46,10 +46,6 @@
 
 enum { OB_TRIMA_CHORDS = 64, OB_TRIMA_OPP_CHORDS = 256, OB_TRIMA_ARC_SAMPLES = 8 };
 
-/* The scale the trims' round-off allowances are relative to: the diagonal
- * of the box of c's control points, plus |d|. */
-double ob_trim_curve_size(const ob_curve *c, double d);
-
 /* Purpose: the parts of a that a CAD kernel keeps when it trims a as the
  *          d-offset of c (above).
  * Inputs:  a: the pieces, in the order of the curve (joined end to end,
